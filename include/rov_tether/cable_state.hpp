@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rov_tether
+{
+
+/// A point in the world frame, z up (REP 103) [m].
+using Position = Eigen::Vector3d;
+/// A force in the world frame [N].
+using Force = Eigen::Vector3d;
+
+/**
+ * Particles of the whole cable (deployed or on the spool) as structure-of-arrays, so that the solver
+ * loops are contiguous and vectorise.
+ *
+ * Particle `first` is the spool outlet (pinned); particles [0, first) are still on the spool and are
+ * never touched; particles [first, size()) are deployed. The last particle is the vehicle attachment
+ * (pinned) when a vehicle is attached, otherwise a free end. Segment j joins particles j and j+1;
+ * bending constraint j joins particles j and j+2.
+ */
+struct CableState
+{
+  std::vector<double> x, y, z;     ///< Positions [m].
+  std::vector<double> px, py, pz;  ///< Positions one step ago [m].
+  std::vector<double> inv_mass;    ///< Inverse particle mass [1/kg], 0 = pinned.
+  std::vector<double> rest;        ///< Rest length of segment j [m] (size - 1 entries).
+  std::vector<double> stretch_weight;  ///< 1 / (w_j + w_{j+1}) [kg], 0 when both are pinned.
+  std::vector<double> bend_rest;       ///< Rest distance of bending constraint j: rest_j + rest_{j+1} [m].
+  std::vector<double> bend_weight;     ///< 1 / (w_j + w_{j+2}) [kg], 0 when both are pinned.
+  /// Sum over the last step's iterations of each stretch constraint's correction, a Lagrange multiplier
+  /// [kg m]; the constraint force is stretch_lambda / dt^2 [N].
+  std::vector<double> stretch_lambda;
+  std::vector<double> bend_lambda;  ///< As stretch_lambda, for bending constraints [kg m].
+  std::size_t first = 0;            ///< Index of the spool outlet particle.
+
+  /// Number of particles (deployed and on the spool).
+  std::size_t size() const { return x.size(); }
+  /// Allocates every array for `particles` particles, all zero.
+  void resize(std::size_t particles);
+  /// Position of particle i [m].
+  Position position(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  /// Sets position and previous position of particle i (zero velocity) [m].
+  void place(std::size_t i, const Position& p);
+};
+
+}  // namespace rov_tether

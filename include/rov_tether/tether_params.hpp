@@ -1,0 +1,122 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rov_tether
+{
+
+/// Constraint solver used for the distance and bending constraints.
+enum class SolverType
+{
+  kPbd,           ///< The paper's Figure 2 projected in a red-black (vectorisable) order.
+  kPbdSequential  ///< The paper's Figure 2 in its literal sequential order (reference, slower).
+};
+
+/// How the spool pays cable out or reels it in.
+enum class WinchMode
+{
+  kPassive,  ///< Pay out when the first free segment is stretched past payout_threshold, reel in when slack.
+  kLocked,   ///< The deployed length never changes.
+  kSpeed     ///< Pay out (positive) or reel in (negative) at winch_speed.
+};
+
+/// The step at which the paper's per-frame parameters (drag, noise) keep their literal meaning [s].
+/// 0.02 s is the step of the paper's 2D notebook and the default sub-step of the Unreal Engine cable
+/// component the paper modified.
+constexpr double kReferenceStep = 0.02;
+
+/**
+ * All model parameters, in SI units, with their defaults.
+ *
+ * Names are the user interface: the same names are used in `config/default.yaml`, in scenario files
+ * and (later) in dynamic_reconfigure. `validate()` names each bad field, its value and its range.
+ */
+struct TetherParams
+{
+  /// Total length of cable, all of it on the spool at most [m].
+  double cable_length = 10.0;
+  /// Rest length of one segment [m]; the first (spool-side) segment varies between 0.5x and 1.5x this.
+  double segment_length = 0.1;
+  /// Deployed length at start [m].
+  double initial_deployed_length = 2.0;
+  /// Internal fixed step [s].
+  double time_step = 0.005;
+  /// Constraint solver.
+  SolverType solver = SolverType::kPbd;
+  /// Constraint solver sweeps per step [-].
+  int iterations = 10;
+  /// Enable the paper's (i, i+2) bending constraints.
+  bool bending = true;
+  /// Fraction of velocity kept per reference step (kReferenceStep) [-], (0, 1]. 1 = no damping.
+  /// Internally a rate gamma = -ln(drag) / kReferenceStep [1/s], applied as exp(-gamma dt) per step.
+  double drag = 0.9;
+  /// Random micro-current displacement: half-width of the uniform displacement per axis added to each
+  /// free particle per reference step [m]. Scaled by (dt / kReferenceStep)^1.5 at other steps so that the
+  /// long-term random walk does not depend on the step.
+  double noise = 0.0005;
+  /// Seed of the random displacements; the same seed gives the same run.
+  std::int64_t seed = 1;
+  /// Net weight in water per metre [N/m]; positive sinks, negative floats, 0 = neutrally buoyant.
+  double weight_in_water = 0.0;
+  /// Mass per metre of cable [kg/m]; converts weight to acceleration and corrections to tension.
+  double mass_per_length = 0.1;
+  /// Axial stiffness EA [N]. The pbd solvers do not use it in their dynamics (see README); it is the
+  /// scale of the equivalent strain T / EA reported beside the geometric strain.
+  double axial_stiffness = 1.0e5;
+  /// Winch mode.
+  WinchMode winch_mode = WinchMode::kPassive;
+  /// Commanded winch speed in `speed` mode [m/s], positive pays out.
+  double winch_speed = 0.0;
+  /// Largest winch speed in any mode [m/s].
+  double max_winch_speed = 1.0;
+  /// Strain of the first free segment beyond which the passive winch pays out [-].
+  double payout_threshold = 0.1;
+  /// Passive winch reels in while the deployed length exceeds (1 + reel_in_slack) times the straight
+  /// spool-to-vehicle distance [-].
+  double reel_in_slack = 0.2;
+  /// Deployed length never goes below this [m].
+  double min_deployed_length = 0.5;
+  /// A vehicle sample further than this from the previous one is a jump (re-lays the cable) [m].
+  double max_vehicle_jump = 1.0;
+
+  /// Returns one message per invalid field ("field = value: allowed range"); empty when valid.
+  std::vector<std::string> validate() const;
+
+  /// Damping rate gamma [1/s] equivalent to `drag` at kReferenceStep.
+  double dampingRate() const;
+  /// Velocity factor D kept over one step of length dt [s]: exp(-gamma dt).
+  double dampingFactor(double dt) const;
+  /// Half-width of the uniform random displacement per axis for one step of length dt [m].
+  double noiseAmplitude(double dt) const;
+  /// Number of segments the full cable is split into.
+  std::size_t segmentCount() const;
+};
+
+/// True when the two parameter sets describe the same cable (a change needs no rebuild).
+bool sameStructure(const TetherParams& a, const TetherParams& b);
+
+/// A parameter value from any source (YAML, parameter server, command line).
+using ParamValue = std::variant<bool, std::int64_t, double, std::string>;
+
+/// Names of all parameters, in documentation order.
+const std::vector<std::string>& parameterNames();
+
+/// Sets one parameter by name with type checking (integers are accepted for doubles).
+/// Returns an empty string on success, otherwise a message naming the parameter. Range checks are
+/// left to TetherParams::validate() so that contradictions between fields are reported together.
+std::string setParameter(TetherParams& params, const std::string& name, const ParamValue& value);
+
+/// Reads one parameter by name. Throws std::out_of_range for an unknown name.
+ParamValue getParameter(const TetherParams& params, const std::string& name);
+
+std::string toString(SolverType solver);
+std::string toString(WinchMode mode);
+/// Parses a solver name; returns false for an unknown name.
+bool parseSolver(const std::string& text, SolverType* solver);
+/// Parses a winch mode name; returns false for an unknown name.
+bool parseWinchMode(const std::string& text, WinchMode* mode);
+
+}  // namespace rov_tether

@@ -1,0 +1,155 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rov_tether/cable_state.hpp"
+#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/random.hpp"
+#include "rov_tether/tether_params.hpp"
+
+namespace rov_tether
+{
+
+/// Outcome of a call that can refuse its input; the message says why.
+struct Status
+{
+  bool ok = true;
+  std::string message;
+
+  static Status success() { return {}; }
+  static Status error(std::string text) { return {false, std::move(text)}; }
+  explicit operator bool() const { return ok; }
+};
+
+/// What a tether-management controller reads after a step.
+struct TetherSummary
+{
+  double time = 0.0;                ///< Simulation time [s].
+  double deployed_length = 0.0;     ///< Cable off the spool (sum of rest lengths) [m].
+  double tension_spool = 0.0;       ///< Axial force in the segment at the spool [N].
+  double tension_vehicle = 0.0;     ///< Axial force in the segment at the vehicle (or free end) [N].
+  double max_tension = 0.0;         ///< Largest segment tension [N].
+  std::size_t max_tension_segment = 0;  ///< Segment index of max_tension, 0 at the spool.
+  double max_strain = 0.0;          ///< Largest geometric strain |d| / rest - 1 [-].
+  double mean_strain = 0.0;         ///< Mean absolute geometric strain, the solver's residual stretch [-].
+};
+
+/**
+ * The tether: a damped Verlet particle chain (paper eq. 6) with constraints, a spool and a vehicle end.
+ *
+ * Time is plain seconds. The caller feeds vehicle positions with their times (addVehicleSample) and
+ * advances by any interval; the simulation takes fixed internal steps of params().time_step and
+ * interpolates the vehicle end linearly between samples. Invalid input is refused with a Status and
+ * leaves the state untouched.
+ */
+class TetherSimulation
+{
+ public:
+  /// A tether hanging from the spool with a free end. Throws std::invalid_argument on invalid params.
+  TetherSimulation(const TetherParams& params, const Position& spool, double start_time = 0.0);
+  /// A tether from the spool to a vehicle at `vehicle` at start_time. Throws std::invalid_argument.
+  TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle,
+                   double start_time = 0.0);
+
+  /// Replaces the parameters between steps. A change of cable_length, segment_length,
+  /// initial_deployed_length or solver rebuilds the cable; other changes keep the state. A change of
+  /// time_step keeps particle velocities. Invalid params are refused and the old ones kept.
+  Status setParams(const TetherParams& params);
+  const TetherParams& params() const { return params_; }
+
+  /// Moves the spool outlet [m]. Refuses non-finite positions.
+  Status setSpoolPosition(const Position& spool);
+  /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
+  /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle.
+  /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
+  /// rest, from the spool to the new position when the simulation reaches t (see README).
+  Status addVehicleSample(double t, const Position& vehicle);
+  /// Detaches the vehicle: the last particle becomes a free end.
+  void detachVehicle();
+  bool vehicleAttached() const { return vehicle_attached_; }
+
+  /// Advances by dt [s] (any value >= 0) in fixed internal steps; returns the number of steps taken
+  /// through `steps` when given. Refuses negative or non-finite dt.
+  Status advance(double dt, std::size_t* steps = nullptr);
+  /// Advances until time() is within one internal step of t [s]. Refuses non-finite t.
+  Status advanceTo(double t, std::size_t* steps = nullptr);
+  /// Takes exactly one internal step.
+  void step();
+  /// Re-lays the cable at initial_deployed_length, at rest, and restarts time at `time` [s]. Vehicle
+  /// samples are dropped; the vehicle stays attached at its last position.
+  void reset(double time);
+
+  double time() const { return time_; }
+  std::uint64_t stepCount() const { return steps_; }
+  /// Deployed length: the sum of the deployed segments' rest lengths [m].
+  double deployedLength() const;
+  /// Deployed particles, spool outlet and vehicle (or free end) included.
+  std::size_t deployedParticleCount() const { return state_.size() - state_.first; }
+  /// Deployed particle k, k = 0 at the spool [m].
+  Position particle(std::size_t k) const { return state_.position(state_.first + k); }
+  /// Copies the deployed particles, spool first [m]. Reuses `out`'s capacity.
+  void copyPositions(std::vector<Position>& out) const;
+  /// Axial force of each deployed segment, spool first [N]: the constraint multipliers of the last step
+  /// divided by dt^2 and summed with the bending constraints that cross the same cut (see README).
+  void computeSegmentTensions(std::vector<double>& out) const;
+  /// Geometric strain |d| / rest - 1 of deployed segment k [-].
+  double segmentStrain(std::size_t k) const;
+  /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle.
+  Force vehicleForce() const;
+  /// Deployed length, end tensions, maximum tension and strain.
+  TetherSummary summary() const;
+  /// Number of vehicle jumps handled by re-laying the cable.
+  std::uint64_t jumpCount() const { return jumps_; }
+  /// Number of times a non-finite state was detected and the cable re-laid (should stay 0).
+  std::uint64_t recoveryCount() const { return recoveries_; }
+  /// The particle arrays, for tests and converters.
+  const CableState& state() const { return state_; }
+
+ private:
+  struct VehicleSample
+  {
+    double time;
+    Position position;
+    bool jump;
+  };
+
+  void applyParams(const TetherParams& params);
+  void build();
+  void layOut(double deployed_length);
+  void setDeployedLength(double deployed_length);
+  void refreshDerived(std::size_t lo, std::size_t hi);
+  bool isPinned(std::size_t i) const;
+  std::size_t freeEnd() const;
+  Position vehicleAt(double t);
+  void integrate(double dt);
+  void addNoise(double dt);
+  void runWinch(double dt);
+  void release();
+  void merge();
+  bool stateFinite() const;
+
+  TetherParams params_;
+  CableState state_;
+  std::unique_ptr<ConstraintSolver> solver_;
+  Xoshiro256Plus rng_;
+  Position spool_;
+  Position vehicle_ = Position::Zero();
+  bool vehicle_attached_ = false;
+  bool paying_out_ = false;  ///< Passive winch latched into pay-out (see runWinch).
+  std::deque<VehicleSample> samples_;
+  double time_ = 0.0;
+  double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].
+  double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].
+  std::uint64_t base_steps_ = 0;
+  mutable std::vector<double> tension_scratch_;  ///< Reused by summary() so it does not allocate.
+  double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).
+  std::uint64_t steps_ = 0;
+  std::uint64_t jumps_ = 0;
+  std::uint64_t recoveries_ = 0;
+};
+
+}  // namespace rov_tether

@@ -1,0 +1,675 @@
+#include "rov_tether/tether_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rov_tether
+{
+namespace
+{
+
+/// Particles next to the spool that get no random displacement (the paper's rule against spontaneous
+/// release): those of the first two free segments.
+constexpr std::size_t kNoiseFreeParticles = 2;
+/// Vehicle samples kept for interpolation; older ones are dropped first.
+constexpr std::size_t kMaxVehicleSamples = 1024;
+/// The first segment's rest length stays within [kMinFirst, kMaxFirst] x segment_length while a
+/// particle can be released or taken back.
+constexpr double kMinFirst = 0.5;
+constexpr double kMaxFirst = 1.5;
+
+std::string joinErrors(const std::vector<std::string>& errors)
+{
+  std::ostringstream out;
+  out << "invalid tether parameters: ";
+  for (std::size_t i = 0; i < errors.size(); ++i)
+  {
+    out << (i ? "; " : "") << errors[i];
+  }
+  return out.str();
+}
+
+/// One axis of the damped Verlet update, paper eq. (6)-(8): x' = x + (x - x_prev) D + a dt^2.
+void verletAxis(double* __restrict x, double* __restrict previous, std::size_t begin, std::size_t end,
+                double damping, double displacement)
+{
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const double next = x[i] + (x[i] - previous[i]) * damping + displacement;
+    previous[i] = x[i];
+    x[i] = next;
+  }
+}
+
+}  // namespace
+
+void CableState::resize(std::size_t particles)
+{
+  for (auto* v : {&x, &y, &z, &px, &py, &pz, &inv_mass})
+  {
+    v->assign(particles, 0.0);
+  }
+  const std::size_t segments = particles > 0 ? particles - 1 : 0;
+  for (auto* v : {&rest, &stretch_weight, &stretch_lambda})
+  {
+    v->assign(segments, 0.0);
+  }
+  const std::size_t bends = particles > 1 ? particles - 2 : 0;
+  for (auto* v : {&bend_rest, &bend_weight, &bend_lambda})
+  {
+    v->assign(bends, 0.0);
+  }
+  first = 0;
+}
+
+void CableState::place(std::size_t i, const Position& p)
+{
+  x[i] = px[i] = p.x();
+  y[i] = py[i] = p.y();
+  z[i] = pz[i] = p.z();
+}
+
+TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, double start_time)
+  : spool_(spool)
+{
+  const auto errors = params.validate();
+  if (!errors.empty())
+  {
+    throw std::invalid_argument(joinErrors(errors));
+  }
+  if (!spool.allFinite() || !std::isfinite(start_time))
+  {
+    throw std::invalid_argument("spool position and start time must be finite");
+  }
+  time_ = target_time_ = base_time_ = start_time;
+  applyParams(params);
+  build();
+}
+
+TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle,
+                                   double start_time)
+  : TetherSimulation(params, spool, start_time)
+{
+  if (!vehicle.allFinite())
+  {
+    throw std::invalid_argument("vehicle position must be finite");
+  }
+  const Status attached = addVehicleSample(start_time, vehicle);
+  (void)attached;  // cannot fail: finite input, first sample
+}
+
+void TetherSimulation::applyParams(const TetherParams& params)
+{
+  const bool reseed = params.seed != params_.seed || !solver_;
+  const bool new_solver = !solver_ || params.solver != params_.solver;
+  params_ = params;
+  if (new_solver)
+  {
+    solver_ = makeSolver(params_.solver);
+  }
+  if (reseed)
+  {
+    rng_.reseed(static_cast<std::uint64_t>(params_.seed));
+  }
+}
+
+Status TetherSimulation::setParams(const TetherParams& params)
+{
+  const auto errors = params.validate();
+  if (!errors.empty())
+  {
+    return Status::error(joinErrors(errors));
+  }
+  const bool rebuild = !sameStructure(params_, params);
+  const double old_step = params_.time_step;
+  const bool new_mass = params.mass_per_length != params_.mass_per_length;
+  applyParams(params);
+  if (rebuild)
+  {
+    rng_.reseed(static_cast<std::uint64_t>(params_.seed));
+    build();
+    return Status{true, "cable rebuilt for the new cable_length, segment_length or solver"};
+  }
+  if (params_.time_step != old_step)
+  {
+    // Keep each particle's velocity (x - x_prev) / dt across the change of step.
+    const double ratio = params_.time_step / old_step;
+    for (std::size_t i = state_.first; i < state_.size(); ++i)
+    {
+      state_.px[i] = state_.x[i] - (state_.x[i] - state_.px[i]) * ratio;
+      state_.py[i] = state_.y[i] - (state_.y[i] - state_.py[i]) * ratio;
+      state_.pz[i] = state_.z[i] - (state_.z[i] - state_.pz[i]) * ratio;
+    }
+    base_time_ = time_;
+    base_steps_ = steps_;
+  }
+  if (new_mass)
+  {
+    refreshDerived(state_.first, state_.size() - 1);
+  }
+  return Status::success();
+}
+
+void TetherSimulation::build()
+{
+  state_.resize(params_.segmentCount() + 1);
+  layOut(params_.initial_deployed_length);
+}
+
+void TetherSimulation::setDeployedLength(double deployed_length)
+{
+  const double segment = params_.segment_length;
+  const std::size_t n = state_.size();
+  // Whole segments beyond the first; the first takes the remainder in [0.5, 1.5) segment lengths.
+  const double whole = std::floor((deployed_length - kMinFirst * segment) / segment);
+  const std::size_t count = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(whole, 0.0)) + 1, 1, n - 1);
+  state_.first = n - 1 - count;
+  std::fill(state_.rest.begin(), state_.rest.end(), segment);
+  state_.rest[state_.first] = deployed_length - static_cast<double>(count - 1) * segment;
+}
+
+void TetherSimulation::layOut(double deployed_length)
+{
+  setDeployedLength(deployed_length);
+  const std::size_t n = state_.size();
+  const std::size_t f = state_.first;
+  for (std::size_t i = 0; i <= f; ++i)
+  {
+    state_.place(i, spool_);
+  }
+  // The deployed cable is laid at rest along two straight legs spool -> apex -> end, by arc length.
+  const double length = deployedLength();
+  Position apex;
+  Position end;
+  if (vehicle_attached_)
+  {
+    end = vehicle_;
+    const Position chord = vehicle_ - spool_;
+    const double distance = chord.norm();
+    apex = spool_ + 0.5 * chord;  // taut or stretched: a straight line
+    if (distance < length)
+    {
+      // Slack: a V hanging below the chord (sideways when the chord is vertical).
+      const Position direction = distance > 1e-9 ? Position(chord / distance) : Position::UnitX();
+      Position side = -Position::UnitZ() + direction * direction.z();
+      if (side.norm() < 0.1)
+      {
+        side = Position::UnitX() - direction * direction.x();
+      }
+      const double offset = std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0));
+      apex += offset * side.normalized();
+    }
+  }
+  else
+  {
+    // A free end hangs (or floats, when lighter than water) straight from the spool.
+    end = spool_ + (params_.weight_in_water < 0.0 ? 1.0 : -1.0) * length * Position::UnitZ();
+    apex = 0.5 * (spool_ + end);
+  }
+  double arc = 0.0;
+  for (std::size_t i = f; i < n; ++i)
+  {
+    const double fraction = length > 0.0 ? std::min(arc / length, 1.0) : 0.0;
+    state_.place(i, fraction <= 0.5 ? Position(spool_ + 2.0 * fraction * (apex - spool_))
+                                     : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
+    if (i + 1 < n)
+    {
+      arc += state_.rest[i];
+    }
+  }
+  if (vehicle_attached_)
+  {
+    state_.place(n - 1, vehicle_);
+  }
+  std::fill(state_.stretch_lambda.begin(), state_.stretch_lambda.end(), 0.0);
+  std::fill(state_.bend_lambda.begin(), state_.bend_lambda.end(), 0.0);
+  refreshDerived(f, n - 1);
+}
+
+bool TetherSimulation::isPinned(std::size_t i) const
+{
+  return i <= state_.first || (vehicle_attached_ && i + 1 == state_.size());
+}
+
+std::size_t TetherSimulation::freeEnd() const
+{
+  return vehicle_attached_ ? state_.size() - 1 : state_.size();
+}
+
+void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
+{
+  const std::size_t n = state_.size();
+  const std::size_t f = state_.first;
+  lo = std::max(lo, f);
+  hi = std::min(hi, n - 1);
+  // Lumped masses: half of each neighbouring segment (a free end carries half a segment).
+  for (std::size_t i = lo; i <= hi; ++i)
+  {
+    const double left = i > f ? state_.rest[i - 1] : 0.0;
+    const double right = i + 1 < n ? state_.rest[i] : 0.0;
+    const double mass = params_.mass_per_length * 0.5 * (left + right);
+    state_.inv_mass[i] = isPinned(i) || mass <= 0.0 ? 0.0 : 1.0 / mass;
+  }
+  auto inverse_sum = [](double a, double b) { return a + b > 0.0 ? 1.0 / (a + b) : 0.0; };
+  for (std::size_t j = std::max(lo, f + 1) - 1; j <= hi && j + 1 < n; ++j)
+  {
+    state_.stretch_weight[j] = inverse_sum(state_.inv_mass[j], state_.inv_mass[j + 1]);
+  }
+  for (std::size_t j = std::max(lo, f + 2) - 2; j <= hi && j + 2 < n; ++j)
+  {
+    state_.bend_rest[j] = state_.rest[j] + state_.rest[j + 1];
+    state_.bend_weight[j] = inverse_sum(state_.inv_mass[j], state_.inv_mass[j + 2]);
+  }
+}
+
+Status TetherSimulation::setSpoolPosition(const Position& spool)
+{
+  if (!spool.allFinite())
+  {
+    return Status::error("spool position rejected: not finite");
+  }
+  spool_ = spool;
+  return Status::success();
+}
+
+Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
+{
+  if (!std::isfinite(t) || !vehicle.allFinite())
+  {
+    return Status::error("vehicle sample rejected: time and position must be finite");
+  }
+  if (!vehicle_attached_)
+  {
+    vehicle_attached_ = true;
+    vehicle_ = vehicle;
+    samples_.assign(1, VehicleSample{t, vehicle, false});
+    layOut(deployedLength());
+    return Status::success();
+  }
+  if (!samples_.empty() && t < samples_.back().time)
+  {
+    std::ostringstream out;
+    out << "vehicle sample rejected: time " << t << " s is older than the last sample at "
+        << samples_.back().time << " s";
+    return Status::error(out.str());
+  }
+  if (!samples_.empty() && t == samples_.back().time)
+  {
+    samples_.pop_back();  // a duplicate stamp replaces the sample it repeats
+  }
+  const Position& previous = samples_.empty() ? vehicle_ : samples_.back().position;
+  const bool jump = (vehicle - previous).norm() > params_.max_vehicle_jump;
+  samples_.push_back(VehicleSample{t, vehicle, jump});
+  if (samples_.size() > kMaxVehicleSamples)
+  {
+    samples_.pop_front();
+  }
+  return Status::success();
+}
+
+void TetherSimulation::detachVehicle()
+{
+  vehicle_attached_ = false;
+  samples_.clear();
+  refreshDerived(state_.size() - 3, state_.size() - 1);
+}
+
+Position TetherSimulation::vehicleAt(double t)
+{
+  bool jumped = false;
+  while (samples_.size() >= 2 && samples_[1].time <= t)
+  {
+    samples_.pop_front();
+    jumped = jumped || samples_.front().jump;
+    samples_.front().jump = false;
+  }
+  if (samples_.empty())
+  {
+    return vehicle_;
+  }
+  Position target = samples_.front().position;
+  if (samples_.size() >= 2 && t > samples_[0].time && !samples_[1].jump)
+  {
+    const double alpha = (t - samples_[0].time) / (samples_[1].time - samples_[0].time);
+    target = samples_[0].position + alpha * (samples_[1].position - samples_[0].position);
+  }
+  if (jumped)
+  {
+    // The cable cannot follow a jump physically: re-lay it, at rest, to the new attachment point.
+    vehicle_ = target;
+    double length = deployedLength();
+    if (params_.winch_mode != WinchMode::kLocked)
+    {
+      length = std::clamp(std::max(length, (target - spool_).norm()), params_.min_deployed_length,
+                          params_.cable_length);
+    }
+    layOut(length);
+    ++jumps_;
+  }
+  return target;
+}
+
+Status TetherSimulation::advance(double dt, std::size_t* steps)
+{
+  if (!std::isfinite(dt) || dt < 0.0)
+  {
+    std::ostringstream out;
+    out << "advance rejected: interval " << dt << " s must be finite and >= 0";
+    return Status::error(out.str());
+  }
+  return advanceTo(std::max(target_time_, time_) + dt, steps);
+}
+
+Status TetherSimulation::advanceTo(double t, std::size_t* steps)
+{
+  if (!std::isfinite(t))
+  {
+    return Status::error("advance rejected: target time must be finite");
+  }
+  target_time_ = t;
+  std::size_t taken = 0;
+  const double dt = params_.time_step;
+  while (time_ + dt <= target_time_ + 1e-9 * dt)
+  {
+    step();
+    ++taken;
+  }
+  if (steps != nullptr)
+  {
+    *steps = taken;
+  }
+  return Status::success();
+}
+
+void TetherSimulation::step()
+{
+  const double dt = params_.time_step;
+  const double next_time = base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * dt;
+  const std::size_t n = state_.size();
+
+  state_.place(state_.first, spool_);
+  if (vehicle_attached_)
+  {
+    vehicle_ = vehicleAt(next_time);
+  }
+  integrate(dt);
+  addNoise(dt);
+  if (vehicle_attached_)
+  {
+    state_.place(n - 1, vehicle_);
+  }
+  runWinch(dt);
+  SolverSettings settings;
+  settings.iterations = params_.iterations;
+  settings.bending = params_.bending;
+  settings.time_step = dt;
+  settings.axial_stiffness = params_.axial_stiffness;
+  solver_->solve(state_, settings);
+
+  last_step_ = dt;
+  ++steps_;
+  time_ = next_time;
+  if (!stateFinite())
+  {
+    ++recoveries_;
+    layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
+  }
+}
+
+void TetherSimulation::integrate(double dt)
+{
+  const std::size_t begin = state_.first + 1;
+  const std::size_t end = freeEnd();
+  if (begin >= end)
+  {
+    return;
+  }
+  const double damping = params_.dampingFactor(dt);
+  verletAxis(state_.x.data(), state_.px.data(), begin, end, damping, 0.0);
+  verletAxis(state_.y.data(), state_.py.data(), begin, end, damping, 0.0);
+  // Net weight in water; a neutrally buoyant cable (the default) does no gravity work at all.
+  const double sink = params_.weight_in_water != 0.0
+                          ? -params_.weight_in_water / params_.mass_per_length * dt * dt
+                          : 0.0;
+  verletAxis(state_.z.data(), state_.pz.data(), begin, end, damping, sink);
+}
+
+void TetherSimulation::addNoise(double dt)
+{
+  const double amplitude = params_.noiseAmplitude(dt);
+  if (amplitude <= 0.0)
+  {
+    return;
+  }
+  const std::size_t end = freeEnd();
+  for (std::size_t i = state_.first + 1 + kNoiseFreeParticles; i < end; ++i)
+  {
+    state_.x[i] += amplitude * rng_.symmetric();
+    state_.y[i] += amplitude * rng_.symmetric();
+    state_.z[i] += amplitude * rng_.symmetric();
+  }
+}
+
+void TetherSimulation::runWinch(double dt)
+{
+  const std::size_t n = state_.size();
+  const std::size_t f = state_.first;
+  if (params_.winch_mode == WinchMode::kLocked || f + 1 >= n)
+  {
+    return;
+  }
+  const double max_change = params_.max_winch_speed * dt;
+  const double deployed = deployedLength();
+  double change = 0.0;
+  if (params_.winch_mode == WinchMode::kSpeed)
+  {
+    change = params_.winch_speed * dt;
+  }
+  else
+  {
+    // The paper's rule with hysteresis: pay-out starts when the first free segment is stretched past
+    // payout_threshold and goes on, up to max_winch_speed, while it stays stretched at all (so a steady
+    // pull does not hold the cable at the threshold) and less than the reel-in limit is out (so a
+    // vehicle circling at constant distance does not unreel the whole cable). The strain is read after the step's motion and
+    // before the constraints pull the segment back (a post-projection reading is biased to zero).
+    const double length = (state_.position(f + 1) - state_.position(f)).norm();
+    const double strain = length / state_.rest[f] - 1.0;
+    const double excess =
+        vehicle_attached_ ? deployed - (1.0 + params_.reel_in_slack) * (vehicle_ - spool_).norm() : -1.0;
+    paying_out_ = strain > params_.payout_threshold || (paying_out_ && strain > 0.0 && excess < 0.0);
+    if (paying_out_)
+    {
+      change = length - state_.rest[f];
+    }
+    else if (excess > 0.0)
+    {
+      change = -excess;  // reel in the slack beyond the limit
+    }
+  }
+  change = std::clamp(change, -max_change, max_change);
+  change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
+                      std::max(0.0, params_.cable_length - deployed));
+  if (change == 0.0)
+  {
+    return;
+  }
+  state_.rest[f] += change;
+  const double segment = params_.segment_length;
+  if (change > 0.0)
+  {
+    while (state_.first > 0 && state_.rest[state_.first] > kMaxFirst * segment)
+    {
+      release();
+    }
+  }
+  else
+  {
+    while (state_.first + 2 < n && state_.rest[state_.first] < kMinFirst * segment)
+    {
+      merge();
+    }
+  }
+  refreshDerived(state_.first, state_.first + 2);
+}
+
+void TetherSimulation::release()
+{
+  // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with
+  // the segment's velocity, so neither the shape nor any constraint error changes.
+  const std::size_t f = state_.first;
+  const double segment = params_.segment_length;
+  const double rest = state_.rest[f];
+  const double fraction = (rest - segment) / rest;
+  auto along = [fraction, f](std::vector<double>& v) { v[f] = v[f] + fraction * (v[f + 1] - v[f]); };
+  for (auto* v : {&state_.x, &state_.y, &state_.z, &state_.px, &state_.py, &state_.pz})
+  {
+    along(*v);
+  }
+  state_.first = f - 1;
+  state_.place(state_.first, spool_);
+  state_.rest[state_.first] = rest - segment;
+  state_.rest[f] = segment;
+  state_.stretch_lambda[state_.first] = 0.0;
+  refreshDerived(state_.first, state_.first + 3);
+}
+
+void TetherSimulation::merge()
+{
+  // The first free particle goes back onto the spool; its two segments become one with the summed
+  // rest length, so the deployed length does not change.
+  const std::size_t f = state_.first;
+  state_.rest[f + 1] += state_.rest[f];
+  state_.rest[f] = params_.segment_length;
+  state_.first = f + 1;
+  state_.place(f, spool_);
+  state_.place(state_.first, spool_);
+  refreshDerived(state_.first, state_.first + 2);
+}
+
+bool TetherSimulation::stateFinite() const
+{
+  double sum = 0.0;
+  for (std::size_t i = state_.first; i < state_.size(); ++i)
+  {
+    sum += state_.x[i] + state_.y[i] + state_.z[i];
+  }
+  return std::isfinite(sum);
+}
+
+void TetherSimulation::reset(double time)
+{
+  samples_.clear();
+  if (vehicle_attached_)
+  {
+    samples_.push_back(VehicleSample{time, vehicle_, false});
+  }
+  rng_.reseed(static_cast<std::uint64_t>(params_.seed));
+  time_ = target_time_ = base_time_ = time;
+  base_steps_ = steps_;
+  layOut(params_.initial_deployed_length);
+}
+
+double TetherSimulation::deployedLength() const
+{
+  // Every deployed segment but the first has the nominal length.
+  const std::size_t n = state_.size();
+  const std::size_t f = state_.first;
+  return state_.rest[f] + static_cast<double>(n - 2 - f) * params_.segment_length;
+}
+
+void TetherSimulation::copyPositions(std::vector<Position>& out) const
+{
+  out.resize(deployedParticleCount());
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    out[k] = particle(k);
+  }
+}
+
+void TetherSimulation::computeSegmentTensions(std::vector<double>& out) const
+{
+  const std::size_t n = state_.size();
+  const std::size_t f = state_.first;
+  out.assign(n - 1 - f, 0.0);
+  if (last_step_ <= 0.0)
+  {
+    return;  // no step taken yet: no constraint force known
+  }
+  const double inv_dt2 = 1.0 / (last_step_ * last_step_);
+  auto unit = [this](std::size_t a, std::size_t b) -> Position {
+    const Position d = state_.position(b) - state_.position(a);
+    const double length = d.norm();
+    return length > 0.0 ? Position(d / length) : Position::Zero();
+  };
+  for (std::size_t j = f; j + 1 < n; ++j)
+  {
+    // The force carried across the cut between particles j and j+1: the stretch constraint of segment j
+    // and the bending constraints (j-1, j+1) and (j, j+2) that span the same cut.
+    const Position axis = unit(j, j + 1);
+    Force carried = state_.stretch_lambda[j] * axis;
+    if (j > f && j + 1 < n)
+    {
+      carried += state_.bend_lambda[j - 1] * unit(j - 1, j + 1);
+    }
+    if (j + 2 < n)
+    {
+      carried += state_.bend_lambda[j] * unit(j, j + 2);
+    }
+    out[j - f] = carried.dot(axis) * inv_dt2;
+  }
+}
+
+double TetherSimulation::segmentStrain(std::size_t k) const
+{
+  const std::size_t j = state_.first + k;
+  return (state_.position(j + 1) - state_.position(j)).norm() / state_.rest[j] - 1.0;
+}
+
+Force TetherSimulation::vehicleForce() const
+{
+  const std::size_t n = state_.size();
+  if (!vehicle_attached_ || last_step_ <= 0.0)
+  {
+    return Force::Zero();
+  }
+  auto unit = [this](std::size_t a, std::size_t b) -> Position {
+    const Position d = state_.position(b) - state_.position(a);
+    const double length = d.norm();
+    return length > 0.0 ? Position(d / length) : Position::Zero();
+  };
+  // A stretched constraint (lambda > 0) pulls the vehicle back towards the cable.
+  Force pull = -state_.stretch_lambda[n - 2] * unit(n - 2, n - 1);
+  if (n >= state_.first + 3)
+  {
+    pull -= state_.bend_lambda[n - 3] * unit(n - 3, n - 1);
+  }
+  return pull / (last_step_ * last_step_);
+}
+
+TetherSummary TetherSimulation::summary() const
+{
+  TetherSummary result;
+  result.time = time_;
+  result.deployed_length = deployedLength();
+  computeSegmentTensions(tension_scratch_);
+  const std::size_t segments = tension_scratch_.size();
+  result.tension_spool = tension_scratch_.front();
+  result.tension_vehicle = tension_scratch_.back();
+  const auto max_it = std::max_element(tension_scratch_.begin(), tension_scratch_.end());
+  result.max_tension = *max_it;
+  result.max_tension_segment = static_cast<std::size_t>(max_it - tension_scratch_.begin());
+  double strain_sum = 0.0;
+  result.max_strain = -1.0;
+  for (std::size_t k = 0; k < segments; ++k)
+  {
+    const double strain = segmentStrain(k);
+    result.max_strain = std::max(result.max_strain, strain);
+    strain_sum += std::abs(strain);
+  }
+  result.mean_strain = strain_sum / static_cast<double>(segments);
+  return result;
+}
+
+}  // namespace rov_tether
