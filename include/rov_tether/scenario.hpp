@@ -40,6 +40,26 @@ struct Scenario
   Position vehicleAt(double t) const;
 };
 
+/**
+ * Feeds a scenario's vehicle path into a simulation as a pose stream would: samples every 10 ms, a
+ * little ahead of the simulation, so the simulation interpolates between them.
+ */
+class PathDriver
+{
+ public:
+  explicit PathDriver(const Scenario& scenario) : scenario_(scenario) {}
+  /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position.
+  TetherSimulation makeSimulation() const;
+  /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s].
+  void advanceTo(TetherSimulation& sim, double t);
+  /// Interval between fed samples [s].
+  static constexpr double kSampleInterval = 0.01;
+
+ private:
+  const Scenario& scenario_;
+  std::uint64_t fed_samples_ = 0;  ///< Samples fed so far; sample k is at k * kSampleInterval.
+};
+
 /// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field.
 std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
 /// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field.

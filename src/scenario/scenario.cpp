@@ -18,8 +18,6 @@ const char* const kShapeCsvHeader = "t,i,x,y,z,tension";
 namespace
 {
 
-/// Interval at which the runner samples the vehicle path into the simulation [s].
-constexpr double kVehicleSampleInterval = 0.01;
 /// Largest number of output rows a scenario may ask for (both files together stay manageable).
 constexpr double kMaxOutputTimes = 1.0e6;
 
@@ -269,6 +267,28 @@ Position Scenario::vehicleAt(double t) const
   return vehicle.front().position;
 }
 
+TetherSimulation PathDriver::makeSimulation() const
+{
+  if (scenario_.vehicle.empty())
+  {
+    return TetherSimulation(scenario_.params, scenario_.spool, 0.0);
+  }
+  return TetherSimulation(scenario_.params, scenario_.spool, scenario_.vehicleAt(0.0), 0.0);
+}
+
+void PathDriver::advanceTo(TetherSimulation& sim, double t)
+{
+  if (!scenario_.vehicle.empty())
+  {
+    while (static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval)
+    {
+      const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
+      sim.addVehicleSample(sample_time, scenario_.vehicleAt(sample_time));
+    }
+  }
+  sim.advanceTo(t);
+}
+
 std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
 {
   return guardYaml([&] { return parseScenarioNode(YAML::Load(yaml_text), scenario); });
@@ -346,10 +366,8 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
     return "cannot write in '" + out_dir + "'";
   }
 
-  const bool has_vehicle = !scenario.vehicle.empty();
-  TetherSimulation sim = has_vehicle
-                             ? TetherSimulation(scenario.params, scenario.spool, scenario.vehicleAt(0.0), 0.0)
-                             : TetherSimulation(scenario.params, scenario.spool, 0.0);
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
   RunSummary result;
   result.deployed_start = sim.deployedLength();
   std::fprintf(state_file, "%s\n", kStateCsvHeader);
@@ -357,22 +375,13 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
 
   std::vector<double> tensions;
   std::vector<Position> positions;
-  double fed_until = 0.0;  // vehicle samples are fed up to this time [s]
   double cpu = 0.0;
   const auto outputs = static_cast<std::size_t>(std::floor(scenario.duration * scenario.output_rate + 1e-9));
   for (std::size_t k = 0; k <= outputs; ++k)
   {
     const double t_out = static_cast<double>(k) / scenario.output_rate;
     const auto start = std::chrono::steady_clock::now();
-    if (has_vehicle)
-    {
-      while (fed_until < t_out + kVehicleSampleInterval)
-      {
-        fed_until += kVehicleSampleInterval;
-        sim.addVehicleSample(fed_until, scenario.vehicleAt(fed_until));
-      }
-    }
-    sim.advanceTo(t_out);
+    driver.advanceTo(sim, t_out);
     cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const TetherSummary s = sim.summary();

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Installs what rov_tether needs from Debian's archive (only what is missing), then configures and
+# builds the package in ./build. Sourced by scripts/demo.sh and scripts/test.sh.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+# The first python3 on PATH may not be Debian's (and then lacks catkin_pkg): ROS tools use /usr/bin.
+export PATH="/usr/bin:/bin:$PATH"
+
+PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev
+          libgtest-dev libbenchmark-dev)
+
+install_missing() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]} == 0)); then
+    return
+  fi
+  echo "== installing from Debian: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+build_package() {
+  echo "== building in $BUILD_DIR"
+  cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DCATKIN_ENABLE_TESTING=ON "$@" >"$BUILD_DIR.cmake.log" 2>&1 || { cat "$BUILD_DIR.cmake.log"; return 1; }
+  build_target all
+}
+
+# Builds one target; shows compiler diagnostics, and the whole log when the build fails.
+build_target() {
+  local log="$BUILD_DIR.build.log"
+  if ! cmake --build "$BUILD_DIR" --target "$1" -j"$(nproc)" >"$log" 2>&1; then
+    grep -E "error|Error" "$log" | head -40
+    echo "build of '$1' failed; full log: $log"
+    return 1
+  fi
+  grep -E "warning:" "$log" || true
+}
+
+install_missing
+mkdir -p "$BUILD_DIR"
+build_package

@@ -1,0 +1,70 @@
+#pragma once
+// Shared helpers for the core tests: loading shipped scenarios and measuring cable shapes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rov_tether/scenario.hpp"
+#include "rov_tether/tether_simulation.hpp"
+
+namespace rov_tether::test
+{
+
+/// Loads scenarios/NAME.yaml from the source tree (fails the test when it does not parse).
+inline Scenario shippedScenario(const std::string& name)
+{
+  Scenario scenario;
+  const std::string error = loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/" + name + ".yaml", &scenario);
+  EXPECT_EQ(error, "");
+  return scenario;
+}
+
+/// Sum of the deployed segments' actual lengths [m].
+inline double geometricLength(const TetherSimulation& sim)
+{
+  double length = 0.0;
+  for (std::size_t k = 0; k + 1 < sim.deployedParticleCount(); ++k)
+  {
+    length += (sim.particle(k + 1) - sim.particle(k)).norm();
+  }
+  return length;
+}
+
+/// Mean stretch of the deployed cable: geometric length / deployed length - 1 [-].
+inline double meanStretch(const TetherSimulation& sim)
+{
+  return geometricLength(sim) / sim.deployedLength() - 1.0;
+}
+
+/// Root-mean-square distance between two shapes of equal size [m].
+inline double rmsDistance(const std::vector<Position>& a, const std::vector<Position>& b)
+{
+  EXPECT_EQ(a.size(), b.size());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    sum += (a[i] - b[i]).squaredNorm();
+  }
+  return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+inline std::vector<Position> positions(const TetherSimulation& sim)
+{
+  std::vector<Position> out;
+  sim.copyPositions(out);
+  return out;
+}
+
+/// Runs a scenario to time t and returns the simulation.
+inline TetherSimulation runTo(const Scenario& scenario, double t)
+{
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
+  driver.advanceTo(sim, t);
+  return sim;
+}
+
+}  // namespace rov_tether::test

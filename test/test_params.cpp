@@ -1,0 +1,141 @@
+// Parameters: defaults, validation naming each field, conversions, typed setting by name.
+#include <cmath>
+#include <limits>
+
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+TEST(Params, DefaultsAreValid)
+{
+  EXPECT_TRUE(TetherParams{}.validate().empty());
+}
+
+struct BadValue
+{
+  std::string name;
+  ParamValue value;
+};
+
+// Every range check names the field, its value and the allowed range.
+TEST(Params, EveryOutOfRangeFieldIsNamed)
+{
+  const std::vector<BadValue> cases = {
+      {"cable_length", 0.0},           {"cable_length", kNaN},        {"segment_length", 0.0},
+      {"segment_length", -0.1},        {"initial_deployed_length", -1.0}, {"time_step", 0.0},
+      {"time_step", 0.5},              {"time_step", kNaN},           {"iterations", std::int64_t{0}},
+      {"iterations", std::int64_t{5000}}, {"drag", 0.0},              {"drag", 1.5},
+      {"drag", kNaN},                  {"noise", -0.001},             {"noise", 2.0},
+      {"seed", std::int64_t{-1}},      {"weight_in_water", kNaN},     {"weight_in_water", 1e9},
+      {"mass_per_length", 0.0},        {"axial_stiffness", -5.0},     {"max_winch_speed", 0.0},
+      {"winch_speed", 50.0},           {"payout_threshold", 0.0},     {"payout_threshold", 3.0},
+      {"reel_in_slack", -0.5},         {"min_deployed_length", 0.0},  {"max_vehicle_jump", 0.0},
+      {"max_vehicle_jump", std::numeric_limits<double>::infinity()},
+  };
+  for (const auto& c : cases)
+  {
+    TetherParams params;
+    ASSERT_EQ(setParameter(params, c.name, c.value), "") << c.name;
+    const auto errors = params.validate();
+    ASSERT_EQ(errors.size(), 1u) << c.name;
+    EXPECT_EQ(errors[0].rfind(c.name + " = ", 0), 0u) << errors[0];
+    EXPECT_NE(errors[0].find("must be"), std::string::npos) << errors[0];
+  }
+}
+
+TEST(Params, ContradictionsBetweenFieldsAreNamed)
+{
+  TetherParams params;
+  params.segment_length = 20.0;  // longer than the 10 m cable
+  params.min_deployed_length = 20.0;
+  params.initial_deployed_length = 10.0;
+  auto errors = params.validate();
+  ASSERT_FALSE(errors.empty());
+  EXPECT_NE(errors[0].find("segment_length = 20: must not exceed cable_length = 10"), std::string::npos) << errors[0];
+
+  params = TetherParams{};
+  params.initial_deployed_length = 12.0;
+  errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("initial_deployed_length = 12"), std::string::npos) << errors[0];
+
+  params = TetherParams{};
+  params.winch_speed = 1.5;
+  params.max_winch_speed = 1.0;
+  errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("winch_speed = 1.5"), std::string::npos) << errors[0];
+
+  params = TetherParams{};
+  params.min_deployed_length = 0.05;  // shorter than one segment
+  errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("min_deployed_length = 0.05"), std::string::npos) << errors[0];
+}
+
+TEST(Params, SetParameterChecksNamesAndTypes)
+{
+  TetherParams params;
+  EXPECT_NE(setParameter(params, "iteratons", std::int64_t{3}).find("unknown parameter 'iteratons'"), std::string::npos);
+  EXPECT_NE(setParameter(params, "iterations", 2.5).find("iterations"), std::string::npos);
+  EXPECT_NE(setParameter(params, "iterations", std::string("ten")).find("iterations"), std::string::npos);
+  EXPECT_NE(setParameter(params, "bending", 1.0).find("bending"), std::string::npos);
+  EXPECT_NE(setParameter(params, "solver", std::string("rk4")).find("pbd, pbd_sequential"), std::string::npos);
+  EXPECT_NE(setParameter(params, "winch_mode", std::string("auto")).find("passive, locked, speed"),
+            std::string::npos);
+  EXPECT_EQ(params.iterations, TetherParams{}.iterations);  // refused values changed nothing
+
+  EXPECT_EQ(setParameter(params, "iterations", 7.0), "");  // an integral number is an integer
+  EXPECT_EQ(params.iterations, 7);
+  EXPECT_EQ(setParameter(params, "drag", std::int64_t{1}), "");  // an integer is a number
+  EXPECT_EQ(params.drag, 1.0);
+  EXPECT_EQ(setParameter(params, "winch_mode", std::string("speed")), "");
+  EXPECT_EQ(params.winch_mode, WinchMode::kSpeed);
+}
+
+TEST(Params, EveryNameRoundTrips)
+{
+  TetherParams params;
+  for (const auto& name : parameterNames())
+  {
+    const ParamValue value = getParameter(params, name);
+    EXPECT_EQ(setParameter(params, name, value), "") << name;
+    EXPECT_EQ(getParameter(params, name), value) << name;
+  }
+  EXPECT_EQ(parameterNames().size(), 20u);
+  EXPECT_THROW(getParameter(params, "nope"), std::out_of_range);
+}
+
+// REFERENCES.md "Linear damping": gamma = -ln(D)/dt. The paper's drag is defined at the 0.02 s step.
+TEST(Params, DragIsARateAndNoiseScalesWithTheStep)
+{
+  TetherParams params;
+  params.drag = 0.9;
+  EXPECT_NEAR(params.dampingRate(), -std::log(0.9) / 0.02, 1e-12);
+  EXPECT_NEAR(params.dampingRate(), 5.268, 1e-3);
+  EXPECT_NEAR(params.dampingFactor(0.02), 0.9, 1e-12);
+  EXPECT_NEAR(params.dampingFactor(0.01) * params.dampingFactor(0.01), 0.9, 1e-12);
+  // A per-frame 0.9 at 60 Hz (REFERENCES.md) is a rate of 6.32 1/s.
+  params.drag = std::pow(0.9, 0.02 * 60.0);
+  EXPECT_NEAR(params.dampingRate(), 6.32, 0.01);
+
+  params.noise = 0.0005;
+  EXPECT_NEAR(params.noiseAmplitude(0.02), 0.0005, 1e-15);
+  EXPECT_NEAR(params.noiseAmplitude(0.005), 0.0005 / 8.0, 1e-15);
+}
+
+TEST(Params, SegmentCount)
+{
+  TetherParams params;
+  EXPECT_EQ(params.segmentCount(), 100u);  // 10 m / 0.1 m despite rounding
+  params.cable_length = 10.02;
+  EXPECT_EQ(params.segmentCount(), 101u);
+}
+
+}  // namespace
+}  // namespace rov_tether::test

@@ -1,0 +1,236 @@
+// Spool: pay-out, reel-in, winch modes and limits, smooth release of particles.
+#include <cstdio>
+
+#include <Eigen/Geometry>
+
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+/// One record per internal step of the spool pay-out scenario.
+struct StepRecord
+{
+  double time;
+  double deployed;
+  double distance;  ///< Spool to vehicle [m].
+  double tension_spool;
+  std::size_t first;
+  bool released;  ///< A particle left the spool during this step.
+};
+
+std::vector<StepRecord> recordPayoutRun(double duration)
+{
+  const Scenario scenario = shippedScenario("spool_payout");
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
+  std::vector<StepRecord> records;
+  std::vector<double> tensions;
+  std::size_t previous_first = sim.state().first;
+  const double dt = scenario.params.time_step;
+  for (int k = 1; k * dt <= duration + 1e-9; ++k)
+  {
+    driver.advanceTo(sim, k * dt);
+    sim.computeSegmentTensions(tensions);
+    const Position vehicle = sim.particle(sim.deployedParticleCount() - 1);
+    records.push_back({sim.time(), sim.deployedLength(), (vehicle - scenario.spool).norm(), tensions.front(),
+                       sim.state().first, sim.state().first < previous_first});
+    previous_first = sim.state().first;
+  }
+  return records;
+}
+
+TEST(Spool, DeployedLengthFollowsTheVehicleOutAndBack)
+{
+  const auto records = recordPayoutRun(50.0);
+  double worst_ratio_low = 10.0;
+  double worst_ratio_high = 0.0;
+  for (const auto& r : records)
+  {
+    if (r.time > 2.0 && r.time < 16.0)  // driving straight out at 0.5 m/s, after the brake broke away
+    {
+      worst_ratio_low = std::min(worst_ratio_low, r.deployed / r.distance);
+      worst_ratio_high = std::max(worst_ratio_high, r.deployed / r.distance);
+    }
+  }
+  std::printf("[ measured ] going out: deployed / distance in [%.3f, %.3f]\n", worst_ratio_low, worst_ratio_high);
+  EXPECT_GT(worst_ratio_low, 0.98);  // the cable is pulled out, not stretched
+  EXPECT_LT(worst_ratio_high, 1.03);  // and only what is needed is paid out
+  EXPECT_GT(records[static_cast<std::size_t>(15.9 / 0.005)].deployed, 9.0);
+
+  // Back near the spool at the end: the slack was reeled in.
+  const StepRecord& last = records.back();
+  std::printf("[ measured ] at the end: deployed %.3f m for a distance of %.3f m\n", last.deployed, last.distance);
+  EXPECT_LT(last.deployed, (1.0 + 0.2) * last.distance + 0.1);
+  EXPECT_LT(last.deployed, 2.5);
+}
+
+TEST(Spool, ReleaseDoesNotSpikeTension)
+{
+  const auto records = recordPayoutRun(16.0);
+  double release_sum = 0.0;
+  double other_sum = 0.0;
+  double release_max = 0.0;
+  int releases = 0;
+  int others = 0;
+  for (const auto& r : records)
+  {
+    if (r.time < 2.0)
+    {
+      continue;  // the brake's break-away at the start is not a release effect
+    }
+    if (r.released)
+    {
+      release_sum += r.tension_spool;
+      release_max = std::max(release_max, r.tension_spool);
+      ++releases;
+    }
+    else
+    {
+      other_sum += r.tension_spool;
+      ++others;
+    }
+  }
+  ASSERT_GT(releases, 50);
+  const double release_mean = release_sum / releases;
+  const double other_mean = other_sum / others;
+  std::printf("[ measured ] %d releases: spool tension mean %.3f N (max %.3f N), other steps mean %.3f N\n",
+              releases, release_mean, release_max, other_mean);
+  EXPECT_LT(release_mean, 1.5 * other_mean + 0.05);
+  EXPECT_LT(release_max, 10.0);
+}
+
+TEST(Spool, ReleasedParticleAppearsOnTheCableWithItsVelocity)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = 0.5;
+  TetherSimulation sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
+  int checked = 0;
+  for (int k = 0; k < 2000 && checked < 20; ++k)
+  {
+    const CableState before = sim.state();
+    sim.step();
+    const CableState& after = sim.state();
+    if (after.first < before.first)
+    {
+      // The released particle (old spool particle index) lies between the spool and its neighbour.
+      const std::size_t released = before.first;
+      const Position spool = after.position(after.first);
+      const Position neighbour = after.position(released + 1);
+      const Position p = after.position(released);
+      const double off_line = ((p - spool).cross(neighbour - spool)).norm() / (neighbour - spool).norm();
+      EXPECT_LT(off_line, 0.02 * params.segment_length);
+      EXPECT_LT((p - spool).norm(), 1.0 * params.segment_length);
+      // The new first segment starts at half a segment, plus at most one step of winch travel.
+      EXPECT_GE(after.rest[after.first], 0.5 * params.segment_length - 1e-12);
+      EXPECT_LE(after.rest[after.first], 0.5 * params.segment_length + params.winch_speed * params.time_step + 1e-12);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 20);
+}
+
+TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
+{
+  TetherParams params;
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = 0.5;
+  params.cable_length = 5.0;
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  sim.advance(2.0);
+  EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);
+  sim.advance(10.0);
+  EXPECT_DOUBLE_EQ(sim.deployedLength(), 5.0);  // the whole cable, no more
+
+  params.winch_speed = -1.0;
+  ASSERT_TRUE(sim.setParams(params).ok);
+  sim.advance(1.0);
+  EXPECT_NEAR(sim.deployedLength(), 4.0, 1e-9);
+  sim.advance(10.0);
+  EXPECT_DOUBLE_EQ(sim.deployedLength(), params.min_deployed_length);
+}
+
+TEST(Spool, LockedWinchNeverChangesLength)
+{
+  Scenario scenario = shippedScenario("spool_payout");
+  scenario.params.winch_mode = WinchMode::kLocked;
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
+  for (int k = 1; k <= 40; ++k)
+  {
+    driver.advanceTo(sim, 0.5 * k);
+    EXPECT_EQ(sim.deployedLength(), scenario.params.initial_deployed_length);
+  }
+}
+
+TEST(Spool, WinchSpeedLimitAndInvariantsHoldEveryStep)
+{
+  Scenario scenario = shippedScenario("spool_payout");
+  scenario.params.max_winch_speed = 0.3;  // slower than the vehicle: the limit binds
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
+  const double dt = scenario.params.time_step;
+  const double segment = scenario.params.segment_length;
+  double previous = sim.deployedLength();
+  double fastest = 0.0;
+  for (int k = 1; k * dt <= 50.0; ++k)
+  {
+    driver.advanceTo(sim, k * dt);
+    const double deployed = sim.deployedLength();
+    fastest = std::max(fastest, std::abs(deployed - previous) / dt);
+    previous = deployed;
+    ASSERT_GE(deployed, scenario.params.min_deployed_length - 1e-12);
+    ASSERT_LE(deployed, scenario.params.cable_length + 1e-12);
+    const CableState& state = sim.state();
+    ASSERT_GE(state.rest[state.first], 0.5 * segment - 1e-9) << "t = " << sim.time();
+    ASSERT_LE(state.rest[state.first], 1.5 * segment + 1e-9) << "t = " << sim.time();
+    double sum = 0.0;
+    for (std::size_t j = state.first; j + 1 < state.size(); ++j)
+    {
+      sum += state.rest[j];
+    }
+    ASSERT_NEAR(sum, deployed, 1e-9);
+  }
+  std::printf("[ measured ] fastest winch speed %.4f m/s (limit 0.3)\n", fastest);
+  EXPECT_LE(fastest, 0.3 + 1e-9);
+  EXPECT_GT(fastest, 0.29);  // the limit was reached, so it was tested
+}
+
+TEST(Spool, HangingCableCarriesItsWeightAtTheSpool)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.weight_in_water = 2.0;  // [N/m]
+  params.winch_mode = WinchMode::kLocked;
+  params.initial_deployed_length = 5.0;
+  params.iterations = 20;
+  TetherSimulation sim(params, Position::Zero());
+  sim.advance(10.0);
+  const TetherSummary s = sim.summary();
+  std::printf("[ measured ] hanging 5 m at 2 N/m: spool %.4f N (ref 10), free end %.4f N (ref 0.1)\n",
+              s.tension_spool, s.tension_vehicle);
+  // Lumped masses: the spool segment holds all particles below it, the last segment the end's half mass.
+  const double below_spool = 2.0 * (5.0 - 0.5 * sim.state().rest[sim.state().first]);
+  EXPECT_NEAR(s.tension_spool, below_spool, 0.01 * below_spool);
+  EXPECT_NEAR(s.tension_vehicle, 2.0 * 0.5 * params.segment_length, 0.01);
+  // A free end cannot be stretched by a vehicle, so pay-out is by weight alone in passive mode.
+  EXPECT_LT(sim.particle(sim.deployedParticleCount() - 1).z(), -4.9);
+}
+
+TEST(Spool, PassiveWinchPaysOutUnderWeightWithAFreeEnd)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.weight_in_water = 20.0;
+  params.iterations = 2;  // a soft cable: its weight stretches it past the pay-out threshold
+  TetherSimulation sim(params, Position::Zero());
+  sim.advance(5.0);
+  EXPECT_GT(sim.deployedLength(), params.initial_deployed_length + 0.5);
+}
+
+}  // namespace
+}  // namespace rov_tether::test
