@@ -32,13 +32,27 @@ class ConstraintSolver
   virtual void solve(CableState& state, const SolverSettings& settings) = 0;
 };
 
-/// The paper's Figure 2 (stretch sweep then (i, i+2) bending sweep, `iterations` times) in red-black
-/// order: even segments, odd segments, then bending constraints in four interleaved sets. Constraints
-/// of one set share no particle, so each set is one vectorisable loop.
+/**
+ * The paper's Figure 2 (stretch sweep then (i, i+2) bending sweep, `iterations` times) in red-black
+ * order: even segments, odd segments, then bending constraints in four interleaved sets. Constraints
+ * of one set share no particle, so each set is one loop without dependencies between iterations.
+ *
+ * For the loops to be unit-stride (and so vectorise well), each step copies the deployed particles
+ * into four blocks by index mod 4: particle l of block r is deployed particle 4 l + r. Every set then
+ * pairs two blocks element by element. The copies are reused between steps; they are reallocated only
+ * when the cable grows beyond them.
+ */
 class PbdSolver : public ConstraintSolver
 {
  public:
   void solve(CableState& state, const SolverSettings& settings) override;
+
+ private:
+  /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
+  std::vector<double> x_, y_, z_, inv_mass_;
+  std::vector<double> rest_, weight_, lambda_;                  ///< Stretch constraint l joins l, l + 1.
+  std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
+  std::size_t block_ = 0;
 };
 
 /// The paper's Figure 2 in its literal order (segment 0, 1, 2, ... then bending 0, 1, ...). Kept as the

@@ -20,44 +20,98 @@ namespace
 constexpr double kMinLengthSquared = 1e-24;
 
 /**
- * Projects the distance constraints between particles a = start + kStride k and b = a + kSpan for
- * k in [0, count). Constraint data (rest, weight, lambda) is indexed by a. The constraints must share
- * no particle, which makes the loop free of dependencies between iterations.
+ * Projects `count` distance constraints, constraint k joining particle k of the `a` arrays with particle
+ * k of the `b` arrays. Constraint data (rest, weight, lambda) is indexed by k. The a and b ranges must
+ * not overlap, so the loop has no dependency between iterations and vectorises.
  */
-template <std::size_t kStride, std::size_t kSpan>
-inline void projectSet(double* __restrict x, double* __restrict y, double* __restrict z,
-                       const double* __restrict inv_mass, const double* __restrict rest,
-                       const double* __restrict weight, double* __restrict lambda, std::size_t start,
-                       std::size_t count)
+inline void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
+                         const double* __restrict aw, double* __restrict bx, double* __restrict by,
+                         double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
+                         const double* __restrict weight, double* __restrict lambda, std::size_t count)
 {
   for (std::size_t k = 0; k < count; ++k)
   {
-    const std::size_t a = start + kStride * k;
-    const std::size_t b = a + kSpan;
-    const double dx = x[b] - x[a];
-    const double dy = y[b] - y[a];
-    const double dz = z[b] - z[a];
+    const double dx = bx[k] - ax[k];
+    const double dy = by[k] - ay[k];
+    const double dz = bz[k] - az[k];
     const double length_squared = dx * dx + dy * dy + dz * dz;
     // Branch-free so the loop vectorises; a zero-length constraint has d = 0 and so moves nothing.
     const double inv_length = 1.0 / std::sqrt(length_squared + kMinLengthSquared);
     // Correction factor: (|d| - rest) / |d| / (w_a + w_b); multiplier increment s |d| [kg m].
-    const double s = (1.0 - rest[a] * inv_length) * weight[a];
-    lambda[a] += s * length_squared * inv_length;
-    const double move_a = inv_mass[a] * s;
-    const double move_b = inv_mass[b] * s;
-    x[a] += move_a * dx;
-    y[a] += move_a * dy;
-    z[a] += move_a * dz;
-    x[b] -= move_b * dx;
-    y[b] -= move_b * dy;
-    z[b] -= move_b * dz;
+    const double s = (1.0 - rest[k] * inv_length) * weight[k];
+    lambda[k] += s * length_squared * inv_length;
+    const double move_a = aw[k] * s;
+    const double move_b = bw[k] * s;
+    ax[k] += move_a * dx;
+    ay[k] += move_a * dy;
+    az[k] += move_a * dz;
+    bx[k] -= move_b * dx;
+    by[k] -= move_b * dy;
+    bz[k] -= move_b * dz;
   }
 }
 
-/// Number of indices start, start + stride, ... below end.
-inline std::size_t countFrom(std::size_t start, std::size_t end, std::size_t stride)
+/// Number of constraints l = 4 k + r with l <= last, for k >= 0.
+inline std::size_t countResidue(std::size_t r, std::size_t last_plus_one)
 {
-  return start < end ? (end - start + stride - 1) / stride : 0;
+  return r < last_plus_one ? (last_plus_one - 1 - r) / 4 + 1 : 0;
+}
+
+/// Pointers into the blocked arrays of PbdSolver (see its documentation).
+struct Blocked
+{
+  double* x;
+  double* y;
+  double* z;
+  const double* w;
+  const double* rest;
+  const double* weight;
+  double* lambda;
+  const double* bend_rest;
+  const double* bend_weight;
+  double* bend_lambda;
+  std::size_t block;      ///< Length of one block.
+  std::size_t particles;  ///< Deployed particles m.
+};
+
+/// Projects the constraints of residue r (constraint l = 4 k + r) between block r and the block of the
+/// particle `span` further on (1 for stretch, 2 for bending).
+inline void projectResidue(const Blocked& c, std::size_t r, std::size_t span, bool bend, std::size_t count)
+{
+  const std::size_t a = r * c.block;
+  const std::size_t b = ((r + span) & 3) * c.block + (r + span) / 4;  // particle 4 k + r + span
+  projectPairs(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b,
+               (bend ? c.bend_rest : c.rest) + a, (bend ? c.bend_weight : c.weight) + a,
+               (bend ? c.bend_lambda : c.lambda) + a, count);
+}
+
+ROV_TETHER_TARGET_CLONES
+void solveBlocked(const Blocked& c, const SolverSettings& settings)
+{
+  const std::size_t m = c.particles;
+  std::size_t stretch_count[4];
+  std::size_t bend_count[4];
+  for (std::size_t r = 0; r < 4; ++r)
+  {
+    stretch_count[r] = countResidue(r, m - 1);                // stretch l in [0, m - 2]
+    bend_count[r] = m >= 3 ? countResidue(r, m - 2) : 0;     // bending l in [0, m - 3]
+  }
+  for (int iteration = 0; iteration < settings.iterations; ++iteration)
+  {
+    // Even segments (residues 0 and 2 share no particle), then odd ones (1 and 3).
+    for (std::size_t r : {0, 2, 1, 3})
+    {
+      projectResidue(c, r, 1, false, stretch_count[r]);
+    }
+    if (settings.bending)
+    {
+      // Residues 0 and 1 share no particle, nor do 2 and 3.
+      for (std::size_t r = 0; r < 4; ++r)
+      {
+        projectResidue(c, r, 2, true, bend_count[r]);
+      }
+    }
+  }
 }
 
 void resetMultipliers(CableState& state, std::size_t segments_end, std::size_t bends_end)
@@ -71,58 +125,70 @@ void resetMultipliers(CableState& state, std::size_t segments_end, std::size_t b
   }
 }
 
-ROV_TETHER_TARGET_CLONES
-void solveRedBlack(CableState& state, const SolverSettings& settings)
-{
-  const std::size_t n = state.size();
-  const std::size_t f = state.first;
-  if (n < f + 2)
-  {
-    return;
-  }
-  const std::size_t segments_end = n - 1;            // segments f .. n-2
-  const std::size_t bends_end = n >= f + 3 ? n - 2 : f;  // bends f .. n-3
-  resetMultipliers(state, segments_end, bends_end);
-
-  double* x = state.x.data();
-  double* y = state.y.data();
-  double* z = state.z.data();
-  const double* w = state.inv_mass.data();
-  const double* rest = state.rest.data();
-  const double* stretch_weight = state.stretch_weight.data();
-  double* stretch_lambda = state.stretch_lambda.data();
-  const double* bend_rest = state.bend_rest.data();
-  const double* bend_weight = state.bend_weight.data();
-  double* bend_lambda = state.bend_lambda.data();
-
-  const std::size_t even = countFrom(f, segments_end, 2);
-  const std::size_t odd = countFrom(f + 1, segments_end, 2);
-  std::size_t bend_count[4];
-  for (std::size_t r = 0; r < 4; ++r)
-  {
-    bend_count[r] = countFrom(f + r, bends_end, 4);
-  }
-
-  for (int iteration = 0; iteration < settings.iterations; ++iteration)
-  {
-    projectSet<2, 1>(x, y, z, w, rest, stretch_weight, stretch_lambda, f, even);
-    projectSet<2, 1>(x, y, z, w, rest, stretch_weight, stretch_lambda, f + 1, odd);
-    if (settings.bending)
-    {
-      // Sets 0 and 1 share no particle, nor do sets 2 and 3.
-      for (std::size_t r = 0; r < 4; ++r)
-      {
-        projectSet<4, 2>(x, y, z, w, bend_rest, bend_weight, bend_lambda, f + r, bend_count[r]);
-      }
-    }
-  }
-}
-
 }  // namespace
 
 void PbdSolver::solve(CableState& state, const SolverSettings& settings)
 {
-  solveRedBlack(state, settings);
+  const std::size_t f = state.first;
+  if (state.size() < f + 2)
+  {
+    return;
+  }
+  const std::size_t m = state.size() - f;
+  block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
+  if (x_.size() < 4 * block_)
+  {
+    for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_})
+    {
+      v->assign(4 * block_, 0.0);
+    }
+  }
+  auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };
+  for (std::size_t l = 0; l < m; ++l)
+  {
+    const std::size_t s = slot(l);
+    x_[s] = state.x[f + l];
+    y_[s] = state.y[f + l];
+    z_[s] = state.z[f + l];
+    inv_mass_[s] = state.inv_mass[f + l];
+  }
+  for (std::size_t l = 0; l + 1 < m; ++l)
+  {
+    rest_[slot(l)] = state.rest[f + l];
+    weight_[slot(l)] = state.stretch_weight[f + l];
+    lambda_[slot(l)] = 0.0;
+  }
+  for (std::size_t l = 0; l + 2 < m; ++l)
+  {
+    bend_rest_[slot(l)] = state.bend_rest[f + l];
+    bend_weight_[slot(l)] = state.bend_weight[f + l];
+    bend_lambda_[slot(l)] = 0.0;
+  }
+
+  const Blocked blocked{x_.data(),         y_.data(),           z_.data(),           inv_mass_.data(),
+                        rest_.data(),      weight_.data(),      lambda_.data(),      bend_rest_.data(),
+                        bend_weight_.data(), bend_lambda_.data(), block_,              m};
+  solveBlocked(blocked, settings);
+
+  for (std::size_t l = 0; l < m; ++l)
+  {
+    const std::size_t s = slot(l);
+    state.x[f + l] = x_[s];
+    state.y[f + l] = y_[s];
+    state.z[f + l] = z_[s];
+  }
+  resetMultipliers(state, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
+  for (std::size_t l = 0; l + 1 < m; ++l)
+  {
+    state.stretch_lambda[f + l] = lambda_[slot(l)];
+  }
+  if (settings.bending)
+  {
+    for (std::size_t l = 0; l + 2 < m; ++l)
+    {
+      state.bend_lambda[f + l] = bend_lambda_[slot(l)];
+    }
+  }
 }
 
 void SequentialPbdSolver::solve(CableState& state, const SolverSettings& settings)
@@ -136,19 +202,23 @@ void SequentialPbdSolver::solve(CableState& state, const SolverSettings& setting
   const std::size_t segments_end = n - 1;
   const std::size_t bends_end = n >= f + 3 ? n - 2 : f;
   resetMultipliers(state, segments_end, bends_end);
+  double* x = state.x.data();
+  double* y = state.y.data();
+  double* z = state.z.data();
+  const double* w = state.inv_mass.data();
   for (int iteration = 0; iteration < settings.iterations; ++iteration)
   {
     for (std::size_t j = f; j < segments_end; ++j)
     {
-      projectSet<1, 1>(state.x.data(), state.y.data(), state.z.data(), state.inv_mass.data(), state.rest.data(),
-                       state.stretch_weight.data(), state.stretch_lambda.data(), j, 1);
+      projectPairs(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
+                   &state.stretch_weight[j], &state.stretch_lambda[j], 1);
     }
     if (settings.bending)
     {
       for (std::size_t j = f; j < bends_end; ++j)
       {
-        projectSet<1, 2>(state.x.data(), state.y.data(), state.z.data(), state.inv_mass.data(),
-                         state.bend_rest.data(), state.bend_weight.data(), state.bend_lambda.data(), j, 1);
+        projectPairs(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
+                     &state.bend_weight[j], &state.bend_lambda[j], 1);
       }
     }
   }
