@@ -39,8 +39,8 @@ class ConstraintSolver
  *
  * For the loops to be unit-stride (and so vectorise well), each step copies the deployed particles
  * into four blocks by index mod 4: particle l of block r is deployed particle 4 l + r. Every set then
- * pairs two blocks element by element. The copies are reused between steps; they are reallocated only
- * when the cable grows beyond them.
+ * pairs two blocks element by element. The copies are sized for the whole cable on the first step and
+ * reused, so pay-out never allocates.
  */
 class PbdSolver : public ConstraintSolver
 {

@@ -136,11 +136,12 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
   }
   const std::size_t m = state.size() - f;
   block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
-  if (x_.size() < 4 * block_)
+  const std::size_t capacity = 4 * (state.size() / 4 + 2);  // the whole cable: pay-out never reallocates
+  if (x_.size() < capacity)
   {
     for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_})
     {
-      v->assign(4 * block_, 0.0);
+      v->assign(capacity, 0.0);
     }
   }
   auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };

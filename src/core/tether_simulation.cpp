@@ -155,6 +155,7 @@ Status TetherSimulation::setParams(const TetherParams& params)
 void TetherSimulation::build()
 {
   state_.resize(params_.segmentCount() + 1);
+  tension_scratch_.reserve(state_.size());
   layOut(params_.initial_deployed_length);
 }
 

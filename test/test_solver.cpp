@@ -1,0 +1,158 @@
+// Constraint solvers on their own, and the promise that a step allocates nothing.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "test_helpers.hpp"
+
+namespace
+{
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// Counts every allocation of this test binary.
+void* operator new(std::size_t size)
+{
+  ++g_allocations;
+  if (void* p = std::malloc(size ? size : 1))
+  {
+    return p;
+  }
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace rov_tether::test
+{
+namespace
+{
+
+/// A chain of `particles` particles laid out in a zig-zag, ends pinned, rest length 1.
+CableState zigzag(std::size_t particles, std::size_t first)
+{
+  CableState state;
+  state.resize(first + particles);
+  state.first = first;
+  for (std::size_t i = 0; i < state.size(); ++i)
+  {
+    const double k = static_cast<double>(i);
+    state.place(i, Position(0.7 * k, (i % 2) ? 0.4 : -0.3, 0.1 * (i % 3)));
+    state.inv_mass[i] = (i <= first || i + 1 == state.size()) ? 0.0 : 1.0 + 0.1 * (i % 5);
+  }
+  for (std::size_t j = 0; j + 1 < state.size(); ++j)
+  {
+    state.rest[j] = 0.8;
+    const double w = state.inv_mass[j] + state.inv_mass[j + 1];
+    state.stretch_weight[j] = w > 0 ? 1.0 / w : 0.0;
+  }
+  for (std::size_t j = 0; j + 2 < state.size(); ++j)
+  {
+    state.bend_rest[j] = 1.6;
+    const double w = state.inv_mass[j] + state.inv_mass[j + 2];
+    state.bend_weight[j] = w > 0 ? 1.0 / w : 0.0;
+  }
+  return state;
+}
+
+double worstStretchError(const CableState& state)
+{
+  double worst = 0.0;
+  for (std::size_t j = state.first; j + 1 < state.size(); ++j)
+  {
+    worst = std::max(worst, std::abs((state.position(j + 1) - state.position(j)).norm() - state.rest[j]));
+  }
+  return worst;
+}
+
+// Every chain length (all four residues mod 4, and the shortest chains) converges, pinned particles
+// and the particles on the spool never move, for both orderings.
+TEST(Solver, EveryChainLengthConvergesAndPinnedParticlesStay)
+{
+  for (SolverType type : {SolverType::kPbd, SolverType::kPbdSequential})
+  {
+    for (std::size_t particles = 2; particles <= 13; ++particles)
+    {
+      CableState state = zigzag(particles, 3);
+      const CableState initial = state;
+      SolverSettings settings;
+      settings.iterations = 2000;
+      settings.bending = false;
+      makeSolver(type)->solve(state, settings);
+      if (particles > 2)  // two particles are both pinned: nothing can move
+      {
+        EXPECT_LT(worstStretchError(state), 1e-9) << particles << " particles, " << toString(type);
+      }
+      for (std::size_t i : {std::size_t{0}, std::size_t{3}, state.size() - 1})
+      {
+        EXPECT_EQ(state.position(i), initial.position(i)) << "pinned particle " << i;
+      }
+      // Multipliers: pinned-pinned constraints carry none; the rest are finite.
+      for (std::size_t j = state.first; j + 1 < state.size(); ++j)
+      {
+        EXPECT_TRUE(std::isfinite(state.stretch_lambda[j]));
+      }
+    }
+  }
+}
+
+// With bending, both orderings reach the same straight chain from a stretched straight start.
+TEST(Solver, BothOrderingsAgreeOnAConsistentProblem)
+{
+  for (std::size_t particles = 3; particles <= 11; ++particles)
+  {
+    CableState a = zigzag(particles, 0);
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      a.place(i, Position(0.9 * static_cast<double>(i), 0.0, 0.0));  // straight, stretched 12.5%
+    }
+    a.place(a.size() - 1, Position(0.8 * static_cast<double>(a.size() - 1), 0.0, 0.0));  // feasible ends
+    CableState b = a;
+    SolverSettings settings;
+    settings.iterations = 3000;
+    makeSolver(SolverType::kPbd)->solve(a, settings);
+    makeSolver(SolverType::kPbdSequential)->solve(b, settings);
+    EXPECT_LT(worstStretchError(a), 1e-9) << particles;
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      EXPECT_NEAR((a.position(i) - b.position(i)).norm(), 0.0, 1e-8) << particles << " particles, " << i;
+    }
+  }
+}
+
+// "Hot loops allocate nothing": a thousand steps with pay-out, releases, noise and tension reads.
+TEST(Allocation, StepsAllocateNothing)
+{
+  for (SolverType solver : {SolverType::kPbd, SolverType::kPbdSequential})
+  {
+    TetherParams params;
+    params.solver = solver;
+    params.winch_mode = WinchMode::kSpeed;
+    params.winch_speed = 0.8;
+    params.weight_in_water = 0.5;
+    TetherSimulation sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
+    sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
+    std::vector<double> tensions;
+    std::vector<Position> shape;
+    sim.step();
+    sim.computeSegmentTensions(tensions);
+    tensions.reserve(params.segmentCount());
+    shape.reserve(params.segmentCount() + 1);
+    const std::size_t first_before = sim.state().first;
+    const long before = g_allocations.load();
+    for (int k = 0; k < 1000; ++k)
+    {
+      sim.step();
+    }
+    sim.computeSegmentTensions(tensions);
+    sim.copyPositions(shape);
+    const TetherSummary summary = sim.summary();
+    const long allocations = g_allocations.load() - before;
+    EXPECT_EQ(allocations, 0) << toString(solver);
+    EXPECT_LT(sim.state().first, first_before);  // particles were released meanwhile
+    EXPECT_GT(summary.deployed_length, 5.0);
+  }
+}
+
+}  // namespace
+}  // namespace rov_tether::test
