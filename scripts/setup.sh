@@ -9,7 +9,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 export PATH="/usr/bin:/bin:$PATH"
 
 PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev
-          libgtest-dev libbenchmark-dev)
+          libgtest-dev libbenchmark-dev ${PACKAGES_EXTRA:-})
 
 install_missing() {
   local missing=()

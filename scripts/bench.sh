@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Builds and runs the step benchmark (Google Benchmark). Extra arguments go to the benchmark binary.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+echo "== $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores"
+"$BUILD_DIR/devel/lib/rov_tether/rov_tether_bench" --benchmark_min_time=0.5 "$@"
