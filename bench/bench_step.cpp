@@ -38,9 +38,9 @@ void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
     benchmark::DoNotOptimize(sim.state().x.data());
   }
   const double projections_per_step = static_cast<double>(state.range(0)) * (bending ? 2.0 : 1.0) * 10.0;
-  state.counters["ns_per_projection"] = benchmark::Counter(
-      projections_per_step * static_cast<double>(state.iterations()),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+  state.counters["ns_per_projection"] =
+      benchmark::Counter(projections_per_step * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
   state.counters["ns_per_projection"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * projections_per_step,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);

@@ -17,7 +17,8 @@ namespace rov_tether::test
 inline Scenario shippedScenario(const std::string& name)
 {
   Scenario scenario;
-  const std::string error = loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/" + name + ".yaml", &scenario);
+  const std::string error =
+      loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/" + name + ".yaml", &scenario);
   EXPECT_EQ(error, "");
   return scenario;
 }
@@ -34,10 +35,7 @@ inline double geometricLength(const TetherSimulation& sim)
 }
 
 /// Mean stretch of the deployed cable: geometric length / deployed length - 1 [-].
-inline double meanStretch(const TetherSimulation& sim)
-{
-  return geometricLength(sim) / sim.deployedLength() - 1.0;
-}
+inline double meanStretch(const TetherSimulation& sim) { return geometricLength(sim) / sim.deployedLength() - 1.0; }
 
 /// Root-mean-square distance between two shapes of equal size [m].
 inline double rmsDistance(const std::vector<Position>& a, const std::vector<Position>& b)

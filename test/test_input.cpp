@@ -34,10 +34,10 @@ void expectSameState(const TetherSimulation& a, const TetherSimulation& b)
 TEST(BadInput, NonFiniteVehicleSamplesAreRefusedAndChangeNothing)
 {
   for (const auto& [t, p] : std::vector<std::pair<double, Position>>{{0.7, Position(kNaN, 0, 0)},
-                                                                    {0.7, Position(0, kInf, 0)},
-                                                                    {0.7, Position(0, 0, -kInf)},
-                                                                    {kNaN, Position(1, 0, 0)},
-                                                                    {kInf, Position(1, 0, 0)}})
+                                                                     {0.7, Position(0, kInf, 0)},
+                                                                     {0.7, Position(0, 0, -kInf)},
+                                                                     {kNaN, Position(1, 0, 0)},
+                                                                     {kInf, Position(1, 0, 0)}})
   {
     TetherSimulation sim = movingTether();
     TetherSimulation untouched = movingTether();

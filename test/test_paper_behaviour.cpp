@@ -32,8 +32,8 @@ TEST(PaperFig4, LengthIsBetterKeptWithMoreIterations)
   const double five = maxStretchFig4(5);
   const double ten = maxStretchFig4(10);
   const double fifty = maxStretchFig4(50);
-  std::printf("[ measured ] Fig. 4 max mean stretch: 1 it %.4f, 5 it %.4f, 10 it %.4f, 50 it %.5f\n", one, five,
-              ten, fifty);
+  std::printf("[ measured ] Fig. 4 max mean stretch: 1 it %.4f, 5 it %.4f, 10 it %.4f, 50 it %.5f\n", one, five, ten,
+              fifty);
   EXPECT_GT(one, five);
   EXPECT_GT(five, ten);
   EXPECT_GT(ten, fifty);
@@ -92,8 +92,8 @@ TEST(PaperFig10, DampingKeepsTheDisturbanceLocal)
   const double undamped = farHalfTravel(1.0, 0.0, 4.0);
   const double notebook = farHalfTravel(0.98, 0.0, 4.0);
   const double underwater = farHalfTravel(0.9, 0.0, 4.0);
-  std::printf("[ measured ] far-half travel over 4 s: drag 1.0 %.3f m, 0.98 %.3f m, 0.9 %.3f m\n", undamped,
-              notebook, underwater);
+  std::printf("[ measured ] far-half travel over 4 s: drag 1.0 %.3f m, 0.98 %.3f m, 0.9 %.3f m\n", undamped, notebook,
+              underwater);
   EXPECT_GT(undamped, notebook);
   EXPECT_GT(notebook, underwater);
   EXPECT_LT(underwater, 0.25 * undamped);
@@ -129,8 +129,8 @@ TEST(PaperFig11, NoiseMakesTheShapeLoseItsMemory)
   const double with_noise = shapeChangeLate(0.0005, false);
   const double without = shapeChangeLate(0.0, false);
   const double bending_creep = shapeChangeLate(0.0, true);
-  std::printf("[ measured ] RMS shape change 8-16 s: noise %.4f m, no noise %.2e m (bending on: %.4f m)\n",
-              with_noise, without, bending_creep);
+  std::printf("[ measured ] RMS shape change 8-16 s: noise %.4f m, no noise %.2e m (bending on: %.4f m)\n", with_noise,
+              without, bending_creep);
   EXPECT_GT(with_noise, 0.01);
   EXPECT_LT(without, 1e-4);
 }
@@ -252,8 +252,8 @@ TEST(StepIndependence, NoiseSpreadDoesNotDependOnTheStep)
 {
   const double fine = noiseSpread(0.005, 5.0);
   const double coarse = noiseSpread(0.02, 5.0);
-  std::printf("[ measured ] noise spread over 5 s: dt 5 ms %.3e m^2, dt 20 ms %.3e m^2 (ratio %.2f)\n", fine,
-              coarse, fine / coarse);
+  std::printf("[ measured ] noise spread over 5 s: dt 5 ms %.3e m^2, dt 20 ms %.3e m^2 (ratio %.2f)\n", fine, coarse,
+              fine / coarse);
   EXPECT_GT(fine / coarse, 0.6);
   EXPECT_LT(fine / coarse, 1.6);
 }

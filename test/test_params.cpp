@@ -11,10 +11,7 @@ namespace
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-TEST(Params, DefaultsAreValid)
-{
-  EXPECT_TRUE(TetherParams{}.validate().empty());
-}
+TEST(Params, DefaultsAreValid) { EXPECT_TRUE(TetherParams{}.validate().empty()); }
 
 struct BadValue
 {
@@ -26,15 +23,33 @@ struct BadValue
 TEST(Params, EveryOutOfRangeFieldIsNamed)
 {
   const std::vector<BadValue> cases = {
-      {"cable_length", 0.0},           {"cable_length", kNaN},        {"segment_length", 0.0},
-      {"segment_length", -0.1},        {"initial_deployed_length", -1.0}, {"time_step", 0.0},
-      {"time_step", 0.5},              {"time_step", kNaN},           {"iterations", std::int64_t{0}},
-      {"iterations", std::int64_t{5000}}, {"drag", 0.0},              {"drag", 1.5},
-      {"drag", kNaN},                  {"noise", -0.001},             {"noise", 2.0},
-      {"seed", std::int64_t{-1}},      {"weight_in_water", kNaN},     {"weight_in_water", 1e9},
-      {"mass_per_length", 0.0},        {"axial_stiffness", -5.0},     {"max_winch_speed", 0.0},
-      {"winch_speed", 50.0},           {"payout_threshold", 0.0},     {"payout_threshold", 3.0},
-      {"reel_in_slack", -0.5},         {"min_deployed_length", 0.0},  {"max_vehicle_jump", 0.0},
+      {"cable_length", 0.0},
+      {"cable_length", kNaN},
+      {"segment_length", 0.0},
+      {"segment_length", -0.1},
+      {"initial_deployed_length", -1.0},
+      {"time_step", 0.0},
+      {"time_step", 0.5},
+      {"time_step", kNaN},
+      {"iterations", std::int64_t{0}},
+      {"iterations", std::int64_t{5000}},
+      {"drag", 0.0},
+      {"drag", 1.5},
+      {"drag", kNaN},
+      {"noise", -0.001},
+      {"noise", 2.0},
+      {"seed", std::int64_t{-1}},
+      {"weight_in_water", kNaN},
+      {"weight_in_water", 1e9},
+      {"mass_per_length", 0.0},
+      {"axial_stiffness", -5.0},
+      {"max_winch_speed", 0.0},
+      {"winch_speed", 50.0},
+      {"payout_threshold", 0.0},
+      {"payout_threshold", 3.0},
+      {"reel_in_slack", -0.5},
+      {"min_deployed_length", 0.0},
+      {"max_vehicle_jump", 0.0},
       {"max_vehicle_jump", std::numeric_limits<double>::infinity()},
   };
   for (const auto& c : cases)
@@ -81,13 +96,13 @@ TEST(Params, ContradictionsBetweenFieldsAreNamed)
 TEST(Params, SetParameterChecksNamesAndTypes)
 {
   TetherParams params;
-  EXPECT_NE(setParameter(params, "iteratons", std::int64_t{3}).find("unknown parameter 'iteratons'"), std::string::npos);
+  EXPECT_NE(setParameter(params, "iteratons", std::int64_t{3}).find("unknown parameter 'iteratons'"),
+            std::string::npos);
   EXPECT_NE(setParameter(params, "iterations", 2.5).find("iterations"), std::string::npos);
   EXPECT_NE(setParameter(params, "iterations", std::string("ten")).find("iterations"), std::string::npos);
   EXPECT_NE(setParameter(params, "bending", 1.0).find("bending"), std::string::npos);
   EXPECT_NE(setParameter(params, "solver", std::string("rk4")).find("pbd, pbd_sequential"), std::string::npos);
-  EXPECT_NE(setParameter(params, "winch_mode", std::string("auto")).find("passive, locked, speed"),
-            std::string::npos);
+  EXPECT_NE(setParameter(params, "winch_mode", std::string("auto")).find("passive, locked, speed"), std::string::npos);
   EXPECT_EQ(params.iterations, TetherParams{}.iterations);  // refused values changed nothing
 
   EXPECT_EQ(setParameter(params, "iterations", 7.0), "");  // an integral number is an integer

@@ -187,9 +187,9 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
   EXPECT_FALSE(fs::exists(fs::path(dir) / "shape.csv"));
   EXPECT_EQ(runRunner("/nonexistent.yaml --out " + dir), 2);
   EXPECT_EQ(runRunner(scenario_path.string()), 2);  // no --out
-  EXPECT_EQ(runRunner(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/catenary.yaml --out " + dir +
-                      " --set iterations=-3"),
-            2);
+  EXPECT_EQ(
+      runRunner(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/catenary.yaml --out " + dir + " --set iterations=-3"),
+      2);
   EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
   fs::remove(scenario_path);
 }

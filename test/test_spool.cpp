@@ -1,7 +1,6 @@
 // Spool: pay-out, reel-in, winch modes and limits, smooth release of particles.
-#include <cstdio>
-
 #include <Eigen/Geometry>
+#include <cstdio>
 
 #include "test_helpers.hpp"
 
@@ -56,7 +55,7 @@ TEST(Spool, DeployedLengthFollowsTheVehicleOutAndBack)
     }
   }
   std::printf("[ measured ] going out: deployed / distance in [%.3f, %.3f]\n", worst_ratio_low, worst_ratio_high);
-  EXPECT_GT(worst_ratio_low, 0.98);  // the cable is pulled out, not stretched
+  EXPECT_GT(worst_ratio_low, 0.98);   // the cable is pulled out, not stretched
   EXPECT_LT(worst_ratio_high, 1.03);  // and only what is needed is paid out
   EXPECT_GT(records[static_cast<std::size_t>(15.9 / 0.005)].deployed, 9.0);
 
@@ -96,8 +95,8 @@ TEST(Spool, ReleaseDoesNotSpikeTension)
   ASSERT_GT(releases, 50);
   const double release_mean = release_sum / releases;
   const double other_mean = other_sum / others;
-  std::printf("[ measured ] %d releases: spool tension mean %.3f N (max %.3f N), other steps mean %.3f N\n",
-              releases, release_mean, release_max, other_mean);
+  std::printf("[ measured ] %d releases: spool tension mean %.3f N (max %.3f N), other steps mean %.3f N\n", releases,
+              release_mean, release_max, other_mean);
   EXPECT_LT(release_mean, 1.5 * other_mean + 0.05);
   EXPECT_LT(release_max, 10.0);
 }
@@ -211,8 +210,8 @@ TEST(Spool, HangingCableCarriesItsWeightAtTheSpool)
   TetherSimulation sim(params, Position::Zero());
   sim.advance(10.0);
   const TetherSummary s = sim.summary();
-  std::printf("[ measured ] hanging 5 m at 2 N/m: spool %.4f N (ref 10), free end %.4f N (ref 0.1)\n",
-              s.tension_spool, s.tension_vehicle);
+  std::printf("[ measured ] hanging 5 m at 2 N/m: spool %.4f N (ref 10), free end %.4f N (ref 0.1)\n", s.tension_spool,
+              s.tension_vehicle);
   // Lumped masses: the spool segment holds all particles below it, the last segment the end's half mass.
   const double below_spool = 2.0 * (5.0 - 0.5 * sim.state().rest[sim.state().first]);
   EXPECT_NEAR(s.tension_spool, below_spool, 0.01 * below_spool);

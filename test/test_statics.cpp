@@ -13,9 +13,9 @@ constexpr double kWeight = 1.0;   // w [N/m]
 
 struct Catenary
 {
-  double sag = 0.0;               ///< Depth of the lowest particle below the supports [m].
-  std::vector<double> tensions;   ///< Per segment, spool first [N].
-  double settle_change = 0.0;     ///< RMS shape change over the last second [m].
+  double sag = 0.0;              ///< Depth of the lowest particle below the supports [m].
+  std::vector<double> tensions;  ///< Per segment, spool first [N].
+  double settle_change = 0.0;    ///< RMS shape change over the last second [m].
 };
 
 /// A heavy 10 m cable settled between level supports `span` apart, in `segments` segments.
@@ -62,8 +62,8 @@ struct Row
 // so 0.5% bounds the sag; each segment's tension is compared with T(s) at its midpoint within 1%.
 TEST(Catenary, PbdMatchesTheInextensibleCatenary)
 {
-  for (const Row& row : {Row{8.0, 3.38202, 2.65438, 6.03639}, Row{9.0, 5.6009, 1.9071, 7.5080},
-                         Row{9.5, 8.5186, 1.3590, 9.8776}})
+  for (const Row& row :
+       {Row{8.0, 3.38202, 2.65438, 6.03639}, Row{9.0, 5.6009, 1.9071, 7.5080}, Row{9.5, 8.5186, 1.3590, 9.8776}})
   {
     const Catenary result = settle(row.span, 20, false);
     const double segment = kLength / 20;
@@ -96,8 +96,8 @@ TEST(Catenary, SagConvergesWithResolution)
   for (int segments : {10, 20, 40})
   {
     const double error = settle(8.0, segments, false, 1000).sag / 2.65438 - 1.0;
-    std::printf("[ measured ] N = %d, 1000 iterations: sag error %+.4f%% (published %+.2f%%)\n", segments,
-                100 * error, 100 * published[row]);
+    std::printf("[ measured ] N = %d, 1000 iterations: sag error %+.4f%% (published %+.2f%%)\n", segments, 100 * error,
+                100 * published[row]);
     EXPECT_NEAR(error, published[row], 0.0002);
     if (previous_error > 0.0)
     {
@@ -114,8 +114,8 @@ TEST(Catenary, BendingConstraintsBiasTheSagAsPublished)
 {
   const Catenary with_bending = settle(8.0, 10, true);
   const Catenary without = settle(8.0, 10, false);
-  std::printf("[ measured ] N = 10: sag with bending %.4f m, without %.4f m (refs 2.6395, 2.6686)\n",
-              with_bending.sag, without.sag);
+  std::printf("[ measured ] N = 10: sag with bending %.4f m, without %.4f m (refs 2.6395, 2.6686)\n", with_bending.sag,
+              without.sag);
   EXPECT_NEAR(without.sag, 2.6686, 0.005);
   EXPECT_LT(with_bending.sag, without.sag - 0.01);
   EXPECT_NEAR(with_bending.sag, 2.6395, 0.02);

@@ -1,9 +1,8 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace rov_tether
 {
@@ -24,10 +23,10 @@ using Force = Eigen::Vector3d;
  */
 struct CableState
 {
-  std::vector<double> x, y, z;     ///< Positions [m].
-  std::vector<double> px, py, pz;  ///< Positions one step ago [m].
-  std::vector<double> inv_mass;    ///< Inverse particle mass [1/kg], 0 = pinned.
-  std::vector<double> rest;        ///< Rest length of segment j [m] (size - 1 entries).
+  std::vector<double> x, y, z;         ///< Positions [m].
+  std::vector<double> px, py, pz;      ///< Positions one step ago [m].
+  std::vector<double> inv_mass;        ///< Inverse particle mass [1/kg], 0 = pinned.
+  std::vector<double> rest;            ///< Rest length of segment j [m] (size - 1 entries).
   std::vector<double> stretch_weight;  ///< 1 / (w_j + w_{j+1}) [kg], 0 when both are pinned.
   std::vector<double> bend_rest;       ///< Rest distance of bending constraint j: rest_j + rest_{j+1} [m].
   std::vector<double> bend_weight;     ///< 1 / (w_j + w_{j+2}) [kg], 0 when both are pinned.

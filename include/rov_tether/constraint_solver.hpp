@@ -11,10 +11,10 @@ namespace rov_tether
 /// What a solver needs to know about one step.
 struct SolverSettings
 {
-  int iterations = 10;            ///< Sweeps over all constraints [-].
-  bool bending = true;            ///< Project the (i, i+2) bending constraints.
-  double time_step = 0.005;       ///< Step the constraints are solved for [s].
-  double axial_stiffness = 1e5;   ///< EA [N]; unused by the pbd solvers.
+  int iterations = 10;           ///< Sweeps over all constraints [-].
+  bool bending = true;           ///< Project the (i, i+2) bending constraints.
+  double time_step = 0.005;      ///< Step the constraints are solved for [s].
+  double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
 };
 
 /**
@@ -50,7 +50,7 @@ class PbdSolver : public ConstraintSolver
  private:
   /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
   std::vector<double> x_, y_, z_, inv_mass_;
-  std::vector<double> rest_, weight_, lambda_;                  ///< Stretch constraint l joins l, l + 1.
+  std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
   std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
   std::size_t block_ = 0;
 };

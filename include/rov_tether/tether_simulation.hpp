@@ -28,14 +28,14 @@ struct Status
 /// What a tether-management controller reads after a step.
 struct TetherSummary
 {
-  double time = 0.0;                ///< Simulation time [s].
-  double deployed_length = 0.0;     ///< Cable off the spool (sum of rest lengths) [m].
-  double tension_spool = 0.0;       ///< Axial force in the segment at the spool [N].
-  double tension_vehicle = 0.0;     ///< Axial force in the segment at the vehicle (or free end) [N].
-  double max_tension = 0.0;         ///< Largest segment tension [N].
+  double time = 0.0;                    ///< Simulation time [s].
+  double deployed_length = 0.0;         ///< Cable off the spool (sum of rest lengths) [m].
+  double tension_spool = 0.0;           ///< Axial force in the segment at the spool [N].
+  double tension_vehicle = 0.0;         ///< Axial force in the segment at the vehicle (or free end) [N].
+  double max_tension = 0.0;             ///< Largest segment tension [N].
   std::size_t max_tension_segment = 0;  ///< Segment index of max_tension, 0 at the spool.
-  double max_strain = 0.0;          ///< Largest geometric strain |d| / rest - 1 [-].
-  double mean_strain = 0.0;         ///< Mean absolute geometric strain, the solver's residual stretch [-].
+  double max_strain = 0.0;              ///< Largest geometric strain |d| / rest - 1 [-].
+  double mean_strain = 0.0;             ///< Mean absolute geometric strain, the solver's residual stretch [-].
 };
 
 /**
@@ -52,8 +52,7 @@ class TetherSimulation
   /// A tether hanging from the spool with a free end. Throws std::invalid_argument on invalid params.
   TetherSimulation(const TetherParams& params, const Position& spool, double start_time = 0.0);
   /// A tether from the spool to a vehicle at `vehicle` at start_time. Throws std::invalid_argument.
-  TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle,
-                   double start_time = 0.0);
+  TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
   /// Replaces the parameters between steps. A change of cable_length, segment_length,
   /// initial_deployed_length or solver rebuilds the cable; other changes keep the state. A change of

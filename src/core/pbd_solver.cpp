@@ -93,8 +93,8 @@ void solveBlocked(const Blocked& c, const SolverSettings& settings)
   std::size_t bend_count[4];
   for (std::size_t r = 0; r < 4; ++r)
   {
-    stretch_count[r] = countResidue(r, m - 1);                // stretch l in [0, m - 2]
-    bend_count[r] = m >= 3 ? countResidue(r, m - 2) : 0;     // bending l in [0, m - 3]
+    stretch_count[r] = countResidue(r, m - 1);            // stretch l in [0, m - 2]
+    bend_count[r] = m >= 3 ? countResidue(r, m - 2) : 0;  // bending l in [0, m - 3]
   }
   for (int iteration = 0; iteration < settings.iterations; ++iteration)
   {
@@ -135,7 +135,7 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     return;
   }
   const std::size_t m = state.size() - f;
-  block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
+  block_ = m / 4 + 2;                                       // room for particle 4 k + r + 2 one block further on
   const std::size_t capacity = 4 * (state.size() / 4 + 2);  // the whole cable: pay-out never reallocates
   if (x_.size() < capacity)
   {
@@ -166,9 +166,9 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     bend_lambda_[slot(l)] = 0.0;
   }
 
-  const Blocked blocked{x_.data(),         y_.data(),           z_.data(),           inv_mass_.data(),
-                        rest_.data(),      weight_.data(),      lambda_.data(),      bend_rest_.data(),
-                        bend_weight_.data(), bend_lambda_.data(), block_,              m};
+  const Blocked blocked{x_.data(),           y_.data(),           z_.data(),      inv_mass_.data(),
+                        rest_.data(),        weight_.data(),      lambda_.data(), bend_rest_.data(),
+                        bend_weight_.data(), bend_lambda_.data(), block_,         m};
   solveBlocked(blocked, settings);
 
   for (std::size_t l = 0; l < m; ++l)

@@ -12,8 +12,7 @@ namespace
 {
 
 using Member = std::variant<double TetherParams::*, int TetherParams::*, bool TetherParams::*,
-                            std::int64_t TetherParams::*, SolverType TetherParams::*,
-                            WinchMode TetherParams::*>;
+                            std::int64_t TetherParams::*, SolverType TetherParams::*, WinchMode TetherParams::*>;
 
 /// The one table of parameter names; order is documentation order.
 const std::vector<std::pair<std::string, Member>>& parameterTable()
@@ -79,8 +78,8 @@ std::string formatValue(double value)
 
 /// Appends "name = value: must be in [min, max]" when value is outside [min, max] or not finite.
 /// Open bounds are marked with `min_open` / `max_open`.
-void checkRange(std::vector<std::string>& errors, const std::string& name, double value, double min,
-                double max, bool min_open = false, bool max_open = false)
+void checkRange(std::vector<std::string>& errors, const std::string& name, double value, double min, double max,
+                bool min_open = false, bool max_open = false)
 {
   const bool below = min_open ? !(value > min) : !(value >= min);
   const bool above = max_open ? !(value < max) : !(value <= max);
@@ -89,8 +88,8 @@ void checkRange(std::vector<std::string>& errors, const std::string& name, doubl
     return;
   }
   std::ostringstream out;
-  out << name << " = " << value << ": must be a finite number in " << (min_open ? "(" : "[") << min
-      << ", " << max << (max_open ? ")" : "]");
+  out << name << " = " << value << ": must be a finite number in " << (min_open ? "(" : "[") << min << ", " << max
+      << (max_open ? ")" : "]");
   errors.push_back(out.str());
 }
 
@@ -152,20 +151,11 @@ std::vector<std::string> TetherParams::validate() const
   return errors;
 }
 
-double TetherParams::dampingRate() const
-{
-  return -std::log(drag) / kReferenceStep;
-}
+double TetherParams::dampingRate() const { return -std::log(drag) / kReferenceStep; }
 
-double TetherParams::dampingFactor(double dt) const
-{
-  return std::exp(-dampingRate() * dt);
-}
+double TetherParams::dampingFactor(double dt) const { return std::exp(-dampingRate() * dt); }
 
-double TetherParams::noiseAmplitude(double dt) const
-{
-  return noise * std::pow(dt / kReferenceStep, 1.5);
-}
+double TetherParams::noiseAmplitude(double dt) const { return noise * std::pow(dt / kReferenceStep, 1.5); }
 
 std::size_t TetherParams::segmentCount() const
 {
@@ -181,7 +171,8 @@ bool sameStructure(const TetherParams& a, const TetherParams& b)
 
 const std::vector<std::string>& parameterNames()
 {
-  static const std::vector<std::string> names = [] {
+  static const std::vector<std::string> names = []
+  {
     std::vector<std::string> result;
     for (const auto& entry : parameterTable())
     {
@@ -201,7 +192,8 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
   }
   const std::string wrong_type = "parameter '" + name + "': wrong type (" + typeName(value) + "), expected ";
   return std::visit(
-      [&](auto field) -> std::string {
+      [&](auto field) -> std::string
+      {
         using Field = std::remove_reference_t<decltype(params.*field)>;
         Field& target = params.*field;
         if constexpr (std::is_same_v<Field, double>)
@@ -225,8 +217,8 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
           {
             integer = *i;
           }
-          else if (const auto* d = std::get_if<double>(&value); d != nullptr && std::isfinite(*d) &&
-                                                                 std::floor(*d) == *d && std::abs(*d) < 9.0e15)
+          else if (const auto* d = std::get_if<double>(&value);
+                   d != nullptr && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9.0e15)
           {
             integer = static_cast<std::int64_t>(*d);
           }
@@ -280,7 +272,8 @@ ParamValue getParameter(const TetherParams& params, const std::string& name)
     throw std::out_of_range("unknown parameter '" + name + "'");
   }
   return std::visit(
-      [&](auto field) -> ParamValue {
+      [&](auto field) -> ParamValue
+      {
         const auto& value = params.*field;
         using Field = std::decay_t<decltype(value)>;
         if constexpr (std::is_same_v<Field, int> || std::is_same_v<Field, std::int64_t>)
@@ -299,10 +292,7 @@ ParamValue getParameter(const TetherParams& params, const std::string& name)
       *member);
 }
 
-std::string toString(SolverType solver)
-{
-  return solver == SolverType::kPbd ? "pbd" : "pbd_sequential";
-}
+std::string toString(SolverType solver) { return solver == SolverType::kPbd ? "pbd" : "pbd_sequential"; }
 
 std::string toString(WinchMode mode)
 {

@@ -32,8 +32,16 @@ std::string joinErrors(const std::vector<std::string>& errors)
 }
 
 /// One axis of the damped Verlet update, paper eq. (6)-(8): x' = x + (x - x_prev) D + a dt^2.
-void verletAxis(double* __restrict x, double* __restrict previous, std::size_t begin, std::size_t end,
-                double damping, double displacement)
+/// Unit vector from particle a to particle b (zero when they coincide).
+Position unitVector(const CableState& state, std::size_t a, std::size_t b)
+{
+  const Position d = state.position(b) - state.position(a);
+  const double length = d.norm();
+  return length > 0.0 ? Position(d / length) : Position::Zero();
+}
+
+void verletAxis(double* __restrict x, double* __restrict previous, std::size_t begin, std::size_t end, double damping,
+                double displacement)
 {
   for (std::size_t i = begin; i < end; ++i)
   {
@@ -71,8 +79,7 @@ void CableState::place(std::size_t i, const Position& p)
   z[i] = pz[i] = p.z();
 }
 
-TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, double start_time)
-  : spool_(spool)
+TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, double start_time) : spool_(spool)
 {
   const auto errors = params.validate();
   if (!errors.empty())
@@ -90,7 +97,7 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
 
 TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle,
                                    double start_time)
-  : TetherSimulation(params, spool, start_time)
+    : TetherSimulation(params, spool, start_time)
 {
   if (!vehicle.allFinite())
   {
@@ -214,7 +221,7 @@ void TetherSimulation::layOut(double deployed_length)
   {
     const double fraction = length > 0.0 ? std::min(arc / length, 1.0) : 0.0;
     state_.place(i, fraction <= 0.5 ? Position(spool_ + 2.0 * fraction * (apex - spool_))
-                                     : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
+                                    : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
     if (i + 1 < n)
     {
       arc += state_.rest[i];
@@ -234,10 +241,7 @@ bool TetherSimulation::isPinned(std::size_t i) const
   return i <= state_.first || (vehicle_attached_ && i + 1 == state_.size());
 }
 
-std::size_t TetherSimulation::freeEnd() const
-{
-  return vehicle_attached_ ? state_.size() - 1 : state_.size();
-}
+std::size_t TetherSimulation::freeEnd() const { return vehicle_attached_ ? state_.size() - 1 : state_.size(); }
 
 void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
 {
@@ -292,8 +296,8 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   if (!samples_.empty() && t < samples_.back().time)
   {
     std::ostringstream out;
-    out << "vehicle sample rejected: time " << t << " s is older than the last sample at "
-        << samples_.back().time << " s";
+    out << "vehicle sample rejected: time " << t << " s is older than the last sample at " << samples_.back().time
+        << " s";
     return Status::error(out.str());
   }
   if (!samples_.empty() && t == samples_.back().time)
@@ -343,8 +347,8 @@ Position TetherSimulation::vehicleAt(double t)
     double length = deployedLength();
     if (params_.winch_mode != WinchMode::kLocked)
     {
-      length = std::clamp(std::max(length, (target - spool_).norm()), params_.min_deployed_length,
-                          params_.cable_length);
+      length =
+          std::clamp(std::max(length, (target - spool_).norm()), params_.min_deployed_length, params_.cable_length);
     }
     layOut(length);
     ++jumps_;
@@ -431,9 +435,8 @@ void TetherSimulation::integrate(double dt)
   verletAxis(state_.x.data(), state_.px.data(), begin, end, damping, 0.0);
   verletAxis(state_.y.data(), state_.py.data(), begin, end, damping, 0.0);
   // Net weight in water; a neutrally buoyant cable (the default) does no gravity work at all.
-  const double sink = params_.weight_in_water != 0.0
-                          ? -params_.weight_in_water / params_.mass_per_length * dt * dt
-                          : 0.0;
+  const double sink =
+      params_.weight_in_water != 0.0 ? -params_.weight_in_water / params_.mass_per_length * dt * dt : 0.0;
   verletAxis(state_.z.data(), state_.pz.data(), begin, end, damping, sink);
 }
 
@@ -473,8 +476,8 @@ void TetherSimulation::runWinch(double dt)
     // The paper's rule with hysteresis: pay-out starts when the first free segment is stretched past
     // payout_threshold and goes on, up to max_winch_speed, while it stays stretched at all (so a steady
     // pull does not hold the cable at the threshold) and less than the reel-in limit is out (so a
-    // vehicle circling at constant distance does not unreel the whole cable). The strain is read after the step's motion and
-    // before the constraints pull the segment back (a post-projection reading is biased to zero).
+    // vehicle circling at constant distance does not unreel the whole cable). The strain is read after the step's
+    // motion and before the constraints pull the segment back (a post-projection reading is biased to zero).
     const double length = (state_.position(f + 1) - state_.position(f)).norm();
     const double strain = length / state_.rest[f] - 1.0;
     const double excess =
@@ -599,24 +602,19 @@ void TetherSimulation::computeSegmentTensions(std::vector<double>& out) const
     return;  // no step taken yet: no constraint force known
   }
   const double inv_dt2 = 1.0 / (last_step_ * last_step_);
-  auto unit = [this](std::size_t a, std::size_t b) -> Position {
-    const Position d = state_.position(b) - state_.position(a);
-    const double length = d.norm();
-    return length > 0.0 ? Position(d / length) : Position::Zero();
-  };
   for (std::size_t j = f; j + 1 < n; ++j)
   {
     // The force carried across the cut between particles j and j+1: the stretch constraint of segment j
     // and the bending constraints (j-1, j+1) and (j, j+2) that span the same cut.
-    const Position axis = unit(j, j + 1);
+    const Position axis = unitVector(state_, j, j + 1);
     Force carried = state_.stretch_lambda[j] * axis;
     if (j > f && j + 1 < n)
     {
-      carried += state_.bend_lambda[j - 1] * unit(j - 1, j + 1);
+      carried += state_.bend_lambda[j - 1] * unitVector(state_, j - 1, j + 1);
     }
     if (j + 2 < n)
     {
-      carried += state_.bend_lambda[j] * unit(j, j + 2);
+      carried += state_.bend_lambda[j] * unitVector(state_, j, j + 2);
     }
     out[j - f] = carried.dot(axis) * inv_dt2;
   }
@@ -635,16 +633,11 @@ Force TetherSimulation::vehicleForce() const
   {
     return Force::Zero();
   }
-  auto unit = [this](std::size_t a, std::size_t b) -> Position {
-    const Position d = state_.position(b) - state_.position(a);
-    const double length = d.norm();
-    return length > 0.0 ? Position(d / length) : Position::Zero();
-  };
   // A stretched constraint (lambda > 0) pulls the vehicle back towards the cable.
-  Force pull = -state_.stretch_lambda[n - 2] * unit(n - 2, n - 1);
+  Force pull = -state_.stretch_lambda[n - 2] * unitVector(state_, n - 2, n - 1);
   if (n >= state_.first + 3)
   {
-    pull -= state_.bend_lambda[n - 3] * unit(n - 3, n - 1);
+    pull -= state_.bend_lambda[n - 3] * unitVector(state_, n - 3, n - 1);
   }
   return pull / (last_step_ * last_step_);
 }

@@ -225,6 +225,20 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
   return "";
 }
 
+/// Reads `path` and parses its text; errors are prefixed with the path.
+template <typename Parse>
+std::string parseFile(const std::string& path, Parse parse)
+{
+  std::string text;
+  const std::string error = readFile(path, &text);
+  if (!error.empty())
+  {
+    return error;
+  }
+  const std::string parse_error = parse(text);
+  return parse_error.empty() ? "" : path + ": " + parse_error;
+}
+
 template <typename Parse>
 std::string guardYaml(Parse parse)
 {
@@ -296,39 +310,27 @@ std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
 
 std::string loadScenario(const std::string& path, Scenario* scenario)
 {
-  std::string text;
-  const std::string error = readFile(path, &text);
-  if (!error.empty())
-  {
-    return error;
-  }
-  const std::string parse_error = parseScenario(text, scenario);
-  return parse_error.empty() ? "" : path + ": " + parse_error;
+  return parseFile(path, [scenario](const std::string& text) { return parseScenario(text, scenario); });
 }
 
 std::string parseParams(const std::string& yaml_text, TetherParams* params)
 {
-  return guardYaml([&] {
-    TetherParams candidate = *params;
-    const std::string error = applyParamMap(YAML::Load(yaml_text), "", &candidate);
-    if (error.empty())
-    {
-      *params = candidate;
-    }
-    return error;
-  });
+  return guardYaml(
+      [&]
+      {
+        TetherParams candidate = *params;
+        const std::string error = applyParamMap(YAML::Load(yaml_text), "", &candidate);
+        if (error.empty())
+        {
+          *params = candidate;
+        }
+        return error;
+      });
 }
 
 std::string loadParamsFile(const std::string& path, TetherParams* params)
 {
-  std::string text;
-  const std::string error = readFile(path, &text);
-  if (!error.empty())
-  {
-    return error;
-  }
-  const std::string parse_error = parseParams(text, params);
-  return parse_error.empty() ? "" : path + ": " + parse_error;
+  return parseFile(path, [params](const std::string& text) { return parseParams(text, params); });
 }
 
 std::string applyAssignment(const std::string& assignment, TetherParams* params)

@@ -80,18 +80,17 @@ int main(int argc, char** argv)
   const auto& p = scenario.params;
   std::printf("scenario        %s%s%s\n", scenario_path.c_str(), scenario.description.empty() ? "" : ": ",
               scenario.description.c_str());
-  std::printf("model           solver %s, %d iterations, bending %s, drag %.3g, noise %.3g m, dt %.4g s, "
-              "segment %.3g m\n",
-              rov_tether::toString(p.solver).c_str(), p.iterations, p.bending ? "on" : "off", p.drag, p.noise,
-              p.time_step, p.segment_length);
+  std::printf(
+      "model           solver %s, %d iterations, bending %s, drag %.3g, noise %.3g m, dt %.4g s, "
+      "segment %.3g m\n",
+      rov_tether::toString(p.solver).c_str(), p.iterations, p.bending ? "on" : "off", p.drag, p.noise, p.time_step,
+      p.segment_length);
   std::printf("simulated       %.2f s in %llu steps, %.3f s CPU (%.0fx real time)\n", scenario.duration,
               static_cast<unsigned long long>(s.steps), s.cpu_seconds,
               s.cpu_seconds > 0 ? scenario.duration / s.cpu_seconds : 0.0);
-  std::printf("deployed length start %.3f m, end %.3f m, max %.3f m (cable %.3f m, winch %s)\n",
-              s.deployed_start, s.deployed_end, s.deployed_max, p.cable_length,
-              rov_tether::toString(p.winch_mode).c_str());
-  std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension,
-              s.max_tension_vehicle);
+  std::printf("deployed length start %.3f m, end %.3f m, max %.3f m (cable %.3f m, winch %s)\n", s.deployed_start,
+              s.deployed_end, s.deployed_max, p.cable_length, rov_tether::toString(p.winch_mode).c_str());
+  std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension, s.max_tension_vehicle);
   std::printf("max strain      %.4g%s\n", s.max_strain, s.jumps ? "" : "");
   if (s.jumps > 0)
   {
