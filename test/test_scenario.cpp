@@ -196,3 +196,41 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
 
 }  // namespace
 }  // namespace rov_tether::test
+
+namespace rov_tether::test
+{
+namespace
+{
+
+// The physics core is ROS-free: no file of the core library includes a ROS header.
+TEST(Layers, CoreIncludesNoRosHeader)
+{
+  int files = 0;
+  for (const std::string folder : {"/src/core", "/include/rov_tether"})
+  {
+    for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + folder))
+    {
+      if (!entry.is_regular_file())
+      {
+        continue;
+      }
+      std::ifstream in(entry.path());
+      for (std::string line; std::getline(in, line);)
+      {
+        if (line.rfind("#include", 0) == 0)
+        {
+          for (const char* ros : {"<ros/", "<tf2", "<geometry_msgs", "<visualization_msgs", "<std_msgs",
+                                  "<dynamic_reconfigure", "<XmlRpc"})
+          {
+            EXPECT_EQ(line.find(ros), std::string::npos) << entry.path() << ": " << line;
+          }
+        }
+      }
+      ++files;
+    }
+  }
+  EXPECT_GE(files, 8);
+}
+
+}  // namespace
+}  // namespace rov_tether::test

@@ -153,6 +153,30 @@ TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
   EXPECT_DOUBLE_EQ(sim.deployedLength(), params.min_deployed_length);
 }
 
+TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
+{
+  TetherParams params;
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = 0.5;
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  ASSERT_TRUE(sim.setTargetLength(3.2).ok);
+  sim.advance(2.0);
+  EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);  // still on its way at 0.5 m/s
+  sim.advance(2.0);
+  EXPECT_DOUBLE_EQ(sim.deployedLength(), 3.2);  // arrived and holding
+  ASSERT_TRUE(sim.setTargetLength(2.7).ok);     // reel in at the same |speed|
+  sim.advance(0.5);
+  EXPECT_NEAR(sim.deployedLength(), 2.95, 1e-9);
+  sim.advance(2.0);
+  EXPECT_DOUBLE_EQ(sim.deployedLength(), 2.7);
+  EXPECT_FALSE(sim.setTargetLength(50.0).ok);  // beyond the cable
+  EXPECT_FALSE(sim.setTargetLength(0.1).ok);   // below min_deployed_length
+  EXPECT_EQ(sim.targetLength(), 2.7);
+  ASSERT_TRUE(sim.setTargetLength(std::nan("")).ok);  // no target: plain speed again
+  sim.advance(1.0);
+  EXPECT_NEAR(sim.deployedLength(), 3.2, 1e-9);
+}
+
 TEST(Spool, LockedWinchNeverChangesLength)
 {
   Scenario scenario = shippedScenario("spool_payout");

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,11 @@ class TetherSimulation
   /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
   /// rest, from the spool to the new position when the simulation reaches t (see README).
   Status addVehicleSample(double t, const Position& vehicle);
+  /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.
+  /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length].
+  Status setTargetLength(double length);
+  /// The target length of `speed` mode [m], NaN when there is none.
+  double targetLength() const { return target_length_; }
   /// Detaches the vehicle: the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return vehicle_attached_; }
@@ -138,7 +144,9 @@ class TetherSimulation
   Position spool_;
   Position vehicle_ = Position::Zero();
   bool vehicle_attached_ = false;
-  bool paying_out_ = false;  ///< Passive winch latched into pay-out (see runWinch).
+  bool paying_out_ = false;
+  double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]  ///< Passive winch
+                                                                     ///< latched into pay-out (see runWinch).
   std::deque<VehicleSample> samples_;
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].

@@ -314,6 +314,19 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   return Status::success();
 }
 
+Status TetherSimulation::setTargetLength(double length)
+{
+  if (!std::isnan(length) && !(length >= params_.min_deployed_length && length <= params_.cable_length))
+  {
+    std::ostringstream out;
+    out << "target length " << length << " m rejected: must be in [min_deployed_length, cable_length] = ["
+        << params_.min_deployed_length << ", " << params_.cable_length << "] m";
+    return Status::error(out.str());
+  }
+  target_length_ = length;
+  return Status::success();
+}
+
 void TetherSimulation::detachVehicle()
 {
   vehicle_attached_ = false;
@@ -469,7 +482,10 @@ void TetherSimulation::runWinch(double dt)
   double change = 0.0;
   if (params_.winch_mode == WinchMode::kSpeed)
   {
-    change = params_.winch_speed * dt;
+    const double speed_change = params_.winch_speed * dt;
+    change = std::isnan(target_length_)
+                 ? speed_change
+                 : std::clamp(target_length_ - deployed, -std::abs(speed_change), std::abs(speed_change));
   }
   else
   {
