@@ -8,9 +8,18 @@ import sys
 import xml.etree.ElementTree as ET
 
 
+def result_files(folder: pathlib.Path):
+    """Every JUnit file, except rostest's wrapper (one case per launch file) when the test node's own
+    rosunit-*.xml is beside it: the wrapper then repeats what the test node reported."""
+    for path in sorted(folder.rglob("*.xml")):
+        if path.name.startswith("rostest-") and any(path.parent.glob("rosunit-*.xml")):
+            continue
+        yield path
+
+
 def main(folder: str) -> int:
     passed = failed = skipped = 0
-    for path in sorted(pathlib.Path(folder).rglob("*.xml")):
+    for path in result_files(pathlib.Path(folder)):
         for case in ET.parse(path).getroot().iter("testcase"):
             if case.find("failure") is not None or case.find("error") is not None:
                 failed += 1

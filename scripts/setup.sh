@@ -9,7 +9,14 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 export PATH="/usr/bin:/bin:$PATH"
 
 PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev
-          libgtest-dev libbenchmark-dev ${PACKAGES_EXTRA:-})
+          libgtest-dev libbenchmark-dev
+          ros-core-dev libroscpp-dev ros-message-generation python3-genmsg python3-gencpp libstd-msgs-dev
+          libstd-srvs-dev python3-std-srvs libgeometry-msgs-dev python3-geometry-msgs libvisualization-msgs-dev
+          python3-visualization-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-updater-dev
+          libtf2-ros-dev libtf2-eigen-dev libdynamic-reconfigure-config-init-mutex-dev
+          python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
+          python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
+          python3-rosparam ${PACKAGES_EXTRA:-})
 
 install_missing() {
   local missing=()

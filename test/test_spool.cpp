@@ -177,6 +177,33 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   EXPECT_NEAR(sim.deployedLength(), 3.2, 1e-9);
 }
 
+TEST(Spool, ArcLengthFromTheVehicleMapsToSegments)
+{
+  TetherParams params;
+  params.initial_deployed_length = 2.03;  // 20 segments: the spool one is 0.13 m
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, 0.0));
+  ASSERT_EQ(sim.deployedParticleCount(), 21u);
+  std::size_t segment = 99;
+  ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(0.0, &segment));
+  EXPECT_EQ(segment, 19u);  // at the vehicle
+  ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(0.25, &segment));
+  EXPECT_EQ(segment, 17u);
+  ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(1.95, &segment));
+  EXPECT_EQ(segment, 0u);  // inside the 0.13 m spool segment
+  ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(2.03, &segment));
+  EXPECT_EQ(segment, 0u);
+  EXPECT_FALSE(sim.segmentAtArcLengthFromVehicle(2.04, &segment));
+  EXPECT_FALSE(sim.segmentAtArcLengthFromVehicle(-0.01, &segment));
+  EXPECT_FALSE(sim.segmentAtArcLengthFromVehicle(std::nan(""), &segment));
+  EXPECT_NEAR(sim.arcLengthFromVehicleToSegment(19), 0.05, 1e-12);
+  EXPECT_NEAR(sim.arcLengthFromVehicleToSegment(0), 1.9 + 0.065, 1e-12);
+  for (std::size_t k = 0; k < 20; ++k)  // the two maps agree
+  {
+    ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(sim.arcLengthFromVehicleToSegment(k), &segment));
+    EXPECT_EQ(segment, k);
+  }
+}
+
 TEST(Spool, LockedWinchNeverChangesLength)
 {
   Scenario scenario = shippedScenario("spool_payout");

@@ -103,6 +103,11 @@ class TetherSimulation
   void computeSegmentTensions(std::vector<double>& out) const;
   /// Geometric strain |d| / rest - 1 of deployed segment k [-].
   double segmentStrain(std::size_t k) const;
+  /// Deployed segment (index from the spool) holding the point `arc_length` [m] from the vehicle end,
+  /// measured along the rest lengths. Returns false for negative, non-finite or too long arc lengths.
+  bool segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const;
+  /// Arc length from the vehicle end to the middle of deployed segment k (k = 0 at the spool) [m].
+  double arcLengthFromVehicleToSegment(std::size_t k) const;
   /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle.
   Force vehicleForce() const;
   /// Deployed length, end tensions, maximum tension and strain.

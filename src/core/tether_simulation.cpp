@@ -636,6 +636,31 @@ void TetherSimulation::computeSegmentTensions(std::vector<double>& out) const
   }
 }
 
+bool TetherSimulation::segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const
+{
+  if (!std::isfinite(arc_length) || arc_length < 0.0 || arc_length > deployedLength())
+  {
+    return false;
+  }
+  // Every segment but the first (at the spool) has the nominal length.
+  const std::size_t segments = deployedParticleCount() - 1;
+  const double nominal = params_.segment_length;
+  const double whole = std::floor(arc_length / nominal);
+  *segment = whole >= static_cast<double>(segments - 1) ? 0 : segments - 1 - static_cast<std::size_t>(whole);
+  return true;
+}
+
+double TetherSimulation::arcLengthFromVehicleToSegment(std::size_t k) const
+{
+  const std::size_t segments = deployedParticleCount() - 1;
+  const double nominal = params_.segment_length;
+  if (k == 0)
+  {
+    return static_cast<double>(segments - 1) * nominal + 0.5 * state_.rest[state_.first];
+  }
+  return (static_cast<double>(segments - 1 - k) + 0.5) * nominal;
+}
+
 double TetherSimulation::segmentStrain(std::size_t k) const
 {
   const std::size_t j = state_.first + k;

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <ros/time.h>
+#include <std_msgs/ColorRGBA.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <string>
+#include <vector>
+
+#include "rov_tether/GetTension.h"
+#include "rov_tether/TetherState.h"
+#include "rov_tether/tether_simulation.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/// How the cable is drawn in rviz.
+struct MarkerOptions
+{
+  std::string frame_id = "world";
+  std::string ns = "tether";
+  double line_width = 0.03;          ///< [m]
+  double tension_full_scale = 50.0;  ///< Tension drawn red [N].
+  int stripe_segments = 5;           ///< Segments per stripe; stripes move with the cable as it pays out.
+};
+
+/**
+ * Colour of a segment carrying `tension` [N]: from blue (0 N) through cyan, green and yellow to red at
+ * `full_scale` and above; compression (negative) is grey. `stripe` darkens it to 60% for the alternate
+ * stripes.
+ */
+std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe);
+
+/// Fills a TetherState from the simulation; `tensions` are its segment tensions (spool first) [N].
+void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+                    const std::string& frame_id, double measured_winch_speed, std::uint32_t resets, TetherState* msg);
+
+/**
+ * Draws the deployed cable: marker id 0, a LINE_LIST coloured per segment by tension with stripes; id 1
+ * the spool (cylinder); id 2 the attachment point (sphere, deleted without a vehicle); id 3 a text with
+ * deployed length and tension at the vehicle. Reuses `markers`' storage.
+ */
+void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+               const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
+
+/// The pull of the tether on the vehicle [N] at the attachment point, expressed in `frame_id` (the world
+/// frame); torque is about `vehicle_origin` [N m].
+geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::Vector3d& vehicle_origin,
+                                      const ros::Time& stamp, const std::string& frame_id);
+
+/// Answers a GetTension request from the simulation and its segment tensions.
+void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,
+                      const GetTension::Request& request, GetTension::Response* response);
+
+}  // namespace rov_tether::ros_layer

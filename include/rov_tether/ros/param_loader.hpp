@@ -1,0 +1,47 @@
+#pragma once
+
+#include <XmlRpcValue.h>
+
+#include <Eigen/Core>
+#include <string>
+
+#include "rov_tether/tether_params.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/// Options of tether_node that are not model parameters (frames, rates, display).
+struct NodeOptions
+{
+  std::string world_frame = "world";  ///< Frame of the spool, the cable and all outputs.
+  std::string pose_source = "topic";  ///< "topic" (rov_pose, PoseStamped) or "tf" (world_frame -> rov_frame).
+  std::string rov_frame = "rov";      ///< Vehicle frame looked up when pose_source is "tf".
+  Eigen::Vector3d attachment_offset = Eigen::Vector3d::Zero();  ///< Tether attachment in the vehicle frame [m].
+  std::string spool_frame;  ///< Empty: the spool is fixed at spool_position; else a tf frame.
+  Eigen::Vector3d spool_position = Eigen::Vector3d::Zero();  ///< Spool outlet in world_frame [m].
+  double physics_rate = 200.0;                               ///< Timer rate advancing the physics [Hz].
+  double state_rate = 30.0;                                  ///< ~state and ~wrench rate [Hz].
+  double marker_rate = 30.0;                                 ///< ~markers rate when subscribed [Hz].
+  double marker_line_width = 0.03;                           ///< Cable width in rviz [m].
+  double tension_full_scale = 50.0;                          ///< Tension drawn red [N].
+  int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
+  double stale_pose_timeout = 1.0;     ///< No pose for this long is a diagnostics warning [s].
+  double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
+};
+
+/// Converts one parameter-server value to a ParamValue; returns false for lists and maps.
+bool toParamValue(const XmlRpc::XmlRpcValue& value, ParamValue* out);
+
+/// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of
+/// `params` through the core's setParameter, then validates. Returns "" on success, otherwise every
+/// problem, each naming its parameter. `params` is changed only on success.
+std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* params);
+
+/// Reads the node options found in `dict` on top of `options` and checks them. Returns "" or every
+/// problem, each naming its parameter. `options` is changed only on success.
+std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options);
+
+/// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
+std::string unknownParameters(const XmlRpc::XmlRpcValue& dict);
+
+}  // namespace rov_tether::ros_layer

@@ -1,0 +1,98 @@
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <Eigen/Geometry>
+#include <boost/thread/recursive_mutex.hpp>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "rov_tether/GetTension.h"
+#include "rov_tether/SetWinch.h"
+#include "rov_tether/TetherConfig.h"
+#include "rov_tether/TetherState.h"
+#include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/tether_simulation.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/**
+ * tether_node: owns a TetherSimulation and wires it to ROS. Vehicle poses come from `rov_pose` or tf;
+ * a timer advances the physics at physics_rate on ROS time (use_sim_time works; time going backwards
+ * resets the tether); ~state, ~wrench, ~markers (only with subscribers) and /diagnostics are published;
+ * ~get_tension, ~set_winch and ~reset are served; dynamic_reconfigure changes take effect between steps.
+ */
+class TetherNode
+{
+ public:
+  /// Loads parameters from the private namespace; throws std::runtime_error naming a bad parameter
+  /// before anything is advertised or subscribed.
+  TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
+ private:
+  void onPose(const geometry_msgs::PoseStamped::ConstPtr& msg);
+  void onTimer(const ros::TimerEvent& event);
+  bool onGetTension(GetTension::Request& request, GetTension::Response& response);
+  bool onSetWinch(SetWinch::Request& request, SetWinch::Response& response);
+  bool onReset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  void onReconfigure(TetherConfig& config, uint32_t level);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  /// Turns a vehicle pose (world frame) into an attachment sample; logs (throttled) and drops bad ones.
+  void addVehiclePose(const Eigen::Isometry3d& vehicle, const ros::Time& stamp);
+  /// Looks up world_frame -> frame (latest); false (and a throttled warning) when it is not available.
+  bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose);
+  void resetTether(const ros::Time& now, const std::string& why);
+  void applyPendingParams();
+  void publish(const ros::Time& now);
+  TetherConfig configFromParams(const TetherParams& params) const;
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  NodeOptions options_;
+  std::unique_ptr<TetherSimulation> sim_;
+
+  tf2_ros::Buffer tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created after the parameters loaded.
+  ros::Subscriber pose_sub_;
+  ros::Publisher state_pub_;
+  ros::Publisher marker_pub_;
+  ros::Publisher wrench_pub_;
+  ros::ServiceServer get_tension_srv_;
+  ros::ServiceServer set_winch_srv_;
+  ros::ServiceServer reset_srv_;
+  ros::Timer timer_;
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<TetherConfig>> reconfigure_server_;
+
+  std::mutex pending_mutex_;
+  std::optional<TetherParams> pending_params_;  ///< Written by dynamic_reconfigure, applied between steps.
+
+  bool started_ = false;
+  ros::Time last_time_;
+  ros::Time last_pose_time_;
+  ros::Time last_state_time_;
+  ros::Time last_marker_time_;
+  Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
+  double last_deployed_ = 0.0;
+  double winch_speed_ = 0.0;
+  double step_seconds_ = 0.0;      ///< Smoothed wall time per internal step [s].
+  double real_time_factor_ = 0.0;  ///< Smoothed simulated / wall time of the physics.
+  std::uint32_t resets_ = 0;
+  std::uint64_t rejected_poses_ = 0;
+  std::vector<double> tensions_;
+  TetherState state_msg_;
+  visualization_msgs::MarkerArray markers_;
+};
+
+}  // namespace rov_tether::ros_layer

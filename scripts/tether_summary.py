@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""Prints a live one-line summary of tether_node: deployed length, tension at the vehicle, winch, and the
+physics real-time factor from /diagnostics. ~state_topic (/tether_node/state), ~period [s] (1.0),
+~duration [s] (0 = until shut down)."""
+import rospy
+from diagnostic_msgs.msg import DiagnosticArray
+
+from rov_tether.msg import TetherState
+
+latest = {"state": None, "rtf": float("nan"), "diag": ""}
+
+
+def on_state(msg):
+    latest["state"] = msg
+
+
+def on_diagnostics(msg):
+    for status in msg.status:
+        if status.name.endswith("tether"):
+            latest["diag"] = status.message
+            for kv in status.values:
+                if kv.key == "physics real-time factor":
+                    latest["rtf"] = float(kv.value)
+
+
+def main():
+    rospy.init_node("tether_summary", anonymous=True)
+    topic = rospy.get_param("~state_topic", "/tether_node/state")
+    period = float(rospy.get_param("~period", 1.0))
+    duration = float(rospy.get_param("~duration", 0.0))
+    rospy.Subscriber(topic, TetherState, on_state)
+    rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+    start = rospy.Time.now()
+    while not rospy.is_shutdown():
+        rospy.sleep(period)
+        s = latest["state"]
+        if s is None:
+            print("waiting for %s ..." % topic, flush=True)
+            continue
+        print("t %7.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
+              " | physics %6.0fx real time | %s" % (s.header.stamp.to_sec(), s.deployed_length, s.cable_length,
+                                                    s.tension_vehicle, s.max_tension, s.winch_mode, s.winch_speed,
+                                                    latest["rtf"], latest["diag"]), flush=True)
+        if duration > 0 and (rospy.Time.now() - start).to_sec() >= duration:
+            break
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except rospy.ROSInterruptException:
+        pass

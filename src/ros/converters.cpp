@@ -1,0 +1,239 @@
+#include "rov_tether/ros/converters.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+geometry_msgs::Point toPoint(const Position& p)
+{
+  geometry_msgs::Point point;
+  point.x = p.x();
+  point.y = p.y();
+  point.z = p.z();
+  return point;
+}
+
+std_msgs::ColorRGBA rgba(double r, double g, double b, double a = 1.0)
+{
+  std_msgs::ColorRGBA color;
+  color.r = static_cast<float>(r);
+  color.g = static_cast<float>(g);
+  color.b = static_cast<float>(b);
+  color.a = static_cast<float>(a);
+  return color;
+}
+
+visualization_msgs::Marker& markerSlot(visualization_msgs::MarkerArray* markers, std::size_t id)
+{
+  if (markers->markers.size() <= id)
+  {
+    markers->markers.resize(id + 1);
+  }
+  return markers->markers[id];
+}
+
+}  // namespace
+
+std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
+{
+  const double shade = stripe ? 0.6 : 1.0;
+  if (!(tension >= 0.0))  // compression, and NaN
+  {
+    return rgba(0.55 * shade, 0.55 * shade, 0.55 * shade);
+  }
+  // Piecewise-linear blue -> cyan -> green -> yellow -> red over [0, full_scale].
+  const double u = std::min(tension / full_scale, 1.0) * 4.0;
+  double r = 0.0, g = 0.0, b = 0.0;
+  if (u < 1.0)
+  {
+    g = u, b = 1.0;
+  }
+  else if (u < 2.0)
+  {
+    g = 1.0, b = 2.0 - u;
+  }
+  else if (u < 3.0)
+  {
+    r = u - 2.0, g = 1.0;
+  }
+  else
+  {
+    r = 1.0, g = 4.0 - u;
+  }
+  return rgba(r * shade, g * shade, b * shade);
+}
+
+void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+                    const std::string& frame_id, double measured_winch_speed, std::uint32_t resets, TetherState* msg)
+{
+  const TetherParams& p = sim.params();
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame_id;
+  msg->deployed_length = sim.deployedLength();
+  msg->cable_length = p.cable_length;
+  msg->segment_tension.assign(tensions.begin(), tensions.end());
+  msg->tension_spool = tensions.empty() ? 0.0 : tensions.front();
+  msg->tension_vehicle = tensions.empty() ? 0.0 : tensions.back();
+  const auto max_it = std::max_element(tensions.begin(), tensions.end());
+  msg->max_tension = max_it == tensions.end() ? 0.0 : *max_it;
+  msg->max_tension_segment = static_cast<std::uint32_t>(max_it - tensions.begin());
+  msg->max_tension_arc_length = tensions.empty() ? 0.0 : sim.arcLengthFromVehicleToSegment(msg->max_tension_segment);
+  msg->winch_mode = toString(p.winch_mode);
+  msg->winch_speed = measured_winch_speed;
+  msg->target_length = sim.targetLength();
+  double strain_sum = 0.0;
+  double strain_max = 0.0;
+  for (std::size_t k = 0; k < tensions.size(); ++k)
+  {
+    const double strain = sim.segmentStrain(k);
+    strain_sum += std::abs(strain);
+    strain_max = std::max(strain_max, strain);
+  }
+  msg->residual_stretch = tensions.empty() ? 0.0 : strain_sum / static_cast<double>(tensions.size());
+  msg->max_strain = strain_max;
+  msg->solver = toString(p.solver);
+  msg->iterations = static_cast<std::uint32_t>(p.iterations);
+  msg->drag = p.drag;
+  msg->noise = p.noise;
+  msg->vehicle_attached = sim.vehicleAttached();
+  msg->jumps = static_cast<std::uint32_t>(sim.jumpCount());
+  msg->resets = resets;
+}
+
+void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+               const MarkerOptions& options, visualization_msgs::MarkerArray* markers)
+{
+  const std::size_t particles = sim.deployedParticleCount();
+  const std::size_t first = sim.state().first;  // particle identity: stripes travel with the cable
+
+  visualization_msgs::Marker& cable = markerSlot(markers, 0);
+  cable.header.stamp = stamp;
+  cable.header.frame_id = options.frame_id;
+  cable.ns = options.ns;
+  cable.id = 0;
+  cable.type = visualization_msgs::Marker::LINE_LIST;
+  cable.action = visualization_msgs::Marker::ADD;
+  cable.pose.orientation.w = 1.0;
+  cable.scale.x = options.line_width;
+  cable.points.resize(2 * (particles - 1));
+  cable.colors.resize(2 * (particles - 1));
+  for (std::size_t k = 0; k + 1 < particles; ++k)
+  {
+    const bool stripe = ((first + k) / static_cast<std::size_t>(options.stripe_segments)) % 2 == 1;
+    const std_msgs::ColorRGBA color =
+        tensionColor(k < tensions.size() ? tensions[k] : 0.0, options.tension_full_scale, stripe);
+    cable.points[2 * k] = toPoint(sim.particle(k));
+    cable.points[2 * k + 1] = toPoint(sim.particle(k + 1));
+    cable.colors[2 * k] = color;
+    cable.colors[2 * k + 1] = color;
+  }
+
+  visualization_msgs::Marker& spool = markerSlot(markers, 1);
+  spool.header = cable.header;
+  spool.ns = options.ns;
+  spool.id = 1;
+  spool.type = visualization_msgs::Marker::CYLINDER;
+  spool.action = visualization_msgs::Marker::ADD;
+  spool.pose.position = toPoint(sim.particle(0));
+  spool.pose.orientation.w = 1.0;
+  spool.scale.x = spool.scale.y = 0.3;
+  spool.scale.z = 0.2;
+  spool.color = rgba(0.9, 0.6, 0.1);
+
+  visualization_msgs::Marker& attachment = markerSlot(markers, 2);
+  attachment.header = cable.header;
+  attachment.ns = options.ns;
+  attachment.id = 2;
+  attachment.type = visualization_msgs::Marker::SPHERE;
+  attachment.action = sim.vehicleAttached() ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+  attachment.pose.position = toPoint(sim.particle(particles - 1));
+  attachment.pose.orientation.w = 1.0;
+  attachment.scale.x = attachment.scale.y = attachment.scale.z = 4.0 * options.line_width;
+  attachment.color = rgba(1.0, 1.0, 1.0);
+
+  visualization_msgs::Marker& label = markerSlot(markers, 3);
+  label.header = cable.header;
+  label.ns = options.ns;
+  label.id = 3;
+  label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  label.action = visualization_msgs::Marker::ADD;
+  label.pose.position = toPoint(sim.particle(particles - 1) + Position(0.0, 0.0, 0.4));
+  label.pose.orientation.w = 1.0;
+  label.scale.z = 0.25;
+  label.color = rgba(1.0, 1.0, 1.0);
+  char text[96];
+  std::snprintf(text, sizeof(text), "%.2f m out, %.2f N", sim.deployedLength(),
+                tensions.empty() ? 0.0 : tensions.back());
+  label.text = text;
+}
+
+geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::Vector3d& vehicle_origin,
+                                      const ros::Time& stamp, const std::string& frame_id)
+{
+  geometry_msgs::WrenchStamped wrench;
+  wrench.header.stamp = stamp;
+  wrench.header.frame_id = frame_id;
+  const Force force = sim.vehicleForce();
+  const Eigen::Vector3d lever = sim.particle(sim.deployedParticleCount() - 1) - vehicle_origin;
+  const Eigen::Vector3d torque = sim.vehicleAttached() ? lever.cross(force) : Eigen::Vector3d::Zero();
+  wrench.wrench.force.x = force.x();
+  wrench.wrench.force.y = force.y();
+  wrench.wrench.force.z = force.z();
+  wrench.wrench.torque.x = torque.x();
+  wrench.wrench.torque.y = torque.y();
+  wrench.wrench.torque.z = torque.z();
+  return wrench;
+}
+
+void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,
+                      const GetTension::Request& request, GetTension::Response* response)
+{
+  response->deployed_length = sim.deployedLength();
+  response->tension_spool = tensions.empty() ? 0.0 : tensions.front();
+  response->tension_vehicle = tensions.empty() ? 0.0 : tensions.back();
+  const auto max_it = std::max_element(tensions.begin(), tensions.end());
+  response->max_tension = max_it == tensions.end() ? 0.0 : *max_it;
+  response->max_tension_segment = static_cast<std::uint32_t>(max_it - tensions.begin());
+
+  const bool by_arc = request.arc_length_from_vehicle >= 0.0;
+  const bool by_segment = request.segment >= 0;
+  if (by_arc == by_segment)
+  {
+    response->success = false;
+    response->message = "give exactly one of arc_length_from_vehicle >= 0 [m] or segment >= 0 (set the other to -1)";
+    return;
+  }
+  std::size_t segment = 0;
+  if (by_arc && !sim.segmentAtArcLengthFromVehicle(request.arc_length_from_vehicle, &segment))
+  {
+    char message[160];
+    std::snprintf(message, sizeof(message), "arc_length_from_vehicle = %g m is outside the deployed cable [0, %g] m",
+                  request.arc_length_from_vehicle, sim.deployedLength());
+    response->success = false;
+    response->message = message;
+    return;
+  }
+  if (by_segment)
+  {
+    segment = static_cast<std::size_t>(request.segment);
+    if (segment >= tensions.size())
+    {
+      response->success = false;
+      response->message = "segment = " + std::to_string(request.segment) + " is outside [0, " +
+                          std::to_string(static_cast<long>(tensions.size()) - 1) + "]";
+      return;
+    }
+  }
+  response->success = true;
+  response->segment = static_cast<std::uint32_t>(segment);
+  response->tension = tensions[segment];
+  response->message = "";
+}
+
+}  // namespace rov_tether::ros_layer

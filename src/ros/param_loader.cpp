@@ -1,0 +1,247 @@
+#include "rov_tether/ros/param_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+const std::vector<std::string>& nodeOptionNames()
+{
+  static const std::vector<std::string> names = {
+      "world_frame",        "pose_source",     "rov_frame",          "attachment_offset",  "spool_frame",
+      "spool_position",     "physics_rate",    "state_rate",         "marker_rate",        "marker_line_width",
+      "tension_full_scale", "stripe_segments", "stale_pose_timeout", "max_tension_warning"};
+  return names;
+}
+
+bool readNumber(const XmlRpc::XmlRpcValue& value, double* out)
+{
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+  {
+    *out = static_cast<double>(const_cast<XmlRpc::XmlRpcValue&>(value));
+    return true;
+  }
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
+  {
+    *out = static_cast<int>(const_cast<XmlRpc::XmlRpcValue&>(value));
+    return true;
+  }
+  return false;
+}
+
+/// Collects problems while reading options; each reader names its parameter.
+class OptionReader
+{
+ public:
+  explicit OptionReader(const XmlRpc::XmlRpcValue& dict) : dict_(dict) {}
+
+  void text(const std::string& name, std::string* out)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    const auto& value = dict_[name];
+    if (value.getType() != XmlRpc::XmlRpcValue::TypeString)
+    {
+      errors_.push_back(name + ": expected a string");
+      return;
+    }
+    *out = static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value));
+  }
+
+  void number(const std::string& name, double* out, double min, double max)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    double v = 0.0;
+    if (!readNumber(dict_[name], &v) || !std::isfinite(v) || v < min || v > max)
+    {
+      std::ostringstream message;
+      message << name << ": expected a number in [" << min << ", " << max << "]";
+      errors_.push_back(message.str());
+      return;
+    }
+    *out = v;
+  }
+
+  void vector3(const std::string& name, Eigen::Vector3d* out)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    const auto& value = dict_[name];
+    Eigen::Vector3d v;
+    bool ok = value.getType() == XmlRpc::XmlRpcValue::TypeArray && value.size() == 3;
+    for (int i = 0; ok && i < 3; ++i)
+    {
+      ok = readNumber(value[i], &v[i]) && std::isfinite(v[i]);
+    }
+    if (!ok)
+    {
+      errors_.push_back(name + ": expected [x, y, z] in m");
+      return;
+    }
+    *out = v;
+  }
+
+  void fail(const std::string& message) { errors_.push_back(message); }
+
+  std::string result() const
+  {
+    std::string joined;
+    for (const auto& e : errors_)
+    {
+      joined += (joined.empty() ? "" : "; ") + e;
+    }
+    return joined;
+  }
+
+ private:
+  bool has(const std::string& name) const
+  {
+    return dict_.getType() == XmlRpc::XmlRpcValue::TypeStruct && dict_.hasMember(name);
+  }
+
+  const XmlRpc::XmlRpcValue& dict_;
+  std::vector<std::string> errors_;
+};
+
+}  // namespace
+
+bool toParamValue(const XmlRpc::XmlRpcValue& value, ParamValue* out)
+{
+  auto& v = const_cast<XmlRpc::XmlRpcValue&>(value);
+  switch (value.getType())
+  {
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      *out = static_cast<bool>(v);
+      return true;
+    case XmlRpc::XmlRpcValue::TypeInt:
+      *out = static_cast<std::int64_t>(static_cast<int>(v));
+      return true;
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      *out = static_cast<double>(v);
+      return true;
+    case XmlRpc::XmlRpcValue::TypeString:
+      *out = static_cast<std::string>(v);
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* params)
+{
+  if (dict.getType() != XmlRpc::XmlRpcValue::TypeStruct)
+  {
+    return "parameters: expected a map of name: value";
+  }
+  TetherParams candidate = *params;
+  std::vector<std::string> errors;
+  for (const auto& name : parameterNames())
+  {
+    if (!dict.hasMember(name))
+    {
+      continue;
+    }
+    ParamValue value;
+    if (!toParamValue(dict[name], &value))
+    {
+      errors.push_back("parameter '" + name + "': expected a single value");
+      continue;
+    }
+    const std::string error = setParameter(candidate, name, value);
+    if (!error.empty())
+    {
+      errors.push_back(error);
+    }
+  }
+  if (errors.empty())
+  {
+    errors = candidate.validate();
+  }
+  if (!errors.empty())
+  {
+    std::string joined;
+    for (const auto& e : errors)
+    {
+      joined += (joined.empty() ? "" : "; ") + e;
+    }
+    return joined;
+  }
+  *params = candidate;
+  return "";
+}
+
+std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options)
+{
+  NodeOptions candidate = *options;
+  OptionReader read(dict);
+  read.text("world_frame", &candidate.world_frame);
+  read.text("pose_source", &candidate.pose_source);
+  read.text("rov_frame", &candidate.rov_frame);
+  read.vector3("attachment_offset", &candidate.attachment_offset);
+  read.text("spool_frame", &candidate.spool_frame);
+  read.vector3("spool_position", &candidate.spool_position);
+  read.number("physics_rate", &candidate.physics_rate, 1.0, 5000.0);
+  read.number("state_rate", &candidate.state_rate, 0.1, 1000.0);
+  read.number("marker_rate", &candidate.marker_rate, 0.1, 1000.0);
+  read.number("marker_line_width", &candidate.marker_line_width, 1e-4, 10.0);
+  read.number("tension_full_scale", &candidate.tension_full_scale, 1e-6, 1e9);
+  double stripes = candidate.stripe_segments;
+  read.number("stripe_segments", &stripes, 1.0, 1000.0);
+  candidate.stripe_segments = static_cast<int>(stripes);
+  read.number("stale_pose_timeout", &candidate.stale_pose_timeout, 0.01, 3600.0);
+  read.number("max_tension_warning", &candidate.max_tension_warning, 0.0, 1e9);
+  if (candidate.pose_source != "topic" && candidate.pose_source != "tf")
+  {
+    read.fail("pose_source = '" + candidate.pose_source + "': expected topic or tf");
+  }
+  if (candidate.world_frame.empty())
+  {
+    read.fail("world_frame: must not be empty");
+  }
+  if (candidate.pose_source == "tf" && candidate.rov_frame.empty())
+  {
+    read.fail("rov_frame: must not be empty when pose_source is tf");
+  }
+  const std::string errors = read.result();
+  if (errors.empty())
+  {
+    *options = candidate;
+  }
+  return errors;
+}
+
+std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
+{
+  if (dict.getType() != XmlRpc::XmlRpcValue::TypeStruct)
+  {
+    return "";
+  }
+  std::string unknown;
+  for (const auto& entry : const_cast<XmlRpc::XmlRpcValue&>(dict))
+  {
+    const std::string& name = entry.first;
+    const auto& model = parameterNames();
+    const auto& node = nodeOptionNames();
+    const bool known = std::find(model.begin(), model.end(), name) != model.end() ||
+                       std::find(node.begin(), node.end(), name) != node.end();
+    if (!known)
+    {
+      unknown += (unknown.empty() ? "" : ", ") + name;
+    }
+  }
+  return unknown;
+}
+
+}  // namespace rov_tether::ros_layer

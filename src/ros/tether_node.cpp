@@ -1,0 +1,416 @@
+#include "rov_tether/ros/tether_node.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+/// Exponential smoothing of diagnostics figures.
+double smooth(double previous, double sample) { return previous <= 0.0 ? sample : 0.95 * previous + 0.05 * sample; }
+
+/// Forward time jumps larger than this are not integrated step by step but reset the tether [s].
+constexpr double kMaxForwardJump = 5.0;
+
+}  // namespace
+
+TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
+{
+  XmlRpc::XmlRpcValue dict;
+  if (!private_nh_.getParam(private_nh_.getNamespace(), dict))
+  {
+    dict = XmlRpc::XmlRpcValue();
+  }
+  TetherParams params;
+  std::string error = dict.valid() ? loadTetherParams(dict, &params) : "";
+  if (!error.empty())
+  {
+    throw std::runtime_error("invalid tether parameters in " + private_nh_.getNamespace() + ": " + error);
+  }
+  error = dict.valid() ? loadNodeOptions(dict, &options_) : "";
+  if (!error.empty())
+  {
+    throw std::runtime_error("invalid node parameters in " + private_nh_.getNamespace() + ": " + error);
+  }
+  const std::string unknown = dict.valid() ? unknownParameters(dict) : "";
+  if (!unknown.empty())
+  {
+    ROS_WARN("tether_node: ignoring unknown parameters (typos?): %s", unknown.c_str());
+  }
+  sim_ = std::make_unique<TetherSimulation>(params, options_.spool_position);
+
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+  state_pub_ = private_nh_.advertise<TetherState>("state", 10);
+  wrench_pub_ = private_nh_.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
+  marker_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  get_tension_srv_ = private_nh_.advertiseService("get_tension", &TetherNode::onGetTension, this);
+  set_winch_srv_ = private_nh_.advertiseService("set_winch", &TetherNode::onSetWinch, this);
+  reset_srv_ = private_nh_.advertiseService("reset", &TetherNode::onReset, this);
+  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, private_nh_);
+  diagnostics_->setHardwareID("rov_tether");
+  diagnostics_->add("tether", this, &TetherNode::diagnose);
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
+  reconfigure_server_->updateConfig(configFromParams(params));
+  reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
+  if (options_.pose_source == "topic")
+  {
+    pose_sub_ = nh_.subscribe("rov_pose", 10, &TetherNode::onPose, this);
+  }
+  timer_ = nh_.createTimer(ros::Duration(1.0 / options_.physics_rate), &TetherNode::onTimer, this);
+  ROS_INFO("tether_node: %.1f m cable in %zu segments, %s solver, pose from %s, physics at %.0f Hz",
+           params.cable_length, params.segmentCount(), toString(params.solver).c_str(),
+           options_.pose_source == "topic" ? pose_sub_.getTopic().c_str()
+                                           : ("tf " + options_.world_frame + " -> " + options_.rov_frame).c_str(),
+           options_.physics_rate);
+}
+
+void TetherNode::onPose(const geometry_msgs::PoseStamped::ConstPtr& msg)
+{
+  const auto& p = msg->pose.position;
+  const auto& q = msg->pose.orientation;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
+      !std::isfinite(q.z) || !std::isfinite(q.w))
+  {
+    ++rejected_poses_;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected: position or orientation is not finite");
+    return;
+  }
+  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (std::abs(norm - 1.0) > 1e-3)
+  {
+    ++rejected_poses_;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected: quaternion is not normalised (|q| = %.6f)", norm);
+    return;
+  }
+  const ros::Time now = ros::Time::now();
+  if (started_ && now < last_time_)
+  {
+    resetTether(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+  }
+  const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
+  Eigen::Isometry3d pose = Eigen::Translation3d(p.x, p.y, p.z) * Eigen::Quaterniond(q.w, q.x, q.y, q.z);
+  const std::string& frame = msg->header.frame_id;
+  if (!frame.empty() && frame != options_.world_frame)
+  {
+    Eigen::Isometry3d frame_in_world;
+    if (!lookup(frame, stamp, &frame_in_world))
+    {
+      ++rejected_poses_;
+      return;
+    }
+    pose = frame_in_world * pose;
+  }
+  addVehiclePose(pose, stamp);
+}
+
+bool TetherNode::lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose)
+{
+  try
+  {
+    *pose = tf2::transformToEigen(tf_buffer_.lookupTransform(options_.world_frame, frame, time));
+    return true;
+  }
+  catch (const tf2::TransformException& e)
+  {
+    ROS_WARN_THROTTLE(1.0, "tether_node: no transform %s -> %s: %s", options_.world_frame.c_str(), frame.c_str(),
+                      e.what());
+    return false;
+  }
+}
+
+void TetherNode::addVehiclePose(const Eigen::Isometry3d& vehicle, const ros::Time& stamp)
+{
+  const Position attachment = vehicle * options_.attachment_offset;
+  const Status status = sim_->addVehicleSample(stamp.toSec(), attachment);
+  if (!status.ok)
+  {
+    ++rejected_poses_;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected: %s", status.message.c_str());
+    return;
+  }
+  last_vehicle_ = vehicle;
+  last_pose_time_ = ros::Time::now();
+}
+
+void TetherNode::resetTether(const ros::Time& now, const std::string& why)
+{
+  ROS_WARN("tether_node: %s: resetting the tether to %.2f m", why.c_str(), sim_->params().initial_deployed_length);
+  sim_->reset(now.toSec());
+  ++resets_;
+  last_time_ = now;
+  last_state_time_ = last_marker_time_ = ros::Time();
+  last_deployed_ = sim_->deployedLength();
+}
+
+void TetherNode::applyPendingParams()
+{
+  std::optional<TetherParams> pending;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    pending.swap(pending_params_);
+  }
+  if (!pending)
+  {
+    return;
+  }
+  const Status status = sim_->setParams(*pending);
+  if (!status.ok)
+  {
+    ROS_ERROR("tether_node: parameters refused: %s", status.message.c_str());
+  }
+  else if (!status.message.empty())
+  {
+    ROS_INFO("tether_node: %s", status.message.c_str());
+  }
+}
+
+void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
+{
+  const ros::Time now = ros::Time::now();
+  if (now.isZero())
+  {
+    return;  // simulated time has not started
+  }
+  if (!started_)
+  {
+    started_ = true;
+    sim_->reset(now.toSec());
+    last_time_ = now;
+    last_deployed_ = sim_->deployedLength();
+  }
+  else if (now < last_time_)
+  {
+    resetTether(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+  }
+  else if ((now - last_time_).toSec() > kMaxForwardJump)
+  {
+    resetTether(now, "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s");
+  }
+  applyPendingParams();
+
+  Eigen::Isometry3d pose;
+  if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))
+  {
+    sim_->setSpoolPosition(pose.translation());
+  }
+  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose))
+  {
+    addVehiclePose(pose, now);
+  }
+
+  const ros::WallTime wall_start = ros::WallTime::now();
+  std::size_t steps = 0;
+  sim_->advanceTo(now.toSec(), &steps);
+  const double wall = (ros::WallTime::now() - wall_start).toSec();
+  if (steps > 0 && wall > 0.0)
+  {
+    step_seconds_ = smooth(step_seconds_, wall / static_cast<double>(steps));
+    real_time_factor_ = smooth(real_time_factor_, static_cast<double>(steps) * sim_->params().time_step / wall);
+  }
+  last_time_ = now;
+  publish(now);
+  diagnostics_->update();
+}
+
+void TetherNode::publish(const ros::Time& now)
+{
+  bool tensions_ready = false;
+  auto due = [&now](const ros::Time& last, double rate)
+  { return last.isZero() || now < last || (now - last).toSec() >= 1.0 / rate - 1e-6; };
+  if (due(last_state_time_, options_.state_rate))
+  {
+    sim_->computeSegmentTensions(tensions_);
+    tensions_ready = true;
+    const double elapsed = last_state_time_.isZero() ? 0.0 : (now - last_state_time_).toSec();
+    const double deployed = sim_->deployedLength();
+    winch_speed_ = elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
+    last_deployed_ = deployed;
+    last_state_time_ = now;
+    toStateMessage(*sim_, tensions_, now, options_.world_frame, winch_speed_, resets_, &state_msg_);
+    state_pub_.publish(state_msg_);
+    wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), now, options_.world_frame));
+  }
+  // Markers cost nothing when nobody looks.
+  if (marker_pub_.getNumSubscribers() > 0 && due(last_marker_time_, options_.marker_rate))
+  {
+    if (!tensions_ready)
+    {
+      sim_->computeSegmentTensions(tensions_);
+    }
+    last_marker_time_ = now;
+    MarkerOptions marker_options;
+    marker_options.frame_id = options_.world_frame;
+    marker_options.line_width = options_.marker_line_width;
+    marker_options.tension_full_scale = options_.tension_full_scale;
+    marker_options.stripe_segments = options_.stripe_segments;
+    toMarkers(*sim_, tensions_, now, marker_options, &markers_);
+    marker_pub_.publish(markers_);
+  }
+}
+
+bool TetherNode::onGetTension(GetTension::Request& request, GetTension::Response& response)
+{
+  sim_->computeSegmentTensions(tensions_);
+  answerGetTension(*sim_, tensions_, request, &response);
+  return true;  // refusals are answered with success = false and a message
+}
+
+bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& response)
+{
+  applyPendingParams();
+  TetherParams params = sim_->params();
+  response.success = false;
+  if (!request.mode.empty() && !parseWinchMode(request.mode, &params.winch_mode))
+  {
+    response.message = "mode '" + request.mode + "': expected passive, locked or speed";
+    return true;
+  }
+  params.winch_speed = request.speed;
+  const auto errors = params.validate();
+  if (!errors.empty())
+  {
+    response.message = errors.front();
+    return true;
+  }
+  if (request.target_length < 0.0 || !std::isfinite(request.target_length))
+  {
+    response.message = "target_length must be > 0 m, or 0 for none";
+    return true;
+  }
+  // Check the target against the new limits before changing anything.
+  const double target = request.target_length > 0.0 ? request.target_length : std::nan("");
+  if (!std::isnan(target) && !(target >= params.min_deployed_length && target <= params.cable_length))
+  {
+    response.message = "target_length = " + std::to_string(target) + " m: must be in [min_deployed_length, " +
+                       "cable_length] = [" + std::to_string(params.min_deployed_length) + ", " +
+                       std::to_string(params.cable_length) + "] m";
+    return true;
+  }
+  const Status status = sim_->setParams(params);
+  if (!status.ok)
+  {
+    response.message = status.message;
+    return true;
+  }
+  sim_->setTargetLength(target);
+  reconfigure_server_->updateConfig(configFromParams(params));
+  response.success = true;
+  response.message = "winch " + toString(params.winch_mode);
+  return true;
+}
+
+bool TetherNode::onReset(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response)
+{
+  resetTether(ros::Time::now(), "reset requested");
+  response.success = true;
+  response.message = "tether reset to " + std::to_string(sim_->deployedLength()) + " m";
+  return true;
+}
+
+TetherConfig TetherNode::configFromParams(const TetherParams& p) const
+{
+  TetherConfig config;
+  config.drag = p.drag;
+  config.iterations = p.iterations;
+  config.noise = p.noise;
+  config.bending = p.bending;
+  config.solver = toString(p.solver);
+  config.time_step = p.time_step;
+  config.weight_in_water = p.weight_in_water;
+  config.mass_per_length = p.mass_per_length;
+  config.axial_stiffness = p.axial_stiffness;
+  config.winch_mode = toString(p.winch_mode);
+  config.winch_speed = p.winch_speed;
+  config.max_winch_speed = p.max_winch_speed;
+  config.payout_threshold = p.payout_threshold;
+  config.reel_in_slack = p.reel_in_slack;
+  config.max_vehicle_jump = p.max_vehicle_jump;
+  return config;
+}
+
+void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
+{
+  TetherParams params;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    params = pending_params_ ? *pending_params_ : sim_->params();
+  }
+  const TetherParams current = params;
+  std::string error;
+  params.drag = config.drag;
+  params.iterations = config.iterations;
+  params.noise = config.noise;
+  params.bending = config.bending;
+  if (!parseSolver(config.solver, &params.solver))
+  {
+    error = "solver '" + config.solver + "': expected pbd or pbd_sequential";
+  }
+  params.time_step = config.time_step;
+  params.weight_in_water = config.weight_in_water;
+  params.mass_per_length = config.mass_per_length;
+  params.axial_stiffness = config.axial_stiffness;
+  if (!parseWinchMode(config.winch_mode, &params.winch_mode))
+  {
+    error = "winch_mode '" + config.winch_mode + "': expected passive, locked or speed";
+  }
+  params.winch_speed = config.winch_speed;
+  params.max_winch_speed = config.max_winch_speed;
+  params.payout_threshold = config.payout_threshold;
+  params.reel_in_slack = config.reel_in_slack;
+  params.max_vehicle_jump = config.max_vehicle_jump;
+  for (const auto& e : params.validate())
+  {
+    error += (error.empty() ? "" : "; ") + e;
+  }
+  if (!error.empty())
+  {
+    ROS_ERROR("tether_node: dynamic_reconfigure change refused, old values kept: %s", error.c_str());
+    config = configFromParams(current);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  pending_params_ = params;
+}
+
+void TetherNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const TetherSummary summary = sim_->summary();
+  status.summary(DiagnosticStatus::OK, "tether simulated");
+  status.add("deployed length [m]", summary.deployed_length);
+  status.add("tension at vehicle [N]", summary.tension_vehicle);
+  status.add("max tension [N]", summary.max_tension);
+  status.add("step time [us]", step_seconds_ * 1e6);
+  status.add("physics real-time factor", real_time_factor_);
+  status.add("residual stretch", summary.mean_strain);
+  status.add("rejected poses", rejected_poses_);
+  status.add("resets", resets_);
+  status.add("vehicle jumps", sim_->jumpCount());
+  const ros::Time now = ros::Time::now();
+  if (!sim_->vehicleAttached())
+  {
+    status.mergeSummary(DiagnosticStatus::WARN, "no vehicle pose yet");
+  }
+  else if (!last_pose_time_.isZero() && (now - last_pose_time_).toSec() > options_.stale_pose_timeout)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "stale pose: none for %.1f s", (now - last_pose_time_).toSec());
+  }
+  if (summary.max_tension > options_.max_tension_warning)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "over-tension: %.1f N", summary.max_tension);
+  }
+  if (summary.deployed_length >= sim_->params().cable_length - 1e-9)
+  {
+    status.mergeSummary(DiagnosticStatus::WARN, "fully deployed");
+  }
+  if (real_time_factor_ > 0.0 && real_time_factor_ < 1.0)
+  {
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "physics slower than real time (%.2fx)", real_time_factor_);
+  }
+}
+
+}  // namespace rov_tether::ros_layer

@@ -1,0 +1,436 @@
+// rostest of tether_node (test/ros/node.test): the test owns simulated time (/clock) and the vehicle
+// pose, and waits on topics and services with wall-clock timeouts, never on fixed sleeps.
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_srvs/Trigger.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "rov_tether/GetTension.h"
+#include "rov_tether/SetWinch.h"
+#include "rov_tether/TetherState.h"
+
+namespace
+{
+
+constexpr double kTick = 0.005;  // simulated seconds per /clock message
+
+/// Drives the node: publishes /clock and rov_pose, records what the node publishes.
+class Harness
+{
+ public:
+  Harness()
+  {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("/rov_pose", 10);
+    state_sub_ = nh_.subscribe("/tether_node/state", 100, &Harness::onState, this);
+    marker_sub_ = nh_.subscribe("/tether_node/markers", 10, &Harness::onMarkers, this);
+    wrench_sub_ = nh_.subscribe("/tether_node/wrench", 10, &Harness::onWrench, this);
+    diagnostics_sub_ = nh_.subscribe("/diagnostics", 10, &Harness::onDiagnostics, this);
+  }
+
+  /// Spins until `done` or the wall timeout [s]; returns whether `done` became true.
+  bool waitFor(const std::function<bool()>& done, double timeout)
+  {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < deadline)
+    {
+      ros::spinOnce();
+      if (done())
+      {
+        return true;
+      }
+      ros::WallDuration(0.0005).sleep();  // polling interval, not a synchronisation
+    }
+    return false;
+  }
+
+  /// Advances simulated time by `seconds`, publishing the clock and, when `pose` is set, a vehicle pose
+  /// every other tick; waits until the node has published a state at or after the new time.
+  bool drive(double seconds, const std::function<geometry_msgs::Pose(double)>& pose = nullptr)
+  {
+    const int ticks = static_cast<int>(std::round(seconds / kTick));
+    for (int k = 0; k < ticks; ++k)
+    {
+      sim_time_ += kTick;
+      publishClock();
+      if (pose && k % 2 == 0)
+      {
+        geometry_msgs::PoseStamped msg;
+        msg.header.stamp = ros::Time(sim_time_);
+        msg.header.frame_id = "world";
+        msg.pose = pose(sim_time_);
+        pose_pub_.publish(msg);
+      }
+      ros::spinOnce();
+      ros::WallDuration(0.0002).sleep();  // lets the node keep up with the clock
+    }
+    const double target = sim_time_ - 0.1;
+    return waitFor([&] { return state_count_ > 0 && state_.header.stamp.toSec() >= target; }, 10.0) ||
+           nudgeUntilState(target);
+  }
+
+  void setTime(double t)
+  {
+    sim_time_ = t;
+    publishClock();
+  }
+
+  void publishPose(const geometry_msgs::Pose& pose)
+  {
+    geometry_msgs::PoseStamped msg;
+    msg.header.stamp = ros::Time(sim_time_);
+    msg.header.frame_id = "world";
+    msg.pose = pose;
+    pose_pub_.publish(msg);
+  }
+
+  ros::NodeHandle nh_;
+  rov_tether::TetherState state_;
+  int state_count_ = 0;
+  visualization_msgs::MarkerArray markers_;
+  int marker_count_ = 0;
+  geometry_msgs::WrenchStamped wrench_;
+  int wrench_count_ = 0;
+  bool saw_tether_diagnostics_ = false;
+  double sim_time_ = 1000.0;
+
+ private:
+  void publishClock()
+  {
+    rosgraph_msgs::Clock clock;
+    clock.clock = ros::Time(sim_time_);
+    clock_pub_.publish(clock);
+  }
+
+  /// Keeps the clock ticking (a timer may have missed the last message) until a fresh state arrives.
+  bool nudgeUntilState(double target)
+  {
+    for (int k = 0; k < 200; ++k)
+    {
+      sim_time_ += kTick;
+      publishClock();
+      if (waitFor([&] { return state_count_ > 0 && state_.header.stamp.toSec() >= target; }, 0.05))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void onState(const rov_tether::TetherState& msg)
+  {
+    state_ = msg;
+    ++state_count_;
+  }
+  void onMarkers(const visualization_msgs::MarkerArray& msg)
+  {
+    markers_ = msg;
+    ++marker_count_;
+  }
+  void onWrench(const geometry_msgs::WrenchStamped& msg)
+  {
+    wrench_ = msg;
+    ++wrench_count_;
+  }
+  void onDiagnostics(const diagnostic_msgs::DiagnosticArray& msg)
+  {
+    for (const auto& status : msg.status)
+    {
+      saw_tether_diagnostics_ = saw_tether_diagnostics_ || status.name.find("tether") != std::string::npos;
+    }
+  }
+
+  ros::Publisher clock_pub_;
+  ros::Publisher pose_pub_;
+  ros::Subscriber state_sub_;
+  ros::Subscriber marker_sub_;
+  ros::Subscriber wrench_sub_;
+  ros::Subscriber diagnostics_sub_;
+};
+
+Harness* harness = nullptr;
+
+geometry_msgs::Pose poseAt(double x, double y, double z)
+{
+  geometry_msgs::Pose pose;
+  pose.position.x = x;
+  pose.position.y = y;
+  pose.position.z = z;
+  pose.orientation.w = 1.0;
+  return pose;
+}
+
+/// The vehicle near the spool: 1.5 m away, 0.5 m down.
+geometry_msgs::Pose home(double /*t*/) { return poseAt(1.5, 0.0, -0.5); }
+
+TEST(TetherNode, StartsAndPublishesStateMarkersWrenchAndDiagnostics)
+{
+  Harness& h = *harness;
+  // Start the clock and wait for the node to come up (a fresh state after it got a pose).
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        h.publishPose(home(0));
+        return h.state_count_ > 0 && h.state_.vehicle_attached;
+      },
+      60.0))
+      << "no ~state with a vehicle from tether_node";
+  ASSERT_TRUE(h.drive(1.5, home));
+  EXPECT_NEAR(h.state_.deployed_length, 2.0, 0.3);  // default.yaml: 2 m out
+  EXPECT_EQ(h.state_.cable_length, 10.0);
+  EXPECT_EQ(h.state_.solver, "pbd");
+  EXPECT_EQ(h.state_.iterations, 10u);
+  EXPECT_EQ(h.state_.segment_tension.size(), static_cast<std::size_t>(std::round(h.state_.deployed_length / 0.1)));
+  EXPECT_EQ(h.state_.header.frame_id, "world");
+  EXPECT_TRUE(h.waitFor([&] { return h.marker_count_ > 0 && h.wrench_count_ > 0; }, 10.0));
+  ASSERT_GE(h.markers_.markers.size(), 3u);
+  EXPECT_EQ(h.markers_.markers[0].type, visualization_msgs::Marker::LINE_LIST);
+  EXPECT_EQ(h.markers_.markers[0].points.size(), 2 * h.state_.segment_tension.size());
+  // The updater publishes once per (simulated) second.
+  EXPECT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + 0.05);
+        return h.saw_tether_diagnostics_;
+      },
+      20.0));
+}
+
+TEST(TetherNode, DeployedLengthGrowsAsTheVehicleMovesAway)
+{
+  Harness& h = *harness;
+  const double start_length = h.state_.deployed_length;
+  const double t0 = h.sim_time_;
+  // 0.4 m/s away from the spool for 10 s: from 1.5 m to 5.5 m along x.
+  ASSERT_TRUE(h.drive(10.0, [t0](double t) { return poseAt(1.5 + 0.4 * std::min(t - t0, 10.0), 0.0, -0.5); }));
+  ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  const double distance = std::hypot(5.5, 0.5);
+  EXPECT_GT(h.state_.deployed_length, start_length + 3.0);
+  EXPECT_GT(h.state_.deployed_length, 0.95 * distance);
+  EXPECT_LT(h.state_.deployed_length, 1.25 * distance);
+  EXPECT_LT(h.state_.max_tension, 100.0);
+}
+
+TEST(TetherNode, GetTensionAnswersAndRefusesBadRequests)
+{
+  Harness& h = *harness;
+  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::GetTension>("/tether_node/get_tension");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  rov_tether::GetTension srv;
+  srv.request.segment = 0;
+  srv.request.arc_length_from_vehicle = -1.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.segment, 0u);
+  EXPECT_EQ(srv.response.tension, srv.response.tension_spool);
+  EXPECT_GT(srv.response.deployed_length, 4.0);
+
+  srv.request.segment = -1;
+  srv.request.arc_length_from_vehicle = 0.05;  // in the last segment
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.tension, srv.response.tension_vehicle);
+
+  srv.request.segment = 100000;
+  srv.request.arc_length_from_vehicle = -1.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("outside"), std::string::npos) << srv.response.message;
+
+  srv.request.segment = -1;
+  srv.request.arc_length_from_vehicle = 500.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("outside the deployed cable"), std::string::npos) << srv.response.message;
+
+  srv.request.segment = 3;
+  srv.request.arc_length_from_vehicle = 1.0;  // both given
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("exactly one"), std::string::npos) << srv.response.message;
+}
+
+dynamic_reconfigure::Reconfigure reconfigure(const std::vector<std::pair<std::string, double>>& doubles,
+                                             const std::vector<std::pair<std::string, int>>& ints)
+{
+  dynamic_reconfigure::Reconfigure srv;
+  for (const auto& [name, value] : doubles)
+  {
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.doubles.push_back(p);
+  }
+  for (const auto& [name, value] : ints)
+  {
+    dynamic_reconfigure::IntParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.ints.push_back(p);
+  }
+  return srv;
+}
+
+double configDouble(const dynamic_reconfigure::Config& config, const std::string& name)
+{
+  for (const auto& p : config.doubles)
+  {
+    if (p.name == name)
+    {
+      return p.value;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradictions)
+{
+  Harness& h = *harness;
+  ros::ServiceClient client = h.nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  auto srv = reconfigure({{"drag", 0.5}}, {{"iterations", 3}});
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_EQ(h.state_.iterations, 3u);
+  EXPECT_DOUBLE_EQ(h.state_.drag, 0.5);
+
+  // winch_speed 3 m/s contradicts max_winch_speed 1 m/s: refused, old values kept.
+  auto bad = reconfigure({{"winch_speed", 3.0}}, {});
+  ASSERT_TRUE(client.call(bad));
+  EXPECT_EQ(configDouble(bad.response.config, "winch_speed"), 0.0);
+  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_EQ(h.state_.iterations, 3u);
+
+  auto restore = reconfigure({{"drag", 0.9}}, {{"iterations", 10}});
+  ASSERT_TRUE(client.call(restore));
+  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_EQ(h.state_.iterations, 10u);
+  EXPECT_DOUBLE_EQ(h.state_.drag, 0.9);
+}
+
+TEST(TetherNode, NanAndUnnormalisedPosesNeitherCrashNorCorrupt)
+{
+  Harness& h = *harness;
+  // Lock the winch so that the deployed length must stay exactly where it is.
+  ros::ServiceClient winch = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  rov_tether::SetWinch lock;
+  lock.request.mode = "locked";
+  ASSERT_TRUE(winch.call(lock) && lock.response.success) << lock.response.message;
+  ASSERT_TRUE(h.drive(0.1, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  const double before = h.state_.deployed_length;
+  geometry_msgs::Pose nan_pose = poseAt(std::nan(""), 0.0, -0.5);
+  geometry_msgs::Pose bad_quaternion = poseAt(9.0, 9.0, -0.5);
+  bad_quaternion.orientation.w = 2.0;
+  h.publishPose(nan_pose);
+  h.publishPose(bad_quaternion);
+  ASSERT_TRUE(h.drive(1.0,
+                      [&](double t)
+                      {
+                        // Every fifth pose is bad; the rest hold the vehicle still.
+                        return static_cast<int>(t / kTick) % 5 == 0 ? nan_pose : poseAt(5.5, 0.0, -0.5);
+                      }));
+  EXPECT_EQ(h.state_.deployed_length, before);
+  EXPECT_TRUE(std::isfinite(h.state_.max_tension));
+  EXPECT_LT(h.state_.max_strain, 0.1);
+  const int markers_before = h.marker_count_;
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        return h.marker_count_ > markers_before + 2;
+      },
+      10.0));
+  for (const auto& p : h.markers_.markers[0].points)
+  {
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  }
+  const auto& end = h.markers_.markers[0].points.back();
+  EXPECT_NEAR(end.x, 5.5, 1e-6);  // the vehicle end stayed where the good poses put it
+}
+
+TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
+{
+  Harness& h = *harness;
+  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  rov_tether::SetWinch srv;
+  srv.request.mode = "speed";
+  srv.request.speed = 0.5;
+  srv.request.target_length = 7.0;
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_TRUE(h.drive(4.0, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_NEAR(h.state_.deployed_length, 7.0, 1e-6);
+  EXPECT_EQ(h.state_.winch_mode, "speed");
+  EXPECT_NEAR(h.state_.target_length, 7.0, 1e-9);
+
+  srv.request.mode = "fast";
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  srv.request.mode = "speed";
+  srv.request.target_length = 50.0;  // beyond the 10 m cable
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("target_length"), std::string::npos);
+  srv.request.speed = 5.0;  // beyond max_winch_speed
+  srv.request.target_length = 0.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+
+  srv.request.mode = "passive";
+  srv.request.speed = 0.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+}
+
+TEST(TetherNode, TimeGoingBackwardsResetsTheTether)
+{
+  Harness& h = *harness;
+  const std::uint32_t resets = h.state_.resets;
+  ASSERT_GT(h.state_.deployed_length, 5.0);
+  h.setTime(h.sim_time_ - 50.0);  // a bag loops
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        h.publishPose(poseAt(1.5, 0.0, -0.5));
+        return h.state_.resets > resets;
+      },
+      20.0));
+  EXPECT_NEAR(h.state_.deployed_length, 2.0, 0.2);
+  EXPECT_TRUE(std::isfinite(h.state_.max_tension));
+}
+
+TEST(TetherNode, ResetServiceResets)
+{
+  Harness& h = *harness;
+  const std::uint32_t resets = h.state_.resets;
+  ros::ServiceClient client = h.nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  std_srvs::Trigger srv;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success);
+  ASSERT_TRUE(h.drive(0.2, home));
+  EXPECT_EQ(h.state_.resets, resets + 1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "tether_node_test");
+  Harness instance;
+  harness = &instance;
+  return RUN_ALL_TESTS();
+}

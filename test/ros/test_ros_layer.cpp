@@ -1,0 +1,306 @@
+// The ROS layer without a master: converters, colours, service answers, parameter loading.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/param_loader.hpp"
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+/// A YAML file as the parameter server would hold it (what `rosparam load` does).
+XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node)
+{
+  if (node.IsMap())
+  {
+    XmlRpc::XmlRpcValue result;
+    for (const auto& entry : node)
+    {
+      result[entry.first.as<std::string>()] = toXmlRpc(entry.second);
+    }
+    return result;
+  }
+  if (node.IsSequence())
+  {
+    XmlRpc::XmlRpcValue result;
+    result.setSize(static_cast<int>(node.size()));
+    for (std::size_t i = 0; i < node.size(); ++i)
+    {
+      result[static_cast<int>(i)] = toXmlRpc(node[i]);
+    }
+    return result;
+  }
+  bool b;
+  int i;
+  double d;
+  if (node.Tag() != "!" && YAML::convert<bool>::decode(node, b) &&
+      node.Scalar().find_first_of("0123456789") == std::string::npos)
+  {
+    return XmlRpc::XmlRpcValue(b);
+  }
+  if (node.Tag() != "!" && YAML::convert<int>::decode(node, i))
+  {
+    return XmlRpc::XmlRpcValue(i);
+  }
+  if (node.Tag() != "!" && YAML::convert<double>::decode(node, d))
+  {
+    return XmlRpc::XmlRpcValue(d);
+  }
+  return XmlRpc::XmlRpcValue(node.Scalar());
+}
+
+XmlRpc::XmlRpcValue loadYaml(const std::string& relative)
+{
+  return toXmlRpc(YAML::LoadFile(std::string(ROV_TETHER_SOURCE_DIR) + "/" + relative));
+}
+
+TetherSimulation heavyTether()
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.weight_in_water = 1.0;
+  params.winch_mode = WinchMode::kLocked;
+  params.initial_deployed_length = 3.0;
+  TetherSimulation sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
+  sim.advance(10.0);
+  return sim;
+}
+
+TEST(Colours, TensionScaleRunsFromBlueToRedAndCompressionIsGrey)
+{
+  auto near = [](const std_msgs::ColorRGBA& c, double r, double g, double b)
+  { return std::abs(c.r - r) < 1e-6 && std::abs(c.g - g) < 1e-6 && std::abs(c.b - b) < 1e-6 && c.a == 1.0f; };
+  EXPECT_TRUE(near(tensionColor(0.0, 50.0, false), 0, 0, 1));    // blue
+  EXPECT_TRUE(near(tensionColor(12.5, 50.0, false), 0, 1, 1));   // cyan
+  EXPECT_TRUE(near(tensionColor(25.0, 50.0, false), 0, 1, 0));   // green
+  EXPECT_TRUE(near(tensionColor(37.5, 50.0, false), 1, 1, 0));   // yellow
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, false), 1, 0, 0));   // red
+  EXPECT_TRUE(near(tensionColor(500.0, 50.0, false), 1, 0, 0));  // saturated
+  EXPECT_TRUE(near(tensionColor(-1.0, 50.0, false), 0.55, 0.55, 0.55));
+  EXPECT_TRUE(near(tensionColor(std::nan(""), 50.0, false), 0.55, 0.55, 0.55));
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, true), 0.6, 0, 0));  // a stripe is darker
+}
+
+TEST(Converters, StateMessageCarriesTheSimulation)
+{
+  const TetherSimulation sim = heavyTether();
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  TetherState msg;
+  toStateMessage(sim, tensions, ros::Time(12.5), "world", 0.25, 3, &msg);
+  const TetherSummary summary = sim.summary();
+  EXPECT_EQ(msg.header.stamp, ros::Time(12.5));
+  EXPECT_EQ(msg.header.frame_id, "world");
+  EXPECT_DOUBLE_EQ(msg.deployed_length, 3.0);
+  EXPECT_EQ(msg.cable_length, 10.0);
+  ASSERT_EQ(msg.segment_tension.size(), 30u);
+  EXPECT_DOUBLE_EQ(msg.tension_spool, summary.tension_spool);
+  EXPECT_DOUBLE_EQ(msg.tension_vehicle, summary.tension_vehicle);
+  EXPECT_DOUBLE_EQ(msg.max_tension, summary.max_tension);
+  EXPECT_EQ(msg.max_tension_segment, summary.max_tension_segment);
+  EXPECT_GT(msg.max_tension, 1.0);  // a heavy cable hangs in tension
+  EXPECT_NEAR(msg.residual_stretch, summary.mean_strain, 1e-12);
+  EXPECT_EQ(msg.winch_mode, "locked");
+  EXPECT_EQ(msg.winch_speed, 0.25);
+  EXPECT_TRUE(std::isnan(msg.target_length));
+  EXPECT_EQ(msg.solver, "pbd");
+  EXPECT_EQ(msg.iterations, 10u);
+  EXPECT_EQ(msg.resets, 3u);
+  EXPECT_TRUE(msg.vehicle_attached);
+}
+
+TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
+{
+  const TetherSimulation sim = heavyTether();
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  visualization_msgs::MarkerArray markers;
+  MarkerOptions options;
+  options.tension_full_scale = 5.0;
+  toMarkers(sim, tensions, ros::Time(3.0), options, &markers);
+  ASSERT_EQ(markers.markers.size(), 4u);
+  const auto& cable = markers.markers[0];
+  EXPECT_EQ(cable.type, visualization_msgs::Marker::LINE_LIST);
+  EXPECT_EQ(cable.header.frame_id, "world");
+  ASSERT_EQ(cable.points.size(), 60u);
+  ASSERT_EQ(cable.colors.size(), 60u);
+  EXPECT_NEAR(cable.points.front().x, 0.0, 1e-12);  // starts at the spool
+  EXPECT_NEAR(cable.points.back().x, 2.0, 1e-12);   // ends at the vehicle
+  const std::size_t first = sim.state().first;
+  for (std::size_t k = 0; k < 30; ++k)
+  {
+    const bool stripe = ((first + k) / 5) % 2 == 1;
+    const auto expected = tensionColor(tensions[k], 5.0, stripe);
+    EXPECT_EQ(cable.colors[2 * k].r, expected.r) << k;
+    EXPECT_EQ(cable.colors[2 * k + 1].g, expected.g) << k;
+  }
+  EXPECT_EQ(markers.markers[1].type, visualization_msgs::Marker::CYLINDER);
+  EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::ADD);
+  EXPECT_NE(markers.markers[3].text.find("3.00 m out"), std::string::npos);
+
+  // Reused storage: a shorter cable redraws without stale points; a detached vehicle hides its sphere.
+  TetherSimulation free_end(TetherParams{}, Position::Zero());
+  std::vector<double> none;
+  free_end.computeSegmentTensions(none);
+  toMarkers(free_end, none, ros::Time(4.0), options, &markers);
+  EXPECT_EQ(markers.markers[0].points.size(), 40u);
+  EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::DELETE);
+}
+
+TEST(Converters, WrenchIsThePullOnTheVehicle)
+{
+  const TetherSimulation sim = heavyTether();
+  const geometry_msgs::WrenchStamped wrench = toWrench(sim, Position(2.0, 0.0, 0.5), ros::Time(1.0), "world");
+  const Force force = sim.vehicleForce();
+  EXPECT_EQ(wrench.header.frame_id, "world");
+  EXPECT_DOUBLE_EQ(wrench.wrench.force.x, force.x());
+  EXPECT_DOUBLE_EQ(wrench.wrench.force.z, force.z());
+  EXPECT_LT(force.z(), -0.5);  // the hanging cable pulls the vehicle down
+  EXPECT_LT(force.x(), 0.0);   // and towards the spool
+  // Torque about a vehicle origin 0.5 m above the attachment: r = (0, 0, -0.5), tau = r x F.
+  EXPECT_NEAR(wrench.wrench.torque.y, -0.5 * force.x(), 1e-12);
+}
+
+TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)
+{
+  const TetherSimulation sim = heavyTether();
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  GetTension::Request request;
+  GetTension::Response response;
+  request.segment = 4;
+  request.arc_length_from_vehicle = -1.0;
+  answerGetTension(sim, tensions, request, &response);
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_EQ(response.segment, 4u);
+  EXPECT_EQ(response.tension, tensions[4]);
+  EXPECT_EQ(response.tension_spool, tensions.front());
+  EXPECT_EQ(response.tension_vehicle, tensions.back());
+
+  request.segment = -1;
+  request.arc_length_from_vehicle = 0.25;  // third segment from the vehicle
+  answerGetTension(sim, tensions, request, &response);
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_EQ(response.segment, 27u);
+
+  for (auto [segment, arc] : std::vector<std::pair<int, double>>{{30, -1.0}, {-1, 3.5}, {-1, -1.0}, {2, 1.0}})
+  {
+    request.segment = segment;
+    request.arc_length_from_vehicle = arc;
+    answerGetTension(sim, tensions, request, &response);
+    EXPECT_FALSE(response.success) << segment << " " << arc;
+    EXPECT_FALSE(response.message.empty());
+  }
+}
+
+TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
+{
+  XmlRpc::XmlRpcValue dict;
+  dict["iterations"] = 4;
+  dict["drag"] = 0.8;
+  dict["bending"] = false;
+  dict["winch_mode"] = std::string("locked");
+  dict["world_frame"] = std::string("odom");  // a node option, not a model parameter
+  TetherParams params;
+  ASSERT_EQ(loadTetherParams(dict, &params), "");
+  EXPECT_EQ(params.iterations, 4);
+  EXPECT_EQ(params.drag, 0.8);
+  EXPECT_FALSE(params.bending);
+  EXPECT_EQ(params.winch_mode, WinchMode::kLocked);
+
+  XmlRpc::XmlRpcValue bad;
+  bad["iterations"] = 0;
+  bad["drag"] = std::string("lots");
+  TetherParams unchanged;
+  const std::string error = loadTetherParams(bad, &unchanged);
+  EXPECT_NE(error.find("parameter 'drag': wrong type"), std::string::npos) << error;
+  EXPECT_EQ(unchanged.iterations, 10);  // nothing applied on error
+  bad["drag"] = 0.5;
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("iterations = 0"), std::string::npos);
+  XmlRpc::XmlRpcValue list;
+  list.setSize(1);
+  list[0] = 1.0;
+  bad["drag"] = list;
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': expected a single value"), std::string::npos);
+}
+
+TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
+{
+  XmlRpc::XmlRpcValue dict;
+  dict["pose_source"] = std::string("tf");
+  dict["physics_rate"] = 100;
+  XmlRpc::XmlRpcValue offset;
+  offset.setSize(3);
+  offset[0] = 0.5;
+  offset[1] = 0;
+  offset[2] = -0.1;
+  dict["attachment_offset"] = offset;
+  NodeOptions options;
+  ASSERT_EQ(loadNodeOptions(dict, &options), "");
+  EXPECT_EQ(options.pose_source, "tf");
+  EXPECT_EQ(options.physics_rate, 100.0);
+  EXPECT_EQ(options.attachment_offset, Eigen::Vector3d(0.5, 0.0, -0.1));
+
+  dict["pose_source"] = std::string("gps");
+  dict["physics_rate"] = -5.0;
+  XmlRpc::XmlRpcValue short_offset;  // setSize only grows an array: build a new one
+  short_offset.setSize(2);
+  short_offset[0] = 0.5;
+  short_offset[1] = 0.0;
+  dict["attachment_offset"] = short_offset;
+  NodeOptions unchanged;
+  const std::string error = loadNodeOptions(dict, &unchanged);
+  EXPECT_NE(error.find("pose_source = 'gps'"), std::string::npos) << error;
+  EXPECT_NE(error.find("physics_rate"), std::string::npos) << error;
+  EXPECT_NE(error.find("attachment_offset"), std::string::npos) << error;
+  EXPECT_EQ(unchanged.pose_source, "topic");
+
+  XmlRpc::XmlRpcValue typos;
+  typos["iteratons"] = 3;
+  typos["drag"] = 0.9;
+  typos["world_frame"] = std::string("map");
+  EXPECT_EQ(unknownParameters(typos), "iteratons");
+}
+
+// Every shipped configuration file loads through the node's loaders, with no unknown key, and
+// default.yaml gives exactly the core's defaults.
+TEST(ParameterServer, EveryShippedConfigFileLoads)
+{
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/config"))
+  {
+    if (entry.path().extension() != ".yaml")
+    {
+      continue;
+    }
+    const XmlRpc::XmlRpcValue dict = loadYaml("config/" + entry.path().filename().string());
+    TetherParams params;
+    NodeOptions options;
+    EXPECT_EQ(loadTetherParams(dict, &params), "") << entry.path();
+    EXPECT_EQ(loadNodeOptions(dict, &options), "") << entry.path();
+    EXPECT_EQ(unknownParameters(dict), "") << entry.path();
+    ++files;
+  }
+  EXPECT_GE(files, 3);
+
+  TetherParams from_file;
+  from_file.iterations = 77;
+  ASSERT_EQ(loadTetherParams(loadYaml("config/default.yaml"), &from_file), "");
+  for (const auto& name : parameterNames())
+  {
+    EXPECT_EQ(getParameter(from_file, name), getParameter(TetherParams{}, name)) << name;
+  }
+  NodeOptions node_defaults;
+  node_defaults.physics_rate = 1.0;
+  ASSERT_EQ(loadNodeOptions(loadYaml("config/node.yaml"), &node_defaults), "");
+  EXPECT_EQ(node_defaults.physics_rate, NodeOptions{}.physics_rate);
+  EXPECT_EQ(node_defaults.world_frame, NodeOptions{}.world_frame);
+}
+
+}  // namespace
+}  // namespace rov_tether::ros_layer
