@@ -1,16 +1,36 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and runs the spool pay-out scenario (an ROV drives
-# out 8 m, around and back) with the offline runner, then prints a summary and where the output is.
+# The main job: installs what is missing, builds, and runs the ROS demo: tether_node beside a simulated
+# ROV that dives out 8 m, around and back (the spool pays out and reels in), with a live one-line
+# summary. rviz opens when a display is there ($DISPLAY set and rviz installed, or RVIZ=true to install
+# it); otherwise the demo runs headless. DURATION (s, default 55: one dive) ends it; 0 runs until Ctrl-C.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
-SCENARIO="${1:-$ROOT/scenarios/spool_payout.yaml}"
-OUT="${OUT:-$ROOT/out/demo}"
-echo "== running $(basename "$SCENARIO")"
-"$BUILD_DIR/devel/lib/rov_tether/rov_tether_run" "$SCENARIO" --out "$OUT"
-echo
-echo "== deployed length and tension over time (every 5 s)"
-awk -F, 'NR == 1 { printf "%8s %12s %14s %16s\n", "t [s]", "deployed [m]", "T spool [N]", "T vehicle [N]"; next }
-         ($1 + 0) % 5 < 1e-6 { printf "%8.1f %12.3f %14.3f %16.3f\n", $1, $2, $3, $4 }' "$OUT/state.csv"
-echo
-echo "CSV files are in $OUT (format: README.md, section 'Scenario runner')."
+DURATION="${DURATION:-55}"
+RVIZ="${RVIZ:-auto}"
+if [ "$RVIZ" = auto ]; then
+  RVIZ=false
+  [ -n "${DISPLAY:-}" ] && command -v rviz >/dev/null 2>&1 && RVIZ=true
+fi
+if [ "$RVIZ" = true ] && ! command -v rviz >/dev/null 2>&1; then
+  PACKAGES=(rviz) install_missing
+fi
+
+set +u
+source "$BUILD_DIR/devel/setup.bash"
+set -u
+export ROS_HOME="${ROS_HOME:-$BUILD_DIR/ros_home}"
+echo "== tether_node demo: rviz $RVIZ, ${DURATION}s (DURATION=0 runs until Ctrl-C)"
+if [ "$RVIZ" = true ]; then
+  echo "   rviz: fixed frame 'world'; the cable is the MarkerArray /tether_node/markers, coloured by tension"
+  echo "   (blue 0 N -> red 50 N), with darker stripes every 5 segments that travel as cable pays out."
+else
+  echo "   headless (no display). To see it: run on a desktop, or RVIZ=true bash scripts/demo.sh, and in rviz"
+  echo "   add a MarkerArray on /tether_node/markers with fixed frame 'world' (or use config/tether.rviz)."
+fi
+echo "   Other outputs: rostopic echo /tether_node/state, /tether_node/wrench, /diagnostics;"
+echo "   rosservice call /tether_node/get_tension \"{arc_length_from_vehicle: 0.0, segment: -1}\""
+# roslaunch picks a free port for its own master when none runs (-p 0 is not supported; use 11411+).
+export ROS_MASTER_URI="${ROS_MASTER_URI:-http://localhost:11411}"
+exec roslaunch --port "${ROS_MASTER_URI##*:}" rov_tether demo.launch rviz:="$RVIZ" summary_duration:="$DURATION" 2>&1 |
+  grep --line-buffered -vE "^(\s*\*|SUMMARY|=+|PARAMETERS|NODES|  /|auto-starting|setting /|process\[|started roslaunch|ROS_MASTER_URI|core service|logging to|Checking log|Press Ctrl-C|$)"

@@ -16,10 +16,11 @@ PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3
           libtf2-ros-dev libtf2-eigen-dev libdynamic-reconfigure-config-init-mutex-dev
           python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
           python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
-          python3-rosparam ${PACKAGES_EXTRA:-})
+          python3-rosparam python3-tf2-ros ${PACKAGES_EXTRA:-})
 
 install_missing() {
   local missing=()
+  # shellcheck disable=SC2153  # PACKAGES may be overridden for one call: PACKAGES=(rviz) install_missing
   for p in "${PACKAGES[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
@@ -51,6 +52,8 @@ build_target() {
   grep -E "warning:" "$log" || true
 }
 
-install_missing
-mkdir -p "$BUILD_DIR"
-build_package
+if [ "${SETUP_ONLY_FUNCTIONS:-}" != 1 ]; then
+  install_missing
+  mkdir -p "$BUILD_DIR"
+  build_package
+fi

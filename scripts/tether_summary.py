@@ -31,14 +31,17 @@ def main():
     rospy.Subscriber(topic, TetherState, on_state)
     rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
     start = rospy.Time.now()
+    first_stamp = None
     while not rospy.is_shutdown():
         rospy.sleep(period)
         s = latest["state"]
         if s is None:
             print("waiting for %s ..." % topic, flush=True)
             continue
-        print("t %7.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
-              " | physics %6.0fx real time | %s" % (s.header.stamp.to_sec(), s.deployed_length, s.cable_length,
+        if first_stamp is None or s.header.stamp < first_stamp:
+            first_stamp = s.header.stamp
+        print("t %6.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
+              " | physics %6.0fx real time | %s" % ((s.header.stamp - first_stamp).to_sec(), s.deployed_length, s.cable_length,
                                                     s.tension_vehicle, s.max_tension, s.winch_mode, s.winch_speed,
                                                     latest["rtf"], latest["diag"]), flush=True)
         if duration > 0 and (rospy.Time.now() - start).to_sec() >= duration:

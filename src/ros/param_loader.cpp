@@ -13,9 +13,9 @@ namespace
 const std::vector<std::string>& nodeOptionNames()
 {
   static const std::vector<std::string> names = {
-      "world_frame",        "pose_source",     "rov_frame",          "attachment_offset",  "spool_frame",
-      "spool_position",     "physics_rate",    "state_rate",         "marker_rate",        "marker_line_width",
-      "tension_full_scale", "stripe_segments", "stale_pose_timeout", "max_tension_warning"};
+      "world_frame",       "pose_source",        "rov_frame",           "attachment_offset",  "spool_frame",
+      "spool_position",    "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
+      "marker_line_width", "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning"};
   return names;
 }
 
@@ -193,6 +193,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.text("spool_frame", &candidate.spool_frame);
   read.vector3("spool_position", &candidate.spool_position);
   read.number("physics_rate", &candidate.physics_rate, 1.0, 5000.0);
+  read.number("interpolation_delay", &candidate.interpolation_delay, 0.0, 10.0);
   read.number("state_rate", &candidate.state_rate, 0.1, 1000.0);
   read.number("marker_rate", &candidate.marker_rate, 0.1, 1000.0);
   read.number("marker_line_width", &candidate.marker_line_width, 1e-4, 10.0);

@@ -134,14 +134,16 @@ void TetherNode::addVehiclePose(const Eigen::Isometry3d& vehicle, const ros::Tim
   }
   last_vehicle_ = vehicle;
   last_pose_time_ = ros::Time::now();
+  last_pose_stamp_ = stamp;
 }
 
 void TetherNode::resetTether(const ros::Time& now, const std::string& why)
 {
   ROS_WARN("tether_node: %s: resetting the tether to %.2f m", why.c_str(), sim_->params().initial_deployed_length);
-  sim_->reset(now.toSec());
+  sim_->reset(now.toSec() - options_.interpolation_delay);
   ++resets_;
   last_time_ = now;
+  last_pose_stamp_ = ros::Time();
   last_state_time_ = last_marker_time_ = ros::Time();
   last_deployed_ = sim_->deployedLength();
 }
@@ -178,7 +180,7 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   if (!started_)
   {
     started_ = true;
-    sim_->reset(now.toSec());
+    sim_->reset(now.toSec() - options_.interpolation_delay);
     last_time_ = now;
     last_deployed_ = sim_->deployedLength();
   }
@@ -197,14 +199,27 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   {
     sim_->setSpoolPosition(pose.translation());
   }
-  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose))
+  if (options_.pose_source == "tf")
   {
-    addVehiclePose(pose, now);
+    try
+    {
+      const auto transform = tf_buffer_.lookupTransform(options_.world_frame, options_.rov_frame, ros::Time(0));
+      if (transform.header.stamp > last_pose_stamp_)
+      {
+        addVehiclePose(tf2::transformToEigen(transform), transform.header.stamp);
+      }
+    }
+    catch (const tf2::TransformException& e)
+    {
+      ROS_WARN_THROTTLE(1.0, "tether_node: no vehicle transform %s -> %s: %s", options_.world_frame.c_str(),
+                        options_.rov_frame.c_str(), e.what());
+    }
   }
 
+  // Poses arrive late: running the physics behind ROS time lets them bracket it.
   const ros::WallTime wall_start = ros::WallTime::now();
   std::size_t steps = 0;
-  sim_->advanceTo(now.toSec(), &steps);
+  sim_->advanceTo(now.toSec() - options_.interpolation_delay, &steps);
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   if (steps > 0 && wall > 0.0)
   {
@@ -230,9 +245,10 @@ void TetherNode::publish(const ros::Time& now)
     winch_speed_ = elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
     last_deployed_ = deployed;
     last_state_time_ = now;
-    toStateMessage(*sim_, tensions_, now, options_.world_frame, winch_speed_, resets_, &state_msg_);
+    const ros::Time physics_time(std::max(sim_->time(), 0.0));  // the state is of the physics' time
+    toStateMessage(*sim_, tensions_, physics_time, options_.world_frame, winch_speed_, resets_, &state_msg_);
     state_pub_.publish(state_msg_);
-    wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), now, options_.world_frame));
+    wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), physics_time, options_.world_frame));
   }
   // Markers cost nothing when nobody looks.
   if (marker_pub_.getNumSubscribers() > 0 && due(last_marker_time_, options_.marker_rate))
@@ -247,7 +263,7 @@ void TetherNode::publish(const ros::Time& now)
     marker_options.line_width = options_.marker_line_width;
     marker_options.tension_full_scale = options_.tension_full_scale;
     marker_options.stripe_segments = options_.stripe_segments;
-    toMarkers(*sim_, tensions_, now, marker_options, &markers_);
+    toMarkers(*sim_, tensions_, ros::Time(std::max(sim_->time(), 0.0)), marker_options, &markers_);
     marker_pub_.publish(markers_);
   }
 }

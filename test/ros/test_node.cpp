@@ -73,7 +73,7 @@ class Harness
       ros::spinOnce();
       ros::WallDuration(0.0002).sleep();  // lets the node keep up with the clock
     }
-    const double target = sim_time_ - 0.1;
+    const double target = sim_time_ - 0.2;  // the node's physics runs interpolation_delay (0.1 s) behind
     return waitFor([&] { return state_count_ > 0 && state_.header.stamp.toSec() >= target; }, 10.0) ||
            nudgeUntilState(target);
   }

@@ -20,10 +20,13 @@ struct NodeOptions
   std::string spool_frame;  ///< Empty: the spool is fixed at spool_position; else a tf frame.
   Eigen::Vector3d spool_position = Eigen::Vector3d::Zero();  ///< Spool outlet in world_frame [m].
   double physics_rate = 200.0;                               ///< Timer rate advancing the physics [Hz].
-  double state_rate = 30.0;                                  ///< ~state and ~wrench rate [Hz].
-  double marker_rate = 30.0;                                 ///< ~markers rate when subscribed [Hz].
-  double marker_line_width = 0.03;                           ///< Cable width in rviz [m].
-  double tension_full_scale = 50.0;                          ///< Tension drawn red [N].
+  /// The physics runs this far behind ROS time so that vehicle poses, which arrive late, bracket it and
+  /// the vehicle end is interpolated smoothly instead of held and jerked [s].
+  double interpolation_delay = 0.1;
+  double state_rate = 30.0;            ///< ~state and ~wrench rate [Hz].
+  double marker_rate = 30.0;           ///< ~markers rate when subscribed [Hz].
+  double marker_line_width = 0.03;     ///< Cable width in rviz [m].
+  double tension_full_scale = 50.0;    ///< Tension drawn red [N].
   int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
   double stale_pose_timeout = 1.0;     ///< No pose for this long is a diagnostics warning [s].
   double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].

@@ -80,7 +80,8 @@ class TetherNode
 
   bool started_ = false;
   ros::Time last_time_;
-  ros::Time last_pose_time_;
+  ros::Time last_pose_time_;   ///< ROS time the last accepted pose arrived.
+  ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
   ros::Time last_state_time_;
   ros::Time last_marker_time_;
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
