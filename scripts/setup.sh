@@ -16,7 +16,7 @@ PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3
           libtf2-ros-dev libtf2-eigen-dev libdynamic-reconfigure-config-init-mutex-dev
           python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
           python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
-          python3-rosparam python3-tf2-ros ${PACKAGES_EXTRA:-})
+          python3-rosparam python3-tf2-ros bc ${PACKAGES_EXTRA:-})
 
 install_missing() {
   local missing=()

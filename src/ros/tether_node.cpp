@@ -144,7 +144,7 @@ void TetherNode::resetTether(const ros::Time& now, const std::string& why)
   ++resets_;
   last_time_ = now;
   last_pose_stamp_ = ros::Time();
-  last_state_time_ = last_marker_time_ = ros::Time();
+  last_state_time_ = next_state_time_ = next_marker_time_ = ros::Time();
   last_deployed_ = sim_->deployedLength();
 }
 
@@ -234,9 +234,19 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
 void TetherNode::publish(const ros::Time& now)
 {
   bool tensions_ready = false;
-  auto due = [&now](const ros::Time& last, double rate)
-  { return last.isZero() || now < last || (now - last).toSec() >= 1.0 / rate - 1e-6; };
-  if (due(last_state_time_, options_.state_rate))
+  // A fixed schedule (next += period) keeps the average rate exact on the physics timer's grid.
+  auto due = [&now](ros::Time* next, double rate)
+  {
+    const ros::Duration period(1.0 / rate);
+    if (!next->isZero() && now < *next && *next - now <= period)
+    {
+      return false;
+    }
+    const bool behind = next->isZero() || now - *next > period || *next - now > period;
+    *next = behind ? now + period : *next + period;
+    return true;
+  };
+  if (due(&next_state_time_, options_.state_rate))
   {
     sim_->computeSegmentTensions(tensions_);
     tensions_ready = true;
@@ -251,13 +261,12 @@ void TetherNode::publish(const ros::Time& now)
     wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), physics_time, options_.world_frame));
   }
   // Markers cost nothing when nobody looks.
-  if (marker_pub_.getNumSubscribers() > 0 && due(last_marker_time_, options_.marker_rate))
+  if (marker_pub_.getNumSubscribers() > 0 && due(&next_marker_time_, options_.marker_rate))
   {
     if (!tensions_ready)
     {
       sim_->computeSegmentTensions(tensions_);
     }
-    last_marker_time_ = now;
     MarkerOptions marker_options;
     marker_options.frame_id = options_.world_frame;
     marker_options.line_width = options_.marker_line_width;

@@ -83,7 +83,8 @@ class TetherNode
   ros::Time last_pose_time_;   ///< ROS time the last accepted pose arrived.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
   ros::Time last_state_time_;
-  ros::Time last_marker_time_;
+  ros::Time next_state_time_;   ///< When ~state is due next.
+  ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
   double last_deployed_ = 0.0;
   double winch_speed_ = 0.0;
