@@ -42,7 +42,7 @@ visualization_msgs::Marker& markerSlot(visualization_msgs::MarkerArray* markers,
 
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
 {
-  const double shade = stripe ? 0.6 : 1.0;
+  const double shade = stripe ? 0.5 : 1.0;
   if (!(tension >= 0.0))  // compression, and NaN
   {
     return rgba(0.55 * shade, 0.55 * shade, 0.55 * shade);

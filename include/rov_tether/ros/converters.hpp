@@ -27,7 +27,7 @@ struct MarkerOptions
 
 /**
  * Colour of a segment carrying `tension` [N]: from blue (0 N) through cyan, green and yellow to red at
- * `full_scale` and above; compression (negative) is grey. `stripe` darkens it to 60% for the alternate
+ * `full_scale` and above; compression (negative) is grey. `stripe` darkens it to 50% for the alternate
  * stripes.
  */
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe);
