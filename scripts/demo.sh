@@ -16,10 +16,7 @@ if [ "$RVIZ" = true ] && ! command -v rviz >/dev/null 2>&1; then
   PACKAGES=(rviz) install_missing
 fi
 
-set +u
-source "$BUILD_DIR/devel/setup.bash"
-set -u
-export ROS_HOME="${ROS_HOME:-$BUILD_DIR/ros_home}"
+use_ros_environment
 echo "== tether_node demo: rviz $RVIZ, ${DURATION}s (DURATION=0 runs until Ctrl-C)"
 if [ "$RVIZ" = true ]; then
   echo "   rviz: fixed frame 'world'; the cable is the MarkerArray /tether_node/markers, coloured by tension"

@@ -5,10 +5,7 @@
 # time of the node process) over SECONDS_PER_RUN (default 30) after a 5 s warm-up.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-set +u
-source "$BUILD_DIR/devel/setup.bash"
-set -u
-export ROS_HOME="$BUILD_DIR/ros_home"
+use_ros_environment
 export ROS_MASTER_URI=http://localhost:11431
 SECONDS_PER_RUN="${SECONDS_PER_RUN:-30}"
 pids=()

@@ -4,10 +4,7 @@
 set -euo pipefail
 PACKAGES_EXTRA="rviz xvfb xauth x11-apps imagemagick libgl1-mesa-dri"
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-set +u
-source "$BUILD_DIR/devel/setup.bash"
-set -u
-export ROS_HOME="$BUILD_DIR/ros_home"
+use_ros_environment
 export ROS_MASTER_URI=http://localhost:11441
 OUT="${OUT:-$ROOT/docs/rviz_demo.png}"
 AT="${AT:-20}"

@@ -52,8 +52,15 @@ build_target() {
   grep -E "warning:" "$log" || true
 }
 
-if [ "${SETUP_ONLY_FUNCTIONS:-}" != 1 ]; then
-  install_missing
-  mkdir -p "$BUILD_DIR"
-  build_package
-fi
+# Enters the built workspace's ROS environment (roslaunch, rostest, rosrun find rov_tether).
+use_ros_environment() {
+  set +u
+  # shellcheck disable=SC1091
+  source "$BUILD_DIR/devel/setup.bash"
+  set -u
+  export ROS_HOME="${ROS_HOME:-$BUILD_DIR/ros_home}"
+}
+
+install_missing
+mkdir -p "$BUILD_DIR"
+build_package

@@ -19,10 +19,7 @@ for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
 done
 
 # The node with a ROS master: rostest starts its own roscore on a free port.
-set +u
-source "$BUILD_DIR/devel/setup.bash"
-set -u
-export ROS_HOME="$BUILD_DIR/ros_home"
+use_ros_environment
 for launch in "$ROOT"/test/ros/*.test; do
   echo "== rostest $(basename "$launch")"
   rostest --results-base-dir="$RESULTS/rostest" "$launch" >"$BUILD_DIR/rostest_$(basename "$launch").log" 2>&1 || {

@@ -29,13 +29,22 @@ std_msgs::ColorRGBA rgba(double r, double g, double b, double a = 1.0)
   return color;
 }
 
-visualization_msgs::Marker& markerSlot(visualization_msgs::MarkerArray* markers, std::size_t id)
+/// Marker `id` of the array (grown when needed), with header, namespace, type, ADD and identity pose.
+visualization_msgs::Marker& startMarker(visualization_msgs::MarkerArray* markers, std::size_t id, int type,
+                                        const std_msgs::Header& header, const std::string& ns)
 {
   if (markers->markers.size() <= id)
   {
     markers->markers.resize(id + 1);
   }
-  return markers->markers[id];
+  visualization_msgs::Marker& marker = markers->markers[id];
+  marker.header = header;
+  marker.ns = ns;
+  marker.id = static_cast<int>(id);
+  marker.type = type;
+  marker.action = visualization_msgs::Marker::ADD;
+  marker.pose.orientation.w = 1.0;
+  return marker;
 }
 
 }  // namespace
@@ -112,14 +121,11 @@ void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions,
   const std::size_t particles = sim.deployedParticleCount();
   const std::size_t first = sim.state().first;  // particle identity: stripes travel with the cable
 
-  visualization_msgs::Marker& cable = markerSlot(markers, 0);
-  cable.header.stamp = stamp;
-  cable.header.frame_id = options.frame_id;
-  cable.ns = options.ns;
-  cable.id = 0;
-  cable.type = visualization_msgs::Marker::LINE_LIST;
-  cable.action = visualization_msgs::Marker::ADD;
-  cable.pose.orientation.w = 1.0;
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = options.frame_id;
+  visualization_msgs::Marker& cable =
+      startMarker(markers, 0, visualization_msgs::Marker::LINE_LIST, header, options.ns);
   cable.scale.x = options.line_width;
   cable.points.resize(2 * (particles - 1));
   cable.colors.resize(2 * (particles - 1));
@@ -134,37 +140,22 @@ void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions,
     cable.colors[2 * k + 1] = color;
   }
 
-  visualization_msgs::Marker& spool = markerSlot(markers, 1);
-  spool.header = cable.header;
-  spool.ns = options.ns;
-  spool.id = 1;
-  spool.type = visualization_msgs::Marker::CYLINDER;
-  spool.action = visualization_msgs::Marker::ADD;
+  visualization_msgs::Marker& spool = startMarker(markers, 1, visualization_msgs::Marker::CYLINDER, header, options.ns);
   spool.pose.position = toPoint(sim.particle(0));
-  spool.pose.orientation.w = 1.0;
   spool.scale.x = spool.scale.y = 0.3;
   spool.scale.z = 0.2;
   spool.color = rgba(0.9, 0.6, 0.1);
 
-  visualization_msgs::Marker& attachment = markerSlot(markers, 2);
-  attachment.header = cable.header;
-  attachment.ns = options.ns;
-  attachment.id = 2;
-  attachment.type = visualization_msgs::Marker::SPHERE;
+  visualization_msgs::Marker& attachment =
+      startMarker(markers, 2, visualization_msgs::Marker::SPHERE, header, options.ns);
   attachment.action = sim.vehicleAttached() ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
   attachment.pose.position = toPoint(sim.particle(particles - 1));
-  attachment.pose.orientation.w = 1.0;
   attachment.scale.x = attachment.scale.y = attachment.scale.z = 4.0 * options.line_width;
   attachment.color = rgba(1.0, 1.0, 1.0);
 
-  visualization_msgs::Marker& label = markerSlot(markers, 3);
-  label.header = cable.header;
-  label.ns = options.ns;
-  label.id = 3;
-  label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
-  label.action = visualization_msgs::Marker::ADD;
+  visualization_msgs::Marker& label =
+      startMarker(markers, 3, visualization_msgs::Marker::TEXT_VIEW_FACING, header, options.ns);
   label.pose.position = toPoint(sim.particle(particles - 1) + Position(0.0, 0.0, 0.4));
-  label.pose.orientation.w = 1.0;
   label.scale.z = 0.25;
   label.color = rgba(1.0, 1.0, 1.0);
   char text[96];
@@ -189,6 +180,66 @@ geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::
   wrench.wrench.torque.y = torque.y();
   wrench.wrench.torque.z = torque.z();
   return wrench;
+}
+
+std::string configToParams(const TetherConfig& config, TetherParams* params)
+{
+  std::string errors;
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    boost::any value;
+    description->getValue(config, value);
+    ParamValue param;
+    if (const auto* d = boost::any_cast<double>(&value))
+    {
+      param = *d;
+    }
+    else if (const auto* i = boost::any_cast<int>(&value))
+    {
+      param = static_cast<std::int64_t>(*i);
+    }
+    else if (const auto* b = boost::any_cast<bool>(&value))
+    {
+      param = *b;
+    }
+    else
+    {
+      param = boost::any_cast<std::string>(value);
+    }
+    const std::string error = setParameter(*params, description->name, param);
+    if (!error.empty())
+    {
+      errors += (errors.empty() ? "" : "; ") + error;
+    }
+  }
+  return errors;
+}
+
+TetherConfig paramsToConfig(const TetherParams& params)
+{
+  TetherConfig config = TetherConfig::__getDefault__();
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    const ParamValue value = getParameter(params, description->name);
+    const auto* base = description.get();
+    if (const auto* d = dynamic_cast<const TetherConfig::ParamDescription<double>*>(base))
+    {
+      config.*(d->field) = std::get<double>(value);
+    }
+    else if (const auto* i = dynamic_cast<const TetherConfig::ParamDescription<int>*>(base))
+    {
+      config.*(i->field) = static_cast<int>(std::get<std::int64_t>(value));
+    }
+    else if (const auto* b = dynamic_cast<const TetherConfig::ParamDescription<bool>*>(base))
+    {
+      config.*(b->field) = std::get<bool>(value);
+    }
+    else if (const auto* s = dynamic_cast<const TetherConfig::ParamDescription<std::string>*>(base))
+    {
+      config.*(s->field) = std::get<std::string>(value);
+    }
+  }
+  return config;
 }
 
 void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,

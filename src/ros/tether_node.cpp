@@ -54,7 +54,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   diagnostics_->setHardwareID("rov_tether");
   diagnostics_->add("tether", this, &TetherNode::diagnose);
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
-  reconfigure_server_->updateConfig(configFromParams(params));
+  reconfigure_server_->updateConfig(paramsToConfig(params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
   if (options_.pose_source == "topic")
   {
@@ -322,7 +322,7 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
     return true;
   }
   sim_->setTargetLength(target);
-  reconfigure_server_->updateConfig(configFromParams(params));
+  reconfigure_server_->updateConfig(paramsToConfig(params));
   response.success = true;
   response.message = "winch " + toString(params.winch_mode);
   return true;
@@ -336,27 +336,6 @@ bool TetherNode::onReset(std_srvs::Trigger::Request& /*request*/, std_srvs::Trig
   return true;
 }
 
-TetherConfig TetherNode::configFromParams(const TetherParams& p) const
-{
-  TetherConfig config;
-  config.drag = p.drag;
-  config.iterations = p.iterations;
-  config.noise = p.noise;
-  config.bending = p.bending;
-  config.solver = toString(p.solver);
-  config.time_step = p.time_step;
-  config.weight_in_water = p.weight_in_water;
-  config.mass_per_length = p.mass_per_length;
-  config.axial_stiffness = p.axial_stiffness;
-  config.winch_mode = toString(p.winch_mode);
-  config.winch_speed = p.winch_speed;
-  config.max_winch_speed = p.max_winch_speed;
-  config.payout_threshold = p.payout_threshold;
-  config.reel_in_slack = p.reel_in_slack;
-  config.max_vehicle_jump = p.max_vehicle_jump;
-  return config;
-}
-
 void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
 {
   TetherParams params;
@@ -365,28 +344,7 @@ void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
     params = pending_params_ ? *pending_params_ : sim_->params();
   }
   const TetherParams current = params;
-  std::string error;
-  params.drag = config.drag;
-  params.iterations = config.iterations;
-  params.noise = config.noise;
-  params.bending = config.bending;
-  if (!parseSolver(config.solver, &params.solver))
-  {
-    error = "solver '" + config.solver + "': expected pbd or pbd_sequential";
-  }
-  params.time_step = config.time_step;
-  params.weight_in_water = config.weight_in_water;
-  params.mass_per_length = config.mass_per_length;
-  params.axial_stiffness = config.axial_stiffness;
-  if (!parseWinchMode(config.winch_mode, &params.winch_mode))
-  {
-    error = "winch_mode '" + config.winch_mode + "': expected passive, locked or speed";
-  }
-  params.winch_speed = config.winch_speed;
-  params.max_winch_speed = config.max_winch_speed;
-  params.payout_threshold = config.payout_threshold;
-  params.reel_in_slack = config.reel_in_slack;
-  params.max_vehicle_jump = config.max_vehicle_jump;
+  std::string error = configToParams(config, &params);
   for (const auto& e : params.validate())
   {
     error += (error.empty() ? "" : "; ") + e;
@@ -394,7 +352,7 @@ void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
   if (!error.empty())
   {
     ROS_ERROR("tether_node: dynamic_reconfigure change refused, old values kept: %s", error.c_str());
-    config = configFromParams(current);
+    config = paramsToConfig(current);
     return;
   }
   std::lock_guard<std::mutex> lock(pending_mutex_);

@@ -198,6 +198,37 @@ TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)
   }
 }
 
+// dynamic_reconfigure fields map to the model parameters by name, both ways, through the core's table.
+TEST(Reconfigure, ConfigAndParamsMapByName)
+{
+  TetherParams params;
+  params.drag = 0.7;
+  params.iterations = 25;
+  params.bending = false;
+  params.solver = SolverType::kPbdSequential;
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = -0.4;
+  const TetherConfig config = paramsToConfig(params);
+  EXPECT_EQ(config.drag, 0.7);
+  EXPECT_EQ(config.iterations, 25);
+  EXPECT_FALSE(config.bending);
+  EXPECT_EQ(config.solver, "pbd_sequential");
+  EXPECT_EQ(config.winch_mode, "speed");
+  TetherParams back;
+  ASSERT_EQ(configToParams(config, &back), "");
+  int fields = 0;
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    EXPECT_EQ(getParameter(back, description->name), getParameter(params, description->name)) << description->name;
+    ++fields;
+  }
+  EXPECT_GE(fields, 15);  // drag, iterations, noise and every other live parameter
+
+  TetherConfig bad = config;
+  bad.winch_mode = "turbo";
+  EXPECT_NE(configToParams(bad, &back).find("winch_mode"), std::string::npos);
+}
+
 TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
 {
   XmlRpc::XmlRpcValue dict;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rov_tether/GetTension.h"
+#include "rov_tether/TetherConfig.h"
 #include "rov_tether/TetherState.h"
 #include "rov_tether/tether_simulation.hpp"
 
@@ -48,6 +49,14 @@ void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions,
 /// frame); torque is about `vehicle_origin` [N m].
 geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::Vector3d& vehicle_origin,
                                       const ros::Time& stamp, const std::string& frame_id);
+
+/// Applies every dynamic_reconfigure field to `params` through the core's setParameter (the .cfg uses
+/// the model's parameter names). Returns "" or every problem, each naming its parameter; it does not
+/// validate relations between fields (TetherParams::validate() does).
+std::string configToParams(const TetherConfig& config, TetherParams* params);
+
+/// The dynamic_reconfigure view of `params` (every field of the .cfg, read by name).
+TetherConfig paramsToConfig(const TetherParams& params);
 
 /// Answers a GetTension request from the simulation and its segment tensions.
 void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,

@@ -54,7 +54,6 @@ class TetherNode
   void resetTether(const ros::Time& now, const std::string& why);
   void applyPendingParams();
   void publish(const ros::Time& now);
-  TetherConfig configFromParams(const TetherParams& params) const;
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
