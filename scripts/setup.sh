@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Installs what rov_tether needs from Debian's archive (only what is missing), then configures and
-# builds the package in ./build. Sourced by scripts/demo.sh and scripts/test.sh.
+# builds the package in ./catkin_build. Sourced by every script in scripts/.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+# Not "build": rosrun ignores executables under <package>/build/, and the package is the repository root.
+BUILD_DIR="${BUILD_DIR:-$ROOT/catkin_build}"
 # The first python3 on PATH may not be Debian's (and then lacks catkin_pkg): ROS tools use /usr/bin.
 export PATH="/usr/bin:/bin:$PATH"
 

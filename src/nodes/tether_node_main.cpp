@@ -6,9 +6,12 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "tether_node");
+  // Kept alive past a failed start: destroying the last NodeHandle shuts ROS (and its logging) down.
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
   try
   {
-    rov_tether::ros_layer::TetherNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    rov_tether::ros_layer::TetherNode node(nh, private_nh);
     ros::spin();
   }
   catch (const std::exception& e)
