@@ -201,5 +201,44 @@ TEST(Reset, ResetRestartsAtTheInitialLengthAndTime)
   EXPECT_NEAR(sim.time(), 100.1, 1e-9);
 }
 
+// A run after a reset repeats a fresh run bit for bit: the vehicle attaches at its first sample's time,
+// whenever that sample arrives, and the noise is reseeded.
+TEST(Reset, ARunAfterAResetRepeatsAFreshRun)
+{
+  auto drive = [](TetherSimulation& sim, double start, bool early)
+  {
+    if (early)
+    {
+      sim.addVehicleSample(start + 0.5, Position(1.5, 0.0, -1.0));  // arrives before its time
+    }
+    for (int k = 1; k <= 400; ++k)
+    {
+      const double t = start + 0.01 * k;
+      if (!early && k == 50)
+      {
+        sim.addVehicleSample(start + 0.5, Position(1.5, 0.0, -1.0));  // arrives just in time
+      }
+      if (k > 50)
+      {
+        sim.addVehicleSample(t, Position(1.5 + 0.3 * (t - start - 0.5), 0.0, -1.0));
+      }
+      sim.advanceTo(t - 0.1);
+    }
+  };
+  TetherSimulation fresh(TetherParams{}, Position::Zero(), 10.0);
+  drive(fresh, 10.0, true);
+  TetherSimulation replayed(TetherParams{}, Position::Zero(), 0.0);
+  replayed.advance(3.0);
+  replayed.reset(10.0);
+  drive(replayed, 10.0, false);
+  ASSERT_EQ(fresh.deployedParticleCount(), replayed.deployedParticleCount());
+  EXPECT_EQ(fresh.deployedLength(), replayed.deployedLength());
+  for (std::size_t k = 0; k < fresh.deployedParticleCount(); ++k)
+  {
+    ASSERT_EQ(fresh.particle(k), replayed.particle(k)) << k;
+  }
+  EXPECT_GT(fresh.deployedLength(), 2.5);  // the vehicle pulled cable out meanwhile
+}
+
 }  // namespace
 }  // namespace rov_tether::test

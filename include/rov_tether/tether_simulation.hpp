@@ -64,7 +64,8 @@ class TetherSimulation
   /// Moves the spool outlet [m]. Refuses non-finite positions.
   Status setSpoolPosition(const Position& spool);
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
-  /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle.
+  /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle
+  /// when the simulation reaches its time (the cable is laid out to it then).
   /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
   /// rest, from the spool to the new position when the simulation reaches t (see README).
   Status addVehicleSample(double t, const Position& vehicle);
@@ -84,8 +85,9 @@ class TetherSimulation
   Status advanceTo(double t, std::size_t* steps = nullptr);
   /// Takes exactly one internal step.
   void step();
-  /// Re-lays the cable at initial_deployed_length, at rest, and restarts time at `time` [s]. Vehicle
-  /// samples are dropped; the vehicle stays attached at its last position.
+  /// Re-lays the cable at initial_deployed_length, at rest, reseeds the noise and restarts time at
+  /// `time` [s]. Vehicle samples are dropped and the vehicle is detached until the next sample, so a run
+  /// after a reset repeats a fresh run exactly.
   void reset(double time);
 
   double time() const { return time_; }

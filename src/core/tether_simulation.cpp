@@ -103,8 +103,10 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   {
     throw std::invalid_argument("vehicle position must be finite");
   }
-  const Status attached = addVehicleSample(start_time, vehicle);
-  (void)attached;  // cannot fail: finite input, first sample
+  vehicle_attached_ = true;
+  vehicle_ = vehicle;
+  samples_.assign(1, VehicleSample{start_time, vehicle, false});
+  layOut(deployedLength());
 }
 
 void TetherSimulation::applyParams(const TetherParams& params)
@@ -285,12 +287,11 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   {
     return Status::error("vehicle sample rejected: time and position must be finite");
   }
-  if (!vehicle_attached_)
+  if (!vehicle_attached_ && samples_.empty())
   {
-    vehicle_attached_ = true;
-    vehicle_ = vehicle;
-    samples_.assign(1, VehicleSample{t, vehicle, false});
-    layOut(deployedLength());
+    // The first sample attaches the vehicle when the simulation reaches its time (see vehicleAt), so
+    // when a sample arrives does not change the run.
+    samples_.push_back(VehicleSample{t, vehicle, false});
     return Status::success();
   }
   if (!samples_.empty() && t < samples_.back().time)
@@ -336,6 +337,16 @@ void TetherSimulation::detachVehicle()
 
 Position TetherSimulation::vehicleAt(double t)
 {
+  if (!vehicle_attached_)
+  {
+    if (samples_.empty() || samples_.front().time > t)
+    {
+      return vehicle_;
+    }
+    vehicle_attached_ = true;  // the first sample's time has come: attach and lay the cable out to it
+    vehicle_ = samples_.front().position;
+    layOut(deployedLength());
+  }
   bool jumped = false;
   while (samples_.size() >= 2 && samples_[1].time <= t)
   {
@@ -408,7 +419,7 @@ void TetherSimulation::step()
   const std::size_t n = state_.size();
 
   state_.place(state_.first, spool_);
-  if (vehicle_attached_)
+  if (vehicle_attached_ || !samples_.empty())
   {
     vehicle_ = vehicleAt(next_time);
   }
@@ -580,11 +591,10 @@ bool TetherSimulation::stateFinite() const
 
 void TetherSimulation::reset(double time)
 {
+  // Detached until the next sample: a replay after a reset starts exactly as the first run did.
   samples_.clear();
-  if (vehicle_attached_)
-  {
-    samples_.push_back(VehicleSample{time, vehicle_, false});
-  }
+  vehicle_attached_ = false;
+  paying_out_ = false;
   rng_.reseed(static_cast<std::uint64_t>(params_.seed));
   time_ = target_time_ = base_time_ = time;
   base_steps_ = steps_;

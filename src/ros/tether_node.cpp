@@ -140,11 +140,13 @@ void TetherNode::addVehiclePose(const Eigen::Isometry3d& vehicle, const ros::Tim
 void TetherNode::resetTether(const ros::Time& now, const std::string& why)
 {
   ROS_WARN("tether_node: %s: resetting the tether to %.2f m", why.c_str(), sim_->params().initial_deployed_length);
-  sim_->reset(now.toSec() - options_.interpolation_delay);
+  sim_->reset(alignedPhysicsTime(now));
+  next_state_physics_ = 0.0;
   ++resets_;
   last_time_ = now;
   last_pose_stamp_ = ros::Time();
-  last_state_time_ = next_state_time_ = next_marker_time_ = ros::Time();
+  next_marker_time_ = ros::Time();
+  last_state_physics_ = 0.0;
   last_deployed_ = sim_->deployedLength();
 }
 
@@ -180,7 +182,8 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   if (!started_)
   {
     started_ = true;
-    sim_->reset(now.toSec() - options_.interpolation_delay);
+    sim_->reset(alignedPhysicsTime(now));
+    next_state_physics_ = 0.0;
     last_time_ = now;
     last_deployed_ = sim_->deployedLength();
   }
@@ -216,10 +219,29 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     }
   }
 
-  // Poses arrive late: running the physics behind ROS time lets them bracket it.
+  // Poses arrive late: running the physics behind ROS time lets them bracket it. ~state is published
+  // on a grid of physics time (multiples of 1 / state_rate), so a replay gives the same series.
+  const double target = now.toSec() - options_.interpolation_delay;
+  const double period = 1.0 / options_.state_rate;
+  if (next_state_physics_ <= 0.0 || next_state_physics_ < target - 1.0)
+  {
+    next_state_physics_ = std::ceil(std::max(sim_->time(), target - 1.0) / period) * period;
+  }
   const ros::WallTime wall_start = ros::WallTime::now();
   std::size_t steps = 0;
-  sim_->advanceTo(now.toSec() - options_.interpolation_delay, &steps);
+  for (;;)
+  {
+    const bool state_due = next_state_physics_ <= target;
+    std::size_t taken = 0;
+    sim_->advanceTo(state_due ? next_state_physics_ : target, &taken);
+    steps += taken;
+    if (!state_due)
+    {
+      break;
+    }
+    publishState();
+    next_state_physics_ += period;
+  }
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   if (steps > 0 && wall > 0.0)
   {
@@ -227,54 +249,54 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     real_time_factor_ = smooth(real_time_factor_, static_cast<double>(steps) * sim_->params().time_step / wall);
   }
   last_time_ = now;
-  publish(now);
+  publishMarkers(now);
   diagnostics_->update();
 }
 
-void TetherNode::publish(const ros::Time& now)
+double TetherNode::alignedPhysicsTime(const ros::Time& now) const
 {
-  bool tensions_ready = false;
+  const double dt = sim_->params().time_step;
+  return std::floor((now.toSec() - options_.interpolation_delay) / dt) * dt;
+}
+
+void TetherNode::publishState()
+{
+  sim_->computeSegmentTensions(tensions_);
+  const double physics_time = sim_->time();
+  const double elapsed = physics_time - last_state_physics_;
+  const double deployed = sim_->deployedLength();
+  winch_speed_ = last_state_physics_ > 0.0 && elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
+  last_deployed_ = deployed;
+  last_state_physics_ = physics_time;
+  const ros::Time stamp(std::max(physics_time, 0.0));  // the state is of the physics' time
+  toStateMessage(*sim_, tensions_, stamp, options_.world_frame, winch_speed_, resets_, &state_msg_);
+  state_pub_.publish(state_msg_);
+  wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), stamp, options_.world_frame));
+}
+
+void TetherNode::publishMarkers(const ros::Time& now)
+{
+  const ros::Duration period(1.0 / options_.marker_rate);
+  if (marker_pub_.getNumSubscribers() == 0)
+  {
+    return;  // markers cost nothing when nobody looks
+  }
+  if (!next_marker_time_.isZero() && now < next_marker_time_ && next_marker_time_ - now <= period)
+  {
+    return;
+  }
   // A fixed schedule (next += period) keeps the average rate exact on the physics timer's grid.
-  auto due = [&now](ros::Time* next, double rate)
-  {
-    const ros::Duration period(1.0 / rate);
-    if (!next->isZero() && now < *next && *next - now <= period)
-    {
-      return false;
-    }
-    const bool behind = next->isZero() || now - *next > period || *next - now > period;
-    *next = behind ? now + period : *next + period;
-    return true;
-  };
-  if (due(&next_state_time_, options_.state_rate))
-  {
-    sim_->computeSegmentTensions(tensions_);
-    tensions_ready = true;
-    const double elapsed = last_state_time_.isZero() ? 0.0 : (now - last_state_time_).toSec();
-    const double deployed = sim_->deployedLength();
-    winch_speed_ = elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
-    last_deployed_ = deployed;
-    last_state_time_ = now;
-    const ros::Time physics_time(std::max(sim_->time(), 0.0));  // the state is of the physics' time
-    toStateMessage(*sim_, tensions_, physics_time, options_.world_frame, winch_speed_, resets_, &state_msg_);
-    state_pub_.publish(state_msg_);
-    wrench_pub_.publish(toWrench(*sim_, last_vehicle_.translation(), physics_time, options_.world_frame));
-  }
-  // Markers cost nothing when nobody looks.
-  if (marker_pub_.getNumSubscribers() > 0 && due(&next_marker_time_, options_.marker_rate))
-  {
-    if (!tensions_ready)
-    {
-      sim_->computeSegmentTensions(tensions_);
-    }
-    MarkerOptions marker_options;
-    marker_options.frame_id = options_.world_frame;
-    marker_options.line_width = options_.marker_line_width;
-    marker_options.tension_full_scale = options_.tension_full_scale;
-    marker_options.stripe_segments = options_.stripe_segments;
-    toMarkers(*sim_, tensions_, ros::Time(std::max(sim_->time(), 0.0)), marker_options, &markers_);
-    marker_pub_.publish(markers_);
-  }
+  const bool behind =
+      next_marker_time_.isZero() || now - next_marker_time_ > period || next_marker_time_ - now > period;
+  next_marker_time_ = behind ? now + period : next_marker_time_ + period;
+  sim_->computeSegmentTensions(tensions_);
+  MarkerOptions marker_options;
+  marker_options.frame_id = options_.world_frame;
+  marker_options.line_width = options_.marker_line_width;
+  marker_options.tension_full_scale = options_.tension_full_scale;
+  marker_options.stripe_segments = options_.stripe_segments;
+  toMarkers(*sim_, tensions_, ros::Time(std::max(sim_->time(), 0.0)), marker_options, &markers_);
+  marker_pub_.publish(markers_);
 }
 
 bool TetherNode::onGetTension(GetTension::Request& request, GetTension::Response& response)

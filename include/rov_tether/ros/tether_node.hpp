@@ -53,7 +53,12 @@ class TetherNode
   bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose);
   void resetTether(const ros::Time& now, const std::string& why);
   void applyPendingParams();
-  void publish(const ros::Time& now);
+  /// Publishes ~state and ~wrench for the physics' current time.
+  void publishState();
+  /// Publishes ~markers at marker_rate when someone subscribes.
+  void publishMarkers(const ros::Time& now);
+  /// The physics time for ROS time `now`: interpolation_delay behind, on the grid of time_step [s].
+  double alignedPhysicsTime(const ros::Time& now) const;
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -79,11 +84,11 @@ class TetherNode
 
   bool started_ = false;
   ros::Time last_time_;
-  ros::Time last_pose_time_;   ///< ROS time the last accepted pose arrived.
-  ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
-  ros::Time last_state_time_;
-  ros::Time next_state_time_;   ///< When ~state is due next.
-  ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
+  ros::Time last_pose_time_;         ///< ROS time the last accepted pose arrived.
+  ros::Time last_pose_stamp_;        ///< Stamp of the last accepted pose.
+  double next_state_physics_ = 0.0;  ///< Physics time at which ~state is due next [s]; 0: not set.
+  double last_state_physics_ = 0.0;  ///< Physics time of the last ~state [s].
+  ros::Time next_marker_time_;       ///< When ~markers are due next (with subscribers).
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
   double last_deployed_ = 0.0;
   double winch_speed_ = 0.0;
