@@ -64,9 +64,10 @@ def main():
     write(out_dir, "straight_excursion", 50, lambda t: path(excursion, t),
           "out 6 m at 0.3 m/s, hold, back")
 
-    legs = [[0, 1.5, -3, -2]]
-    t, x = 0.0, 1.5
-    for leg in range(6):  # 6 m legs at 1.5 m/s, 1 m steps, in a 6 x 6 m box 1.5 m from the spool
+    legs = [[0, 3.0, -3, -2]]
+    t, x = 0.0, 3.0
+    for leg in range(6):  # 6 m legs at 1.5 m/s, 1 m apart, in a 5 x 6 m box 3 m from the spool, so the
+        # radial speed stays under max_winch_speed (1 m/s)
         y_end = 3.0 if leg % 2 == 0 else -3.0
         t += 4.0
         legs.append([t, x, y_end, -2])

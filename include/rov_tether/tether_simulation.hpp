@@ -137,6 +137,9 @@ class TetherSimulation
   bool isPinned(std::size_t i) const;
   std::size_t freeEnd() const;
   Position vehicleAt(double t);
+  /// Deployed length to lay the cable out with when the vehicle appears at `vehicle` (attach, jump):
+  /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
+  double lengthToReach(const Position& vehicle) const;
   void integrate(double dt);
   void addNoise(double dt);
   void runWinch(double dt);

@@ -345,7 +345,7 @@ Position TetherSimulation::vehicleAt(double t)
     }
     vehicle_attached_ = true;  // the first sample's time has come: attach and lay the cable out to it
     vehicle_ = samples_.front().position;
-    layOut(deployedLength());
+    layOut(lengthToReach(vehicle_));
   }
   bool jumped = false;
   while (samples_.size() >= 2 && samples_[1].time <= t)
@@ -368,16 +368,20 @@ Position TetherSimulation::vehicleAt(double t)
   {
     // The cable cannot follow a jump physically: re-lay it, at rest, to the new attachment point.
     vehicle_ = target;
-    double length = deployedLength();
-    if (params_.winch_mode != WinchMode::kLocked)
-    {
-      length =
-          std::clamp(std::max(length, (target - spool_).norm()), params_.min_deployed_length, params_.cable_length);
-    }
-    layOut(length);
+    layOut(lengthToReach(target));
     ++jumps_;
   }
   return target;
+}
+
+double TetherSimulation::lengthToReach(const Position& vehicle) const
+{
+  if (params_.winch_mode == WinchMode::kLocked)
+  {
+    return deployedLength();
+  }
+  return std::clamp(std::max(deployedLength(), (vehicle - spool_).norm()), params_.min_deployed_length,
+                    params_.cable_length);
 }
 
 Status TetherSimulation::advance(double dt, std::size_t* steps)
