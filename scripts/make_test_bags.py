@@ -12,6 +12,7 @@ import sys
 import rosbag
 import rospy
 from geometry_msgs.msg import PoseStamped
+from simulated_rov import position_at as path  # piecewise-linear [x, y, z] along [t, x, y, z] waypoints
 
 START = 1000.0  # [s] bag time of the first message; every bag starts here, so replays overlap in time
 RATE = 20.0  # [Hz] pose rate
@@ -25,17 +26,6 @@ def pose(t, x, y, z, yaw):
     msg.pose.orientation.z = math.sin(yaw / 2)
     msg.pose.orientation.w = math.cos(yaw / 2)
     return msg
-
-
-def path(waypoints, t):
-    """Piecewise-linear [x, y, z] along [t, x, y, z] waypoints."""
-    if t <= waypoints[0][0]:
-        return waypoints[0][1:]
-    for a, b in zip(waypoints, waypoints[1:]):
-        if a[0] <= t <= b[0] and b[0] > a[0]:
-            u = (t - a[0]) / (b[0] - a[0])
-            return [a[i] + u * (b[i] - a[i]) for i in range(1, 4)]
-    return waypoints[-1][1:]
 
 
 def write(out_dir, name, duration, position, description, nan_at=None):

@@ -190,6 +190,20 @@ TEST(LiveParameters, StructuralChangeRebuildsTheCable)
   EXPECT_EQ(sim.deployedParticleCount(), 11u);
 }
 
+TEST(LiveParameters, InitialLengthChangeTakesEffectAtTheNextReset)
+{
+  TetherSimulation sim = movingTether();
+  const double deployed = sim.deployedLength();
+  TetherParams params = sim.params();
+  params.initial_deployed_length = 3.0;
+  const Status status = sim.setParams(params);
+  EXPECT_TRUE(status.ok);
+  EXPECT_EQ(status.message, "");  // no rebuild
+  EXPECT_EQ(sim.deployedLength(), deployed);
+  sim.reset(5.0);
+  EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-12);
+}
+
 TEST(Reset, ResetRestartsAtTheInitialLengthAndTime)
 {
   TetherSimulation sim = movingTether();

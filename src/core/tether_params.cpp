@@ -165,8 +165,8 @@ std::size_t TetherParams::segmentCount() const
 
 bool sameStructure(const TetherParams& a, const TetherParams& b)
 {
-  return a.cable_length == b.cable_length && a.segment_length == b.segment_length &&
-         a.initial_deployed_length == b.initial_deployed_length && a.solver == b.solver;
+  // initial_deployed_length only matters at a reset, so it is not structure.
+  return a.cable_length == b.cable_length && a.segment_length == b.segment_length && a.solver == b.solver;
 }
 
 const std::vector<std::string>& parameterNames()
