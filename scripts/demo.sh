@@ -27,7 +27,14 @@ else
 fi
 echo "   Other outputs: rostopic echo /tether_node/state, /tether_node/wrench, /diagnostics;"
 echo "   rosservice call /tether_node/get_tension \"{arc_length_from_vehicle: 0.0, segment: -1}\""
-# roslaunch picks a free port for its own master when none runs (-p 0 is not supported; use 11411+).
-export ROS_MASTER_URI="${ROS_MASTER_URI:-http://localhost:11411}"
-exec roslaunch --port "${ROS_MASTER_URI##*:}" rov_tether demo.launch rviz:="$RVIZ" summary_duration:="$DURATION" 2>&1 |
-  grep --line-buffered -vE "^(\s*\*|SUMMARY|=+|PARAMETERS|NODES|  /|auto-starting|setting /|process\[|started roslaunch|ROS_MASTER_URI|core service|logging to|Checking log|Press Ctrl-C|$)"
+# roslaunch joins the master of ROS_MASTER_URI, or starts one there when none runs.
+# The summary node is "required" when DURATION > 0: its end stops the demo; roslaunch's shutdown chatter
+# about it is filtered out.
+set +e
+roslaunch rov_tether demo.launch rviz:="$RVIZ" summary_duration:="$DURATION" 2>&1 |
+  sed -u 's/\x1b\[[0-9;]*m//g' |
+  grep --line-buffered -vE "^(\s*\*|SUMMARY|=+|PARAMETERS|NODES|  /|auto-starting|setting /|process\[|started roslaunch|ROS_MASTER_URI|started core service|core service|\]2;|logging to|Checking log|Press Ctrl-C|$)|REQUIRED process|has died|finished cleanly|log file:|Initiating shutdown|killing on exit|shutting down processing monitor|^done$"
+launch_status=${PIPESTATUS[0]}
+set -e
+echo "== demo finished (${DURATION}s, roslaunch exit code $launch_status); DURATION=0 keeps it running, RVIZ=true shows rviz"
+exit "$launch_status"
