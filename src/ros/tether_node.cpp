@@ -248,6 +248,12 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     step_seconds_ = smooth(step_seconds_, wall / static_cast<double>(steps));
     real_time_factor_ = smooth(real_time_factor_, static_cast<double>(steps) * sim_->params().time_step / wall);
   }
+  if (sim_->jumpCount() > reported_jumps_)
+  {
+    reported_jumps_ = sim_->jumpCount();
+    ROS_WARN_THROTTLE(1.0, "tether_node: the vehicle pose jumped more than max_vehicle_jump = %.2f m: cable re-laid",
+                      sim_->params().max_vehicle_jump);
+  }
   last_time_ = now;
   publishMarkers(now);
   diagnostics_->update();

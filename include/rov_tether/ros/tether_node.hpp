@@ -96,6 +96,7 @@ class TetherNode
   double real_time_factor_ = 0.0;  ///< Smoothed simulated / wall time of the physics.
   std::uint32_t resets_ = 0;
   std::uint64_t rejected_poses_ = 0;
+  std::uint64_t reported_jumps_ = 0;  ///< Vehicle jumps already logged.
   std::vector<double> tensions_;
   TetherState state_msg_;
   visualization_msgs::MarkerArray markers_;
