@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -35,6 +36,23 @@ struct CableState
   std::vector<double> stretch_lambda;
   std::vector<double> bend_lambda;  ///< As stretch_lambda, for bending constraints [kg m].
   std::size_t first = 0;            ///< Index of the spool outlet particle.
+  /// Particles whose mass, or whose constraints' rest length or weight, changed since a solver last
+  /// read them: [dirty_begin, dirty_end). Solvers that keep copies refresh only this range.
+  std::size_t dirty_begin = 0;
+  std::size_t dirty_end = static_cast<std::size_t>(-1);
+
+  /// Marks particles [begin, end) and the constraints starting there as changed.
+  void markDirty(std::size_t begin, std::size_t end)
+  {
+    if (dirty_begin >= dirty_end)
+    {
+      dirty_begin = begin, dirty_end = end;
+    }
+    else
+    {
+      dirty_begin = std::min(dirty_begin, begin), dirty_end = std::max(dirty_end, end);
+    }
+  }
 
   /// Number of particles (deployed and on the spool).
   std::size_t size() const { return x.size(); }

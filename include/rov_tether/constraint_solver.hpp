@@ -53,6 +53,9 @@ class PbdSolver : public ConstraintSolver
   std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
   std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
   std::size_t block_ = 0;
+  std::size_t copied_first_ = static_cast<std::size_t>(-1);  ///< Layout of the copied constraint data.
+  std::size_t copied_size_ = 0;
+  std::size_t copied_block_ = 0;
 };
 
 /// The paper's Figure 2 in its literal order (segment 0, 1, 2, ... then bending 0, 1, ...). Kept as the

@@ -6,7 +6,7 @@
 // The hot loops are compiled twice (AVX2 and baseline x86-64) and the loader picks the clone the CPU
 // supports, so one binary is fast on current machines and still runs on old ones.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(ROV_TETHER_NO_CLONES)
-#define ROV_TETHER_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#define ROV_TETHER_TARGET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define ROV_TETHER_TARGET_CLONES
 #endif
@@ -145,25 +145,42 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     }
   }
   auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };
+  // Masses, rest lengths and weights change only near the spool (pay-out) or on a rebuild: copy them
+  // again only for the particles the state marks dirty, or all when the layout shifted.
+  std::size_t begin = 0;
+  std::size_t end = m;
+  if (f == copied_first_ && state.size() == copied_size_ && copied_block_ == block_)
+  {
+    begin = state.dirty_begin > f ? state.dirty_begin - f : 0;
+    end = state.dirty_end > f ? std::min(state.dirty_end - f, m) : 0;
+  }
+  for (std::size_t l = begin; l < end; ++l)
+  {
+    const std::size_t s = slot(l);
+    inv_mass_[s] = state.inv_mass[f + l];
+    if (l + 1 < m)
+    {
+      rest_[s] = state.rest[f + l];
+      weight_[s] = state.stretch_weight[f + l];
+    }
+    if (l + 2 < m)
+    {
+      bend_rest_[s] = state.bend_rest[f + l];
+      bend_weight_[s] = state.bend_weight[f + l];
+    }
+  }
+  state.dirty_begin = state.dirty_end = 0;
+  copied_first_ = f;
+  copied_size_ = state.size();
+  copied_block_ = block_;
   for (std::size_t l = 0; l < m; ++l)
   {
     const std::size_t s = slot(l);
     x_[s] = state.x[f + l];
     y_[s] = state.y[f + l];
     z_[s] = state.z[f + l];
-    inv_mass_[s] = state.inv_mass[f + l];
-  }
-  for (std::size_t l = 0; l + 1 < m; ++l)
-  {
-    rest_[slot(l)] = state.rest[f + l];
-    weight_[slot(l)] = state.stretch_weight[f + l];
-    lambda_[slot(l)] = 0.0;
-  }
-  for (std::size_t l = 0; l + 2 < m; ++l)
-  {
-    bend_rest_[slot(l)] = state.bend_rest[f + l];
-    bend_weight_[slot(l)] = state.bend_weight[f + l];
-    bend_lambda_[slot(l)] = 0.0;
+    lambda_[s] = 0.0;
+    bend_lambda_[s] = 0.0;
   }
 
   const Blocked blocked{x_.data(),           y_.data(),           z_.data(),      inv_mass_.data(),

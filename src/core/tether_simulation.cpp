@@ -70,6 +70,7 @@ void CableState::resize(std::size_t particles)
     v->assign(bends, 0.0);
   }
   first = 0;
+  markDirty(0, particles);
 }
 
 void CableState::place(std::size_t i, const Position& p)
@@ -251,6 +252,8 @@ void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
   const std::size_t f = state_.first;
   lo = std::max(lo, f);
   hi = std::min(hi, n - 1);
+  // Bending constraints starting two particles before lo change too.
+  state_.markDirty(std::max(lo, f + 2) - 2, hi + 1);
   // Lumped masses: half of each neighbouring segment (a free end carries half a segment).
   for (std::size_t i = lo; i <= hi; ++i)
   {
