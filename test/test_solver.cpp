@@ -120,6 +120,36 @@ TEST(Solver, BothOrderingsAgreeOnAConsistentProblem)
   }
 }
 
+// The red-black solver keeps copies of rest lengths, masses and weights and refreshes only what the
+// state marks dirty: after changes near the spool it must match a solver that copies everything.
+TEST(Solver, CachedConstraintDataMatchesAFreshCopy)
+{
+  CableState cached = zigzag(41, 5);
+  CableState fresh = cached;
+  PbdSolver persistent;
+  SolverSettings settings;
+  settings.iterations = 7;
+  for (int k = 0; k < 60; ++k)
+  {
+    for (CableState* state : {&cached, &fresh})
+    {
+      const std::size_t f = state->first;
+      state->rest[f] = 0.6 + 0.005 * k;  // the spool segment grows, as during pay-out
+      state->bend_rest[f] = state->rest[f] + state->rest[f + 1];
+      state->inv_mass[f + 1] = 1.0 / (0.5 * (state->rest[f] + state->rest[f + 1]));
+      const double w = state->inv_mass[f + 1] + state->inv_mass[f + 2];
+      state->stretch_weight[f + 1] = 1.0 / w;
+      state->markDirty(f, f + 3);
+    }
+    persistent.solve(cached, settings);
+    PbdSolver().solve(fresh, settings);
+    for (std::size_t i = 0; i < cached.size(); ++i)
+    {
+      ASSERT_EQ(cached.position(i), fresh.position(i)) << "step " << k << ", particle " << i;
+    }
+  }
+}
+
 // "Hot loops allocate nothing": a thousand steps with pay-out, releases, noise and tension reads.
 TEST(Allocation, StepsAllocateNothing)
 {
