@@ -114,6 +114,8 @@ class TetherSimulation
   Force vehicleForce() const;
   /// Deployed length, end tensions, maximum tension and strain.
   TetherSummary summary() const;
+  /// The same from segment tensions the caller already computed (computeSegmentTensions).
+  TetherSummary summarize(const std::vector<double>& tensions) const;
   /// Number of vehicle jumps handled by re-laying the cable.
   std::uint64_t jumpCount() const { return jumps_; }
   /// Number of times a non-finite state was detected and the cable re-laid (should stay 0).

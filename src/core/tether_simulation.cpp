@@ -702,25 +702,33 @@ Force TetherSimulation::vehicleForce() const
 
 TetherSummary TetherSimulation::summary() const
 {
+  computeSegmentTensions(tension_scratch_);
+  return summarize(tension_scratch_);
+}
+
+TetherSummary TetherSimulation::summarize(const std::vector<double>& tensions) const
+{
   TetherSummary result;
   result.time = time_;
   result.deployed_length = deployedLength();
-  computeSegmentTensions(tension_scratch_);
-  const std::size_t segments = tension_scratch_.size();
-  result.tension_spool = tension_scratch_.front();
-  result.tension_vehicle = tension_scratch_.back();
-  const auto max_it = std::max_element(tension_scratch_.begin(), tension_scratch_.end());
+  if (tensions.empty())
+  {
+    return result;
+  }
+  result.tension_spool = tensions.front();
+  result.tension_vehicle = tensions.back();
+  const auto max_it = std::max_element(tensions.begin(), tensions.end());
   result.max_tension = *max_it;
-  result.max_tension_segment = static_cast<std::size_t>(max_it - tension_scratch_.begin());
+  result.max_tension_segment = static_cast<std::size_t>(max_it - tensions.begin());
   double strain_sum = 0.0;
   result.max_strain = -1.0;
-  for (std::size_t k = 0; k < segments; ++k)
+  for (std::size_t k = 0; k < tensions.size(); ++k)
   {
     const double strain = segmentStrain(k);
     result.max_strain = std::max(result.max_strain, strain);
     strain_sum += std::abs(strain);
   }
-  result.mean_strain = strain_sum / static_cast<double>(segments);
+  result.mean_strain = strain_sum / static_cast<double>(tensions.size());
   return result;
 }
 

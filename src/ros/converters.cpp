@@ -87,25 +87,17 @@ void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tens
   msg->deployed_length = sim.deployedLength();
   msg->cable_length = p.cable_length;
   msg->segment_tension.assign(tensions.begin(), tensions.end());
-  msg->tension_spool = tensions.empty() ? 0.0 : tensions.front();
-  msg->tension_vehicle = tensions.empty() ? 0.0 : tensions.back();
-  const auto max_it = std::max_element(tensions.begin(), tensions.end());
-  msg->max_tension = max_it == tensions.end() ? 0.0 : *max_it;
-  msg->max_tension_segment = static_cast<std::uint32_t>(max_it - tensions.begin());
-  msg->max_tension_arc_length = tensions.empty() ? 0.0 : sim.arcLengthFromVehicleToSegment(msg->max_tension_segment);
+  const TetherSummary summary = sim.summarize(tensions);
+  msg->tension_spool = summary.tension_spool;
+  msg->tension_vehicle = summary.tension_vehicle;
+  msg->max_tension = summary.max_tension;
+  msg->max_tension_segment = static_cast<std::uint32_t>(summary.max_tension_segment);
+  msg->max_tension_arc_length = tensions.empty() ? 0.0 : sim.arcLengthFromVehicleToSegment(summary.max_tension_segment);
   msg->winch_mode = toString(p.winch_mode);
   msg->winch_speed = measured_winch_speed;
   msg->target_length = sim.targetLength();
-  double strain_sum = 0.0;
-  double strain_max = 0.0;
-  for (std::size_t k = 0; k < tensions.size(); ++k)
-  {
-    const double strain = sim.segmentStrain(k);
-    strain_sum += std::abs(strain);
-    strain_max = std::max(strain_max, strain);
-  }
-  msg->residual_stretch = tensions.empty() ? 0.0 : strain_sum / static_cast<double>(tensions.size());
-  msg->max_strain = strain_max;
+  msg->residual_stretch = summary.mean_strain;
+  msg->max_strain = summary.max_strain;
   msg->solver = toString(p.solver);
   msg->iterations = static_cast<std::uint32_t>(p.iterations);
   msg->drag = p.drag;
@@ -245,12 +237,12 @@ TetherConfig paramsToConfig(const TetherParams& params)
 void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,
                       const GetTension::Request& request, GetTension::Response* response)
 {
-  response->deployed_length = sim.deployedLength();
-  response->tension_spool = tensions.empty() ? 0.0 : tensions.front();
-  response->tension_vehicle = tensions.empty() ? 0.0 : tensions.back();
-  const auto max_it = std::max_element(tensions.begin(), tensions.end());
-  response->max_tension = max_it == tensions.end() ? 0.0 : *max_it;
-  response->max_tension_segment = static_cast<std::uint32_t>(max_it - tensions.begin());
+  const TetherSummary summary = sim.summarize(tensions);
+  response->deployed_length = summary.deployed_length;
+  response->tension_spool = summary.tension_spool;
+  response->tension_vehicle = summary.tension_vehicle;
+  response->max_tension = summary.max_tension;
+  response->max_tension_segment = static_cast<std::uint32_t>(summary.max_tension_segment);
 
   const bool by_arc = request.arc_length_from_vehicle >= 0.0;
   const bool by_segment = request.segment >= 0;

@@ -107,11 +107,16 @@ void TetherNode::onPose(const geometry_msgs::PoseStamped::ConstPtr& msg)
   addVehiclePose(pose, stamp);
 }
 
-bool TetherNode::lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose)
+bool TetherNode::lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp)
 {
   try
   {
-    *pose = tf2::transformToEigen(tf_buffer_.lookupTransform(options_.world_frame, frame, time));
+    const auto transform = tf_buffer_.lookupTransform(options_.world_frame, frame, time);
+    *pose = tf2::transformToEigen(transform);
+    if (stamp != nullptr)
+    {
+      *stamp = transform.header.stamp;
+    }
     return true;
   }
   catch (const tf2::TransformException& e)
@@ -202,21 +207,11 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   {
     sim_->setSpoolPosition(pose.translation());
   }
-  if (options_.pose_source == "tf")
+  ros::Time stamp;
+  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose, &stamp) &&
+      stamp > last_pose_stamp_)
   {
-    try
-    {
-      const auto transform = tf_buffer_.lookupTransform(options_.world_frame, options_.rov_frame, ros::Time(0));
-      if (transform.header.stamp > last_pose_stamp_)
-      {
-        addVehiclePose(tf2::transformToEigen(transform), transform.header.stamp);
-      }
-    }
-    catch (const tf2::TransformException& e)
-    {
-      ROS_WARN_THROTTLE(1.0, "tether_node: no vehicle transform %s -> %s: %s", options_.world_frame.c_str(),
-                        options_.rov_frame.c_str(), e.what());
-    }
+    addVehiclePose(pose, stamp);
   }
 
   // Poses arrive late: running the physics behind ROS time lets them bracket it. ~state is published

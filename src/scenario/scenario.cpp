@@ -386,8 +386,8 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
     driver.advanceTo(sim, t_out);
     cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const TetherSummary s = sim.summary();
     sim.computeSegmentTensions(tensions);
+    const TetherSummary s = sim.summarize(tensions);
     sim.copyPositions(positions);
     std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g\n", t_out, s.deployed_length, s.tension_spool,
                  s.tension_vehicle, s.max_tension, s.max_strain);

@@ -49,8 +49,9 @@ class TetherNode
 
   /// Turns a vehicle pose (world frame) into an attachment sample; logs (throttled) and drops bad ones.
   void addVehiclePose(const Eigen::Isometry3d& vehicle, const ros::Time& stamp);
-  /// Looks up world_frame -> frame (latest); false (and a throttled warning) when it is not available.
-  bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose);
+  /// Looks up world_frame -> frame at `time` (0: latest), with the transform's stamp when asked; false
+  /// (and a throttled warning) when it is not available.
+  bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp = nullptr);
   void resetTether(const ros::Time& now, const std::string& why);
   void applyPendingParams();
   /// Publishes ~state and ~wrench for the physics' current time.
