@@ -56,6 +56,18 @@ inline std::vector<Position> positions(const TetherSimulation& sim)
   return out;
 }
 
+/// Equality of two parameter values where NaN equals NaN (seabed_z's "absent").
+inline bool sameParamValue(const ParamValue& a, const ParamValue& b)
+{
+  const auto* x = std::get_if<double>(&a);
+  const auto* y = std::get_if<double>(&b);
+  if (x != nullptr && y != nullptr && std::isnan(*x) && std::isnan(*y))
+  {
+    return true;
+  }
+  return a == b;
+}
+
 /// Runs a scenario to time t and returns the simulation.
 inline TetherSimulation runTo(const Scenario& scenario, double t)
 {

@@ -120,9 +120,9 @@ TEST(Params, EveryNameRoundTrips)
   {
     const ParamValue value = getParameter(params, name);
     EXPECT_EQ(setParameter(params, name, value), "") << name;
-    EXPECT_EQ(getParameter(params, name), value) << name;
+    EXPECT_TRUE(sameParamValue(getParameter(params, name), value)) << name;
   }
-  EXPECT_EQ(parameterNames().size(), 20u);
+  EXPECT_EQ(parameterNames().size(), 35u);
   EXPECT_THROW(getParameter(params, "nope"), std::out_of_range);
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 
 #include "rov_tether/cable_state.hpp"
@@ -15,6 +16,7 @@ struct SolverSettings
   bool bending = true;           ///< Project the (i, i+2) bending constraints.
   double time_step = 0.005;      ///< Step the constraints are solved for [s].
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
+  double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
 };
 
 /**
@@ -30,6 +32,8 @@ class ConstraintSolver
   virtual ~ConstraintSolver() = default;
   /// Projects the constraints once per step; must not allocate.
   virtual void solve(CableState& state, const SolverSettings& settings) = 0;
+  /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
+  virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
 /**
@@ -45,9 +49,14 @@ class ConstraintSolver
 class PbdSolver : public ConstraintSolver
 {
  public:
+  /// `compliant` makes this XPBD (Macklin, Mueller, Chentanez 2016): each stretch constraint has the
+  /// compliance rest / EA and each bending constraint (rest / 2)^3 / EI, so the multipliers converge to
+  /// the physical force times dt^2 whatever the iteration count.
+  explicit PbdSolver(bool compliant = false) : compliant_(compliant) {}
   void solve(CableState& state, const SolverSettings& settings) override;
 
  private:
+  bool compliant_;
   /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
   std::vector<double> x_, y_, z_, inv_mass_;
   std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
@@ -64,6 +73,23 @@ class SequentialPbdSolver : public ConstraintSolver
 {
  public:
   void solve(CableState& state, const SolverSettings& settings) override;
+};
+
+/**
+ * A force-based lumped-mass chain: the second half of an explicit Verlet step. The simulation has already
+ * moved every particle by inertia, drag and weight (x holds the prediction, px the positions x_n); this adds
+ * h^2 F(x_n) / m for the axial spring forces F = EA max(strain, 0) (a cable carries no compression). Stable
+ * only for h < dL / sqrt(EA / mu) (TetherParams::criticalStep); the largest strain is reported so that a
+ * blow-up is detected. No bending.
+ */
+class LumpedMassSolver : public ConstraintSolver
+{
+ public:
+  void solve(CableState& state, const SolverSettings& settings) override;
+  double lastMaxStrain() const override { return max_strain_; }
+
+ private:
+  double max_strain_ = 0.0;
 };
 
 /// Creates the solver for `type`.

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -12,7 +14,18 @@ namespace rov_tether
 enum class SolverType
 {
   kPbd,           ///< The paper's Figure 2 projected in a red-black (vectorisable) order.
-  kPbdSequential  ///< The paper's Figure 2 in its literal sequential order (reference, slower).
+  kPbdSequential,  ///< The paper's Figure 2 in its literal sequential order (reference, slower).
+  kXpbd,           ///< Extended PBD: compliance from axial_stiffness and bending_stiffness, tension in newtons
+                   ///< that does not depend on the iteration count or the step.
+  kLumpedMass      ///< Force-based chain: springs of stiffness EA / rest, explicit Verlet; stable only below
+                   ///< its critical step (criticalStep()); a blow-up is detected and reported.
+};
+
+/// How the water resists the cable's motion.
+enum class DragModel
+{
+  kDamping,  ///< The paper's velocity damping (`drag`), relative to the water.
+  kMorison   ///< Quadratic Morison drag per segment, separate normal and tangential coefficients, added mass.
 };
 
 /// How the spool pays cable out or reels it in.
@@ -40,14 +53,28 @@ struct TetherParams
   double cable_length = 10.0;
   /// Rest length of one segment [m]; the first (spool-side) segment varies between 0.5x and 1.5x this.
   double segment_length = 0.1;
+  /// `segment_length: auto`: segment_length is chosen by resolved() from shape_tolerance and
+  /// min_bend_radius (chord error dL^2 / (8 R) <= shape_tolerance).
+  bool segment_length_auto = false;
+  /// Largest chord (sagitta) error of one segment on the scene's tightest curve, for `auto` [m].
+  double shape_tolerance = 0.01;
+  /// Tightest radius of curvature the scene is expected to have, for `auto` [m] (a catenary: H / w).
+  double min_bend_radius = 1.0;
   /// Deployed length at start [m].
   double initial_deployed_length = 2.0;
   /// Internal fixed step [s].
   double time_step = 0.005;
   /// Constraint solver.
   SolverType solver = SolverType::kPbd;
-  /// Constraint solver sweeps per step [-].
+  /// Sub-steps per time_step [-]: each integrates and solves over time_step / substeps.
+  int substeps = 1;
+  /// Constraint solver sweeps per sub-step [-].
   int iterations = 10;
+  /// `iterations: auto`: resolved() chooses the effort from stretch_tolerance (pbd, xpbd: iterations; lumped_mass:
+  /// substeps below half the critical step).
+  bool iterations_auto = false;
+  /// Mean residual stretch of a hanging cable `iterations: auto` aims for [-].
+  double stretch_tolerance = 0.01;
   /// Enable the paper's (i, i+2) bending constraints.
   bool bending = true;
   /// Fraction of velocity kept per reference step (kReferenceStep) [-], (0, 1]. 1 = no damping.
@@ -63,9 +90,33 @@ struct TetherParams
   double weight_in_water = 0.0;
   /// Mass per metre of cable [kg/m]; converts weight to acceleration and corrections to tension.
   double mass_per_length = 0.1;
-  /// Axial stiffness EA [N]. The pbd solvers do not use it in their dynamics (see README); it is the
-  /// scale of the equivalent strain T / EA reported beside the geometric strain.
+  /// Axial stiffness EA [N]. xpbd and lumped_mass use it; the pbd solvers do not (see README), for them it
+  /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
+  /// Bending stiffness EI [N m^2] for xpbd: each (i, i+2) constraint is a spring of stiffness EI / dL^3
+  /// (when `bending` is on); 0 = no bending resistance. pbd's bending constraints are rigid; lumped_mass
+  /// has no bending.
+  double bending_stiffness = 0.0;
+  /// Drag model.
+  DragModel drag_model = DragModel::kDamping;
+  /// Outer diameter of the cable [m] (Morison drag and added mass).
+  double diameter = 0.02;
+  /// Density of the water [kg/m^3].
+  double water_density = 1025.0;
+  /// Morison drag coefficient for flow normal to the cable [-].
+  double normal_drag_coefficient = 1.2;
+  /// Morison (skin friction) coefficient for flow along the cable, on the wetted area pi d [-].
+  double tangential_drag_coefficient = 0.008;
+  /// Added mass coefficient, applied to the displaced water rho pi d^2 / 4 per metre (morison only) [-].
+  double added_mass_coefficient = 1.0;
+  /// Uniform water current, world frame [m/s].
+  std::array<double, 3> current = {0.0, 0.0, 0.0};
+  /// Amplitude of the slow, spatially correlated variation of the current [m/s]; 0 = uniform.
+  double current_variation = 0.0;
+  /// Height of a flat seabed [m]; NaN (absent) = no seabed.
+  double seabed_z = std::numeric_limits<double>::quiet_NaN();
+  /// Coulomb friction coefficient of the seabed [-].
+  double seabed_friction = 0.5;
   /// Winch mode.
   WinchMode winch_mode = WinchMode::kPassive;
   /// Commanded winch speed in `speed` mode [m/s], positive pays out.
@@ -93,13 +144,21 @@ struct TetherParams
   double noiseAmplitude(double dt) const;
   /// Number of segments the full cable is split into.
   std::size_t segmentCount() const;
+  /// Mass per metre including added mass (morison only) [kg/m].
+  double effectiveMassPerLength() const;
+  /// Sub-step length time_step / substeps [s].
+  double subStep() const { return time_step / substeps; }
+  /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s].
+  double criticalStep() const;
+  /// A copy with `auto` segment_length and iterations replaced by the chosen values (flags cleared).
+  TetherParams resolved() const;
 };
 
 /// True when the two parameter sets describe the same cable (a change needs no rebuild).
 bool sameStructure(const TetherParams& a, const TetherParams& b);
 
 /// A parameter value from any source (YAML, parameter server, command line).
-using ParamValue = std::variant<bool, std::int64_t, double, std::string>;
+using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
 
 /// Names of all parameters, in documentation order.
 const std::vector<std::string>& parameterNames();
@@ -114,9 +173,12 @@ ParamValue getParameter(const TetherParams& params, const std::string& name);
 
 std::string toString(SolverType solver);
 std::string toString(WinchMode mode);
+std::string toString(DragModel model);
 /// Parses a solver name; returns false for an unknown name.
 bool parseSolver(const std::string& text, SolverType* solver);
 /// Parses a winch mode name; returns false for an unknown name.
 bool parseWinchMode(const std::string& text, WinchMode* mode);
+/// Parses a drag model name; returns false for an unknown name.
+bool parseDragModel(const std::string& text, DragModel* model);
 
 }  // namespace rov_tether

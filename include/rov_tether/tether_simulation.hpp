@@ -55,7 +55,7 @@ class TetherSimulation
   /// A tether from the spool to a vehicle at `vehicle` at start_time. Throws std::invalid_argument.
   TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
-  /// Replaces the parameters between steps. A change of cable_length, segment_length,
+  /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of cable_length, segment_length,
   /// initial_deployed_length or solver rebuilds the cable; other changes keep the state. A change of
   /// time_step keeps particle velocities. Invalid params are refused and the old ones kept.
   Status setParams(const TetherParams& params);
@@ -118,8 +118,13 @@ class TetherSimulation
   TetherSummary summarize(const std::vector<double>& tensions) const;
   /// Number of vehicle jumps handled by re-laying the cable.
   std::uint64_t jumpCount() const { return jumps_; }
-  /// Number of times a non-finite state was detected and the cable re-laid (should stay 0).
+  /// Number of failures detected (a non-finite state, or a lumped_mass strain blow-up beyond its
+  /// critical step) after which the cable was re-laid at rest; 0 in a healthy run.
   std::uint64_t recoveryCount() const { return recoveries_; }
+  /// What the last failure was, when and why; empty when there was none.
+  const std::string& lastFailure() const { return last_failure_; }
+  /// Water velocity at `point` and time t [m/s]: the uniform current plus its slow variation.
+  Position currentAt(const Position& point, double t) const;
   /// The particle arrays, for tests and converters.
   const CableState& state() const { return state_; }
 
@@ -142,7 +147,11 @@ class TetherSimulation
   /// Deployed length to lay the cable out with when the vehicle appears at `vehicle` (attach, jump):
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
-  void integrate(double dt);
+  void subStep(double h, double t, bool with_noise);
+  void integrate(double h, double t);
+  void integrateMorison(double h, double t);
+  void applySeabed();
+  void fail(const std::string& why);
   void addNoise(double dt);
   void runWinch(double dt);
   void release();
@@ -169,6 +178,18 @@ class TetherSimulation
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;
   std::uint64_t recoveries_ = 0;
+  std::string last_failure_;
+  /// One plane wave of the current's variation: amplitude direction, wave vector [1/m], angular
+  /// frequency [1/s] and phase.
+  struct CurrentMode
+  {
+    Position direction;
+    Position wave_vector;
+    double omega;
+    double phase;
+  };
+  static constexpr std::size_t kCurrentModes = 4;
+  CurrentMode current_modes_[kCurrentModes];
 };
 
 }  // namespace rov_tether

@@ -23,11 +23,16 @@ constexpr double kMinLengthSquared = 1e-24;
  * Projects `count` distance constraints, constraint k joining particle k of the `a` arrays with particle
  * k of the `b` arrays. Constraint data (rest, weight, lambda) is indexed by k. The a and b ranges must
  * not overlap, so the loop has no dependency between iterations and vectorises.
+ *
+ * kPower 0 is PBD (rigid). kPower 1 and 3 are XPBD with the compliance alpha~ = compliance * rest^kPower
+ * (already divided by dt^2): the multiplier increment is (C - alpha~ lambda) / (w_a + w_b + alpha~).
  */
+template <int kPower>
 inline void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
                          const double* __restrict aw, double* __restrict bx, double* __restrict by,
                          double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
-                         const double* __restrict weight, double* __restrict lambda, std::size_t count)
+                         const double* __restrict weight, double* __restrict lambda, std::size_t count,
+                         double compliance = 0.0)
 {
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -37,9 +42,22 @@ inline void projectPairs(double* __restrict ax, double* __restrict ay, double* _
     const double length_squared = dx * dx + dy * dy + dz * dz;
     // Branch-free so the loop vectorises; a zero-length constraint has d = 0 and so moves nothing.
     const double inv_length = 1.0 / std::sqrt(length_squared + kMinLengthSquared);
-    // Correction factor: (|d| - rest) / |d| / (w_a + w_b); multiplier increment s |d| [kg m].
-    const double s = (1.0 - rest[k] * inv_length) * weight[k];
-    lambda[k] += s * length_squared * inv_length;
+    double s;
+    if constexpr (kPower == 0)
+    {
+      // Correction factor: (|d| - rest) / |d| / (w_a + w_b); multiplier increment s |d| [kg m].
+      s = (1.0 - rest[k] * inv_length) * weight[k];
+      lambda[k] += s * length_squared * inv_length;
+    }
+    else
+    {
+      const double r = rest[k];
+      const double alpha = compliance * (kPower == 1 ? r : r * r * r);
+      const double delta =
+          (length_squared * inv_length - r - alpha * lambda[k]) / (aw[k] + bw[k] + alpha + kMinLengthSquared);
+      lambda[k] += delta;
+      s = delta * inv_length;
+    }
     const double move_a = aw[k] * s;
     const double move_b = bw[k] * s;
     ax[k] += move_a * dx;
@@ -70,8 +88,10 @@ struct Blocked
   const double* bend_rest;
   const double* bend_weight;
   double* bend_lambda;
-  std::size_t block;      ///< Length of one block.
-  std::size_t particles;  ///< Deployed particles m.
+  std::size_t block;           ///< Length of one block.
+  std::size_t particles;       ///< Deployed particles m.
+  double stretch_compliance;   ///< XPBD: 1 / (EA dt^2) [1/(kg m)]; 0 = PBD.
+  double bend_compliance;      ///< XPBD: 1 / (8 EI dt^2) [1/(kg m^3)]; 0 = PBD.
 };
 
 /// Projects the constraints of residue r (constraint l = 4 k + r) between block r and the block of the
@@ -80,13 +100,29 @@ inline void projectResidue(const Blocked& c, std::size_t r, std::size_t span, bo
 {
   const std::size_t a = r * c.block;
   const std::size_t b = ((r + span) & 3) * c.block + (r + span) / 4;  // particle 4 k + r + span
-  projectPairs(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b,
-               (bend ? c.bend_rest : c.rest) + a, (bend ? c.bend_weight : c.weight) + a,
-               (bend ? c.bend_lambda : c.lambda) + a, count);
+  const double* rest = (bend ? c.bend_rest : c.rest) + a;
+  const double* weight = (bend ? c.bend_weight : c.weight) + a;
+  double* lambda = (bend ? c.bend_lambda : c.lambda) + a;
+  const double compliance = bend ? c.bend_compliance : c.stretch_compliance;
+  if (compliance == 0.0)
+  {
+    projectPairs<0>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
+                    count);
+  }
+  else if (bend)
+  {
+    projectPairs<3>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
+                    count, compliance);
+  }
+  else
+  {
+    projectPairs<1>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
+                    count, compliance);
+  }
 }
 
 ROV_TETHER_TARGET_CLONES
-void solveBlocked(const Blocked& c, const SolverSettings& settings)
+void solveBlocked(const Blocked& c, const SolverSettings& settings, bool bending)
 {
   const std::size_t m = c.particles;
   std::size_t stretch_count[4];
@@ -103,7 +139,7 @@ void solveBlocked(const Blocked& c, const SolverSettings& settings)
     {
       projectResidue(c, r, 1, false, stretch_count[r]);
     }
-    if (settings.bending)
+    if (bending)
     {
       // Residues 0 and 1 share no particle, nor do 2 and 3.
       for (std::size_t r = 0; r < 4; ++r)
@@ -183,10 +219,16 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     bend_lambda_[s] = 0.0;
   }
 
-  const Blocked blocked{x_.data(),           y_.data(),           z_.data(),      inv_mass_.data(),
-                        rest_.data(),        weight_.data(),      lambda_.data(), bend_rest_.data(),
-                        bend_weight_.data(), bend_lambda_.data(), block_,         m};
-  solveBlocked(blocked, settings);
+  // XPBD: with no bending stiffness there is no bending constraint at all.
+  const bool bending = settings.bending && (!compliant_ || settings.bending_stiffness > 0.0);
+  const double inv_dt2 = 1.0 / (settings.time_step * settings.time_step);
+  const double stretch_compliance = compliant_ ? inv_dt2 / settings.axial_stiffness : 0.0;
+  const double bend_compliance = compliant_ && bending ? inv_dt2 / (8.0 * settings.bending_stiffness) : 0.0;
+  const Blocked blocked{x_.data(),         y_.data(),        z_.data(),         inv_mass_.data(),
+                        rest_.data(),      weight_.data(),   lambda_.data(),    bend_rest_.data(),
+                        bend_weight_.data(), bend_lambda_.data(), block_,       m,
+                        stretch_compliance, bend_compliance};
+  solveBlocked(blocked, settings, bending);
 
   for (std::size_t l = 0; l < m; ++l)
   {
@@ -200,7 +242,7 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
   {
     state.stretch_lambda[f + l] = lambda_[slot(l)];
   }
-  if (settings.bending)
+  if (bending)
   {
     for (std::size_t l = 0; l + 2 < m; ++l)
     {
@@ -228,27 +270,76 @@ void SequentialPbdSolver::solve(CableState& state, const SolverSettings& setting
   {
     for (std::size_t j = f; j < segments_end; ++j)
     {
-      projectPairs(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
+      projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
                    &state.stretch_weight[j], &state.stretch_lambda[j], 1);
     }
     if (settings.bending)
     {
       for (std::size_t j = f; j < bends_end; ++j)
       {
-        projectPairs(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
+        projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
                      &state.bend_weight[j], &state.bend_lambda[j], 1);
       }
     }
   }
 }
 
+void LumpedMassSolver::solve(CableState& state, const SolverSettings& settings)
+{
+  const std::size_t n = state.size();
+  const std::size_t f = state.first;
+  max_strain_ = 0.0;
+  if (n < f + 2)
+  {
+    return;
+  }
+  const double h2 = settings.time_step * settings.time_step;
+  const double ea = settings.axial_stiffness;
+  double max_strain = -1.0;
+  double strain_sum = 0.0;  // NaN or infinity anywhere makes the sum non-finite (max() would skip a NaN)
+  // Forces at x_n (the previous positions px): explicit. The corrections go to the predictions x.
+  for (std::size_t j = f; j + 1 < n; ++j)
+  {
+    const double dx = state.px[j + 1] - state.px[j];
+    const double dy = state.py[j + 1] - state.py[j];
+    const double dz = state.pz[j + 1] - state.pz[j];
+    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double strain = length / state.rest[j] - 1.0;
+    max_strain = std::max(max_strain, strain);
+    strain_sum += strain;
+    const double tension = ea * std::max(strain, 0.0);
+    state.stretch_lambda[j] = tension * h2;  // the same readout as the constraint methods: lambda / h^2
+    const double scale = length > 0.0 ? tension * h2 / length : 0.0;
+    const double move_a = state.inv_mass[j] * scale;
+    const double move_b = state.inv_mass[j + 1] * scale;
+    state.x[j] += move_a * dx;
+    state.y[j] += move_a * dy;
+    state.z[j] += move_a * dz;
+    state.x[j + 1] -= move_b * dx;
+    state.y[j + 1] -= move_b * dy;
+    state.z[j + 1] -= move_b * dz;
+  }
+  if (n >= f + 3)
+  {
+    std::fill(state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(f), state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(n - 2), 0.0);
+  }
+  state.dirty_begin = state.dirty_end = 0;
+  max_strain_ = std::isfinite(strain_sum) ? max_strain : std::numeric_limits<double>::infinity();
+}
+
 std::unique_ptr<ConstraintSolver> makeSolver(SolverType type)
 {
-  if (type == SolverType::kPbdSequential)
+  switch (type)
   {
-    return std::make_unique<SequentialPbdSolver>();
+    case SolverType::kPbdSequential:
+      return std::make_unique<SequentialPbdSolver>();
+    case SolverType::kXpbd:
+      return std::make_unique<PbdSolver>(true);
+    case SolverType::kLumpedMass:
+      return std::make_unique<LumpedMassSolver>();
+    default:
+      return std::make_unique<PbdSolver>();
   }
-  return std::make_unique<PbdSolver>();
 }
 
 }  // namespace rov_tether

@@ -1,5 +1,6 @@
 #include "rov_tether/tether_params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -11,8 +12,24 @@ namespace rov_tether
 namespace
 {
 
+using Vector3 = std::array<double, 3>;
 using Member = std::variant<double TetherParams::*, int TetherParams::*, bool TetherParams::*,
-                            std::int64_t TetherParams::*, SolverType TetherParams::*, WinchMode TetherParams::*>;
+                            std::int64_t TetherParams::*, SolverType TetherParams::*, WinchMode TetherParams::*,
+                            DragModel TetherParams::*, Vector3 TetherParams::*>;
+
+/// Parameters that also accept the string "auto", with the flag it sets.
+bool TetherParams::* autoFlag(const std::string& name)
+{
+  if (name == "segment_length")
+  {
+    return &TetherParams::segment_length_auto;
+  }
+  if (name == "iterations")
+  {
+    return &TetherParams::iterations_auto;
+  }
+  return nullptr;
+}
 
 /// The one table of parameter names; order is documentation order.
 const std::vector<std::pair<std::string, Member>>& parameterTable()
@@ -20,10 +37,14 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
   static const std::vector<std::pair<std::string, Member>> table = {
       {"cable_length", &TetherParams::cable_length},
       {"segment_length", &TetherParams::segment_length},
+      {"shape_tolerance", &TetherParams::shape_tolerance},
+      {"min_bend_radius", &TetherParams::min_bend_radius},
       {"initial_deployed_length", &TetherParams::initial_deployed_length},
       {"time_step", &TetherParams::time_step},
       {"solver", &TetherParams::solver},
+      {"substeps", &TetherParams::substeps},
       {"iterations", &TetherParams::iterations},
+      {"stretch_tolerance", &TetherParams::stretch_tolerance},
       {"bending", &TetherParams::bending},
       {"drag", &TetherParams::drag},
       {"noise", &TetherParams::noise},
@@ -31,6 +52,17 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"weight_in_water", &TetherParams::weight_in_water},
       {"mass_per_length", &TetherParams::mass_per_length},
       {"axial_stiffness", &TetherParams::axial_stiffness},
+      {"bending_stiffness", &TetherParams::bending_stiffness},
+      {"drag_model", &TetherParams::drag_model},
+      {"diameter", &TetherParams::diameter},
+      {"water_density", &TetherParams::water_density},
+      {"normal_drag_coefficient", &TetherParams::normal_drag_coefficient},
+      {"tangential_drag_coefficient", &TetherParams::tangential_drag_coefficient},
+      {"added_mass_coefficient", &TetherParams::added_mass_coefficient},
+      {"current", &TetherParams::current},
+      {"current_variation", &TetherParams::current_variation},
+      {"seabed_z", &TetherParams::seabed_z},
+      {"seabed_friction", &TetherParams::seabed_friction},
       {"winch_mode", &TetherParams::winch_mode},
       {"winch_speed", &TetherParams::winch_speed},
       {"max_winch_speed", &TetherParams::max_winch_speed},
@@ -64,8 +96,10 @@ std::string typeName(const ParamValue& value)
       return "an integer";
     case 2:
       return "a number";
-    default:
+    case 3:
       return "a string";
+    default:
+      return "a list";
   }
 }
 
@@ -102,13 +136,33 @@ std::vector<std::string> TetherParams::validate() const
   checkRange(errors, "segment_length", segment_length, 1.0e-3, 100.0);
   checkRange(errors, "initial_deployed_length", initial_deployed_length, 0.0, 1.0e5, true);
   checkRange(errors, "time_step", time_step, 1.0e-5, 0.1);
+  checkRange(errors, "shape_tolerance", shape_tolerance, 0.0, 100.0, true);
+  checkRange(errors, "min_bend_radius", min_bend_radius, 0.0, 1.0e6, true);
+  checkRange(errors, "substeps", substeps, 1, 10000);
   checkRange(errors, "iterations", iterations, 1, 1000);
+  checkRange(errors, "stretch_tolerance", stretch_tolerance, 0.0, 1.0, true);
   checkRange(errors, "drag", drag, 0.0, 1.0, true);
   checkRange(errors, "noise", noise, 0.0, 1.0);
   checkRange(errors, "seed", static_cast<double>(seed), 0.0, 9.0e15);
   checkRange(errors, "weight_in_water", weight_in_water, -1.0e4, 1.0e4);
   checkRange(errors, "mass_per_length", mass_per_length, 0.0, 1.0e4, true);
   checkRange(errors, "axial_stiffness", axial_stiffness, 0.0, 1.0e12, true);
+  checkRange(errors, "bending_stiffness", bending_stiffness, 0.0, 1.0e9);
+  checkRange(errors, "diameter", diameter, 0.0, 10.0, true);
+  checkRange(errors, "water_density", water_density, 0.0, 1.0e5);
+  checkRange(errors, "normal_drag_coefficient", normal_drag_coefficient, 0.0, 100.0);
+  checkRange(errors, "tangential_drag_coefficient", tangential_drag_coefficient, 0.0, 100.0);
+  checkRange(errors, "added_mass_coefficient", added_mass_coefficient, 0.0, 100.0);
+  for (std::size_t axis = 0; axis < 3; ++axis)
+  {
+    checkRange(errors, std::string("current[") + "xyz"[axis] + "]", current[axis], -100.0, 100.0);
+  }
+  checkRange(errors, "current_variation", current_variation, 0.0, 100.0);
+  if (!std::isnan(seabed_z))
+  {
+    checkRange(errors, "seabed_z", seabed_z, -1.0e5, 1.0e5);
+  }
+  checkRange(errors, "seabed_friction", seabed_friction, 0.0, 10.0);
   checkRange(errors, "max_winch_speed", max_winch_speed, 0.0, 20.0, true);
   checkRange(errors, "winch_speed", winch_speed, -20.0, 20.0);
   checkRange(errors, "payout_threshold", payout_threshold, 0.0, 1.0, true);
@@ -120,6 +174,10 @@ std::vector<std::string> TetherParams::validate() const
     return errors;  // relations between fields are only meaningful when each field is sane
   }
 
+  if (segment_length_auto || iterations_auto)
+  {
+    return resolved().validate();  // the relations hold for the values `auto` chooses
+  }
   // Relations between fields, each named with the value it contradicts.
   auto relation = [&errors](const std::string& message) { errors.push_back(message); };
   if (segment_length > cable_length)
@@ -149,6 +207,53 @@ std::vector<std::string> TetherParams::validate() const
              formatValue(-max_winch_speed) + ", " + formatValue(max_winch_speed) + "]");
   }
   return errors;
+}
+
+double TetherParams::effectiveMassPerLength() const
+{
+  if (drag_model != DragModel::kMorison)
+  {
+    return mass_per_length;
+  }
+  constexpr double kPi = 3.14159265358979323846;
+  return mass_per_length + added_mass_coefficient * water_density * kPi * diameter * diameter / 4.0;
+}
+
+double TetherParams::criticalStep() const
+{
+  return segment_length / std::sqrt(axial_stiffness / effectiveMassPerLength());
+}
+
+TetherParams TetherParams::resolved() const
+{
+  TetherParams r = *this;
+  if (segment_length_auto)
+  {
+    // Chord error of a segment dL on a curve of radius R: dL^2 / (8 R) (REFERENCES.md); whole segments.
+    const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
+    const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
+    r.segment_length = std::max(cable_length / count, 1.0e-3);
+    r.segment_length_auto = false;
+  }
+  if (iterations_auto)
+  {
+    if (solver == SolverType::kLumpedMass)
+    {
+      // Stretch is physical (T / EA) once the chain is stable: half the critical step.
+      r.substeps = static_cast<int>(std::clamp(std::ceil(time_step / (0.5 * r.criticalStep())), 1.0, 10000.0));
+    }
+    else
+    {
+      // Residual stretch of a hanging PBD chain: about L a h^2 / (2 n dL^2) (REFERENCES.md, N^2 g dt^2 /
+      // (2 n L) with N = L / dL), a the weight's acceleration, at least 1 m/s^2 for the vehicle's pull.
+      const double accel = std::max(std::abs(weight_in_water) / effectiveMassPerLength(), 1.0);
+      const double h = r.subStep();
+      const double n = cable_length * accel * h * h / (2.0 * stretch_tolerance * r.segment_length * r.segment_length);
+      r.iterations = static_cast<int>(std::clamp(std::ceil(n), 1.0, 1000.0));
+    }
+    r.iterations_auto = false;
+  }
+  return r;
 }
 
 double TetherParams::dampingRate() const { return -std::log(drag) / kReferenceStep; }
@@ -189,6 +294,15 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
   if (member == nullptr)
   {
     return "unknown parameter '" + name + "'";
+  }
+  if (bool TetherParams::*flag = autoFlag(name))
+  {
+    const auto* text = std::get_if<std::string>(&value);
+    params.*flag = text != nullptr && *text == "auto";
+    if (params.*flag)
+    {
+      return "";
+    }
   }
   const std::string wrong_type = "parameter '" + name + "': wrong type (" + typeName(value) + "), expected ";
   return std::visit(
@@ -247,8 +361,27 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
           const auto* s = std::get_if<std::string>(&value);
           if (s == nullptr || !parseSolver(*s, &target))
           {
-            return "parameter 'solver': expected one of pbd, pbd_sequential";
+            return "parameter 'solver': expected one of pbd, pbd_sequential, xpbd, lumped_mass";
           }
+          return "";
+        }
+        else if constexpr (std::is_same_v<Field, DragModel>)
+        {
+          const auto* s = std::get_if<std::string>(&value);
+          if (s == nullptr || !parseDragModel(*s, &target))
+          {
+            return "parameter 'drag_model': expected one of damping, morison";
+          }
+          return "";
+        }
+        else if constexpr (std::is_same_v<Field, Vector3>)
+        {
+          const auto* v = std::get_if<std::vector<double>>(&value);
+          if (v == nullptr || v->size() != 3)
+          {
+            return "parameter '" + name + "': expected a list of 3 numbers [x, y, z]";
+          }
+          std::copy(v->begin(), v->end(), target.begin());
           return "";
         }
         else
@@ -271,6 +404,10 @@ ParamValue getParameter(const TetherParams& params, const std::string& name)
   {
     throw std::out_of_range("unknown parameter '" + name + "'");
   }
+  if (bool TetherParams::*flag = autoFlag(name); flag != nullptr && params.*flag)
+  {
+    return std::string("auto");
+  }
   return std::visit(
       [&](auto field) -> ParamValue
       {
@@ -280,9 +417,14 @@ ParamValue getParameter(const TetherParams& params, const std::string& name)
         {
           return static_cast<std::int64_t>(value);
         }
-        else if constexpr (std::is_same_v<Field, SolverType> || std::is_same_v<Field, WinchMode>)
+        else if constexpr (std::is_same_v<Field, SolverType> || std::is_same_v<Field, WinchMode> ||
+                           std::is_same_v<Field, DragModel>)
         {
           return toString(value);
+        }
+        else if constexpr (std::is_same_v<Field, Vector3>)
+        {
+          return std::vector<double>(value.begin(), value.end());
         }
         else
         {
@@ -292,7 +434,35 @@ ParamValue getParameter(const TetherParams& params, const std::string& name)
       *member);
 }
 
-std::string toString(SolverType solver) { return solver == SolverType::kPbd ? "pbd" : "pbd_sequential"; }
+std::string toString(SolverType solver)
+{
+  switch (solver)
+  {
+    case SolverType::kPbd:
+      return "pbd";
+    case SolverType::kPbdSequential:
+      return "pbd_sequential";
+    case SolverType::kXpbd:
+      return "xpbd";
+    default:
+      return "lumped_mass";
+  }
+}
+
+std::string toString(DragModel model) { return model == DragModel::kDamping ? "damping" : "morison"; }
+
+bool parseDragModel(const std::string& text, DragModel* model)
+{
+  for (DragModel candidate : {DragModel::kDamping, DragModel::kMorison})
+  {
+    if (text == toString(candidate))
+    {
+      *model = candidate;
+      return true;
+    }
+  }
+  return false;
+}
 
 std::string toString(WinchMode mode)
 {
@@ -309,15 +479,13 @@ std::string toString(WinchMode mode)
 
 bool parseSolver(const std::string& text, SolverType* solver)
 {
-  if (text == "pbd")
+  for (SolverType candidate : {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass})
   {
-    *solver = SolverType::kPbd;
-    return true;
-  }
-  if (text == "pbd_sequential")
-  {
-    *solver = SolverType::kPbdSequential;
-    return true;
+    if (text == toString(candidate))
+    {
+      *solver = candidate;
+      return true;
+    }
   }
   return false;
 }

@@ -19,6 +19,9 @@ constexpr std::size_t kMaxVehicleSamples = 1024;
 /// particle can be released or taken back.
 constexpr double kMinFirst = 0.5;
 constexpr double kMaxFirst = 1.5;
+/// A segment strain beyond this is a blow-up (a real cable breaks long before) [-].
+constexpr double kDivergenceStrain = 1.0;
+constexpr double kPi = 3.14159265358979323846;
 
 std::string joinErrors(const std::vector<std::string>& errors)
 {
@@ -110,8 +113,9 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   layOut(deployedLength());
 }
 
-void TetherSimulation::applyParams(const TetherParams& params)
+void TetherSimulation::applyParams(const TetherParams& requested)
 {
+  const TetherParams params = requested.resolved();
   const bool reseed = params.seed != params_.seed || !solver_;
   const bool new_solver = !solver_ || params.solver != params_.solver;
   params_ = params;
@@ -123,6 +127,38 @@ void TetherSimulation::applyParams(const TetherParams& params)
   {
     rng_.reseed(static_cast<std::uint64_t>(params_.seed));
   }
+  // The current's variation: a few plane waves of 20-100 m wavelength and 1-5 min period drawn from the
+  // seed (its own generator, so the noise sequence does not change), no high-frequency content.
+  Xoshiro256Plus waves(static_cast<std::uint64_t>(params_.seed) ^ 0x9e3779b97f4a7c15ULL);
+  auto unit = [&waves]
+  {
+    Position v(waves.symmetric(), waves.symmetric(), waves.symmetric());
+    return v.norm() > 1e-6 ? Position(v.normalized()) : Position(Position::UnitX());
+  };
+  for (auto& mode : current_modes_)
+  {
+    mode.direction = unit();
+    const double wavelength = 60.0 + 40.0 * waves.symmetric();
+    const double period = 180.0 + 120.0 * waves.symmetric();
+    mode.wave_vector = unit() * (2.0 * kPi / wavelength);
+    mode.omega = 2.0 * kPi / period;
+    mode.phase = kPi * waves.symmetric();
+  }
+}
+
+Position TetherSimulation::currentAt(const Position& point, double t) const
+{
+  Position u(params_.current[0], params_.current[1], params_.current[2]);
+  if (params_.current_variation > 0.0)
+  {
+    // Each sine has RMS 1/sqrt(2): the sum of K modes scaled by sqrt(2/K) has RMS current_variation.
+    const double scale = params_.current_variation * std::sqrt(2.0 / kCurrentModes);
+    for (const auto& mode : current_modes_)
+    {
+      u += scale * std::sin(mode.wave_vector.dot(point) + mode.omega * t + mode.phase) * mode.direction;
+    }
+  }
+  return u;
 }
 
 Status TetherSimulation::setParams(const TetherParams& params)
@@ -132,9 +168,9 @@ Status TetherSimulation::setParams(const TetherParams& params)
   {
     return Status::error(joinErrors(errors));
   }
-  const bool rebuild = !sameStructure(params_, params);
-  const double old_step = params_.time_step;
-  const bool new_mass = params.mass_per_length != params_.mass_per_length;
+  const bool rebuild = !sameStructure(params_, params.resolved());
+  const double old_step = params_.subStep();
+  const bool new_mass = params.effectiveMassPerLength() != params_.effectiveMassPerLength();
   applyParams(params);
   if (rebuild)
   {
@@ -142,10 +178,10 @@ Status TetherSimulation::setParams(const TetherParams& params)
     build();
     return Status{true, "cable rebuilt for the new cable_length, segment_length or solver"};
   }
-  if (params_.time_step != old_step)
+  if (params_.subStep() != old_step)
   {
-    // Keep each particle's velocity (x - x_prev) / dt across the change of step.
-    const double ratio = params_.time_step / old_step;
+    // Keep each particle's velocity (x - x_prev) / h across the change of (sub-)step.
+    const double ratio = params_.subStep() / old_step;
     for (std::size_t i = state_.first; i < state_.size(); ++i)
     {
       state_.px[i] = state_.x[i] - (state_.x[i] - state_.px[i]) * ratio;
@@ -259,7 +295,7 @@ void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
   {
     const double left = i > f ? state_.rest[i - 1] : 0.0;
     const double right = i + 1 < n ? state_.rest[i] : 0.0;
-    const double mass = params_.mass_per_length * 0.5 * (left + right);
+    const double mass = params_.effectiveMassPerLength() * 0.5 * (left + right);
     state_.inv_mass[i] = isPinned(i) || mass <= 0.0 ? 0.0 : 1.0 / mass;
   }
   auto inverse_sum = [](double a, double b) { return a + b > 0.0 ? 1.0 / (a + b) : 0.0; };
@@ -423,38 +459,71 @@ void TetherSimulation::step()
 {
   const double dt = params_.time_step;
   const double next_time = base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * dt;
-  const std::size_t n = state_.size();
+  const int substeps = params_.substeps;
+  const double h = dt / substeps;
+  const std::uint64_t failures = recoveries_;
+  for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
+  {
+    subStep(h, k == substeps ? next_time : next_time - dt + k * h, k == 1);
+  }
+  last_step_ = h;
+  ++steps_;
+  time_ = next_time;
+  if (recoveries_ == failures && !stateFinite())
+  {
+    fail("non-finite particle position");
+  }
+}
 
+void TetherSimulation::subStep(double h, double t, bool with_noise)
+{
+  const std::size_t n = state_.size();
   state_.place(state_.first, spool_);
   if (vehicle_attached_ || !samples_.empty())
   {
-    vehicle_ = vehicleAt(next_time);
+    vehicle_ = vehicleAt(t);
   }
-  integrate(dt);
-  addNoise(dt);
+  integrate(h, t);
+  if (with_noise)
+  {
+    addNoise(params_.time_step);
+  }
   if (vehicle_attached_)
   {
     state_.place(n - 1, vehicle_);
   }
-  runWinch(dt);
+  runWinch(h);
   SolverSettings settings;
   settings.iterations = params_.iterations;
   settings.bending = params_.bending;
-  settings.time_step = dt;
+  settings.time_step = h;
   settings.axial_stiffness = params_.axial_stiffness;
+  settings.bending_stiffness = params_.bending_stiffness;
   solver_->solve(state_, settings);
-
-  last_step_ = dt;
-  ++steps_;
-  time_ = next_time;
-  if (!stateFinite())
+  if (!std::isnan(params_.seabed_z))
   {
-    ++recoveries_;
-    layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
+    applySeabed();
+  }
+  const double strain = solver_->lastMaxStrain();
+  if (!std::isnan(strain) && !(strain < kDivergenceStrain))
+  {
+    std::ostringstream why;
+    why << "lumped_mass diverged (segment strain " << strain << "): the sub-step " << h
+        << " s exceeds the critical step " << params_.criticalStep() << " s = segment_length / sqrt(EA / mu)";
+    fail(why.str());
   }
 }
 
-void TetherSimulation::integrate(double dt)
+void TetherSimulation::fail(const std::string& why)
+{
+  ++recoveries_;
+  std::ostringstream message;
+  message << "t = " << time_ << " s: " << why << "; the cable was re-laid at rest";
+  last_failure_ = message.str();
+  layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
+}
+
+void TetherSimulation::integrate(double h, double t)
 {
   const std::size_t begin = state_.first + 1;
   const std::size_t end = freeEnd();
@@ -462,13 +531,97 @@ void TetherSimulation::integrate(double dt)
   {
     return;
   }
-  const double damping = params_.dampingFactor(dt);
-  verletAxis(state_.x.data(), state_.px.data(), begin, end, damping, 0.0);
-  verletAxis(state_.y.data(), state_.py.data(), begin, end, damping, 0.0);
+  if (params_.drag_model == DragModel::kMorison)
+  {
+    integrateMorison(h, t);
+    return;
+  }
   // Net weight in water; a neutrally buoyant cable (the default) does no gravity work at all.
-  const double sink =
-      params_.weight_in_water != 0.0 ? -params_.weight_in_water / params_.mass_per_length * dt * dt : 0.0;
-  verletAxis(state_.z.data(), state_.pz.data(), begin, end, damping, sink);
+  const double sink = params_.weight_in_water != 0.0
+                          ? -params_.weight_in_water / params_.effectiveMassPerLength() * h * h
+                          : 0.0;
+  const double damping = params_.dampingFactor(h);
+  if (params_.current_variation > 0.0)
+  {
+    // Damping relative to the local water velocity: v' = u + D (v - u).
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Position drift = (1.0 - damping) * h * currentAt(state_.position(i), t);
+      const double x = state_.x[i], y = state_.y[i], z = state_.z[i];
+      state_.x[i] += (x - state_.px[i]) * damping + drift.x();
+      state_.y[i] += (y - state_.py[i]) * damping + drift.y();
+      state_.z[i] += (z - state_.pz[i]) * damping + drift.z() + sink;
+      state_.px[i] = x, state_.py[i] = y, state_.pz[i] = z;
+    }
+    return;
+  }
+  // A uniform current (zero by default) is one constant displacement per step.
+  const double drift = (1.0 - damping) * h;
+  verletAxis(state_.x.data(), state_.px.data(), begin, end, damping, drift * params_.current[0]);
+  verletAxis(state_.y.data(), state_.py.data(), begin, end, damping, drift * params_.current[1]);
+  verletAxis(state_.z.data(), state_.pz.data(), begin, end, damping, drift * params_.current[2] + sink);
+}
+
+void TetherSimulation::integrateMorison(double h, double t)
+{
+  // Morison drag on each particle's share of cable, split into the flow normal and tangential to the
+  // cable, applied semi-implicitly (r' = r / (1 + h c |r| / m)) so that it is stable at any step.
+  const std::size_t n = state_.size();
+  const std::size_t begin = state_.first + 1;
+  const std::size_t end = freeEnd();
+  const double normal = 0.5 * params_.water_density * params_.normal_drag_coefficient * params_.diameter;
+  const double tangential =
+      0.5 * params_.water_density * params_.tangential_drag_coefficient * kPi * params_.diameter;
+  const double sink = -params_.weight_in_water / params_.effectiveMassPerLength() * h * h;
+  const bool uniform = params_.current_variation <= 0.0;
+  const Position u0(params_.current[0], params_.current[1], params_.current[2]);
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const Position x = state_.position(i);
+    const Position previous(state_.px[i], state_.py[i], state_.pz[i]);
+    const Position water = uniform ? u0 : currentAt(x, t);
+    const Position relative = (x - previous) / h - water;
+    // Tangent from the neighbours' positions before this step (particle i - 1 already moved: its px).
+    const Position behind(state_.px[i - 1], state_.py[i - 1], state_.pz[i - 1]);
+    Position tangent = (i + 1 < n ? state_.position(i + 1) : x) - behind;
+    const double tangent_length = tangent.norm();
+    tangent = tangent_length > 0.0 ? Position(tangent / tangent_length) : Position::Zero();
+    const double share = 0.5 * (state_.rest[i - 1] + (i + 1 < n ? state_.rest[i] : 0.0));
+    const double h_per_mass = state_.inv_mass[i] * h * share;
+    Position along = relative.dot(tangent) * tangent;
+    Position across = relative - along;
+    along /= 1.0 + h_per_mass * tangential * along.norm();
+    across /= 1.0 + h_per_mass * normal * across.norm();
+    Position next = x + (water + along + across) * h;
+    next.z() += sink;
+    state_.px[i] = x.x(), state_.py[i] = x.y(), state_.pz[i] = x.z();
+    state_.x[i] = next.x(), state_.y[i] = next.y(), state_.z[i] = next.z();
+  }
+}
+
+void TetherSimulation::applySeabed()
+{
+  // Contact: a particle below the seabed is put back on it with no normal velocity, and Coulomb friction
+  // limits its sliding this step to what the normal correction allows (position-based friction).
+  const double bed = params_.seabed_z;
+  const double mu = params_.seabed_friction;
+  const std::size_t end = freeEnd();
+  for (std::size_t i = state_.first + 1; i < end; ++i)
+  {
+    if (!(state_.z[i] < bed))
+    {
+      continue;
+    }
+    const double depth = bed - state_.z[i];
+    state_.z[i] = bed;
+    state_.pz[i] = bed;
+    const double dx = state_.x[i] - state_.px[i];
+    const double dy = state_.y[i] - state_.py[i];
+    const double slide = std::sqrt(dx * dx + dy * dy);
+    const double keep = slide > mu * depth ? 1.0 - mu * depth / slide : 0.0;
+    state_.x[i] = state_.px[i] + keep * dx;
+    state_.y[i] = state_.py[i] + keep * dy;
+  }
 }
 
 void TetherSimulation::addNoise(double dt)

@@ -134,6 +134,21 @@ bool toParamValue(const XmlRpc::XmlRpcValue& value, ParamValue* out)
     case XmlRpc::XmlRpcValue::TypeString:
       *out = static_cast<std::string>(v);
       return true;
+    case XmlRpc::XmlRpcValue::TypeArray:
+    {
+      std::vector<double> list;
+      for (int i = 0; i < v.size(); ++i)
+      {
+        double number = 0.0;
+        if (!readNumber(v[i], &number))
+        {
+          return false;
+        }
+        list.push_back(number);
+      }
+      *out = list;
+      return true;
+    }
     default:
       return false;
   }
@@ -156,7 +171,7 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
     ParamValue value;
     if (!toParamValue(dict[name], &value))
     {
-      errors.push_back("parameter '" + name + "': expected a single value");
+      errors.push_back("parameter '" + name + "': expected a single value or a list of numbers");
       continue;
     }
     const std::string error = setParameter(candidate, name, value);

@@ -101,12 +101,37 @@ std::string applyParamMap(const YAML::Node& map, const std::string& prefix, Teth
   for (const auto& entry : map)
   {
     const std::string name = entry.first.as<std::string>();
-    if (!entry.second.IsScalar())
+    ParamValue value;
+    if (entry.second.IsSequence())
     {
-      errors.push_back(prefix + name + ": expected a single value");
+      std::vector<double> list;
+      for (const auto& item : entry.second)
+      {
+        double number = 0.0;
+        if (!item.IsScalar() || !YAML::convert<double>::decode(item, number))
+        {
+          list.clear();
+          break;
+        }
+        list.push_back(number);
+      }
+      if (list.size() != entry.second.size())
+      {
+        errors.push_back(prefix + name + ": expected a list of numbers");
+        continue;
+      }
+      value = list;
+    }
+    else if (entry.second.IsScalar())
+    {
+      value = scalarValue(entry.second);
+    }
+    else
+    {
+      errors.push_back(prefix + name + ": expected a single value or a list of numbers");
       continue;
     }
-    const std::string error = setParameter(*params, name, scalarValue(entry.second));
+    const std::string error = setParameter(*params, name, value);
     if (!error.empty())
     {
       errors.push_back(prefix + error);

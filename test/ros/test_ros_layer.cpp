@@ -257,7 +257,23 @@ TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
   list.setSize(1);
   list[0] = 1.0;
   bad["drag"] = list;
-  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': expected a single value"), std::string::npos);
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': wrong type (a list)"), std::string::npos);
+  list[0] = std::string("x");
+  bad["drag"] = list;
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': expected a single value or a list of numbers"),
+            std::string::npos);
+  // A list parameter: the current [m/s].
+  XmlRpc::XmlRpcValue good;
+  XmlRpc::XmlRpcValue current;
+  current.setSize(3);
+  current[0] = 0.5, current[1] = 0, current[2] = -0.1;
+  good["current"] = current;
+  ASSERT_EQ(loadTetherParams(good, &unchanged), "");
+  EXPECT_EQ(unchanged.current[0], 0.5);
+  EXPECT_EQ(unchanged.current[2], -0.1);
+  current.setSize(2);
+  good["current"] = current;
+  EXPECT_NE(loadTetherParams(good, &unchanged).find("expected a list of 3 numbers"), std::string::npos);
 }
 
 TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
