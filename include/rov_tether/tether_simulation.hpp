@@ -52,7 +52,8 @@ class TetherSimulation
  public:
   /// A tether hanging from the spool with a free end. Throws std::invalid_argument on invalid params.
   TetherSimulation(const TetherParams& params, const Position& spool, double start_time = 0.0);
-  /// A tether from the spool to a vehicle at `vehicle` at start_time. Throws std::invalid_argument.
+  /// A tether from the spool to a vehicle at `vehicle` at start_time, laid out at initial_deployed_length
+  /// grown to the spool-vehicle distance unless the winch is locked. Throws std::invalid_argument.
   TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
   /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of cable_length, segment_length,

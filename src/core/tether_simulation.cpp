@@ -110,7 +110,7 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   vehicle_attached_ = true;
   vehicle_ = vehicle;
   samples_.assign(1, VehicleSample{start_time, vehicle, false});
-  layOut(deployedLength());
+  layOut(lengthToReach(vehicle));  // as when a first sample attaches: the cable reaches the vehicle
 }
 
 void TetherSimulation::applyParams(const TetherParams& requested)
@@ -565,7 +565,8 @@ void TetherSimulation::integrate(double h, double t)
 void TetherSimulation::integrateMorison(double h, double t)
 {
   // Morison drag on each particle's share of cable, split into the flow normal and tangential to the
-  // cable, applied semi-implicitly (r' = r / (1 + h c |r| / m)) so that it is stable at any step.
+  // cable. The impulse is explicit, h c |r| r, so a cable held against the flow feels exactly the drag,
+  // but never more than stops the relative motion (r' = r (1 - min(h c |r| / m, 1))): stable at any step.
   const std::size_t n = state_.size();
   const std::size_t begin = state_.first + 1;
   const std::size_t end = freeEnd();
@@ -590,8 +591,8 @@ void TetherSimulation::integrateMorison(double h, double t)
     const double h_per_mass = state_.inv_mass[i] * h * share;
     Position along = relative.dot(tangent) * tangent;
     Position across = relative - along;
-    along /= 1.0 + h_per_mass * tangential * along.norm();
-    across /= 1.0 + h_per_mass * normal * across.norm();
+    along *= 1.0 - std::min(h_per_mass * tangential * along.norm(), 1.0);
+    across *= 1.0 - std::min(h_per_mass * normal * across.norm(), 1.0);
     Position next = x + (water + along + across) * h;
     next.z() += sink;
     state_.px[i] = x.x(), state_.py[i] = x.y(), state_.pz[i] = x.z();

@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""Draws docs/speed_vs_accuracy.png and docs/stability.png from rov_tether_study's CSV files.
+
+usage: study_figures.py STUDY_DIR DOCS_DIR
+"""
+import csv
+import math
+import pathlib
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COLOURS = {"pbd": "tab:blue", "xpbd": "tab:green", "lumped_mass": "tab:red"}
+TITLES = {
+    "catenary_s8": "catenary S = 8 m (EA 1e5 N)",
+    "catenary_ea100": "elastic catenary, EA = 100 N",
+    "large_strain": "large strain (27%)",
+    "axial_drag": "axial drag, 100 m at 1 m/s",
+    "taut_string": "taut string, first mode",
+    "hanging_chain": "hanging chain, period",
+    "paper_experiment": "paper's 2D experiment, stretch",
+}
+
+
+def read(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def error_of(row):
+    """The larger of the shape and tension errors (tension may be absent)."""
+    shape = float(row["shape_error"])
+    tension = float(row["tension_error"]) if row["tension_error"] not in ("", "nan") else math.nan
+    return shape if math.isnan(tension) else max(shape, tension)
+
+
+def pareto(points):
+    """Points (cost, error) not beaten in both cost and error, sorted by cost."""
+    front = []
+    for cost, error in sorted(points):
+        if not front or error < front[-1][1]:
+            front.append((cost, error))
+    return front
+
+
+def speed_vs_accuracy(rows, docs):
+    cases = list(dict.fromkeys(r["scenario"] for r in rows))
+    columns = 4
+    lines = math.ceil(len(cases) / columns)
+    fig, axes = plt.subplots(lines, columns, figsize=(4.2 * columns, 3.6 * lines))
+    axes = axes.flatten()
+    for ax, case in zip(axes, cases):
+        everything = []
+        for method, colour in COLOURS.items():
+            points = [(float(r["cost_us_per_s"]), error_of(r)) for r in rows
+                      if r["scenario"] == case and r["method"] == method and r["failed"] == "0"
+                      and r["label"] != "auto" and math.isfinite(error_of(r)) and error_of(r) > 0]
+            if not points:
+                continue
+            everything += points
+            ax.scatter(*zip(*points), s=10, color=colour, alpha=0.35)
+            front = pareto(points)
+            ax.step(*zip(*front), where="post", color=colour, label=method, linewidth=1.6)
+        overall = pareto(everything)
+        if overall:
+            ax.plot(*zip(*overall), "k--", linewidth=0.8, label="Pareto front (all)")
+        auto = [(float(r["cost_us_per_s"]), error_of(r)) for r in rows if r["scenario"] == case and r["label"] == "auto"]
+        if auto:
+            ax.scatter(*zip(*auto), marker="*", s=140, color="gold", edgecolor="k", zorder=5,
+                       label="auto segment_length + iterations")
+        ax.axhline(0.01, color="grey", linewidth=0.6, linestyle=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(TITLES.get(case, case), fontsize=10)
+        ax.set_xlabel("CPU per simulated second [us]")
+        ax.set_ylabel("relative error (worst of shape, tension)")
+        ax.grid(True, which="major", alpha=0.3)
+    for ax in axes[len(cases):]:
+        ax.axis("off")
+    handles, labels = axes[0].get_legend_handles_labels()
+    axes[-1].legend(handles, labels, loc="center", fontsize=10)
+    fig.suptitle("Speed against accuracy: each point one method x resolution x effort; lines: Pareto fronts; "
+                 "dotted: 1 %", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(docs / "speed_vs_accuracy.png", dpi=90)
+    plt.close(fig)
+
+
+def stability(rows, docs):
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    fig, axes = plt.subplots(2, len(methods), figsize=(4.6 * len(methods), 7.5), squeeze=False)
+    for column, method in enumerate(methods):
+        mine = [r for r in rows if r["method"] == method]
+        for line, (axis, fixed, label) in enumerate(
+                [("stiffness", ("speed", 1.0), "EA [N] (vehicle at 1 m/s)"),
+                 ("speed", ("stiffness", 1e5), "vehicle speed [m/s] (EA = 1e5 N)")]):
+            ax = axes[line][column]
+            chosen = [r for r in mine if float(r[fixed[0]]) == fixed[1]]
+            for bounded, marker, colour, name in [("1", "o", "tab:green", "bounded"), ("0", "x", "tab:red", "fails")]:
+                pts = [(float(r["time_step"]), float(r[axis])) for r in chosen if r["bounded"] == bounded]
+                if pts:
+                    ax.scatter(*zip(*pts), marker=marker, color=colour, label=name, s=30)
+            steps = sorted({float(r["time_step"]) for r in mine})
+            if axis == "stiffness":
+                # dt_crit = dL / sqrt(EA / mu), dL = 0.5 m, mu = 0.4 kg/m: EA = mu (dL / dt)^2.
+                ea = [0.4 * (0.5 / dt) ** 2 for dt in steps]
+                ax.plot(steps, ea, "k--", label="explicit limit dt = dL / sqrt(EA / mu)")
+                values = [float(r[axis]) for r in chosen]
+                ax.set_ylim(min(values) / 3, max(values) * 3)
+            else:
+                ax.axvline(0.5 / math.sqrt(1e5 / 0.4), color="k", linestyle="--", label="explicit limit at EA = 1e5 N")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("time step [s]")
+            ax.set_ylabel(label)
+            ax.set_title(method, fontsize=10)
+            ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle("Stability map: a vehicle pulls a 0.5 m-segment cable (mu 0.4 kg/m) for 2 s; "
+                 "bounded = no blow-up reported, strain < 1", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(docs / "stability.png", dpi=90)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    study_dir = pathlib.Path(sys.argv[1])
+    docs = pathlib.Path(sys.argv[2])
+    docs.mkdir(parents=True, exist_ok=True)
+    speed_vs_accuracy(read(study_dir / "study.csv"), docs)
+    stability(read(study_dir / "stability.csv"), docs)
+    print(f"wrote {docs / 'speed_vs_accuracy.png'} and {docs / 'stability.png'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,322 @@
+// rov_tether_study: the speed-against-accuracy study and the stability map (README "Speed against
+// accuracy"). Runs every reference case for each method x resolution x effort and writes
+// OUT/study.csv and OUT/stability.csv for scripts/figures.py.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rov_tether/study.hpp"
+
+namespace
+{
+
+using rov_tether::SolverType;
+using rov_tether::TetherParams;
+using namespace rov_tether::study;
+
+struct Effort
+{
+  int substeps;
+  int iterations;
+  double critical_fraction;  ///< lumped_mass: sub-step as a fraction of the critical step (else 0)
+  double time_step;          ///< [s]; 0 = the case's step
+};
+
+std::vector<int> resolutions(const std::string& name, bool quick)
+{
+  if (quick)
+  {
+    return {10, 20};
+  }
+  if (name == "axial_drag")
+  {
+    return {10, 25, 50, 100};
+  }
+  if (name == "paper_experiment")
+  {
+    return {25, 50, 100};
+  }
+  if (name.rfind("catenary", 0) == 0)
+  {
+    return {10, 20, 40, 80};
+  }
+  return {10, 20, 40};
+}
+
+std::vector<Effort> efforts(SolverType method, bool quick)
+{
+  std::vector<Effort> out;
+  const std::vector<double> steps = quick ? std::vector<double>{0.005} : std::vector<double>{0.005, 0.02, 0.05};
+  switch (method)
+  {
+    case SolverType::kPbd:
+      for (double dt : steps)
+      {
+        for (int iterations : quick ? std::vector<int>{10, 50} : std::vector<int>{2, 5, 10, 20, 50, 100})
+        {
+          out.push_back({1, iterations, 0.0, dt});
+        }
+      }
+      break;
+    case SolverType::kXpbd:
+      for (double dt : steps)
+      {
+        for (auto [substeps, iterations] : quick ? std::vector<std::pair<int, int>>{{1, 20}, {4, 5}}
+                                                 : std::vector<std::pair<int, int>>{
+                                                       {1, 5}, {1, 20}, {1, 100}, {4, 1}, {4, 5}, {16, 1}, {16, 5}})
+        {
+          out.push_back({substeps, iterations, 0.0, dt});
+        }
+      }
+      break;
+    default:
+      // The step does not matter: the sub-step is a fraction of the critical step.
+      for (double fraction : quick ? std::vector<double>{0.5} : std::vector<double>{0.9, 0.5, 0.2})
+      {
+        out.push_back({0, 1, fraction, 0.0});
+      }
+  }
+  return out;
+}
+
+void writeResult(std::FILE* out, const Result& r)
+{
+  std::fprintf(out, "%s,%s,%d,%d,%d,%g,%.6g,%.6g,%.6g,%d,%s\n", r.scenario.c_str(), r.method.c_str(), r.segments,
+               r.iterations, r.substeps, r.time_step, r.shape_error, r.tension_error, r.cost, r.failed ? 1 : 0,
+               r.label.c_str());
+  std::fflush(out);
+}
+
+void usage()
+{
+  std::fprintf(stderr,
+               "usage: rov_tether_study --out DIR [--quick] [--case NAME] [--no-stability]\n"
+               "  Runs the reference cases of REFERENCES.md for pbd, xpbd and lumped_mass at several\n"
+               "  resolutions and efforts; writes DIR/study.csv and DIR/stability.csv.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  std::string out_dir;
+  std::string only;
+  bool quick = false;
+  bool with_stability = true;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--out" && i + 1 < argc)
+    {
+      out_dir = argv[++i];
+    }
+    else if (arg == "--case" && i + 1 < argc)
+    {
+      only = argv[++i];
+    }
+    else if (arg == "--quick")
+    {
+      quick = true;
+    }
+    else if (arg == "--no-stability")
+    {
+      with_stability = false;
+    }
+    else
+    {
+      usage();
+      return 2;
+    }
+  }
+  if (out_dir.empty())
+  {
+    usage();
+    return 2;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  const std::string study_path = out_dir + "/study.csv";
+  std::FILE* out = std::fopen(study_path.c_str(), "w");
+  if (out == nullptr)
+  {
+    std::fprintf(stderr, "cannot write %s\n", study_path.c_str());
+    return 1;
+  }
+  std::fprintf(out, "scenario,method,segments,iterations,substeps,time_step,shape_error,tension_error,cost_us_per_s,"
+                    "failed,label\n");
+  // Cheapest run per case and method that meets the goal's accuracy (shape 1%, tension 2%).
+  std::map<std::string, std::map<std::string, Result>> cheapest;
+  for (const Case& c : cases())
+  {
+    if (!only.empty() && c.name != only)
+    {
+      continue;
+    }
+    std::printf("== %s (%s)\n", c.name.c_str(), c.reference.c_str());
+    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+    {
+      for (int segments : resolutions(c.name, quick))
+      {
+        for (const Effort& effort : efforts(method, quick))
+        {
+          TetherParams p = c.base(segments);
+          p.solver = method;
+          if (effort.time_step > 0.0 && c.name != "paper_experiment")  // the paper's step is part of its case
+          {
+            p.time_step = effort.time_step;
+          }
+          p.iterations = effort.iterations;
+          p.substeps = effort.substeps;
+          if (effort.critical_fraction > 0.0)
+          {
+            p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
+          }
+          if (p.substeps > 10000)
+          {
+            continue;
+          }
+          const Result r = c.run(p);
+          writeResult(out, r);
+          const bool accurate = r.shape_error <= 0.01 && !(r.tension_error > 0.02);
+          auto& best = cheapest[c.name];
+          if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
+          {
+            best[r.method] = r;
+          }
+        }
+      }
+    }
+    if (c.name == "catenary_s8")
+    {
+      // The automatic choice: resolution from a shape tolerance on the catenary's tightest radius
+      // a = H / w, effort from a stretch tolerance.
+      Catenary reference;
+      reference.stiffness = 1e5;
+      reference.solve(8.0);
+      for (double shape : {0.01, 0.001})
+      {
+        for (double stretch : {0.01, 0.001})
+        {
+          TetherParams p = c.base(10);
+          p.segment_length_auto = true;
+          p.shape_tolerance = shape;
+          p.min_bend_radius = reference.horizontal / reference.weight;
+          p.iterations_auto = true;
+          p.stretch_tolerance = stretch;
+          p = p.resolved();
+          p.min_deployed_length = p.segment_length;
+          Result r = c.run(p);
+          r.label = "auto";
+          writeResult(out, r);
+          std::printf("   auto (shape %g m, stretch %g): %d segments, %d iterations: sag %.3f%%, tension %.3f%%, %.0f us/s\n",
+                      shape, stretch, r.segments, r.iterations, 100 * r.shape_error, 100 * r.tension_error, r.cost);
+        }
+      }
+    }
+    for (const auto& [method, r] : cheapest[c.name])
+    {
+      std::printf("   cheapest within 1%% shape / 2%% tension: %-11s %3d segments, %2d substeps x %3d iterations: "
+                  "%9.0f us per simulated s\n",
+                  method.c_str(), r.segments, r.substeps, r.iterations, r.cost);
+    }
+  }
+  std::fclose(out);
+
+  if (only.empty() || only == "catenary_s8")
+  {
+    // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
+    // the cheapest lumped_mass run, on the S = 8 catenary, for a range of axial stiffness (lumped_mass's
+    // critical step shrinks as 1 / sqrt(EA); pbd does not depend on EA).
+    const Case& c = findCase("catenary_s8");
+    for (double stiffness : quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
+    {
+      std::map<std::string, Result> best;
+      for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+      {
+        for (int segments : {10, 20})
+        {
+          for (const Effort& effort : efforts(method, quick))
+          {
+            TetherParams p = c.base(segments);
+            p.axial_stiffness = stiffness;
+            p.solver = method;
+            p.iterations = effort.iterations;
+            p.substeps = effort.substeps;
+            if (effort.time_step > 0.0)
+            {
+              p.time_step = effort.time_step;
+            }
+            if (effort.critical_fraction > 0.0)
+            {
+              p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
+            }
+            const Result r = c.run(p);
+            const bool accurate = r.shape_error <= 0.01 && r.tension_error <= 0.02;
+            if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
+            {
+              best[r.method] = r;
+            }
+          }
+        }
+      }
+      if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
+      {
+        std::printf("goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
+                    "(%d segments, %d iterations, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d segments, h %.3g ms): "
+                    "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
+                    stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].time_step,
+                    best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
+                    1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
+                    best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
+      }
+    }
+  }
+
+  if (with_stability)
+  {
+    const std::string path = out_dir + "/stability.csv";
+    std::FILE* map = std::fopen(path.c_str(), "w");
+    std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
+    const std::vector<double> steps = quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
+                                            : std::vector<double>{1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4,
+                                                                  1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
+    const std::vector<double> stiffnesses =
+        quick ? std::vector<double>{1e3, 1e5} : std::vector<double>{1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+    const std::vector<double> speeds =
+        quick ? std::vector<double>{1.0, 10.0} : std::vector<double>{0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
+    int bounded[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+    int index = 0;
+    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+    {
+      for (double dt : steps)
+      {
+        // Step x stiffness at 1 m/s, then step x speed at EA = 1e5 N.
+        for (double ea : stiffnesses)
+        {
+          const StabilityPoint s = stability(method, dt, ea, 1.0);
+          std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, ea, 1.0, s.critical_step, s.bounded,
+                       s.max_strain);
+          bounded[index] += s.bounded, ++total[index];
+        }
+        for (double v : speeds)
+        {
+          const StabilityPoint s = stability(method, dt, 1e5, v);
+          std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, 1e5, v, s.critical_step, s.bounded,
+                       s.max_strain);
+          bounded[index] += s.bounded, ++total[index];
+        }
+      }
+      std::printf("stability: %-11s bounded in %d of %d runs\n", rov_tether::toString(method).c_str(), bounded[index],
+                  total[index]);
+      ++index;
+    }
+    std::fclose(map);
+  }
+  std::printf("wrote %s%s\n", study_path.c_str(), with_stability ? " and stability.csv" : "");
+  return 0;
+}

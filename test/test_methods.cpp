@@ -1,0 +1,265 @@
+// The methods behind the solver interface against REFERENCES.md: xpbd's accuracy and its stiffness
+// independent of the effort, lumped_mass's critical step, convergence in the number of segments, and
+// the cases where methods fail (a teleport, a 10 m/s pull).
+#include <cstdio>
+
+#include "rov_tether/study.hpp"
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+using study::findCase;
+
+TetherParams caseParams(const std::string& name, int segments, SolverType solver, int iterations, int substeps = 1)
+{
+  TetherParams p = findCase(name).base(segments);
+  p.solver = solver;
+  p.iterations = iterations;
+  p.substeps = substeps;
+  return p;
+}
+
+// Irvine's elastic catenary as solved by study::Catenary reproduces REFERENCES.md's rows.
+TEST(Reference, ElasticCatenaryRows)
+{
+  struct Row
+  {
+    double span, stiffness, weight, length, horizontal, sag, max_tension;
+  };
+  for (const Row& row : {Row{8.0, 1e300, 1.0, 10.0, 3.38202, 2.65438, 6.03639},
+                         Row{8.0, 1e3, 1.0, 10.0, 3.33548, 2.68746, 6.01044},
+                         Row{8.0, 100.0, 1.0, 10.0, 2.99709, 2.95737, 5.82946},
+                         Row{9.5, 1e300, 1.0, 10.0, 8.5186, 1.3590, 9.8776},
+                         Row{1.0, 3.1416, 1.962, 1.0, 0.6471, 0.3472, 1.1749}})
+  {
+    study::Catenary c;
+    c.length = row.length;
+    c.weight = row.weight;
+    c.stiffness = row.stiffness;
+    ASSERT_TRUE(c.solve(row.span));
+    // REFERENCES.md gives 4-6 significant digits (the large-strain row 4, with EA = 3.1416 for pi).
+    EXPECT_NEAR(c.horizontal, row.horizontal, 5e-4 * row.horizontal) << row.span << " " << row.stiffness;
+    EXPECT_NEAR(c.sag(), row.sag, 5e-4 * row.sag);
+    EXPECT_NEAR(c.maxTension(), row.max_tension, 5e-4 * row.max_tension);
+    EXPECT_NEAR(c.x(row.length), row.span, 1e-9);
+  }
+}
+
+// "xpbd tension within 2% of the catenary reference": 20 segments, 20 iterations, dt = 5 ms, on the
+// elastic rows (EA = 100 N, where pbd is 10% off because it cannot stretch) and the large-strain case.
+TEST(Xpbd, MatchesTheElasticCatenaryAndTheLargeStrainCase)
+{
+  for (const std::string name : {"catenary_ea100", "large_strain", "catenary_s8"})
+  {
+    const study::Result xpbd = findCase(name).run(caseParams(name, 20, SolverType::kXpbd, 20));
+    const study::Result pbd = findCase(name).run(caseParams(name, 20, SolverType::kPbd, 20));
+    std::printf("[ measured ] %s, N = 20, 20 iterations: xpbd sag %.3f%%, end tension %.3f%%; pbd sag %.3f%%, "
+                "tension %.3f%%\n",
+                name.c_str(), 100 * xpbd.shape_error, 100 * xpbd.tension_error, 100 * pbd.shape_error,
+                100 * pbd.tension_error);
+    EXPECT_LT(xpbd.tension_error, 0.02) << name;
+    EXPECT_LT(xpbd.shape_error, 0.01) << name;
+    if (name != "catenary_s8")
+    {
+      EXPECT_GT(pbd.shape_error, 0.05) << name << ": pbd is inextensible";
+    }
+  }
+}
+
+// Statics converge as 1/N^2 (REFERENCES.md): with xpbd on the EA = 100 N catenary the sag error falls
+// about 4x per doubling of the segments (order 2 within 0.3).
+TEST(Xpbd, ConvergesAtSecondOrderInTheSegments)
+{
+  double errors[3];
+  int i = 0;
+  for (int segments : {10, 20, 40})
+  {
+    errors[i++] = findCase("catenary_ea100").run(caseParams("catenary_ea100", segments, SolverType::kXpbd, 50)).shape_error;
+  }
+  const double order_1 = std::log2(errors[0] / errors[1]);
+  const double order_2 = std::log2(errors[1] / errors[2]);
+  std::printf("[ measured ] xpbd sag error N = 10/20/40: %.4f%% / %.4f%% / %.4f%%, order %.2f, %.2f\n",
+              100 * errors[0], 100 * errors[1], 100 * errors[2], order_1, order_2);
+  EXPECT_NEAR(order_1, 2.0, 0.3);
+  EXPECT_NEAR(order_2, 2.0, 0.3);
+}
+
+/// Mean stretch of a 10 m cable hanging from its spool (free end) after settling.
+double hangingStretch(SolverType solver, int iterations, double time_step, double stiffness)
+{
+  TetherParams p = findCase("hanging_chain").base(20);
+  p.solver = solver;
+  p.iterations = iterations;
+  p.time_step = time_step;
+  p.axial_stiffness = stiffness;
+  p.drag = 0.9;
+  TetherSimulation sim(p, Position::Zero());
+  sim.advance(20.0);
+  return meanStretch(sim);
+}
+
+// xpbd's stiffness is EA whatever the iteration count and the step; pbd's is not (REFERENCES.md "Where
+// methods fail"). A hanging cable stretches by w L / (2 EA) on average: 5% at EA = 1e3 N, w = 9.81 N/m.
+TEST(Xpbd, StiffnessDoesNotDependOnIterationsOrStep)
+{
+  const double expected = 9.81 * 10.0 / (2.0 * 1e3);
+  std::vector<double> xpbd, pbd;
+  for (int iterations : {10, 100})
+  {
+    for (double dt : {0.005, 0.02})
+    {
+      xpbd.push_back(hangingStretch(SolverType::kXpbd, iterations, dt, 1e3));
+      pbd.push_back(hangingStretch(SolverType::kPbd, iterations, dt, 1e3));
+      std::printf("[ measured ] %3d iterations, dt %.3f s: mean stretch xpbd %.5f (w L / 2 EA = %.5f), pbd %.6f\n",
+                  iterations, dt, xpbd.back(), expected, pbd.back());
+    }
+  }
+  for (double stretch : xpbd)
+  {
+    EXPECT_NEAR(stretch, expected, 0.01 * expected);
+  }
+  const auto [low, high] = std::minmax_element(pbd.begin(), pbd.end());
+  EXPECT_GT(*high / *low, 10.0) << "pbd's residual stretch depends on iterations and step";
+}
+
+// Explicit lumped mass is stable below dL / sqrt(EA / mu) (REFERENCES.md: EA = 1e5 N, mu = 0.4 kg/m,
+// dL = 0.5 m: 1.0 ms). Above it the blow-up is detected, reported and the cable re-laid, never published
+// as garbage; below it nothing is reported.
+TEST(LumpedMass, AboveTheCriticalStepTheBlowUpIsDetectedAndReported)
+{
+  TetherParams p;
+  p.cable_length = 20.0;
+  p.segment_length = 0.5;
+  p.mass_per_length = 0.4;
+  p.axial_stiffness = 1e5;
+  p.solver = SolverType::kLumpedMass;
+  EXPECT_NEAR(p.criticalStep(), 1.0e-3, 1e-9);
+  auto pull = [](const study::StabilityPoint& s) { return s.bounded; };
+  EXPECT_TRUE(pull(study::stability(SolverType::kLumpedMass, 0.5e-3, 1e5, 1.0)));
+  EXPECT_FALSE(pull(study::stability(SolverType::kLumpedMass, 2.0e-3, 1e5, 1.0)));
+
+  p.weight_in_water = 2.0;
+  p.time_step = 0.005;
+  for (int substeps : {10, 4})  // h = 0.5 ms (stable), 1.25 ms (above 1.0 ms)
+  {
+    p.substeps = substeps;
+    TetherSimulation sim(p, Position::Zero(), Position(4.0, 0.0, -1.0));
+    sim.advance(2.0);
+    std::printf("[ measured ] lumped_mass h = %.2f ms: %llu failures; %s\n", 1e3 * p.subStep(),
+                static_cast<unsigned long long>(sim.recoveryCount()), sim.lastFailure().c_str());
+    if (substeps == 10)
+    {
+      EXPECT_EQ(sim.recoveryCount(), 0u);
+      EXPECT_EQ(sim.lastFailure(), "");
+    }
+    else
+    {
+      EXPECT_GT(sim.recoveryCount(), 0u);
+      EXPECT_NE(sim.lastFailure().find("exceeds the critical step"), std::string::npos) << sim.lastFailure();
+    }
+    // Whatever happened, what a caller reads is finite and sane.
+    const TetherSummary summary = sim.summary();
+    EXPECT_TRUE(std::isfinite(summary.max_tension));
+    EXPECT_LT(summary.max_strain, 1.0);
+    for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
+    {
+      EXPECT_TRUE(sim.particle(k).allFinite());
+    }
+  }
+}
+
+// pbd and xpbd stay bounded where force-based methods fail: a 10 m/s pull at the default step and a
+// 20 m teleport of the vehicle taken in one step (jump detection off).
+TEST(Stability, PbdAndXpbdSurviveATeleportAndA10MetrePerSecondPull)
+{
+  for (SolverType solver : {SolverType::kPbd, SolverType::kXpbd})
+  {
+    const study::StabilityPoint pull = study::stability(solver, 0.005, 1e5, 10.0);
+    std::printf("[ measured ] %s, 10 m/s pull: max strain %.3f\n", toString(solver).c_str(), pull.max_strain);
+    EXPECT_TRUE(pull.bounded) << toString(solver);
+
+    TetherParams p;
+    p.solver = solver;
+    p.cable_length = 50.0;
+    p.initial_deployed_length = 30.0;
+    p.max_vehicle_jump = 1e4;  // no re-lay: the solver takes the teleport
+    TetherSimulation sim(p, Position::Zero(), Position(5.0, 0.0, -2.0));
+    sim.addVehicleSample(1.0, Position(5.0, 0.0, -2.0));
+    sim.addVehicleSample(1.005, Position(25.0, 0.0, -2.0));
+    double worst = 0.0;
+    for (int k = 0; k < 40; ++k)
+    {
+      sim.advance(0.05);
+      const TetherSummary s = sim.summary();
+      ASSERT_TRUE(std::isfinite(s.max_strain) && std::isfinite(s.max_tension)) << toString(solver);
+      worst = std::max(worst, s.max_strain);
+    }
+    std::printf("[ measured ] %s, 20 m teleport: max strain %.3f, end strain %.4f\n", toString(solver).c_str(), worst,
+                sim.summary().max_strain);
+    EXPECT_EQ(sim.recoveryCount(), 0u);
+    EXPECT_LT(sim.summary().max_strain, 0.2);
+  }
+}
+
+// The stability map's boundary for lumped_mass is the theoretical explicit limit: bounded at 0.7x the
+// critical step, failing at 1.5x, for soft and stiff cables alike.
+TEST(Stability, LumpedMassBoundaryIsTheExplicitLimit)
+{
+  for (double stiffness : {1e3, 1e5, 1e7})
+  {
+    TetherParams p;
+    p.segment_length = 0.5;
+    p.mass_per_length = 0.4;
+    p.axial_stiffness = stiffness;
+    const double critical = p.criticalStep();
+    EXPECT_TRUE(study::stability(SolverType::kLumpedMass, 0.7 * critical, stiffness, 1.0).bounded) << stiffness;
+    EXPECT_FALSE(study::stability(SolverType::kLumpedMass, 1.5 * critical, stiffness, 1.0).bounded) << stiffness;
+  }
+}
+
+// `segment_length: auto` follows REFERENCES.md "How fine a cable needs to be": for the S = 8 catenary
+// (a = H / w = 3.38 m) a chord error of 1 cm needs N >= 20 and 1 mm needs N >= 61. `iterations: auto`
+// meets its stretch tolerance on a hanging cable.
+TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
+{
+  TetherParams p = findCase("catenary_s8").base(10);
+  p.segment_length_auto = true;
+  p.min_bend_radius = 3.38202;
+  p.shape_tolerance = 0.01;
+  EXPECT_EQ(p.resolved().segmentCount(), 20u);
+  p.shape_tolerance = 0.001;
+  EXPECT_EQ(p.resolved().segmentCount(), 61u);
+  EXPECT_TRUE(p.validate().empty());
+
+  std::string text;
+  TetherParams parsed;
+  ASSERT_EQ(setParameter(parsed, "segment_length", std::string("auto")), "");
+  ASSERT_EQ(setParameter(parsed, "iterations", std::string("auto")), "");
+  EXPECT_EQ(getParameter(parsed, "segment_length"), ParamValue(std::string("auto")));
+  ASSERT_EQ(setParameter(parsed, "iterations", std::int64_t{7}), "");
+  EXPECT_FALSE(parsed.iterations_auto);
+
+  for (double tolerance : {0.01, 0.002})
+  {
+    TetherParams h = findCase("hanging_chain").base(40);
+    h.drag = 0.9;
+    h.iterations_auto = true;
+    h.stretch_tolerance = tolerance;
+    TetherSimulation sim(h, Position::Zero());
+    sim.advance(15.0);
+    std::printf("[ measured ] iterations auto, stretch tolerance %.3f: %d iterations, mean stretch %.5f\n", tolerance,
+                sim.params().iterations, meanStretch(sim));
+    EXPECT_LT(meanStretch(sim), tolerance);
+    EXPECT_GT(meanStretch(sim), 0.2 * tolerance) << "the effort is not wasted";
+  }
+  TetherParams lumped = findCase("catenary_s8").base(20);
+  lumped.solver = SolverType::kLumpedMass;
+  lumped.iterations_auto = true;
+  EXPECT_LE(lumped.resolved().subStep(), 0.5 * lumped.criticalStep() + 1e-15);
+}
+
+}  // namespace
+}  // namespace rov_tether::test
