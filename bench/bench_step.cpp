@@ -1,19 +1,24 @@
 // Speed of one simulation step (Google Benchmark). See README "Benchmarks".
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <functional>
+
 #include "rov_tether/tether_simulation.hpp"
 
 namespace
 {
 
+using rov_tether::DragModel;
 using rov_tether::Position;
 using rov_tether::SolverType;
 using rov_tether::TetherParams;
 using rov_tether::TetherSimulation;
 
 /// The paper's cable scaled to `segments` segments of 0.1 m, fully deployed, slack between spool and
-/// vehicle (80% of its length apart), 10 iterations, bending on, noise on, neutrally buoyant.
-TetherSimulation makeCable(int segments, SolverType solver, bool bending)
+/// vehicle (80% of its length apart), 10 iterations, bending on, noise on, neutrally buoyant; `change`
+/// then edits the parameters.
+TetherSimulation makeCable(int segments, const std::function<void(TetherParams&)>& change = {})
 {
   TetherParams params;
   params.segment_length = 0.1;
@@ -21,39 +26,125 @@ TetherSimulation makeCable(int segments, SolverType solver, bool bending)
   params.initial_deployed_length = params.cable_length;
   params.min_deployed_length = 0.1;
   params.iterations = 10;
-  params.bending = bending;
-  params.solver = solver;
   params.winch_mode = rov_tether::WinchMode::kLocked;
-  TetherSimulation sim(params, Position::Zero(), Position(0.8 * params.cable_length, 0.0, 0.0));
+  if (change)
+  {
+    change(params);
+  }
+  const double deployed = params.initial_deployed_length;
+  TetherSimulation sim(params, Position::Zero(), Position(0.8 * deployed, 0.0, 0.0));
   sim.advance(1.0);  // let the laid-out shape start moving
   return sim;
 }
 
-void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
+void run(benchmark::State& state, TetherSimulation& sim, double projections_per_step)
 {
-  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)), solver, bending);
   for (auto _ : state)
   {
     sim.step();
     benchmark::DoNotOptimize(sim.state().x.data());
   }
-  const double projections_per_step = static_cast<double>(state.range(0)) * (bending ? 2.0 : 1.0) * 10.0;
-  state.counters["ns_per_projection"] =
-      benchmark::Counter(projections_per_step * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
-  state.counters["ns_per_projection"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * projections_per_step,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  if (projections_per_step > 0.0)
+  {
+    state.counters["ns_per_projection"] =
+        benchmark::Counter(static_cast<double>(state.iterations()) * projections_per_step,
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  }
+}
+
+void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
+{
+  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+                                   [&](TetherParams& p)
+                                   {
+                                     p.solver = solver;
+                                     p.bending = bending;
+                                   });
+  run(state, sim, static_cast<double>(state.range(0)) * (bending ? 2.0 : 1.0) * 10.0);
 }
 
 void BM_StepPbd(benchmark::State& state) { stepBenchmark(state, SolverType::kPbd, true); }
 void BM_StepPbdSequential(benchmark::State& state) { stepBenchmark(state, SolverType::kPbdSequential, true); }
 void BM_StepPbdNoBending(benchmark::State& state) { stepBenchmark(state, SolverType::kPbd, false); }
 
+/// xpbd with the same effort (10 iterations) and a bending stiffness, so it projects as many constraints.
+void BM_StepXpbd(benchmark::State& state)
+{
+  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+                                   [](TetherParams& p)
+                                   {
+                                     p.solver = SolverType::kXpbd;
+                                     p.bending_stiffness = 1e-3;
+                                   });
+  run(state, sim, static_cast<double>(state.range(0)) * 20.0);
+}
+
+/// lumped_mass on the same cable (EA = 1e5 N, mu = 0.1 kg/m, dL = 0.1 m: critical step 0.1 ms): one
+/// 5 ms step needs ceil(5 / 0.09) = 56 sub-steps at 0.9 of the critical step.
+void BM_StepLumpedMass(benchmark::State& state)
+{
+  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+                                   [](TetherParams& p)
+                                   {
+                                     p.solver = SolverType::kLumpedMass;
+                                     p.noise = 0.0;
+                                     p.substeps = static_cast<int>(std::ceil(p.time_step / (0.9 * p.criticalStep())));
+                                   });
+  state.counters["substeps"] = sim.params().substeps;
+  run(state, sim, 0.0);
+}
+
+/// What a scene skips (README "Model no more than the scene needs"): 100 segments, pbd, each variant
+/// adds one piece of physics the baseline scene does not need.
+void BM_Scene(benchmark::State& state)
+{
+  const int variant = static_cast<int>(state.range(0));
+  const char* labels[] = {"baseline: neutral, still water, no seabed",
+                          "weight_in_water 1e-9 N/m (weight term computed)",
+                          "90 m more cable on the spool (10 m deployed)",
+                          "uniform current 0.2 m/s",
+                          "current_variation 0.1 m/s (per-particle field)",
+                          "drag_model morison",
+                          "seabed 50 m below (contact loop)"};
+  state.SetLabel(labels[variant]);
+  TetherSimulation sim = makeCable(100,
+                                   [variant](TetherParams& p)
+                                   {
+                                     switch (variant)
+                                     {
+                                       case 1:
+                                         p.weight_in_water = 1e-9;
+                                         break;
+                                       case 2:
+                                         p.cable_length = 100.0;
+                                         break;
+                                       case 3:
+                                         p.current = {0.2, 0.0, 0.0};
+                                         break;
+                                       case 4:
+                                         p.current = {0.2, 0.0, 0.0};
+                                         p.current_variation = 0.1;
+                                         break;
+                                       case 5:
+                                         p.drag_model = DragModel::kMorison;
+                                         break;
+                                       case 6:
+                                         p.seabed_z = -50.0;
+                                         break;
+                                       default:
+                                         break;
+                                     }
+                                   });
+  run(state, sim, 0.0);
+}
+
 }  // namespace
 
 BENCHMARK(BM_StepPbd)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepPbdSequential)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepPbdNoBending)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepXpbd)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepLumpedMass)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Scene)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -10,6 +10,13 @@
 #else
 #define ROV_TETHER_TARGET_CLONES
 #endif
+// The projection loops must be inlined into the cloned solveBlocked, or they would be compiled for the
+// baseline target only.
+#if defined(__GNUC__)
+#define ROV_TETHER_INLINE inline __attribute__((always_inline))
+#else
+#define ROV_TETHER_INLINE inline
+#endif
 
 namespace rov_tether
 {
@@ -28,7 +35,7 @@ constexpr double kMinLengthSquared = 1e-24;
  * (already divided by dt^2): the multiplier increment is (C - alpha~ lambda) / (w_a + w_b + alpha~).
  */
 template <int kPower>
-inline void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
+ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
                          const double* __restrict aw, double* __restrict bx, double* __restrict by,
                          double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
                          const double* __restrict weight, double* __restrict lambda, std::size_t count,
@@ -96,7 +103,7 @@ struct Blocked
 
 /// Projects the constraints of residue r (constraint l = 4 k + r) between block r and the block of the
 /// particle `span` further on (1 for stretch, 2 for bending).
-inline void projectResidue(const Blocked& c, std::size_t r, std::size_t span, bool bend, std::size_t count)
+ROV_TETHER_INLINE void projectResidue(const Blocked& c, std::size_t r, std::size_t span, bool bend, std::size_t count)
 {
   const std::size_t a = r * c.block;
   const std::size_t b = ((r + span) & 3) * c.block + (r + span) / 4;  // particle 4 k + r + span
