@@ -126,7 +126,7 @@ TEST(Solver, CachedConstraintDataMatchesAFreshCopy)
 {
   CableState cached = zigzag(41, 5);
   CableState fresh = cached;
-  PbdSolver persistent;
+  PbdSolver persistent(false, 0);  // always the blocked path
   SolverSettings settings;
   settings.iterations = 7;
   for (int k = 0; k < 60; ++k)
@@ -142,7 +142,7 @@ TEST(Solver, CachedConstraintDataMatchesAFreshCopy)
       state->markDirty(f, f + 3);
     }
     persistent.solve(cached, settings);
-    PbdSolver().solve(fresh, settings);
+    PbdSolver(false, 0).solve(fresh, settings);
     for (std::size_t i = 0; i < cached.size(); ++i)
     {
       ASSERT_EQ(cached.position(i), fresh.position(i)) << "step " << k << ", particle " << i;
@@ -150,16 +150,56 @@ TEST(Solver, CachedConstraintDataMatchesAFreshCopy)
   }
 }
 
+// Short cables are projected in place (no blocked copies) in the same order: both paths give the same
+// positions and multipliers bit for bit, for pbd and xpbd, with and without bending.
+TEST(Solver, InPlacePathMatchesTheBlockedPath)
+{
+  for (bool compliant : {false, true})
+  {
+    for (bool bending : {false, true})
+    {
+      CableState blocked = zigzag(37, 3);
+      CableState direct = blocked;
+      SolverSettings settings;
+      settings.iterations = 9;
+      settings.bending = bending;
+      settings.axial_stiffness = 50.0;
+      settings.bending_stiffness = 0.02;
+      PbdSolver(compliant, 0).solve(blocked, settings);
+      PbdSolver(compliant, 1000).solve(direct, settings);
+      for (std::size_t i = 0; i < blocked.size(); ++i)
+      {
+        ASSERT_EQ(blocked.position(i), direct.position(i)) << compliant << bending << " particle " << i;
+      }
+      for (std::size_t j = blocked.first; j + 1 < blocked.size(); ++j)
+      {
+        ASSERT_EQ(blocked.stretch_lambda[j], direct.stretch_lambda[j]) << j;
+      }
+      for (std::size_t j = blocked.first; bending && j + 2 < blocked.size(); ++j)
+      {
+        ASSERT_EQ(blocked.bend_lambda[j], direct.bend_lambda[j]) << j;
+      }
+    }
+  }
+}
+
 // "Hot loops allocate nothing": a thousand steps with pay-out, releases, noise and tension reads.
 TEST(Allocation, StepsAllocateNothing)
 {
-  for (SolverType solver : {SolverType::kPbd, SolverType::kPbdSequential})
+  for (SolverType solver : {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass})
   {
     TetherParams params;
     params.solver = solver;
     params.winch_mode = WinchMode::kSpeed;
     params.winch_speed = 0.8;
     params.weight_in_water = 0.5;
+    // The water model too: Morison drag, a varying current, a seabed.
+    const bool water = solver == SolverType::kXpbd || solver == SolverType::kLumpedMass;
+    params.drag_model = water ? DragModel::kMorison : DragModel::kDamping;
+    params.current = {0.1, 0.0, 0.0};
+    params.current_variation = water ? 0.05 : 0.0;
+    params.seabed_z = -1.5;
+    params.substeps = solver == SolverType::kLumpedMass ? 60 : 1;  // below the critical step
     TetherSimulation sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
     sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
     std::vector<double> tensions;
@@ -179,6 +219,7 @@ TEST(Allocation, StepsAllocateNothing)
     const TetherSummary summary = sim.summary();
     const long allocations = g_allocations.load() - before;
     EXPECT_EQ(allocations, 0) << toString(solver);
+    EXPECT_EQ(sim.recoveryCount(), 0u) << toString(solver);
     EXPECT_LT(sim.state().first, first_before);  // particles were released meanwhile
     EXPECT_GT(summary.deployed_length, 5.0);
   }

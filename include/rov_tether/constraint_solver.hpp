@@ -49,14 +49,25 @@ class ConstraintSolver
 class PbdSolver : public ConstraintSolver
 {
  public:
+  /// Deployed particles up to which the constraints are projected in place, in the same order, without
+  /// the blocked copies: for short cables the copies and the many tiny loops cost more than they save.
+  static constexpr std::size_t kDirectParticles = 48;
+
   /// `compliant` makes this XPBD (Macklin, Mueller, Chentanez 2016): each stretch constraint has the
   /// compliance rest / EA and each bending constraint (rest / 2)^3 / EI, so the multipliers converge to
   /// the physical force times dt^2 whatever the iteration count.
-  explicit PbdSolver(bool compliant = false) : compliant_(compliant) {}
+  /// `direct_particles`: see kDirectParticles (tests set it to compare both paths).
+  explicit PbdSolver(bool compliant = false, std::size_t direct_particles = kDirectParticles)
+      : compliant_(compliant), direct_particles_(direct_particles)
+  {
+  }
   void solve(CableState& state, const SolverSettings& settings) override;
 
  private:
+  void solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance);
+
   bool compliant_;
+  std::size_t direct_particles_;
   /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
   std::vector<double> x_, y_, z_, inv_mass_;
   std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.

@@ -178,8 +178,13 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     return;
   }
   const std::size_t m = state.size() - f;
-  block_ = m / 4 + 2;                                       // room for particle 4 k + r + 2 one block further on
-  const std::size_t capacity = 4 * (state.size() / 4 + 2);  // the whole cable: pay-out never reallocates
+  // XPBD: with no bending stiffness there is no bending constraint at all.
+  const bool bending = settings.bending && (!compliant_ || settings.bending_stiffness > 0.0);
+  const double inv_dt2 = 1.0 / (settings.time_step * settings.time_step);
+  const double stretch_compliance = compliant_ ? inv_dt2 / settings.axial_stiffness : 0.0;
+  const double bend_compliance = compliant_ && bending ? inv_dt2 / (8.0 * settings.bending_stiffness) : 0.0;
+  // Sized for the whole cable on the first step, whichever path runs: pay-out never reallocates.
+  const std::size_t capacity = 4 * (state.size() / 4 + 2);
   if (x_.size() < capacity)
   {
     for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_})
@@ -187,6 +192,13 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
       v->assign(capacity, 0.0);
     }
   }
+  if (m <= direct_particles_)
+  {
+    solveDirect(state, settings.iterations, bending, stretch_compliance, bend_compliance);
+    copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
+    return;
+  }
+  block_ = m / 4 + 2;                                       // room for particle 4 k + r + 2 one block further on
   auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };
   // Masses, rest lengths and weights change only near the spool (pay-out) or on a rebuild: copy them
   // again only for the particles the state marks dirty, or all when the layout shifted.
@@ -226,11 +238,6 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     bend_lambda_[s] = 0.0;
   }
 
-  // XPBD: with no bending stiffness there is no bending constraint at all.
-  const bool bending = settings.bending && (!compliant_ || settings.bending_stiffness > 0.0);
-  const double inv_dt2 = 1.0 / (settings.time_step * settings.time_step);
-  const double stretch_compliance = compliant_ ? inv_dt2 / settings.axial_stiffness : 0.0;
-  const double bend_compliance = compliant_ && bending ? inv_dt2 / (8.0 * settings.bending_stiffness) : 0.0;
   const Blocked blocked{x_.data(),         y_.data(),        z_.data(),         inv_mass_.data(),
                         rest_.data(),      weight_.data(),   lambda_.data(),    bend_rest_.data(),
                         bend_weight_.data(), bend_lambda_.data(), block_,       m,
@@ -256,6 +263,75 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
       state.bend_lambda[f + l] = bend_lambda_[slot(l)];
     }
   }
+}
+
+namespace
+{
+
+/// Projects the constraints j = first, first + step, ... below end (each joins j and j + span) of the
+/// state's own arrays. The constraints of one call share no particle, so their order does not matter.
+template <int kPower>
+void projectStrided(CableState& state, std::size_t first, std::size_t end, std::size_t step, std::size_t span,
+                    bool bend, double compliance)
+{
+  double* x = state.x.data();
+  double* y = state.y.data();
+  double* z = state.z.data();
+  const double* w = state.inv_mass.data();
+  const double* rest = bend ? state.bend_rest.data() : state.rest.data();
+  const double* weight = bend ? state.bend_weight.data() : state.stretch_weight.data();
+  double* lambda = bend ? state.bend_lambda.data() : state.stretch_lambda.data();
+  for (std::size_t j = first; j < end; j += step)
+  {
+    projectPairs<kPower>(x + j, y + j, z + j, w + j, x + j + span, y + j + span, z + j + span, w + j + span, rest + j,
+                         weight + j, lambda + j, 1, compliance);
+  }
+}
+
+template <int kStretch, int kBend>
+void solveDirectImpl(CableState& state, int iterations, bool bending, double stretch_compliance,
+                     double bend_compliance)
+{
+  const std::size_t f = state.first;
+  const std::size_t segments_end = state.size() - 1;
+  const std::size_t bends_end = state.size() >= f + 3 ? state.size() - 2 : f;
+  for (int iteration = 0; iteration < iterations; ++iteration)
+  {
+    // The blocked solver's sets, merged where they are independent: all even segments, all odd ones,
+    // then bending residues {0, 1} and {2, 3} (mod 4). Same projections, same order of dependent ones.
+    projectStrided<kStretch>(state, f, segments_end, 2, 1, false, stretch_compliance);
+    projectStrided<kStretch>(state, f + 1, segments_end, 2, 1, false, stretch_compliance);
+    if (bending)
+    {
+      for (std::size_t r : {0, 2})
+      {
+        projectStrided<kBend>(state, f + r, bends_end, 4, 2, true, bend_compliance);
+        projectStrided<kBend>(state, f + r + 1, bends_end, 4, 2, true, bend_compliance);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void PbdSolver::solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance,
+                            double bend_compliance)
+{
+  const std::size_t f = state.first;
+  resetMultipliers(state, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
+  if (stretch_compliance == 0.0)
+  {
+    solveDirectImpl<0, 0>(state, iterations, bending, 0.0, 0.0);
+  }
+  else if (bend_compliance == 0.0)
+  {
+    solveDirectImpl<1, 0>(state, iterations, bending, stretch_compliance, 0.0);
+  }
+  else
+  {
+    solveDirectImpl<1, 3>(state, iterations, bending, stretch_compliance, bend_compliance);
+  }
+  state.dirty_begin = state.dirty_end = 0;
 }
 
 void SequentialPbdSolver::solve(CableState& state, const SolverSettings& settings)
