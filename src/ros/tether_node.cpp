@@ -15,6 +15,8 @@ double smooth(double previous, double sample) { return previous <= 0.0 ? sample 
 
 /// Forward time jumps larger than this are not integrated step by step but reset the tether [s].
 constexpr double kMaxForwardJump = 5.0;
+/// Diagnostics stay ERROR for this long after a simulation failure [s].
+constexpr double kFailureReportTime = 5.0;
 
 }  // namespace
 
@@ -42,6 +44,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
     ROS_WARN("tether_node: ignoring unknown parameters (typos?): %s", unknown.c_str());
   }
   sim_ = std::make_unique<TetherSimulation>(params, options_.spool_position);
+  warnAboutStability();
 
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
   state_pub_ = private_nh_.advertise<TetherState>("state", 10);
@@ -175,6 +178,21 @@ void TetherNode::applyPendingParams()
   {
     ROS_INFO("tether_node: %s", status.message.c_str());
   }
+  if (status.ok)
+  {
+    warnAboutStability();
+  }
+}
+
+void TetherNode::warnAboutStability() const
+{
+  const TetherParams& p = sim_->params();
+  if (p.solver == SolverType::kLumpedMass && p.subStep() > p.criticalStep())
+  {
+    ROS_WARN("tether_node: lumped_mass sub-step %.3g s exceeds its critical step %.3g s (segment_length / "
+             "sqrt(EA / mu)): it will diverge (detected and reported); set substeps >= %.0f or iterations: auto",
+             p.subStep(), p.criticalStep(), std::ceil(p.time_step / p.criticalStep()));
+  }
 }
 
 void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
@@ -242,6 +260,13 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   {
     step_seconds_ = smooth(step_seconds_, wall / static_cast<double>(steps));
     real_time_factor_ = smooth(real_time_factor_, static_cast<double>(steps) * sim_->params().time_step / wall);
+  }
+  if (sim_->recoveryCount() > reported_failures_)
+  {
+    reported_failures_ = sim_->recoveryCount();
+    last_failure_time_ = now;
+    ROS_ERROR_THROTTLE(1.0, "tether_node: simulation failure (%llu so far): %s",
+                       static_cast<unsigned long long>(reported_failures_), sim_->lastFailure().c_str());
   }
   if (sim_->jumpCount() > reported_jumps_)
   {
@@ -396,6 +421,12 @@ void TetherNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("rejected poses", rejected_poses_);
   status.add("resets", resets_);
   status.add("vehicle jumps", sim_->jumpCount());
+  status.add("solver", toString(sim_->params().solver));
+  status.add("simulation failures", sim_->recoveryCount());
+  if (!sim_->lastFailure().empty())
+  {
+    status.add("last failure", sim_->lastFailure());
+  }
   const ros::Time now = ros::Time::now();
   if (!sim_->vehicleAttached())
   {
@@ -412,6 +443,10 @@ void TetherNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   if (summary.deployed_length >= sim_->params().cable_length - 1e-9)
   {
     status.mergeSummary(DiagnosticStatus::WARN, "fully deployed");
+  }
+  if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "simulation failure, cable re-laid: %s", sim_->lastFailure().c_str());
   }
   if (real_time_factor_ > 0.0 && real_time_factor_ < 1.0)
   {

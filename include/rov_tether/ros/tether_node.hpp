@@ -54,6 +54,8 @@ class TetherNode
   bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp = nullptr);
   void resetTether(const ros::Time& now, const std::string& why);
   void applyPendingParams();
+  /// Warns when the parameters make the method unstable (lumped_mass above its critical step).
+  void warnAboutStability() const;
   /// Publishes ~state and ~wrench for the physics' current time.
   void publishState();
   /// Publishes ~markers at marker_rate when someone subscribes.
@@ -98,6 +100,8 @@ class TetherNode
   std::uint32_t resets_ = 0;
   std::uint64_t rejected_poses_ = 0;
   std::uint64_t reported_jumps_ = 0;  ///< Vehicle jumps already logged.
+  std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
+  ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
   std::vector<double> tensions_;
   TetherState state_msg_;
   visualization_msgs::MarkerArray markers_;
