@@ -13,7 +13,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"pbd": "tab:blue", "xpbd": "tab:green", "lumped_mass": "tab:red"}
+COLOURS = {"pbd": "tab:blue", "pbd, over-relaxation 1.8": "tab:purple", "xpbd": "tab:green",
+           "lumped_mass": "tab:red"}
+
+
+def method_of(row):
+    """The curve a row belongs to: pbd's over-relaxed runs are drawn apart."""
+    relax = float(row.get("over_relaxation", "1") or 1)
+    return row["method"] if relax == 1.0 else f"{row['method']}, over-relaxation {relax:g}"
 TITLES = {
     "catenary_s8": "catenary S = 8 m (EA 1e5 N)",
     "catenary_ea100": "elastic catenary, EA = 100 N",
@@ -56,7 +63,7 @@ def speed_vs_accuracy(rows, docs):
         everything = []
         for method, colour in COLOURS.items():
             points = [(float(r["cost_us_per_s"]), error_of(r)) for r in rows
-                      if r["scenario"] == case and r["method"] == method and r["failed"] == "0"
+                      if r["scenario"] == case and method_of(r) == method and r["failed"] == "0"
                       and r["label"] != "auto" and math.isfinite(error_of(r)) and error_of(r) > 0]
             if not points:
                 continue

@@ -17,6 +17,7 @@ struct SolverSettings
   double time_step = 0.005;      ///< Step the constraints are solved for [s].
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
+  double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
 };
 
 /**
@@ -64,7 +65,8 @@ class PbdSolver : public ConstraintSolver
   void solve(CableState& state, const SolverSettings& settings) override;
 
  private:
-  void solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance);
+  void solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
+                   double relax);
 
   bool compliant_;
   std::size_t direct_particles_;

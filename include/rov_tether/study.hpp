@@ -41,11 +41,13 @@ struct Result
   int segments = 0;
   int iterations = 0;
   int substeps = 0;
+  double over_relaxation = 1.0;  ///< pbd's SOR factor [-]
   double time_step = 0.0;        ///< [s]
   double shape_error = 0.0;      ///< Relative error of the case's shape measure (sag, period, ...) [-].
   double tension_error = 0.0;    ///< Relative error of the case's tension measure [-]; NaN when none.
   double cost = 0.0;             ///< CPU per simulated second [us/s].
-  bool failed = false;           ///< The simulation reported a failure (blow-up) or ended non-finite.
+  bool failed = false;           ///< The simulation reported a failure (blow-up), ended non-finite, or (statics)
+                                 ///< was not at rest at the end.
   std::string label;             ///< "auto" for the automatic choice, else empty.
 };
 
@@ -78,7 +80,8 @@ struct StabilityPoint
   bool bounded = false;
   double max_strain = 0.0;  ///< [-]
 };
-StabilityPoint stability(SolverType method, double time_step, double stiffness, double speed);
+StabilityPoint stability(SolverType method, double time_step, double stiffness, double speed,
+                         double over_relaxation = 1.0);
 
 /// CPU time of the process [s].
 double cpuSeconds();

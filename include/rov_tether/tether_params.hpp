@@ -70,6 +70,8 @@ struct TetherParams
   int substeps = 1;
   /// Constraint solver sweeps per sub-step [-].
   int iterations = 10;
+  /// pbd: successive over-relaxation factor of each correction [-]; 1 = the paper's projection.
+  double over_relaxation = 1.0;
   /// `iterations: auto`: resolved() chooses the effort from stretch_tolerance (pbd, xpbd: iterations; lumped_mass:
   /// substeps below half the critical step).
   bool iterations_auto = false;

@@ -31,7 +31,7 @@ constexpr double kMinLengthSquared = 1e-24;
  * k of the `b` arrays. Constraint data (rest, weight, lambda) is indexed by k. The a and b ranges must
  * not overlap, so the loop has no dependency between iterations and vectorises.
  *
- * kPower 0 is PBD (rigid). kPower 1 and 3 are XPBD with the compliance alpha~ = compliance * rest^kPower
+ * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 and 3 are XPBD with the compliance alpha~ = compliance * rest^kPower
  * (already divided by dt^2): the multiplier increment is (C - alpha~ lambda) / (w_a + w_b + alpha~).
  */
 template <int kPower>
@@ -39,7 +39,7 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
                          const double* __restrict aw, double* __restrict bx, double* __restrict by,
                          double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
                          const double* __restrict weight, double* __restrict lambda, std::size_t count,
-                         double compliance = 0.0)
+                         double compliance = 0.0, double relax = 1.0)
 {
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -53,7 +53,7 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
     if constexpr (kPower == 0)
     {
       // Correction factor: (|d| - rest) / |d| / (w_a + w_b); multiplier increment s |d| [kg m].
-      s = (1.0 - rest[k] * inv_length) * weight[k];
+      s = (1.0 - rest[k] * inv_length) * weight[k] * relax;
       lambda[k] += s * length_squared * inv_length;
     }
     else
@@ -99,6 +99,7 @@ struct Blocked
   std::size_t particles;       ///< Deployed particles m.
   double stretch_compliance;   ///< XPBD: 1 / (EA dt^2) [1/(kg m)]; 0 = PBD.
   double bend_compliance;      ///< XPBD: 1 / (8 EI dt^2) [1/(kg m^3)]; 0 = PBD.
+  double relax;                ///< PBD over-relaxation factor.
 };
 
 /// Projects the constraints of residue r (constraint l = 4 k + r) between block r and the block of the
@@ -114,7 +115,7 @@ ROV_TETHER_INLINE void projectResidue(const Blocked& c, std::size_t r, std::size
   if (compliance == 0.0)
   {
     projectPairs<0>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
-                    count);
+                    count, 0.0, c.relax);
   }
   else if (bend)
   {
@@ -192,9 +193,10 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
       v->assign(capacity, 0.0);
     }
   }
+  const double relax = compliant_ ? 1.0 : settings.over_relaxation;
   if (m <= direct_particles_)
   {
-    solveDirect(state, settings.iterations, bending, stretch_compliance, bend_compliance);
+    solveDirect(state, settings.iterations, bending, stretch_compliance, bend_compliance, relax);
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
     return;
   }
@@ -241,7 +243,7 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
   const Blocked blocked{x_.data(),         y_.data(),        z_.data(),         inv_mass_.data(),
                         rest_.data(),      weight_.data(),   lambda_.data(),    bend_rest_.data(),
                         bend_weight_.data(), bend_lambda_.data(), block_,       m,
-                        stretch_compliance, bend_compliance};
+                        stretch_compliance, bend_compliance, relax};
   solveBlocked(blocked, settings, bending);
 
   for (std::size_t l = 0; l < m; ++l)
@@ -272,7 +274,7 @@ namespace
 /// state's own arrays. The constraints of one call share no particle, so their order does not matter.
 template <int kPower>
 void projectStrided(CableState& state, std::size_t first, std::size_t end, std::size_t step, std::size_t span,
-                    bool bend, double compliance)
+                    bool bend, double compliance, double relax)
 {
   double* x = state.x.data();
   double* y = state.y.data();
@@ -284,13 +286,13 @@ void projectStrided(CableState& state, std::size_t first, std::size_t end, std::
   for (std::size_t j = first; j < end; j += step)
   {
     projectPairs<kPower>(x + j, y + j, z + j, w + j, x + j + span, y + j + span, z + j + span, w + j + span, rest + j,
-                         weight + j, lambda + j, 1, compliance);
+                         weight + j, lambda + j, 1, compliance, relax);
   }
 }
 
 template <int kStretch, int kBend>
 void solveDirectImpl(CableState& state, int iterations, bool bending, double stretch_compliance,
-                     double bend_compliance)
+                     double bend_compliance, double relax)
 {
   const std::size_t f = state.first;
   const std::size_t segments_end = state.size() - 1;
@@ -299,14 +301,14 @@ void solveDirectImpl(CableState& state, int iterations, bool bending, double str
   {
     // The blocked solver's sets, merged where they are independent: all even segments, all odd ones,
     // then bending residues {0, 1} and {2, 3} (mod 4). Same projections, same order of dependent ones.
-    projectStrided<kStretch>(state, f, segments_end, 2, 1, false, stretch_compliance);
-    projectStrided<kStretch>(state, f + 1, segments_end, 2, 1, false, stretch_compliance);
+    projectStrided<kStretch>(state, f, segments_end, 2, 1, false, stretch_compliance, relax);
+    projectStrided<kStretch>(state, f + 1, segments_end, 2, 1, false, stretch_compliance, relax);
     if (bending)
     {
       for (std::size_t r : {0, 2})
       {
-        projectStrided<kBend>(state, f + r, bends_end, 4, 2, true, bend_compliance);
-        projectStrided<kBend>(state, f + r + 1, bends_end, 4, 2, true, bend_compliance);
+        projectStrided<kBend>(state, f + r, bends_end, 4, 2, true, bend_compliance, relax);
+        projectStrided<kBend>(state, f + r + 1, bends_end, 4, 2, true, bend_compliance, relax);
       }
     }
   }
@@ -315,21 +317,21 @@ void solveDirectImpl(CableState& state, int iterations, bool bending, double str
 }  // namespace
 
 void PbdSolver::solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance,
-                            double bend_compliance)
+                            double bend_compliance, double relax)
 {
   const std::size_t f = state.first;
   resetMultipliers(state, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
   if (stretch_compliance == 0.0)
   {
-    solveDirectImpl<0, 0>(state, iterations, bending, 0.0, 0.0);
+    solveDirectImpl<0, 0>(state, iterations, bending, 0.0, 0.0, relax);
   }
   else if (bend_compliance == 0.0)
   {
-    solveDirectImpl<1, 0>(state, iterations, bending, stretch_compliance, 0.0);
+    solveDirectImpl<1, 0>(state, iterations, bending, stretch_compliance, 0.0, 1.0);
   }
   else
   {
-    solveDirectImpl<1, 3>(state, iterations, bending, stretch_compliance, bend_compliance);
+    solveDirectImpl<1, 3>(state, iterations, bending, stretch_compliance, bend_compliance, 1.0);
   }
   state.dirty_begin = state.dirty_end = 0;
 }

@@ -44,6 +44,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"solver", &TetherParams::solver},
       {"substeps", &TetherParams::substeps},
       {"iterations", &TetherParams::iterations},
+      {"over_relaxation", &TetherParams::over_relaxation},
       {"stretch_tolerance", &TetherParams::stretch_tolerance},
       {"bending", &TetherParams::bending},
       {"drag", &TetherParams::drag},
@@ -141,6 +142,7 @@ std::vector<std::string> TetherParams::validate() const
   checkRange(errors, "substeps", substeps, 1, 10000);
   checkRange(errors, "iterations", iterations, 1, 1000);
   checkRange(errors, "stretch_tolerance", stretch_tolerance, 0.0, 1.0, true);
+  checkRange(errors, "over_relaxation", over_relaxation, 0.5, 1.95);
   checkRange(errors, "drag", drag, 0.0, 1.0, true);
   checkRange(errors, "noise", noise, 0.0, 1.0);
   checkRange(errors, "seed", static_cast<double>(seed), 0.0, 9.0e15);

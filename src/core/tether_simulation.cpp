@@ -499,6 +499,7 @@ void TetherSimulation::subStep(double h, double t, bool with_noise)
   settings.time_step = h;
   settings.axial_stiffness = params_.axial_stiffness;
   settings.bending_stiffness = params_.bending_stiffness;
+  settings.over_relaxation = params_.over_relaxation;
   solver_->solve(state_, settings);
   if (!std::isnan(params_.seabed_z))
   {

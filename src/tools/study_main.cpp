@@ -25,6 +25,7 @@ struct Effort
   int iterations;
   double critical_fraction;  ///< lumped_mass: sub-step as a fraction of the critical step (else 0)
   double time_step;          ///< [s]; 0 = the case's step
+  double relax = 1.0;        ///< pbd: over_relaxation
 };
 
 std::vector<int> resolutions(const std::string& name, bool quick)
@@ -59,7 +60,10 @@ std::vector<Effort> efforts(SolverType method, bool quick)
       {
         for (int iterations : quick ? std::vector<int>{10, 50} : std::vector<int>{2, 5, 10, 20, 50, 100})
         {
-          out.push_back({1, iterations, 0.0, dt});
+          for (double relax : quick ? std::vector<double>{1.0} : std::vector<double>{1.0, 1.8})
+          {
+            out.push_back({1, iterations, 0.0, dt, relax});
+          }
         }
       }
       break;
@@ -70,7 +74,7 @@ std::vector<Effort> efforts(SolverType method, bool quick)
                                                  : std::vector<std::pair<int, int>>{
                                                        {1, 5}, {1, 20}, {1, 100}, {4, 1}, {4, 5}, {16, 1}, {16, 5}})
         {
-          out.push_back({substeps, iterations, 0.0, dt});
+          out.push_back({substeps, iterations, 0.0, dt, 1.0});
         }
       }
       break;
@@ -78,7 +82,7 @@ std::vector<Effort> efforts(SolverType method, bool quick)
       // The step does not matter: the sub-step is a fraction of the critical step.
       for (double fraction : quick ? std::vector<double>{0.5} : std::vector<double>{0.9, 0.5, 0.2})
       {
-        out.push_back({0, 1, fraction, 0.0});
+        out.push_back({0, 1, fraction, 0.0, 1.0});
       }
   }
   return out;
@@ -86,8 +90,8 @@ std::vector<Effort> efforts(SolverType method, bool quick)
 
 void writeResult(std::FILE* out, const Result& r)
 {
-  std::fprintf(out, "%s,%s,%d,%d,%d,%g,%.6g,%.6g,%.6g,%d,%s\n", r.scenario.c_str(), r.method.c_str(), r.segments,
-               r.iterations, r.substeps, r.time_step, r.shape_error, r.tension_error, r.cost, r.failed ? 1 : 0,
+  std::fprintf(out, "%s,%s,%d,%d,%d,%g,%g,%.6g,%.6g,%.6g,%d,%s\n", r.scenario.c_str(), r.method.c_str(), r.segments,
+               r.iterations, r.substeps, r.over_relaxation, r.time_step, r.shape_error, r.tension_error, r.cost, r.failed ? 1 : 0,
                r.label.c_str());
   std::fflush(out);
 }
@@ -147,7 +151,7 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "cannot write %s\n", study_path.c_str());
     return 1;
   }
-  std::fprintf(out, "scenario,method,segments,iterations,substeps,time_step,shape_error,tension_error,cost_us_per_s,"
+  std::fprintf(out, "scenario,method,segments,iterations,substeps,over_relaxation,time_step,shape_error,tension_error,cost_us_per_s,"
                     "failed,label\n");
   // Cheapest run per case and method that meets the goal's accuracy (shape 1%, tension 2%).
   std::map<std::string, std::map<std::string, Result>> cheapest;
@@ -172,6 +176,7 @@ int main(int argc, char** argv)
           }
           p.iterations = effort.iterations;
           p.substeps = effort.substeps;
+          p.over_relaxation = effort.relax;
           if (effort.critical_fraction > 0.0)
           {
             p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
@@ -220,9 +225,9 @@ int main(int argc, char** argv)
     }
     for (const auto& [method, r] : cheapest[c.name])
     {
-      std::printf("   cheapest within 1%% shape / 2%% tension: %-11s %3d segments, %2d substeps x %3d iterations: "
-                  "%9.0f us per simulated s\n",
-                  method.c_str(), r.segments, r.substeps, r.iterations, r.cost);
+      std::printf("   cheapest within 1%% shape / 2%% tension: %-11s %3d segments, %2d substeps x %3d iterations, "
+                  "SOR %.1f, dt %.3f s: %9.0f us per simulated s\n",
+                  method.c_str(), r.segments, r.substeps, r.iterations, r.over_relaxation, r.time_step, r.cost);
     }
   }
   std::fclose(out);
@@ -247,6 +252,7 @@ int main(int argc, char** argv)
             p.solver = method;
             p.iterations = effort.iterations;
             p.substeps = effort.substeps;
+            p.over_relaxation = effort.relax;
             if (effort.time_step > 0.0)
             {
               p.time_step = effort.time_step;
@@ -267,9 +273,9 @@ int main(int argc, char** argv)
       if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
       {
         std::printf("goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
-                    "(%d segments, %d iterations, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d segments, h %.3g ms): "
+                    "(%d segments, %d iterations, over-relaxation %g, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d segments, h %.3g ms): "
                     "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
-                    stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].time_step,
+                    stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation, best["pbd"].time_step,
                     best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
                     1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
                     best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
