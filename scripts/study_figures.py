@@ -17,6 +17,9 @@ COLOURS = {"pbd": "tab:blue", "pbd, over-relaxation 1.8": "tab:purple", "xpbd": 
            "lumped_mass": "tab:red"}
 
 
+CEILING = 10.0  # errors at or above this (1000%) are drawn as failures on the top line
+
+
 def method_of(row):
     """The curve a row belongs to: pbd's over-relaxed runs are drawn apart."""
     relax = float(row.get("over_relaxation", "1") or 1)
@@ -62,9 +65,14 @@ def speed_vs_accuracy(rows, docs):
     for ax, case in zip(axes, cases):
         everything = []
         for method, colour in COLOURS.items():
-            points = [(float(r["cost_us_per_s"]), error_of(r)) for r in rows
-                      if r["scenario"] == case and method_of(r) == method and r["failed"] == "0"
-                      and r["label"] != "auto" and math.isfinite(error_of(r)) and error_of(r) > 0]
+            mine = [r for r in rows if r["scenario"] == case and method_of(r) == method and r["label"] != "auto"]
+            points = [(float(r["cost_us_per_s"]), error_of(r)) for r in mine
+                      if r["failed"] == "0" and math.isfinite(error_of(r)) and 0 < error_of(r) < CEILING]
+            # Failed or diverged runs (blow-up reported, not at rest, error beyond 1000%) on the top line.
+            failed = [float(r["cost_us_per_s"]) for r in mine
+                      if r["failed"] == "1" or not math.isfinite(error_of(r)) or error_of(r) >= CEILING]
+            if failed:
+                ax.scatter(failed, [CEILING] * len(failed), marker="x", s=18, color=colour, alpha=0.6)
             if not points:
                 continue
             everything += points
@@ -79,6 +87,7 @@ def speed_vs_accuracy(rows, docs):
             ax.scatter(*zip(*auto), marker="*", s=140, color="gold", edgecolor="k", zorder=5,
                        label="auto segment_length + iterations")
         ax.axhline(0.01, color="grey", linewidth=0.6, linestyle=":")
+        ax.axhline(CEILING, color="grey", linewidth=0.6)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(TITLES.get(case, case), fontsize=10)
@@ -90,7 +99,7 @@ def speed_vs_accuracy(rows, docs):
     handles, labels = axes[0].get_legend_handles_labels()
     axes[-1].legend(handles, labels, loc="center", fontsize=10)
     fig.suptitle("Speed against accuracy: each point one method x resolution x effort; lines: Pareto fronts; "
-                 "dotted: 1 %", fontsize=11)
+                 "dotted: 1 %; x on the top line: failed (blow-up, not at rest, error >= 1000 %)", fontsize=11)
     fig.tight_layout()
     fig.savefig(docs / "speed_vs_accuracy.png", dpi=90)
     plt.close(fig)
