@@ -69,6 +69,32 @@ TEST(BadInput, DuplicateStampReplacesTheSample)
   EXPECT_EQ(kept.particle(kept.deployedParticleCount() - 1), Position(2.0, 0.5, 0.0));
 }
 
+// Samples far ahead of the simulation: at most 1024 wait; more are refused (never silently dropped, which
+// would make the vehicle jump), and accepted again once the simulation has consumed some.
+TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  int accepted = 0;
+  std::string refusal;
+  for (int k = 1; k <= 1500; ++k)
+  {
+    const Status status = sim.addVehicleSample(0.01 * k, Position(1.0 + 0.001 * k, 0.0, -1.0));
+    accepted += status.ok;
+    if (!status.ok && refusal.empty())
+    {
+      refusal = status.message;
+    }
+  }
+  EXPECT_EQ(accepted, 1023);  // plus the constructor's sample
+  EXPECT_NE(refusal.find("wait ahead of the simulation"), std::string::npos) << refusal;
+  sim.advanceTo(1.0);
+  EXPECT_NEAR(sim.particle(sim.deployedParticleCount() - 1).x(), 1.1, 1e-9) << "followed the samples, no jump";
+  EXPECT_EQ(sim.jumpCount(), 0u);
+  EXPECT_TRUE(sim.addVehicleSample(10.24, Position(2.0, 0.0, -1.0)).ok);
+}
+
 TEST(BadInput, NonFiniteSpoolAndIntervalsAreRefused)
 {
   TetherSimulation sim = movingTether();

@@ -69,6 +69,7 @@ class TetherSimulation
   /// when the simulation reaches its time (the cable is laid out to it then).
   /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
   /// rest, from the spool to the new position when the simulation reaches t (see README).
+  /// At most 1024 samples may wait ahead of the simulation; more are refused until it advances.
   Status addVehicleSample(double t, const Position& vehicle);
   /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.
   /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length].

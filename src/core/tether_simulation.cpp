@@ -13,7 +13,7 @@ namespace
 /// Particles next to the spool that get no random displacement (the paper's rule against spontaneous
 /// release): those of the first two free segments.
 constexpr std::size_t kNoiseFreeParticles = 2;
-/// Vehicle samples kept for interpolation; older ones are dropped first.
+/// Vehicle samples that may wait ahead of the simulation; more are refused (see addVehicleSample).
 constexpr std::size_t kMaxVehicleSamples = 1024;
 /// The first segment's rest length stays within [kMinFirst, kMaxFirst] x segment_length while a
 /// particle can be released or taken back.
@@ -344,13 +344,18 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   {
     samples_.pop_back();  // a duplicate stamp replaces the sample it repeats
   }
+  if (samples_.size() >= kMaxVehicleSamples)
+  {
+    // Consumed samples are dropped as the simulation passes them, so a full buffer holds samples the
+    // simulation has not reached: dropping any of them would make the vehicle jump.
+    std::ostringstream out;
+    out << "vehicle sample rejected: " << samples_.size() << " samples already wait ahead of the simulation (at "
+        << time_ << " s); advance it first";
+    return Status::error(out.str());
+  }
   const Position& previous = samples_.empty() ? vehicle_ : samples_.back().position;
   const bool jump = (vehicle - previous).norm() > params_.max_vehicle_jump;
   samples_.push_back(VehicleSample{t, vehicle, jump});
-  if (samples_.size() > kMaxVehicleSamples)
-  {
-    samples_.pop_front();
-  }
   return Status::success();
 }
 

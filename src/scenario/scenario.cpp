@@ -319,10 +319,16 @@ void PathDriver::advanceTo(TetherSimulation& sim, double t)
 {
   if (!scenario_.vehicle.empty())
   {
+    // Feed and advance in chunks of 100 samples, so a long interval never overfills the simulation's
+    // sample buffer; the result is the same as feeding everything first.
     while (static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval)
     {
-      const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
-      sim.addVehicleSample(sample_time, scenario_.vehicleAt(sample_time));
+      for (int k = 0; k < 100 && static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval; ++k)
+      {
+        const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
+        sim.addVehicleSample(sample_time, scenario_.vehicleAt(sample_time));
+      }
+      sim.advanceTo(std::min(t, static_cast<double>(fed_samples_ - 1) * kSampleInterval));
     }
   }
   sim.advanceTo(t);
