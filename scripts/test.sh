@@ -1,33 +1,79 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, builds, runs every gtest binary (no ROS master) and
-# every rostest (the node with a master), and ends with the line "N passed, N failed" (gtest and rostest
-# cases). Exit code 0 only when everything passed.
+# The whole test suite: installs what is missing, builds, and runs
+#   1. every gtest binary (no ROS master) and every rostest (the node with a master);
+#   2. the same again built with AddressSanitizer and UndefinedBehaviorSanitizer, in catkin_build_sanitize
+#      (SANITIZERS=0 skips it);
+#   3. each libFuzzer target (clang) for FUZZ_SECONDS seconds (default 60) on its corpus in test/fuzz
+#      (FUZZ=0 skips it).
+# Ends with the line "N passed, N failed": gtest and rostest cases of both builds, plus one case per
+# fuzz target. Exit code 0 only when everything passed.
 set -euo pipefail
+SANITIZERS="${SANITIZERS:-1}"
+FUZZ="${FUZZ:-1}"
+FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
+if [ "$FUZZ" != 0 ]; then
+  PACKAGES_EXTRA="clang libclang-rt-14-dev"
+fi
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-
-echo "== building tests"
-build_target tests
-
-RESULTS="$BUILD_DIR/test_results/rov_tether"
+PLAIN_BUILD="$BUILD_DIR"
+RESULTS="$PLAIN_BUILD/test_results/rov_tether"
 rm -rf "$RESULTS" && mkdir -p "$RESULTS"
 status=0
-# test_* binaries need no ROS master; rostest_* ones are started by rostest below.
-for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
-  name="$(basename "$binary")"
-  echo "== $name"
-  "$binary" --gtest_output="xml:$RESULTS/$name.xml" --gtest_brief=1 || status=1
-done
 
-# The node with a ROS master: rostest starts its own roscore on a free port.
-use_ros_environment
-for launch in "$ROOT"/test/ros/*.test; do
-  echo "== rostest $(basename "$launch")"
-  rostest --results-base-dir="$RESULTS/rostest" "$launch" >"$BUILD_DIR/rostest_$(basename "$launch").log" 2>&1 || {
-    status=1
-    tail -40 "$BUILD_DIR/rostest_$(basename "$launch").log"
-  }
-  grep -E "^\[rov_tether\.|RESULT|TESTS|FAILURES|ERRORS" "$BUILD_DIR/rostest_$(basename "$launch").log" || true
-done
+# Runs every gtest binary and rostest of the build in $BUILD_DIR; JUnit results go to $1.
+run_suite() {
+  local results="$1"
+  mkdir -p "$results"
+  echo "== building tests in $BUILD_DIR"
+  build_target tests
+  # test_* binaries need no ROS master; rostest_* ones are started by rostest below.
+  for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
+    name="$(basename "$binary")"
+    echo "== $name"
+    "$binary" --gtest_output="xml:$results/$name.xml" --gtest_brief=1 || status=1
+  done
+  # The node with a ROS master: rostest starts its own roscore on a free port. A subshell, so each
+  # build's workspace environment stays its own.
+  (
+    use_ros_environment
+    if [ -n "${ASAN_OPTIONS_NODES:-}" ]; then
+      export ASAN_OPTIONS="$ASAN_OPTIONS_NODES"
+    fi
+    for launch in "$ROOT"/test/ros/*.test; do
+      local log="$BUILD_DIR/rostest_$(basename "$launch").log"
+      echo "== rostest $(basename "$launch")"
+      rostest --results-base-dir="$results/rostest" "$launch" >"$log" 2>&1 || {
+        tail -40 "$log"
+        exit 1
+      }
+      grep -E "^\[rov_tether\.|RESULT|TESTS|FAILURES|ERRORS" "$log" || true
+    done
+  ) || status=1
+}
+
+run_suite "$RESULTS/plain"
+
+if [ "$SANITIZERS" != 0 ]; then
+  # ASan + UBSan: any error aborts the process (UBSan does not recover), so the case fails. Leaks are
+  # reported for our gtest binaries; roscpp keeps process-lifetime singletons, so the ROS nodes run
+  # without leak detection.
+  BUILD_DIR="$ROOT/catkin_build_sanitize"
+  mkdir -p "$BUILD_DIR"
+  flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
+  build_package -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+    -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+  export ASAN_OPTIONS_NODES="detect_leaks=0:abort_on_error=1"
+  echo "== the same under AddressSanitizer + UndefinedBehaviorSanitizer"
+  run_suite "$RESULTS/sanitizers"
+  unset ASAN_OPTIONS ASAN_OPTIONS_NODES UBSAN_OPTIONS
+  BUILD_DIR="$PLAIN_BUILD"
+fi
+
+if [ "$FUZZ" != 0 ]; then
+  "$ROOT/scripts/fuzz.sh" --seconds "$FUZZ_SECONDS" --junit "$RESULTS/fuzz" || status=1
+fi
 
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$RESULTS" || status=1
 exit $status

@@ -95,6 +95,30 @@ TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
   EXPECT_TRUE(sim.addVehicleSample(10.24, Position(2.0, 0.0, -1.0)).ok);
 }
 
+// Times so large that a step no longer changes them (or NaN) are refused everywhere, so no loop can
+// spin without advancing; huge but finite positions are taken (the cable reaches as far as it has).
+TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  EXPECT_FALSE(sim.reset(1e17).ok);
+  EXPECT_FALSE(sim.reset(std::nan("")).ok);
+  EXPECT_FALSE(sim.addVehicleSample(1e17, Position(1.0, 0.0, -1.0)).ok);
+  EXPECT_FALSE(sim.advanceTo(1e17).ok);
+  EXPECT_THROW(TetherSimulation(params, Position::Zero(), 1e17), std::invalid_argument);
+  EXPECT_TRUE(sim.reset(1.7e9).ok);  // a ROS time today
+  EXPECT_TRUE(sim.addVehicleSample(1.7e9 + 0.1, Position(1e30, -1e30, 1e30)).ok);
+  EXPECT_TRUE(sim.advanceTo(1.7e9 + 1.0).ok);
+  EXPECT_TRUE(sim.vehicleAttached());  // the reset detached it; the far sample attached it again
+  EXPECT_NEAR(sim.deployedLength(), params.cable_length, 1e-9);  // all of it out towards the far point
+  for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
+  {
+    EXPECT_TRUE(sim.particle(k).allFinite()) << k;
+  }
+  EXPECT_TRUE(std::isfinite(sim.summary().max_tension));
+}
+
 TEST(BadInput, NonFiniteSpoolAndIntervalsAreRefused)
 {
   TetherSimulation sim = movingTether();

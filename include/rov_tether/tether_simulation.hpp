@@ -89,8 +89,12 @@ class TetherSimulation
   void step();
   /// Re-lays the cable at initial_deployed_length, at rest, reseeds the noise and restarts time at
   /// `time` [s]. Vehicle samples are dropped and the vehicle is detached until the next sample, so a run
-  /// after a reset repeats a fresh run exactly.
-  void reset(double time);
+  /// after a reset repeats a fresh run exactly. Refuses times that are not finite or beyond kMaxTime.
+  Status reset(double time);
+
+  /// Largest |time| accepted [s] (1e10 s, 317 years): beyond it a step of 10 us no longer changes a
+  /// double time by its own length.
+  static constexpr double kMaxTime = 1e10;
 
   double time() const { return time_; }
   std::uint64_t stepCount() const { return steps_; }

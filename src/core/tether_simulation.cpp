@@ -90,9 +90,9 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   {
     throw std::invalid_argument(joinErrors(errors));
   }
-  if (!spool.allFinite() || !std::isfinite(start_time))
+  if (!spool.allFinite() || !std::isfinite(start_time) || std::abs(start_time) > kMaxTime)
   {
-    throw std::invalid_argument("spool position and start time must be finite");
+    throw std::invalid_argument("spool position and start time must be finite (start time within +-1e10 s)");
   }
   time_ = target_time_ = base_time_ = start_time;
   applyParams(params);
@@ -322,9 +322,9 @@ Status TetherSimulation::setSpoolPosition(const Position& spool)
 
 Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
 {
-  if (!std::isfinite(t) || !vehicle.allFinite())
+  if (!std::isfinite(t) || !vehicle.allFinite() || std::abs(t) > kMaxTime)
   {
-    return Status::error("vehicle sample rejected: time and position must be finite");
+    return Status::error("vehicle sample rejected: time and position must be finite (time within +-1e10 s)");
   }
   if (!vehicle_attached_ && samples_.empty())
   {
@@ -441,9 +441,9 @@ Status TetherSimulation::advance(double dt, std::size_t* steps)
 
 Status TetherSimulation::advanceTo(double t, std::size_t* steps)
 {
-  if (!std::isfinite(t))
+  if (!std::isfinite(t) || std::abs(t) > kMaxTime)
   {
-    return Status::error("advance rejected: target time must be finite");
+    return Status::error("advance rejected: target time must be finite and within +-1e10 s");
   }
   target_time_ = t;
   std::size_t taken = 0;
@@ -756,8 +756,14 @@ bool TetherSimulation::stateFinite() const
   return std::isfinite(sum);
 }
 
-void TetherSimulation::reset(double time)
+Status TetherSimulation::reset(double time)
 {
+  if (!std::isfinite(time) || std::abs(time) > kMaxTime)
+  {
+    std::ostringstream out;
+    out << "reset rejected: time " << time << " s must be finite and within +-" << kMaxTime << " s";
+    return Status::error(out.str());
+  }
   // Detached until the next sample: a replay after a reset starts exactly as the first run did.
   samples_.clear();
   vehicle_attached_ = false;
@@ -766,6 +772,7 @@ void TetherSimulation::reset(double time)
   time_ = target_time_ = base_time_ = time;
   base_steps_ = steps_;
   layOut(params_.initial_deployed_length);
+  return Status::success();
 }
 
 double TetherSimulation::deployedLength() const

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time on its corpus
+# in test/fuzz/corpus/<target>. New inputs go to a scratch corpus in catkin_build/fuzz unless
+# --update-corpus merges them into the repository's (then commit them).
+#
+#   scripts/fuzz.sh [--seconds N] [--junit DIR] [--update-corpus] [target...]
+#
+# Targets: fuzz_scenario (scenario and parameter files), fuzz_params (parameters by name, any value),
+# fuzz_poses (pose sequences, times, spool, winch, parameter changes and resets into the core).
+# A crash leaves its input in catkin_build/fuzz/artifacts/ and fails the run.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+export PATH="/usr/bin:/bin:$PATH"
+SECONDS_EACH=60
+JUNIT=""
+UPDATE=0
+TARGETS=()
+while (($#)); do
+  case "$1" in
+    --seconds) SECONDS_EACH="$2"; shift 2 ;;
+    --junit) JUNIT="$2"; shift 2 ;;
+    --update-corpus) UPDATE=1; shift ;;
+    -*) sed -n '2,12p' "$0"; exit 2 ;;
+    *) TARGETS+=("$1"); shift ;;
+  esac
+done
+((${#TARGETS[@]})) || TARGETS=(fuzz_scenario fuzz_params fuzz_poses)
+
+missing=()
+for p in clang libclang-rt-14-dev libyaml-cpp-dev libeigen3-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "== installing from Debian: ${missing[*]}"
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+OUT="$ROOT/catkin_build/fuzz"
+mkdir -p "$OUT/artifacts"
+CORE=("$ROOT"/src/core/*.cpp "$ROOT/src/scenario/scenario.cpp")
+status=0
+cases=""
+for target in "${TARGETS[@]}"; do
+  echo "== $target: building"
+  clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+    -I"$ROOT/include" -I/usr/include/eigen3 "$ROOT/test/fuzz/$target.cpp" "${CORE[@]}" -lyaml-cpp \
+    -o "$OUT/$target"
+  corpus="$ROOT/test/fuzz/corpus/$target"
+  scratch="$OUT/corpus_$target"
+  mkdir -p "$corpus" "$scratch"
+  echo "== $target: ${SECONDS_EACH} s on $(find "$corpus" -type f | wc -l) corpus inputs"
+  start=$(date +%s)
+  if UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 "$OUT/$target" -max_total_time="$SECONDS_EACH" \
+      -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$OUT/artifacts/$target-" -print_final_stats=1 \
+      "$scratch" "$corpus" >"$OUT/$target.log" 2>&1; then
+    result="passed"
+    failure=""
+  else
+    result="FAILED"
+    status=1
+    failure="<failure message=\"crash, see $OUT/$target.log\"/>"
+    tail -30 "$OUT/$target.log"
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb|cov:" "$OUT/$target.log" | tail -3 || true
+  echo "== $target: $result ($(($(date +%s) - start)) s)"
+  cases+="<testcase classname=\"fuzz\" name=\"$target\" time=\"$(($(date +%s) - start))\">$failure</testcase>"
+  if [ "$UPDATE" = 1 ]; then
+    "$OUT/$target" -merge=1 "$corpus" "$scratch" >/dev/null 2>&1
+  fi
+done
+if [ -n "$JUNIT" ]; then
+  mkdir -p "$JUNIT"
+  echo "<testsuite name=\"fuzz\">$cases</testsuite>" >"$JUNIT/fuzz.xml"
+fi
+exit $status

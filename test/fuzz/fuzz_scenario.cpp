@@ -1,0 +1,46 @@
+// libFuzzer target: the scenario and parameter file parsers (YAML text from the fuzzer). A file that
+// parses must describe a valid model (validate() empty) and a short run of it must stay finite.
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+#include "rov_tether/scenario.hpp"
+
+using namespace rov_tether;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  TetherParams params;
+  if (parseParams(text, &params).empty() && !params.validate().empty())
+  {
+    std::abort();  // accepted parameters must be valid
+  }
+  Scenario scenario;
+  if (!parseScenario(text, &scenario).empty())
+  {
+    return 0;
+  }
+  if (!scenario.params.validate().empty())
+  {
+    std::abort();
+  }
+  // Run what parsed, briefly and only when small (the fuzzer must stay fast).
+  const TetherParams& p = scenario.params.resolved();
+  const double steps = 0.2 / p.time_step * p.substeps * static_cast<double>(p.segmentCount());
+  if (steps > 2e5)
+  {
+    return 0;
+  }
+  PathDriver driver(scenario);
+  TetherSimulation sim = driver.makeSimulation();
+  driver.advanceTo(sim, 0.2);
+  for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
+  {
+    if (!sim.particle(k).allFinite())
+    {
+      std::abort();
+    }
+  }
+  return 0;
+}
