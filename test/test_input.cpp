@@ -96,7 +96,8 @@ TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
 }
 
 // Times so large that a step no longer changes them (or NaN) are refused everywhere, so no loop can
-// spin without advancing; huge but finite positions are taken (the cable reaches as far as it has).
+// spin without advancing; so are positions beyond 1000 km. A far but accepted position (100 km) is
+// survived: the cable reaches as far as it has, and everything read stays finite.
 TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
 {
   TetherParams params;
@@ -108,7 +109,9 @@ TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
   EXPECT_FALSE(sim.advanceTo(1e17).ok);
   EXPECT_THROW(TetherSimulation(params, Position::Zero(), 1e17), std::invalid_argument);
   EXPECT_TRUE(sim.reset(1.7e9).ok);  // a ROS time today
-  EXPECT_TRUE(sim.addVehicleSample(1.7e9 + 0.1, Position(1e30, -1e30, 1e30)).ok);
+  EXPECT_FALSE(sim.addVehicleSample(1.7e9 + 0.1, Position(1e30, -1e30, 1e30)).ok);
+  EXPECT_FALSE(sim.setSpoolPosition(Position(0.0, 2e6, 0.0)).ok);
+  EXPECT_TRUE(sim.addVehicleSample(1.7e9 + 0.1, Position(1e5, -1e5, 1e5)).ok);
   EXPECT_TRUE(sim.advanceTo(1.7e9 + 1.0).ok);
   EXPECT_TRUE(sim.vehicleAttached());  // the reset detached it; the far sample attached it again
   EXPECT_NEAR(sim.deployedLength(), params.cable_length, 1e-9);  // all of it out towards the far point

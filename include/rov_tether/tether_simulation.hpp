@@ -95,6 +95,9 @@ class TetherSimulation
   /// Largest |time| accepted [s] (1e10 s, 317 years): beyond it a step of 10 us no longer changes a
   /// double time by its own length.
   static constexpr double kMaxTime = 1e10;
+  /// Largest |coordinate| of a spool or vehicle position accepted [m] (1000 km): beyond it constraint
+  /// forces can overflow.
+  static constexpr double kMaxCoordinate = 1e6;
 
   double time() const { return time_; }
   std::uint64_t stepCount() const { return steps_; }

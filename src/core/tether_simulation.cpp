@@ -90,9 +90,10 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   {
     throw std::invalid_argument(joinErrors(errors));
   }
-  if (!spool.allFinite() || !std::isfinite(start_time) || std::abs(start_time) > kMaxTime)
+  if (!spool.allFinite() || spool.cwiseAbs().maxCoeff() > kMaxCoordinate || !std::isfinite(start_time) ||
+      std::abs(start_time) > kMaxTime)
   {
-    throw std::invalid_argument("spool position and start time must be finite (start time within +-1e10 s)");
+    throw std::invalid_argument("spool position and start time must be finite (within +-1e6 m, +-1e10 s)");
   }
   time_ = target_time_ = base_time_ = start_time;
   applyParams(params);
@@ -103,9 +104,9 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
                                    double start_time)
     : TetherSimulation(params, spool, start_time)
 {
-  if (!vehicle.allFinite())
+  if (!vehicle.allFinite() || vehicle.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
-    throw std::invalid_argument("vehicle position must be finite");
+    throw std::invalid_argument("vehicle position must be finite and within +-1e6 m");
   }
   vehicle_attached_ = true;
   vehicle_ = vehicle;
@@ -312,9 +313,9 @@ void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
 
 Status TetherSimulation::setSpoolPosition(const Position& spool)
 {
-  if (!spool.allFinite())
+  if (!spool.allFinite() || spool.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
-    return Status::error("spool position rejected: not finite");
+    return Status::error("spool position rejected: not finite or beyond +-1e6 m");
   }
   spool_ = spool;
   return Status::success();
@@ -322,9 +323,11 @@ Status TetherSimulation::setSpoolPosition(const Position& spool)
 
 Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
 {
-  if (!std::isfinite(t) || !vehicle.allFinite() || std::abs(t) > kMaxTime)
+  if (!std::isfinite(t) || !vehicle.allFinite() || std::abs(t) > kMaxTime ||
+      vehicle.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
-    return Status::error("vehicle sample rejected: time and position must be finite (time within +-1e10 s)");
+    return Status::error("vehicle sample rejected: time and position must be finite (time within +-1e10 s, "
+                         "position within +-1e6 m)");
   }
   if (!vehicle_attached_ && samples_.empty())
   {

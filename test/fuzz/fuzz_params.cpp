@@ -1,6 +1,8 @@
 // libFuzzer target: parameter setting and validation by name, with any value. Whatever validate()
 // accepts must build a simulation that steps without a crash or a non-finite state; whatever it refuses
 // must be refused by the simulation too.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
@@ -29,8 +31,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         value = static_cast<bool>(in.byte() & 1);
         break;
       case 1:
-        value = static_cast<std::int64_t>(in.number(2000.0));
+      {
+        const double d = in.number(2000.0);  // integers of any size; NaN becomes 0
+        value = std::isfinite(d) ? static_cast<std::int64_t>(std::clamp(d, -1e15, 1e15)) : std::int64_t{0};
         break;
+      }
       case 2:
         value = in.number(10.0);
         break;

@@ -3,6 +3,7 @@
 // the deployed length within [min_deployed_length, cable_length], tensions finite.
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <vector>
 
@@ -14,19 +15,25 @@ using namespace rov_tether;
 namespace
 {
 
+[[noreturn]] void fail(const char* what)
+{
+  std::fprintf(stderr, "invariant broken: %s\n", what);
+  std::abort();
+}
+
 void check(const TetherSimulation& sim, std::vector<double>& tensions)
 {
   const TetherParams& p = sim.params();
   const double deployed = sim.deployedLength();
   if (!(deployed >= p.min_deployed_length - 1e-9 && deployed <= p.cable_length + 1e-9))
   {
-    std::abort();
+    fail("deployed length outside [min_deployed_length, cable_length]");
   }
   for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
   {
     if (!sim.particle(k).allFinite())
     {
-      std::abort();
+      fail("non-finite particle");
     }
   }
   sim.computeSegmentTensions(tensions);
@@ -34,7 +41,7 @@ void check(const TetherSimulation& sim, std::vector<double>& tensions)
   {
     if (!std::isfinite(t))
     {
-      std::abort();
+      fail("non-finite tension");
     }
   }
 }
