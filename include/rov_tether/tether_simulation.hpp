@@ -87,6 +87,9 @@ class TetherSimulation
   Status advanceTo(double t, std::size_t* steps = nullptr);
   /// Takes exactly one internal step.
   void step();
+  /// Moves time forward to t [s] without stepping, for a caller that cannot keep up: the cable keeps its
+  /// shape at rest, the vehicle end moves to where the samples put it at t. Refuses t before time().
+  Status skipTo(double t);
   /// Re-lays the cable at initial_deployed_length, at rest, reseeds the noise and restarts time at
   /// `time` [s]. Vehicle samples are dropped and the vehicle is detached until the next sample, so a run
   /// after a reset repeats a fresh run exactly. Refuses times that are not finite or beyond kMaxTime.

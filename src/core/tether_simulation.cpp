@@ -463,6 +463,31 @@ Status TetherSimulation::advanceTo(double t, std::size_t* steps)
   return Status::success();
 }
 
+Status TetherSimulation::skipTo(double t)
+{
+  if (!std::isfinite(t) || std::abs(t) > kMaxTime || t < time_)
+  {
+    std::ostringstream out;
+    out << "skip rejected: time " << t << " s must be finite and not before the simulation's " << time_ << " s";
+    return Status::error(out.str());
+  }
+  for (std::size_t i = state_.first; i < state_.size(); ++i)
+  {
+    state_.px[i] = state_.x[i], state_.py[i] = state_.y[i], state_.pz[i] = state_.z[i];
+  }
+  if (vehicle_attached_ || !samples_.empty())
+  {
+    vehicle_ = vehicleAt(t);
+    if (vehicle_attached_)
+    {
+      state_.place(state_.size() - 1, vehicle_);
+    }
+  }
+  time_ = target_time_ = base_time_ = t;
+  base_steps_ = steps_;
+  return Status::success();
+}
+
 void TetherSimulation::step()
 {
   const double dt = params_.time_step;

@@ -15,7 +15,8 @@ const std::vector<std::string>& nodeOptionNames()
   static const std::vector<std::string> names = {
       "world_frame",       "pose_source",        "rov_frame",           "attachment_offset",  "spool_frame",
       "spool_position",    "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
-      "marker_line_width", "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning"};
+      "marker_line_width", "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
+      "pose_topic",        "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag"};
   return names;
 }
 
@@ -218,6 +219,23 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   candidate.stripe_segments = static_cast<int>(stripes);
   read.number("stale_pose_timeout", &candidate.stale_pose_timeout, 0.01, 3600.0);
   read.number("max_tension_warning", &candidate.max_tension_warning, 0.0, 1e9);
+  read.text("pose_topic", &candidate.pose_topic);
+  read.text("overload_policy", &candidate.overload_policy);
+  double min_iterations = candidate.min_iterations;
+  read.number("min_iterations", &min_iterations, 1.0, 1000.0);
+  candidate.min_iterations = static_cast<int>(min_iterations);
+  read.number("cpu_budget", &candidate.cpu_budget, 0.01, 1.0);
+  read.number("max_lag", &candidate.max_lag, 0.01, 3600.0);
+  if (candidate.overload_policy != "reduce_iterations" && candidate.overload_policy != "reduce_markers" &&
+      candidate.overload_policy != "none")
+  {
+    read.fail("overload_policy = '" + candidate.overload_policy +
+              "': expected reduce_iterations, reduce_markers or none");
+  }
+  if (candidate.pose_topic.empty())
+  {
+    read.fail("pose_topic: must not be empty");
+  }
   if (candidate.pose_source != "topic" && candidate.pose_source != "tf")
   {
     read.fail("pose_source = '" + candidate.pose_source + "': expected topic or tf");
@@ -250,8 +268,18 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
     const std::string& name = entry.first;
     const auto& model = parameterNames();
     const auto& node = nodeOptionNames();
+    bool tether_name = false;  // a map named in `tethers`
+    if (dict.hasMember("tethers") && dict["tethers"].getType() == XmlRpc::XmlRpcValue::TypeArray)
+    {
+      auto& list = const_cast<XmlRpc::XmlRpcValue&>(dict)["tethers"];
+      for (int i = 0; i < list.size(); ++i)
+      {
+        tether_name = tether_name || (list[i].getType() == XmlRpc::XmlRpcValue::TypeString &&
+                                      static_cast<std::string>(list[i]) == name);
+      }
+    }
     const bool known = std::find(model.begin(), model.end(), name) != model.end() ||
-                       std::find(node.begin(), node.end(), name) != node.end();
+                       std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" || tether_name;
     if (!known)
     {
       unknown += (unknown.empty() ? "" : ", ") + name;

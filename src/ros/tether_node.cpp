@@ -20,7 +20,9 @@ constexpr double kFailureReportTime = 5.0;
 
 }  // namespace
 
-TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
+TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                       const XmlRpc::XmlRpcValue& shared, const std::string& name)
+    : nh_(nh), private_nh_(private_nh), name_(name)
 {
   XmlRpc::XmlRpcValue dict;
   if (!private_nh_.getParam(private_nh_.getNamespace(), dict))
@@ -28,21 +30,27 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
     dict = XmlRpc::XmlRpcValue();
   }
   TetherParams params;
-  std::string error = dict.valid() ? loadTetherParams(dict, &params) : "";
-  if (!error.empty())
+  std::string error;
+  for (const XmlRpc::XmlRpcValue* source : {&shared, static_cast<const XmlRpc::XmlRpcValue*>(&dict)})  // shared first, this tether's own on top
   {
-    throw std::runtime_error("invalid tether parameters in " + private_nh_.getNamespace() + ": " + error);
+    if (error.empty() && source->valid())
+    {
+      error = loadTetherParams(*source, &params);
+      error = error.empty() ? loadNodeOptions(*source, &options_) : error;
+    }
   }
-  error = dict.valid() ? loadNodeOptions(dict, &options_) : "";
   if (!error.empty())
   {
-    throw std::runtime_error("invalid node parameters in " + private_nh_.getNamespace() + ": " + error);
+    throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + error);
   }
   const std::string unknown = dict.valid() ? unknownParameters(dict) : "";
   if (!unknown.empty())
   {
-    ROS_WARN("tether_node: ignoring unknown parameters (typos?): %s", unknown.c_str());
+    ROS_WARN("tether_node: ignoring unknown parameters in %s (typos?): %s", private_nh_.getNamespace().c_str(),
+             unknown.c_str());
   }
+  configured_iterations_ = params.iterations;
+  marker_rate_ = options_.marker_rate;
   sim_ = std::make_unique<TetherSimulation>(params, options_.spool_position);
   warnAboutStability();
 
@@ -54,14 +62,15 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   set_winch_srv_ = private_nh_.advertiseService("set_winch", &TetherNode::onSetWinch, this);
   reset_srv_ = private_nh_.advertiseService("reset", &TetherNode::onReset, this);
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, private_nh_);
-  diagnostics_->setHardwareID("rov_tether");
-  diagnostics_->add("tether", this, &TetherNode::diagnose);
+  diagnostics_->setHardwareID(name_.empty() ? "rov_tether" : "rov_tether/" + name_);
+  diagnostics_->add(name_.empty() ? "tether" : "tether " + name_, this, &TetherNode::diagnose);
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
   reconfigure_server_->updateConfig(paramsToConfig(params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
   if (options_.pose_source == "topic")
   {
-    pose_sub_ = nh_.subscribe("rov_pose", 10, &TetherNode::onPose, this);
+    // Deep enough for poses at 1 kHz between two physics ticks.
+    pose_sub_ = nh_.subscribe(options_.pose_topic, 100, &TetherNode::onPose, this);
   }
   timer_ = nh_.createTimer(ros::Duration(1.0 / options_.physics_rate), &TetherNode::onTimer, this);
   ROS_INFO("tether_node: %.1f m cable in %zu segments, %s solver, pose from %s, physics at %.0f Hz",
@@ -174,9 +183,14 @@ void TetherNode::applyPendingParams()
   {
     ROS_ERROR("tether_node: parameters refused: %s", status.message.c_str());
   }
-  else if (!status.message.empty())
+  else
   {
-    ROS_INFO("tether_node: %s", status.message.c_str());
+    configured_iterations_ = pending->iterations;  // a new configuration ends any overload reduction
+    degraded_.clear();
+    if (!status.message.empty())
+    {
+      ROS_INFO("tether_node: %s", status.message.c_str());
+    }
   }
   if (status.ok)
   {
@@ -240,6 +254,22 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   {
     next_state_physics_ = std::ceil(std::max(sim_->time(), target - 1.0) / period) * period;
   }
+  if (target - sim_->time() > options_.max_lag)
+  {
+    // Too far behind to catch up: jump ahead with the cable held at rest, and say so.
+    const double behind = target - sim_->time();
+    sim_->skipTo(std::floor(target / sim_->params().time_step) * sim_->params().time_step);
+    next_state_physics_ = 0.0;
+    ++skips_;
+    last_skip_time_ = now;
+    ROS_ERROR_THROTTLE(1.0, "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
+                            "skipped ahead with the cable held",
+                       name_.empty() ? "" : (" " + name_).c_str(), behind, options_.max_lag);
+    if (next_state_physics_ <= 0.0)
+    {
+      next_state_physics_ = std::ceil(sim_->time() / period) * period;
+    }
+  }
   const ros::WallTime wall_start = ros::WallTime::now();
   std::size_t steps = 0;
   for (;;)
@@ -255,7 +285,9 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     publishState();
     next_state_physics_ += period;
   }
-  const double wall = (ros::WallTime::now() - wall_start).toSec();
+  const ros::WallTime wall_end = ros::WallTime::now();
+  const double wall = (wall_end - wall_start).toSec();
+  manageLoad(wall, wall_end);
   if (steps > 0 && wall > 0.0)
   {
     step_seconds_ = smooth(step_seconds_, wall / static_cast<double>(steps));
@@ -277,6 +309,64 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
   last_time_ = now;
   publishMarkers(now);
   diagnostics_->update();
+}
+
+void TetherNode::manageLoad(double physics_wall, const ros::WallTime& wall_now)
+{
+  if (load_window_start_.isZero())
+  {
+    load_window_start_ = wall_now;
+  }
+  load_window_physics_ += physics_wall;
+  const double window = (wall_now - load_window_start_).toSec();
+  if (window < 1.0)
+  {
+    return;
+  }
+  physics_load_ = load_window_physics_ / window;
+  load_window_start_ = wall_now;
+  load_window_physics_ = 0.0;
+  const std::string label = name_.empty() ? "" : " " + name_;
+  if (physics_load_ > options_.cpu_budget)
+  {
+    if (options_.overload_policy == "reduce_iterations" && sim_->params().iterations > options_.min_iterations)
+    {
+      TetherParams params = sim_->params();
+      params.iterations = std::max(options_.min_iterations, params.iterations * 3 / 4);
+      sim_->setParams(params);
+      degraded_ = "iterations " + std::to_string(params.iterations) + " of " + std::to_string(configured_iterations_);
+    }
+    else if (options_.overload_policy == "reduce_markers" && marker_rate_ > 1.0)
+    {
+      marker_rate_ = std::max(1.0, marker_rate_ / 2.0);
+      degraded_ = "markers at " + std::to_string(marker_rate_).substr(0, 4) + " Hz";
+    }
+    ROS_WARN_THROTTLE(5.0, "tether_node%s: physics uses %.0f%% of the wall time (cpu_budget %.0f%%): %s",
+                      label.c_str(), 100 * physics_load_, 100 * options_.cpu_budget,
+                      degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
+  }
+  else if (physics_load_ < 0.5 * options_.cpu_budget && !degraded_.empty())
+  {
+    // Load is back down: undo one notch.
+    if (options_.overload_policy == "reduce_iterations" && sim_->params().iterations < configured_iterations_)
+    {
+      TetherParams params = sim_->params();
+      params.iterations = std::min(configured_iterations_, params.iterations * 4 / 3 + 1);
+      sim_->setParams(params);
+      degraded_ = params.iterations < configured_iterations_
+                      ? "iterations " + std::to_string(params.iterations) + " of " + std::to_string(configured_iterations_)
+                      : "";
+    }
+    else if (options_.overload_policy == "reduce_markers" && marker_rate_ < options_.marker_rate)
+    {
+      marker_rate_ = std::min(options_.marker_rate, marker_rate_ * 2.0);
+      degraded_ = marker_rate_ < options_.marker_rate ? "markers at " + std::to_string(marker_rate_).substr(0, 4) + " Hz" : "";
+    }
+    if (degraded_.empty())
+    {
+      ROS_INFO("tether_node%s: load back to %.0f%%, degradation undone", label.c_str(), 100 * physics_load_);
+    }
+  }
 }
 
 double TetherNode::alignedPhysicsTime(const ros::Time& now) const
@@ -302,7 +392,7 @@ void TetherNode::publishState()
 
 void TetherNode::publishMarkers(const ros::Time& now)
 {
-  const ros::Duration period(1.0 / options_.marker_rate);
+  const ros::Duration period(1.0 / marker_rate_);
   if (marker_pub_.getNumSubscribers() == 0)
   {
     return;  // markers cost nothing when nobody looks
@@ -422,6 +512,9 @@ void TetherNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("resets", resets_);
   status.add("vehicle jumps", sim_->jumpCount());
   status.add("solver", toString(sim_->params().solver));
+  status.add("iterations", sim_->params().iterations);
+  status.add("physics load [% of wall time]", 100.0 * physics_load_);
+  status.add("skips (fell behind)", skips_);
   status.add("simulation failures", sim_->recoveryCount());
   if (!sim_->lastFailure().empty())
   {
@@ -447,6 +540,15 @@ void TetherNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
   {
     status.mergeSummaryf(DiagnosticStatus::ERROR, "simulation failure, cable re-laid: %s", sim_->lastFailure().c_str());
+  }
+  if (!degraded_.empty())
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "degraded to hold real time: %s (overload_policy %s)",
+                         degraded_.c_str(), options_.overload_policy.c_str());
+  }
+  if (!last_skip_time_.isZero() && (now - last_skip_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummary(DiagnosticStatus::ERROR, "fell behind real time by more than max_lag: skipped ahead");
   }
   if (real_time_factor_ > 0.0 && real_time_factor_ < 1.0)
   {

@@ -8,6 +8,7 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
@@ -84,11 +85,11 @@ class Harness
     publishClock();
   }
 
-  void publishPose(const geometry_msgs::Pose& pose)
+  void publishPose(const geometry_msgs::Pose& pose, const std::string& frame = "world", double age = 0.0)
   {
     geometry_msgs::PoseStamped msg;
-    msg.header.stamp = ros::Time(sim_time_);
-    msg.header.frame_id = "world";
+    msg.header.stamp = ros::Time(sim_time_ - age);
+    msg.header.frame_id = frame;
     msg.pose = pose;
     pose_pub_.publish(msg);
   }
@@ -101,6 +102,7 @@ class Harness
   geometry_msgs::WrenchStamped wrench_;
   int wrench_count_ = 0;
   bool saw_tether_diagnostics_ = false;
+  long rejected_poses_ = -1;  ///< "rejected poses" of the last tether diagnostics (-1: none yet).
   double sim_time_ = 1000.0;
 
  private:
@@ -146,6 +148,13 @@ class Harness
     for (const auto& status : msg.status)
     {
       saw_tether_diagnostics_ = saw_tether_diagnostics_ || status.name.find("tether") != std::string::npos;
+      for (const auto& kv : status.values)
+      {
+        if (kv.key == "rejected poses")
+        {
+          rejected_poses_ = std::stol(kv.value);
+        }
+      }
     }
   }
 
@@ -356,6 +365,70 @@ TEST(TetherNode, NanAndUnnormalisedPosesNeitherCrashNorCorrupt)
   }
   const auto& end = h.markers_.markers[0].points.back();
   EXPECT_NEAR(end.x, 5.5, 1e-6);  // the vehicle end stayed where the good poses put it
+}
+
+// Every kind of bad pose of the README's table is refused, counted in diagnostics and leaves the cable
+// where the good poses put it: far beyond the model's range, older than the last pose, in a frame tf
+// does not know, and in a known frame but older than the tf buffer.
+TEST(TetherNode, BadPosesAreRefusedAndCounted)
+{
+  Harness& h = *harness;
+  tf2_ros::TransformBroadcaster broadcaster;
+  auto broadcastBoat = [&]
+  {
+    geometry_msgs::TransformStamped boat;  // a moving frame: transforms exist only from now on
+    boat.header.stamp = ros::Time(h.sim_time_);
+    boat.header.frame_id = "world";
+    boat.child_frame_id = "boat";
+    boat.transform.translation.x = 5.0;
+    boat.transform.rotation.w = 1.0;
+    broadcaster.sendTransform(boat);
+  };
+  ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  ASSERT_TRUE(h.waitFor([&] { h.setTime(h.sim_time_ + kTick); return h.rejected_poses_ >= 0; }, 10.0));
+  const long before = h.rejected_poses_;
+  const double deployed = h.state_.deployed_length;
+  for (int k = 0; k < 3; ++k)
+  {
+    broadcastBoat();
+    h.setTime(h.sim_time_ + kTick);
+    h.waitFor([] { return false; }, 0.05);
+  }
+  h.publishPose(poseAt(2e6, 0.0, -0.5));                    // 2000 km out: beyond +-1e6 m
+  h.publishPose(poseAt(5.5, 0.0, -0.5), "world", 30.0);     // older than the last pose
+  h.publishPose(poseAt(0.5, 0.0, -0.5), "nowhere");         // a frame tf does not know
+  h.publishPose(poseAt(0.5, 0.0, -0.5), "boat", 500.0);     // known frame, older than the tf buffer
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        broadcastBoat();
+        h.publishPose(poseAt(5.5, 0.0, -0.5));
+        return h.rejected_poses_ >= before + 4;
+      },
+      20.0))
+      << "rejected poses: " << h.rejected_poses_ << ", before: " << before;
+  EXPECT_EQ(h.rejected_poses_, before + 4);
+  ASSERT_TRUE(h.drive(0.3, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_NEAR(h.state_.deployed_length, deployed, 0.05);
+  EXPECT_LT(h.state_.max_strain, 0.1);
+  // The same frame at a current stamp is accepted: the vehicle end is 0.5 m beyond the boat (5.5 m).
+  const long accepted_check = h.rejected_poses_;
+  ASSERT_TRUE(h.drive(0.5,
+                      [&](double)
+                      {
+                        broadcastBoat();
+                        return poseAt(5.5, 0.0, -0.5);
+                      }));
+  // Transforms at t + 0.01 and t + 0.03 bracket the pose's stamp t + 0.02, newer than every pose so far.
+  h.sim_time_ += 0.01;
+  broadcastBoat();
+  h.sim_time_ += 0.02;
+  broadcastBoat();
+  h.waitFor([] { return false; }, 0.3);  // lets the node's tf listener receive both
+  h.publishPose(poseAt(0.5, 0.0, -0.5), "boat", 0.01);
+  ASSERT_TRUE(h.drive(0.3, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_EQ(h.rejected_poses_, accepted_check);
 }
 
 TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)

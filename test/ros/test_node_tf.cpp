@@ -82,13 +82,18 @@ TEST(TetherNodeTf, FollowsTheVehicleFrameWithItsOrientationAndAMovingSpool)
   EXPECT_NEAR(points.front().z, 0.0, 1e-6);
 }
 
-// A bad parameter stops the node at start, before it advertises anything, naming the parameter.
+// A bad or contradictory parameter stops the node at start, before it advertises anything, naming the
+// parameter.
 TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
 {
-  const std::array<std::pair<const char*, const char*>, 3> cases = {{
+  const std::array<std::pair<const char*, const char*>, 6> cases = {{
       {"_iterations:=0", "iterations = 0"},
       {"_drag:=lots", "parameter 'drag': wrong type"},
       {"_pose_source:=gps", "pose_source = 'gps'"},
+      // contradictory: each value in range, together impossible
+      {"_segment_length:=5.0 _cable_length:=2.0", "segment_length = 5: must not exceed cable_length = 2"},
+      {"_overload_policy:=panic", "overload_policy = 'panic'"},
+      {"_tethers:=a", "parameter 'tethers': expected a non-empty list of names"},
   }};
   for (const auto& [assignment, expected] : cases)
   {

@@ -30,6 +30,15 @@ struct NodeOptions
   int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
   double stale_pose_timeout = 1.0;     ///< No pose for this long is a diagnostics warning [s].
   double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
+  std::string pose_topic = "rov_pose";  ///< Vehicle pose topic (pose_source topic), relative to the node's namespace.
+  /// What to give up when the physics cannot hold real time: "reduce_iterations" (down to
+  /// min_iterations), "reduce_markers" (halve the marker rate, down to 1 Hz) or "none". Always reported.
+  std::string overload_policy = "reduce_iterations";
+  int min_iterations = 2;  ///< reduce_iterations never goes below this [-].
+  /// Fraction of one core's wall time the physics may use before the node degrades [-].
+  double cpu_budget = 0.8;
+  /// When the physics falls further than this behind its target time, it skips ahead (ERROR) [s].
+  double max_lag = 1.0;
 };
 
 /// Converts one parameter-server value to a ParamValue; returns false for lists and maps.
@@ -45,6 +54,7 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
 std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options);
 
 /// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
+/// The key `tethers` and the maps it names (one tether each, see tether_node) are known.
 std::string unknownParameters(const XmlRpc::XmlRpcValue& dict);
 
 }  // namespace rov_tether::ros_layer

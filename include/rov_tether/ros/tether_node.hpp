@@ -35,8 +35,10 @@ class TetherNode
 {
  public:
   /// Loads parameters from the private namespace; throws std::runtime_error naming a bad parameter
-  /// before anything is advertised or subscribed.
-  TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+  /// before anything is advertised or subscribed. With several tethers in one process, `shared` holds
+  /// the parameters common to all (applied first) and `name` labels this one's diagnostics.
+  TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+             const XmlRpc::XmlRpcValue& shared = XmlRpc::XmlRpcValue(), const std::string& name = "");
 
  private:
   void onPose(const geometry_msgs::PoseStamped::ConstPtr& msg);
@@ -62,6 +64,9 @@ class TetherNode
   void publishMarkers(const ros::Time& now);
   /// The physics time for ROS time `now`: interpolation_delay behind, on the grid of time_step [s].
   double alignedPhysicsTime(const ros::Time& now) const;
+  /// Once a second of wall time: when the physics used more than cpu_budget of it, applies
+  /// overload_policy one notch (and reports it); when it used less than half, undoes one notch.
+  void manageLoad(double physics_wall, const ros::WallTime& wall_now);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -102,6 +107,15 @@ class TetherNode
   std::uint64_t reported_jumps_ = 0;  ///< Vehicle jumps already logged.
   std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
+  std::string name_;                ///< This tether's name among several ("" alone).
+  int configured_iterations_ = 0;   ///< Iterations as configured, before any overload reduction.
+  double marker_rate_ = 0.0;        ///< Marker rate in use (overload_policy reduce_markers lowers it) [Hz].
+  ros::WallTime load_window_start_;  ///< Start of the current one-second load window.
+  double load_window_physics_ = 0.0;  ///< Wall time spent in physics in that window [s].
+  double physics_load_ = 0.0;         ///< Fraction of wall time spent in physics, last window [-].
+  std::string degraded_;              ///< What overload_policy has given up, "" when nothing.
+  std::uint64_t skips_ = 0;           ///< Times the physics fell more than max_lag behind and skipped.
+  ros::Time last_skip_time_;
   std::vector<double> tensions_;
   TetherState state_msg_;
   visualization_msgs::MarkerArray markers_;

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""rostest (test/ros/multi_tether.test): eight tethers in one tether_node process. Each follows its own
+vehicle (its own pose topic and spool), each reports its own diagnostics, and the one whose cpu_budget
+cannot be met degrades visibly: fewer iterations in ~state and a WARN saying so."""
+import sys
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from geometry_msgs.msg import PoseStamped
+
+from rov_tether.msg import TetherState
+
+TETHERS = 8
+SPACING = 4.0  # [m] spool i at (4 i, 0, 0), config/eight_tethers.yaml
+
+
+def distance(i):
+    """Vehicle i sits 2 + 0.5 i metres from its spool (straight out along y, 1 m down)."""
+    return 2.0 + 0.5 * i
+
+
+class MultiTether(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("multi_tether_test")
+        cls.states = {}
+        cls.diagnostics = {}
+        cls.pubs = [rospy.Publisher("/rov%d/pose" % i, PoseStamped, queue_size=10) for i in range(TETHERS)]
+        for i in range(TETHERS):
+            rospy.Subscriber("/tether_node/t%d/state" % i, TetherState,
+                             lambda m, i=i: cls.states.__setitem__(i, m), queue_size=10)
+        rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
+
+    @classmethod
+    def on_diagnostics(cls, msg):
+        for status in msg.status:
+            cls.diagnostics[status.name] = status
+
+    def publish_poses(self, seconds):
+        rate = rospy.Rate(20)
+        end = rospy.Time.now() + rospy.Duration(seconds)
+        while not rospy.is_shutdown() and rospy.Time.now() < end:
+            for i, pub in enumerate(self.pubs):
+                msg = PoseStamped()
+                msg.header.stamp = rospy.Time.now()
+                msg.header.frame_id = "world"
+                msg.pose.position.x = SPACING * i
+                msg.pose.position.y = (distance(i) ** 2 - 1.0) ** 0.5
+                msg.pose.position.z = -1.0
+                msg.pose.orientation.w = 1.0
+                pub.publish(msg)
+            rate.sleep()
+
+    def test_1_each_tether_follows_its_own_vehicle(self):
+        self.publish_poses(8.0)
+        self.assertEqual(sorted(self.states), list(range(TETHERS)), "every tether publishes ~state")
+        for i in range(TETHERS):
+            deployed = self.states[i].deployed_length
+            print("[ measured ] t%d: vehicle %.1f m away, deployed %.3f m" % (i, distance(i), deployed),
+                  file=sys.stderr)
+            self.assertGreaterEqual(deployed, distance(i) - 0.05)
+            if i < 7:  # t7 starts with all its 100 m out
+                self.assertLessEqual(deployed, 1.25 * distance(i))
+        names = ["tether t%d" % i for i in range(TETHERS)]
+        self.assertTrue(all(any(key.endswith(n) for key in self.diagnostics) for n in names),
+                        "one diagnostics status per tether: %s" % sorted(self.diagnostics))
+
+    def test_2_overloaded_tether_degrades_visibly(self):
+        self.publish_poses(4.0)
+        degraded = self.states[7]
+        normal = self.states[0]
+        status = next(s for k, s in self.diagnostics.items() if k.endswith("tether t7"))
+        print("[ measured ] t7 (100 iterations configured, cpu_budget 0.01): %d iterations, diagnostics '%s'; t0: %d iterations"
+              % (degraded.iterations, status.message, normal.iterations), file=sys.stderr)
+        self.assertEqual(normal.iterations, 10)
+        self.assertLess(degraded.iterations, 100)
+        self.assertGreaterEqual(degraded.iterations, 3)  # min_iterations
+        self.assertGreaterEqual(status.level, DiagnosticStatus.WARN)
+        self.assertIn("degraded", status.message)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("rov_tether", "multi_tether", MultiTether)
