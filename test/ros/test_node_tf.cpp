@@ -7,6 +7,8 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <unistd.h>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -82,6 +84,19 @@ TEST(TetherNodeTf, FollowsTheVehicleFrameWithItsOrientationAndAMovingSpool)
   EXPECT_NEAR(points.front().z, 0.0, 1e-6);
 }
 
+/// The executable `name` in the directory of this test binary.
+std::string siblingExecutable(const std::string& name)
+{
+  char path[4096];
+  const ssize_t length = ::readlink("/proc/self/exe", path, sizeof(path) - 1);
+  if (length <= 0)
+  {
+    return name;
+  }
+  const std::string self(path, static_cast<std::size_t>(length));
+  return self.substr(0, self.rfind('/') + 1) + name;
+}
+
 // A bad or contradictory parameter stops the node at start, before it advertises anything, naming the
 // parameter.
 TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
@@ -97,8 +112,9 @@ TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
   }};
   for (const auto& [assignment, expected] : cases)
   {
+    // The tether_node built beside this test (rosrun would be ambiguous with a second, sanitizer build).
     const std::string command =
-        std::string("rosrun rov_tether tether_node __name:=bad_tether_node ") + assignment + " 2>&1; echo exit=$?";
+        siblingExecutable("tether_node") + " __name:=bad_tether_node " + assignment + " 2>&1; echo exit=$?";
     std::FILE* pipe = ::popen(command.c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string output;
