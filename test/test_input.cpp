@@ -122,6 +122,33 @@ TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
   EXPECT_TRUE(std::isfinite(sim.summary().max_tension));
 }
 
+// skipTo (used by the node when it falls further than max_lag behind) moves time without stepping: the
+// cable holds its shape at rest, the vehicle end goes where the samples say, and stepping resumes.
+TEST(Skip, SkipAheadHoldsTheCableAndResumes)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  sim.addVehicleSample(1.0, Position(1.2, 0.0, -1.0));
+  sim.addVehicleSample(5.0, Position(2.0, 0.0, -1.0));
+  sim.advanceTo(0.5);
+  const std::size_t steps = sim.stepCount();
+  EXPECT_FALSE(sim.skipTo(0.2).ok);  // backwards
+  EXPECT_FALSE(sim.skipTo(std::nan("")).ok);
+  ASSERT_TRUE(sim.skipTo(3.0).ok);
+  EXPECT_EQ(sim.stepCount(), steps);
+  EXPECT_EQ(sim.time(), 3.0);
+  EXPECT_NEAR(sim.particle(sim.deployedParticleCount() - 1).x(), 1.2 + 0.8 * 0.5, 1e-9);  // interpolated at 3 s
+  const CableState& s = sim.state();
+  for (std::size_t i = s.first; i < s.size(); ++i)
+  {
+    EXPECT_EQ(s.position(i), Position(s.px[i], s.py[i], s.pz[i])) << "at rest";
+  }
+  ASSERT_TRUE(sim.advanceTo(4.0).ok);
+  EXPECT_EQ(sim.stepCount(), steps + 200);
+  EXPECT_LT(sim.summary().max_strain, 0.1);
+}
+
 TEST(BadInput, NonFiniteSpoolAndIntervalsAreRefused)
 {
   TetherSimulation sim = movingTether();

@@ -484,6 +484,26 @@ TEST(TetherNode, TimeGoingBackwardsResetsTheTether)
   EXPECT_TRUE(std::isfinite(h.state_.max_tension));
 }
 
+// A clock that leaps forwards (a bag skipped, a paused simulator resumed) by more than 5 s resets the
+// tether instead of simulating the gap in one burst.
+TEST(TetherNode, TimeLeapingForwardResetsTheTether)
+{
+  Harness& h = *harness;
+  ASSERT_TRUE(h.drive(0.2, home));
+  const std::uint32_t resets = h.state_.resets;
+  h.setTime(h.sim_time_ + 60.0);
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        h.publishPose(home(0.0));
+        return h.state_.resets > resets;
+      },
+      20.0));
+  EXPECT_EQ(h.state_.resets, resets + 1);
+  EXPECT_TRUE(std::isfinite(h.state_.max_tension));
+}
+
 TEST(TetherNode, ResetServiceResets)
 {
   Harness& h = *harness;

@@ -1,5 +1,6 @@
 // rostest (test/ros/node_tf.test): vehicle pose and spool from tf, attachment offset in the vehicle frame,
 // and a bad parameter stopping the node at start with a message naming it.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -55,20 +56,58 @@ TEST(TetherNodeTf, FollowsTheVehicleFrameWithItsOrientationAndAMovingSpool)
   // The vehicle sits at (3, 0, -1) facing +y (yaw 90 deg): 0.5 m behind it is (3, -0.5, -1).
   // The ship (spool) drifts from (0, 0, 0) to (0, 1, 0) over 4 s, then stays.
   double t = 500.0;
+  double t_ship = 501.0;  // the ship starts drifting 1 s after the transforms appear
   auto tick = [&](double dt)
   {
     t += dt;
     rosgraph_msgs::Clock clock;
     clock.clock = ros::Time(t);
     clock_pub.publish(clock);
-    const double ship_y = std::min(std::max(t - 501.0, 0.0) / 4.0, 1.0);
+    const double ship_y = std::min(std::max(t - t_ship, 0.0) / 4.0, 1.0);
     broadcaster.sendTransform(transform("rov", 3.0, 0.0, -1.0, M_PI / 2, ros::Time(t)));
     broadcaster.sendTransform(transform("ship", 0.0, ship_y, 0.0, 0.0, ros::Time(t)));
     ros::spinOnce();
     ros::WallDuration(0.0005).sleep();  // paces the simulated clock
   };
+  // First the frames are missing: the node must keep running, publish the hanging cable and say in
+  // /diagnostics that it has no vehicle pose, never crash or attach to garbage.
+  std::string diagnostics_message;
+  ros::Subscriber diag_sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10,
+      [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& msg)
+      {
+        for (const auto& status : msg->status)
+        {
+          if (status.name.find("tether") != std::string::npos)
+          {
+            diagnostics_message = status.message;
+          }
+        }
+      });
+  double t_missing = t;
+  int states_missing = 0;
+  ros::Subscriber count_sub = nh.subscribe<rov_tether::TetherState>(
+      "/tether_node/state", 10, [&](const rov_tether::TetherState::ConstPtr&) { ++states_missing; });
+  const ros::WallTime missing_deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && ros::WallTime::now() < missing_deadline &&
+         (diagnostics_message.find("no vehicle pose yet") == std::string::npos || states_missing < 5))
+  {
+    t_missing += 0.005;
+    rosgraph_msgs::Clock clock;
+    clock.clock = ros::Time(t_missing);
+    clock_pub.publish(clock);
+    ros::spinOnce();
+    ros::WallDuration(0.0005).sleep();
+  }
+  EXPECT_NE(diagnostics_message.find("no vehicle pose yet"), std::string::npos) << diagnostics_message;
+  EXPECT_GE(states_missing, 5);
+  EXPECT_FALSE(state.vehicle_attached);
+  count_sub.shutdown();
+  t = t_missing;
+  t_ship = t + 1.0;
+
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
-  while (ros::ok() && ros::WallTime::now() < deadline && (t < 507.0 || marker_count < 3))
+  while (ros::ok() && ros::WallTime::now() < deadline && (t < t_missing + 7.0 || marker_count < 3))
   {
     tick(0.005);
   }
