@@ -37,6 +37,7 @@ run() {
   while (($#)) && [ "$1" != "--" ]; do launch+=("$1"); shift; done
   shift
   rosparam set use_sim_time "$sim"
+  rosparam delete /tether_node >/dev/null 2>&1 || true  # no parameter (say `tethers`) left from the last run
   roslaunch "${launch[@]}" >"$LOGS/$name.node.log" 2>&1 &
   local node=$!
   local pid=""
@@ -47,8 +48,9 @@ run() {
   done
   echo "== $name"
   "$LOAD" --pid "$pid" "$@" | tee "$LOGS/$name.log"
-  kill -INT "$node" 2>/dev/null || true
+  kill -TERM "$node" 2>/dev/null || true  # background jobs ignore SIGINT in scripts
   wait "$node" 2>/dev/null || true
+  for _ in $(seq 100); do pgrep -f "rov_tether/tether_node" >/dev/null || break; sleep 0.1; done
 }
 
 for r in "${RUNS[@]}"; do

@@ -35,7 +35,7 @@ struct Options
 
 struct Seen
 {
-  double rtf = NAN, step_us = NAN, load = NAN, iterations = NAN;
+  double rtf = NAN, step_us = NAN, load = NAN, iterations = NAN, rejected = NAN;
   int level = 0;
   std::string message;
 };
@@ -60,6 +60,7 @@ void onDiagnostics(const diagnostic_msgs::DiagnosticArray& msg)
       if (kv.key == "step time [us]") s.step_us = v;
       if (kv.key == "physics load [% of wall time]") s.load = v;
       if (kv.key == "iterations") s.iterations = v;
+      if (kv.key == "rejected poses") s.rejected = v;
     }
   }
 }
@@ -147,7 +148,8 @@ int main(int argc, char** argv)
   std::map<std::string, double> step_first, step_last, rtf_min;
   std::size_t poses = 0;
   ros::WallTime wall_next = ros::WallTime::now();
-  std::printf("%8s %9s  %s\n", "ROS t [s]", "RSS [MB]", "per tether: real-time factor, step time, physics load, iterations");
+  std::printf("%8s %9s  %s\n", "ROS t [s]", "RSS [MB]",
+              "per tether: real-time factor, step time, physics load, iterations, rejected poses [diagnostics level]");
   for (;;)
   {
     double now;
@@ -195,8 +197,8 @@ int main(int argc, char** argv)
       std::printf("%8.0f %9.1f ", now - start_time, rss);
       for (const auto& [name, s] : seen)
       {
-        std::printf(" | %s: %.1fx %.1f us %.1f%% it %.0f%s", name.c_str(), s.rtf, s.step_us, s.load, s.iterations,
-                    s.level ? (" [" + s.message + "]").c_str() : "");
+        std::printf(" | %s: %.1fx %.1f us %.1f%% it %.0f rejected %.0f%s", name.c_str(), s.rtf, s.step_us, s.load,
+                    s.iterations, s.rejected, s.level ? (" [" + s.message + "]").c_str() : "");
         if (!step_first.count(name) && std::isfinite(s.step_us)) step_first[name] = s.step_us;
         step_last[name] = s.step_us;
         rtf_min[name] = rtf_min.count(name) ? std::min(rtf_min[name], s.rtf) : s.rtf;
