@@ -1,6 +1,7 @@
 // Statics against the catenary rows of REFERENCES.md ("Statics: the catenary").
 #include <cstdio>
 
+#include "rov_tether/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -21,16 +22,10 @@ struct Catenary
 /// A heavy 10 m cable settled between level supports `span` apart, in `segments` segments.
 Catenary settle(double span, int segments, bool bending, int iterations = 50)
 {
-  TetherParams params;
-  params.cable_length = kLength;
-  params.segment_length = kLength / segments;
-  params.initial_deployed_length = kLength;
-  params.min_deployed_length = params.segment_length;
+  // The study's S = 8 catenary cable (study.cpp): 10 m, w = 1 N/m, locked, no noise.
+  TetherParams params = study::findCase("catenary_s8").base(segments);
   params.iterations = iterations;
   params.bending = bending;
-  params.noise = 0.0;
-  params.weight_in_water = kWeight;
-  params.winch_mode = WinchMode::kLocked;
   TetherSimulation sim(params, Position::Zero(), Position(span, 0.0, 0.0));
   sim.advance(29.0);
   const std::vector<Position> before = positions(sim);

@@ -72,7 +72,9 @@ struct CrossingCounter
 
 // --- Statics: the catenary between level supports --------------------------------------------------
 
-TetherParams catenaryBase(double length, double weight, double mass_per_length, double stiffness, int segments)
+/// `length` of cable in `segments` segments, all deployed, winch locked, no bending, no noise: the
+/// common ground of the reference cases.
+TetherParams fullyDeployed(double length, int segments)
 {
   TetherParams p;
   p.cable_length = length;
@@ -81,12 +83,18 @@ TetherParams catenaryBase(double length, double weight, double mass_per_length, 
   p.min_deployed_length = p.segment_length;
   p.bending = false;
   p.noise = 0.0;
+  p.winch_mode = WinchMode::kLocked;
+  p.max_vehicle_jump = 100.0;
+  return p;
+}
+
+TetherParams catenaryBase(double length, double weight, double mass_per_length, double stiffness, int segments)
+{
+  TetherParams p = fullyDeployed(length, segments);
   p.drag = 0.9;
   p.weight_in_water = weight;
   p.mass_per_length = mass_per_length;
   p.axial_stiffness = stiffness;
-  p.winch_mode = WinchMode::kLocked;
-  p.max_vehicle_jump = 100.0;
   return p;
 }
 
@@ -142,17 +150,10 @@ Result runCatenary(const std::string& name, TetherParams p, double span, double 
 
 TetherParams axialDragBase(int segments)
 {
-  TetherParams p;
-  p.cable_length = 100.0;
-  p.segment_length = 100.0 / segments;
-  p.initial_deployed_length = 100.0;
-  p.min_deployed_length = p.segment_length;
-  p.bending = false;
-  p.noise = 0.0;
+  TetherParams p = fullyDeployed(100.0, segments);
   p.drag_model = DragModel::kMorison;
   p.mass_per_length = 0.5;
   p.current = {0.0, 0.0, -1.0};  // along the cable, which hangs straight down from the spool
-  p.winch_mode = WinchMode::kLocked;
   return p;
 }
 
@@ -184,17 +185,9 @@ Result runAxialDrag(TetherParams p)
 
 TetherParams tautStringBase(int segments)
 {
-  TetherParams p;
-  p.cable_length = 10.0;
-  p.segment_length = 10.0 / segments;
-  p.initial_deployed_length = 10.0;
-  p.min_deployed_length = p.segment_length;
-  p.bending = false;
-  p.noise = 0.0;
+  TetherParams p = fullyDeployed(10.0, segments);
   p.mass_per_length = 0.5;
   p.axial_stiffness = 1e5;
-  p.winch_mode = WinchMode::kLocked;
-  p.max_vehicle_jump = 100.0;
   return p;
 }
 
@@ -242,17 +235,10 @@ Result runTautString(TetherParams p)
 
 TetherParams hangingChainBase(int segments)
 {
-  TetherParams p;
-  p.cable_length = 10.0;
-  p.segment_length = 10.0 / segments;
-  p.initial_deployed_length = 10.0;
-  p.min_deployed_length = p.segment_length;
-  p.bending = false;
-  p.noise = 0.0;
+  TetherParams p = fullyDeployed(10.0, segments);
   p.mass_per_length = 1.0;
   p.weight_in_water = 9.81;  // in air: w / mu = g
   p.axial_stiffness = 1e5;
-  p.winch_mode = WinchMode::kLocked;
   return p;
 }
 
