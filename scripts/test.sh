@@ -39,15 +39,17 @@ run_suite() {
     if [ -n "${ASAN_OPTIONS_NODES:-}" ]; then
       export ASAN_OPTIONS="$ASAN_OPTIONS_NODES"
     fi
+    failed=0
     for launch in "$ROOT"/test/ros/*.test; do
-      local log="$BUILD_DIR/rostest_$(basename "$launch").log"
+      log="$BUILD_DIR/rostest_$(basename "$launch").log"
       echo "== rostest $(basename "$launch")"
       rostest --results-base-dir="$results/rostest" "$launch" >"$log" 2>&1 || {
         tail -40 "$log"
-        exit 1
+        failed=1  # the other rostests still run
       }
       grep -E "^\[rov_tether\.|RESULT|TESTS|FAILURES|ERRORS" "$log" || true
     done
+    exit $failed
   ) || status=1
 }
 
