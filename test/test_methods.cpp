@@ -29,11 +29,10 @@ TEST(Reference, ElasticCatenaryRows)
   {
     double span, stiffness, weight, length, horizontal, sag, max_tension;
   };
-  for (const Row& row : {Row{8.0, 1e300, 1.0, 10.0, 3.38202, 2.65438, 6.03639},
-                         Row{8.0, 1e3, 1.0, 10.0, 3.33548, 2.68746, 6.01044},
-                         Row{8.0, 100.0, 1.0, 10.0, 2.99709, 2.95737, 5.82946},
-                         Row{9.5, 1e300, 1.0, 10.0, 8.5186, 1.3590, 9.8776},
-                         Row{1.0, 3.1416, 1.962, 1.0, 0.6471, 0.3472, 1.1749}})
+  for (const Row& row :
+       {Row{8.0, 1e300, 1.0, 10.0, 3.38202, 2.65438, 6.03639}, Row{8.0, 1e3, 1.0, 10.0, 3.33548, 2.68746, 6.01044},
+        Row{8.0, 100.0, 1.0, 10.0, 2.99709, 2.95737, 5.82946}, Row{9.5, 1e300, 1.0, 10.0, 8.5186, 1.3590, 9.8776},
+        Row{1.0, 3.1416, 1.962, 1.0, 0.6471, 0.3472, 1.1749}})
   {
     study::Catenary c;
     c.length = row.length;
@@ -56,10 +55,10 @@ TEST(Xpbd, MatchesTheElasticCatenaryAndTheLargeStrainCase)
   {
     const study::Result xpbd = findCase(name).run(caseParams(name, 20, SolverType::kXpbd, 20));
     const study::Result pbd = findCase(name).run(caseParams(name, 20, SolverType::kPbd, 20));
-    std::printf("[ measured ] %s, N = 20, 20 iterations: xpbd sag %.3f%%, end tension %.3f%%; pbd sag %.3f%%, "
-                "tension %.3f%%\n",
-                name.c_str(), 100 * xpbd.shape_error, 100 * xpbd.tension_error, 100 * pbd.shape_error,
-                100 * pbd.tension_error);
+    std::printf(
+        "[ measured ] %s, N = 20, 20 iterations: xpbd sag %.3f%%, end tension %.3f%%; pbd sag %.3f%%, "
+        "tension %.3f%%\n",
+        name.c_str(), 100 * xpbd.shape_error, 100 * xpbd.tension_error, 100 * pbd.shape_error, 100 * pbd.tension_error);
     EXPECT_LT(xpbd.tension_error, 0.02) << name;
     EXPECT_LT(xpbd.shape_error, 0.01) << name;
     if (name != "catenary_s8")
@@ -77,12 +76,13 @@ TEST(Xpbd, ConvergesAtSecondOrderInTheSegments)
   int i = 0;
   for (int segments : {10, 20, 40})
   {
-    errors[i++] = findCase("catenary_ea100").run(caseParams("catenary_ea100", segments, SolverType::kXpbd, 50)).shape_error;
+    errors[i++] =
+        findCase("catenary_ea100").run(caseParams("catenary_ea100", segments, SolverType::kXpbd, 50)).shape_error;
   }
   const double order_1 = std::log2(errors[0] / errors[1]);
   const double order_2 = std::log2(errors[1] / errors[2]);
-  std::printf("[ measured ] xpbd sag error N = 10/20/40: %.4f%% / %.4f%% / %.4f%%, order %.2f, %.2f\n",
-              100 * errors[0], 100 * errors[1], 100 * errors[2], order_1, order_2);
+  std::printf("[ measured ] xpbd sag error N = 10/20/40: %.4f%% / %.4f%% / %.4f%%, order %.2f, %.2f\n", 100 * errors[0],
+              100 * errors[1], 100 * errors[2], order_1, order_2);
   EXPECT_NEAR(order_1, 2.0, 0.3);
   EXPECT_NEAR(order_2, 2.0, 0.3);
 }
@@ -180,7 +180,8 @@ TEST(Stability, PbdAndXpbdSurviveATeleportAndA10MetrePerSecondPull)
     SolverType solver;
     double relax;
   };
-  for (const Config& config : {Config{SolverType::kPbd, 1.0}, Config{SolverType::kXpbd, 1.0}, Config{SolverType::kPbd, 1.8}})
+  for (const Config& config :
+       {Config{SolverType::kPbd, 1.0}, Config{SolverType::kXpbd, 1.0}, Config{SolverType::kPbd, 1.8}})
   {
     char name_buffer[64];
     std::snprintf(name_buffer, sizeof(name_buffer), "%s (over-relaxation %.1f)", toString(config.solver).c_str(),
@@ -231,8 +232,10 @@ TEST(OverRelaxation, ConvergesFasterThanThePapersProjection)
   };
   const double plain = stretch(1.0, 5);
   const double relaxed = stretch(1.8, 5);
-  std::printf("[ measured ] hanging cable, 40 segments, 5 iterations, dt 20 ms: mean stretch %.5f plain, %.5f with "
-              "over-relaxation 1.8\n", plain, relaxed);
+  std::printf(
+      "[ measured ] hanging cable, 40 segments, 5 iterations, dt 20 ms: mean stretch %.5f plain, %.5f with "
+      "over-relaxation 1.8\n",
+      plain, relaxed);
   EXPECT_LT(relaxed, 0.4 * plain);
   EXPECT_GT(relaxed, 0.0);
 }

@@ -74,8 +74,9 @@ TEST(Morison, SupportsBalanceTheCrossFlowDrag)
   // are what the supports resist: at rest they add up to the drag.
   const Force on_supports = tensions.front() * (sim.particle(1) - sim.particle(0)).normalized() + sim.vehicleForce();
   const Force drag = dragOnCableAtRest(sim, Position(0.0, 0.3, 0.0));
-  std::printf("[ measured ] cross flow 0.3 m/s: supports hold %.4f N, drag from the shape %.4f N (middle at y = %.3f)\n",
-              on_supports.y(), drag.y(), sim.particle(last / 2).y());
+  std::printf(
+      "[ measured ] cross flow 0.3 m/s: supports hold %.4f N, drag from the shape %.4f N (middle at y = %.3f)\n",
+      on_supports.y(), drag.y(), sim.particle(last / 2).y());
   EXPECT_GT(sim.particle(last / 2).y(), 0.5) << "the current bends the cable downstream";
   EXPECT_NEAR(on_supports.y(), drag.y(), 0.02 * drag.y());
   EXPECT_NEAR(on_supports.x(), 0.0, 0.02 * drag.y());

@@ -18,11 +18,11 @@ namespace rov_tether::study
  */
 struct Catenary
 {
-  double length = 10.0;     ///< L [m]
-  double weight = 1.0;      ///< w [N/m]
-  double stiffness = 1e300; ///< EA [N]
-  double horizontal = 0.0;  ///< H [N]
-  double vertical = 0.0;    ///< V_A [N] (negative: A carries half the weight upwards)
+  double length = 10.0;      ///< L [m]
+  double weight = 1.0;       ///< w [N/m]
+  double stiffness = 1e300;  ///< EA [N]
+  double horizontal = 0.0;   ///< H [N]
+  double vertical = 0.0;     ///< V_A [N] (negative: A carries half the weight upwards)
 
   /// Solves for level supports `span` apart; false when Newton does not converge.
   bool solve(double span);
@@ -73,9 +73,9 @@ const Case& findCase(const std::string& name);
 struct StabilityPoint
 {
   std::string method;
-  double time_step = 0.0;   ///< [s]
-  double stiffness = 0.0;   ///< EA [N]
-  double speed = 0.0;       ///< [m/s]
+  double time_step = 0.0;      ///< [s]
+  double stiffness = 0.0;      ///< EA [N]
+  double speed = 0.0;          ///< [m/s]
   double critical_step = 0.0;  ///< dL / sqrt(EA / mu) [s]
   bool bounded = false;
   double max_strain = 0.0;  ///< [-]

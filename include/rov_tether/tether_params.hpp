@@ -13,7 +13,7 @@ namespace rov_tether
 /// Constraint solver used for the distance and bending constraints.
 enum class SolverType
 {
-  kPbd,           ///< The paper's Figure 2 projected in a red-black (vectorisable) order.
+  kPbd,            ///< The paper's Figure 2 projected in a red-black (vectorisable) order.
   kPbdSequential,  ///< The paper's Figure 2 in its literal sequential order (reference, slower).
   kXpbd,           ///< Extended PBD: compliance from axial_stiffness and bending_stiffness, tension in newtons
                    ///< that does not depend on the iteration count or the step.

@@ -56,9 +56,9 @@ class TetherSimulation
   /// grown to the spool-vehicle distance unless the winch is locked. Throws std::invalid_argument.
   TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
-  /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of cable_length, segment_length,
-  /// initial_deployed_length or solver rebuilds the cable; other changes keep the state. A change of
-  /// time_step keeps particle velocities. Invalid params are refused and the old ones kept.
+  /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of
+  /// cable_length, segment_length, initial_deployed_length or solver rebuilds the cable; other changes keep the state.
+  /// A change of time_step keeps particle velocities. Invalid params are refused and the old ones kept.
   Status setParams(const TetherParams& params);
   const TetherParams& params() const { return params_; }
 

@@ -31,15 +31,16 @@ constexpr double kMinLengthSquared = 1e-24;
  * k of the `b` arrays. Constraint data (rest, weight, lambda) is indexed by k. The a and b ranges must
  * not overlap, so the loop has no dependency between iterations and vectorises.
  *
- * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 and 3 are XPBD with the compliance alpha~ = compliance * rest^kPower
- * (already divided by dt^2): the multiplier increment is (C - alpha~ lambda) / (w_a + w_b + alpha~).
+ * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 and
+ * 3 are XPBD with the compliance alpha~ = compliance * rest^kPower (already divided by dt^2): the multiplier increment
+ * is (C - alpha~ lambda) / (w_a + w_b + alpha~).
  */
 template <int kPower>
 ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
-                         const double* __restrict aw, double* __restrict bx, double* __restrict by,
-                         double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
-                         const double* __restrict weight, double* __restrict lambda, std::size_t count,
-                         double compliance = 0.0, double relax = 1.0)
+                                    const double* __restrict aw, double* __restrict bx, double* __restrict by,
+                                    double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
+                                    const double* __restrict weight, double* __restrict lambda, std::size_t count,
+                                    double compliance = 0.0, double relax = 1.0)
 {
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -95,11 +96,11 @@ struct Blocked
   const double* bend_rest;
   const double* bend_weight;
   double* bend_lambda;
-  std::size_t block;           ///< Length of one block.
-  std::size_t particles;       ///< Deployed particles m.
-  double stretch_compliance;   ///< XPBD: 1 / (EA dt^2) [1/(kg m)]; 0 = PBD.
-  double bend_compliance;      ///< XPBD: 1 / (8 EI dt^2) [1/(kg m^3)]; 0 = PBD.
-  double relax;                ///< PBD over-relaxation factor.
+  std::size_t block;          ///< Length of one block.
+  std::size_t particles;      ///< Deployed particles m.
+  double stretch_compliance;  ///< XPBD: 1 / (EA dt^2) [1/(kg m)]; 0 = PBD.
+  double bend_compliance;     ///< XPBD: 1 / (8 EI dt^2) [1/(kg m^3)]; 0 = PBD.
+  double relax;               ///< PBD over-relaxation factor.
 };
 
 /// Projects the constraints of residue r (constraint l = 4 k + r) between block r and the block of the
@@ -114,18 +115,18 @@ ROV_TETHER_INLINE void projectResidue(const Blocked& c, std::size_t r, std::size
   const double compliance = bend ? c.bend_compliance : c.stretch_compliance;
   if (compliance == 0.0)
   {
-    projectPairs<0>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
-                    count, 0.0, c.relax);
+    projectPairs<0>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
+                    0.0, c.relax);
   }
   else if (bend)
   {
-    projectPairs<3>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
-                    count, compliance);
+    projectPairs<3>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
+                    compliance);
   }
   else
   {
-    projectPairs<1>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda,
-                    count, compliance);
+    projectPairs<1>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
+                    compliance);
   }
 }
 
@@ -200,7 +201,7 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
     return;
   }
-  block_ = m / 4 + 2;                                       // room for particle 4 k + r + 2 one block further on
+  block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
   auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };
   // Masses, rest lengths and weights change only near the spool (pay-out) or on a rebuild: copy them
   // again only for the particles the state marks dirty, or all when the layout shifted.
@@ -240,10 +241,10 @@ void PbdSolver::solve(CableState& state, const SolverSettings& settings)
     bend_lambda_[s] = 0.0;
   }
 
-  const Blocked blocked{x_.data(),         y_.data(),        z_.data(),         inv_mass_.data(),
-                        rest_.data(),      weight_.data(),   lambda_.data(),    bend_rest_.data(),
-                        bend_weight_.data(), bend_lambda_.data(), block_,       m,
-                        stretch_compliance, bend_compliance, relax};
+  const Blocked blocked{x_.data(),           y_.data(),           z_.data(),      inv_mass_.data(),
+                        rest_.data(),        weight_.data(),      lambda_.data(), bend_rest_.data(),
+                        bend_weight_.data(), bend_lambda_.data(), block_,         m,
+                        stretch_compliance,  bend_compliance,     relax};
   solveBlocked(blocked, settings, bending);
 
   for (std::size_t l = 0; l < m; ++l)
@@ -291,8 +292,8 @@ void projectStrided(CableState& state, std::size_t first, std::size_t end, std::
 }
 
 template <int kStretch, int kBend>
-void solveDirectImpl(CableState& state, int iterations, bool bending, double stretch_compliance,
-                     double bend_compliance, double relax)
+void solveDirectImpl(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
+                     double relax)
 {
   const std::size_t f = state.first;
   const std::size_t segments_end = state.size() - 1;
@@ -356,14 +357,14 @@ void SequentialPbdSolver::solve(CableState& state, const SolverSettings& setting
     for (std::size_t j = f; j < segments_end; ++j)
     {
       projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
-                   &state.stretch_weight[j], &state.stretch_lambda[j], 1);
+                      &state.stretch_weight[j], &state.stretch_lambda[j], 1);
     }
     if (settings.bending)
     {
       for (std::size_t j = f; j < bends_end; ++j)
       {
         projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
-                     &state.bend_weight[j], &state.bend_lambda[j], 1);
+                        &state.bend_weight[j], &state.bend_lambda[j], 1);
       }
     }
   }
@@ -406,7 +407,8 @@ void LumpedMassSolver::solve(CableState& state, const SolverSettings& settings)
   }
   if (n >= f + 3)
   {
-    std::fill(state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(f), state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(n - 2), 0.0);
+    std::fill(state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(f),
+              state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(n - 2), 0.0);
   }
   state.dirty_begin = state.dirty_end = 0;
   max_strain_ = std::isfinite(strain_sum) ? max_strain : std::numeric_limits<double>::infinity();

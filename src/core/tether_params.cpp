@@ -18,7 +18,7 @@ using Member = std::variant<double TetherParams::*, int TetherParams::*, bool Te
                             DragModel TetherParams::*, Vector3 TetherParams::*>;
 
 /// Parameters that also accept the string "auto", with the flag it sets.
-bool TetherParams::* autoFlag(const std::string& name)
+bool TetherParams::*autoFlag(const std::string& name)
 {
   if (name == "segment_length")
   {
@@ -481,7 +481,8 @@ std::string toString(WinchMode mode)
 
 bool parseSolver(const std::string& text, SolverType* solver)
 {
-  for (SolverType candidate : {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass})
+  for (SolverType candidate :
+       {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass})
   {
     if (text == toString(candidate))
     {

@@ -326,8 +326,9 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   if (!std::isfinite(t) || !vehicle.allFinite() || std::abs(t) > kMaxTime ||
       vehicle.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
-    return Status::error("vehicle sample rejected: time and position must be finite (time within +-1e10 s, "
-                         "position within +-1e6 m)");
+    return Status::error(
+        "vehicle sample rejected: time and position must be finite (time within +-1e10 s, "
+        "position within +-1e6 m)");
   }
   if (!vehicle_attached_ && samples_.empty())
   {
@@ -571,9 +572,8 @@ void TetherSimulation::integrate(double h, double t)
     return;
   }
   // Net weight in water; a neutrally buoyant cable (the default) does no gravity work at all.
-  const double sink = params_.weight_in_water != 0.0
-                          ? -params_.weight_in_water / params_.effectiveMassPerLength() * h * h
-                          : 0.0;
+  const double sink =
+      params_.weight_in_water != 0.0 ? -params_.weight_in_water / params_.effectiveMassPerLength() * h * h : 0.0;
   const double damping = params_.dampingFactor(h);
   if (params_.current_variation > 0.0)
   {
@@ -605,8 +605,7 @@ void TetherSimulation::integrateMorison(double h, double t)
   const std::size_t begin = state_.first + 1;
   const std::size_t end = freeEnd();
   const double normal = 0.5 * params_.water_density * params_.normal_drag_coefficient * params_.diameter;
-  const double tangential =
-      0.5 * params_.water_density * params_.tangential_drag_coefficient * kPi * params_.diameter;
+  const double tangential = 0.5 * params_.water_density * params_.tangential_drag_coefficient * kPi * params_.diameter;
   const double sink = -params_.weight_in_water / params_.effectiveMassPerLength() * h * h;
   const bool uniform = params_.current_variation <= 0.0;
   const Position u0(params_.current[0], params_.current[1], params_.current[2]);

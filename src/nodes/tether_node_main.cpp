@@ -33,8 +33,8 @@ int main(int argc, char** argv)
           throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " is not a name");
         }
         const std::string name = names[i];
-        tethers.push_back(std::make_unique<rov_tether::ros_layer::TetherNode>(
-            nh, ros::NodeHandle(private_nh, name), shared, name));
+        tethers.push_back(
+            std::make_unique<rov_tether::ros_layer::TetherNode>(nh, ros::NodeHandle(private_nh, name), shared, name));
       }
       ROS_INFO("tether_node: %zu tethers in one process", tethers.size());
     }

@@ -20,8 +20,8 @@ constexpr double kFailureReportTime = 5.0;
 
 }  // namespace
 
-TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
-                       const XmlRpc::XmlRpcValue& shared, const std::string& name)
+TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const XmlRpc::XmlRpcValue& shared,
+                       const std::string& name)
     : nh_(nh), private_nh_(private_nh), name_(name)
 {
   XmlRpc::XmlRpcValue dict;
@@ -31,7 +31,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   }
   TetherParams params;
   std::string error;
-  for (const XmlRpc::XmlRpcValue* source : {&shared, static_cast<const XmlRpc::XmlRpcValue*>(&dict)})  // shared first, this tether's own on top
+  for (const XmlRpc::XmlRpcValue* source :
+       {&shared, static_cast<const XmlRpc::XmlRpcValue*>(&dict)})  // shared first, this tether's own on top
   {
     if (error.empty() && source->valid())
     {
@@ -203,9 +204,10 @@ void TetherNode::warnAboutStability() const
   const TetherParams& p = sim_->params();
   if (p.solver == SolverType::kLumpedMass && p.subStep() > p.criticalStep())
   {
-    ROS_WARN("tether_node: lumped_mass sub-step %.3g s exceeds its critical step %.3g s (segment_length / "
-             "sqrt(EA / mu)): it will diverge (detected and reported); set substeps >= %.0f or iterations: auto",
-             p.subStep(), p.criticalStep(), std::ceil(p.time_step / p.criticalStep()));
+    ROS_WARN(
+        "tether_node: lumped_mass sub-step %.3g s exceeds its critical step %.3g s (segment_length / "
+        "sqrt(EA / mu)): it will diverge (detected and reported); set substeps >= %.0f or iterations: auto",
+        p.subStep(), p.criticalStep(), std::ceil(p.time_step / p.criticalStep()));
   }
 }
 
@@ -262,8 +264,9 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     next_state_physics_ = 0.0;
     ++skips_;
     last_skip_time_ = now;
-    ROS_ERROR_THROTTLE(1.0, "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
-                            "skipped ahead with the cable held",
+    ROS_ERROR_THROTTLE(1.0,
+                       "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
+                       "skipped ahead with the cable held",
                        name_.empty() ? "" : (" " + name_).c_str(), behind, options_.max_lag);
     if (next_state_physics_ <= 0.0)
     {
@@ -341,9 +344,10 @@ void TetherNode::manageLoad(double physics_wall, const ros::WallTime& wall_now)
       marker_rate_ = std::max(1.0, marker_rate_ / 2.0);
       degraded_ = "markers at " + std::to_string(marker_rate_).substr(0, 4) + " Hz";
     }
-    ROS_WARN_THROTTLE(5.0, "tether_node%s: physics uses %.0f%% of the wall time (cpu_budget %.0f%%): %s",
-                      label.c_str(), 100 * physics_load_, 100 * options_.cpu_budget,
-                      degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
+    ROS_WARN_THROTTLE(
+        5.0, "tether_node%s: physics uses %.0f%% of the wall time (cpu_budget %.0f%%): %s", label.c_str(),
+        100 * physics_load_, 100 * options_.cpu_budget,
+        degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
   }
   else if (physics_load_ < 0.5 * options_.cpu_budget && !degraded_.empty())
   {
@@ -353,14 +357,15 @@ void TetherNode::manageLoad(double physics_wall, const ros::WallTime& wall_now)
       TetherParams params = sim_->params();
       params.iterations = std::min(configured_iterations_, params.iterations * 4 / 3 + 1);
       sim_->setParams(params);
-      degraded_ = params.iterations < configured_iterations_
-                      ? "iterations " + std::to_string(params.iterations) + " of " + std::to_string(configured_iterations_)
-                      : "";
+      degraded_ = params.iterations < configured_iterations_ ? "iterations " + std::to_string(params.iterations) +
+                                                                   " of " + std::to_string(configured_iterations_)
+                                                             : "";
     }
     else if (options_.overload_policy == "reduce_markers" && marker_rate_ < options_.marker_rate)
     {
       marker_rate_ = std::min(options_.marker_rate, marker_rate_ * 2.0);
-      degraded_ = marker_rate_ < options_.marker_rate ? "markers at " + std::to_string(marker_rate_).substr(0, 4) + " Hz" : "";
+      degraded_ =
+          marker_rate_ < options_.marker_rate ? "markers at " + std::to_string(marker_rate_).substr(0, 4) + " Hz" : "";
     }
     if (degraded_.empty())
     {

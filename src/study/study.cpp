@@ -390,8 +390,7 @@ const std::vector<Case>& cases()
        [](TetherParams p) { return runCatenary("large_strain", p, 1.0, 30.0); },
        [](int n) { return catenaryBase(1.0, 1.962, 0.2, 3.1416, n); }},
       {"axial_drag", "Straight cable under axial drag: 100 m, 1 m/s, 25.8 N", runAxialDrag, axialDragBase},
-      {"taut_string", "Taut string: T = 100 N, mu = 0.5 kg/m, L = 10 m, f1 = 0.7071 Hz", runTautString,
-       tautStringBase},
+      {"taut_string", "Taut string: T = 100 N, mu = 0.5 kg/m, L = 10 m, f1 = 0.7071 Hz", runTautString, tautStringBase},
       {"hanging_chain", "Hanging chain: L = 10 m in air, T1 = 5.276 s", runHangingChain, hangingChainBase},
       {"paper_experiment", "The paper's 2D experiment: residual stretch at 16 s", runPaper, paperBase},
   };

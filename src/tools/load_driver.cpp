@@ -22,14 +22,14 @@ namespace
 struct Options
 {
   std::vector<std::string> topics{"rov_pose"};
-  double rate = 50.0;         // poses per (ROS) second per topic
-  double duration = 30.0;     // ROS seconds
-  double clock_speed = 0.0;   // 0: wall time; else publish /clock this many times faster than wall time
-  double report = 5.0;        // ROS seconds between report lines
-  double spacing = 0.0;       // x offset between vehicles [m]
+  double rate = 50.0;        // poses per (ROS) second per topic
+  double duration = 30.0;    // ROS seconds
+  double clock_speed = 0.0;  // 0: wall time; else publish /clock this many times faster than wall time
+  double report = 5.0;       // ROS seconds between report lines
+  double spacing = 0.0;      // x offset between vehicles [m]
   double start[3] = {3.0, 0.0, -1.0};
-  double radius = 1.0;        // circle radius [m]
-  double period = 20.0;       // circle period [s]
+  double radius = 1.0;   // circle radius [m]
+  double period = 20.0;  // circle period [s]
   int pid = 0;
 };
 
@@ -104,14 +104,22 @@ int main(int argc, char** argv)
   {
     const std::string key = argv[i];
     const std::string value = argv[i + 1];
-    if (key == "--topics") o.topics = split(value);
-    else if (key == "--rate") o.rate = std::atof(value.c_str());
-    else if (key == "--duration") o.duration = std::atof(value.c_str());
-    else if (key == "--clock-speed") o.clock_speed = std::atof(value.c_str());
-    else if (key == "--report") o.report = std::atof(value.c_str());
-    else if (key == "--spacing") o.spacing = std::atof(value.c_str());
-    else if (key == "--radius") o.radius = std::atof(value.c_str());
-    else if (key == "--pid") o.pid = std::atoi(value.c_str());
+    if (key == "--topics")
+      o.topics = split(value);
+    else if (key == "--rate")
+      o.rate = std::atof(value.c_str());
+    else if (key == "--duration")
+      o.duration = std::atof(value.c_str());
+    else if (key == "--clock-speed")
+      o.clock_speed = std::atof(value.c_str());
+    else if (key == "--report")
+      o.report = std::atof(value.c_str());
+    else if (key == "--spacing")
+      o.spacing = std::atof(value.c_str());
+    else if (key == "--radius")
+      o.radius = std::atof(value.c_str());
+    else if (key == "--pid")
+      o.pid = std::atoi(value.c_str());
     else if (key == "--start")
     {
       const auto parts = split(value);

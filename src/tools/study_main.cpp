@@ -70,9 +70,9 @@ std::vector<Effort> efforts(SolverType method, bool quick)
     case SolverType::kXpbd:
       for (double dt : steps)
       {
-        for (auto [substeps, iterations] : quick ? std::vector<std::pair<int, int>>{{1, 20}, {4, 5}}
-                                                 : std::vector<std::pair<int, int>>{
-                                                       {1, 5}, {1, 20}, {1, 100}, {4, 1}, {4, 5}, {16, 1}, {16, 5}})
+        for (auto [substeps, iterations] :
+             quick ? std::vector<std::pair<int, int>>{{1, 20}, {4, 5}}
+                   : std::vector<std::pair<int, int>>{{1, 5}, {1, 20}, {1, 100}, {4, 1}, {4, 5}, {16, 1}, {16, 5}})
         {
           out.push_back({substeps, iterations, 0.0, dt, 1.0});
         }
@@ -91,8 +91,8 @@ std::vector<Effort> efforts(SolverType method, bool quick)
 void writeResult(std::FILE* out, const Result& r)
 {
   std::fprintf(out, "%s,%s,%d,%d,%d,%g,%g,%.6g,%.6g,%.6g,%d,%s\n", r.scenario.c_str(), r.method.c_str(), r.segments,
-               r.iterations, r.substeps, r.over_relaxation, r.time_step, r.shape_error, r.tension_error, r.cost, r.failed ? 1 : 0,
-               r.label.c_str());
+               r.iterations, r.substeps, r.over_relaxation, r.time_step, r.shape_error, r.tension_error, r.cost,
+               r.failed ? 1 : 0, r.label.c_str());
   std::fflush(out);
 }
 
@@ -151,8 +151,10 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "cannot write %s\n", study_path.c_str());
     return 1;
   }
-  std::fprintf(out, "scenario,method,segments,iterations,substeps,over_relaxation,time_step,shape_error,tension_error,cost_us_per_s,"
-                    "failed,label\n");
+  std::fprintf(
+      out,
+      "scenario,method,segments,iterations,substeps,over_relaxation,time_step,shape_error,tension_error,cost_us_per_s,"
+      "failed,label\n");
   // Cheapest run per case and method that meets the goal's accuracy (shape 1%, tension 2%).
   std::map<std::string, std::map<std::string, Result>> cheapest;
   for (const Case& c : cases())
@@ -218,16 +220,18 @@ int main(int argc, char** argv)
           Result r = c.run(p);
           r.label = "auto";
           writeResult(out, r);
-          std::printf("   auto (shape %g m, stretch %g): %d segments, %d iterations: sag %.3f%%, tension %.3f%%, %.0f us/s\n",
-                      shape, stretch, r.segments, r.iterations, 100 * r.shape_error, 100 * r.tension_error, r.cost);
+          std::printf(
+              "   auto (shape %g m, stretch %g): %d segments, %d iterations: sag %.3f%%, tension %.3f%%, %.0f us/s\n",
+              shape, stretch, r.segments, r.iterations, 100 * r.shape_error, 100 * r.tension_error, r.cost);
         }
       }
     }
     for (const auto& [method, r] : cheapest[c.name])
     {
-      std::printf("   cheapest within 1%% shape / 2%% tension: %-11s %3d segments, %2d substeps x %3d iterations, "
-                  "SOR %.1f, dt %.3f s: %9.0f us per simulated s\n",
-                  method.c_str(), r.segments, r.substeps, r.iterations, r.over_relaxation, r.time_step, r.cost);
+      std::printf(
+          "   cheapest within 1%% shape / 2%% tension: %-11s %3d segments, %2d substeps x %3d iterations, "
+          "SOR %.1f, dt %.3f s: %9.0f us per simulated s\n",
+          method.c_str(), r.segments, r.substeps, r.iterations, r.over_relaxation, r.time_step, r.cost);
     }
   }
   std::fclose(out);
@@ -278,17 +282,20 @@ int main(int argc, char** argv)
       }
       if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
       {
-        std::printf("goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
-                    "(%d segments, %d iterations, over-relaxation %g, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d segments, h %.3g ms): "
-                    "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
-                    stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation, best["pbd"].time_step,
-                    best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
-                    1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
-                    best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
+        std::printf(
+            "goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
+            "(%d segments, %d iterations, over-relaxation %g, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d "
+            "segments, h %.3g ms): "
+            "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
+            stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation,
+            best["pbd"].time_step, best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
+            1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
+            best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
         const Result& plain = best["pbd without over-relaxation"];
-        std::printf("      pbd with the paper's projection (over_relaxation 1): %.0f us/s (%d segments, %d iterations, "
-                    "dt %g s): lumped_mass / pbd = %.1f\n",
-                    plain.cost, plain.segments, plain.iterations, plain.time_step, best["lumped_mass"].cost / plain.cost);
+        std::printf(
+            "      pbd with the paper's projection (over_relaxation 1): %.0f us/s (%d segments, %d iterations, "
+            "dt %g s): lumped_mass / pbd = %.1f\n",
+            plain.cost, plain.segments, plain.iterations, plain.time_step, best["lumped_mass"].cost / plain.cost);
       }
     }
   }
@@ -298,9 +305,9 @@ int main(int argc, char** argv)
     const std::string path = out_dir + "/stability.csv";
     std::FILE* map = std::fopen(path.c_str(), "w");
     std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
-    const std::vector<double> steps = quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
-                                            : std::vector<double>{1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4,
-                                                                  1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
+    const std::vector<double> steps =
+        quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
+              : std::vector<double>{1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
     const std::vector<double> stiffnesses =
         quick ? std::vector<double>{1e3, 1e5} : std::vector<double>{1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
     const std::vector<double> speeds =

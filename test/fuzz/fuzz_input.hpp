@@ -14,10 +14,7 @@ class Input
  public:
   Input(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
   bool empty() const { return offset_ >= size_; }
-  std::uint8_t byte()
-  {
-    return offset_ < size_ ? data_[offset_++] : 0;
-  }
+  std::uint8_t byte() { return offset_ < size_ ? data_[offset_++] : 0; }
   /// Any double, NaN, infinities and denormals included.
   double rawDouble()
   {

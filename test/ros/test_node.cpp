@@ -396,7 +396,13 @@ TEST(TetherNode, BadPosesAreRefusedAndCounted)
   // First the node must know the boat: a boat pose at a current stamp is accepted (retried while the tf
   // messages are still on their way, e.g. under the sanitizers).
   ASSERT_TRUE(h.drive(1.0, boatAndVehicle));
-  ASSERT_TRUE(h.waitFor([&] { h.setTime(h.sim_time_ + kTick); return h.rejected_poses_ >= 0; }, 10.0));
+  ASSERT_TRUE(h.waitFor(
+      [&]
+      {
+        h.setTime(h.sim_time_ + kTick);
+        return h.rejected_poses_ >= 0;
+      },
+      10.0));
   bool boat_known = false;
   for (int attempt = 0; attempt < 5 && !boat_known; ++attempt)
   {
@@ -406,7 +412,7 @@ TEST(TetherNode, BadPosesAreRefusedAndCounted)
     h.broadcastBoat();
     h.waitFor([] { return false; }, 0.1);  // the transform at exactly that stamp reaches the node first
     h.publishPose(poseAt(0.5, 0.0, -0.5), "boat");
-    ASSERT_TRUE(h.drive(1.2, boatAndVehicle));              // a diagnostics period later
+    ASSERT_TRUE(h.drive(1.2, boatAndVehicle));  // a diagnostics period later
     boat_known = h.rejected_poses_ == before_attempt;
   }
   ASSERT_TRUE(boat_known) << "a current pose in the boat frame was never accepted";

@@ -6,9 +6,8 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <tf2_ros/transform_broadcaster.h>
-#include <visualization_msgs/MarkerArray.h>
-
 #include <unistd.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <array>
 #include <cmath>
@@ -72,18 +71,18 @@ TEST(TetherNodeTf, FollowsTheVehicleFrameWithItsOrientationAndAMovingSpool)
   // First the frames are missing: the node must keep running, publish the hanging cable and say in
   // /diagnostics that it has no vehicle pose, never crash or attach to garbage.
   std::string diagnostics_message;
-  ros::Subscriber diag_sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
-      "/diagnostics", 10,
-      [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& msg)
-      {
-        for (const auto& status : msg->status)
-        {
-          if (status.name.find("tether") != std::string::npos)
-          {
-            diagnostics_message = status.message;
-          }
-        }
-      });
+  ros::Subscriber diag_sub =
+      nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10,
+                                                     [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& msg)
+                                                     {
+                                                       for (const auto& status : msg->status)
+                                                       {
+                                                         if (status.name.find("tether") != std::string::npos)
+                                                         {
+                                                           diagnostics_message = status.message;
+                                                         }
+                                                       }
+                                                     });
   double t_missing = t;
   int states_missing = 0;
   ros::Subscriber count_sub = nh.subscribe<rov_tether::TetherState>(

@@ -104,17 +104,17 @@ class TetherNode
   double real_time_factor_ = 0.0;  ///< Smoothed simulated / wall time of the physics.
   std::uint32_t resets_ = 0;
   std::uint64_t rejected_poses_ = 0;
-  std::uint64_t reported_jumps_ = 0;  ///< Vehicle jumps already logged.
+  std::uint64_t reported_jumps_ = 0;     ///< Vehicle jumps already logged.
   std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
-  std::string name_;                ///< This tether's name among several ("" alone).
-  int configured_iterations_ = 0;   ///< Iterations as configured, before any overload reduction.
-  double marker_rate_ = 0.0;        ///< Marker rate in use (overload_policy reduce_markers lowers it) [Hz].
-  ros::WallTime load_window_start_;  ///< Start of the current one-second load window.
-  double load_window_physics_ = 0.0;  ///< Wall time spent in physics in that window [s].
-  double physics_load_ = 0.0;         ///< Fraction of wall time spent in physics, last window [-].
-  std::string degraded_;              ///< What overload_policy has given up, "" when nothing.
-  std::uint64_t skips_ = 0;           ///< Times the physics fell more than max_lag behind and skipped.
+  std::string name_;                     ///< This tether's name among several ("" alone).
+  int configured_iterations_ = 0;        ///< Iterations as configured, before any overload reduction.
+  double marker_rate_ = 0.0;             ///< Marker rate in use (overload_policy reduce_markers lowers it) [Hz].
+  ros::WallTime load_window_start_;      ///< Start of the current one-second load window.
+  double load_window_physics_ = 0.0;     ///< Wall time spent in physics in that window [s].
+  double physics_load_ = 0.0;            ///< Fraction of wall time spent in physics, last window [-].
+  std::string degraded_;                 ///< What overload_policy has given up, "" when nothing.
+  std::uint64_t skips_ = 0;              ///< Times the physics fell more than max_lag behind and skipped.
   ros::Time last_skip_time_;
   std::vector<double> tensions_;
   TetherState state_msg_;
