@@ -261,17 +261,13 @@ void TetherNode::onTimer(const ros::TimerEvent& /*event*/)
     // Too far behind to catch up: jump ahead with the cable held at rest, and say so.
     const double behind = target - sim_->time();
     sim_->skipTo(std::floor(target / sim_->params().time_step) * sim_->params().time_step);
-    next_state_physics_ = 0.0;
+    next_state_physics_ = std::ceil(sim_->time() / period) * period;  // the state grid resumes from there
     ++skips_;
     last_skip_time_ = now;
     ROS_ERROR_THROTTLE(1.0,
                        "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
                        "skipped ahead with the cable held",
                        name_.empty() ? "" : (" " + name_).c_str(), behind, options_.max_lag);
-    if (next_state_physics_ <= 0.0)
-    {
-      next_state_physics_ = std::ceil(sim_->time() / period) * period;
-    }
   }
   const ros::WallTime wall_start = ros::WallTime::now();
   std::size_t steps = 0;
