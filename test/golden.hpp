@@ -1,0 +1,99 @@
+#pragma once
+// Golden outputs: hashes of whole output files, compared with the values committed in test/golden/.
+// They pin behaviour through refactoring: a change that moves outputs on purpose regenerates them with
+//   ROV_TETHER_UPDATE_GOLDEN=1 <test binary> --gtest_filter='Golden*'
+// and commits the new file on its own, saying why the outputs moved.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace rov_tether::test
+{
+
+/// FNV-1a, 64 bit: enough to tell two outputs apart, no dependency.
+inline std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 0xcbf29ce484222325ULL)
+{
+  for (unsigned char c : bytes)
+  {
+    hash = (hash ^ c) * 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+inline std::string hex(std::uint64_t value)
+{
+  std::ostringstream out;
+  out << std::hex;
+  out.width(16);
+  out.fill('0');
+  out << value;
+  return out.str();
+}
+
+inline std::string readFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+/// A file of "key hash" lines under test/golden/. Compares each computed hash with the committed one;
+/// with ROV_TETHER_UPDATE_GOLDEN=1 set, writes the computed ones instead (when the test finishes).
+class GoldenFile
+{
+ public:
+  explicit GoldenFile(const std::string& name)
+      : path_(std::string(ROV_TETHER_SOURCE_DIR) + "/test/golden/" + name),
+        update_(std::getenv("ROV_TETHER_UPDATE_GOLDEN") != nullptr)
+  {
+    std::istringstream in(readFile(path_));
+    std::string key, value;
+    while (in >> key >> value)
+    {
+      expected_[key] = value;
+    }
+  }
+  ~GoldenFile()
+  {
+    if (update_)
+    {
+      std::ofstream out(path_);
+      for (const auto& [key, value] : computed_)
+      {
+        out << key << ' ' << value << '\n';
+      }
+    }
+  }
+  GoldenFile(const GoldenFile&) = delete;
+  GoldenFile& operator=(const GoldenFile&) = delete;
+
+  void check(const std::string& key, std::uint64_t hash)
+  {
+    computed_[key] = hex(hash);
+    if (update_)
+    {
+      return;
+    }
+    const auto it = expected_.find(key);
+    ASSERT_NE(it, expected_.end()) << "no golden hash for " << key << " in " << path_
+                                   << " (new case? regenerate with ROV_TETHER_UPDATE_GOLDEN=1)";
+    EXPECT_EQ(it->second, hex(hash)) << key << ": output differs from the golden one; if the change is "
+                                     << "deliberate, regenerate " << path_ << " in its own commit and say why";
+  }
+  std::size_t size() const { return expected_.size(); }
+
+ private:
+  std::string path_;
+  bool update_;
+  std::map<std::string, std::string> expected_;
+  std::map<std::string, std::string> computed_;
+};
+
+}  // namespace rov_tether::test

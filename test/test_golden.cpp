@@ -1,0 +1,80 @@
+// Golden outputs of the scenario runner: every shipped scenario, as shipped and under variants that reach
+// each method, drag model, winch mode and input path, must write byte-identical state.csv and shape.csv.
+// The hashes live in test/golden/runner.txt (see golden.hpp for how to regenerate them on purpose).
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "golden.hpp"
+#include "rov_tether/scenario.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+/// Parameter overrides applied like the runner's --set; each reaches code the shipped files may not.
+const std::vector<std::pair<std::string, std::vector<std::string>>>& variants()
+{
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> list = {
+      {"shipped", {}},
+      {"xpbd_bending", {"solver=xpbd", "bending_stiffness=0.02", "substeps=2"}},
+      {"lumped_mass", {"solver=lumped_mass", "iterations=auto"}},
+      {"sequential", {"solver=pbd_sequential", "iterations=4"}},
+      {"morison_seabed", {"drag_model=morison", "weight_in_water=0.5", "current=[0.1, -0.2, 0.0]",
+                          "current_variation=0.05", "seabed_z=-2.0", "seabed_friction=0.3", "noise=0.001"}},
+      {"speed_winch", {"winch_mode=speed", "winch_speed=0.3", "over_relaxation=1.5", "drag=0.8"}},
+      {"auto_resolution", {"segment_length=auto", "iterations=auto", "weight_in_water=0.2", "max_vehicle_jump=0.2"}},
+  };
+  return list;
+}
+
+TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
+{
+  namespace fs = std::filesystem;
+  GoldenFile golden("runner.txt");
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
+  {
+    if (entry.path().extension() == ".yaml")
+    {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 5u);
+  const fs::path out = fs::temp_directory_path() / ("rov_tether_golden_" + std::to_string(::getpid()));
+  std::size_t cases = 0;
+  for (const auto& file : files)
+  {
+    for (const auto& [variant, assignments] : variants())
+    {
+      Scenario scenario;
+      ASSERT_EQ(loadScenario(file.string(), &scenario), "") << file;
+      std::string error;
+      for (const auto& assignment : assignments)
+      {
+        error += applyAssignment(assignment, &scenario.params);
+      }
+      if (!error.empty())
+      {
+        continue;  // a variant the scenario's own parameters contradict (e.g. a locked winch's lengths)
+      }
+      const std::string key = file.stem().string() + "/" + variant;
+      RunSummary summary;
+      ASSERT_EQ(runScenario(scenario, out.string(), &summary), "") << key;
+      golden.check(key + "/state.csv", fnv1a(readFile((out / "state.csv").string())));
+      golden.check(key + "/shape.csv", fnv1a(readFile((out / "shape.csv").string())));
+      ++cases;
+    }
+  }
+  fs::remove_all(out);
+  // Every scenario takes every variant today: a variant that stops applying is a change to look at.
+  EXPECT_EQ(cases, files.size() * variants().size());
+}
+
+}  // namespace
+}  // namespace rov_tether::test
