@@ -4,7 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace
 {
@@ -13,12 +13,12 @@ using rov_tether::DragModel;
 using rov_tether::Position;
 using rov_tether::SolverType;
 using rov_tether::TetherParams;
-using rov_tether::TetherSimulation;
+using rov_tether::Tether;
 
 /// The paper's cable scaled to `segments` segments of 0.1 m, fully deployed, slack between spool and
 /// vehicle (80% of its length apart), 10 iterations, bending on, noise on, neutrally buoyant; `change`
 /// then edits the parameters.
-TetherSimulation makeCable(int segments, const std::function<void(TetherParams&)>& change = {})
+Tether makeCable(int segments, const std::function<void(TetherParams&)>& change = {})
 {
   TetherParams params;
   params.segment_length = 0.1;
@@ -32,12 +32,12 @@ TetherSimulation makeCable(int segments, const std::function<void(TetherParams&)
     change(params);
   }
   const double deployed = params.initial_deployed_length;
-  TetherSimulation sim(params, Position::Zero(), Position(0.8 * deployed, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(0.8 * deployed, 0.0, 0.0));
   sim.advance(1.0);  // let the laid-out shape start moving
   return sim;
 }
 
-void run(benchmark::State& state, TetherSimulation& sim, double projections_per_step)
+void run(benchmark::State& state, Tether& sim, double projections_per_step)
 {
   for (auto _ : state)
   {
@@ -54,7 +54,7 @@ void run(benchmark::State& state, TetherSimulation& sim, double projections_per_
 
 void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
 {
-  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(static_cast<int>(state.range(0)),
                                    [&](TetherParams& p)
                                    {
                                      p.solver = solver;
@@ -70,7 +70,7 @@ void BM_StepPbdNoBending(benchmark::State& state) { stepBenchmark(state, SolverT
 /// xpbd with the same effort (10 iterations) and a bending stiffness, so it projects as many constraints.
 void BM_StepXpbd(benchmark::State& state)
 {
-  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(static_cast<int>(state.range(0)),
                                    [](TetherParams& p)
                                    {
                                      p.solver = SolverType::kXpbd;
@@ -83,7 +83,7 @@ void BM_StepXpbd(benchmark::State& state)
 /// 5 ms step needs ceil(5 / 0.09) = 56 sub-steps at 0.9 of the critical step.
 void BM_StepLumpedMass(benchmark::State& state)
 {
-  TetherSimulation sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(static_cast<int>(state.range(0)),
                                    [](TetherParams& p)
                                    {
                                      p.solver = SolverType::kLumpedMass;
@@ -107,7 +107,7 @@ void BM_Scene(benchmark::State& state)
                           "drag_model morison",
                           "seabed 50 m below (contact loop)"};
   state.SetLabel(labels[variant]);
-  TetherSimulation sim = makeCable(100,
+  Tether sim = makeCable(100,
                                    [variant](TetherParams& p)
                                    {
                                      switch (variant)

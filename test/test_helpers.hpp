@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rov_tether/scenario.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace rov_tether::test
 {
@@ -24,7 +24,7 @@ inline Scenario shippedScenario(const std::string& name)
 }
 
 /// Sum of the deployed segments' actual lengths [m].
-inline double geometricLength(const TetherSimulation& sim)
+inline double geometricLength(const Tether& sim)
 {
   double length = 0.0;
   for (std::size_t k = 0; k + 1 < sim.deployedParticleCount(); ++k)
@@ -35,7 +35,7 @@ inline double geometricLength(const TetherSimulation& sim)
 }
 
 /// Mean stretch of the deployed cable: geometric length / deployed length - 1 [-].
-inline double meanStretch(const TetherSimulation& sim) { return geometricLength(sim) / sim.deployedLength() - 1.0; }
+inline double meanStretch(const Tether& sim) { return geometricLength(sim) / sim.deployedLength() - 1.0; }
 
 /// Root-mean-square distance between two shapes of equal size [m].
 inline double rmsDistance(const std::vector<Position>& a, const std::vector<Position>& b)
@@ -49,7 +49,7 @@ inline double rmsDistance(const std::vector<Position>& a, const std::vector<Posi
   return std::sqrt(sum / static_cast<double>(a.size()));
 }
 
-inline std::vector<Position> positions(const TetherSimulation& sim)
+inline std::vector<Position> positions(const Tether& sim)
 {
   std::vector<Position> out;
   sim.copyPositions(out);
@@ -69,10 +69,10 @@ inline bool sameParamValue(const ParamValue& a, const ParamValue& b)
 }
 
 /// Runs a scenario to time t and returns the simulation.
-inline TetherSimulation runTo(const Scenario& scenario, double t)
+inline Tether runTo(const Scenario& scenario, double t)
 {
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, t);
   return sim;
 }

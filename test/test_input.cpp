@@ -11,16 +11,16 @@ namespace
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-TetherSimulation movingTether()
+Tether movingTether()
 {
   TetherParams params;
-  TetherSimulation sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
   sim.addVehicleSample(1.0, Position(2.0, 0.5, 0.0));
   sim.advance(0.5);
   return sim;
 }
 
-void expectSameState(const TetherSimulation& a, const TetherSimulation& b)
+void expectSameState(const Tether& a, const Tether& b)
 {
   ASSERT_EQ(a.deployedParticleCount(), b.deployedParticleCount());
   EXPECT_EQ(a.deployedLength(), b.deployedLength());
@@ -39,8 +39,8 @@ TEST(BadInput, NonFiniteVehicleSamplesAreRefusedAndChangeNothing)
                                                                      {kNaN, Position(1, 0, 0)},
                                                                      {kInf, Position(1, 0, 0)}})
   {
-    TetherSimulation sim = movingTether();
-    TetherSimulation untouched = movingTether();
+    Tether sim = movingTether();
+    Tether untouched = movingTether();
     const Status status = sim.addVehicleSample(t, p);
     EXPECT_FALSE(status.ok);
     EXPECT_NE(status.message.find("finite"), std::string::npos) << status.message;
@@ -52,7 +52,7 @@ TEST(BadInput, NonFiniteVehicleSamplesAreRefusedAndChangeNothing)
 
 TEST(BadInput, SamplesOlderThanTheLastAreRefused)
 {
-  TetherSimulation sim = movingTether();
+  Tether sim = movingTether();
   const Status status = sim.addVehicleSample(0.9, Position(1.0, 0.0, 0.0));
   EXPECT_FALSE(status.ok);
   EXPECT_NE(status.message.find("older"), std::string::npos) << status.message;
@@ -60,8 +60,8 @@ TEST(BadInput, SamplesOlderThanTheLastAreRefused)
 
 TEST(BadInput, DuplicateStampReplacesTheSample)
 {
-  TetherSimulation replaced = movingTether();
-  TetherSimulation kept = movingTether();
+  Tether replaced = movingTether();
+  Tether kept = movingTether();
   EXPECT_TRUE(replaced.addVehicleSample(1.0, Position(2.0, -0.5, 0.0)).ok);  // same stamp as (2, 0.5, 0)
   replaced.advance(1.0);
   kept.advance(1.0);
@@ -75,7 +75,7 @@ TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
 {
   TetherParams params;
   params.noise = 0.0;
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   int accepted = 0;
   std::string refusal;
   for (int k = 1; k <= 1500; ++k)
@@ -102,12 +102,12 @@ TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
 {
   TetherParams params;
   params.noise = 0.0;
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   EXPECT_FALSE(sim.reset(1e17).ok);
   EXPECT_FALSE(sim.reset(std::nan("")).ok);
   EXPECT_FALSE(sim.addVehicleSample(1e17, Position(1.0, 0.0, -1.0)).ok);
   EXPECT_FALSE(sim.advanceTo(1e17).ok);
-  EXPECT_THROW(TetherSimulation(params, Position::Zero(), 1e17), std::invalid_argument);
+  EXPECT_THROW(Tether(params, Position::Zero(), 1e17), std::invalid_argument);
   EXPECT_TRUE(sim.reset(1.7e9).ok);  // a ROS time today
   EXPECT_FALSE(sim.addVehicleSample(1.7e9 + 0.1, Position(1e30, -1e30, 1e30)).ok);
   EXPECT_FALSE(sim.setSpoolPosition(Position(0.0, 2e6, 0.0)).ok);
@@ -128,7 +128,7 @@ TEST(Skip, SkipAheadHoldsTheCableAndResumes)
 {
   TetherParams params;
   params.noise = 0.0;
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   sim.addVehicleSample(1.0, Position(1.2, 0.0, -1.0));
   sim.addVehicleSample(5.0, Position(2.0, 0.0, -1.0));
   sim.advanceTo(0.5);
@@ -139,7 +139,7 @@ TEST(Skip, SkipAheadHoldsTheCableAndResumes)
   EXPECT_EQ(sim.stepCount(), steps);
   EXPECT_EQ(sim.time(), 3.0);
   EXPECT_NEAR(sim.particle(sim.deployedParticleCount() - 1).x(), 1.2 + 0.8 * 0.5, 1e-9);  // interpolated at 3 s
-  const CableState& s = sim.state();
+  const Cable& s = sim.state();
   for (std::size_t i = s.first; i < s.size(); ++i)
   {
     EXPECT_EQ(s.position(i), Position(s.px[i], s.py[i], s.pz[i])) << "at rest";
@@ -151,8 +151,8 @@ TEST(Skip, SkipAheadHoldsTheCableAndResumes)
 
 TEST(BadInput, NonFiniteSpoolAndIntervalsAreRefused)
 {
-  TetherSimulation sim = movingTether();
-  const TetherSimulation untouched = movingTether();
+  Tether sim = movingTether();
+  const Tether untouched = movingTether();
   EXPECT_FALSE(sim.setSpoolPosition(Position(kNaN, 0, 0)).ok);
   EXPECT_FALSE(sim.advance(kNaN).ok);
   EXPECT_FALSE(sim.advance(-0.1).ok);
@@ -163,7 +163,7 @@ TEST(BadInput, NonFiniteSpoolAndIntervalsAreRefused)
 
 TEST(BadInput, InvalidParametersAreRefusedAndTheOldOnesKept)
 {
-  TetherSimulation sim = movingTether();
+  Tether sim = movingTether();
   const TetherParams before = sim.params();
   TetherParams bad = before;
   bad.iterations = 0;
@@ -174,7 +174,7 @@ TEST(BadInput, InvalidParametersAreRefusedAndTheOldOnesKept)
   EXPECT_NE(status.message.find("drag = nan"), std::string::npos) << status.message;
   EXPECT_EQ(sim.params().iterations, before.iterations);
   EXPECT_EQ(sim.params().drag, before.drag);
-  const TetherSimulation untouched = movingTether();
+  const Tether untouched = movingTether();
   expectSameState(sim, untouched);
 }
 
@@ -184,15 +184,15 @@ TEST(BadInput, ConstructorRefusesInvalidParametersNamingThem)
   bad.segment_length = -1.0;
   try
   {
-    TetherSimulation sim(bad, Position::Zero());
+    Tether sim(bad, Position::Zero());
     FAIL() << "constructed with segment_length = -1";
   }
   catch (const std::invalid_argument& e)
   {
     EXPECT_NE(std::string(e.what()).find("segment_length = -1"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(TetherSimulation(TetherParams{}, Position(kNaN, 0, 0)), std::invalid_argument);
-  EXPECT_THROW(TetherSimulation(TetherParams{}, Position::Zero(), Position(0, kInf, 0)), std::invalid_argument);
+  EXPECT_THROW(Tether(TetherParams{}, Position(kNaN, 0, 0)), std::invalid_argument);
+  EXPECT_THROW(Tether(TetherParams{}, Position::Zero(), Position(0, kInf, 0)), std::invalid_argument);
 }
 
 // A localisation reset moves the vehicle 5 m at once: the cable is re-laid instead of exploding.
@@ -202,7 +202,7 @@ TEST(VehicleJump, FiveMetreJumpIsSurvived)
   {
     TetherParams params;
     params.solver = solver;
-    TetherSimulation sim(params, Position::Zero(), Position(1.5, 0.0, -1.0));
+    Tether sim(params, Position::Zero(), Position(1.5, 0.0, -1.0));
     for (int k = 1; k <= 100; ++k)
     {
       sim.addVehicleSample(0.01 * k, Position(1.5 + 0.005 * k, 0.0, -1.0));
@@ -237,13 +237,13 @@ TEST(LiveParameters, TimeStepChangeKeepsTheVelocities)
 {
   Scenario scenario = shippedScenario("paper_fig4_iterations");
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, 1.0);
-  const CableState before = sim.state();
+  const Cable before = sim.state();
   TetherParams finer = scenario.params;
   finer.time_step = 0.0025;
   ASSERT_TRUE(sim.setParams(finer).ok);
-  const CableState& after = sim.state();
+  const Cable& after = sim.state();
   double fastest = 0.0;
   for (std::size_t i = after.first; i < after.size(); ++i)
   {
@@ -260,7 +260,7 @@ TEST(LiveParameters, TimeStepChangeKeepsTheVelocities)
 
 TEST(LiveParameters, StructuralChangeRebuildsTheCable)
 {
-  TetherSimulation sim = movingTether();
+  Tether sim = movingTether();
   TetherParams params = sim.params();
   params.segment_length = 0.2;
   const Status status = sim.setParams(params);
@@ -272,7 +272,7 @@ TEST(LiveParameters, StructuralChangeRebuildsTheCable)
 
 TEST(LiveParameters, InitialLengthChangeTakesEffectAtTheNextReset)
 {
-  TetherSimulation sim = movingTether();
+  Tether sim = movingTether();
   const double deployed = sim.deployedLength();
   TetherParams params = sim.params();
   params.initial_deployed_length = 3.0;
@@ -286,7 +286,7 @@ TEST(LiveParameters, InitialLengthChangeTakesEffectAtTheNextReset)
 
 TEST(Reset, ResetRestartsAtTheInitialLengthAndTime)
 {
-  TetherSimulation sim = movingTether();
+  Tether sim = movingTether();
   sim.advance(3.0);
   sim.reset(100.0);
   EXPECT_EQ(sim.time(), 100.0);
@@ -299,7 +299,7 @@ TEST(Reset, ResetRestartsAtTheInitialLengthAndTime)
 // whenever that sample arrives, and the noise is reseeded.
 TEST(Reset, ARunAfterAResetRepeatsAFreshRun)
 {
-  auto drive = [](TetherSimulation& sim, double start, bool early)
+  auto drive = [](Tether& sim, double start, bool early)
   {
     if (early)
     {
@@ -319,9 +319,9 @@ TEST(Reset, ARunAfterAResetRepeatsAFreshRun)
       sim.advanceTo(t - 0.1);
     }
   };
-  TetherSimulation fresh(TetherParams{}, Position::Zero(), 10.0);
+  Tether fresh(TetherParams{}, Position::Zero(), 10.0);
   drive(fresh, 10.0, true);
-  TetherSimulation replayed(TetherParams{}, Position::Zero(), 0.0);
+  Tether replayed(TetherParams{}, Position::Zero(), 0.0);
   replayed.advance(3.0);
   replayed.reset(10.0);
   drive(replayed, 10.0, false);

@@ -96,7 +96,7 @@ double hangingStretch(SolverType solver, int iterations, double time_step, doubl
   p.time_step = time_step;
   p.axial_stiffness = stiffness;
   p.drag = 0.9;
-  TetherSimulation sim(p, Position::Zero());
+  Tether sim(p, Position::Zero());
   sim.advance(20.0);
   return meanStretch(sim);
 }
@@ -146,7 +146,7 @@ TEST(LumpedMass, AboveTheCriticalStepTheBlowUpIsDetectedAndReported)
   for (int substeps : {10, 4})  // h = 0.5 ms (stable), 1.25 ms (above 1.0 ms)
   {
     p.substeps = substeps;
-    TetherSimulation sim(p, Position::Zero(), Position(4.0, 0.0, -1.0));
+    Tether sim(p, Position::Zero(), Position(4.0, 0.0, -1.0));
     sim.advance(2.0);
     std::printf("[ measured ] lumped_mass h = %.2f ms: %llu failures; %s\n", 1e3 * p.subStep(),
                 static_cast<unsigned long long>(sim.recoveryCount()), sim.lastFailure().c_str());
@@ -197,7 +197,7 @@ TEST(Stability, PbdAndXpbdSurviveATeleportAndA10MetrePerSecondPull)
     p.cable_length = 50.0;
     p.initial_deployed_length = 30.0;
     p.max_vehicle_jump = 1e4;  // no re-lay: the solver takes the teleport
-    TetherSimulation sim(p, Position::Zero(), Position(5.0, 0.0, -2.0));
+    Tether sim(p, Position::Zero(), Position(5.0, 0.0, -2.0));
     sim.addVehicleSample(1.0, Position(5.0, 0.0, -2.0));
     sim.addVehicleSample(1.005, Position(25.0, 0.0, -2.0));
     double worst = 0.0;
@@ -226,7 +226,7 @@ TEST(OverRelaxation, ConvergesFasterThanThePapersProjection)
     p.time_step = 0.02;
     p.iterations = iterations;
     p.over_relaxation = relax;
-    TetherSimulation sim(p, Position::Zero());
+    Tether sim(p, Position::Zero());
     sim.advance(20.0);
     return meanStretch(sim);
   };
@@ -252,7 +252,7 @@ TEST(OverRelaxation, OvershootsWhenTheCableCannotReach)
     p.winch_mode = WinchMode::kLocked;
     p.initial_deployed_length = 5.0;
     p.noise = 0.0;
-    TetherSimulation sim(p, Position::Zero(), Position(4.9, 0.0, 0.0));
+    Tether sim(p, Position::Zero(), Position(4.9, 0.0, 0.0));
     for (int k = 0; k < 100; ++k)  // the vehicle drags the locked cable 1 m past its length
     {
       sim.addVehicleSample(0.05 * k, Position(4.9 + 0.01 * k, 0.0, 0.0));
@@ -311,7 +311,7 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
     h.drag = 0.9;
     h.iterations_auto = true;
     h.stretch_tolerance = tolerance;
-    TetherSimulation sim(h, Position::Zero());
+    Tether sim(h, Position::Zero());
     sim.advance(15.0);
     std::printf("[ measured ] iterations auto, stretch tolerance %.3f: %d iterations, mean stretch %.5f\n", tolerance,
                 sim.params().iterations, meanStretch(sim));

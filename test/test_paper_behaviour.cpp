@@ -15,7 +15,7 @@ double maxStretchFig4(int iterations, SolverType solver = SolverType::kPbd)
   scenario.params.iterations = iterations;
   scenario.params.solver = solver;
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   double worst = 0.0;
   for (int k = 1; k <= 120; ++k)
   {
@@ -69,7 +69,7 @@ double farHalfTravel(double drag, double t0, double t1)
 {
   const Scenario scenario = paper2d(drag);
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, t0);
   std::vector<Position> before = positions(sim);
   double travel = 0.0;
@@ -114,7 +114,7 @@ double shapeChangeLate(double noise, bool bending)
   Scenario scenario = paper2d(0.9, noise);
   scenario.params.bending = bending;
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, 8.0);
   const std::vector<Position> settled = positions(sim);
   driver.advanceTo(sim, 16.0);
@@ -138,8 +138,8 @@ TEST(PaperFig11, NoiseMakesTheShapeLoseItsMemory)
 TEST(Reproducibility, SameSeedGivesIdenticalRuns)
 {
   const Scenario scenario = shippedScenario("spool_payout");
-  const TetherSimulation a = runTo(scenario, 12.0);
-  const TetherSimulation b = runTo(scenario, 12.0);
+  const Tether a = runTo(scenario, 12.0);
+  const Tether b = runTo(scenario, 12.0);
   ASSERT_EQ(a.deployedParticleCount(), b.deployedParticleCount());
   EXPECT_EQ(a.deployedLength(), b.deployedLength());
   for (std::size_t k = 0; k < a.deployedParticleCount(); ++k)
@@ -151,9 +151,9 @@ TEST(Reproducibility, SameSeedGivesIdenticalRuns)
 TEST(Reproducibility, DifferentSeedsGiveDifferentRuns)
 {
   Scenario scenario = shippedScenario("paper_2d_experiment");
-  const TetherSimulation a = runTo(scenario, 4.0);
+  const Tether a = runTo(scenario, 4.0);
   scenario.params.seed = 2;
-  const TetherSimulation b = runTo(scenario, 4.0);
+  const Tether b = runTo(scenario, 4.0);
   EXPECT_GT(rmsDistance(positions(a), positions(b)), 1e-4);
 }
 
@@ -204,7 +204,7 @@ std::vector<Position> swingShape(double time_step, bool naive, double t)
   {
     params.drag = std::pow(0.9, kReferenceStep / time_step);
   }
-  TetherSimulation sim(params, Position::Zero(), Position(4.9, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(4.9, 0.0, 0.0));
   sim.detachVehicle();
   sim.advance(t);
   return positions(sim);
@@ -234,7 +234,7 @@ double noiseSpread(double time_step, double duration)
     params.bending = false;
     params.winch_mode = WinchMode::kLocked;
     params.initial_deployed_length = 4.0;
-    TetherSimulation sim(params, Position::Zero(), Position(3.0, 0.0, 0.0));
+    Tether sim(params, Position::Zero(), Position(3.0, 0.0, 0.0));
     const std::vector<Position> start = positions(sim);
     sim.advance(duration);
     const std::vector<Position> end = positions(sim);

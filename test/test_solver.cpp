@@ -29,9 +29,9 @@ namespace
 {
 
 /// A chain of `particles` particles laid out in a zig-zag, ends pinned, rest length 1.
-CableState zigzag(std::size_t particles, std::size_t first)
+Cable zigzag(std::size_t particles, std::size_t first)
 {
-  CableState state;
+  Cable state;
   state.resize(first + particles);
   state.first = first;
   for (std::size_t i = 0; i < state.size(); ++i)
@@ -55,7 +55,7 @@ CableState zigzag(std::size_t particles, std::size_t first)
   return state;
 }
 
-double worstStretchError(const CableState& state)
+double worstStretchError(const Cable& state)
 {
   double worst = 0.0;
   for (std::size_t j = state.first; j + 1 < state.size(); ++j)
@@ -73,8 +73,8 @@ TEST(Solver, EveryChainLengthConvergesAndPinnedParticlesStay)
   {
     for (std::size_t particles = 2; particles <= 13; ++particles)
     {
-      CableState state = zigzag(particles, 3);
-      const CableState initial = state;
+      Cable state = zigzag(particles, 3);
+      const Cable initial = state;
       SolverSettings settings;
       settings.iterations = 2000;
       settings.bending = false;
@@ -101,13 +101,13 @@ TEST(Solver, BothOrderingsAgreeOnAConsistentProblem)
 {
   for (std::size_t particles = 3; particles <= 11; ++particles)
   {
-    CableState a = zigzag(particles, 0);
+    Cable a = zigzag(particles, 0);
     for (std::size_t i = 0; i < a.size(); ++i)
     {
       a.place(i, Position(0.9 * static_cast<double>(i), 0.0, 0.0));  // straight, stretched 12.5%
     }
     a.place(a.size() - 1, Position(0.8 * static_cast<double>(a.size() - 1), 0.0, 0.0));  // feasible ends
-    CableState b = a;
+    Cable b = a;
     SolverSettings settings;
     settings.iterations = 3000;
     makeSolver(SolverType::kPbd)->solve(a, settings);
@@ -124,14 +124,14 @@ TEST(Solver, BothOrderingsAgreeOnAConsistentProblem)
 // state marks dirty: after changes near the spool it must match a solver that copies everything.
 TEST(Solver, CachedConstraintDataMatchesAFreshCopy)
 {
-  CableState cached = zigzag(41, 5);
-  CableState fresh = cached;
+  Cable cached = zigzag(41, 5);
+  Cable fresh = cached;
   PbdSolver persistent(false, 0);  // always the blocked path
   SolverSettings settings;
   settings.iterations = 7;
   for (int k = 0; k < 60; ++k)
   {
-    for (CableState* state : {&cached, &fresh})
+    for (Cable* state : {&cached, &fresh})
     {
       const std::size_t f = state->first;
       state->rest[f] = 0.6 + 0.005 * k;  // the spool segment grows, as during pay-out
@@ -158,8 +158,8 @@ TEST(Solver, InPlacePathMatchesTheBlockedPath)
   {
     for (bool bending : {false, true})
     {
-      CableState blocked = zigzag(37, 3);
-      CableState direct = blocked;
+      Cable blocked = zigzag(37, 3);
+      Cable direct = blocked;
       SolverSettings settings;
       settings.iterations = 9;
       settings.bending = bending;
@@ -200,7 +200,7 @@ TEST(Allocation, StepsAllocateNothing)
     params.current_variation = water ? 0.05 : 0.0;
     params.seabed_z = -1.5;
     params.substeps = solver == SolverType::kLumpedMass ? 60 : 1;  // below the critical step
-    TetherSimulation sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
+    Tether sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
     sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
     std::vector<double> tensions;
     std::vector<Position> shape;

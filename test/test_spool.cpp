@@ -24,7 +24,7 @@ std::vector<StepRecord> recordPayoutRun(double duration)
 {
   const Scenario scenario = shippedScenario("spool_payout");
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   std::vector<StepRecord> records;
   std::vector<double> tensions;
   std::size_t previous_first = sim.state().first;
@@ -107,13 +107,13 @@ TEST(Spool, ReleasedParticleAppearsOnTheCableWithItsVelocity)
   params.noise = 0.0;
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
-  TetherSimulation sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
   int checked = 0;
   for (int k = 0; k < 2000 && checked < 20; ++k)
   {
-    const CableState before = sim.state();
+    const Cable before = sim.state();
     sim.step();
-    const CableState& after = sim.state();
+    const Cable& after = sim.state();
     if (after.first < before.first)
     {
       // The released particle (old spool particle index) lies between the spool and its neighbour.
@@ -139,7 +139,7 @@ TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
   params.cable_length = 5.0;
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   sim.advance(2.0);
   EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);
   sim.advance(10.0);
@@ -158,7 +158,7 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   TetherParams params;
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   ASSERT_TRUE(sim.setTargetLength(3.2).ok);
   sim.advance(2.0);
   EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);  // still on its way at 0.5 m/s
@@ -181,7 +181,7 @@ TEST(Spool, ArcLengthFromTheVehicleMapsToSegments)
 {
   TetherParams params;
   params.initial_deployed_length = 2.03;  // 20 segments: the spool one is 0.13 m
-  TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, 0.0));
   ASSERT_EQ(sim.deployedParticleCount(), 21u);
   std::size_t segment = 99;
   ASSERT_TRUE(sim.segmentAtArcLengthFromVehicle(0.0, &segment));
@@ -209,7 +209,7 @@ TEST(Spool, LockedWinchNeverChangesLength)
   Scenario scenario = shippedScenario("spool_payout");
   scenario.params.winch_mode = WinchMode::kLocked;
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   for (int k = 1; k <= 40; ++k)
   {
     driver.advanceTo(sim, 0.5 * k);
@@ -222,7 +222,7 @@ TEST(Spool, WinchSpeedLimitAndInvariantsHoldEveryStep)
   Scenario scenario = shippedScenario("spool_payout");
   scenario.params.max_winch_speed = 0.3;  // slower than the vehicle: the limit binds
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   const double dt = scenario.params.time_step;
   const double segment = scenario.params.segment_length;
   double previous = sim.deployedLength();
@@ -235,7 +235,7 @@ TEST(Spool, WinchSpeedLimitAndInvariantsHoldEveryStep)
     previous = deployed;
     ASSERT_GE(deployed, scenario.params.min_deployed_length - 1e-12);
     ASSERT_LE(deployed, scenario.params.cable_length + 1e-12);
-    const CableState& state = sim.state();
+    const Cable& state = sim.state();
     ASSERT_GE(state.rest[state.first], 0.5 * segment - 1e-9) << "t = " << sim.time();
     ASSERT_LE(state.rest[state.first], 1.5 * segment + 1e-9) << "t = " << sim.time();
     double sum = 0.0;
@@ -258,7 +258,7 @@ TEST(Spool, HangingCableCarriesItsWeightAtTheSpool)
   params.winch_mode = WinchMode::kLocked;
   params.initial_deployed_length = 5.0;
   params.iterations = 20;
-  TetherSimulation sim(params, Position::Zero());
+  Tether sim(params, Position::Zero());
   sim.advance(10.0);
   const TetherSummary s = sim.summary();
   std::printf("[ measured ] hanging 5 m at 2 N/m: spool %.4f N (ref 10), free end %.4f N (ref 0.1)\n", s.tension_spool,
@@ -277,7 +277,7 @@ TEST(Spool, PassiveWinchPaysOutUnderWeightWithAFreeEnd)
   params.noise = 0.0;
   params.weight_in_water = 20.0;
   params.iterations = 2;  // a soft cable: its weight stretches it past the pay-out threshold
-  TetherSimulation sim(params, Position::Zero());
+  Tether sim(params, Position::Zero());
   sim.advance(5.0);
   EXPECT_GT(sim.deployedLength(), params.initial_deployed_length + 0.5);
 }

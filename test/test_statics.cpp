@@ -26,7 +26,7 @@ Catenary settle(double span, int segments, bool bending, int iterations = 50)
   TetherParams params = study::findCase("catenary_s8").base(segments);
   params.iterations = iterations;
   params.bending = bending;
-  TetherSimulation sim(params, Position::Zero(), Position(span, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(span, 0.0, 0.0));
   sim.advance(29.0);
   const std::vector<Position> before = positions(sim);
   sim.advance(1.0);

@@ -31,7 +31,7 @@ TEST(Morison, AxialDragOnAStraightCable)
 
 /// Force of the water on the cable computed independently from the final shape: Morison drag of a
 /// cable at rest in a uniform current [N].
-Force dragOnCableAtRest(const TetherSimulation& sim, const Position& current)
+Force dragOnCableAtRest(const Tether& sim, const Position& current)
 {
   const TetherParams& p = sim.params();
   Force total = Force::Zero();
@@ -65,7 +65,7 @@ TEST(Morison, SupportsBalanceTheCrossFlowDrag)
   p.bending = false;
   p.drag_model = DragModel::kMorison;
   p.current = {0.0, 0.3, 0.0};
-  TetherSimulation sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
+  Tether sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
   sim.advance(60.0);
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
@@ -93,7 +93,7 @@ double swingPeriod(double added_mass_coefficient)
   p.solver = SolverType::kXpbd;
   p.iterations = 20;
   p.current = {0.3, 0.0, 0.0};
-  TetherSimulation sim(p, Position::Zero());
+  Tether sim(p, Position::Zero());
   sim.advance(10.0);
   // Released from the current's push, without drag, so the swing keeps its period.
   p.current = {0.0, 0.0, 0.0};
@@ -141,10 +141,10 @@ TEST(Current, SlowSpatiallyCorrelatedVariation)
   TetherParams p;
   p.current = {0.2, 0.0, 0.0};
   p.current_variation = 0.1;
-  const TetherSimulation a(p, Position::Zero());
-  const TetherSimulation b(p, Position::Zero());
+  const Tether a(p, Position::Zero());
+  const Tether b(p, Position::Zero());
   p.seed = 2;
-  const TetherSimulation c(p, Position::Zero());
+  const Tether c(p, Position::Zero());
   double sum_squares = 0.0;
   double worst_space = 0.0, worst_time = 0.0;
   int count = 0;
@@ -181,7 +181,7 @@ TEST(Current, CableStreamsDownstream)
     p.noise = 0.0;
     p.initial_deployed_length = 5.0;
     p.winch_mode = WinchMode::kLocked;
-    TetherSimulation sim(p, Position::Zero());
+    Tether sim(p, Position::Zero());
     sim.advance(60.0);
     const Position end = sim.particle(sim.deployedParticleCount() - 1);
     std::printf("[ measured ] %s, 0.5 m/s current: free end at (%.3f, %.3f, %.3f)\n", toString(model).c_str(), end.x(),
@@ -204,7 +204,7 @@ TEST(Seabed, ContactAndFriction)
     p.weight_in_water = 2.0;
     p.seabed_z = -6.0;
     p.seabed_friction = friction;
-    TetherSimulation sim(p, Position(0.0, 0.0, -5.0), Position(10.0, 0.0, -5.0));
+    Tether sim(p, Position(0.0, 0.0, -5.0), Position(10.0, 0.0, -5.0));
     sim.advance(10.0);
     const double before = sim.particle(sim.deployedParticleCount() / 2).y();
     p.current = {0.0, 0.2, 0.0};
@@ -239,9 +239,9 @@ TEST(Skips, ParticlesOnTheSpoolAreNeverTouched)
   p.current_variation = 0.2;
   p.weight_in_water = 1.0;
   const Position spool(1.0, 2.0, 3.0);
-  TetherSimulation sim(p, spool, Position(3.0, 2.0, 2.0));
+  Tether sim(p, spool, Position(3.0, 2.0, 2.0));
   sim.advance(5.0);
-  const CableState& s = sim.state();
+  const Cable& s = sim.state();
   ASSERT_GT(s.first, 10u);
   for (std::size_t i = 0; i < s.first; ++i)
   {

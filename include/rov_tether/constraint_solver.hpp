@@ -3,7 +3,7 @@
 #include <limits>
 #include <memory>
 
-#include "rov_tether/cable_state.hpp"
+#include "rov_tether/cable.hpp"
 #include "rov_tether/tether_params.hpp"
 
 namespace rov_tether
@@ -23,7 +23,7 @@ struct SolverSettings
 /**
  * Projects the distance and bending constraints of the deployed particles [first, size()).
  *
- * Implementations reset and accumulate CableState::stretch_lambda and bend_lambda (the constraint
+ * Implementations reset and accumulate Cable::stretch_lambda and bend_lambda (the constraint
  * multipliers in kg m, force = lambda / dt^2) so that tension can be read after the step whatever the
  * method. Later methods (XPBD with compliance, force-based chains) implement the same interface.
  */
@@ -32,7 +32,7 @@ class ConstraintSolver
  public:
   virtual ~ConstraintSolver() = default;
   /// Projects the constraints once per step; must not allocate.
-  virtual void solve(CableState& state, const SolverSettings& settings) = 0;
+  virtual void solve(Cable& state, const SolverSettings& settings) = 0;
   /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
   virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
 };
@@ -62,10 +62,10 @@ class PbdSolver : public ConstraintSolver
       : compliant_(compliant), direct_particles_(direct_particles)
   {
   }
-  void solve(CableState& state, const SolverSettings& settings) override;
+  void solve(Cable& state, const SolverSettings& settings) override;
 
  private:
-  void solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
+  void solveDirect(Cable& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
                    double relax);
 
   bool compliant_;
@@ -85,7 +85,7 @@ class PbdSolver : public ConstraintSolver
 class SequentialPbdSolver : public ConstraintSolver
 {
  public:
-  void solve(CableState& state, const SolverSettings& settings) override;
+  void solve(Cable& state, const SolverSettings& settings) override;
 };
 
 /**
@@ -98,7 +98,7 @@ class SequentialPbdSolver : public ConstraintSolver
 class LumpedMassSolver : public ConstraintSolver
 {
  public:
-  void solve(CableState& state, const SolverSettings& settings) override;
+  void solve(Cable& state, const SolverSettings& settings) override;
   double lastMaxStrain() const override { return max_strain_; }
 
  private:

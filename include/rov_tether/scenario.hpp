@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "rov_tether/tether_params.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace rov_tether
 {
@@ -49,9 +49,9 @@ class PathDriver
  public:
   explicit PathDriver(const Scenario& scenario) : scenario_(scenario) {}
   /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position.
-  TetherSimulation makeSimulation() const;
+  Tether makeSimulation() const;
   /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s].
-  void advanceTo(TetherSimulation& sim, double t);
+  void advanceTo(Tether& sim, double t);
   /// Interval between fed samples [s].
   static constexpr double kSampleInterval = 0.01;
 

@@ -159,7 +159,7 @@ void solveBlocked(const Blocked& c, const SolverSettings& settings, bool bending
   }
 }
 
-void resetMultipliers(CableState& state, std::size_t segments_end, std::size_t bends_end)
+void resetMultipliers(Cable& state, std::size_t segments_end, std::size_t bends_end)
 {
   std::fill(state.stretch_lambda.begin() + static_cast<std::ptrdiff_t>(state.first),
             state.stretch_lambda.begin() + static_cast<std::ptrdiff_t>(segments_end), 0.0);
@@ -172,7 +172,7 @@ void resetMultipliers(CableState& state, std::size_t segments_end, std::size_t b
 
 }  // namespace
 
-void PbdSolver::solve(CableState& state, const SolverSettings& settings)
+void PbdSolver::solve(Cable& state, const SolverSettings& settings)
 {
   const std::size_t f = state.first;
   if (state.size() < f + 2)
@@ -274,7 +274,7 @@ namespace
 /// Projects the constraints j = first, first + step, ... below end (each joins j and j + span) of the
 /// state's own arrays. The constraints of one call share no particle, so their order does not matter.
 template <int kPower>
-void projectStrided(CableState& state, std::size_t first, std::size_t end, std::size_t step, std::size_t span,
+void projectStrided(Cable& state, std::size_t first, std::size_t end, std::size_t step, std::size_t span,
                     bool bend, double compliance, double relax)
 {
   double* x = state.x.data();
@@ -292,7 +292,7 @@ void projectStrided(CableState& state, std::size_t first, std::size_t end, std::
 }
 
 template <int kStretch, int kBend>
-void solveDirectImpl(CableState& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
+void solveDirectImpl(Cable& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
                      double relax)
 {
   const std::size_t f = state.first;
@@ -317,7 +317,7 @@ void solveDirectImpl(CableState& state, int iterations, bool bending, double str
 
 }  // namespace
 
-void PbdSolver::solveDirect(CableState& state, int iterations, bool bending, double stretch_compliance,
+void PbdSolver::solveDirect(Cable& state, int iterations, bool bending, double stretch_compliance,
                             double bend_compliance, double relax)
 {
   const std::size_t f = state.first;
@@ -337,7 +337,7 @@ void PbdSolver::solveDirect(CableState& state, int iterations, bool bending, dou
   state.dirty_begin = state.dirty_end = 0;
 }
 
-void SequentialPbdSolver::solve(CableState& state, const SolverSettings& settings)
+void SequentialPbdSolver::solve(Cable& state, const SolverSettings& settings)
 {
   const std::size_t n = state.size();
   const std::size_t f = state.first;
@@ -370,7 +370,7 @@ void SequentialPbdSolver::solve(CableState& state, const SolverSettings& setting
   }
 }
 
-void LumpedMassSolver::solve(CableState& state, const SolverSettings& settings)
+void LumpedMassSolver::solve(Cable& state, const SolverSettings& settings)
 {
   const std::size_t n = state.size();
   const std::size_t f = state.first;

@@ -78,7 +78,7 @@ std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
   return rgba(r * shade, g * shade, b * shade);
 }
 
-void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+void toStateMessage(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                     const std::string& frame_id, double measured_winch_speed, std::uint32_t resets, TetherState* msg)
 {
   const TetherParams& p = sim.params();
@@ -107,7 +107,7 @@ void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tens
   msg->resets = resets;
 }
 
-void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers)
 {
   const std::size_t particles = sim.deployedParticleCount();
@@ -156,7 +156,7 @@ void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions,
   label.text = text;
 }
 
-geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::Vector3d& vehicle_origin,
+geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin,
                                       const ros::Time& stamp, const std::string& frame_id)
 {
   geometry_msgs::WrenchStamped wrench;
@@ -234,7 +234,7 @@ TetherConfig paramsToConfig(const TetherParams& params)
   return config;
 }
 
-void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,
+void answerGetTension(const Tether& sim, const std::vector<double>& tensions,
                       const GetTension::Request& request, GetTension::Response* response)
 {
   const TetherSummary summary = sim.summarize(tensions);

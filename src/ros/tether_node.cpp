@@ -52,7 +52,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   }
   configured_iterations_ = params.iterations;
   marker_rate_ = options_.marker_rate;
-  sim_ = std::make_unique<TetherSimulation>(params, options_.spool_position);
+  sim_ = std::make_unique<Tether>(params, options_.spool_position);
   warnAboutStability();
 
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);

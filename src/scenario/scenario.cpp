@@ -306,16 +306,16 @@ Position Scenario::vehicleAt(double t) const
   return vehicle.front().position;
 }
 
-TetherSimulation PathDriver::makeSimulation() const
+Tether PathDriver::makeSimulation() const
 {
   if (scenario_.vehicle.empty())
   {
-    return TetherSimulation(scenario_.params, scenario_.spool, 0.0);
+    return Tether(scenario_.params, scenario_.spool, 0.0);
   }
-  return TetherSimulation(scenario_.params, scenario_.spool, scenario_.vehicleAt(0.0), 0.0);
+  return Tether(scenario_.params, scenario_.spool, scenario_.vehicleAt(0.0), 0.0);
 }
 
-void PathDriver::advanceTo(TetherSimulation& sim, double t)
+void PathDriver::advanceTo(Tether& sim, double t)
 {
   if (!scenario_.vehicle.empty())
   {
@@ -400,7 +400,7 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
   }
 
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   RunSummary result;
   result.deployed_start = sim.deployedLength();
   std::fprintf(state_file, "%s\n", kStateCsvHeader);

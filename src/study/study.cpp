@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "rov_tether/scenario.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace rov_tether::study
 {
@@ -39,7 +39,7 @@ Result describe(const std::string& scenario, const TetherParams& p)
 }
 
 /// Marks the result failed when the simulation reported a failure or ended non-finite.
-void finish(Result& r, const TetherSimulation& sim, double cpu, double simulated)
+void finish(Result& r, const Tether& sim, double cpu, double simulated)
 {
   r.cost = cpu / simulated * 1e6;
   r.failed = sim.recoveryCount() > 0 || !std::isfinite(r.shape_error);
@@ -109,7 +109,7 @@ Result runCatenary(const std::string& name, TetherParams p, double span, double 
   reference.stiffness = p.axial_stiffness;
   reference.solve(span);
   const double start = cpuSeconds();
-  TetherSimulation sim(p, Position::Zero(), Position(span, 0.0, 0.0));
+  Tether sim(p, Position::Zero(), Position(span, 0.0, 0.0));
   sim.advance(settle_time - 1.0);
   std::vector<Position> before(sim.deployedParticleCount());
   for (std::size_t k = 0; k < before.size(); ++k)
@@ -164,7 +164,7 @@ Result runAxialDrag(TetherParams p)
   const double resistance = 0.5 * p.water_density * p.tangential_drag_coefficient * kPi * p.diameter * speed * speed;
   const double settle = 20.0;
   const double start = cpuSeconds();
-  TetherSimulation sim(p, Position::Zero());
+  Tether sim(p, Position::Zero());
   sim.advance(settle);
   const double cpu = cpuSeconds() - start;
   std::vector<double> tensions;
@@ -202,7 +202,7 @@ Result runTautString(TetherParams p)
   loaded.weight_in_water = 0.1;
   loaded.drag = 0.5;
   const double start = cpuSeconds();
-  TetherSimulation sim(loaded, Position::Zero(), Position(span, 0.0, 0.0));
+  Tether sim(loaded, Position::Zero(), Position(span, 0.0, 0.0));
   sim.advance(4.0);
   TetherParams free = p;
   free.drag = 1.0;
@@ -251,7 +251,7 @@ Result runHangingChain(TetherParams p)
   pushed.current = {0.1, 0.0, 0.0};
   pushed.drag = 0.9;
   const double start = cpuSeconds();
-  TetherSimulation sim(pushed, Position::Zero());
+  Tether sim(pushed, Position::Zero());
   sim.advance(8.0);
   TetherParams free = p;
   free.drag = 1.0;
@@ -310,7 +310,7 @@ Result runPaper(TetherParams p)
   s.params = p;
   PathDriver driver(s);
   const double start = cpuSeconds();
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, s.duration);
   const double cpu = cpuSeconds() - start;
   double geometric = 0.0;
@@ -434,7 +434,7 @@ StabilityPoint stability(SolverType method, double time_step, double stiffness, 
   point.stiffness = stiffness;
   point.speed = speed;
   point.critical_step = p.criticalStep();
-  TetherSimulation sim(p, Position::Zero(), Position(5.0, 0.0, -2.0));
+  Tether sim(p, Position::Zero(), Position(5.0, 0.0, -2.0));
   for (int k = 1; k <= 40; ++k)
   {
     const double t = 0.05 * k;

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "fuzz_input.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 using namespace rov_tether;
 
@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool valid = params.validate().empty();
   try
   {
-    TetherSimulation sim(params, Position::Zero(), Position(1.0, 0.5, -1.0));
+    Tether sim(params, Position::Zero(), Position(1.0, 0.5, -1.0));
     if (!valid)
     {
       std::abort();  // the constructor must refuse what validate() refuses

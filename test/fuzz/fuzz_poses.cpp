@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fuzz_input.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 using namespace rov_tether;
 
@@ -21,7 +21,7 @@ namespace
   std::abort();
 }
 
-void check(const TetherSimulation& sim, std::vector<double>& tensions)
+void check(const Tether& sim, std::vector<double>& tensions)
 {
   const TetherParams& p = sim.params();
   const double deployed = sim.deployedLength();
@@ -72,7 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0;  // the fuzz_params target covers refused sets
   }
-  TetherSimulation sim(params, Position(0.0, 0.0, -1.0));
+  Tether sim(params, Position(0.0, 0.0, -1.0));
   std::vector<double> tensions;
   double t = 0.0;
   for (int op = 0; op < 64 && !in.empty(); ++op)

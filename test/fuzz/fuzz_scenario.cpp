@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   PathDriver driver(scenario);
-  TetherSimulation sim = driver.makeSimulation();
+  Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, 0.2);
   for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
   {

@@ -90,7 +90,7 @@ class NodePipeline
 
  private:
   ros_layer::NodeOptions options_;
-  TetherSimulation sim_;
+  Tether sim_;
   bool started_ = false;
   double next_state_ = 0.0;
   double last_state_ = 0.0;

@@ -59,14 +59,14 @@ XmlRpc::XmlRpcValue loadYaml(const std::string& relative)
   return toXmlRpc(YAML::LoadFile(std::string(ROV_TETHER_SOURCE_DIR) + "/" + relative));
 }
 
-TetherSimulation heavyTether()
+Tether heavyTether()
 {
   TetherParams params;
   params.noise = 0.0;
   params.weight_in_water = 1.0;
   params.winch_mode = WinchMode::kLocked;
   params.initial_deployed_length = 3.0;
-  TetherSimulation sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
+  Tether sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
   sim.advance(10.0);
   return sim;
 }
@@ -88,7 +88,7 @@ TEST(Colours, TensionScaleRunsFromBlueToRedAndCompressionIsGrey)
 
 TEST(Converters, StateMessageCarriesTheSimulation)
 {
-  const TetherSimulation sim = heavyTether();
+  const Tether sim = heavyTether();
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
   TetherState msg;
@@ -116,7 +116,7 @@ TEST(Converters, StateMessageCarriesTheSimulation)
 
 TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
 {
-  const TetherSimulation sim = heavyTether();
+  const Tether sim = heavyTether();
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
   visualization_msgs::MarkerArray markers;
@@ -144,7 +144,7 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
   EXPECT_NE(markers.markers[3].text.find("3.00 m out"), std::string::npos);
 
   // Reused storage: a shorter cable redraws without stale points; a detached vehicle hides its sphere.
-  TetherSimulation free_end(TetherParams{}, Position::Zero());
+  Tether free_end(TetherParams{}, Position::Zero());
   std::vector<double> none;
   free_end.computeSegmentTensions(none);
   toMarkers(free_end, none, ros::Time(4.0), options, &markers);
@@ -154,7 +154,7 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
 
 TEST(Converters, WrenchIsThePullOnTheVehicle)
 {
-  const TetherSimulation sim = heavyTether();
+  const Tether sim = heavyTether();
   const geometry_msgs::WrenchStamped wrench = toWrench(sim, Position(2.0, 0.0, 0.5), ros::Time(1.0), "world");
   const Force force = sim.vehicleForce();
   EXPECT_EQ(wrench.header.frame_id, "world");
@@ -168,7 +168,7 @@ TEST(Converters, WrenchIsThePullOnTheVehicle)
 
 TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)
 {
-  const TetherSimulation sim = heavyTether();
+  const Tether sim = heavyTether();
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
   GetTension::Request request;

@@ -11,7 +11,7 @@
 #include "rov_tether/GetTension.h"
 #include "rov_tether/TetherConfig.h"
 #include "rov_tether/TetherState.h"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -34,7 +34,7 @@ struct MarkerOptions
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe);
 
 /// Fills a TetherState from the simulation; `tensions` are its segment tensions (spool first) [N].
-void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+void toStateMessage(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                     const std::string& frame_id, double measured_winch_speed, std::uint32_t resets, TetherState* msg);
 
 /**
@@ -42,12 +42,12 @@ void toStateMessage(const TetherSimulation& sim, const std::vector<double>& tens
  * the spool (cylinder); id 2 the attachment point (sphere, deleted without a vehicle); id 3 a text with
  * deployed length and tension at the vehicle. Reuses `markers`' storage.
  */
-void toMarkers(const TetherSimulation& sim, const std::vector<double>& tensions, const ros::Time& stamp,
+void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
 
 /// The pull of the tether on the vehicle [N] at the attachment point, expressed in `frame_id` (the world
 /// frame); torque is about `vehicle_origin` [N m].
-geometry_msgs::WrenchStamped toWrench(const TetherSimulation& sim, const Eigen::Vector3d& vehicle_origin,
+geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin,
                                       const ros::Time& stamp, const std::string& frame_id);
 
 /// Applies every dynamic_reconfigure field to `params` through the core's setParameter (the .cfg uses
@@ -59,7 +59,7 @@ std::string configToParams(const TetherConfig& config, TetherParams* params);
 TetherConfig paramsToConfig(const TetherParams& params);
 
 /// Answers a GetTension request from the simulation and its segment tensions.
-void answerGetTension(const TetherSimulation& sim, const std::vector<double>& tensions,
+void answerGetTension(const Tether& sim, const std::vector<double>& tensions,
                       const GetTension::Request& request, GetTension::Response* response);
 
 }  // namespace rov_tether::ros_layer

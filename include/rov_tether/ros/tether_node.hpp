@@ -20,13 +20,13 @@
 #include "rov_tether/TetherState.h"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 namespace rov_tether::ros_layer
 {
 
 /**
- * tether_node: owns a TetherSimulation and wires it to ROS. Vehicle poses come from `rov_pose` or tf;
+ * tether_node: owns a Tether and wires it to ROS. Vehicle poses come from `rov_pose` or tf;
  * a timer advances the physics at physics_rate on ROS time (use_sim_time works; time going backwards
  * resets the tether); ~state, ~wrench, ~markers (only with subscribers) and /diagnostics are published;
  * ~get_tension, ~set_winch and ~reset are served; dynamic_reconfigure changes take effect between steps.
@@ -71,7 +71,7 @@ class TetherNode
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   NodeOptions options_;
-  std::unique_ptr<TetherSimulation> sim_;
+  std::unique_ptr<Tether> sim_;
 
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created after the parameters loaded.

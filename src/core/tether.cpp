@@ -1,4 +1,4 @@
-#include "rov_tether/tether_simulation.hpp"
+#include "rov_tether/tether.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +36,7 @@ std::string joinErrors(const std::vector<std::string>& errors)
 
 /// One axis of the damped Verlet update, paper eq. (6)-(8): x' = x + (x - x_prev) D + a dt^2.
 /// Unit vector from particle a to particle b (zero when they coincide).
-Position unitVector(const CableState& state, std::size_t a, std::size_t b)
+Position unitVector(const Cable& state, std::size_t a, std::size_t b)
 {
   const Position d = state.position(b) - state.position(a);
   const double length = d.norm();
@@ -56,7 +56,7 @@ void verletAxis(double* __restrict x, double* __restrict previous, std::size_t b
 
 }  // namespace
 
-void CableState::resize(std::size_t particles)
+void Cable::resize(std::size_t particles)
 {
   for (auto* v : {&x, &y, &z, &px, &py, &pz, &inv_mass})
   {
@@ -76,14 +76,14 @@ void CableState::resize(std::size_t particles)
   markDirty(0, particles);
 }
 
-void CableState::place(std::size_t i, const Position& p)
+void Cable::place(std::size_t i, const Position& p)
 {
   x[i] = px[i] = p.x();
   y[i] = py[i] = p.y();
   z[i] = pz[i] = p.z();
 }
 
-TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, double start_time) : spool_(spool)
+Tether::Tether(const TetherParams& params, const Position& spool, double start_time) : spool_(spool)
 {
   const auto errors = params.validate();
   if (!errors.empty())
@@ -100,9 +100,9 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   build();
 }
 
-TetherSimulation::TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle,
+Tether::Tether(const TetherParams& params, const Position& spool, const Position& vehicle,
                                    double start_time)
-    : TetherSimulation(params, spool, start_time)
+    : Tether(params, spool, start_time)
 {
   if (!vehicle.allFinite() || vehicle.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
@@ -114,7 +114,7 @@ TetherSimulation::TetherSimulation(const TetherParams& params, const Position& s
   layOut(lengthToReach(vehicle));  // as when a first sample attaches: the cable reaches the vehicle
 }
 
-void TetherSimulation::applyParams(const TetherParams& requested)
+void Tether::applyParams(const TetherParams& requested)
 {
   const TetherParams params = requested.resolved();
   const bool reseed = params.seed != params_.seed || !solver_;
@@ -147,7 +147,7 @@ void TetherSimulation::applyParams(const TetherParams& requested)
   }
 }
 
-Position TetherSimulation::currentAt(const Position& point, double t) const
+Position Tether::currentAt(const Position& point, double t) const
 {
   Position u(params_.current[0], params_.current[1], params_.current[2]);
   if (params_.current_variation > 0.0)
@@ -162,7 +162,7 @@ Position TetherSimulation::currentAt(const Position& point, double t) const
   return u;
 }
 
-Status TetherSimulation::setParams(const TetherParams& params)
+Status Tether::setParams(const TetherParams& params)
 {
   const auto errors = params.validate();
   if (!errors.empty())
@@ -199,14 +199,14 @@ Status TetherSimulation::setParams(const TetherParams& params)
   return Status::success();
 }
 
-void TetherSimulation::build()
+void Tether::build()
 {
   state_.resize(params_.segmentCount() + 1);
   tension_scratch_.reserve(state_.size());
   layOut(params_.initial_deployed_length);
 }
 
-void TetherSimulation::setDeployedLength(double deployed_length)
+void Tether::setDeployedLength(double deployed_length)
 {
   const double segment = params_.segment_length;
   const std::size_t n = state_.size();
@@ -218,7 +218,7 @@ void TetherSimulation::setDeployedLength(double deployed_length)
   state_.rest[state_.first] = deployed_length - static_cast<double>(count - 1) * segment;
 }
 
-void TetherSimulation::layOut(double deployed_length)
+void Tether::layOut(double deployed_length)
 {
   setDeployedLength(deployed_length);
   const std::size_t n = state_.size();
@@ -276,14 +276,14 @@ void TetherSimulation::layOut(double deployed_length)
   refreshDerived(f, n - 1);
 }
 
-bool TetherSimulation::isPinned(std::size_t i) const
+bool Tether::isPinned(std::size_t i) const
 {
   return i <= state_.first || (vehicle_attached_ && i + 1 == state_.size());
 }
 
-std::size_t TetherSimulation::freeEnd() const { return vehicle_attached_ ? state_.size() - 1 : state_.size(); }
+std::size_t Tether::freeEnd() const { return vehicle_attached_ ? state_.size() - 1 : state_.size(); }
 
-void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
+void Tether::refreshDerived(std::size_t lo, std::size_t hi)
 {
   const std::size_t n = state_.size();
   const std::size_t f = state_.first;
@@ -311,7 +311,7 @@ void TetherSimulation::refreshDerived(std::size_t lo, std::size_t hi)
   }
 }
 
-Status TetherSimulation::setSpoolPosition(const Position& spool)
+Status Tether::setSpoolPosition(const Position& spool)
 {
   if (!spool.allFinite() || spool.cwiseAbs().maxCoeff() > kMaxCoordinate)
   {
@@ -321,7 +321,7 @@ Status TetherSimulation::setSpoolPosition(const Position& spool)
   return Status::success();
 }
 
-Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
+Status Tether::addVehicleSample(double t, const Position& vehicle)
 {
   if (!std::isfinite(t) || !vehicle.allFinite() || std::abs(t) > kMaxTime ||
       vehicle.cwiseAbs().maxCoeff() > kMaxCoordinate)
@@ -363,7 +363,7 @@ Status TetherSimulation::addVehicleSample(double t, const Position& vehicle)
   return Status::success();
 }
 
-Status TetherSimulation::setTargetLength(double length)
+Status Tether::setTargetLength(double length)
 {
   if (!std::isnan(length) && !(length >= params_.min_deployed_length && length <= params_.cable_length))
   {
@@ -376,14 +376,14 @@ Status TetherSimulation::setTargetLength(double length)
   return Status::success();
 }
 
-void TetherSimulation::detachVehicle()
+void Tether::detachVehicle()
 {
   vehicle_attached_ = false;
   samples_.clear();
   refreshDerived(state_.size() - 3, state_.size() - 1);
 }
 
-Position TetherSimulation::vehicleAt(double t)
+Position Tether::vehicleAt(double t)
 {
   if (!vehicle_attached_)
   {
@@ -422,7 +422,7 @@ Position TetherSimulation::vehicleAt(double t)
   return target;
 }
 
-double TetherSimulation::lengthToReach(const Position& vehicle) const
+double Tether::lengthToReach(const Position& vehicle) const
 {
   if (params_.winch_mode == WinchMode::kLocked)
   {
@@ -432,7 +432,7 @@ double TetherSimulation::lengthToReach(const Position& vehicle) const
                     params_.cable_length);
 }
 
-Status TetherSimulation::advance(double dt, std::size_t* steps)
+Status Tether::advance(double dt, std::size_t* steps)
 {
   if (!std::isfinite(dt) || dt < 0.0)
   {
@@ -443,7 +443,7 @@ Status TetherSimulation::advance(double dt, std::size_t* steps)
   return advanceTo(std::max(target_time_, time_) + dt, steps);
 }
 
-Status TetherSimulation::advanceTo(double t, std::size_t* steps)
+Status Tether::advanceTo(double t, std::size_t* steps)
 {
   if (!std::isfinite(t) || std::abs(t) > kMaxTime)
   {
@@ -451,8 +451,7 @@ Status TetherSimulation::advanceTo(double t, std::size_t* steps)
   }
   target_time_ = t;
   std::size_t taken = 0;
-  const double dt = params_.time_step;
-  while (time_ + dt <= target_time_ + 1e-9 * dt)
+  while (stepFits(target_time_))
   {
     step();
     ++taken;
@@ -464,7 +463,7 @@ Status TetherSimulation::advanceTo(double t, std::size_t* steps)
   return Status::success();
 }
 
-Status TetherSimulation::skipTo(double t)
+Status Tether::skipTo(double t)
 {
   if (!std::isfinite(t) || std::abs(t) > kMaxTime || t < time_)
   {
@@ -489,10 +488,10 @@ Status TetherSimulation::skipTo(double t)
   return Status::success();
 }
 
-void TetherSimulation::step()
+void Tether::step()
 {
   const double dt = params_.time_step;
-  const double next_time = base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * dt;
+  const double next_time = nextStepTime();
   const int substeps = params_.substeps;
   const double h = dt / substeps;
   const std::uint64_t failures = recoveries_;
@@ -509,7 +508,7 @@ void TetherSimulation::step()
   }
 }
 
-void TetherSimulation::subStep(double h, double t, bool with_noise)
+void Tether::subStep(double h, double t, bool with_noise)
 {
   const std::size_t n = state_.size();
   state_.place(state_.first, spool_);
@@ -549,7 +548,7 @@ void TetherSimulation::subStep(double h, double t, bool with_noise)
   }
 }
 
-void TetherSimulation::fail(const std::string& why)
+void Tether::fail(const std::string& why)
 {
   ++recoveries_;
   std::ostringstream message;
@@ -558,7 +557,7 @@ void TetherSimulation::fail(const std::string& why)
   layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
 }
 
-void TetherSimulation::integrate(double h, double t)
+void Tether::integrate(double h, double t)
 {
   const std::size_t begin = state_.first + 1;
   const std::size_t end = freeEnd();
@@ -596,7 +595,7 @@ void TetherSimulation::integrate(double h, double t)
   verletAxis(state_.z.data(), state_.pz.data(), begin, end, damping, drift * params_.current[2] + sink);
 }
 
-void TetherSimulation::integrateMorison(double h, double t)
+void Tether::integrateMorison(double h, double t)
 {
   // Morison drag on each particle's share of cable, split into the flow normal and tangential to the
   // cable. The impulse is explicit, h c |r| r, so a cable held against the flow feels exactly the drag,
@@ -633,7 +632,7 @@ void TetherSimulation::integrateMorison(double h, double t)
   }
 }
 
-void TetherSimulation::applySeabed()
+void Tether::applySeabed()
 {
   // Contact: a particle below the seabed is put back on it with no normal velocity, and Coulomb friction
   // limits its sliding this step to what the normal correction allows (position-based friction).
@@ -658,7 +657,7 @@ void TetherSimulation::applySeabed()
   }
 }
 
-void TetherSimulation::addNoise(double dt)
+void Tether::addNoise(double dt)
 {
   const double amplitude = params_.noiseAmplitude(dt);
   if (amplitude <= 0.0)
@@ -674,7 +673,7 @@ void TetherSimulation::addNoise(double dt)
   }
 }
 
-void TetherSimulation::runWinch(double dt)
+void Tether::runWinch(double dt)
 {
   const std::size_t n = state_.size();
   const std::size_t f = state_.first;
@@ -739,7 +738,7 @@ void TetherSimulation::runWinch(double dt)
   refreshDerived(state_.first, state_.first + 2);
 }
 
-void TetherSimulation::release()
+void Tether::release()
 {
   // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with
   // the segment's velocity, so neither the shape nor any constraint error changes.
@@ -760,7 +759,7 @@ void TetherSimulation::release()
   refreshDerived(state_.first, state_.first + 3);
 }
 
-void TetherSimulation::merge()
+void Tether::merge()
 {
   // The first free particle goes back onto the spool; its two segments become one with the summed
   // rest length, so the deployed length does not change.
@@ -773,7 +772,7 @@ void TetherSimulation::merge()
   refreshDerived(state_.first, state_.first + 2);
 }
 
-bool TetherSimulation::stateFinite() const
+bool Tether::stateFinite() const
 {
   double sum = 0.0;
   for (std::size_t i = state_.first; i < state_.size(); ++i)
@@ -783,7 +782,7 @@ bool TetherSimulation::stateFinite() const
   return std::isfinite(sum);
 }
 
-Status TetherSimulation::reset(double time)
+Status Tether::reset(double time)
 {
   if (!std::isfinite(time) || std::abs(time) > kMaxTime)
   {
@@ -802,7 +801,7 @@ Status TetherSimulation::reset(double time)
   return Status::success();
 }
 
-double TetherSimulation::deployedLength() const
+double Tether::deployedLength() const
 {
   // Every deployed segment but the first has the nominal length.
   const std::size_t n = state_.size();
@@ -810,7 +809,7 @@ double TetherSimulation::deployedLength() const
   return state_.rest[f] + static_cast<double>(n - 2 - f) * params_.segment_length;
 }
 
-void TetherSimulation::copyPositions(std::vector<Position>& out) const
+void Tether::copyPositions(std::vector<Position>& out) const
 {
   out.resize(deployedParticleCount());
   for (std::size_t k = 0; k < out.size(); ++k)
@@ -819,7 +818,7 @@ void TetherSimulation::copyPositions(std::vector<Position>& out) const
   }
 }
 
-void TetherSimulation::computeSegmentTensions(std::vector<double>& out) const
+void Tether::computeSegmentTensions(std::vector<double>& out) const
 {
   const std::size_t n = state_.size();
   const std::size_t f = state_.first;
@@ -847,7 +846,7 @@ void TetherSimulation::computeSegmentTensions(std::vector<double>& out) const
   }
 }
 
-bool TetherSimulation::segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const
+bool Tether::segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const
 {
   if (!std::isfinite(arc_length) || arc_length < 0.0 || arc_length > deployedLength())
   {
@@ -861,7 +860,7 @@ bool TetherSimulation::segmentAtArcLengthFromVehicle(double arc_length, std::siz
   return true;
 }
 
-double TetherSimulation::arcLengthFromVehicleToSegment(std::size_t k) const
+double Tether::arcLengthFromVehicleToSegment(std::size_t k) const
 {
   const std::size_t segments = deployedParticleCount() - 1;
   const double nominal = params_.segment_length;
@@ -872,13 +871,13 @@ double TetherSimulation::arcLengthFromVehicleToSegment(std::size_t k) const
   return (static_cast<double>(segments - 1 - k) + 0.5) * nominal;
 }
 
-double TetherSimulation::segmentStrain(std::size_t k) const
+double Tether::segmentStrain(std::size_t k) const
 {
   const std::size_t j = state_.first + k;
   return (state_.position(j + 1) - state_.position(j)).norm() / state_.rest[j] - 1.0;
 }
 
-Force TetherSimulation::vehicleForce() const
+Force Tether::vehicleForce() const
 {
   const std::size_t n = state_.size();
   if (!vehicle_attached_ || last_step_ <= 0.0)
@@ -894,13 +893,13 @@ Force TetherSimulation::vehicleForce() const
   return pull / (last_step_ * last_step_);
 }
 
-TetherSummary TetherSimulation::summary() const
+TetherSummary Tether::summary() const
 {
   computeSegmentTensions(tension_scratch_);
   return summarize(tension_scratch_);
 }
 
-TetherSummary TetherSimulation::summarize(const std::vector<double>& tensions) const
+TetherSummary Tether::summarize(const std::vector<double>& tensions) const
 {
   TetherSummary result;
   result.time = time_;

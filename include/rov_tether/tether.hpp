@@ -7,24 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/cable_state.hpp"
+#include "rov_tether/cable.hpp"
 #include "rov_tether/constraint_solver.hpp"
 #include "rov_tether/random.hpp"
+#include "rov_tether/status.hpp"
 #include "rov_tether/tether_params.hpp"
 
 namespace rov_tether
 {
-
-/// Outcome of a call that can refuse its input; the message says why.
-struct Status
-{
-  bool ok = true;
-  std::string message;
-
-  static Status success() { return {}; }
-  static Status error(std::string text) { return {false, std::move(text)}; }
-  explicit operator bool() const { return ok; }
-};
 
 /// What a tether-management controller reads after a step.
 struct TetherSummary
@@ -47,14 +37,14 @@ struct TetherSummary
  * interpolates the vehicle end linearly between samples. Invalid input is refused with a Status and
  * leaves the state untouched.
  */
-class TetherSimulation
+class Tether
 {
  public:
   /// A tether hanging from the spool with a free end. Throws std::invalid_argument on invalid params.
-  TetherSimulation(const TetherParams& params, const Position& spool, double start_time = 0.0);
+  Tether(const TetherParams& params, const Position& spool, double start_time = 0.0);
   /// A tether from the spool to a vehicle at `vehicle` at start_time, laid out at initial_deployed_length
   /// grown to the spool-vehicle distance unless the winch is locked. Throws std::invalid_argument.
-  TetherSimulation(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
+  Tether(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
   /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of
   /// cable_length, segment_length, initial_deployed_length or solver rebuilds the cable; other changes keep the state.
@@ -87,6 +77,13 @@ class TetherSimulation
   Status advanceTo(double t, std::size_t* steps = nullptr);
   /// Takes exactly one internal step.
   void step();
+  /// Time the next internal step ends at [s].
+  double nextStepTime() const
+  {
+    return base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * params_.time_step;
+  }
+  /// True when one more internal step fits before t [s] (advanceTo takes steps while it does).
+  bool stepFits(double t) const { return time_ + params_.time_step <= t + 1e-9 * params_.time_step; }
   /// Moves time forward to t [s] without stepping, for a caller that cannot keep up: the cable keeps its
   /// shape at rest, the vehicle end moves to where the samples put it at t. Refuses t before time().
   Status skipTo(double t);
@@ -138,7 +135,7 @@ class TetherSimulation
   /// Water velocity at `point` and time t [m/s]: the uniform current plus its slow variation.
   Position currentAt(const Position& point, double t) const;
   /// The particle arrays, for tests and converters.
-  const CableState& state() const { return state_; }
+  const Cable& state() const { return state_; }
 
  private:
   struct VehicleSample
@@ -171,7 +168,7 @@ class TetherSimulation
   bool stateFinite() const;
 
   TetherParams params_;
-  CableState state_;
+  Cable state_;
   std::unique_ptr<ConstraintSolver> solver_;
   Xoshiro256Plus rng_;
   Position spool_;

@@ -22,7 +22,7 @@ using Force = Eigen::Vector3d;
  * (pinned) when a vehicle is attached, otherwise a free end. Segment j joins particles j and j+1;
  * bending constraint j joins particles j and j+2.
  */
-struct CableState
+struct Cable
 {
   std::vector<double> x, y, z;         ///< Positions [m].
   std::vector<double> px, py, pz;      ///< Positions one step ago [m].
