@@ -24,8 +24,9 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& variants()
       {"xpbd_bending", {"solver=xpbd", "bending_stiffness=0.02", "substeps=2"}},
       {"lumped_mass", {"solver=lumped_mass", "iterations=auto"}},
       {"sequential", {"solver=pbd_sequential", "iterations=4"}},
-      {"morison_seabed", {"drag_model=morison", "weight_in_water=0.5", "current=[0.1, -0.2, 0.0]",
-                          "current_variation=0.05", "seabed_z=-2.0", "seabed_friction=0.3", "noise=0.001"}},
+      {"morison_seabed",
+       {"drag_model=morison", "weight_in_water=0.5", "current=[0.1, -0.2, 0.0]", "current_variation=0.05",
+        "seabed_z=-2.0", "seabed_friction=0.3", "noise=0.001"}},
       {"speed_winch", {"winch_mode=speed", "winch_speed=0.3", "over_relaxation=1.5", "drag=0.8"}},
       {"auto_resolution", {"segment_length=auto", "iterations=auto", "weight_in_water=0.2", "max_vehicle_jump=0.2"}},
   };

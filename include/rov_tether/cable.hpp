@@ -14,8 +14,8 @@ using Position = Eigen::Vector3d;
 using Force = Eigen::Vector3d;
 
 /**
- * Particles of the whole cable (deployed or on the spool) as structure-of-arrays, so that the solver
- * loops are contiguous and vectorise.
+ * The particles of the whole cable (deployed or on the spool) as structure-of-arrays, so that the solver
+ * loops are contiguous and vectorise. Nothing else: forces, solvers, the spool and the vehicle act on it.
  *
  * Particle `first` is the spool outlet (pinned); particles [0, first) are still on the spool and are
  * never touched; particles [first, size()) are deployed. The last particle is the vehicle attachment
@@ -31,11 +31,7 @@ struct Cable
   std::vector<double> stretch_weight;  ///< 1 / (w_j + w_{j+1}) [kg], 0 when both are pinned.
   std::vector<double> bend_rest;       ///< Rest distance of bending constraint j: rest_j + rest_{j+1} [m].
   std::vector<double> bend_weight;     ///< 1 / (w_j + w_{j+2}) [kg], 0 when both are pinned.
-  /// Sum over the last step's iterations of each stretch constraint's correction, a Lagrange multiplier
-  /// [kg m]; the constraint force is stretch_lambda / dt^2 [N].
-  std::vector<double> stretch_lambda;
-  std::vector<double> bend_lambda;  ///< As stretch_lambda, for bending constraints [kg m].
-  std::size_t first = 0;            ///< Index of the spool outlet particle.
+  std::size_t first = 0;               ///< Index of the spool outlet particle.
   /// Particles whose mass, or whose constraints' rest length or weight, changed since a solver last
   /// read them: [dirty_begin, dirty_end). Solvers that keep copies refresh only this range.
   std::size_t dirty_begin = 0;
@@ -62,6 +58,14 @@ struct Cable
   Position position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   /// Sets position and previous position of particle i (zero velocity) [m].
   void place(std::size_t i, const Position& p);
+  /// Geometric strain |x_{j+1} - x_j| / rest_j - 1 of segment j [-].
+  double strain(std::size_t j) const { return (position(j + 1) - position(j)).norm() / rest[j] - 1.0; }
+  /// Unit vector from particle a to particle b (zero when they coincide).
+  Position direction(std::size_t a, std::size_t b) const;
+  /// Recomputes the lumped masses of deployed particles [lo, hi] (half of each neighbouring segment at
+  /// `mass_per_length` [kg/m]; the spool outlet, and the last particle when `last_pinned`, get none) and
+  /// the weights and bending rest lengths of the constraints they take part in; marks them dirty.
+  void updateMasses(std::size_t lo, std::size_t hi, double mass_per_length, bool last_pinned);
 };
 
 }  // namespace rov_tether

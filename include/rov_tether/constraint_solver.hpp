@@ -2,8 +2,10 @@
 
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include "rov_tether/cable.hpp"
+#include "rov_tether/contact.hpp"
 #include "rov_tether/tether_params.hpp"
 
 namespace rov_tether
@@ -18,94 +20,71 @@ struct SolverSettings
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
+
+  /// The one place the settings are made from the parameters, for a (sub-)step of h [s].
+  static SolverSettings from(const TetherParams& params, double h);
 };
 
 /**
- * Projects the distance and bending constraints of the deployed particles [first, size()).
+ * The Lagrange multipliers of the last step, one per stretch constraint (segment j) and per bending
+ * constraint (j, j+2), in kg m: the constraint force is lambda / h^2 [N] for the step h they were solved
+ * for. Indexed like the cable's segments; a solver owns them and resets them every step.
+ */
+struct Multipliers
+{
+  std::vector<double> stretch;
+  std::vector<double> bend;
+
+  /// Sized for a cable of `particles` particles, all zero.
+  void resize(std::size_t particles)
+  {
+    stretch.assign(particles > 0 ? particles - 1 : 0, 0.0);
+    bend.assign(particles > 1 ? particles - 2 : 0, 0.0);
+  }
+  void clear()
+  {
+    std::fill(stretch.begin(), stretch.end(), 0.0);
+    std::fill(bend.begin(), bend.end(), 0.0);
+  }
+};
+
+/**
+ * Projects the distance and bending constraints of the deployed particles [first, size()), and the
+ * contacts, once per step.
  *
- * Implementations reset and accumulate Cable::stretch_lambda and bend_lambda (the constraint
- * multipliers in kg m, force = lambda / dt^2) so that tension can be read after the step whatever the
- * method. Later methods (XPBD with compliance, force-based chains) implement the same interface.
+ * Each method owns its multipliers (lambda, force = lambda / dt^2), which it resets and accumulates every
+ * step, so tension is read after the step the same way whatever the method (tension.hpp). Methods: the
+ * paper's pbd (red-black or sequential), xpbd (compliant), lumped_mass (explicit springs); see makeSolver.
  */
 class ConstraintSolver
 {
  public:
   virtual ~ConstraintSolver() = default;
-  /// Projects the constraints once per step; must not allocate.
-  virtual void solve(Cable& state, const SolverSettings& settings) = 0;
+  /// Projects the constraints, then the contacts on the free particles [first + 1, free_end); must not
+  /// allocate.
+  void solve(Cable& cable, const SolverSettings& settings, const Contacts& contacts, std::size_t free_end)
+  {
+    project(cable, multipliers_, settings);
+    for (const Contact* contact : contacts)
+    {
+      contact->project(cable, cable.first + 1, free_end);
+    }
+  }
   /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
   virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
-};
+  const Multipliers& multipliers() const { return multipliers_; }
+  /// For the tether: sized with the cable, cleared when the cable is re-laid or a particle is released.
+  Multipliers& multipliers() { return multipliers_; }
 
-/**
- * The paper's Figure 2 (stretch sweep then (i, i+2) bending sweep, `iterations` times) in red-black
- * order: even segments, odd segments, then bending constraints in four interleaved sets. Constraints
- * of one set share no particle, so each set is one loop without dependencies between iterations.
- *
- * For the loops to be unit-stride (and so vectorise well), each step copies the deployed particles
- * into four blocks by index mod 4: particle l of block r is deployed particle 4 l + r. Every set then
- * pairs two blocks element by element. The copies are sized for the whole cable on the first step and
- * reused, so pay-out never allocates.
- */
-class PbdSolver : public ConstraintSolver
-{
- public:
-  /// Deployed particles up to which the constraints are projected in place, in the same order, without
-  /// the blocked copies: for short cables the copies and the many tiny loops cost more than they save.
-  static constexpr std::size_t kDirectParticles = 48;
-
-  /// `compliant` makes this XPBD (Macklin, Mueller, Chentanez 2016): each stretch constraint has the
-  /// compliance rest / EA and each bending constraint (rest / 2)^3 / EI, so the multipliers converge to
-  /// the physical force times dt^2 whatever the iteration count.
-  /// `direct_particles`: see kDirectParticles (tests set it to compare both paths).
-  explicit PbdSolver(bool compliant = false, std::size_t direct_particles = kDirectParticles)
-      : compliant_(compliant), direct_particles_(direct_particles)
-  {
-  }
-  void solve(Cable& state, const SolverSettings& settings) override;
+ protected:
+  /// The method's constraint projection; resets and accumulates `lambda`.
+  virtual void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) = 0;
 
  private:
-  void solveDirect(Cable& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
-                   double relax);
-
-  bool compliant_;
-  std::size_t direct_particles_;
-  /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
-  std::vector<double> x_, y_, z_, inv_mass_;
-  std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
-  std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
-  std::size_t block_ = 0;
-  std::size_t copied_first_ = static_cast<std::size_t>(-1);  ///< Layout of the copied constraint data.
-  std::size_t copied_size_ = 0;
-  std::size_t copied_block_ = 0;
+  Multipliers multipliers_;
 };
 
-/// The paper's Figure 2 in its literal order (segment 0, 1, 2, ... then bending 0, 1, ...). Kept as the
-/// reference for the red-black solver's convergence and speed.
-class SequentialPbdSolver : public ConstraintSolver
-{
- public:
-  void solve(Cable& state, const SolverSettings& settings) override;
-};
-
-/**
- * A force-based lumped-mass chain: the second half of an explicit Verlet step. The simulation has already
- * moved every particle by inertia, drag and weight (x holds the prediction, px the positions x_n); this adds
- * h^2 F(x_n) / m for the axial spring forces F = EA max(strain, 0) (a cable carries no compression). Stable
- * only for h < dL / sqrt(EA / mu) (TetherParams::criticalStep); the largest strain is reported so that a
- * blow-up is detected. No bending.
- */
-class LumpedMassSolver : public ConstraintSolver
-{
- public:
-  void solve(Cable& state, const SolverSettings& settings) override;
-  double lastMaxStrain() const override { return max_strain_; }
-
- private:
-  double max_strain_ = 0.0;
-};
-
-/// Creates the solver for `type`.
+/// Creates the solver for `type` (pbd_solver.hpp and lumped_mass_solver.hpp hold the methods).
 std::unique_ptr<ConstraintSolver> makeSolver(SolverType type);
 
 }  // namespace rov_tether

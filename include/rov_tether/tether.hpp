@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <memory>
 #include <string>
@@ -9,28 +8,26 @@
 
 #include "rov_tether/cable.hpp"
 #include "rov_tether/constraint_solver.hpp"
-#include "rov_tether/random.hpp"
+#include "rov_tether/contact.hpp"
+#include "rov_tether/current_field.hpp"
+#include "rov_tether/noise.hpp"
+#include "rov_tether/spool.hpp"
 #include "rov_tether/status.hpp"
+#include "rov_tether/tension.hpp"
 #include "rov_tether/tether_params.hpp"
+#include "rov_tether/vehicle_track.hpp"
+#include "rov_tether/water.hpp"
+#include "rov_tether/winch.hpp"
 
 namespace rov_tether
 {
 
-/// What a tether-management controller reads after a step.
-struct TetherSummary
-{
-  double time = 0.0;                    ///< Simulation time [s].
-  double deployed_length = 0.0;         ///< Cable off the spool (sum of rest lengths) [m].
-  double tension_spool = 0.0;           ///< Axial force in the segment at the spool [N].
-  double tension_vehicle = 0.0;         ///< Axial force in the segment at the vehicle (or free end) [N].
-  double max_tension = 0.0;             ///< Largest segment tension [N].
-  std::size_t max_tension_segment = 0;  ///< Segment index of max_tension, 0 at the spool.
-  double max_strain = 0.0;              ///< Largest geometric strain |d| / rest - 1 [-].
-  double mean_strain = 0.0;             ///< Mean absolute geometric strain, the solver's residual stretch [-].
-};
-
 /**
  * The tether: a damped Verlet particle chain (paper eq. 6) with constraints, a spool and a vehicle end.
+ * It composes the parts, each in its own file: the Cable (particle arrays), the VehicleTrack (samples,
+ * interpolation, jumps), the Spool and a Winch mode, the water (Drag, CurrentField, weight,
+ * MicroCurrentNoise), a ConstraintSolver with its multipliers and the Contacts it projects, and the tension
+ * readout (tension.hpp). This class owns the order of a step and the recovery from failures.
  *
  * Time is plain seconds. The caller feeds vehicle positions with their times (addVehicleSample) and
  * advances by any interval; the simulation takes fixed internal steps of params().time_step and
@@ -68,7 +65,7 @@ class Tether
   double targetLength() const { return target_length_; }
   /// Detaches the vehicle: the last particle becomes a free end.
   void detachVehicle();
-  bool vehicleAttached() const { return vehicle_attached_; }
+  bool vehicleAttached() const { return track_.attached(); }
 
   /// Advances by dt [s] (any value >= 0) in fixed internal steps; returns the number of steps taken
   /// through `steps` when given. Refuses negative or non-finite dt.
@@ -78,10 +75,7 @@ class Tether
   /// Takes exactly one internal step.
   void step();
   /// Time the next internal step ends at [s].
-  double nextStepTime() const
-  {
-    return base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * params_.time_step;
-  }
+  double nextStepTime() const { return base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * params_.time_step; }
   /// True when one more internal step fits before t [s] (advanceTo takes steps while it does).
   bool stepFits(double t) const { return time_ + params_.time_step <= t + 1e-9 * params_.time_step; }
   /// Moves time forward to t [s] without stepping, for a caller that cannot keep up: the cable keeps its
@@ -104,9 +98,9 @@ class Tether
   /// Deployed length: the sum of the deployed segments' rest lengths [m].
   double deployedLength() const;
   /// Deployed particles, spool outlet and vehicle (or free end) included.
-  std::size_t deployedParticleCount() const { return state_.size() - state_.first; }
+  std::size_t deployedParticleCount() const { return cable_.size() - cable_.first; }
   /// Deployed particle k, k = 0 at the spool [m].
-  Position particle(std::size_t k) const { return state_.position(state_.first + k); }
+  Position particle(std::size_t k) const { return cable_.position(cable_.first + k); }
   /// Copies the deployed particles, spool first [m]. Reuses `out`'s capacity.
   void copyPositions(std::vector<Position>& out) const;
   /// Axial force of each deployed segment, spool first [N]: the constraint multipliers of the last step
@@ -135,49 +129,39 @@ class Tether
   /// Water velocity at `point` and time t [m/s]: the uniform current plus its slow variation.
   Position currentAt(const Position& point, double t) const;
   /// The particle arrays, for tests and converters.
-  const Cable& state() const { return state_; }
+  const Cable& state() const { return cable_; }
+  /// The solver's multipliers of the last step (tension = lambda / h^2), for tests.
+  const Multipliers& multipliers() const { return solver_->multipliers(); }
 
  private:
-  struct VehicleSample
-  {
-    double time;
-    Position position;
-    bool jump;
-  };
-
   void applyParams(const TetherParams& params);
   void build();
   void layOut(double deployed_length);
-  void setDeployedLength(double deployed_length);
+  /// Recomputes masses and weights of deployed particles [lo, hi] (Cable::updateMasses).
   void refreshDerived(std::size_t lo, std::size_t hi);
-  bool isPinned(std::size_t i) const;
-  std::size_t freeEnd() const;
+  /// One past the last free particle: the vehicle attachment is pinned.
+  std::size_t freeEnd() const { return track_.attached() ? cable_.size() - 1 : cable_.size(); }
   Position vehicleAt(double t);
   /// Deployed length to lay the cable out with when the vehicle appears at `vehicle` (attach, jump):
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
   void subStep(double h, double t, bool with_noise);
-  void integrate(double h, double t);
-  void integrateMorison(double h, double t);
-  void applySeabed();
   void fail(const std::string& why);
-  void addNoise(double dt);
   void runWinch(double dt);
-  void release();
-  void merge();
   bool stateFinite() const;
 
   TetherParams params_;
-  Cable state_;
+  Cable cable_;
+  Spool spool_;
+  VehicleTrack track_;
+  WinchModes winches_;
   std::unique_ptr<ConstraintSolver> solver_;
-  Xoshiro256Plus rng_;
-  Position spool_;
-  Position vehicle_ = Position::Zero();
-  bool vehicle_attached_ = false;
-  bool paying_out_ = false;
-  double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]  ///< Passive winch
-                                                                     ///< latched into pay-out (see runWinch).
-  std::deque<VehicleSample> samples_;
+  std::unique_ptr<Drag> drag_;
+  CurrentField current_;
+  MicroCurrentNoise noise_;
+  std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
+  Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
+  double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].
   double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].
@@ -188,17 +172,6 @@ class Tether
   std::uint64_t jumps_ = 0;
   std::uint64_t recoveries_ = 0;
   std::string last_failure_;
-  /// One plane wave of the current's variation: amplitude direction, wave vector [1/m], angular
-  /// frequency [1/s] and phase.
-  struct CurrentMode
-  {
-    Position direction;
-    Position wave_vector;
-    double omega;
-    double phase;
-  };
-  static constexpr std::size_t kCurrentModes = 4;
-  CurrentMode current_modes_[kCurrentModes];
 };
 
 }  // namespace rov_tether

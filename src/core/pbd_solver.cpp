@@ -1,7 +1,7 @@
+#include "rov_tether/pbd_solver.hpp"
+
 #include <algorithm>
 #include <cmath>
-
-#include "rov_tether/constraint_solver.hpp"
 
 // The hot loops are compiled twice (AVX2 and baseline x86-64) and the loader picks the clone the CPU
 // supports, so one binary is fast on current machines and still runs on old ones.
@@ -159,20 +159,20 @@ void solveBlocked(const Blocked& c, const SolverSettings& settings, bool bending
   }
 }
 
-void resetMultipliers(Cable& state, std::size_t segments_end, std::size_t bends_end)
+void resetMultipliers(const Cable& state, Multipliers& lambda, std::size_t segments_end, std::size_t bends_end)
 {
-  std::fill(state.stretch_lambda.begin() + static_cast<std::ptrdiff_t>(state.first),
-            state.stretch_lambda.begin() + static_cast<std::ptrdiff_t>(segments_end), 0.0);
+  std::fill(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(state.first),
+            lambda.stretch.begin() + static_cast<std::ptrdiff_t>(segments_end), 0.0);
   if (bends_end > state.first)
   {
-    std::fill(state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(state.first),
-              state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(bends_end), 0.0);
+    std::fill(lambda.bend.begin() + static_cast<std::ptrdiff_t>(state.first),
+              lambda.bend.begin() + static_cast<std::ptrdiff_t>(bends_end), 0.0);
   }
 }
 
 }  // namespace
 
-void PbdSolver::solve(Cable& state, const SolverSettings& settings)
+void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings& settings)
 {
   const std::size_t f = state.first;
   if (state.size() < f + 2)
@@ -197,7 +197,7 @@ void PbdSolver::solve(Cable& state, const SolverSettings& settings)
   const double relax = compliant_ ? 1.0 : settings.over_relaxation;
   if (m <= direct_particles_)
   {
-    solveDirect(state, settings.iterations, bending, stretch_compliance, bend_compliance, relax);
+    solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, bend_compliance, relax);
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
     return;
   }
@@ -254,16 +254,16 @@ void PbdSolver::solve(Cable& state, const SolverSettings& settings)
     state.y[f + l] = y_[s];
     state.z[f + l] = z_[s];
   }
-  resetMultipliers(state, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
+  resetMultipliers(state, lambda, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
   for (std::size_t l = 0; l + 1 < m; ++l)
   {
-    state.stretch_lambda[f + l] = lambda_[slot(l)];
+    lambda.stretch[f + l] = lambda_[slot(l)];
   }
   if (bending)
   {
     for (std::size_t l = 0; l + 2 < m; ++l)
     {
-      state.bend_lambda[f + l] = bend_lambda_[slot(l)];
+      lambda.bend[f + l] = bend_lambda_[slot(l)];
     }
   }
 }
@@ -274,8 +274,8 @@ namespace
 /// Projects the constraints j = first, first + step, ... below end (each joins j and j + span) of the
 /// state's own arrays. The constraints of one call share no particle, so their order does not matter.
 template <int kPower>
-void projectStrided(Cable& state, std::size_t first, std::size_t end, std::size_t step, std::size_t span,
-                    bool bend, double compliance, double relax)
+void projectStrided(Cable& state, Multipliers& multipliers, std::size_t first, std::size_t end, std::size_t step,
+                    std::size_t span, bool bend, double compliance, double relax)
 {
   double* x = state.x.data();
   double* y = state.y.data();
@@ -283,7 +283,7 @@ void projectStrided(Cable& state, std::size_t first, std::size_t end, std::size_
   const double* w = state.inv_mass.data();
   const double* rest = bend ? state.bend_rest.data() : state.rest.data();
   const double* weight = bend ? state.bend_weight.data() : state.stretch_weight.data();
-  double* lambda = bend ? state.bend_lambda.data() : state.stretch_lambda.data();
+  double* lambda = bend ? multipliers.bend.data() : multipliers.stretch.data();
   for (std::size_t j = first; j < end; j += step)
   {
     projectPairs<kPower>(x + j, y + j, z + j, w + j, x + j + span, y + j + span, z + j + span, w + j + span, rest + j,
@@ -292,8 +292,8 @@ void projectStrided(Cable& state, std::size_t first, std::size_t end, std::size_
 }
 
 template <int kStretch, int kBend>
-void solveDirectImpl(Cable& state, int iterations, bool bending, double stretch_compliance, double bend_compliance,
-                     double relax)
+void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
+                     double bend_compliance, double relax)
 {
   const std::size_t f = state.first;
   const std::size_t segments_end = state.size() - 1;
@@ -302,14 +302,14 @@ void solveDirectImpl(Cable& state, int iterations, bool bending, double stretch_
   {
     // The blocked solver's sets, merged where they are independent: all even segments, all odd ones,
     // then bending residues {0, 1} and {2, 3} (mod 4). Same projections, same order of dependent ones.
-    projectStrided<kStretch>(state, f, segments_end, 2, 1, false, stretch_compliance, relax);
-    projectStrided<kStretch>(state, f + 1, segments_end, 2, 1, false, stretch_compliance, relax);
+    projectStrided<kStretch>(state, lambda, f, segments_end, 2, 1, false, stretch_compliance, relax);
+    projectStrided<kStretch>(state, lambda, f + 1, segments_end, 2, 1, false, stretch_compliance, relax);
     if (bending)
     {
       for (std::size_t r : {0, 2})
       {
-        projectStrided<kBend>(state, f + r, bends_end, 4, 2, true, bend_compliance, relax);
-        projectStrided<kBend>(state, f + r + 1, bends_end, 4, 2, true, bend_compliance, relax);
+        projectStrided<kBend>(state, lambda, f + r, bends_end, 4, 2, true, bend_compliance, relax);
+        projectStrided<kBend>(state, lambda, f + r + 1, bends_end, 4, 2, true, bend_compliance, relax);
       }
     }
   }
@@ -317,27 +317,27 @@ void solveDirectImpl(Cable& state, int iterations, bool bending, double stretch_
 
 }  // namespace
 
-void PbdSolver::solveDirect(Cable& state, int iterations, bool bending, double stretch_compliance,
+void PbdSolver::solveDirect(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
                             double bend_compliance, double relax)
 {
   const std::size_t f = state.first;
-  resetMultipliers(state, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
+  resetMultipliers(state, lambda, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
   if (stretch_compliance == 0.0)
   {
-    solveDirectImpl<0, 0>(state, iterations, bending, 0.0, 0.0, relax);
+    solveDirectImpl<0, 0>(state, lambda, iterations, bending, 0.0, 0.0, relax);
   }
   else if (bend_compliance == 0.0)
   {
-    solveDirectImpl<1, 0>(state, iterations, bending, stretch_compliance, 0.0, 1.0);
+    solveDirectImpl<1, 0>(state, lambda, iterations, bending, stretch_compliance, 0.0, 1.0);
   }
   else
   {
-    solveDirectImpl<1, 3>(state, iterations, bending, stretch_compliance, bend_compliance, 1.0);
+    solveDirectImpl<1, 3>(state, lambda, iterations, bending, stretch_compliance, bend_compliance, 1.0);
   }
   state.dirty_begin = state.dirty_end = 0;
 }
 
-void SequentialPbdSolver::solve(Cable& state, const SolverSettings& settings)
+void SequentialPbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings& settings)
 {
   const std::size_t n = state.size();
   const std::size_t f = state.first;
@@ -347,7 +347,7 @@ void SequentialPbdSolver::solve(Cable& state, const SolverSettings& settings)
   }
   const std::size_t segments_end = n - 1;
   const std::size_t bends_end = n >= f + 3 ? n - 2 : f;
-  resetMultipliers(state, segments_end, bends_end);
+  resetMultipliers(state, lambda, segments_end, bends_end);
   double* x = state.x.data();
   double* y = state.y.data();
   double* z = state.z.data();
@@ -357,75 +357,16 @@ void SequentialPbdSolver::solve(Cable& state, const SolverSettings& settings)
     for (std::size_t j = f; j < segments_end; ++j)
     {
       projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
-                      &state.stretch_weight[j], &state.stretch_lambda[j], 1);
+                      &state.stretch_weight[j], &lambda.stretch[j], 1);
     }
     if (settings.bending)
     {
       for (std::size_t j = f; j < bends_end; ++j)
       {
         projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
-                        &state.bend_weight[j], &state.bend_lambda[j], 1);
+                        &state.bend_weight[j], &lambda.bend[j], 1);
       }
     }
-  }
-}
-
-void LumpedMassSolver::solve(Cable& state, const SolverSettings& settings)
-{
-  const std::size_t n = state.size();
-  const std::size_t f = state.first;
-  max_strain_ = 0.0;
-  if (n < f + 2)
-  {
-    return;
-  }
-  const double h2 = settings.time_step * settings.time_step;
-  const double ea = settings.axial_stiffness;
-  double max_strain = -1.0;
-  double strain_sum = 0.0;  // NaN or infinity anywhere makes the sum non-finite (max() would skip a NaN)
-  // Forces at x_n (the previous positions px): explicit. The corrections go to the predictions x.
-  for (std::size_t j = f; j + 1 < n; ++j)
-  {
-    const double dx = state.px[j + 1] - state.px[j];
-    const double dy = state.py[j + 1] - state.py[j];
-    const double dz = state.pz[j + 1] - state.pz[j];
-    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double strain = length / state.rest[j] - 1.0;
-    max_strain = std::max(max_strain, strain);
-    strain_sum += strain;
-    const double tension = ea * std::max(strain, 0.0);
-    state.stretch_lambda[j] = tension * h2;  // the same readout as the constraint methods: lambda / h^2
-    const double scale = length > 0.0 ? tension * h2 / length : 0.0;
-    const double move_a = state.inv_mass[j] * scale;
-    const double move_b = state.inv_mass[j + 1] * scale;
-    state.x[j] += move_a * dx;
-    state.y[j] += move_a * dy;
-    state.z[j] += move_a * dz;
-    state.x[j + 1] -= move_b * dx;
-    state.y[j + 1] -= move_b * dy;
-    state.z[j + 1] -= move_b * dz;
-  }
-  if (n >= f + 3)
-  {
-    std::fill(state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(f),
-              state.bend_lambda.begin() + static_cast<std::ptrdiff_t>(n - 2), 0.0);
-  }
-  state.dirty_begin = state.dirty_end = 0;
-  max_strain_ = std::isfinite(strain_sum) ? max_strain : std::numeric_limits<double>::infinity();
-}
-
-std::unique_ptr<ConstraintSolver> makeSolver(SolverType type)
-{
-  switch (type)
-  {
-    case SolverType::kPbdSequential:
-      return std::make_unique<SequentialPbdSolver>();
-    case SolverType::kXpbd:
-      return std::make_unique<PbdSolver>(true);
-    case SolverType::kLumpedMass:
-      return std::make_unique<LumpedMassSolver>();
-    default:
-      return std::make_unique<PbdSolver>();
   }
 }
 

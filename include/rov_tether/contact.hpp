@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "rov_tether/cable.hpp"
+
+namespace rov_tether
+{
+
+/**
+ * Something the cable cannot pass through, as a position constraint the solver projects. Contacts are
+ * handed to the solver with the cable (ConstraintSolver::solve), so a method decides where in its
+ * iterations they are projected; today every method projects them once after its sweeps.
+ */
+class Contact
+{
+ public:
+  virtual ~Contact() = default;
+  /// Projects the free particles [begin, end) out of the obstacle, with the contact's friction; must
+  /// not allocate.
+  virtual void project(Cable& cable, std::size_t begin, std::size_t end) const = 0;
+};
+
+/// The contacts one solve sees (not owned: the tether and, later, the world own them).
+using Contacts = std::vector<const Contact*>;
+
+/**
+ * A flat seabed at height z with Coulomb friction: a particle below it is put back on it with no normal
+ * velocity, and its sliding this step is limited to what the normal correction allows (position-based
+ * friction, as Macklin et al. 2014 do for particles).
+ */
+class SeabedContact : public Contact
+{
+ public:
+  SeabedContact(double z, double friction) : z_(z), friction_(friction) {}
+  void project(Cable& cable, std::size_t begin, std::size_t end) const override;
+
+ private:
+  double z_;
+  double friction_;
+};
+
+}  // namespace rov_tether

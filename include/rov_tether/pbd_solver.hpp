@@ -1,0 +1,63 @@
+#pragma once
+
+#include <vector>
+
+#include "rov_tether/constraint_solver.hpp"
+
+namespace rov_tether
+{
+
+/**
+ * The paper's Figure 2 (stretch sweep then (i, i+2) bending sweep, `iterations` times) in red-black
+ * order: even segments, odd segments, then bending constraints in four interleaved sets. Constraints
+ * of one set share no particle, so each set is one loop without dependencies between iterations.
+ *
+ * For the loops to be unit-stride (and so vectorise well), each step copies the deployed particles
+ * into four blocks by index mod 4: particle l of block r is deployed particle 4 l + r. Every set then
+ * pairs two blocks element by element. The copies are sized for the whole cable on the first step and
+ * reused, so pay-out never allocates.
+ */
+class PbdSolver : public ConstraintSolver
+{
+ public:
+  /// Deployed particles up to which the constraints are projected in place, in the same order, without
+  /// the blocked copies: for short cables the copies and the many tiny loops cost more than they save.
+  static constexpr std::size_t kDirectParticles = 48;
+
+  /// `compliant` makes this XPBD (Macklin, Mueller, Chentanez 2016): each stretch constraint has the
+  /// compliance rest / EA and each bending constraint (rest / 2)^3 / EI, so the multipliers converge to
+  /// the physical force times dt^2 whatever the iteration count.
+  /// `direct_particles`: see kDirectParticles (tests set it to compare both paths).
+  explicit PbdSolver(bool compliant = false, std::size_t direct_particles = kDirectParticles)
+      : compliant_(compliant), direct_particles_(direct_particles)
+  {
+  }
+
+ protected:
+  void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;
+
+ private:
+  void solveDirect(Cable& cable, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
+                   double bend_compliance, double relax);
+
+  bool compliant_;
+  std::size_t direct_particles_;
+  /// Particle and constraint data of the deployed cable in blocked order (4 blocks of `block_` each).
+  std::vector<double> x_, y_, z_, inv_mass_;
+  std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
+  std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
+  std::size_t block_ = 0;
+  std::size_t copied_first_ = static_cast<std::size_t>(-1);  ///< Layout of the copied constraint data.
+  std::size_t copied_size_ = 0;
+  std::size_t copied_block_ = 0;
+};
+
+/// The paper's Figure 2 in its literal order (segment 0, 1, 2, ... then bending 0, 1, ...). Kept as the
+/// reference for the red-black solver's convergence and speed.
+class SequentialPbdSolver : public ConstraintSolver
+{
+ protected:
+  void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;
+};
+
+}  // namespace rov_tether

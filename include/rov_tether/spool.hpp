@@ -1,0 +1,46 @@
+#pragma once
+
+#include "rov_tether/cable.hpp"
+#include "rov_tether/constraint_solver.hpp"
+
+namespace rov_tether
+{
+
+/**
+ * The spool: where the cable leaves it, how much is off it, and the release and take-back of particles.
+ *
+ * Every deployed segment but the first (at the spool) has the nominal segment length; the first takes the
+ * rest and stays within [kMinFirst, kMaxFirst] segment lengths while particles can be released or taken
+ * back, so a length change is smooth: the first segment grows or shrinks, never a jump of a particle.
+ */
+class Spool
+{
+ public:
+  static constexpr double kMinFirst = 0.5;
+  static constexpr double kMaxFirst = 1.5;
+
+  explicit Spool(const Position& outlet = Position::Zero()) : outlet_(outlet) {}
+  /// The outlet, where particle `first` is pinned [m].
+  const Position& outlet() const { return outlet_; }
+  void setOutlet(const Position& outlet) { outlet_ = outlet; }
+  /// Nominal segment length [m].
+  void setSegmentLength(double length) { segment_ = length; }
+
+  /// Cable off the spool: the sum of the deployed segments' rest lengths [m].
+  double deployedLength(const Cable& cable) const;
+  /// Sets `first` and the rest lengths for `deployed` metres off the spool (positions are not touched).
+  void setDeployedLength(Cable& cable, double deployed) const;
+  /// Grows (change > 0) or shrinks the first segment by `change` [m], releasing or taking back particles
+  /// to keep it within its bounds; masses are updated as Cable::updateMasses does (`mass_per_length`,
+  /// `last_pinned`). A released particle starts on the first segment with its velocity and no multiplier.
+  void payOut(Cable& cable, Multipliers& lambda, double change, double mass_per_length, bool last_pinned) const;
+
+ private:
+  void release(Cable& cable, Multipliers& lambda, double mass_per_length, bool last_pinned) const;
+  void merge(Cable& cable, double mass_per_length, bool last_pinned) const;
+
+  Position outlet_;
+  double segment_ = 0.1;
+};
+
+}  // namespace rov_tether

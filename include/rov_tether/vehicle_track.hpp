@@ -1,0 +1,64 @@
+#pragma once
+
+#include <deque>
+
+#include "rov_tether/cable.hpp"
+#include "rov_tether/status.hpp"
+
+namespace rov_tether
+{
+
+/**
+ * Where the vehicle's attachment point is: the queue of timed samples the caller fed, linear
+ * interpolation between them, and the jump rule.
+ *
+ * The first sample attaches the vehicle when the simulation reaches its time (attachIfDue), so when a
+ * sample arrives does not change a run. A sample further than max_vehicle_jump from the previous one is
+ * a jump: the position goes there when the simulation reaches it, without interpolation, and the tether
+ * re-lays its cable (advance() reports it).
+ */
+class VehicleTrack
+{
+ public:
+  /// Samples that may wait ahead of the simulation; more are refused until it advances.
+  static constexpr std::size_t kMaxSamples = 1024;
+
+  /// Attaches the vehicle at `position` now, with that sample at time t.
+  void attachAt(double t, const Position& position);
+  /// Queues a sample (finite values are the caller's check). Refuses times older than the last sample
+  /// (the same time replaces it) and more than kMaxSamples waiting; `now` [s] only words the message.
+  Status add(double t, const Position& position, double max_jump, double now);
+  /// Drops the samples and detaches: the last particle becomes a free end.
+  void detach();
+
+  /// True when the vehicle is not attached yet and its first sample's time t [s] has come: attaches it
+  /// at that sample (position()); the tether then lays its cable out to it.
+  bool attachIfDue(double t);
+  /// Where the samples put the attachment at time t [s] (attached only), and whether a jump was passed.
+  struct Target
+  {
+    Position position;
+    bool jumped;
+  };
+  Target advance(double t);
+
+  bool attached() const { return attached_; }
+  /// True when samples are queued (the vehicle may attach or move).
+  bool active() const { return attached_ || !samples_.empty(); }
+  /// The attachment point as last set [m].
+  const Position& position() const { return position_; }
+  void setPosition(const Position& position) { position_ = position; }
+
+ private:
+  struct Sample
+  {
+    double time;
+    Position position;
+    bool jump;
+  };
+  std::deque<Sample> samples_;
+  Position position_ = Position::Zero();
+  bool attached_ = false;
+};
+
+}  // namespace rov_tether

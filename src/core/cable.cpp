@@ -1,0 +1,69 @@
+#include "rov_tether/cable.hpp"
+
+namespace rov_tether
+{
+
+void Cable::resize(std::size_t particles)
+{
+  for (auto* v : {&x, &y, &z, &px, &py, &pz, &inv_mass})
+  {
+    v->assign(particles, 0.0);
+  }
+  const std::size_t segments = particles > 0 ? particles - 1 : 0;
+  for (auto* v : {&rest, &stretch_weight})
+  {
+    v->assign(segments, 0.0);
+  }
+  const std::size_t bends = particles > 1 ? particles - 2 : 0;
+  for (auto* v : {&bend_rest, &bend_weight})
+  {
+    v->assign(bends, 0.0);
+  }
+  first = 0;
+  markDirty(0, particles);
+}
+
+void Cable::place(std::size_t i, const Position& p)
+{
+  x[i] = px[i] = p.x();
+  y[i] = py[i] = p.y();
+  z[i] = pz[i] = p.z();
+}
+
+Position Cable::direction(std::size_t a, std::size_t b) const
+{
+  const Position d = position(b) - position(a);
+  const double length = d.norm();
+  return length > 0.0 ? Position(d / length) : Position::Zero();
+}
+
+void Cable::updateMasses(std::size_t lo, std::size_t hi, double mass_per_length, bool last_pinned)
+{
+  const std::size_t n = size();
+  const std::size_t f = first;
+  lo = std::max(lo, f);
+  hi = std::min(hi, n - 1);
+  // Bending constraints starting two particles before lo change too.
+  markDirty(std::max(lo, f + 2) - 2, hi + 1);
+  // Lumped masses: half of each neighbouring segment (a free end carries half a segment).
+  for (std::size_t i = lo; i <= hi; ++i)
+  {
+    const double left = i > f ? rest[i - 1] : 0.0;
+    const double right = i + 1 < n ? rest[i] : 0.0;
+    const double mass = mass_per_length * 0.5 * (left + right);
+    const bool pinned = i <= f || (last_pinned && i + 1 == n);
+    inv_mass[i] = pinned || mass <= 0.0 ? 0.0 : 1.0 / mass;
+  }
+  auto inverse_sum = [](double a, double b) { return a + b > 0.0 ? 1.0 / (a + b) : 0.0; };
+  for (std::size_t j = std::max(lo, f + 1) - 1; j <= hi && j + 1 < n; ++j)
+  {
+    stretch_weight[j] = inverse_sum(inv_mass[j], inv_mass[j + 1]);
+  }
+  for (std::size_t j = std::max(lo, f + 2) - 2; j <= hi && j + 2 < n; ++j)
+  {
+    bend_rest[j] = rest[j] + rest[j + 1];
+    bend_weight[j] = inverse_sum(inv_mass[j], inv_mass[j + 2]);
+  }
+}
+
+}  // namespace rov_tether

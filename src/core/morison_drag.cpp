@@ -1,0 +1,48 @@
+#include <algorithm>
+
+#include "rov_tether/water.hpp"
+
+namespace rov_tether
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, double h, double t,
+                            const TetherParams& params, const CurrentField& current) const
+{
+  // Morison drag on each particle's share of cable, split into the flow normal and tangential to the
+  // cable. The impulse is explicit, h c |r| r, so a cable held against the flow feels exactly the drag,
+  // but never more than stops the relative motion (r' = r (1 - min(h c |r| / m, 1))): stable at any step.
+  const std::size_t n = cable.size();
+  const double normal = 0.5 * params.water_density * params.normal_drag_coefficient * params.diameter;
+  const double tangential = 0.5 * params.water_density * params.tangential_drag_coefficient * kPi * params.diameter;
+  const double sink = weightDisplacement(params, h);
+  const bool uniform = current.uniform();
+  const Position& u0 = current.mean();
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const Position x = cable.position(i);
+    const Position previous(cable.px[i], cable.py[i], cable.pz[i]);
+    const Position water = uniform ? u0 : current.at(x, t);
+    const Position relative = (x - previous) / h - water;
+    // Tangent from the neighbours' positions before this step (particle i - 1 already moved: its px).
+    const Position behind(cable.px[i - 1], cable.py[i - 1], cable.pz[i - 1]);
+    Position tangent = (i + 1 < n ? cable.position(i + 1) : x) - behind;
+    const double tangent_length = tangent.norm();
+    tangent = tangent_length > 0.0 ? Position(tangent / tangent_length) : Position::Zero();
+    const double share = 0.5 * (cable.rest[i - 1] + (i + 1 < n ? cable.rest[i] : 0.0));
+    const double h_per_mass = cable.inv_mass[i] * h * share;
+    Position along = relative.dot(tangent) * tangent;
+    Position across = relative - along;
+    along *= 1.0 - std::min(h_per_mass * tangential * along.norm(), 1.0);
+    across *= 1.0 - std::min(h_per_mass * normal * across.norm(), 1.0);
+    Position next = x + (water + along + across) * h;
+    next.z() += sink;
+    cable.px[i] = x.x(), cable.py[i] = x.y(), cable.pz[i] = x.z();
+    cable.x[i] = next.x(), cable.y[i] = next.y(), cable.z[i] = next.z();
+  }
+}
+
+}  // namespace rov_tether

@@ -1,0 +1,81 @@
+#include "rov_tether/spool.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rov_tether
+{
+
+double Spool::deployedLength(const Cable& cable) const
+{
+  const std::size_t n = cable.size();
+  const std::size_t f = cable.first;
+  return cable.rest[f] + static_cast<double>(n - 2 - f) * segment_;
+}
+
+void Spool::setDeployedLength(Cable& cable, double deployed) const
+{
+  const std::size_t n = cable.size();
+  // Whole segments beyond the first; the first takes the remainder in [0.5, 1.5) segment lengths.
+  const double whole = std::floor((deployed - kMinFirst * segment_) / segment_);
+  const std::size_t count = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(whole, 0.0)) + 1, 1, n - 1);
+  cable.first = n - 1 - count;
+  std::fill(cable.rest.begin(), cable.rest.end(), segment_);
+  cable.rest[cable.first] = deployed - static_cast<double>(count - 1) * segment_;
+}
+
+void Spool::payOut(Cable& cable, Multipliers& lambda, double change, double mass_per_length, bool last_pinned) const
+{
+  const std::size_t n = cable.size();
+  cable.rest[cable.first] += change;
+  if (change > 0.0)
+  {
+    while (cable.first > 0 && cable.rest[cable.first] > kMaxFirst * segment_)
+    {
+      release(cable, lambda, mass_per_length, last_pinned);
+    }
+  }
+  else
+  {
+    while (cable.first + 2 < n && cable.rest[cable.first] < kMinFirst * segment_)
+    {
+      merge(cable, mass_per_length, last_pinned);
+    }
+  }
+  cable.updateMasses(cable.first, cable.first + 2, mass_per_length, last_pinned);
+}
+
+void Spool::release(Cable& cable, Multipliers& lambda, double mass_per_length, bool last_pinned) const
+{
+  // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with
+  // the segment's velocity, so neither the shape nor any constraint error changes.
+  const std::size_t f = cable.first;
+  const double rest = cable.rest[f];
+  const double fraction = (rest - segment_) / rest;
+  auto along = [fraction, f](std::vector<double>& v) { v[f] = v[f] + fraction * (v[f + 1] - v[f]); };
+  for (auto* v : {&cable.x, &cable.y, &cable.z, &cable.px, &cable.py, &cable.pz})
+  {
+    along(*v);
+  }
+  cable.first = f - 1;
+  cable.place(cable.first, outlet_);
+  cable.rest[cable.first] = rest - segment_;
+  cable.rest[f] = segment_;
+  lambda.stretch[cable.first] = 0.0;
+  cable.updateMasses(cable.first, cable.first + 3, mass_per_length, last_pinned);
+}
+
+void Spool::merge(Cable& cable, double mass_per_length, bool last_pinned) const
+{
+  // The first free particle goes back onto the spool; its two segments become one with the summed
+  // rest length, so the deployed length does not change.
+  const std::size_t f = cable.first;
+  cable.rest[f + 1] += cable.rest[f];
+  cable.rest[f] = segment_;
+  cable.first = f + 1;
+  cable.place(f, outlet_);
+  cable.place(cable.first, outlet_);
+  cable.updateMasses(cable.first, cable.first + 2, mass_per_length, last_pinned);
+}
+
+}  // namespace rov_tether

@@ -1,0 +1,87 @@
+#include "rov_tether/vehicle_track.hpp"
+
+#include <sstream>
+
+namespace rov_tether
+{
+
+void VehicleTrack::attachAt(double t, const Position& position)
+{
+  attached_ = true;
+  position_ = position;
+  samples_.assign(1, Sample{t, position, false});
+}
+
+Status VehicleTrack::add(double t, const Position& position, double max_jump, double now)
+{
+  if (!attached_ && samples_.empty())
+  {
+    samples_.push_back(Sample{t, position, false});
+    return Status::success();
+  }
+  if (!samples_.empty() && t < samples_.back().time)
+  {
+    std::ostringstream out;
+    out << "vehicle sample rejected: time " << t << " s is older than the last sample at " << samples_.back().time
+        << " s";
+    return Status::error(out.str());
+  }
+  if (!samples_.empty() && t == samples_.back().time)
+  {
+    samples_.pop_back();  // a duplicate stamp replaces the sample it repeats
+  }
+  if (samples_.size() >= kMaxSamples)
+  {
+    // Consumed samples are dropped as the simulation passes them, so a full buffer holds samples the
+    // simulation has not reached: dropping any of them would make the vehicle jump.
+    std::ostringstream out;
+    out << "vehicle sample rejected: " << samples_.size() << " samples already wait ahead of the simulation (at " << now
+        << " s); advance it first";
+    return Status::error(out.str());
+  }
+  const Position& previous = samples_.empty() ? position_ : samples_.back().position;
+  const bool jump = (position - previous).norm() > max_jump;
+  samples_.push_back(Sample{t, position, jump});
+  return Status::success();
+}
+
+void VehicleTrack::detach()
+{
+  attached_ = false;
+  samples_.clear();
+}
+
+bool VehicleTrack::attachIfDue(double t)
+{
+  if (attached_ || samples_.empty() || samples_.front().time > t)
+  {
+    return false;
+  }
+  attached_ = true;
+  position_ = samples_.front().position;
+  return true;
+}
+
+VehicleTrack::Target VehicleTrack::advance(double t)
+{
+  bool jumped = false;
+  while (samples_.size() >= 2 && samples_[1].time <= t)
+  {
+    samples_.pop_front();
+    jumped = jumped || samples_.front().jump;
+    samples_.front().jump = false;
+  }
+  if (samples_.empty())
+  {
+    return {position_, false};
+  }
+  Position target = samples_.front().position;
+  if (samples_.size() >= 2 && t > samples_[0].time && !samples_[1].jump)
+  {
+    const double alpha = (t - samples_[0].time) / (samples_[1].time - samples_[0].time);
+    target = samples_[0].position + alpha * (samples_[1].position - samples_[0].position);
+  }
+  return {target, jumped};
+}
+
+}  // namespace rov_tether
