@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "rov_tether/banded.hpp"
 #include "rov_tether/tether.hpp"
 
 namespace
@@ -12,8 +13,8 @@ namespace
 using rov_tether::DragModel;
 using rov_tether::Position;
 using rov_tether::SolverType;
-using rov_tether::TetherParams;
 using rov_tether::Tether;
+using rov_tether::TetherParams;
 
 /// The paper's cable scaled to `segments` segments of 0.1 m, fully deployed, slack between spool and
 /// vehicle (80% of its length apart), 10 iterations, bending on, noise on, neutrally buoyant; `change`
@@ -55,11 +56,11 @@ void run(benchmark::State& state, Tether& sim, double projections_per_step)
 void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
 {
   Tether sim = makeCable(static_cast<int>(state.range(0)),
-                                   [&](TetherParams& p)
-                                   {
-                                     p.solver = solver;
-                                     p.bending = bending;
-                                   });
+                         [&](TetherParams& p)
+                         {
+                           p.solver = solver;
+                           p.bending = bending;
+                         });
   run(state, sim, static_cast<double>(state.range(0)) * (bending ? 2.0 : 1.0) * 10.0);
 }
 
@@ -71,11 +72,11 @@ void BM_StepPbdNoBending(benchmark::State& state) { stepBenchmark(state, SolverT
 void BM_StepXpbd(benchmark::State& state)
 {
   Tether sim = makeCable(static_cast<int>(state.range(0)),
-                                   [](TetherParams& p)
-                                   {
-                                     p.solver = SolverType::kXpbd;
-                                     p.bending_stiffness = 1e-3;
-                                   });
+                         [](TetherParams& p)
+                         {
+                           p.solver = SolverType::kXpbd;
+                           p.bending_stiffness = 1e-3;
+                         });
   run(state, sim, static_cast<double>(state.range(0)) * 20.0);
 }
 
@@ -84,14 +85,88 @@ void BM_StepXpbd(benchmark::State& state)
 void BM_StepLumpedMass(benchmark::State& state)
 {
   Tether sim = makeCable(static_cast<int>(state.range(0)),
-                                   [](TetherParams& p)
-                                   {
-                                     p.solver = SolverType::kLumpedMass;
-                                     p.noise = 0.0;
-                                     p.substeps = static_cast<int>(std::ceil(p.time_step / (0.9 * p.criticalStep())));
-                                   });
+                         [](TetherParams& p)
+                         {
+                           p.solver = SolverType::kLumpedMass;
+                           p.noise = 0.0;
+                           p.substeps = static_cast<int>(std::ceil(p.time_step / (0.9 * p.criticalStep())));
+                         });
   state.counters["substeps"] = sim.params().substeps;
   run(state, sim, 0.0);
+}
+
+/// direct: Newton with an exact tridiagonal solve, same cable, no bending stiffness (the paper's look).
+/// The counter is the Newton iterations of the last sub-step (it stops on solver_tolerance).
+void BM_StepDirect(benchmark::State& state)
+{
+  Tether sim = makeCable(static_cast<int>(state.range(0)), [](TetherParams& p) { p.solver = SolverType::kDirect; });
+  run(state, sim, 0.0);
+  state.counters["newton_iterations"] = sim.solverIterations();
+}
+
+/// direct with EI bending (banded system, half-bandwidth 10).
+void BM_StepDirectBending(benchmark::State& state)
+{
+  Tether sim = makeCable(static_cast<int>(state.range(0)),
+                         [](TetherParams& p)
+                         {
+                           p.solver = SolverType::kDirect;
+                           p.bending_stiffness = 0.01;
+                         });
+  run(state, sim, 0.0);
+  state.counters["newton_iterations"] = sim.solverIterations();
+}
+
+/// The direct solver's linear solves alone: the LDL^T sweep written in banded.cpp (Arg 0) against
+/// LAPACK's dpttrf/dpttrs (Arg 1), on an SPD tridiagonal system of a chain's size.
+void BM_TridiagonalSolve(benchmark::State& state)
+{
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool lapack = state.range(1) == 1;
+  state.SetLabel(lapack ? "LAPACK dpttrf/dpttrs" : "sweep (banded.cpp)");
+  std::vector<double> d0(n), e0(n), b0(n), d(n), e(n), b(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    d0[i] = 2.0 + 0.01 * static_cast<double>(i % 7);
+    e0[i] = -0.9 - 0.01 * static_cast<double>(i % 5);
+    b0[i] = std::sin(static_cast<double>(i));
+  }
+  for (auto _ : state)
+  {
+    d = d0, e = e0, b = b0;
+    const bool ok = lapack ? rov_tether::banded::solveTridiagonalLapack(d.data(), e.data(), b.data(), n)
+                           : rov_tether::banded::solveTridiagonalSweep(d.data(), e.data(), b.data(), n);
+    benchmark::DoNotOptimize(ok);
+    benchmark::DoNotOptimize(b.data());
+  }
+}
+
+/// The same for the banded system with bending (half-bandwidth 10, 4 rows per segment): the Cholesky
+/// written in banded.cpp (Arg 0) against LAPACK's dpbtrf/dpbtrs (Arg 1).
+void BM_BandedSolve(benchmark::State& state)
+{
+  const std::size_t kd = 10;
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool lapack = state.range(1) == 1;
+  state.SetLabel(lapack ? "LAPACK dpbtrf/dpbtrs" : "sweep (banded.cpp)");
+  std::vector<double> ab0((kd + 1) * n, 0.0), b0(n), ab, b;
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    ab0[j * (kd + 1)] = 12.0;  // diagonally dominant: 10 off-diagonals of at most 1 in absolute value
+    for (std::size_t r = 1; r <= kd && j + r < n; ++r)
+    {
+      ab0[r + j * (kd + 1)] = std::cos(static_cast<double>(j * 7 + r)) * 0.5;
+    }
+    b0[j] = std::sin(static_cast<double>(j));
+  }
+  for (auto _ : state)
+  {
+    ab = ab0, b = b0;
+    const bool ok = lapack ? rov_tether::banded::solveBandedLapack(ab.data(), kd, b.data(), n)
+                           : rov_tether::banded::solveBandedSweep(ab.data(), kd, b.data(), n);
+    benchmark::DoNotOptimize(ok);
+    benchmark::DoNotOptimize(b.data());
+  }
 }
 
 /// What a scene skips (README "Model no more than the scene needs"): 100 segments, pbd, each variant
@@ -108,33 +183,33 @@ void BM_Scene(benchmark::State& state)
                           "seabed 50 m below (contact loop)"};
   state.SetLabel(labels[variant]);
   Tether sim = makeCable(100,
-                                   [variant](TetherParams& p)
-                                   {
-                                     switch (variant)
-                                     {
-                                       case 1:
-                                         p.weight_in_water = 1e-9;
-                                         break;
-                                       case 2:
-                                         p.cable_length = 100.0;
-                                         break;
-                                       case 3:
-                                         p.current = {0.2, 0.0, 0.0};
-                                         break;
-                                       case 4:
-                                         p.current = {0.2, 0.0, 0.0};
-                                         p.current_variation = 0.1;
-                                         break;
-                                       case 5:
-                                         p.drag_model = DragModel::kMorison;
-                                         break;
-                                       case 6:
-                                         p.seabed_z = -50.0;
-                                         break;
-                                       default:
-                                         break;
-                                     }
-                                   });
+                         [variant](TetherParams& p)
+                         {
+                           switch (variant)
+                           {
+                             case 1:
+                               p.weight_in_water = 1e-9;
+                               break;
+                             case 2:
+                               p.cable_length = 100.0;
+                               break;
+                             case 3:
+                               p.current = {0.2, 0.0, 0.0};
+                               break;
+                             case 4:
+                               p.current = {0.2, 0.0, 0.0};
+                               p.current_variation = 0.1;
+                               break;
+                             case 5:
+                               p.drag_model = DragModel::kMorison;
+                               break;
+                             case 6:
+                               p.seabed_z = -50.0;
+                               break;
+                             default:
+                               break;
+                           }
+                         });
   run(state, sim, 0.0);
 }
 
@@ -145,6 +220,10 @@ BENCHMARK(BM_StepPbdSequential)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark
 BENCHMARK(BM_StepPbdNoBending)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepXpbd)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepLumpedMass)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepDirect)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepDirectBending)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TridiagonalSolve)->ArgsProduct({{100, 1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BandedSolve)->ArgsProduct({{400, 4000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scene)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

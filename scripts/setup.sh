@@ -9,7 +9,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/catkin_build}"
 # The first python3 on PATH may not be Debian's (and then lacks catkin_pkg): ROS tools use /usr/bin.
 export PATH="/usr/bin:/bin:$PATH"
 
-PACKAGES=(build-essential cmake catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev
+PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev liblapacke-dev
           libgtest-dev libbenchmark-dev
           ros-core-dev libroscpp-dev ros-message-generation python3-genmsg python3-gencpp libstd-msgs-dev
           libstd-srvs-dev python3-std-srvs libgeometry-msgs-dev python3-geometry-msgs libvisualization-msgs-dev

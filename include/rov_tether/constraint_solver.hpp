@@ -20,6 +20,7 @@ struct SolverSettings
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
+  double tolerance = 1e-8;       ///< direct: stop when every residual is below this x its length [-].
 
   /// The one place the settings are made from the parameters, for a (sub-)step of h [s].
   static SolverSettings from(const TetherParams& params, double h);
@@ -70,6 +71,11 @@ class ConstraintSolver
       contact->project(cable, cable.first + 1, free_end);
     }
   }
+  /// Iterations the last solve() used when the method stops on a tolerance (direct), else -1.
+  virtual int lastIterations() const { return -1; }
+  /// Largest relative constraint residual the last solve() stopped at when the method measures it
+  /// (direct), else NaN.
+  virtual double lastResidual() const { return std::numeric_limits<double>::quiet_NaN(); }
   /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
   virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
   const Multipliers& multipliers() const { return multipliers_; }

@@ -46,6 +46,7 @@ struct Result
   double shape_error = 0.0;      ///< Relative error of the case's shape measure (sag, period, ...) [-].
   double tension_error = 0.0;    ///< Relative error of the case's tension measure [-]; NaN when none.
   double cost = 0.0;             ///< CPU per simulated second [us/s].
+  int solver_iterations = -1;    ///< direct: the most Newton iterations any sub-step took; else -1.
   bool failed = false;           ///< The simulation reported a failure (blow-up), ended non-finite, or (statics)
                                  ///< was not at rest at the end.
   std::string label;             ///< "auto" for the automatic choice, else empty.

@@ -119,6 +119,12 @@ class Tether
   TetherSummary summary() const;
   /// The same from segment tensions the caller already computed (computeSegmentTensions).
   TetherSummary summarize(const std::vector<double>& tensions) const;
+  /// Iterations the solver took in the last sub-step when it stops on a tolerance (direct), else -1.
+  int solverIterations() const { return solver_->lastIterations(); }
+  /// The most iterations any sub-step took since construction or reset() (direct), else -1.
+  int maxSolverIterations() const { return max_solver_iterations_; }
+  /// Largest relative constraint residual the solver stopped at in the last sub-step (direct), else NaN.
+  double solverResidual() const { return solver_->lastResidual(); }
   /// Number of vehicle jumps handled by re-laying the cable.
   std::uint64_t jumpCount() const { return jumps_; }
   /// Number of failures detected (a non-finite state, or a lumped_mass strain blow-up beyond its
@@ -171,6 +177,7 @@ class Tether
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;
   std::uint64_t recoveries_ = 0;
+  int max_solver_iterations_ = -1;
   std::string last_failure_;
 };
 

@@ -17,8 +17,10 @@ enum class SolverType
   kPbdSequential,  ///< The paper's Figure 2 in its literal sequential order (reference, slower).
   kXpbd,           ///< Extended PBD: compliance from axial_stiffness and bending_stiffness, tension in newtons
                    ///< that does not depend on the iteration count or the step.
-  kLumpedMass      ///< Force-based chain: springs of stiffness EA / rest, explicit Verlet; stable only below
+  kLumpedMass,     ///< Force-based chain: springs of stiffness EA / rest, explicit Verlet; stable only below
                    ///< its critical step (criticalStep()); a blow-up is detected and reported.
+  kDirect          ///< Newton on all constraints with an exact (tridiagonal or banded) solve: the length and
+                   ///< tension are exact to solver_tolerance at any length; EI bending; no compression.
 };
 
 /// How the water resists the cable's motion.
@@ -72,6 +74,9 @@ struct TetherParams
   int iterations = 10;
   /// pbd: successive over-relaxation factor of each correction [-]; 1 = the paper's projection.
   double over_relaxation = 1.0;
+  /// direct: Newton stops when every constraint residual is below this times its segment length [-]
+  /// (`iterations` is then the most it may take).
+  double solver_tolerance = 1e-8;
   /// `iterations: auto`: resolved() chooses the effort from stretch_tolerance (pbd, xpbd: iterations; lumped_mass:
   /// substeps below half the critical step).
   bool iterations_auto = false;

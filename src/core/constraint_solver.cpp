@@ -1,5 +1,6 @@
 #include "rov_tether/constraint_solver.hpp"
 
+#include "rov_tether/direct_solver.hpp"
 #include "rov_tether/lumped_mass_solver.hpp"
 #include "rov_tether/pbd_solver.hpp"
 
@@ -15,6 +16,7 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.axial_stiffness = params.axial_stiffness;
   settings.bending_stiffness = params.bending_stiffness;
   settings.over_relaxation = params.over_relaxation;
+  settings.tolerance = params.solver_tolerance;
   return settings;
 }
 
@@ -28,6 +30,8 @@ std::unique_ptr<ConstraintSolver> makeSolver(SolverType type)
       return std::make_unique<PbdSolver>(true);
     case SolverType::kLumpedMass:
       return std::make_unique<LumpedMassSolver>();
+    case SolverType::kDirect:
+      return std::make_unique<DirectSolver>();
     default:
       return std::make_unique<PbdSolver>();
   }

@@ -362,6 +362,7 @@ void Tether::subStep(double h, double t, bool with_noise)
   }
   runWinch(h);
   solver_->solve(cable_, SolverSettings::from(params_, h), contacts_, freeEnd());
+  max_solver_iterations_ = std::max(max_solver_iterations_, solver_->lastIterations());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
   {
@@ -425,6 +426,7 @@ Status Tether::reset(double time)
   track_.detach();
   winches_.reset();
   noise_.reseed(params_.seed);
+  max_solver_iterations_ = -1;
   time_ = target_time_ = base_time_ = time;
   base_steps_ = steps_;
   layOut(params_.initial_deployed_length);

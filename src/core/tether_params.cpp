@@ -45,6 +45,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"substeps", &TetherParams::substeps},
       {"iterations", &TetherParams::iterations},
       {"over_relaxation", &TetherParams::over_relaxation},
+      {"solver_tolerance", &TetherParams::solver_tolerance},
       {"stretch_tolerance", &TetherParams::stretch_tolerance},
       {"bending", &TetherParams::bending},
       {"drag", &TetherParams::drag},
@@ -143,6 +144,7 @@ std::vector<std::string> TetherParams::validate() const
   checkRange(errors, "iterations", iterations, 1, 1000);
   checkRange(errors, "stretch_tolerance", stretch_tolerance, 0.0, 1.0, true);
   checkRange(errors, "over_relaxation", over_relaxation, 0.5, 1.95);
+  checkRange(errors, "solver_tolerance", solver_tolerance, 1.0e-14, 0.1);
   checkRange(errors, "drag", drag, 0.0, 1.0, true);
   checkRange(errors, "noise", noise, 0.0, 1.0);
   checkRange(errors, "seed", static_cast<double>(seed), 0.0, 9.0e15);
@@ -363,7 +365,7 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
           const auto* s = std::get_if<std::string>(&value);
           if (s == nullptr || !parseSolver(*s, &target))
           {
-            return "parameter 'solver': expected one of pbd, pbd_sequential, xpbd, lumped_mass";
+            return "parameter 'solver': expected one of pbd, pbd_sequential, xpbd, lumped_mass, direct";
           }
           return "";
         }
@@ -446,6 +448,8 @@ std::string toString(SolverType solver)
       return "pbd_sequential";
     case SolverType::kXpbd:
       return "xpbd";
+    case SolverType::kDirect:
+      return "direct";
     default:
       return "lumped_mass";
   }
@@ -482,7 +486,7 @@ std::string toString(WinchMode mode)
 bool parseSolver(const std::string& text, SolverType* solver)
 {
   for (SolverType candidate :
-       {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass})
+       {SolverType::kPbd, SolverType::kPbdSequential, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
   {
     if (text == toString(candidate))
     {

@@ -42,6 +42,7 @@ Result describe(const std::string& scenario, const TetherParams& p)
 void finish(Result& r, const Tether& sim, double cpu, double simulated)
 {
   r.cost = cpu / simulated * 1e6;
+  r.solver_iterations = sim.maxSolverIterations();
   r.failed = sim.recoveryCount() > 0 || !std::isfinite(r.shape_error);
   if (r.failed)
   {

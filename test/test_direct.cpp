@@ -1,0 +1,313 @@
+// The direct solver: exact length and tension at any length, no compression, EI bending, robustness.
+// Each bound says where it comes from; docs/references.md holds the reference values.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "rov_tether/direct_solver.hpp"
+#include "rov_tether/study.hpp"
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+TetherParams directParams()
+{
+  TetherParams p;
+  p.solver = SolverType::kDirect;
+  p.noise = 0.0;
+  return p;
+}
+
+// The reference catenaries (docs/references.md, "Statics"): sag within 0.5%, support tension within 1%,
+// with the default step, iterations and tolerance and 0.2 m segments. The large-strain case is 1 m long,
+// so 0.2 m is 5 segments and its sag misses the midpoint particle: 3.9% for every method alike (a
+// property of the 5-segment chain, not of the solver); it is checked at 0.1 m, where the chain's own
+// discretisation error is 0.37%. Newton must converge in at most 3 iterations in every sub-step.
+TEST(Direct, MatchesTheReferenceCatenaries)
+{
+  struct Row
+  {
+    const char* name;
+    double stiffness;  ///< EA [N]; the reference is the elastic catenary at this EA
+    double segment;    ///< [m]
+  };
+  for (const Row& row : {Row{"catenary_s8", 1e12, 0.2}, Row{"catenary_s8", 1e5, 0.2}, Row{"catenary_s8", 1e3, 0.2},
+                         Row{"catenary_ea100", 100.0, 0.2}, Row{"large_strain", 3.1416, 0.1}})
+  {
+    const study::Case& c = study::findCase(row.name);
+    const int segments = static_cast<int>(std::lround(c.base(10).cable_length / row.segment));
+    TetherParams p = c.base(segments);
+    p.solver = SolverType::kDirect;
+    p.axial_stiffness = row.stiffness;
+    const study::Result r = c.run(p);
+    std::printf(
+        "[ measured ] direct %-15s EA %-8g %3d segments: sag error %.4f%%, tension error %.4f%%, "
+        "at most %d Newton iterations\n",
+        row.name, row.stiffness, segments, 100 * r.shape_error, 100 * r.tension_error, r.solver_iterations);
+    EXPECT_FALSE(r.failed) << row.name;
+    EXPECT_LT(r.shape_error, 0.005) << row.name << " EA " << row.stiffness;
+    EXPECT_LT(r.tension_error, 0.01) << row.name << " EA " << row.stiffness;
+    EXPECT_LE(r.solver_iterations, 3) << row.name << " EA " << row.stiffness;
+    EXPECT_GE(r.solver_iterations, 1);
+  }
+}
+
+// A taut cable: the vehicle holds it 0.1% beyond its length (locked winch, EA = 1e5 N). Every segment's
+// length is its rest length times (1 + T / EA) to 1e-6 relative (the solver tolerance is 1e-8). With EA =
+// 1e12 (as good as inextensible; the vehicle then at 99.9% of the length, as no tension could hold it
+// further) every segment is at its rest length to 1e-6.
+TEST(Direct, TautSegmentsStretchByTOverEA)
+{
+  for (double stiffness : {1e5, 1e12})
+  {
+    TetherParams p = directParams();
+    p.winch_mode = WinchMode::kLocked;
+    p.initial_deployed_length = p.cable_length;
+    p.axial_stiffness = stiffness;
+    p.weight_in_water = 0.5;
+    const double distance = p.cable_length * (stiffness < 1e9 ? 1.001 : 0.999);
+    Tether sim(p, Position::Zero(), Position(distance, 0.0, 0.0));
+    sim.advance(2.0);
+    std::vector<double> tensions;
+    sim.computeSegmentTensions(tensions);
+    double worst = 0.0;
+    for (std::size_t k = 0; k < tensions.size(); ++k)
+    {
+      const double expected = tensions[k] / stiffness;  // strain T / EA
+      worst = std::max(worst, std::abs(sim.segmentStrain(k) - expected));
+    }
+    std::printf("[ measured ] taut at EA %g: worst |strain - T/EA| %.3g, end tension %.2f N\n", stiffness, worst,
+                tensions.back());
+    EXPECT_LT(worst, 1e-6) << "EA " << stiffness;
+    EXPECT_GT(tensions.back(), 0.0);
+  }
+}
+
+// 1 km hanging from its spool in 10,000 segments (w = 1 N/m, EA = 1e5 N, locked), at 20 ms steps with light
+// damping (drag 0.99: the axial mode, period 4 L / sqrt(EA / mu) = 12.6 s, decays as e^-0.5t, so it is
+// gone after 60 s; heavy damping would make the stretch creep in diffusively). At rest the top
+// segment carries the weight below its middle, w (L - dL / 2), i.e. the whole weight to 5e-5; the check is
+// 0.1%. The extension is w L^2 / (2 EA) = 5 m (a linear tension on a Hookean cable); checked within 1%.
+TEST(Direct, HangsOneKilometreInTenThousandSegments)
+{
+  TetherParams p = directParams();
+  p.cable_length = 1000.0;
+  p.segment_length = 0.1;
+  p.initial_deployed_length = p.cable_length;
+  p.min_deployed_length = 1.0;
+  p.winch_mode = WinchMode::kLocked;
+  p.weight_in_water = 1.0;
+  p.mass_per_length = 1.0;
+  p.axial_stiffness = 1e5;
+  p.time_step = 0.02;
+  p.drag = 0.99;
+  Tether sim(p, Position::Zero());
+  sim.advance(60.0);
+  const TetherSummary s = sim.summary();
+  const double weight = p.weight_in_water * p.cable_length;
+  const double extension = -sim.particle(sim.deployedParticleCount() - 1).z() - p.cable_length;
+  const double expected = p.weight_in_water * p.cable_length * p.cable_length / (2.0 * p.axial_stiffness);
+  std::printf(
+      "[ measured ] 1 km hanging: top tension %.3f N (weight %.1f N), extension %.4f m (w L^2 / 2EA = %.4f "
+      "m), at most %d Newton iterations\n",
+      s.tension_spool, weight, extension, expected, sim.maxSolverIterations());
+  EXPECT_NEAR(s.tension_spool, weight, 1e-3 * weight);
+  EXPECT_NEAR(extension, expected, 0.01 * expected);
+}
+
+// Step independence: a slow pull (0.1 m/s, quasi-static: inertia is negligible against weight and drag)
+// gives the same tension and shape at 5 ms and at 20 ms steps. Bounds: the quasi-static tension within 1%,
+// the shape within 1 cm RMS.
+TEST(Direct, SameMotionAtFiveAndTwentyMillisecondSteps)
+{
+  auto run = [](double step)
+  {
+    TetherParams p = directParams();
+    p.time_step = step;
+    p.winch_mode = WinchMode::kLocked;
+    p.initial_deployed_length = p.cable_length;
+    p.weight_in_water = 1.0;
+    p.mass_per_length = 0.5;
+    Tether sim(p, Position::Zero(), Position(8.0, 0.0, 0.0));
+    for (int k = 1; k <= 1000; ++k)
+    {
+      const double t = 0.01 * k;
+      EXPECT_TRUE(sim.addVehicleSample(t, Position(8.0 + 0.1 * std::min(t, 5.0), 0.0, -0.05 * std::min(t, 5.0))).ok);
+      if (k % 50 == 0)
+      {
+        sim.advanceTo(t - 0.5);
+      }
+    }
+    sim.advanceTo(9.5);
+    return sim;
+  };
+  const Tether fine = run(0.005);
+  const Tether coarse = run(0.02);
+  const double a = fine.summary().tension_vehicle;
+  const double b = coarse.summary().tension_vehicle;
+  const double shape = rmsDistance(positions(fine), positions(coarse));
+  std::printf("[ measured ] 5 ms vs 20 ms: vehicle tension %.4f / %.4f N, shape RMS %.2g m\n", a, b, shape);
+  EXPECT_NEAR(a, b, 0.01 * a);
+  EXPECT_LT(shape, 0.01);
+}
+
+// The hanging chain's first period (docs/references.md, "Hanging chain": T1 = 5.276 s for 10 m in air)
+// within 1%.
+TEST(Direct, HangingChainPeriod)
+{
+  const study::Case& c = study::findCase("hanging_chain");
+  TetherParams p = c.base(50);
+  p.solver = SolverType::kDirect;
+  const study::Result r = c.run(p);
+  std::printf("[ measured ] direct hanging chain, 50 segments: period error %.3f%%\n", 100 * r.shape_error);
+  EXPECT_LT(r.shape_error, 0.01);
+}
+
+// Abuse: the vehicle teleports 5 m in one step (not treated as a jump), then runs away at 10 m/s with the
+// winch locked, 3 m beyond the cable's length. Newton may not converge in such steps (it reports it), but
+// the cable stays finite and within reach of its ends (the ends are never further than 16 m from the
+// spool, the cable 10 m long and at most doubled in length before a failure would be reported).
+TEST(Direct, TeleportAndTenMetresPerSecondStayBounded)
+{
+  TetherParams p = directParams();
+  p.winch_mode = WinchMode::kLocked;
+  p.initial_deployed_length = p.cable_length;
+  p.max_vehicle_jump = 1e3;
+  Tether sim(p, Position::Zero(), Position(5.0, 0.0, 0.0));
+  sim.advance(1.0);
+  ASSERT_TRUE(sim.addVehicleSample(1.005, Position(5.0, 5.0, 0.0)).ok);  // 5 m in one 5 ms step
+  sim.advance(1.0);
+  for (int k = 1; k <= 30; ++k)  // then 14 m/s diagonally for 0.3 s
+  {
+    ASSERT_TRUE(sim.addVehicleSample(2.0 + 0.01 * k, Position(5.0 + 0.1 * k, 5.0 + 0.1 * k, 0.0)).ok);
+  }
+  double worst = 0.0;
+  for (int k = 0; k < 200; ++k)
+  {
+    sim.step();
+    worst = std::max(worst, sim.solverResidual());
+    for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
+    {
+      ASSERT_TRUE(sim.particle(i).allFinite());
+      ASSERT_LT(sim.particle(i).norm(), 16.0 + 20.0);
+    }
+  }
+  std::printf("[ measured ] teleport and 14 m/s: largest residual %.3g, recoveries %llu\n", worst,
+              static_cast<unsigned long long>(sim.recoveryCount()));
+}
+
+// A heavy clump at the end of a light chain: the last particle's mass is 1e4 times a segment's. The
+// solve is exact whatever the mass ratio: every segment at L (1 + T / EA) to 1e-6, and the top tension
+// carries the clump's weight (static, within 0.1%).
+TEST(Direct, TenThousandToOneMassRatio)
+{
+  const std::size_t n = 21;
+  Cable cable;
+  cable.resize(n);
+  const double dl = 0.1;
+  const double segment_mass = 0.01;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cable.place(i, Position(0.0, 0.0, -dl * static_cast<double>(i)));
+  }
+  std::fill(cable.rest.begin(), cable.rest.end(), dl);
+  cable.updateMasses(0, n - 1, segment_mass / dl, false);
+  cable.inv_mass[n - 1] = 1.0 / (1e4 * segment_mass);
+  cable.updateMasses(n - 2, n - 2, segment_mass / dl, false);  // weights next to the clump
+  cable.stretch_weight[n - 2] = 1.0 / (cable.inv_mass[n - 2] + cable.inv_mass[n - 1]);
+  DirectSolver solver;
+  solver.multipliers().resize(n);
+  SolverSettings settings;
+  settings.axial_stiffness = 1e5;
+  settings.bending = false;
+  const double g = 9.81;
+  const double h = settings.time_step;
+  for (int step = 0; step < 4000; ++step)
+  {
+    for (std::size_t i = 1; i < n; ++i)  // damped Verlet with gravity
+    {
+      const double z = cable.z[i];
+      cable.z[i] += 0.9 * (z - cable.pz[i]) - g * h * h;
+      cable.pz[i] = z;
+      cable.px[i] = cable.x[i], cable.py[i] = cable.y[i];
+    }
+    solver.solve(cable, settings, Contacts{}, n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ASSERT_TRUE(cable.position(i).allFinite());
+    }
+  }
+  const double top = solver.multipliers().stretch[0] / (h * h);
+  // The top segment holds particles 1 .. n-2 (a segment's mass each) and the clump.
+  const double weight = (1e4 * segment_mass + segment_mass * static_cast<double>(n - 2)) * g;
+  std::printf("[ measured ] 1e4:1 clump: top tension %.4f N (weight %.4f N), %d Newton iterations\n", top, weight,
+              solver.lastIterations());
+  EXPECT_NEAR(top, weight, 1e-3 * weight);
+  for (std::size_t j = 0; j + 1 < n; ++j)
+  {
+    const double tension = solver.multipliers().stretch[j] / (h * h);
+    EXPECT_NEAR(cable.strain(j), tension / settings.axial_stiffness, 1e-6) << j;
+  }
+}
+
+// Bending that is EI: a short clamped cable (the first two particles pinned) sags under its own weight
+// by w L^4 / (8 EI) at the tip (small deflection, 1% of L; Euler-Bernoulli cantilever), within 5%.
+TEST(Direct, CantileverTipDeflectionIsWL4Over8EI)
+{
+  // 1 clamp segment + 79 free of 0.05 m: L = 3.95 m. The discrete clamp acts half a segment further out
+  // (the first joint's bending compliance spans half of each neighbour), so the chain's own error is
+  // about (1 + dL / 2L)^4 - 1 = 2.5% here (5.2% at 40 segments, 10.8% at 20: first order).
+  const std::size_t segments = 80;
+  const std::size_t n = segments + 1;
+  const double dl = 4.0 / static_cast<double>(segments);
+  const double mu = 0.1;  // kg/m
+  const double g = 9.81;
+  const double length = dl * static_cast<double>(segments - 1);
+  const double w = mu * g;
+  const double ei = w * std::pow(length, 4) / (8.0 * 0.01 * length);  // a tip deflection of 1% of L
+  Cable cable;
+  cable.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cable.place(i, Position(dl * static_cast<double>(i), 0.0, 0.0));
+  }
+  std::fill(cable.rest.begin(), cable.rest.end(), dl);
+  cable.updateMasses(0, n - 1, mu, false);
+  cable.inv_mass[1] = 0.0;  // the clamp: particles 0 and 1 hold the first segment's direction
+  cable.stretch_weight[0] = 0.0;
+  cable.stretch_weight[1] = 1.0 / cable.inv_mass[2];
+  DirectSolver solver;
+  solver.multipliers().resize(n);
+  SolverSettings settings;
+  settings.axial_stiffness = 1e7;
+  settings.bending = true;
+  settings.bending_stiffness = ei;
+  settings.iterations = 20;
+  const double h = settings.time_step;
+  for (int step = 0; step < 6000; ++step)
+  {
+    for (std::size_t i = 2; i < n; ++i)
+    {
+      const double x = cable.x[i], z = cable.z[i];
+      cable.x[i] += 0.95 * (x - cable.px[i]);
+      cable.z[i] += 0.95 * (z - cable.pz[i]) - g * h * h;
+      cable.px[i] = x, cable.pz[i] = z;
+    }
+    solver.solve(cable, settings, Contacts{}, n);
+  }
+  const double tip = -cable.z[n - 1];
+  const double expected = w * std::pow(length, 4) / (8.0 * ei);
+  std::printf(
+      "[ measured ] cantilever L = %.1f m, EI = %.3g N m^2: tip deflection %.5f m, w L^4 / 8EI = %.5f m, "
+      "%d Newton iterations in the last step\n",
+      length, ei, tip, expected, solver.lastIterations());
+  EXPECT_NEAR(tip, expected, 0.05 * expected);
+}
+
+}  // namespace
+}  // namespace rov_tether::test
