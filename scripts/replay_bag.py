@@ -25,11 +25,17 @@ import xmlrpc.client
 import rosgraph
 import rospkg
 import rospy
+from rov_tether.msg import TetherState
 
 STARTUP_TIMEOUT = 60.0  # [s] for the recorder and the node to subscribe (a few seconds on a busy machine)
 QUIET = 0.5  # [s] without a new ~state after the bag ends: the node has published its last state
 QUIET_TIMEOUT = 10.0  # [s] the longest wait for that quiet
 STOP_TIMEOUT = 30.0  # [s] for rosbag record to close its bag after SIGINT
+INTERRUPT_GRACE = 2.0  # [s] between roslaunch stopping the node and this process on Ctrl-C (well under 1 s)
+
+
+class Interrupted(Exception):
+    """Ctrl-C during the replay."""
 
 
 def resolve(path, caller_cwd):
@@ -111,8 +117,6 @@ class Replay:
         output = resolve(self.output_arg, self.caller_cwd) if self.output_arg else default_output(bag)
         if output == bag:
             raise RuntimeError("output:=%s would overwrite the bag being played" % self.output_arg)
-        from rov_tether.msg import TetherState  # here: the message package is only needed for a replay
-
         rospy.Subscriber(self.node + "/state", TetherState, self.on_state, queue_size=10)
         if self.record:
             os.makedirs(os.path.dirname(output), exist_ok=True)
@@ -130,10 +134,18 @@ class Replay:
                       else "")
         player = subprocess.Popen(["rosbag", "play", "--quiet", "--clock", "-d", "1", "-r", str(self.rate), bag])
         self.children.append(player)
-        while player.poll() is None:
-            if not self.node_alive():
-                raise RuntimeError("%s stopped during the replay" % self.node)
+        while player.poll() is None and self.node_alive():
             time.sleep(0.2)
+        if player.poll() is None:
+            # The node has gone. On Ctrl-C roslaunch stops its nodes one after the other, so this process may
+            # hear of it a moment later: wait for that before calling it a failure.
+            end = time.monotonic() + INTERRUPT_GRACE
+            while not rospy.is_shutdown() and time.monotonic() < end:
+                time.sleep(0.05)
+        if rospy.is_shutdown():  # Ctrl-C: the player and the recorder (which closed its bag) have stopped
+            raise Interrupted("interrupted during the replay; the recording ends there")
+        if player.poll() is None:
+            raise RuntimeError("%s stopped during the replay" % self.node)
         if player.returncode != 0:
             raise RuntimeError("rosbag play exited with code %d" % player.returncode)
         # /clock stops with the bag, so the node publishes its last state at once; wait for it to arrive.
@@ -161,6 +173,8 @@ class Replay:
         """Stops what is left and the tether node, so the launch ends."""
         for child in self.children:
             self.stop(child)
+        if rospy.is_shutdown() or not self.node_alive():
+            return  # roslaunch is stopping everything, or the node has already gone
         try:
             # SIGINT, as Ctrl-C would: roscpp shuts down quietly (rosnode kill would log two warnings).
             pid = xmlrpc.client.ServerProxy(self.master.lookupNode(self.node)).getPid(rospy.get_name())[2]
@@ -175,6 +189,9 @@ def main():
     code = 0
     try:
         replay.run()
+    except Interrupted as e:
+        rospy.logwarn("replay: %s", e)
+        code = 1
     except (RuntimeError, ValueError) as e:
         rospy.logfatal("replay: %s", e)
         code = 1
