@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The speed-against-accuracy study and the stability map (README "Speed against accuracy"): runs every
-# reference case of REFERENCES.md for pbd, xpbd and lumped_mass at several resolutions and efforts,
+# reference case of docs/references.md for pbd, xpbd and lumped_mass at several resolutions and efforts,
 # writes docs/study.csv and docs/stability.csv and draws docs/speed_vs_accuracy.png and
 # docs/stability.png (python3-matplotlib, installed from Debian when missing). About 40 s on 2 cores.
 # Extra arguments go to rov_tether_study (--quick, --case NAME).

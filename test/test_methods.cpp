@@ -1,4 +1,4 @@
-// The methods behind the solver interface against REFERENCES.md: xpbd's accuracy and its stiffness
+// The methods behind the solver interface against docs/references.md: xpbd's accuracy and its stiffness
 // independent of the effort, lumped_mass's critical step, convergence in the number of segments, and
 // the cases where methods fail (a teleport, a 10 m/s pull).
 #include <cstdio>
@@ -22,7 +22,7 @@ TetherParams caseParams(const std::string& name, int segments, SolverType solver
   return p;
 }
 
-// Irvine's elastic catenary as solved by study::Catenary reproduces REFERENCES.md's rows.
+// Irvine's elastic catenary as solved by study::Catenary reproduces docs/references.md's rows.
 TEST(Reference, ElasticCatenaryRows)
 {
   struct Row
@@ -39,7 +39,7 @@ TEST(Reference, ElasticCatenaryRows)
     c.weight = row.weight;
     c.stiffness = row.stiffness;
     ASSERT_TRUE(c.solve(row.span));
-    // REFERENCES.md gives 4-6 significant digits (the large-strain row 4, with EA = 3.1416 for pi).
+    // docs/references.md gives 4-6 significant digits (the large-strain row 4, with EA = 3.1416 for pi).
     EXPECT_NEAR(c.horizontal, row.horizontal, 5e-4 * row.horizontal) << row.span << " " << row.stiffness;
     EXPECT_NEAR(c.sag(), row.sag, 5e-4 * row.sag);
     EXPECT_NEAR(c.maxTension(), row.max_tension, 5e-4 * row.max_tension);
@@ -68,7 +68,7 @@ TEST(Xpbd, MatchesTheElasticCatenaryAndTheLargeStrainCase)
   }
 }
 
-// Statics converge as 1/N^2 (REFERENCES.md): with xpbd on the EA = 100 N catenary the sag error falls
+// Statics converge as 1/N^2 (docs/references.md): with xpbd on the EA = 100 N catenary the sag error falls
 // about 4x per doubling of the segments (order 2 within 0.3).
 TEST(Xpbd, ConvergesAtSecondOrderInTheSegments)
 {
@@ -101,7 +101,7 @@ double hangingStretch(SolverType solver, int iterations, double time_step, doubl
   return meanStretch(sim);
 }
 
-// xpbd's stiffness is EA whatever the iteration count and the step; pbd's is not (REFERENCES.md "Where
+// xpbd's stiffness is EA whatever the iteration count and the step; pbd's is not (docs/references.md "Where
 // methods fail"). A hanging cable stretches by w L / (2 EA) on average: 5% at EA = 1e3 N, w = 9.81 N/m.
 TEST(Xpbd, StiffnessDoesNotDependOnIterationsOrStep)
 {
@@ -125,7 +125,7 @@ TEST(Xpbd, StiffnessDoesNotDependOnIterationsOrStep)
   EXPECT_GT(*high / *low, 10.0) << "pbd's residual stretch depends on iterations and step";
 }
 
-// Explicit lumped mass is stable below dL / sqrt(EA / mu) (REFERENCES.md: EA = 1e5 N, mu = 0.4 kg/m,
+// Explicit lumped mass is stable below dL / sqrt(EA / mu) (docs/references.md: EA = 1e5 N, mu = 0.4 kg/m,
 // dL = 0.5 m: 1.0 ms). Above it the blow-up is detected, reported and the cable re-laid, never published
 // as garbage; below it nothing is reported.
 TEST(LumpedMass, AboveTheCriticalStepTheBlowUpIsDetectedAndReported)
@@ -283,7 +283,7 @@ TEST(Stability, LumpedMassBoundaryIsTheExplicitLimit)
   }
 }
 
-// `segment_length: auto` follows REFERENCES.md "How fine a cable needs to be": for the S = 8 catenary
+// `segment_length: auto` follows docs/references.md "How fine a cable needs to be": for the S = 8 catenary
 // (a = H / w = 3.38 m) a chord error of 1 cm needs N >= 20 and 1 mm needs N >= 61. `iterations: auto`
 // meets its stretch tolerance on a hanging cable.
 TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)

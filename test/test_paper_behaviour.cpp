@@ -37,7 +37,7 @@ TEST(PaperFig4, LengthIsBetterKeptWithMoreIterations)
   EXPECT_GT(one, five);
   EXPECT_GT(five, ten);
   EXPECT_GT(ten, fifty);
-  // PBD stretch falls roughly as 1 / iterations (REFERENCES.md, "Where methods fail").
+  // PBD stretch falls roughly as 1 / iterations (docs/references.md, "Where methods fail").
   EXPECT_GT(one, 4.0 * ten);
   EXPECT_LT(ten, 0.02);  // the paper's setting keeps the cable within 2% of its length
 }
@@ -54,7 +54,7 @@ TEST(PaperFig4, RedBlackOrderConvergesLikeTheSequentialSweep)
   }
 }
 
-/// The paper's 2D experiment (REFERENCES.md) without noise, with the given drag.
+/// The paper's 2D experiment (docs/references.md) without noise, with the given drag.
 Scenario paper2d(double drag, double noise = 0.0)
 {
   Scenario scenario = shippedScenario("paper_2d_experiment");
@@ -158,7 +158,7 @@ TEST(Reproducibility, DifferentSeedsGiveDifferentRuns)
 }
 
 /// Shape of the paper's 2D experiment at time t for a given internal step, with 50 iterations and
-/// bending off so that PBD's own step-dependent stiffness (REFERENCES.md) stays out of the comparison.
+/// bending off so that PBD's own step-dependent stiffness (docs/references.md) stays out of the comparison.
 /// `naive` applies the paper's drag 0.9 per step whatever the step (eq. 6 taken literally).
 std::vector<Position> paper2dShape(double time_step, bool naive, double t)
 {

@@ -126,7 +126,7 @@ TEST(Params, EveryNameRoundTrips)
   EXPECT_THROW(getParameter(params, "nope"), std::out_of_range);
 }
 
-// REFERENCES.md "Linear damping": gamma = -ln(D)/dt. The paper's drag is defined at the 0.02 s step.
+// docs/references.md "Linear damping": gamma = -ln(D)/dt. The paper's drag is defined at the 0.02 s step.
 TEST(Params, DragIsARateAndNoiseScalesWithTheStep)
 {
   TetherParams params;
@@ -135,7 +135,7 @@ TEST(Params, DragIsARateAndNoiseScalesWithTheStep)
   EXPECT_NEAR(params.dampingRate(), 5.268, 1e-3);
   EXPECT_NEAR(params.dampingFactor(0.02), 0.9, 1e-12);
   EXPECT_NEAR(params.dampingFactor(0.01) * params.dampingFactor(0.01), 0.9, 1e-12);
-  // A per-frame 0.9 at 60 Hz (REFERENCES.md) is a rate of 6.32 1/s.
+  // A per-frame 0.9 at 60 Hz (docs/references.md) is a rate of 6.32 1/s.
   params.drag = std::pow(0.9, 0.02 * 60.0);
   EXPECT_NEAR(params.dampingRate(), 6.32, 0.01);
 

@@ -1,4 +1,4 @@
-// Statics against the catenary rows of REFERENCES.md ("Statics: the catenary").
+// Statics against the catenary rows of docs/references.md ("Statics: the catenary").
 #include <cstdio>
 
 #include "rov_tether/study.hpp"
@@ -52,8 +52,8 @@ struct Row
   double span, horizontal, sag, max_tension;
 };
 
-// Rows "S = 8/9/9.5, inextensible" of REFERENCES.md. With 20 segments the discrete chain's sag is
-// 0.13% above the continuum (REFERENCES.md) and pbd's residual stretch adds under 0.05% at 50 iterations,
+// Rows "S = 8/9/9.5, inextensible" of docs/references.md. With 20 segments the discrete chain's sag is
+// 0.13% above the continuum (docs/references.md) and pbd's residual stretch adds under 0.05% at 50 iterations,
 // so 0.5% bounds the sag; each segment's tension is compared with T(s) at its midpoint within 1%.
 TEST(Catenary, PbdMatchesTheInextensibleCatenary)
 {
@@ -80,7 +80,7 @@ TEST(Catenary, PbdMatchesTheInextensibleCatenary)
   }
 }
 
-// Statics converge as 1/N^2 (REFERENCES.md): the sag error shrinks about 4x per doubling and matches
+// Statics converge as 1/N^2 (docs/references.md): the sag error shrinks about 4x per doubling and matches
 // the published discrete-chain errors (+0.53%, +0.13%, +0.03%). pbd's residual stretch grows as N^2 /
 // iterations, so the iterations are raised until it is below the discretisation error.
 TEST(Catenary, SagConvergesWithResolution)
@@ -103,7 +103,7 @@ TEST(Catenary, SagConvergesWithResolution)
   }
 }
 
-// REFERENCES.md: the (i, i+2) bending constraint biases a catenary (N = 10, 50 iterations: sag 2.6395 m
+// docs/references.md: the (i, i+2) bending constraint biases a catenary (N = 10, 50 iterations: sag 2.6395 m
 // instead of the discrete 2.6686 m). Our bending constraints reproduce that bias.
 TEST(Catenary, BendingConstraintsBiasTheSagAsPublished)
 {

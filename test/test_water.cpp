@@ -1,4 +1,4 @@
-// The water: Morison drag (REFERENCES.md "Straight cable under axial drag"), added mass (the hanging
+// The water: Morison drag (docs/references.md "Straight cable under axial drag"), added mass (the hanging
 // chain's period in water), the current and its slow variation, the seabed, and what a scene skips.
 #include <cstdio>
 
@@ -116,7 +116,7 @@ double swingPeriod(double added_mass_coefficient)
   return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
 }
 
-// REFERENCES.md: in water replace g by w / (mu + C_a rho A). With C_a = 1 and d = 0.1 m the added
+// docs/references.md: in water replace g by w / (mu + C_a rho A). With C_a = 1 and d = 0.1 m the added
 // mass is 8.05 kg/m on 1 kg/m of cable, so the chain swings sqrt(9.05) = 3.0x slower.
 TEST(Morison, AddedMassSlowsTheHangingChainAsPublished)
 {

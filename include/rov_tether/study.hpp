@@ -1,5 +1,5 @@
 #pragma once
-// Reference cases of REFERENCES.md and the speed-against-accuracy study. ROS-free; used by the
+// Reference cases of docs/references.md and the speed-against-accuracy study. ROS-free; used by the
 // rov_tether_study tool (CSV for the charts) and by the tests that pin its findings.
 
 #include <functional>
@@ -12,7 +12,7 @@ namespace rov_tether::study
 {
 
 /**
- * Irvine's elastic catenary (REFERENCES.md "Statics"): end A at (0, 0), end B at (span, 0) (level
+ * Irvine's elastic catenary (docs/references.md "Statics"): end A at (0, 0), end B at (span, 0) (level
  * supports), unstretched length L, weight w per unstretched metre [N/m], axial stiffness EA [N]
  * (infinity: inextensible). Solved by Newton on H, V_A = -w L / 2.
  */
@@ -52,11 +52,11 @@ struct Result
   std::string label;             ///< "auto" for the automatic choice, else empty.
 };
 
-/// The cases, with their reference values (REFERENCES.md rows).
+/// The cases, with their reference values (docs/references.md rows).
 struct Case
 {
   std::string name;
-  std::string reference;  ///< The row of REFERENCES.md.
+  std::string reference;  ///< The row of docs/references.md.
   /// Runs the case with `params` (the method, resolution and effort; the case sets the physics).
   std::function<Result(TetherParams params)> run;
   /// Parameters of the case at resolution `segments` (the case's physics; method and effort default).

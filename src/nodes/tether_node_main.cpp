@@ -3,6 +3,7 @@
 // ~a/, ~b/, ... on top of the parameters they share in ~.
 #include <ros/ros.h>
 
+#include <cstdio>
 #include <memory>
 #include <vector>
 
@@ -10,6 +11,9 @@
 
 int main(int argc, char** argv)
 {
+  // Line-buffered stdout: ROS_INFO lines then appear as they are logged when stdout is a pipe (roslaunch
+  // output="screen" under a pipe, a log collector), not in one block at exit.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   ros::init(argc, argv, "tether_node");
   // Kept alive past a failed start: destroying the last NodeHandle shuts ROS (and its logging) down.
   ros::NodeHandle nh;

@@ -412,7 +412,7 @@ const Case& findCase(const std::string& name)
 
 StabilityPoint stability(SolverType method, double time_step, double stiffness, double speed, double over_relaxation)
 {
-  // REFERENCES.md "Where methods fail": dL = 0.5 m, mu = 0.4 kg/m. A vehicle 5 m out pulls away at
+  // docs/references.md "Where methods fail": dL = 0.5 m, mu = 0.4 kg/m. A vehicle 5 m out pulls away at
   // `speed` for 2 s; the passive winch pays out up to 20 m/s.
   TetherParams p;
   p.cable_length = 50.0;

@@ -100,7 +100,7 @@ void usage()
 {
   std::fprintf(stderr,
                "usage: rov_tether_study --out DIR [--quick] [--case NAME] [--no-stability]\n"
-               "  Runs the reference cases of REFERENCES.md for pbd, xpbd and lumped_mass at several\n"
+               "  Runs the reference cases of docs/references.md for pbd, xpbd and lumped_mass at several\n"
                "  resolutions and efforts; writes DIR/study.csv and DIR/stability.csv.\n");
 }
 

@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+"""Plays a recorded dive into tether_node and records the tether's state next to the poses; started by
+launch/replay.launch (see README, "Replaying your own dives").
+
+1. Resolves ~bag: `~` is the home directory, a relative path is relative to the directory roslaunch was
+   started in (roslaunch runs its nodes in ROS_HOME; its own working directory is read from /proc, else
+   ~caller_cwd, the launch's $PWD, is used). A missing bag is a clear error.
+2. With ~record, starts `rosbag record -O OUTPUT` on ~topics. OUTPUT is ~output resolved the same way, or,
+   when empty, $ROS_HOME/replay/<bag name>.tether.bag (ROS_HOME defaults to ~/.ros), never the source tree.
+3. Waits until the recorder and ~tether_node subscribe, then runs `rosbag play --clock -d 1 -r ~rate BAG`
+   (quiet: no progress line).
+4. When the bag has played and the node has gone quiet, stops the recorder (the bag is closed) and asks
+   ~tether_node to shut down (SIGINT), so every process of the launch ends and roslaunch exits by itself.
+
+Exits 1, after stopping the rest, when the bag is missing, the node or a rosbag process fails. roslaunch
+itself exits 0 whatever its nodes do; the last lines of its output say what happened.
+"""
+import os
+import signal
+import subprocess
+import sys
+import time
+import xmlrpc.client
+
+import rosgraph
+import rospkg
+import rospy
+from rov_tether.msg import TetherState
+
+STARTUP_TIMEOUT = 60.0  # [s] for the recorder and the node to subscribe (a few seconds on a busy machine)
+QUIET = 0.5  # [s] without a new ~state after the bag ends: the node has published its last state
+QUIET_TIMEOUT = 10.0  # [s] the longest wait for that quiet
+STOP_TIMEOUT = 30.0  # [s] for rosbag record to close its bag after SIGINT
+INTERRUPT_GRACE = 2.0  # [s] between roslaunch stopping the node and this process on Ctrl-C (well under 1 s)
+
+
+class Interrupted(Exception):
+    """Ctrl-C during the replay."""
+
+
+def resolve(path, caller_cwd):
+    """Absolute path of a path given on roslaunch's command line."""
+    path = os.path.expanduser(path)
+    if os.path.isabs(path):
+        return os.path.normpath(path)
+    if not caller_cwd:
+        raise ValueError("'%s' is relative and the caller's directory is unknown ($PWD is not set): "
+                         "give an absolute path" % path)
+    return os.path.normpath(os.path.join(caller_cwd, path))
+
+
+def caller_directory():
+    """The directory roslaunch was started in: the working directory of roslaunch, this node's parent
+    (roslaunch starts nodes in ROS_HOME but stays where it was started), else ~caller_cwd ($PWD)."""
+    try:
+        with open("/proc/%d/cmdline" % os.getppid(), "rb") as f:
+            if b"roslaunch" in f.read():
+                return os.readlink("/proc/%d/cwd" % os.getppid())
+    except OSError:
+        pass
+    return rospy.get_param("~caller_cwd", "")
+
+
+def default_output(bag):
+    """$ROS_HOME/replay/<bag name without .bag>.tether.bag"""
+    name = os.path.basename(bag)
+    if name.endswith(".bag"):
+        name = name[:-len(".bag")]
+    return os.path.join(rospkg.get_ros_home(), "replay", name + ".tether.bag")
+
+
+class Replay:
+    def __init__(self):
+        self.caller_cwd = caller_directory()
+        self.bag_arg = rospy.get_param("~bag")
+        self.rate = float(rospy.get_param("~rate", 1.0))
+        self.record = bool(rospy.get_param("~record", True))
+        self.output_arg = rospy.get_param("~output", "")
+        self.node = rospy.resolve_name(rospy.get_param("~tether_node", "/tether_node"))
+        self.pose_topic = rospy.resolve_name(rospy.get_param("~pose_topic", "/rov_pose"))
+        self.topics = [self.pose_topic, self.node + "/state", self.node + "/wrench"]
+        self.master = rosgraph.Master(rospy.get_name())
+        self.recorder_name = rospy.get_name() + "_recorder"  # in the namespace of this node, as rosbag is
+        self.last_state = time.monotonic()
+        self.children = []
+
+    def subscribed(self, node, topics):
+        """True when node subscribes to every topic in topics (as the master sees it)."""
+        _, subscriptions, _ = self.master.getSystemState()
+        subscribers = dict(subscriptions)
+        return all(node in subscribers.get(topic, []) for topic in topics)
+
+    def node_alive(self):
+        try:
+            self.master.lookupNode(self.node)
+            return True
+        except rosgraph.MasterError:
+            return False
+
+    def wait_until(self, condition, timeout, what):
+        end = time.monotonic() + timeout
+        while not condition():
+            if rospy.is_shutdown():
+                raise RuntimeError("shut down while waiting for %s" % what)
+            if time.monotonic() > end:
+                raise RuntimeError("%s did not happen within %.0f s" % (what, timeout))
+            time.sleep(0.05)
+
+    def on_state(self, _):
+        self.last_state = time.monotonic()
+
+    def run(self):
+        bag = resolve(self.bag_arg, self.caller_cwd)
+        if not os.path.isfile(bag):
+            raise RuntimeError("no bag at %s (bag:=%s, relative paths are relative to %s)"
+                               % (bag, self.bag_arg, self.caller_cwd or "nothing: $PWD is not set"))
+        output = resolve(self.output_arg, self.caller_cwd) if self.output_arg else default_output(bag)
+        if output == bag:
+            raise RuntimeError("output:=%s would overwrite the bag being played" % self.output_arg)
+        rospy.Subscriber(self.node + "/state", TetherState, self.on_state, queue_size=10)
+        if self.record:
+            os.makedirs(os.path.dirname(output), exist_ok=True)
+            recorder = subprocess.Popen(["rosbag", "record", "-O", output,
+                                         "__name:=" + self.recorder_name.rsplit("/", 1)[-1]]
+                                        + self.topics)
+            self.children.append(recorder)
+            self.wait_until(lambda: recorder.poll() is not None or self.subscribed(self.recorder_name, self.topics),
+                            STARTUP_TIMEOUT, "the recorder subscribing to " + ", ".join(self.topics))
+            if recorder.poll() is not None:
+                raise RuntimeError("rosbag record exited with code %d" % recorder.returncode)
+        self.wait_until(lambda: self.subscribed(self.node, [self.pose_topic]), STARTUP_TIMEOUT,
+                        "%s subscribing to %s" % (self.node, self.pose_topic))
+        rospy.loginfo("replay: playing %s at %gx%s", bag, self.rate, ", recording into " + output if self.record
+                      else "")
+        player = subprocess.Popen(["rosbag", "play", "--quiet", "--clock", "-d", "1", "-r", str(self.rate), bag])
+        self.children.append(player)
+        while player.poll() is None and self.node_alive():
+            time.sleep(0.2)
+        if player.poll() is None:
+            # The node has gone. On Ctrl-C roslaunch stops its nodes one after the other, so this process may
+            # hear of it a moment later: wait for that before calling it a failure.
+            end = time.monotonic() + INTERRUPT_GRACE
+            while not rospy.is_shutdown() and time.monotonic() < end:
+                time.sleep(0.05)
+        if rospy.is_shutdown():  # Ctrl-C: the player and the recorder (which closed its bag) have stopped
+            raise Interrupted("interrupted during the replay; the recording ends there")
+        if player.poll() is None:
+            raise RuntimeError("%s stopped during the replay" % self.node)
+        if player.returncode != 0:
+            raise RuntimeError("rosbag play exited with code %d" % player.returncode)
+        # /clock stops with the bag, so the node publishes its last state at once; wait for it to arrive.
+        self.wait_until(lambda: time.monotonic() - self.last_state > QUIET, QUIET_TIMEOUT,
+                        "%s/state going quiet" % self.node)
+        if self.record:
+            self.stop(recorder)
+            if recorder.returncode not in (0, -signal.SIGINT):
+                raise RuntimeError("rosbag record exited with code %d" % recorder.returncode)
+            rospy.loginfo("replay: done, recorded %s", output)
+        else:
+            rospy.loginfo("replay: done")
+
+    @staticmethod
+    def stop(process):
+        if process.poll() is None:
+            process.send_signal(signal.SIGINT)
+        try:
+            process.wait(timeout=STOP_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+    def finish(self):
+        """Stops what is left and the tether node, so the launch ends."""
+        for child in self.children:
+            self.stop(child)
+        if rospy.is_shutdown() or not self.node_alive():
+            return  # roslaunch is stopping everything, or the node has already gone
+        try:
+            # SIGINT, as Ctrl-C would: roscpp shuts down quietly (rosnode kill would log two warnings).
+            pid = xmlrpc.client.ServerProxy(self.master.lookupNode(self.node)).getPid(rospy.get_name())[2]
+            os.kill(pid, signal.SIGINT)
+        except (rosgraph.MasterError, OSError, xmlrpc.client.Error) as e:
+            rospy.logwarn("replay: could not stop %s (%s); stop the launch with Ctrl-C", self.node, e)
+
+
+def main():
+    rospy.init_node("replay")
+    replay = Replay()
+    code = 0
+    try:
+        replay.run()
+    except Interrupted as e:
+        rospy.logwarn("replay: %s", e)
+        code = 1
+    except (RuntimeError, ValueError) as e:
+        rospy.logfatal("replay: %s", e)
+        code = 1
+    finally:
+        replay.finish()
+    sys.exit(code)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""rostest (test/ros/launch_params.test): launch files start their nodes from a clean private namespace.
+
+On a master that is still running, tethers.launch leaves ~tethers and the per-tether maps behind, and an
+overrides file leaves its keys. The test puts exactly those on the master (what `tethers.launch` and
+`tether.launch overrides:=config/demo.yaml` load), plus a misspelt key, then starts a plain
+`roslaunch rov_tether tether.launch` against the same master. With clear_params="true" the node must
+simulate one tether (publishing ~state, not ~t0/state), with default.yaml's cable, and report no typo.
+
+A second launch checks that tether_node's start-up INFO line reaches a piped stdout while the node runs
+(stdout is line-buffered), not only at exit.
+"""
+import os
+import signal
+import subprocess
+import threading
+import time
+import unittest
+
+import rospkg
+import rospy
+import rostest
+import yaml
+
+from rov_tether.msg import TetherState
+
+NODE = "/tether_node"
+TIMEOUT = 30.0  # [s] start-up of roslaunch and the node; under 3 s on an idle machine
+
+
+class Output:
+    """Collects the lines of one pipe in a thread."""
+
+    def __init__(self, pipe):
+        self.lines = []
+        self.thread = threading.Thread(target=self._read, args=(pipe,), daemon=True)
+        self.thread.start()
+
+    def _read(self, pipe):
+        for line in iter(pipe.readline, ""):
+            self.lines.append(line)
+
+    def text(self):
+        return "".join(self.lines)
+
+
+def wait_for(condition, timeout):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return condition()
+
+
+class LaunchParams(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("launch_params_test")
+        cls.package = rospkg.RosPack().get_path("rov_tether")
+
+    def load(self, name):
+        with open(os.path.join(self.package, "config", name)) as f:
+            return yaml.safe_load(f)
+
+    def run_tether_launch(self):
+        """Runs `roslaunch rov_tether tether.launch` against this master with stdout and stderr piped, until
+        the node publishes ~state. Returns (the first state, the private parameters, the published topics,
+        whether the start-up INFO line was on stdout while the node ran, all output)."""
+        launch = subprocess.Popen(["roslaunch", "rov_tether", "tether.launch"], stdout=subprocess.PIPE,
+                                  stderr=subprocess.PIPE, text=True, start_new_session=True)
+        stdout, stderr = Output(launch.stdout), Output(launch.stderr)
+        try:
+            state = rospy.wait_for_message(NODE + "/state", TetherState, timeout=TIMEOUT)
+            # The INFO line is logged in the node's constructor, before the first ~state; 5 s is for the
+            # reader thread on a loaded machine.
+            started = wait_for(lambda: "m cable in" in stdout.text(), 5.0)
+            self.assertIsNone(launch.poll(), "the node is still running")
+            topics = [name for name, _ in rospy.get_published_topics()]
+            parameters = rospy.get_param(NODE)
+        finally:
+            os.killpg(launch.pid, signal.SIGINT)
+            try:
+                launch.wait(timeout=30.0)
+            except subprocess.TimeoutExpired:
+                os.killpg(launch.pid, signal.SIGKILL)
+                launch.wait()
+            stdout.thread.join(5.0)
+            stderr.thread.join(5.0)
+        return state, parameters, topics, started, stdout.text() + stderr.text()
+
+    def test_1_tether_launch_after_tethers_launch_starts_one_tether(self):
+        # What earlier launches left in ~: tethers.launch's list and maps, demo.yaml's overrides, a typo.
+        for key, value in self.load("eight_tethers.yaml").items():
+            rospy.set_param(NODE + "/" + key, value)
+        for key, value in self.load("demo.yaml").items():
+            rospy.set_param(NODE + "/" + key, value)
+        rospy.set_param(NODE + "/iteratoins", 3)
+        self.assertTrue(rospy.has_param(NODE + "/tethers"))
+
+        state, parameters, topics, _, output = self.run_tether_launch()
+        self.assertNotIn(NODE + "/t0/state", topics, "eight tethers were started")
+        self.assertNotIn("tethers", parameters)
+        self.assertNotIn("iteratoins", parameters)
+        # default.yaml's cable and node.yaml's attachment, not demo.yaml's 20 m cable and 0.3 m offset.
+        self.assertEqual(state.cable_length, self.load("default.yaml")["cable_length"])
+        self.assertEqual(parameters["cable_length"], self.load("default.yaml")["cable_length"])
+        self.assertEqual(parameters["attachment_offset"], self.load("node.yaml")["attachment_offset"])
+        self.assertNotIn("unknown parameters", output, "a leftover key was reported as a typo")
+
+    def test_2_startup_line_reaches_a_piped_stdout_while_the_node_runs(self):
+        _, _, _, started, output = self.run_tether_launch()
+        self.assertTrue(started, "start-up INFO line on the piped stdout while the node runs:\n" + output)
+
+if __name__ == "__main__":
+    rostest.rosrun("rov_tether", "launch_params", LaunchParams)

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""rostest (test/ros/replay_launch.test): `roslaunch rov_tether replay.launch` as the README shows it.
+
+1. Run from a scratch directory with a relative `bag:=` path to test/data/straight_excursion.bag, at 5x:
+   roslaunch ends by itself with exit code 0, every process "finished cleanly" (no "REQUIRED process ...
+   has died"), and the default output is $ROS_HOME/replay/straight_excursion.tether.bag, not next to the
+   bag in the source tree. The recorded bag holds every pose of the dive and ~state up to its end.
+2. A bag that does not exist: the launch ends by itself, naming the resolved path.
+"""
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import rosbag
+import rospkg
+import rostest
+import yaml
+
+PACKAGE = rospkg.RosPack().get_path("rov_tether")
+DATA = os.path.join(PACKAGE, "test", "data")
+BAG = "straight_excursion.bag"  # 50 s of poses at 20 Hz (scripts/make_test_bags.py)
+RATE = 5.0  # playback speed-up
+TIMEOUT = 180.0  # [s] for one replay; 50 s at 5x takes about 15 s
+
+
+class ReplayLaunch(unittest.TestCase):
+    def setUp(self):
+        self.scratch = tempfile.mkdtemp(prefix="replay_launch_")
+        # Deeper than ROS_HOME (where roslaunch runs its nodes), so the relative path means nothing there.
+        self.cwd = os.path.join(self.scratch, "dives", "today")
+        self.ros_home = os.path.join(self.scratch, "ros_home")
+        os.makedirs(self.cwd)
+
+    def tearDown(self):
+        shutil.rmtree(self.scratch, ignore_errors=True)
+
+    def roslaunch(self, *args):
+        """roslaunch rov_tether replay.launch ARGS from self.cwd, as a shell would start it."""
+        env = dict(os.environ, ROS_HOME=self.ros_home, PWD=self.cwd)
+        done = subprocess.run(["roslaunch", "rov_tether", "replay.launch"] + list(args), cwd=self.cwd, env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT)
+        return done.returncode, done.stdout
+
+    def test_1_relative_bag_replays_records_outside_the_source_tree_and_ends_cleanly(self):
+        data_before = sorted(os.listdir(DATA))
+        relative = os.path.relpath(os.path.join(DATA, BAG), self.cwd)
+        self.assertFalse(os.path.isabs(relative))
+        code, output = self.roslaunch("bag:=" + relative, "rate:=%g" % RATE)
+
+        self.assertEqual(code, 0, output)
+        self.assertNotIn("REQUIRED process", output)
+        self.assertNotIn("has died", output)
+        self.assertIn("all processes on machine have died, roslaunch will exit", output)  # it ended by itself
+        self.assertEqual(sorted(os.listdir(DATA)), data_before, "nothing written into test/data")
+        recorded = os.path.join(self.ros_home, "replay", "straight_excursion.tether.bag")
+        self.assertTrue(os.path.isfile(recorded), output)
+
+        with rosbag.Bag(os.path.join(DATA, BAG)) as bag:
+            played = [m.header.stamp.to_sec() for _, m, _ in bag.read_messages(["/rov_pose"])]
+        with rosbag.Bag(recorded) as bag:
+            poses = [m.header.stamp.to_sec() for _, m, _ in bag.read_messages(["/rov_pose"])]
+            states = [m.header.stamp.to_sec() for _, m, _ in bag.read_messages(["/tether_node/state"])]
+        self.assertEqual(len(poses), len(played), "the recorder was subscribed before the first pose")
+        # The last /clock rosbag play publishes may be one tick (100 Hz wall: RATE / 100 s of bag time) before
+        # the last pose; the physics timer (physics_rate) runs interpolation_delay behind that clock, and
+        # ~state is published on a grid of 1 / state_rate. So the last state is at most their sum before the
+        # last pose.
+        with open(os.path.join(PACKAGE, "config", "node.yaml")) as f:
+            node = yaml.safe_load(f)
+        lag = RATE / 100.0 + 1.0 / node["physics_rate"] + node["interpolation_delay"] + 1.0 / node["state_rate"]
+        print("[ measured ] %d poses and %d states recorded; last state %.3f s before the last pose (bound %.3f s)"
+              % (len(poses), len(states), played[-1] - states[-1], lag))
+        self.assertGreaterEqual(states[-1], played[-1] - lag)
+
+    def test_2_missing_bag_is_named(self):
+        code, output = self.roslaunch("bag:=no_such_dive.bag")
+        print("[ measured ] roslaunch exit code %d for a missing bag (roslaunch exits 0 whatever its nodes do)"
+              % code)
+        self.assertIn("no bag at %s" % os.path.join(self.cwd, "no_such_dive.bag"), output)
+        self.assertIn("all processes on machine have died, roslaunch will exit", output)
+        self.assertFalse(os.path.exists(os.path.join(self.ros_home, "replay")), "nothing recorded")
+
+
+if __name__ == "__main__":
+    rostest.rosrun("rov_tether", "replay_launch", ReplayLaunch)
