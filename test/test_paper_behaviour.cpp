@@ -221,7 +221,7 @@ TEST(StepIndependence, HeavyCableSwingsTheSameAtDifferentSteps)
 
 /// Mean squared displacement of the free particles of a floating cable over `duration` under noise
 /// alone, averaged over seeds [m^2].
-double noiseSpread(double time_step, double duration)
+double noiseSpread(double time_step, double duration, int substeps = 1)
 {
   double sum = 0.0;
   int count = 0;
@@ -229,6 +229,7 @@ double noiseSpread(double time_step, double duration)
   {
     TetherParams params;
     params.time_step = time_step;
+    params.substeps = substeps;
     params.seed = seed;
     params.noise = 0.002;
     params.bending = false;
@@ -256,6 +257,21 @@ TEST(StepIndependence, NoiseSpreadDoesNotDependOnTheStep)
               fine / coarse);
   EXPECT_GT(fine / coarse, 0.6);
   EXPECT_LT(fine / coarse, 1.6);
+}
+
+// Sub-steps are steps too: the noise is added in every sub-step with that sub-step's amplitude, so the
+// spread does not grow with `substeps` (it grew 3.2x, 12x and 24x at 2, 4 and 8 sub-steps when the whole
+// step's noise went into one sub-step). Same statistical band as the test above (8 seeds).
+TEST(StepIndependence, NoiseSpreadDoesNotDependOnTheSubsteps)
+{
+  const double one = noiseSpread(0.02, 5.0, 1);
+  for (int substeps : {2, 4, 8})
+  {
+    const double many = noiseSpread(0.02, 5.0, substeps);
+    std::printf("[ measured ] noise spread over 5 s at 20 ms: %d sub-steps / 1 = %.2f\n", substeps, many / one);
+    EXPECT_GT(many / one, 0.6) << substeps;
+    EXPECT_LT(many / one, 1.6) << substeps;
+  }
 }
 
 }  // namespace

@@ -151,7 +151,7 @@ class Tether
   /// Deployed length to lay the cable out with when the vehicle appears at `vehicle` (attach, jump):
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
-  void subStep(double h, double t, bool with_noise);
+  void subStep(double h, double t);
   void fail(const std::string& why);
   void runWinch(double dt);
   bool stateFinite() const;

@@ -329,7 +329,7 @@ void Tether::step()
   const std::uint64_t failures = recoveries_;
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
-    subStep(h, k == substeps ? next_time : next_time - dt + k * h, k == 1);
+    subStep(h, k == substeps ? next_time : next_time - dt + k * h);
   }
   last_step_ = h;
   ++steps_;
@@ -340,7 +340,7 @@ void Tether::step()
   }
 }
 
-void Tether::subStep(double h, double t, bool with_noise)
+void Tether::subStep(double h, double t)
 {
   const std::size_t n = cable_.size();
   cable_.place(cable_.first, spool_.outlet());
@@ -352,10 +352,8 @@ void Tether::subStep(double h, double t, bool with_noise)
   {
     drag_->integrate(cable_, cable_.first + 1, freeEnd(), h, t, params_, current_);
   }
-  if (with_noise)
-  {
-    noise_.apply(cable_, freeEnd(), params_.noiseAmplitude(params_.time_step));
-  }
+  // Every sub-step gets the noise of its own length, so the spread does not depend on `substeps`.
+  noise_.apply(cable_, freeEnd(), params_.noiseAmplitude(h));
   if (track_.attached())
   {
     cable_.place(n - 1, track_.position());
