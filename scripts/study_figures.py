@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = {"pbd": "tab:blue", "pbd, over-relaxation 1.8": "tab:purple", "xpbd": "tab:green",
-           "lumped_mass": "tab:red"}
+           "lumped_mass": "tab:red", "direct": "black"}
 
 
 CEILING = 10.0  # errors at or above this (1000%) are drawn as failures on the top line

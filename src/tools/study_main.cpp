@@ -78,6 +78,13 @@ std::vector<Effort> efforts(SolverType method, bool quick)
         }
       }
       break;
+    case SolverType::kDirect:
+      // Newton stops on solver_tolerance; `iterations` only caps it. The step is the effort knob.
+      for (double dt : steps)
+      {
+        out.push_back({1, 10, 0.0, dt, 1.0});
+      }
+      break;
     default:
       // The step does not matter: the sub-step is a fraction of the critical step.
       for (double fraction : quick ? std::vector<double>{0.5} : std::vector<double>{0.9, 0.5, 0.2})
@@ -100,7 +107,7 @@ void usage()
 {
   std::fprintf(stderr,
                "usage: rov_tether_study --out DIR [--quick] [--case NAME] [--no-stability]\n"
-               "  Runs the reference cases of docs/references.md for pbd, xpbd and lumped_mass at several\n"
+               "  Runs the reference cases of docs/references.md for pbd, xpbd, lumped_mass and direct at several\n"
                "  resolutions and efforts; writes DIR/study.csv and DIR/stability.csv.\n");
 }
 
@@ -164,7 +171,7 @@ int main(int argc, char** argv)
       continue;
     }
     std::printf("== %s (%s)\n", c.name.c_str(), c.reference.c_str());
-    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
     {
       for (int segments : resolutions(c.name, quick))
       {
@@ -245,7 +252,7 @@ int main(int argc, char** argv)
     for (double stiffness : quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
     {
       std::map<std::string, Result> best;
-      for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+      for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
       {
         for (int segments : {10, 20})
         {
@@ -280,6 +287,14 @@ int main(int argc, char** argv)
           }
         }
       }
+      if (best.count("direct") && best.count("lumped_mass") && best.count("xpbd"))
+      {
+        std::printf(
+            "goal, catenary S = 8 at EA = %.0e N: cheapest direct %.0f us/s (%d segments, dt %g s): "
+            "lumped_mass / direct = %.1f, xpbd / direct = %.1f\n",
+            stiffness, best["direct"].cost, best["direct"].segments, best["direct"].time_step,
+            best["lumped_mass"].cost / best["direct"].cost, best["xpbd"].cost / best["direct"].cost);
+      }
       if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
       {
         std::printf(
@@ -312,9 +327,9 @@ int main(int argc, char** argv)
         quick ? std::vector<double>{1e3, 1e5} : std::vector<double>{1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
     const std::vector<double> speeds =
         quick ? std::vector<double>{1.0, 10.0} : std::vector<double>{0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
-    int bounded[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+    int bounded[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
     int index = 0;
-    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass})
+    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
     {
       for (double dt : steps)
       {
