@@ -150,6 +150,27 @@ std::vector<std::string> readLines(const fs::path& path)
   return lines;
 }
 
+// The summary states what ran: `segment_length: auto` as the length it chose (chords of 1 cm on a 2 m
+// radius allow sqrt(8 x 2 x 0.01) = 0.4 m, and 40 m is 100 of them), not the 0.1 m default it replaced.
+TEST(Runner, SummaryShowsWhatAutoChose)
+{
+  const std::string dir = temporaryDirectory("auto");
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::ofstream(scenario_path) << "params: {cable_length: 40.0, segment_length: auto, shape_tolerance: 0.01, "
+                                  "min_bend_radius: 2.0, initial_deployed_length: 10.0}\n"
+                                  "spool: [0, 0, 0]\nduration: 0.1\n";
+  const std::string out = dir + "_summary.txt";
+  const std::string command =
+      std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir + " > " + out + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::string text;
+  for (const std::string& line : readLines(out))
+  {
+    text += line + "\n";
+  }
+  EXPECT_NE(text.find("segment 0.4 m"), std::string::npos) << text;
+}
+
 TEST(Runner, WritesStateAndShapeCsv)
 {
   const std::string dir = temporaryDirectory("good");

@@ -167,6 +167,36 @@ bool sameStructure(const TetherParams& a, const TetherParams& b);
 /// A parameter value from any source (YAML, parameter server, command line).
 using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
 
+/**
+ * One row of the parameter table, the single source of every parameter's name, type, unit, default, range
+ * and meaning. validate() takes each field's range from it; `cfg/Tether.cfg` (dynamic_reconfigure),
+ * `config/default.yaml` and the README's parameter table must agree with it, and
+ * `ParamTable.*` tests fail when any of them differs.
+ */
+struct ParameterInfo
+{
+  std::string name;
+  std::string type;  ///< As documented: "double", "int", "bool", "string", "double[3]", "double or auto", ...
+  std::string unit;  ///< "-" when dimensionless.
+  double min;        ///< Range of the value (each component of a vector) [unit]; NaN: none (bool, string).
+  double max;
+  bool min_open;  ///< The bound itself is excluded.
+  bool max_open;
+  std::string range;    ///< How the README states the range when it is not [min, max] (relations, choices).
+  std::string meaning;  ///< One line for the README.
+  bool live;            ///< Tunable while running (dynamic_reconfigure, cfg/Tether.cfg).
+};
+
+/// The parameter table, in documentation order.
+const std::vector<ParameterInfo>& parameterInfo();
+
+/// The README's parameter table (header and one row per parameter), generated from parameterInfo() and
+/// the defaults of TetherParams.
+std::string parameterTableMarkdown();
+
+/// A value as the README and default.yaml write it (numbers in %g, lists in brackets, NaN as .nan).
+std::string formatParamValue(const ParamValue& value);
+
 /// Names of all parameters, in documentation order.
 const std::vector<std::string>& parameterNames();
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -76,6 +77,90 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
   return table;
 }
 
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+constexpr bool kOpen = true;
+constexpr bool kClosed = false;
+constexpr bool kLive = true;
+constexpr bool kAtStart = false;
+
+}  // namespace
+
+const std::vector<ParameterInfo>& parameterInfo()
+{
+  // name, type, unit, min, max, min open, max open, range as the README states it (when not [min, max]),
+  // meaning, live (dynamic_reconfigure). Order: documentation order, as parameterTable().
+  static const std::vector<ParameterInfo> table = {
+      {"cable_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "", "all cable, on the spool or deployed", kAtStart},
+      {"segment_length", "double or `auto`", "m", 1e-3, 100.0, kClosed, kClosed, "", "rest length of one segment",
+       kAtStart},
+      {"shape_tolerance", "double", "m", 0.0, 100.0, kOpen, kClosed, "",
+       "`segment_length: auto`: chord error per segment", kAtStart},
+      {"min_bend_radius", "double", "m", 0.0, 1e6, kOpen, kClosed, "",
+       "`segment_length: auto`: the scene's tightest radius", kAtStart},
+      {"initial_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[min_deployed_length, cable_length]",
+       "deployed at start and after a reset", kAtStart},
+      {"time_step", "double", "s", 1e-5, 0.1, kClosed, kClosed, "", "internal fixed step", kLive},
+      {"solver", "string", "-", kNone, kNone, kClosed, kClosed,
+       "`pbd`, `pbd_sequential`, `xpbd`, `lumped_mass`, `direct`", "method (see The model)", kLive},
+      {"substeps", "int", "-", 1, 10000, kClosed, kClosed, "", "sub-steps per `time_step`", kLive},
+      {"iterations", "int or `auto`", "-", 1, 1000, kClosed, kClosed, "",
+       "constraint sweeps per sub-step (`direct`: the most Newton iterations)", kLive},
+      {"over_relaxation", "double", "-", 0.5, 1.95, kClosed, kClosed, "",
+       "`pbd`: each correction times this; 1 = the paper's", kLive},
+      {"solver_tolerance", "double", "-", 1e-14, 0.1, kClosed, kClosed, "",
+       "`direct`: Newton stops when every residual is below this x its segment length", kLive},
+      {"stretch_tolerance", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "`iterations: auto`: residual stretch aimed for", kAtStart},
+      {"bending", "bool", "-", kNone, kNone, kClosed, kClosed, "", "the paper's (i, i+2) bending constraints", kLive},
+      {"drag", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "velocity kept per 0.02 s reference step (rate `-ln(drag)/0.02` 1/s)", kLive},
+      {"noise", "double", "m", 0.0, 1.0, kClosed, kClosed, "",
+       "random displacement half-width per axis per 0.02 s reference step", kLive},
+      {"seed", "int", "-", 0.0, 9e15, kClosed, kClosed, "", "noise seed; same seed, same run", kAtStart},
+      {"weight_in_water", "double", "N/m", -1e4, 1e4, kClosed, kClosed, "",
+       "net weight, positive sinks, 0 neutrally buoyant", kLive},
+      {"mass_per_length", "double", "kg/m", 0.0, 1e4, kOpen, kClosed, "", "mass, for weight and tension", kLive},
+      {"axial_stiffness", "double", "N", 0.0, 1e12, kOpen, kClosed, "",
+       "EA: `xpbd`, `lumped_mass`, `direct` stiffness; `pbd`: only the scale of T/EA", kLive},
+      {"bending_stiffness", "double", "N m^2", 0.0, 1e9, kClosed, kClosed, "",
+       "EI of `xpbd`'s and `direct`'s bending; 0 = none", kLive},
+      {"drag_model", "string", "-", kNone, kNone, kClosed, kClosed, "`damping`, `morison`",
+       "the paper's damping or Morison drag", kLive},
+      {"diameter", "double", "m", 0.0, 10.0, kOpen, kClosed, "", "outer diameter (Morison, added mass)", kAtStart},
+      {"water_density", "double", "kg/m^3", 0.0, 1e5, kClosed, kClosed, "", "density of the water", kAtStart},
+      {"normal_drag_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "", "Morison, flow across the cable",
+       kLive},
+      {"tangential_drag_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "Morison, flow along the cable (area pi d)", kLive},
+      {"added_mass_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "Morison: added mass C_a rho pi d^2 / 4 per metre", kLive},
+      {"current", "double[3]", "m/s", -100.0, 100.0, kClosed, kClosed, "each in [-100, 100]",
+       "uniform water velocity, world frame", kAtStart},
+      {"current_variation", "double", "m/s", 0.0, 100.0, kClosed, kClosed, "", "RMS of the slow, correlated variation",
+       kLive},
+      {"seabed_z", "double", "m", -1e5, 1e5, kClosed, kClosed, "[-1e5, 1e5] or absent (.nan)",
+       "height of a flat seabed", kAtStart},
+      {"seabed_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "", "Coulomb friction on the seabed", kLive},
+      {"winch_mode", "string", "-", kNone, kNone, kClosed, kClosed, "`passive`, `locked`, `speed`", "winch behaviour",
+       kLive},
+      {"winch_speed", "double", "m/s", -20.0, 20.0, kClosed, kClosed, "[-max_winch_speed, max_winch_speed]",
+       "`speed` mode command, positive pays out", kLive},
+      {"max_winch_speed", "double", "m/s", 0.0, 20.0, kOpen, kClosed, "", "limit in every mode", kLive},
+      {"payout_threshold", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "first-segment strain that starts a passive pay-out", kLive},
+      {"reel_in_slack", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "passive reel-in above (1 + this) x spool-vehicle distance", kLive},
+      {"min_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[segment_length, cable_length]",
+       "never reel in below this", kAtStart},
+      {"max_vehicle_jump", "double", "m", 0.0, 1e4, kOpen, kClosed, "",
+       "a larger step between vehicle samples is a jump", kLive},
+  };
+  return table;
+}
+
+namespace
+{
+
 const Member* findMember(const std::string& name)
 {
   for (const auto& entry : parameterTable())
@@ -129,50 +214,54 @@ void checkRange(std::vector<std::string>& errors, const std::string& name, doubl
   errors.push_back(out.str());
 }
 
+/// The numeric value(s) of a parameter's field as doubles (three for a vector), whatever its `auto` flag.
+std::vector<double> numericValues(const TetherParams& params, const std::string& name)
+{
+  const Member* member = findMember(name);
+  return std::visit(
+      [&params](auto field) -> std::vector<double>
+      {
+        const auto& value = params.*field;
+        using Field = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<Field, Vector3>)
+        {
+          return {value[0], value[1], value[2]};
+        }
+        else if constexpr (std::is_arithmetic_v<Field>)
+        {
+          return {static_cast<double>(value)};
+        }
+        else
+        {
+          return {};
+        }
+      },
+      *member);
+}
+
 }  // namespace
 
 std::vector<std::string> TetherParams::validate() const
 {
   std::vector<std::string> errors;
-  checkRange(errors, "cable_length", cable_length, 0.0, 1.0e5, true);
-  checkRange(errors, "segment_length", segment_length, 1.0e-3, 100.0);
-  checkRange(errors, "initial_deployed_length", initial_deployed_length, 0.0, 1.0e5, true);
-  checkRange(errors, "time_step", time_step, 1.0e-5, 0.1);
-  checkRange(errors, "shape_tolerance", shape_tolerance, 0.0, 100.0, true);
-  checkRange(errors, "min_bend_radius", min_bend_radius, 0.0, 1.0e6, true);
-  checkRange(errors, "substeps", substeps, 1, 10000);
-  checkRange(errors, "iterations", iterations, 1, 1000);
-  checkRange(errors, "stretch_tolerance", stretch_tolerance, 0.0, 1.0, true);
-  checkRange(errors, "over_relaxation", over_relaxation, 0.5, 1.95);
-  checkRange(errors, "solver_tolerance", solver_tolerance, 1.0e-14, 0.1);
-  checkRange(errors, "drag", drag, 0.0, 1.0, true);
-  checkRange(errors, "noise", noise, 0.0, 1.0);
-  checkRange(errors, "seed", static_cast<double>(seed), 0.0, 9.0e15);
-  checkRange(errors, "weight_in_water", weight_in_water, -1.0e4, 1.0e4);
-  checkRange(errors, "mass_per_length", mass_per_length, 0.0, 1.0e4, true);
-  checkRange(errors, "axial_stiffness", axial_stiffness, 0.0, 1.0e12, true);
-  checkRange(errors, "bending_stiffness", bending_stiffness, 0.0, 1.0e9);
-  checkRange(errors, "diameter", diameter, 0.0, 10.0, true);
-  checkRange(errors, "water_density", water_density, 0.0, 1.0e5);
-  checkRange(errors, "normal_drag_coefficient", normal_drag_coefficient, 0.0, 100.0);
-  checkRange(errors, "tangential_drag_coefficient", tangential_drag_coefficient, 0.0, 100.0);
-  checkRange(errors, "added_mass_coefficient", added_mass_coefficient, 0.0, 100.0);
-  for (std::size_t axis = 0; axis < 3; ++axis)
+  // Each field's own range, from the parameter table (the README, default.yaml and the .cfg agree with it).
+  for (const ParameterInfo& info : parameterInfo())
   {
-    checkRange(errors, std::string("current[") + "xyz"[axis] + "]", current[axis], -100.0, 100.0);
+    if (std::isnan(info.min))
+    {
+      continue;  // a choice or a flag: its parser checks it
+    }
+    const std::vector<double> values = numericValues(*this, info.name);
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      if (info.name == "seabed_z" && std::isnan(values[k]))
+      {
+        continue;  // absent: no seabed
+      }
+      const std::string label = values.size() == 1 ? info.name : info.name + "[" + std::string(1, "xyz"[k % 3]) + "]";
+      checkRange(errors, label, values[k], info.min, info.max, info.min_open, info.max_open);
+    }
   }
-  checkRange(errors, "current_variation", current_variation, 0.0, 100.0);
-  if (!std::isnan(seabed_z))
-  {
-    checkRange(errors, "seabed_z", seabed_z, -1.0e5, 1.0e5);
-  }
-  checkRange(errors, "seabed_friction", seabed_friction, 0.0, 10.0);
-  checkRange(errors, "max_winch_speed", max_winch_speed, 0.0, 20.0, true);
-  checkRange(errors, "winch_speed", winch_speed, -20.0, 20.0);
-  checkRange(errors, "payout_threshold", payout_threshold, 0.0, 1.0, true);
-  checkRange(errors, "reel_in_slack", reel_in_slack, 0.0, 100.0);
-  checkRange(errors, "min_deployed_length", min_deployed_length, 0.0, 1.0e5, true);
-  checkRange(errors, "max_vehicle_jump", max_vehicle_jump, 0.0, 1.0e4, true);
   if (!errors.empty())
   {
     return errors;  // relations between fields are only meaningful when each field is sane
@@ -233,7 +322,8 @@ TetherParams TetherParams::resolved() const
   TetherParams r = *this;
   if (segment_length_auto)
   {
-    // Chord error of a segment dL on a curve of radius R: dL^2 / (8 R) (REFERENCES.md); whole segments.
+    // Chord error of a segment dL on a curve of radius R: dL^2 / (8 R) (docs/references.md "How fine a cable needs to
+    // be"); whole segments.
     const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
     const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
     r.segment_length = std::max(cable_length / count, 1.0e-3);
@@ -248,7 +338,7 @@ TetherParams TetherParams::resolved() const
     }
     else
     {
-      // Residual stretch of a hanging PBD chain: about L a h^2 / (2 n dL^2) (REFERENCES.md, N^2 g dt^2 /
+      // Residual stretch of a hanging PBD chain: about L a h^2 / (2 n dL^2) (docs/references.md, N^2 g dt^2 /
       // (2 n L) with N = L / dL), a the weight's acceleration, at least 1 m/s^2 for the vehicle's pull.
       const double accel = std::max(std::abs(weight_in_water) / effectiveMassPerLength(), 1.0);
       const double h = r.subStep();
@@ -508,6 +598,108 @@ bool parseWinchMode(const std::string& text, WinchMode* mode)
     }
   }
   return false;
+}
+
+}  // namespace rov_tether
+
+namespace rov_tether
+{
+namespace
+{
+
+/// %g, with exponents written short (1e-08 -> 1e-8, 1e+05 -> 1e5) and a whole double keeping ".0".
+std::string formatNumber(double value, bool integer)
+{
+  if (std::isnan(value))
+  {
+    return ".nan";
+  }
+  const double exponent10 = value != 0.0 ? std::log10(std::abs(value)) : 0.0;
+  if (value != 0.0 && std::abs(exponent10) >= 4.0 && exponent10 == std::round(exponent10))
+  {
+    return std::string(value < 0.0 ? "-" : "") + "1e" + std::to_string(static_cast<int>(exponent10));
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  std::string text = buffer;
+  const auto e = text.find('e');
+  if (e != std::string::npos)
+  {
+    std::string mantissa = text.substr(0, e);
+    std::string exponent = text.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    exponent = exponent.substr(1);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    return mantissa + "e" + (negative ? "-" : "") + exponent;
+  }
+  if (!integer && text.find('.') == std::string::npos && std::abs(value) < 1e4)
+  {
+    text += ".0";
+  }
+  return text;
+}
+
+std::string formatRange(const ParameterInfo& info)
+{
+  if (!info.range.empty())
+  {
+    return info.range;
+  }
+  if (std::isnan(info.min))
+  {
+    return "";
+  }
+  const bool integer = info.type.rfind("int", 0) == 0;
+  return std::string(info.min_open ? "(" : "[") + formatNumber(info.min, integer) + ", " +
+         formatNumber(info.max, integer) + (info.max_open ? ")" : "]");
+}
+
+}  // namespace
+
+std::string formatParamValue(const ParamValue& value)
+{
+  switch (value.index())
+  {
+    case 0:
+      return std::get<bool>(value) ? "true" : "false";
+    case 1:
+      return std::to_string(std::get<std::int64_t>(value));
+    case 2:
+      return formatNumber(std::get<double>(value), false);
+    case 3:
+      return std::get<std::string>(value);
+    default:
+    {
+      std::string out = "[";
+      for (const double v : std::get<std::vector<double>>(value))
+      {
+        out += (out.size() > 1 ? ", " : "") + formatNumber(v, false);
+      }
+      return out + "]";
+    }
+  }
+}
+
+std::string parameterTableMarkdown()
+{
+  const TetherParams defaults;
+  std::string out = "| name | type | unit | default | range | live | meaning |\n|---|---|---|---|---|---|---|\n";
+  for (const ParameterInfo& info : parameterInfo())
+  {
+    const ParamValue value = getParameter(defaults, info.name);
+    std::string shown = formatParamValue(value);
+    if (value.index() == 3)
+    {
+      shown = "`" + shown + "`";
+    }
+    if (info.name == "seabed_z" && std::isnan(defaults.seabed_z))
+    {
+      shown = ".nan (none)";
+    }
+    out += "| `" + info.name + "` | " + info.type + " | " + info.unit + " | " + shown + " | " + formatRange(info) +
+           " | " + (info.live ? "yes" : "") + " | " + info.meaning + " |\n";
+  }
+  return out;
 }
 
 }  // namespace rov_tether

@@ -156,8 +156,8 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   label.text = text;
 }
 
-geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin,
-                                      const ros::Time& stamp, const std::string& frame_id)
+geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin, const ros::Time& stamp,
+                                      const std::string& frame_id)
 {
   geometry_msgs::WrenchStamped wrench;
   wrench.header.stamp = stamp;
@@ -209,10 +209,12 @@ std::string configToParams(const TetherConfig& config, TetherParams* params)
 
 TetherConfig paramsToConfig(const TetherParams& params)
 {
+  // `auto` values are shown as what they chose: the config holds numbers only.
+  const TetherParams resolved = params.resolved();
   TetherConfig config = TetherConfig::__getDefault__();
   for (const auto& description : TetherConfig::__getParamDescriptions__())
   {
-    const ParamValue value = getParameter(params, description->name);
+    const ParamValue value = getParameter(resolved, description->name);
     const auto* base = description.get();
     if (const auto* d = dynamic_cast<const TetherConfig::ParamDescription<double>*>(base))
     {
@@ -234,8 +236,8 @@ TetherConfig paramsToConfig(const TetherParams& params)
   return config;
 }
 
-void answerGetTension(const Tether& sim, const std::vector<double>& tensions,
-                      const GetTension::Request& request, GetTension::Response* response)
+void answerGetTension(const Tether& sim, const std::vector<double>& tensions, const GetTension::Request& request,
+                      GetTension::Response* response)
 {
   const TetherSummary summary = sim.summarize(tensions);
   response->deployed_length = summary.deployed_length;

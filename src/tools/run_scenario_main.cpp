@@ -13,6 +13,7 @@ void usage(std::FILE* out)
 {
   std::fprintf(out,
                "usage: rov_tether_run SCENARIO.yaml --out DIR [--set name=value]...\n"
+               "       rov_tether_run --parameters   (prints the parameter table, as in the README)\n"
                "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv.\n"
                "  --set overrides a model parameter after the scenario's own params.\n"
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
@@ -31,6 +32,11 @@ int main(int argc, char** argv)
     if (arg == "-h" || arg == "--help")
     {
       usage(stdout);
+      return 0;
+    }
+    if (arg == "--parameters")
+    {
+      std::fputs(rov_tether::parameterTableMarkdown().c_str(), stdout);
       return 0;
     }
     if ((arg == "--out" || arg == "--set") && i + 1 < argc)
@@ -77,7 +83,7 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 1;
   }
-  const auto& p = scenario.params;
+  const rov_tether::TetherParams p = scenario.params.resolved();  // what ran: `auto` replaced by its choice
   std::printf("scenario        %s%s%s\n", scenario_path.c_str(), scenario.description.empty() ? "" : ": ",
               scenario.description.c_str());
   std::printf(

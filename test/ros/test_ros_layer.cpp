@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "../test_helpers.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 
@@ -227,6 +228,55 @@ TEST(Reconfigure, ConfigAndParamsMapByName)
   TetherConfig bad = config;
   bad.winch_mode = "turbo";
   EXPECT_NE(configToParams(bad, &back).find("winch_mode"), std::string::npos);
+}
+
+// `iterations: auto` and `segment_length: auto` (which the README recommends) stopped the node at start:
+// the config was built from the unresolved values ("auto" is not a number). It shows what auto chose.
+TEST(Reconfigure, AutoValuesShowAsWhatTheyChose)
+{
+  TetherParams params;
+  params.iterations_auto = true;
+  params.segment_length_auto = true;
+  params.weight_in_water = 1.0;
+  TetherConfig config;
+  ASSERT_NO_THROW(config = paramsToConfig(params));
+  EXPECT_EQ(config.iterations, params.resolved().iterations);
+  EXPECT_GE(config.iterations, 1);
+}
+
+// The dynamic_reconfigure server clamps the whole set on every request: its ranges are the table's (and
+// validate()'s), so no valid value is changed by a request that did not touch it. Values at the table's
+// bounds (started with iterations 400, substeps 5000, a 1e-5 s step, EA 1e12 N...) survive a round trip
+// through the config and its clamping.
+TEST(Reconfigure, ClampingNeverChangesAValidValue)
+{
+  TetherParams params;
+  params.iterations = 400;
+  params.substeps = 5000;
+  params.time_step = 1e-5;
+  params.axial_stiffness = 1e12;
+  params.winch_speed = -5.5;
+  params.max_winch_speed = 20.0;
+  params.noise = 0.2;
+  params.reel_in_slack = 50.0;
+  params.max_vehicle_jump = 500.0;
+  params.bending_stiffness = 1e8;
+  params.mass_per_length = 9e3;
+  params.weight_in_water = -9e3;
+  ASSERT_TRUE(params.validate().empty());
+  TetherConfig config = paramsToConfig(params);
+  config.drag = 0.8;  // the one change the user asked for
+  config.__clamp__();
+  TetherParams after = params;
+  ASSERT_EQ(configToParams(config, &after), "");
+  EXPECT_EQ(after.drag, 0.8);
+  for (const std::string& name : parameterNames())
+  {
+    if (name != "drag")
+    {
+      EXPECT_TRUE(test::sameParamValue(getParameter(after, name), getParameter(params, name))) << name;
+    }
+  }
 }
 
 TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)

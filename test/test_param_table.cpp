@@ -1,0 +1,200 @@
+// One table of parameters (parameterInfo()): the README, config/default.yaml, cfg/Tether.cfg and validate()
+// must agree with it. Each check fails on the first difference and names it.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "rov_tether/scenario.hpp"
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+std::string sourceFile(const std::string& relative)
+{
+  std::ifstream in(std::string(ROV_TETHER_SOURCE_DIR) + "/" + relative);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+const ParameterInfo& info(const std::string& name)
+{
+  for (const ParameterInfo& row : parameterInfo())
+  {
+    if (row.name == name)
+    {
+      return row;
+    }
+  }
+  throw std::out_of_range(name);
+}
+
+TEST(ParamTable, CoversEveryParameterInOrder)
+{
+  std::vector<std::string> names;
+  for (const ParameterInfo& row : parameterInfo())
+  {
+    names.push_back(row.name);
+  }
+  EXPECT_EQ(names, parameterNames());
+}
+
+// The README's table is the generated one, row for row.
+TEST(ParamTable, ReadmeTableIsTheGeneratedOne)
+{
+  const std::string readme = sourceFile("README.md");
+  const auto section = readme.find("## Parameters");
+  ASSERT_NE(section, std::string::npos);
+  const auto start = readme.find("| name | type", section);
+  ASSERT_NE(start, std::string::npos);
+  const auto end = readme.find("\n\n", start);
+  const std::string table = readme.substr(start, end - start + 1);
+  const std::string expected = parameterTableMarkdown();
+  std::istringstream got(table), want(expected);
+  std::string a, b;
+  int line = 0;
+  while (std::getline(want, b))
+  {
+    ++line;
+    ASSERT_TRUE(std::getline(got, a)) << "README table ends before line " << line << ": " << b;
+    EXPECT_EQ(a, b) << "README table line " << line << " (regenerate with rov_tether_run --parameters)";
+  }
+  EXPECT_FALSE(std::getline(got, a)) << "README table has an extra line: " << a;
+}
+
+// default.yaml lists every parameter once, at its default, and nothing else.
+TEST(ParamTable, DefaultYamlHoldsEveryDefault)
+{
+  const YAML::Node yaml = YAML::LoadFile(std::string(ROV_TETHER_SOURCE_DIR) + "/config/default.yaml");
+  std::set<std::string> keys;
+  for (const auto& entry : yaml)
+  {
+    keys.insert(entry.first.as<std::string>());
+  }
+  const std::vector<std::string>& names = parameterNames();
+  EXPECT_EQ(keys, std::set<std::string>(names.begin(), names.end()));
+  TetherParams loaded;
+  loaded.cable_length = 123.0;  // anything but the default, so a missing key shows
+  ASSERT_EQ(loadParamsFile(std::string(ROV_TETHER_SOURCE_DIR) + "/config/default.yaml", &loaded), "");
+  const TetherParams defaults;
+  for (const std::string& name : names)
+  {
+    EXPECT_TRUE(sameParamValue(getParameter(loaded, name), getParameter(defaults, name)))
+        << name << ": default.yaml has " << formatParamValue(getParameter(loaded, name)) << ", the table "
+        << formatParamValue(getParameter(defaults, name));
+  }
+}
+
+// cfg/Tether.cfg: exactly the live parameters, each with the table's default and range (so the server's
+// clamping never changes a valid value), and the choices of each string parameter.
+TEST(ParamTable, DynamicReconfigureAgreesWithTheTable)
+{
+  const std::string cfg = sourceFile("cfg/Tether.cfg");
+  const std::regex add(
+      R"re(gen\.add\("(\w+)",\s*(\w+),\s*\d+,\s*"[^"]*",\s*([^,\)]+)(?:,\s*([^,\)]+),\s*([^,\)]+))?)re");
+  std::set<std::string> seen;
+  const TetherParams defaults;
+  for (std::sregex_iterator it(cfg.begin(), cfg.end(), add), end; it != end; ++it)
+  {
+    const std::string name = (*it)[1];
+    const std::string type = (*it)[2];
+    seen.insert(name);
+    const ParameterInfo* row = nullptr;
+    for (const ParameterInfo& candidate : parameterInfo())
+    {
+      row = candidate.name == name ? &candidate : row;
+    }
+    ASSERT_NE(row, nullptr) << name << " is in Tether.cfg but not in the table";
+    EXPECT_TRUE(row->live) << name << " is in Tether.cfg but the table says it is not live";
+    const ParamValue value = getParameter(defaults, name);
+    const std::string shown = (*it)[3];
+    if (type == "double_t" || type == "int_t")
+    {
+      const double number =
+          value.index() == 1 ? static_cast<double>(std::get<std::int64_t>(value)) : std::get<double>(value);
+      EXPECT_DOUBLE_EQ(std::stod(shown), number) << name << " default";
+      EXPECT_DOUBLE_EQ(std::stod((*it)[4]), row->min) << name << " min";
+      EXPECT_DOUBLE_EQ(std::stod((*it)[5]), row->max) << name << " max";
+    }
+    else if (type == "bool_t")
+    {
+      EXPECT_EQ(shown == "True", std::get<bool>(value)) << name << " default";
+    }
+    else
+    {
+      EXPECT_EQ(shown, "\"" + std::get<std::string>(value) + "\"") << name << " default";
+      // Every choice the table lists is a constant of the enum, and no other.
+      std::set<std::string> choices;
+      const std::regex choice("`(\\w+)`");
+      for (std::sregex_iterator c(row->range.begin(), row->range.end(), choice), e; c != e; ++c)
+      {
+        choices.insert((*c)[1]);
+      }
+      for (const std::string& option : choices)
+      {
+        EXPECT_NE(cfg.find("gen.const(\"" + option + "\""), std::string::npos) << name << ": no choice " << option;
+      }
+    }
+  }
+  for (const ParameterInfo& row : parameterInfo())
+  {
+    EXPECT_EQ(row.live, seen.count(row.name) == 1) << row.name << ": live in the table but not in Tether.cfg";
+  }
+}
+
+// validate() takes every field's range from the table: a value just inside each bound passes, just
+// outside fails, open bounds excluded.
+TEST(ParamTable, ValidateUsesTheTableRanges)
+{
+  for (const ParameterInfo& row : parameterInfo())
+  {
+    if (std::isnan(row.min) || row.name == "seed")
+    {
+      continue;  // choices and flags; seed's 9e15 bound is below double spacing tests
+    }
+    const bool integer = row.type.rfind("int", 0) == 0;
+    const double step = integer ? 1.0 : std::max(1e-9 * std::abs(row.max - row.min), 1e-15);
+    auto errorsFor = [&](double value)
+    {
+      TetherParams p;
+      // Loose relations so that only the field itself can fail.
+      p.cable_length = row.name == "cable_length" ? value : 1e5;
+      p.min_deployed_length = row.name == "min_deployed_length" ? value : 1e-3;
+      p.initial_deployed_length = row.name == "initial_deployed_length" ? value : 1.0;
+      p.segment_length = row.name == "segment_length" ? value : 1e-3;
+      p.max_winch_speed = row.name == "max_winch_speed" ? value : 20.0;
+      ParamValue v = integer ? ParamValue(static_cast<std::int64_t>(value)) : ParamValue(value);
+      if (row.type == "double[3]")
+      {
+        v = std::vector<double>{value, 0.0, 0.0};
+      }
+      EXPECT_EQ(setParameter(p, row.name, v), "") << row.name;
+      std::string joined;  // the field's own range errors only (relations are checked elsewhere)
+      for (const std::string& e : p.validate())
+      {
+        joined += e.find("must be a finite number in") != std::string::npos ? e + "; " : "";
+      }
+      return joined;
+    };
+    const double inside_low = row.min_open ? row.min + step : row.min;
+    const double inside_high = row.max_open ? row.max - step : row.max;
+    EXPECT_EQ(errorsFor(inside_low).find(row.name), std::string::npos) << row.name << " = " << inside_low;
+    EXPECT_EQ(errorsFor(inside_high).find(row.name), std::string::npos) << row.name << " = " << inside_high;
+    const double outside_low = row.min_open ? row.min : row.min - step;
+    const double outside_high = row.max_open ? row.max : row.max + step;
+    EXPECT_NE(errorsFor(outside_low).find(row.name), std::string::npos) << row.name << " = " << outside_low;
+    EXPECT_NE(errorsFor(outside_high).find(row.name), std::string::npos) << row.name << " = " << outside_high;
+  }
+}
+
+}  // namespace
+}  // namespace rov_tether::test
