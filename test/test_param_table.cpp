@@ -26,18 +26,6 @@ std::string sourceFile(const std::string& relative)
   return out.str();
 }
 
-const ParameterInfo& info(const std::string& name)
-{
-  for (const ParameterInfo& row : parameterInfo())
-  {
-    if (row.name == name)
-    {
-      return row;
-    }
-  }
-  throw std::out_of_range(name);
-}
-
 TEST(ParamTable, CoversEveryParameterInOrder)
 {
   std::vector<std::string> names;
