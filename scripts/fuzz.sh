@@ -39,7 +39,7 @@ fi
 
 OUT="$ROOT/catkin_build/fuzz"
 mkdir -p "$OUT/artifacts"
-CORE=("$ROOT"/src/core/*.cpp "$ROOT/src/scenario/scenario.cpp")
+CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/scenario/*.cpp)
 status=0
 cases=""
 for target in "${TARGETS[@]}"; do

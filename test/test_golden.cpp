@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "golden.hpp"
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 
 namespace rov_tether::test
 {

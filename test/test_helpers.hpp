@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 #include "rov_tether/tether.hpp"
 
 namespace rov_tether::test

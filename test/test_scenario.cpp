@@ -249,5 +249,24 @@ TEST(Layers, CoreIncludesNoRosHeader)
   EXPECT_GE(files, 8);
 }
 
+// The scenario model, the CSV runner and the study need no YAML: only the reader (scenario_yaml) does.
+TEST(Layers, OnlyTheScenarioReaderUsesYaml)
+{
+  for (const char* file :
+       {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/study/study.cpp",
+        "/include/rov_tether/scenario.hpp", "/include/rov_tether/scenario_runner.hpp", "/include/rov_tether/study.hpp"})
+  {
+    std::ifstream in(std::string(ROV_TETHER_SOURCE_DIR) + file);
+    ASSERT_TRUE(in) << file;
+    for (std::string line; std::getline(in, line);)
+    {
+      if (line.rfind("#include", 0) == 0)
+      {
+        EXPECT_EQ(line.find("yaml"), std::string::npos) << file << ": " << line;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rov_tether::test

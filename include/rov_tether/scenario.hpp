@@ -60,40 +60,4 @@ class PathDriver
   std::uint64_t fed_samples_ = 0;  ///< Samples fed so far; sample k is at k * kSampleInterval.
 };
 
-/// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field.
-std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
-/// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field.
-std::string loadScenario(const std::string& path, Scenario* scenario);
-/// Applies a flat YAML map of parameters (as in config/default.yaml) on top of `params` and validates
-/// the result. Returns "" on success, otherwise every problem found.
-std::string parseParams(const std::string& yaml_text, TetherParams* params);
-/// Reads a parameter file such as config/default.yaml; as parseParams.
-std::string loadParamsFile(const std::string& path, TetherParams* params);
-/// Applies "name=value" (value in YAML syntax) to `params`. Returns "" on success.
-std::string applyAssignment(const std::string& assignment, TetherParams* params);
-
-/// What a scenario run produced.
-struct RunSummary
-{
-  std::uint64_t steps = 0;
-  double cpu_seconds = 0.0;  ///< Time spent in the simulation (output excluded) [s].
-  std::size_t state_rows = 0;
-  std::size_t shape_rows = 0;
-  double deployed_start = 0.0;       ///< [m]
-  double deployed_end = 0.0;         ///< [m]
-  double deployed_max = 0.0;         ///< [m]
-  double max_tension = 0.0;          ///< Largest segment tension at any output time [N].
-  double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle at any output time [N].
-  double max_strain = 0.0;           ///< Largest geometric strain at any output time [-].
-  std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
-};
-
-/// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv (created together at the end, so
-/// a failed run leaves no partial file). Returns "" on success, otherwise the error.
-std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary);
-
-/// The CSV headers, part of the documented format.
-extern const char* const kStateCsvHeader;
-extern const char* const kShapeCsvHeader;
-
 }  // namespace rov_tether

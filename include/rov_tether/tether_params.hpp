@@ -205,6 +205,13 @@ const std::vector<std::string>& parameterNames();
 /// left to TetherParams::validate() so that contradictions between fields are reported together.
 std::string setParameter(TetherParams& params, const std::string& name, const ParamValue& value);
 
+/// The one loader of parameter values, whatever they came from (scenario and parameter files, the
+/// parameter server, the runner's --set, the tests): sets each (name, value) with setParameter, then
+/// validates the whole. Returns every problem, each naming its parameter; `params` is changed only when
+/// there is none.
+std::vector<std::string> applyParameters(const std::vector<std::pair<std::string, ParamValue>>& values,
+                                         TetherParams* params);
+
 /// Reads one parameter by name. Throws std::out_of_range for an unknown name.
 ParamValue getParameter(const TetherParams& params, const std::string& name);
 

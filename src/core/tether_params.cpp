@@ -491,6 +491,30 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
       *member);
 }
 
+std::vector<std::string> applyParameters(const std::vector<std::pair<std::string, ParamValue>>& values,
+                                         TetherParams* params)
+{
+  TetherParams candidate = *params;
+  std::vector<std::string> errors;
+  for (const auto& [name, value] : values)
+  {
+    const std::string error = setParameter(candidate, name, value);
+    if (!error.empty())
+    {
+      errors.push_back(error);
+    }
+  }
+  if (errors.empty())
+  {
+    errors = candidate.validate();
+  }
+  if (errors.empty())
+  {
+    *params = candidate;
+  }
+  return errors;
+}
+
 ParamValue getParameter(const TetherParams& params, const std::string& name)
 {
   const Member* member = findMember(name);

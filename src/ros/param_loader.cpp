@@ -161,8 +161,8 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
   {
     return "parameters: expected a map of name: value";
   }
-  TetherParams candidate = *params;
   std::vector<std::string> errors;
+  std::vector<std::pair<std::string, ParamValue>> values;
   for (const auto& name : parameterNames())
   {
     if (!dict.hasMember(name))
@@ -175,15 +175,11 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
       errors.push_back("parameter '" + name + "': expected a single value or a list of numbers");
       continue;
     }
-    const std::string error = setParameter(candidate, name, value);
-    if (!error.empty())
-    {
-      errors.push_back(error);
-    }
+    values.emplace_back(name, value);
   }
   if (errors.empty())
   {
-    errors = candidate.validate();
+    errors = applyParameters(values, params);  // the core's one loader, as for scenario files
   }
   if (!errors.empty())
   {
@@ -194,7 +190,6 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
     }
     return joined;
   }
-  *params = candidate;
   return "";
 }
 

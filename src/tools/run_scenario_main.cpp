@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 
 namespace
 {

@@ -16,7 +16,8 @@
 #include "../golden.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 
 namespace rov_tether::test
 {

@@ -1,0 +1,37 @@
+#pragma once
+// Running a scenario offline and writing its CSV files (state.csv, shape.csv). No YAML here: the
+// scenario comes from scenario_yaml.hpp or is built in code.
+
+#include <cstdint>
+#include <string>
+
+#include "rov_tether/scenario.hpp"
+
+namespace rov_tether
+{
+
+/// What a scenario run produced.
+struct RunSummary
+{
+  std::uint64_t steps = 0;
+  double cpu_seconds = 0.0;  ///< Time spent in the simulation (output excluded) [s].
+  std::size_t state_rows = 0;
+  std::size_t shape_rows = 0;
+  double deployed_start = 0.0;       ///< [m]
+  double deployed_end = 0.0;         ///< [m]
+  double deployed_max = 0.0;         ///< [m]
+  double max_tension = 0.0;          ///< Largest segment tension at any output time [N].
+  double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle at any output time [N].
+  double max_strain = 0.0;           ///< Largest geometric strain at any output time [-].
+  std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
+};
+
+/// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv (created together at the end, so
+/// a failed run leaves no partial file). Returns "" on success, otherwise the error.
+std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary);
+
+/// The CSV headers, part of the documented format.
+extern const char* const kStateCsvHeader;
+extern const char* const kShapeCsvHeader;
+
+}  // namespace rov_tether

@@ -1,0 +1,310 @@
+#include "rov_tether/scenario_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace rov_tether
+{
+namespace
+{
+
+/// Largest number of output rows a scenario may ask for (both files together stay manageable).
+constexpr double kMaxOutputTimes = 1.0e6;
+
+std::string readFile(const std::string& path, std::string* text)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    return "cannot read '" + path + "'";
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  *text = buffer.str();
+  return "";
+}
+
+/// Converts a YAML scalar to the most specific ParamValue: bool, integer, number, then string.
+ParamValue scalarValue(const YAML::Node& node)
+{
+  const std::string& text = node.Scalar();
+  if (node.Tag() != "!")  // unquoted: may be a bool or a number
+  {
+    bool b;
+    std::int64_t i;
+    double d;
+    if (YAML::convert<bool>::decode(node, b) && text.find_first_of("0123456789") == std::string::npos)
+    {
+      return b;
+    }
+    if (YAML::convert<std::int64_t>::decode(node, i))
+    {
+      return i;
+    }
+    if (YAML::convert<double>::decode(node, d))
+    {
+      return d;
+    }
+  }
+  return text;
+}
+
+/// Reads a finite number; returns "" or a message naming `field`.
+std::string readNumber(const YAML::Node& node, const std::string& field, double* value)
+{
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, *value))
+  {
+    return field + ": expected a number";
+  }
+  if (!std::isfinite(*value))
+  {
+    return field + ": must be finite";
+  }
+  return "";
+}
+
+std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size, double* values)
+{
+  if (!node.IsSequence() || node.size() != size)
+  {
+    return field + ": expected a list of " + std::to_string(size) + " numbers";
+  }
+  for (std::size_t i = 0; i < size; ++i)
+  {
+    const std::string error = readNumber(node[i], field + "[" + std::to_string(i) + "]", &values[i]);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return "";
+}
+
+/// Applies every key of a YAML map to params; collects all problems (type and range).
+std::string applyParamMap(const YAML::Node& map, const std::string& prefix, TetherParams* params)
+{
+  if (!map.IsMap())
+  {
+    return prefix.empty() ? "parameters: expected a map of name: value" : prefix + ": expected a map of name: value";
+  }
+  std::vector<std::string> errors;
+  std::vector<std::pair<std::string, ParamValue>> values;
+  for (const auto& entry : map)
+  {
+    const std::string name = entry.first.as<std::string>();
+    ParamValue value;
+    if (entry.second.IsSequence())
+    {
+      std::vector<double> list;
+      for (const auto& item : entry.second)
+      {
+        double number = 0.0;
+        if (!item.IsScalar() || !YAML::convert<double>::decode(item, number))
+        {
+          list.clear();
+          break;
+        }
+        list.push_back(number);
+      }
+      if (list.size() != entry.second.size())
+      {
+        errors.push_back(prefix + name + ": expected a list of numbers");
+        continue;
+      }
+      value = list;
+    }
+    else if (entry.second.IsScalar())
+    {
+      value = scalarValue(entry.second);
+    }
+    else
+    {
+      errors.push_back(prefix + name + ": expected a single value or a list of numbers");
+      continue;
+    }
+    values.emplace_back(name, value);
+  }
+  // The one loader of parameter values, shared with the parameter server (ros/param_loader.cpp).
+  for (const auto& error : applyParameters(values, params))
+  {
+    errors.push_back(prefix + error);
+  }
+  std::string joined;
+  for (const auto& error : errors)
+  {
+    joined += (joined.empty() ? "" : "; ") + error;
+  }
+  return joined;
+}
+
+std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
+{
+  if (!root.IsMap())
+  {
+    return "scenario: expected a map with params, spool, vehicle, duration, output_rate";
+  }
+  for (const auto& entry : root)
+  {
+    const std::string key = entry.first.as<std::string>();
+    if (key != "description" && key != "params" && key != "spool" && key != "vehicle" && key != "duration" &&
+        key != "output_rate")
+    {
+      return "unknown field '" + key + "' (expected description, params, spool, vehicle, duration, output_rate)";
+    }
+  }
+  Scenario result;
+  if (root["description"])
+  {
+    result.description = root["description"].as<std::string>();
+  }
+  if (root["params"])
+  {
+    const std::string error = applyParamMap(root["params"], "params.", &result.params);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  if (!root["spool"])
+  {
+    return "spool: missing (expected [x, y, z] in m)";
+  }
+  std::string error = readVector(root["spool"], "spool", 3, result.spool.data());
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (root["vehicle"])
+  {
+    const YAML::Node path = root["vehicle"];
+    if (!path.IsSequence() || path.size() == 0)
+    {
+      return "vehicle: expected a non-empty list of [t, x, y, z] waypoints (omit it for a free end)";
+    }
+    for (std::size_t k = 0; k < path.size(); ++k)
+    {
+      double values[4];
+      const std::string field = "vehicle[" + std::to_string(k) + "]";
+      error = readVector(path[k], field, 4, values);
+      if (!error.empty())
+      {
+        return error;
+      }
+      if (values[0] < 0.0)
+      {
+        return field + ": time " + std::to_string(values[0]) + " s must be >= 0";
+      }
+      if (!result.vehicle.empty() && values[0] < result.vehicle.back().time)
+      {
+        return field + ": time " + std::to_string(values[0]) + " s is before the previous waypoint's";
+      }
+      result.vehicle.push_back({values[0], Position(values[1], values[2], values[3])});
+    }
+  }
+  if (!root["duration"])
+  {
+    return "duration: missing (simulated time in s)";
+  }
+  error = readNumber(root["duration"], "duration", &result.duration);
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (result.duration <= 0.0 || result.duration > 1.0e6)
+  {
+    return "duration = " + std::to_string(result.duration) + ": must be in (0, 1e6] s";
+  }
+  if (root["output_rate"])
+  {
+    error = readNumber(root["output_rate"], "output_rate", &result.output_rate);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  if (result.output_rate <= 0.0 || result.output_rate > 1.0e4)
+  {
+    return "output_rate = " + std::to_string(result.output_rate) + ": must be in (0, 1e4] rows per s";
+  }
+  if (result.duration * result.output_rate > kMaxOutputTimes)
+  {
+    return "duration x output_rate = " + std::to_string(result.duration * result.output_rate) +
+           ": more than 1e6 output times";
+  }
+  *scenario = result;
+  return "";
+}
+
+/// Reads `path` and parses its text; errors are prefixed with the path.
+template <typename Parse>
+std::string parseFile(const std::string& path, Parse parse)
+{
+  std::string text;
+  const std::string error = readFile(path, &text);
+  if (!error.empty())
+  {
+    return error;
+  }
+  const std::string parse_error = parse(text);
+  return parse_error.empty() ? "" : path + ": " + parse_error;
+}
+
+template <typename Parse>
+std::string guardYaml(Parse parse)
+{
+  try
+  {
+    return parse();
+  }
+  catch (const YAML::Exception& e)
+  {
+    return std::string("YAML error: ") + e.what();
+  }
+}
+
+}  // namespace
+
+std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
+{
+  return guardYaml([&] { return parseScenarioNode(YAML::Load(yaml_text), scenario); });
+}
+
+std::string loadScenario(const std::string& path, Scenario* scenario)
+{
+  return parseFile(path, [scenario](const std::string& text) { return parseScenario(text, scenario); });
+}
+
+std::string parseParams(const std::string& yaml_text, TetherParams* params)
+{
+  return guardYaml(
+      [&]
+      {
+        TetherParams candidate = *params;
+        const std::string error = applyParamMap(YAML::Load(yaml_text), "", &candidate);
+        if (error.empty())
+        {
+          *params = candidate;
+        }
+        return error;
+      });
+}
+
+std::string loadParamsFile(const std::string& path, TetherParams* params)
+{
+  return parseFile(path, [params](const std::string& text) { return parseParams(text, params); });
+}
+
+std::string applyAssignment(const std::string& assignment, TetherParams* params)
+{
+  const auto equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+  {
+    return "'" + assignment + "': expected name=value";
+  }
+  return parseParams(assignment.substr(0, equals) + ": " + assignment.substr(equals + 1), params);
+}
+
+}  // namespace rov_tether
