@@ -1,103 +1,64 @@
 // Golden output of the node's pipeline, without a master: a recorded dive (test/data/straight_excursion.bag)
-// is fed in the node's order (poses as they arrive, a 200 Hz physics tick on the bag's clock, ~state and
-// ~wrench on the physics-time grid) with config/default.yaml and config/node.yaml, and every published
-// message is serialised and hashed. rosbag play's timing is not repeatable; this replay is, so it pins what
+// is fed through the node's own classes (PoseInput for the poses as they arrive, the Scheduler's 200 Hz
+// physics tick on the bag's clock stepping a World of one tether, StateBuilder for ~state and ~wrench on
+// the physics-time grid) with config/default.yaml and config/node.yaml, and every published message is
+// serialised and hashed. rosbag play's timing is not repeatable; this replay is, so it pins what
 // the node computes from a given input. Hash in test/golden/node_replay.txt (see golden.hpp).
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <tf2_ros/buffer.h>
 
-#include <Eigen/Geometry>
-#include <cmath>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "../golden.hpp"
-#include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/ros/pose_input.hpp"
+#include "rov_tether/ros/scheduler.hpp"
+#include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/world.hpp"
 
 namespace rov_tether::test
 {
 namespace
 {
 
-/// The node's order of work (TetherNode::onPose, onTimer, publishState) for one tether with a topic pose
-/// source, written out here until the node's pieces can run without a master.
-class NodePipeline
+/// What TetherNode does for a tether when the Scheduler calls it, without the ROS wiring: the node's
+/// own PoseInput polls before the physics, its StateBuilder builds ~state and ~wrench when due.
+class ReplayTether : public ros_layer::TetherHooks
 {
  public:
-  NodePipeline(const TetherParams& params, const ros_layer::NodeOptions& options)
-      : options_(options), sim_(params, options.spool_position)
+  using Publish = std::function<void(const TetherState&, const geometry_msgs::WrenchStamped&)>;
+
+  ReplayTether(Tether& tether, ros_layer::PoseInput& input, const ros_layer::Scheduler& scheduler,
+               const ros_layer::NodeOptions& options, Publish publish)
+      : tether_(tether), input_(input), scheduler_(scheduler), builder_(options.world_frame), publish_(publish)
   {
   }
 
-  void onPose(const geometry_msgs::PoseStamped& msg, const ros::Time& now)
+  void beforeAdvance(const ros::Time& now) override { input_.poll(now); }
+  void publishState() override
   {
-    const auto& p = msg.pose.position;
-    const auto& q = msg.pose.orientation;
-    if (!std::isfinite(p.x + p.y + p.z + q.x + q.y + q.z + q.w) ||
-        std::abs(std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w) - 1.0) > 1e-3)
-    {
-      return;
-    }
-    const ros::Time stamp = msg.header.stamp.isZero() ? now : msg.header.stamp;
-    const Eigen::Isometry3d pose = Eigen::Translation3d(p.x, p.y, p.z) * Eigen::Quaterniond(q.w, q.x, q.y, q.z);
-    if (sim_.addVehicleSample(stamp.toSec(), pose * options_.attachment_offset).ok)
-    {
-      last_vehicle_ = pose;
-    }
+    const TetherState& state = builder_.state(tether_, scheduler_.schedule(0).resets);
+    publish_(state, builder_.wrench(tether_, input_.lastVehicle().translation()));
   }
-
-  template <typename Publish>
-  void onTick(const ros::Time& now, Publish&& publish)
+  void restarted() override
   {
-    const double dt = sim_.params().time_step;
-    if (!started_)
-    {
-      started_ = true;
-      sim_.reset(std::floor((now.toSec() - options_.interpolation_delay) / dt) * dt);
-    }
-    const double target = now.toSec() - options_.interpolation_delay;
-    const double period = 1.0 / options_.state_rate;
-    if (next_state_ <= 0.0 || next_state_ < target - 1.0)
-    {
-      next_state_ = std::ceil(std::max(sim_.time(), target - 1.0) / period) * period;
-    }
-    for (;;)
-    {
-      const bool due = next_state_ <= target;
-      sim_.advanceTo(due ? next_state_ : target);
-      if (!due)
-      {
-        break;
-      }
-      sim_.computeSegmentTensions(tensions_);
-      const double time = sim_.time();
-      const double elapsed = time - last_state_;
-      const double deployed = sim_.deployedLength();
-      const double speed = last_state_ > 0.0 && elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
-      last_deployed_ = deployed;
-      last_state_ = time;
-      const ros::Time stamp(std::max(time, 0.0));
-      TetherState state;
-      ros_layer::toStateMessage(sim_, tensions_, stamp, options_.world_frame, speed, 0, &state);
-      publish(state, ros_layer::toWrench(sim_, last_vehicle_.translation(), stamp, options_.world_frame));
-      next_state_ += period;
-    }
+    input_.reset();
+    builder_.restart(tether_);
   }
 
  private:
-  ros_layer::NodeOptions options_;
-  Tether sim_;
-  bool started_ = false;
-  double next_state_ = 0.0;
-  double last_state_ = 0.0;
-  double last_deployed_ = 0.0;
-  Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
-  std::vector<double> tensions_;
+  Tether& tether_;
+  ros_layer::PoseInput& input_;
+  const ros_layer::Scheduler& scheduler_;
+  ros_layer::StateBuilder builder_;
+  Publish publish_;
 };
 
 template <typename Message>
@@ -116,7 +77,6 @@ TEST(Golden, NodePipelineReplaysARecordedDive)
   TetherParams params;
   ASSERT_EQ(loadParamsFile(source + "/config/default.yaml", &params), "");
   ros_layer::NodeOptions options;  // the defaults are config/node.yaml's
-  NodePipeline pipeline(params, options);
 
   rosbag::Bag bag(source + "/test/data/straight_excursion.bag");
   rosbag::View view(bag, rosbag::TopicQuery("/rov_pose"));
@@ -135,17 +95,37 @@ TEST(Golden, NodePipelineReplaysARecordedDive)
     hash = hashMessage(wrench, hash);
     ++states;
   };
+  // The node's own pieces for one tether: its world, pose input (tf is not needed: the poses are in the
+  // world frame), scheduler and state builder. The wall clock is the bag's: the physics takes no wall
+  // time, so the load governor never degrades and the replay is the same on any machine.
+  World world;
+  ASSERT_TRUE(world.add("tether", std::make_unique<Tether>(params, options.spool_position)).ok);
+  Tether& tether = world.tether(0);
+  tf2_ros::Buffer tf;
+  ros_layer::PoseInput input(options, tf, tether);
+  ros::Time now;
+  ros_layer::Scheduler scheduler(world, options.interpolation_delay,
+                                 [&now] { return ros::WallTime(now.sec, now.nsec); });
+  ReplayTether hooks(tether, input, scheduler, options, publish);
+  scheduler.add(options, hooks);
+  const auto check_clock = [&scheduler](const ros::Time& arrival) { scheduler.checkClock(arrival); };
+
   // The physics tick at 200 Hz on the bag's clock; poses received up to a tick are delivered before it.
   const ros::Duration tick(1.0 / options.physics_rate);
   std::size_t next = 0;
-  for (ros::Time now = poses.front().first + tick; now <= poses.back().first + ros::Duration(1.0); now += tick)
+  std::size_t accepted = 0;
+  for (now = poses.front().first + tick; now <= poses.back().first + ros::Duration(1.0); now += tick)
   {
     for (; next < poses.size() && poses[next].first <= now; ++next)
     {
-      pipeline.onPose(poses[next].second, poses[next].first);
+      accepted += input.onMessage(poses[next].second, poses[next].first, check_clock) ? 1 : 0;
     }
-    pipeline.onTick(now, publish);
+    scheduler.tick(now);
   }
+  EXPECT_EQ(accepted + input.rejected(), poses.size());
+  EXPECT_EQ(scheduler.schedule(0).resets, 0u);
+  EXPECT_EQ(scheduler.schedule(0).skips, 0u);
+  EXPECT_EQ(scheduler.governor(0).degraded(), "");
   EXPECT_GT(states, 1000u);  // 30 Hz over 50 s
   GoldenFile golden("node_replay.txt");
   golden.check("straight_excursion/state_and_wrench", hash);

@@ -1,0 +1,117 @@
+#pragma once
+
+#include <ros/time.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rov_tether/ros/load_governor.hpp"
+#include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/world.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/// What the scheduler asks of one tether's node during a physics tick (TetherNode implements it; the
+/// golden replay test too).
+class TetherHooks
+{
+ public:
+  virtual ~TetherHooks() = default;
+  /// Before the physics advances: pending parameters, polled poses (tf, spool frame).
+  virtual void beforeAdvance(const ros::Time& /*now*/) {}
+  /// ~state (and ~wrench) is due at the tether's current physics time, a point of its state grid.
+  virtual void publishState() = 0;
+  /// After the physics advanced on this tick: reports, markers, diagnostics.
+  virtual void afterAdvance(const ros::Time& /*now*/) {}
+  /// The tether was re-laid at a new time (start, clock jump, ~reset): inputs and outputs start over.
+  virtual void restarted() {}
+};
+
+/// One tether's schedule and what it reports (read by the diagnostics).
+struct TetherSchedule
+{
+  TetherSchedule(TetherHooks& hooks_in, const NodeOptions& options, int iterations, const std::string& name)
+      : hooks(&hooks_in),
+        label(name.empty() ? "" : " " + name),
+        state_period(1.0 / options.state_rate),
+        max_lag(options.max_lag),
+        governor(options, iterations, name)
+  {
+  }
+
+  TetherHooks* hooks;
+  std::string label;              ///< " name" for log messages, "" alone.
+  double state_period;            ///< 1 / state_rate [s].
+  double max_lag;                 ///< [s]
+  double next_state = 0.0;        ///< Physics time at which ~state is due next [s]; 0: not set.
+  std::uint32_t resets = 0;       ///< Resets (clock jumps, ~reset); the start is none.
+  std::uint64_t skips = 0;        ///< Times the physics fell more than max_lag behind and skipped.
+  ros::Time last_skip_time;       ///< ROS time of the last skip.
+  double step_seconds = 0.0;      ///< Smoothed wall time per internal step [s].
+  double real_time_factor = 0.0;  ///< Smoothed simulated / wall time of the physics [-].
+  LoadGovernor governor;
+};
+
+/**
+ * Runs the physics of a World on ROS time, one tick at a time (the node's one timer), for every tether in
+ * lockstep. Clock policy: the first tick starts the tethers at the current time; a clock that goes
+ * backwards, or leaps more than 5 s forwards, resets them (warning). The physics runs interpolation_delay
+ * behind ROS time, its start aligned to each tether's time_step grid. Each tether has its own ~state grid
+ * (multiples of 1 / its state_rate in physics time, so a replay gives the same series): the world
+ * advances from one due point to the next and the tethers due there publish. A tether more than its
+ * max_lag behind skips ahead with its cable held (error, counted). After the physics, the wall time it
+ * took is shared among the tethers by their work (steps x particles x iterations x substeps; exact for
+ * one tether) and fed to each tether's LoadGovernor. Needs no ROS master: the wall clock is injected.
+ */
+class Scheduler
+{
+ public:
+  using WallClock = std::function<ros::WallTime()>;
+
+  /// Forward clock jumps larger than this reset the tethers instead of being integrated [s].
+  static constexpr double kMaxForwardJump = 5.0;
+
+  /// `world` must outlive the scheduler. `interpolation_delay` [s] is the world's (one clock for all).
+  explicit Scheduler(World& world, double interpolation_delay, WallClock wall_clock = &ros::WallTime::now);
+
+  /// Schedules world.tether(size()) with its node options (state_rate, max_lag, overload_policy ...);
+  /// `hooks` must outlive the scheduler. Returns the tether's index. Add tethers in the world's order.
+  std::size_t add(const NodeOptions& options, TetherHooks& hooks, const std::string& label = "");
+  std::size_t size() const { return tethers_.size(); }
+
+  /// One physics tick at ROS time `now` (nothing before the clock starts, at zero).
+  void tick(const ros::Time& now);
+  /// A pose arrived at `now`: once started, a clock that went backwards resets every tether first.
+  void checkClock(const ros::Time& now);
+  /// Re-lays tether i at the physics time of `now`, counts a reset and warns with `why`.
+  void reset(std::size_t i, const ros::Time& now, const std::string& why);
+
+  /// The physics time for ROS time `now`: interpolation_delay behind, on the grid of tether i's time_step.
+  double alignedPhysicsTime(std::size_t i, const ros::Time& now) const;
+  double interpolationDelay() const { return interpolation_delay_; }
+  const TetherSchedule& schedule(std::size_t i) const { return tethers_[i]; }
+  LoadGovernor& governor(std::size_t i) { return tethers_[i].governor; }
+
+ private:
+  /// Re-lays tether i at the physics time of `now` and restarts its state grid and its hooks.
+  void restart(std::size_t i, const ros::Time& now);
+  void resetAll(const ros::Time& now, const std::string& why);
+  /// Sets tether i's next ~state point for physics target `target`, and skips ahead beyond max_lag.
+  void prepare(std::size_t i, double target, const ros::Time& now);
+  /// Advances the world to `target`, stopping at every due ~state point to publish.
+  void advance(double target);
+  /// Shares `wall` [s] among the tethers by work and updates their statistics and governors.
+  void account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before);
+
+  World& world_;
+  double interpolation_delay_;
+  WallClock wall_clock_;
+  std::vector<TetherSchedule> tethers_;
+  bool started_ = false;
+  ros::Time last_time_;  ///< ROS time of the last tick (or reset).
+};
+
+}  // namespace rov_tether::ros_layer

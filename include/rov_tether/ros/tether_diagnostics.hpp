@@ -1,0 +1,52 @@
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/node_handle.h>
+#include <ros/time.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/pose_input.hpp"
+#include "rov_tether/ros/scheduler.hpp"
+#include "rov_tether/tether.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/**
+ * One tether's /diagnostics status ("tether", or "tether <name>" among several) and its error reports:
+ * simulation failures and vehicle jumps are logged once each (throttled) as the physics finds them. It
+ * reads the tether, its pose input and its schedule (resets, skips, load, what overload_policy gave up).
+ */
+class TetherDiagnostics
+{
+ public:
+  /// Everything referenced must outlive this.
+  TetherDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeOptions& options,
+                    const std::string& name, const Tether& tether, const PoseInput& pose_input,
+                    const Scheduler& scheduler, std::size_t index);
+
+  /// After the physics advanced at `now`: logs the failures and jumps it found.
+  void report(const ros::Time& now);
+  /// Publishes /diagnostics when due.
+  void publish() { updater_->update(); }
+  /// Fills the status (the diagnostic_updater task).
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+ private:
+  NodeOptions options_;
+  std::string label_;  ///< " name" for log messages, "" alone.
+  const Tether& tether_;
+  const PoseInput& pose_input_;
+  const Scheduler& scheduler_;
+  std::size_t index_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  std::uint64_t reported_jumps_ = 0;     ///< Vehicle jumps already logged.
+  std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
+  ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
+};
+
+}  // namespace rov_tether::ros_layer

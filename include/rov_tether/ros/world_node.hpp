@@ -1,0 +1,46 @@
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <vector>
+
+#include "rov_tether/ros/scheduler.hpp"
+#include "rov_tether/ros/tether_node.hpp"
+#include "rov_tether/world.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/**
+ * tether_node's process: one World of one tether (parameters in ~) or of several (a private list
+ * `tethers: [a, b, ...]`, each configured under ~a/, ~b/, ... on top of the parameters they share in ~).
+ * It owns the one tf buffer and listener every tether's pose input reads, the Scheduler and the one
+ * timer that steps the world at physics_rate on ROS time; each tether keeps its own topics, services,
+ * parameters, diagnostics and dynamic_reconfigure server (TetherNode).
+ */
+class WorldNode
+{
+ public:
+  /// Loads every tether's parameters first; throws std::runtime_error naming a bad parameter before
+  /// anything is advertised or subscribed.
+  WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
+  std::size_t size() const { return tethers_.size(); }
+
+ private:
+  void onTimer(const ros::TimerEvent& event);
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  tf2_ros::Buffer tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created once the parameters loaded.
+  World world_;
+  std::unique_ptr<Scheduler> scheduler_;
+  std::vector<std::unique_ptr<TetherNode>> tethers_;
+  ros::Timer timer_;
+};
+
+}  // namespace rov_tether::ros_layer

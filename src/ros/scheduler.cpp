@@ -1,0 +1,208 @@
+#include "rov_tether/ros/scheduler.hpp"
+
+#include <ros/console.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+/// Exponential smoothing of diagnostics figures.
+double smooth(double previous, double sample) { return previous <= 0.0 ? sample : 0.95 * previous + 0.05 * sample; }
+
+/// Relative cost of one internal step of `tether`: its deployed particles times its solver passes.
+double stepWork(const Tether& tether)
+{
+  const TetherParams& p = tether.params();
+  return static_cast<double>(tether.deployedParticleCount()) * std::max(1, p.iterations) * std::max(1, p.substeps);
+}
+
+}  // namespace
+
+Scheduler::Scheduler(World& world, double interpolation_delay, WallClock wall_clock)
+    : world_(world), interpolation_delay_(interpolation_delay), wall_clock_(std::move(wall_clock))
+{
+}
+
+std::size_t Scheduler::add(const NodeOptions& options, TetherHooks& hooks, const std::string& label)
+{
+  const std::size_t i = tethers_.size();
+  tethers_.emplace_back(hooks, options, world_.tether(i).params().iterations, label);
+  return i;
+}
+
+double Scheduler::alignedPhysicsTime(std::size_t i, const ros::Time& now) const
+{
+  const double dt = world_.tether(i).params().time_step;
+  return std::floor((now.toSec() - interpolation_delay_) / dt) * dt;
+}
+
+void Scheduler::restart(std::size_t i, const ros::Time& now)
+{
+  world_.tether(i).reset(alignedPhysicsTime(i, now));
+  tethers_[i].next_state = 0.0;
+  tethers_[i].hooks->restarted();
+}
+
+void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& why)
+{
+  ROS_WARN("tether_node%s: %s: resetting the tether to %.2f m", tethers_[i].label.c_str(), why.c_str(),
+           world_.tether(i).params().initial_deployed_length);
+  restart(i, now);
+  ++tethers_[i].resets;
+  last_time_ = now;
+}
+
+void Scheduler::resetAll(const ros::Time& now, const std::string& why)
+{
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    reset(i, now, why);
+  }
+}
+
+void Scheduler::checkClock(const ros::Time& now)
+{
+  if (started_ && now < last_time_)
+  {
+    resetAll(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+  }
+}
+
+void Scheduler::tick(const ros::Time& now)
+{
+  if (now.isZero())
+  {
+    return;  // simulated time has not started
+  }
+  if (!started_)
+  {
+    started_ = true;
+    for (std::size_t i = 0; i < tethers_.size(); ++i)
+    {
+      restart(i, now);
+    }
+    last_time_ = now;
+  }
+  else if (now < last_time_)
+  {
+    resetAll(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+  }
+  else if ((now - last_time_).toSec() > kMaxForwardJump)
+  {
+    resetAll(now, "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s");
+  }
+  for (auto& tether : tethers_)
+  {
+    tether.hooks->beforeAdvance(now);
+  }
+  // Poses arrive late: running the physics behind ROS time lets them bracket it.
+  const double target = now.toSec() - interpolation_delay_;
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    prepare(i, target, now);
+  }
+  std::vector<std::uint64_t> steps_before(tethers_.size());
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    steps_before[i] = world_.tether(i).stepCount();
+  }
+  const ros::WallTime wall_start = wall_clock_();
+  advance(target);
+  const ros::WallTime wall_end = wall_clock_();
+  account((wall_end - wall_start).toSec(), wall_end, steps_before);
+  last_time_ = now;
+  for (auto& tether : tethers_)
+  {
+    tether.hooks->afterAdvance(now);
+  }
+}
+
+void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)
+{
+  TetherSchedule& s = tethers_[i];
+  Tether& tether = world_.tether(i);
+  const double period = s.state_period;
+  if (s.next_state <= 0.0 || s.next_state < target - 1.0)
+  {
+    s.next_state = std::ceil(std::max(tether.time(), target - 1.0) / period) * period;
+  }
+  if (target - tether.time() > s.max_lag)
+  {
+    // Too far behind to catch up: jump ahead with the cable held at rest, and say so.
+    const double behind = target - tether.time();
+    const double dt = tether.params().time_step;
+    tether.skipTo(std::floor(target / dt) * dt);
+    s.next_state = std::ceil(tether.time() / period) * period;  // the state grid resumes from there
+    ++s.skips;
+    s.last_skip_time = now;
+    ROS_ERROR_THROTTLE(1.0,
+                       "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
+                       "skipped ahead with the cable held",
+                       s.label.c_str(), behind, s.max_lag);
+  }
+}
+
+void Scheduler::advance(double target)
+{
+  for (;;)
+  {
+    // The earliest ~state point due by the target, among all tethers.
+    double next = std::numeric_limits<double>::infinity();
+    for (const auto& s : tethers_)
+    {
+      if (s.next_state <= target)
+      {
+        next = std::min(next, s.next_state);
+      }
+    }
+    const bool state_due = next <= target;
+    world_.advanceTo(state_due ? next : target);
+    if (!state_due)
+    {
+      break;
+    }
+    for (auto& s : tethers_)
+    {
+      if (s.next_state <= next)
+      {
+        s.hooks->publishState();
+        s.next_state += s.state_period;
+      }
+    }
+  }
+}
+
+void Scheduler::account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before)
+{
+  std::vector<double> work(tethers_.size());
+  double total = 0.0;
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    const Tether& tether = world_.tether(i);
+    work[i] = static_cast<double>(tether.stepCount() - steps_before[i]) * stepWork(tether);
+    total += work[i];
+  }
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    TetherSchedule& s = tethers_[i];
+    Tether& tether = world_.tether(i);
+    // Alone, a tether's share is all of it; with no step taken, the overhead is shared evenly.
+    const double share = total > 0.0 ? work[i] / total : 1.0 / static_cast<double>(tethers_.size());
+    const double tether_wall = wall * share;
+    s.governor.update(tether_wall, wall_end, tether);
+    const std::uint64_t steps = tether.stepCount() - steps_before[i];
+    if (steps > 0 && tether_wall > 0.0)
+    {
+      s.step_seconds = smooth(s.step_seconds, tether_wall / static_cast<double>(steps));
+      s.real_time_factor =
+          smooth(s.real_time_factor, static_cast<double>(steps) * tether.params().time_step / tether_wall);
+    }
+  }
+}
+
+}  // namespace rov_tether::ros_layer

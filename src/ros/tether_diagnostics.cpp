@@ -1,0 +1,108 @@
+#include "rov_tether/ros/tether_diagnostics.hpp"
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+/// Diagnostics stay ERROR for this long after a simulation failure or a skip [s].
+constexpr double kFailureReportTime = 5.0;
+
+}  // namespace
+
+TetherDiagnostics::TetherDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeOptions& options,
+                                     const std::string& name, const Tether& tether, const PoseInput& pose_input,
+                                     const Scheduler& scheduler, std::size_t index)
+    : options_(options),
+      label_(name.empty() ? "" : " " + name),
+      tether_(tether),
+      pose_input_(pose_input),
+      scheduler_(scheduler),
+      index_(index)
+{
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, private_nh);
+  updater_->setHardwareID(name.empty() ? "rov_tether" : "rov_tether/" + name);
+  updater_->add(name.empty() ? "tether" : "tether " + name, this, &TetherDiagnostics::diagnose);
+}
+
+void TetherDiagnostics::report(const ros::Time& now)
+{
+  if (tether_.recoveryCount() > reported_failures_)
+  {
+    reported_failures_ = tether_.recoveryCount();
+    last_failure_time_ = now;
+    ROS_ERROR_THROTTLE(1.0, "tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
+                       static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
+  }
+  if (tether_.jumpCount() > reported_jumps_)
+  {
+    reported_jumps_ = tether_.jumpCount();
+    ROS_WARN_THROTTLE(1.0, "tether_node%s: the vehicle pose jumped more than max_vehicle_jump = %.2f m: cable re-laid",
+                      label_.c_str(), tether_.params().max_vehicle_jump);
+  }
+}
+
+void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const TetherSchedule& schedule = scheduler_.schedule(index_);
+  const LoadGovernor& governor = schedule.governor;
+  const TetherSummary summary = tether_.summary();
+  status.summary(DiagnosticStatus::OK, "tether simulated");
+  status.add("deployed length [m]", summary.deployed_length);
+  status.add("tension at vehicle [N]", summary.tension_vehicle);
+  status.add("max tension [N]", summary.max_tension);
+  status.add("step time [us]", schedule.step_seconds * 1e6);
+  status.add("physics real-time factor", schedule.real_time_factor);
+  status.add("residual stretch", summary.mean_strain);
+  status.add("rejected poses", pose_input_.rejected());
+  status.add("resets", schedule.resets);
+  status.add("vehicle jumps", tether_.jumpCount());
+  status.add("solver", toString(tether_.params().solver));
+  status.add("iterations", tether_.params().iterations);
+  status.add("physics load [% of wall time]", 100.0 * governor.physicsLoad());
+  status.add("skips (fell behind)", schedule.skips);
+  status.add("simulation failures", tether_.recoveryCount());
+  if (!tether_.lastFailure().empty())
+  {
+    status.add("last failure", tether_.lastFailure());
+  }
+  const ros::Time now = ros::Time::now();
+  const ros::Time& last_pose_time = pose_input_.lastPoseTime();
+  if (!tether_.vehicleAttached())
+  {
+    status.mergeSummary(DiagnosticStatus::WARN, "no vehicle pose yet");
+  }
+  else if (!last_pose_time.isZero() && (now - last_pose_time).toSec() > options_.stale_pose_timeout)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "stale pose: none for %.1f s", (now - last_pose_time).toSec());
+  }
+  if (summary.max_tension > options_.max_tension_warning)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "over-tension: %.1f N", summary.max_tension);
+  }
+  if (summary.deployed_length >= tether_.params().cable_length - 1e-9)
+  {
+    status.mergeSummary(DiagnosticStatus::WARN, "fully deployed");
+  }
+  if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "simulation failure, cable re-laid: %s",
+                         tether_.lastFailure().c_str());
+  }
+  if (!governor.degraded().empty())
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "degraded to hold real time: %s (overload_policy %s)",
+                         governor.degraded().c_str(), governor.policy().c_str());
+  }
+  if (!schedule.last_skip_time.isZero() && (now - schedule.last_skip_time).toSec() < kFailureReportTime)
+  {
+    status.mergeSummary(DiagnosticStatus::ERROR, "fell behind real time by more than max_lag: skipped ahead");
+  }
+  if (schedule.real_time_factor > 0.0 && schedule.real_time_factor < 1.0)
+  {
+    status.mergeSummaryf(DiagnosticStatus::ERROR, "physics slower than real time (%.2fx)", schedule.real_time_factor);
+  }
+}
+
+}  // namespace rov_tether::ros_layer

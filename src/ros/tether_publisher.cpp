@@ -1,0 +1,78 @@
+#include "rov_tether/ros/tether_publisher.hpp"
+
+#include <algorithm>
+
+namespace rov_tether::ros_layer
+{
+
+const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t resets)
+{
+  tether.computeSegmentTensions(tensions_);
+  const double physics_time = tether.time();
+  const double elapsed = physics_time - last_state_physics_;
+  const double deployed = tether.deployedLength();
+  const double winch_speed = last_state_physics_ > 0.0 && elapsed > 0.0 ? (deployed - last_deployed_) / elapsed : 0.0;
+  last_deployed_ = deployed;
+  last_state_physics_ = physics_time;
+  stamp_ = ros::Time(std::max(physics_time, 0.0));  // the state is of the physics' time
+  toStateMessage(tether, tensions_, stamp_, frame_id_, winch_speed, resets, &msg_);
+  return msg_;
+}
+
+geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Vector3d& vehicle_origin) const
+{
+  return toWrench(tether, vehicle_origin, stamp_, frame_id_);
+}
+
+void StateBuilder::restart(const Tether& tether)
+{
+  last_state_physics_ = 0.0;
+  last_deployed_ = tether.deployedLength();
+}
+
+TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options)
+    : options_(options), builder_(options.world_frame)
+{
+  state_pub_ = private_nh.advertise<TetherState>("state", 10);
+  wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
+  marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 2);
+}
+
+void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Vector3d& vehicle_origin)
+{
+  state_pub_.publish(builder_.state(tether, resets));
+  wrench_pub_.publish(builder_.wrench(tether, vehicle_origin));
+}
+
+void TetherPublisher::restart(const Tether& tether)
+{
+  builder_.restart(tether);
+  next_marker_time_ = ros::Time();
+}
+
+void TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
+{
+  const ros::Duration period(1.0 / rate);
+  if (marker_pub_.getNumSubscribers() == 0)
+  {
+    return;  // markers cost nothing when nobody looks
+  }
+  if (!next_marker_time_.isZero() && now < next_marker_time_ && next_marker_time_ - now <= period)
+  {
+    return;
+  }
+  // A fixed schedule (next += period) keeps the average rate exact on the physics timer's grid.
+  const bool behind =
+      next_marker_time_.isZero() || now - next_marker_time_ > period || next_marker_time_ - now > period;
+  next_marker_time_ = behind ? now + period : next_marker_time_ + period;
+  tether.computeSegmentTensions(tensions_);
+  MarkerOptions marker_options;
+  marker_options.frame_id = options_.world_frame;
+  marker_options.line_width = options_.marker_line_width;
+  marker_options.tension_full_scale = options_.tension_full_scale;
+  marker_options.stripe_segments = options_.stripe_segments;
+  toMarkers(tether, tensions_, ros::Time(std::max(tether.time(), 0.0)), marker_options, &markers_);
+  marker_pub_.publish(markers_);
+}
+
+}  // namespace rov_tether::ros_layer

@@ -1,0 +1,108 @@
+#include "rov_tether/ros/world_node.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace rov_tether::ros_layer
+{
+namespace
+{
+
+/// The names in the private parameter `tethers`; empty when it is absent (one tether, configured in ~).
+std::vector<std::string> tetherNames(const ros::NodeHandle& private_nh)
+{
+  std::vector<std::string> result;
+  XmlRpc::XmlRpcValue names;
+  if (!private_nh.getParam("tethers", names))
+  {
+    return result;
+  }
+  if (names.getType() != XmlRpc::XmlRpcValue::TypeArray || names.size() == 0)
+  {
+    throw std::runtime_error("parameter 'tethers': expected a non-empty list of names");
+  }
+  for (int i = 0; i < names.size(); ++i)
+  {
+    if (names[i].getType() != XmlRpc::XmlRpcValue::TypeString || static_cast<std::string>(names[i]).empty())
+    {
+      throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " is not a name");
+    }
+    result.push_back(static_cast<std::string>(names[i]));
+  }
+  return result;
+}
+
+/// The tethers of one world run on one clock: the timer at the highest physics_rate asked for and the
+/// physics the largest interpolation_delay behind ROS time. Says so when some tether asked otherwise.
+void shareOneClock(const std::vector<std::string>& names, std::vector<TetherSetup>* setups)
+{
+  double rate = 0.0;
+  double delay = 0.0;
+  for (const auto& setup : *setups)
+  {
+    rate = std::max(rate, setup.options.physics_rate);
+    delay = std::max(delay, setup.options.interpolation_delay);
+  }
+  std::string differing;
+  for (std::size_t i = 0; i < setups->size(); ++i)
+  {
+    NodeOptions& options = (*setups)[i].options;
+    if (options.physics_rate != rate || options.interpolation_delay != delay)
+    {
+      differing += (differing.empty() ? "" : ", ") + names[i] + " (physics_rate " +
+                   std::to_string(options.physics_rate) + " Hz, interpolation_delay " +
+                   std::to_string(options.interpolation_delay) + " s)";
+    }
+    options.physics_rate = rate;
+    options.interpolation_delay = delay;
+  }
+  if (!differing.empty())
+  {
+    ROS_WARN(
+        "tether_node: the tethers of one process share one physics clock: physics_rate %.1f Hz and "
+        "interpolation_delay %.3f s (the highest and the largest asked for) also apply to %s",
+        rate, delay, differing.c_str());
+  }
+}
+
+}  // namespace
+
+WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
+{
+  const std::vector<std::string> names = tetherNames(private_nh_);
+  std::vector<TetherSetup> setups;
+  if (names.empty())
+  {
+    setups.push_back(loadTetherSetup(private_nh_, XmlRpc::XmlRpcValue()));
+  }
+  else
+  {
+    XmlRpc::XmlRpcValue shared;
+    private_nh_.getParam(private_nh_.getNamespace(), shared);
+    for (const auto& name : names)
+    {
+      setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh_, name), shared));
+    }
+    shareOneClock(names, &setups);
+  }
+  const NodeOptions& clock = setups.front().options;
+  scheduler_ = std::make_unique<Scheduler>(world_, clock.interpolation_delay);
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+  for (std::size_t i = 0; i < setups.size(); ++i)
+  {
+    const std::string name = names.empty() ? "" : names[i];
+    const ros::NodeHandle tether_nh = names.empty() ? private_nh_ : ros::NodeHandle(private_nh_, name);
+    tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, setups[i], name, world_, *scheduler_, tf_buffer_));
+  }
+  timer_ = nh_.createTimer(ros::Duration(1.0 / clock.physics_rate), &WorldNode::onTimer, this);
+  if (!names.empty())
+  {
+    ROS_INFO("tether_node: %zu tethers in one process, one world stepped at %.0f Hz", tethers_.size(),
+             clock.physics_rate);
+  }
+}
+
+void WorldNode::onTimer(const ros::TimerEvent& /*event*/) { scheduler_->tick(ros::Time::now()); }
+
+}  // namespace rov_tether::ros_layer
