@@ -246,8 +246,10 @@ void answerGetTension(const Tether& sim, const std::vector<double>& tensions, co
   response->max_tension = summary.max_tension;
   response->max_tension_segment = static_cast<std::uint32_t>(summary.max_tension_segment);
 
+  // The empty request (`rosservice call .../get_tension "{}"`: both fields 0) asks for the vehicle end.
+  const bool empty = request.arc_length_from_vehicle == 0.0 && request.segment == 0;
   const bool by_arc = request.arc_length_from_vehicle >= 0.0;
-  const bool by_segment = request.segment >= 0;
+  const bool by_segment = request.segment >= 0 && !empty;
   if (by_arc == by_segment)
   {
     response->success = false;

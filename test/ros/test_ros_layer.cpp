@@ -199,6 +199,26 @@ TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)
   }
 }
 
+// `rosservice call /tether_node/get_tension "{}"` sends both fields 0, which was refused as ambiguous:
+// the empty request answers the vehicle end (arc length 0 from the vehicle), with both ends and the maximum.
+TEST(Converters, EmptyGetTensionRequestAnswersTheVehicleEnd)
+{
+  TetherParams params;
+  params.weight_in_water = 1.0;
+  Tether sim(params, Position::Zero(), Position(1.5, 0.0, -0.5));
+  sim.advance(1.0);
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  GetTension::Request request;  // all zero
+  GetTension::Response response;
+  answerGetTension(sim, tensions, request, &response);
+  EXPECT_TRUE(response.success) << response.message;
+  EXPECT_EQ(response.segment, tensions.size() - 1);
+  EXPECT_EQ(response.tension, tensions.back());
+  EXPECT_EQ(response.tension_vehicle, tensions.back());
+  EXPECT_EQ(response.tension_spool, tensions.front());
+}
+
 // dynamic_reconfigure fields map to the model parameters by name, both ways, through the core's table.
 TEST(Reconfigure, ConfigAndParamsMapByName)
 {
