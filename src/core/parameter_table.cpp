@@ -1,0 +1,188 @@
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "rov_tether/tether_params.hpp"
+
+// The parameter table: every parameter's type, unit, range and meaning, and the README table made from it.
+namespace rov_tether
+{
+namespace
+{
+
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+constexpr bool kOpen = true;
+constexpr bool kClosed = false;
+constexpr bool kLive = true;
+constexpr bool kAtStart = false;
+
+/// %g, with exponents written short (1e-08 -> 1e-8, 1e+05 -> 1e5) and a whole double keeping ".0".
+std::string formatNumber(double value, bool integer)
+{
+  if (std::isnan(value))
+  {
+    return ".nan";
+  }
+  const double exponent10 = value != 0.0 ? std::log10(std::abs(value)) : 0.0;
+  if (value != 0.0 && std::abs(exponent10) >= 4.0 && exponent10 == std::round(exponent10))
+  {
+    return std::string(value < 0.0 ? "-" : "") + "1e" + std::to_string(static_cast<int>(exponent10));
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  std::string text = buffer;
+  const auto e = text.find('e');
+  if (e != std::string::npos)
+  {
+    std::string mantissa = text.substr(0, e);
+    std::string exponent = text.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    exponent = exponent.substr(1);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    return mantissa + "e" + (negative ? "-" : "") + exponent;
+  }
+  if (!integer && text.find('.') == std::string::npos && std::abs(value) < 1e4)
+  {
+    text += ".0";
+  }
+  return text;
+}
+
+std::string formatRange(const ParameterInfo& info)
+{
+  if (!info.range.empty())
+  {
+    return info.range;
+  }
+  if (std::isnan(info.min))
+  {
+    return "";
+  }
+  const bool integer = info.type.rfind("int", 0) == 0;
+  return std::string(info.min_open ? "(" : "[") + formatNumber(info.min, integer) + ", " +
+         formatNumber(info.max, integer) + (info.max_open ? ")" : "]");
+}
+
+}  // namespace
+
+const std::vector<ParameterInfo>& parameterInfo()
+{
+  // name, type, unit, min, max, min open, max open, range as the README states it (when not [min, max]),
+  // meaning, live (dynamic_reconfigure). Order: documentation order, as parameterTable().
+  static const std::vector<ParameterInfo> table = {
+      {"cable_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "", "all cable, on the spool or deployed", kAtStart},
+      {"segment_length", "double or `auto`", "m", 1e-3, 100.0, kClosed, kClosed, "", "rest length of one segment",
+       kAtStart},
+      {"shape_tolerance", "double", "m", 0.0, 100.0, kOpen, kClosed, "",
+       "`segment_length: auto`: chord error per segment", kAtStart},
+      {"min_bend_radius", "double", "m", 0.0, 1e6, kOpen, kClosed, "",
+       "`segment_length: auto`: the scene's tightest radius", kAtStart},
+      {"initial_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[min_deployed_length, cable_length]",
+       "deployed at start and after a reset", kAtStart},
+      {"time_step", "double", "s", 1e-5, 0.1, kClosed, kClosed, "", "internal fixed step", kLive},
+      {"solver", "string", "-", kNone, kNone, kClosed, kClosed,
+       "`pbd`, `pbd_sequential`, `xpbd`, `lumped_mass`, `direct`", "method (see The model)", kLive},
+      {"substeps", "int", "-", 1, 10000, kClosed, kClosed, "", "sub-steps per `time_step`", kLive},
+      {"iterations", "int or `auto`", "-", 1, 1000, kClosed, kClosed, "",
+       "constraint sweeps per sub-step (`direct`: the most Newton iterations)", kLive},
+      {"over_relaxation", "double", "-", 0.5, 1.95, kClosed, kClosed, "",
+       "`pbd`: each correction times this; 1 = the paper's", kLive},
+      {"solver_tolerance", "double", "-", 1e-14, 0.1, kClosed, kClosed, "",
+       "`direct`: Newton stops when every residual is below this x its segment length", kLive},
+      {"stretch_tolerance", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "`iterations: auto`: residual stretch aimed for", kAtStart},
+      {"bending", "bool", "-", kNone, kNone, kClosed, kClosed, "", "the paper's (i, i+2) bending constraints", kLive},
+      {"drag", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "velocity kept per 0.02 s reference step (rate `-ln(drag)/0.02` 1/s)", kLive},
+      {"noise", "double", "m", 0.0, 1.0, kClosed, kClosed, "",
+       "random displacement half-width per axis per 0.02 s reference step", kLive},
+      {"seed", "int", "-", 0.0, 9e15, kClosed, kClosed, "", "noise seed; same seed, same run", kAtStart},
+      {"weight_in_water", "double", "N/m", -1e4, 1e4, kClosed, kClosed, "",
+       "net weight, positive sinks, 0 neutrally buoyant", kLive},
+      {"mass_per_length", "double", "kg/m", 0.0, 1e4, kOpen, kClosed, "", "mass, for weight and tension", kLive},
+      {"axial_stiffness", "double", "N", 0.0, 1e12, kOpen, kClosed, "",
+       "EA: `xpbd`, `lumped_mass`, `direct` stiffness; `pbd`: only the scale of T/EA", kLive},
+      {"bending_stiffness", "double", "N m^2", 0.0, 1e9, kClosed, kClosed, "",
+       "EI of `xpbd`'s and `direct`'s bending; 0 = none", kLive},
+      {"drag_model", "string", "-", kNone, kNone, kClosed, kClosed, "`damping`, `morison`",
+       "the paper's damping or Morison drag", kLive},
+      {"diameter", "double", "m", 0.0, 10.0, kOpen, kClosed, "", "outer diameter (Morison, added mass)", kAtStart},
+      {"water_density", "double", "kg/m^3", 0.0, 1e5, kClosed, kClosed, "", "density of the water", kAtStart},
+      {"normal_drag_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "", "Morison, flow across the cable",
+       kLive},
+      {"tangential_drag_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "Morison, flow along the cable (area pi d)", kLive},
+      {"added_mass_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "Morison: added mass C_a rho pi d^2 / 4 per metre", kLive},
+      {"current", "double[3]", "m/s", -100.0, 100.0, kClosed, kClosed, "each in [-100, 100]",
+       "uniform water velocity, world frame", kAtStart},
+      {"current_variation", "double", "m/s", 0.0, 100.0, kClosed, kClosed, "", "RMS of the slow, correlated variation",
+       kLive},
+      {"seabed_z", "double", "m", -1e5, 1e5, kClosed, kClosed, "[-1e5, 1e5] or absent (.nan)",
+       "height of a flat seabed", kAtStart},
+      {"seabed_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "", "Coulomb friction on the seabed", kLive},
+      {"winch_mode", "string", "-", kNone, kNone, kClosed, kClosed, "`passive`, `locked`, `speed`", "winch behaviour",
+       kLive},
+      {"winch_speed", "double", "m/s", -20.0, 20.0, kClosed, kClosed, "[-max_winch_speed, max_winch_speed]",
+       "`speed` mode command, positive pays out", kLive},
+      {"max_winch_speed", "double", "m/s", 0.0, 20.0, kOpen, kClosed, "", "limit in every mode", kLive},
+      {"payout_threshold", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
+       "first-segment strain that starts a passive pay-out", kLive},
+      {"reel_in_slack", "double", "-", 0.0, 100.0, kClosed, kClosed, "",
+       "passive reel-in above (1 + this) x spool-vehicle distance", kLive},
+      {"min_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[segment_length, cable_length]",
+       "never reel in below this", kAtStart},
+      {"max_vehicle_jump", "double", "m", 0.0, 1e4, kOpen, kClosed, "",
+       "a larger step between vehicle samples is a jump", kLive},
+  };
+  return table;
+}
+
+std::string formatParamValue(const ParamValue& value)
+{
+  switch (value.index())
+  {
+    case 0:
+      return std::get<bool>(value) ? "true" : "false";
+    case 1:
+      return std::to_string(std::get<std::int64_t>(value));
+    case 2:
+      return formatNumber(std::get<double>(value), false);
+    case 3:
+      return std::get<std::string>(value);
+    default:
+    {
+      std::string out = "[";
+      for (const double v : std::get<std::vector<double>>(value))
+      {
+        out += (out.size() > 1 ? ", " : "") + formatNumber(v, false);
+      }
+      return out + "]";
+    }
+  }
+}
+
+std::string parameterTableMarkdown()
+{
+  const TetherParams defaults;
+  std::string out = "| name | type | unit | default | range | live | meaning |\n|---|---|---|---|---|---|---|\n";
+  for (const ParameterInfo& info : parameterInfo())
+  {
+    const ParamValue value = getParameter(defaults, info.name);
+    std::string shown = formatParamValue(value);
+    if (value.index() == 3)
+    {
+      shown = "`" + shown + "`";
+    }
+    if (info.name == "seabed_z" && std::isnan(defaults.seabed_z))
+    {
+      shown = ".nan (none)";
+    }
+    out += "| `" + info.name + "` | " + info.type + " | " + info.unit + " | " + shown + " | " + formatRange(info) +
+           " | " + (info.live ? "yes" : "") + " | " + info.meaning + " |\n";
+  }
+  return out;
+}
+
+}  // namespace rov_tether
