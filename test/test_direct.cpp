@@ -120,10 +120,13 @@ TEST(Direct, HangsOneKilometreInTenThousandSegments)
   EXPECT_NEAR(extension, expected, 0.01 * expected);
 }
 
-// Step independence: a slow pull (0.1 m/s, quasi-static: inertia is negligible against weight and drag)
-// gives the same tension and shape at 5 ms and at 20 ms steps. Bounds: the quasi-static tension within 1%,
-// the shape within 1 cm RMS.
-TEST(Direct, SameMotionAtFiveAndTwentyMillisecondSteps)
+// Step independence during the motion: a heavy cable pulled out and down at 0.11 m/s, compared while it
+// moves (t = 3 s) at 20, 5 and 1.25 ms steps. The scheme is first order in the step (damped Verlet with an
+// implicit constraint solve), so the difference to the finest run must shrink with the step: at 5 ms at
+// most half of what it is at 20 ms (first order gives a quarter; half leaves room for the second-order
+// terms of a coarse step). And at 20 ms the vehicle tension is already within 2% of the finest, the
+// accuracy the study asks of a method (docs/references.md, speed against accuracy).
+TEST(Direct, SameMotionAtDifferentSteps)
 {
   auto run = [](double step)
   {
@@ -134,26 +137,33 @@ TEST(Direct, SameMotionAtFiveAndTwentyMillisecondSteps)
     p.weight_in_water = 1.0;
     p.mass_per_length = 0.5;
     Tether sim(p, Position::Zero(), Position(8.0, 0.0, 0.0));
-    for (int k = 1; k <= 1000; ++k)
+    for (int k = 1; k <= 400; ++k)
     {
       const double t = 0.01 * k;
-      EXPECT_TRUE(sim.addVehicleSample(t, Position(8.0 + 0.1 * std::min(t, 5.0), 0.0, -0.05 * std::min(t, 5.0))).ok);
+      EXPECT_TRUE(sim.addVehicleSample(t, Position(8.0 + 0.1 * t, 0.0, -0.05 * t)).ok);
       if (k % 50 == 0)
       {
-        sim.advanceTo(t - 0.5);
+        sim.advanceTo(std::min(t - 0.5, 3.0));
       }
     }
-    sim.advanceTo(9.5);
+    sim.advanceTo(3.0);
     return sim;
   };
+  const Tether finest = run(0.00125);
   const Tether fine = run(0.005);
   const Tether coarse = run(0.02);
-  const double a = fine.summary().tension_vehicle;
-  const double b = coarse.summary().tension_vehicle;
-  const double shape = rmsDistance(positions(fine), positions(coarse));
-  std::printf("[ measured ] 5 ms vs 20 ms: vehicle tension %.4f / %.4f N, shape RMS %.2g m\n", a, b, shape);
-  EXPECT_NEAR(a, b, 0.01 * a);
-  EXPECT_LT(shape, 0.01);
+  const double t_finest = finest.summary().tension_vehicle;
+  const double error_fine = std::abs(fine.summary().tension_vehicle - t_finest);
+  const double error_coarse = std::abs(coarse.summary().tension_vehicle - t_finest);
+  const double shape_fine = rmsDistance(positions(fine), positions(finest));
+  const double shape_coarse = rmsDistance(positions(coarse), positions(finest));
+  std::printf(
+      "[ measured ] moving at t = 3 s, against 1.25 ms: vehicle tension %.4f N; off by %.3g N at 5 ms, "
+      "%.3g N at 20 ms; shape RMS %.3g m at 5 ms, %.3g m at 20 ms\n",
+      t_finest, error_fine, error_coarse, shape_fine, shape_coarse);
+  EXPECT_LT(error_fine, 0.5 * error_coarse);
+  EXPECT_LT(shape_fine, 0.5 * shape_coarse);
+  EXPECT_LT(error_coarse, 0.02 * t_finest);
 }
 
 // The hanging chain's first period (docs/references.md, "Hanging chain": T1 = 5.276 s for 10 m in air)
@@ -168,11 +178,14 @@ TEST(Direct, HangingChainPeriod)
   EXPECT_LT(r.shape_error, 0.01);
 }
 
-// Abuse: the vehicle teleports 5 m in one step (not treated as a jump), then runs away at 10 m/s with the
-// winch locked, 3 m beyond the cable's length. Newton may not converge in such steps (it reports it), but
-// the cable stays finite and within reach of its ends (the ends are never further than 16 m from the
-// spool, the cable 10 m long and at most doubled in length before a failure would be reported).
-TEST(Direct, TeleportAndTenMetresPerSecondStayBounded)
+// Abuse: the vehicle teleports 5 m sideways in one step (not treated as a jump), then runs away at 14 m/s
+// with the winch locked, to 1.3 m beyond the cable's 10 m. Newton may not converge in such steps, and says
+// so (a residual above the tolerance); where a constraint stays violated by a whole segment length (the
+// divergence limit the other methods use, kDivergenceStrain in tether.cpp) the cable is re-laid at rest
+// and the failure is counted and described. The cable stays finite and within 2 L of the spool. (It does
+// not always become exact again: a chain folded by the teleport can stay a third of a segment off after
+// the vehicle stops, a known limitation of the Newton linearisation, see the README.)
+TEST(Direct, TeleportAndFourteenMetresPerSecondStayBounded)
 {
   TetherParams p = directParams();
   p.winch_mode = WinchMode::kLocked;
@@ -181,24 +194,40 @@ TEST(Direct, TeleportAndTenMetresPerSecondStayBounded)
   Tether sim(p, Position::Zero(), Position(5.0, 0.0, 0.0));
   sim.advance(1.0);
   ASSERT_TRUE(sim.addVehicleSample(1.005, Position(5.0, 5.0, 0.0)).ok);  // 5 m in one 5 ms step
-  sim.advance(1.0);
-  for (int k = 1; k <= 30; ++k)  // then 14 m/s diagonally for 0.3 s
+  for (int k = 1; k <= 30; ++k)                                          // from t = 2 s, 14 m/s diagonally for 0.3 s
   {
     ASSERT_TRUE(sim.addVehicleSample(2.0 + 0.01 * k, Position(5.0 + 0.1 * k, 5.0 + 0.1 * k, 0.0)).ok);
   }
   double worst = 0.0;
-  for (int k = 0; k < 200; ++k)
+  double max_strain = 0.0;
+  double final_residual = 0.0;
+  int unconverged = 0;
+  for (int k = 0; k < 460; ++k)  // through the teleport, the pull and 1 s after it
   {
     sim.step();
     worst = std::max(worst, sim.solverResidual());
+    unconverged += sim.solverResidual() > p.solver_tolerance ? 1 : 0;
     for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
     {
-      ASSERT_TRUE(sim.particle(i).allFinite());
-      ASSERT_LT(sim.particle(i).norm(), 16.0 + 20.0);
+      ASSERT_TRUE(sim.particle(i).allFinite()) << "step " << k;
+      ASSERT_LT(sim.particle(i).norm(), 2.0 * p.cable_length) << "step " << k;
+    }
+    max_strain = std::max(max_strain, sim.summary().max_strain);
+    if (k == 459)
+    {
+      final_residual = sim.solverResidual();
     }
   }
-  std::printf("[ measured ] teleport and 14 m/s: largest residual %.3g, recoveries %llu\n", worst,
-              static_cast<unsigned long long>(sim.recoveryCount()));
+  std::printf(
+      "[ measured ] teleport and 14 m/s: largest residual %.3g, %d of 460 steps above the tolerance, "
+      "largest strain %.3g, final residual %.3g\n",
+      worst, unconverged, max_strain, final_residual);
+  EXPECT_GT(unconverged, 0);  // the abuse is real: some steps did not converge, and it was reported
+  if (sim.recoveryCount() > 0)
+  {
+    EXPECT_NE(sim.lastFailure().find("direct solver did not converge"), std::string::npos) << sim.lastFailure();
+  }
+  EXPECT_LT(final_residual, 1.0);  // below the divergence limit, or re-laid
 }
 
 // A heavy clump at the end of a light chain: the last particle's mass is 1e4 times a segment's. The

@@ -369,6 +369,16 @@ void Tether::subStep(double h, double t)
         << " s exceeds the critical step " << params_.criticalStep() << " s = segment_length / sqrt(EA / mu)";
     fail(why.str());
   }
+  const double residual = solver_->lastResidual();
+  if (!std::isnan(residual) && !(residual < kDivergenceStrain))
+  {
+    // A constraint still violated by its own length after `iterations` Newton steps: the chain has
+    // folded (a teleport, a violent pull) and would not unfold by itself.
+    std::ostringstream why;
+    why << "direct solver did not converge (residual " << residual << " of a segment's length after "
+        << solver_->lastIterations() << " iterations)";
+    fail(why.str());
+  }
 }
 
 void Tether::fail(const std::string& why)
