@@ -1,7 +1,8 @@
 #pragma once
 // Golden outputs: hashes of whole output files, compared with the values committed in test/golden/.
 // They pin behaviour through refactoring: a change that moves outputs on purpose regenerates them with
-//   ROV_TETHER_UPDATE_GOLDEN=1 <test binary> --gtest_filter='Golden*'
+//   ROV_TETHER_UPDATE_GOLDEN=1 test_core --gtest_filter='Golden*'        (test/golden/runner.txt)
+//   ROV_TETHER_UPDATE_GOLDEN=1 test_ros_layer --gtest_filter='Golden*'   (test/golden/node_replay.txt)
 // and commits the new file on its own, saying why the outputs moved.
 
 #include <gtest/gtest.h>
@@ -62,7 +63,8 @@ class GoldenFile
   }
   ~GoldenFile()
   {
-    if (update_)
+    // Written only from a complete, passing run: a test that stopped early would drop hashes silently.
+    if (update_ && !::testing::Test::HasFailure() && computed_.size() >= expected_.size())
     {
       std::ofstream out(path_);
       for (const auto& [key, value] : computed_)
@@ -87,7 +89,14 @@ class GoldenFile
     EXPECT_EQ(it->second, hex(hash)) << key << ": output differs from the golden one; if the change is "
                                      << "deliberate, regenerate " << path_ << " in its own commit and say why";
   }
-  std::size_t size() const { return expected_.size(); }
+  /// Every committed hash was checked (call at the end of a test): a case that stops running is a change.
+  void expectAllChecked() const
+  {
+    for (const auto& [key, value] : expected_)
+    {
+      EXPECT_EQ(computed_.count(key), 1u) << key << " is in the golden file but was not computed";
+    }
+  }
 
  private:
   std::string path_;

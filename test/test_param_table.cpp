@@ -121,16 +121,34 @@ TEST(ParamTable, DynamicReconfigureAgreesWithTheTable)
     else
     {
       EXPECT_EQ(shown, "\"" + std::get<std::string>(value) + "\"") << name << " default";
-      // Every choice the table lists is a constant of the enum, and no other.
+      // The parameter's enum (edit_method=NAME) holds exactly the choices the table lists, and the core
+      // accepts each of them.
       std::set<std::string> choices;
       const std::regex choice("`(\\w+)`");
       for (std::sregex_iterator c(row->range.begin(), row->range.end(), choice), e; c != e; ++c)
       {
         choices.insert((*c)[1]);
       }
+      ASSERT_FALSE(choices.empty()) << name << ": the table lists no choices";
+      std::smatch method;
+      const std::string line = (*it)[0].str() + cfg.substr(it->position() + it->length(), 200);
+      ASSERT_TRUE(std::regex_search(line, method, std::regex(R"re(edit_method=(\w+))re"))) << name;
+      std::smatch definition;
+      ASSERT_TRUE(
+          std::regex_search(cfg, definition, std::regex(method[1].str() + R"re(\s*=\s*gen\.enum\(\[([\s\S]*?)\])re")))
+          << name << ": no enum " << method[1];
+      std::set<std::string> constants;
+      const std::string body = definition[1];
+      const std::regex constant(R"re(gen\.const\("(\w+)")re");
+      for (std::sregex_iterator c(body.begin(), body.end(), constant), e; c != e; ++c)
+      {
+        constants.insert((*c)[1]);
+      }
+      EXPECT_EQ(constants, choices) << name << ": Tether.cfg's enum differs from the table";
       for (const std::string& option : choices)
       {
-        EXPECT_NE(cfg.find("gen.const(\"" + option + "\""), std::string::npos) << name << ": no choice " << option;
+        TetherParams p;
+        EXPECT_EQ(setParameter(p, name, ParamValue(option)), "") << name << " = " << option;
       }
     }
   }

@@ -169,6 +169,16 @@ TEST(Runner, SummaryShowsWhatAutoChose)
     text += line + "\n";
   }
   EXPECT_NE(text.find("segment 0.4 m"), std::string::npos) << text;
+  // What ran: 10 m deployed in segments of 0.4 m is 25 segments, 26 particles at t = 0.
+  int particles = 0;
+  for (const std::string& line : readLines(fs::path(dir) / "shape.csv"))
+  {
+    particles += line.rfind("0.000000,", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(particles, 26);
+  fs::remove(scenario_path);
+  fs::remove(out);
+  fs::remove_all(dir);
 }
 
 TEST(Runner, WritesStateAndShapeCsv)

@@ -99,8 +99,8 @@ TEST(Solver, EveryChainLengthConvergesAndPinnedParticlesStay)
       {
         EXPECT_EQ(state.position(i), initial.position(i)) << "pinned particle " << i;
       }
-      // Multipliers: a constraint between two pinned particles cannot move them, so it carries none;
-      // the rest are finite.
+      // Multipliers: pbd's rigid projection of a constraint between two pinned particles has no weight
+      // (1 / (0 + 0) is taken as 0), so it records none, by the method's convention; the rest are finite.
       for (std::size_t j = state.first; j + 1 < state.size(); ++j)
       {
         const double lambda = solver->multipliers().stretch[j];

@@ -22,6 +22,7 @@
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/scenario_yaml.hpp"
 #include "rov_tether/world.hpp"
+#include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::test
 {
@@ -76,7 +77,8 @@ TEST(Golden, NodePipelineReplaysARecordedDive)
   const std::string source(ROV_TETHER_SOURCE_DIR);
   TetherParams params;
   ASSERT_EQ(loadParamsFile(source + "/config/default.yaml", &params), "");
-  ros_layer::NodeOptions options;  // the defaults are config/node.yaml's
+  ros_layer::NodeOptions options;
+  ASSERT_EQ(ros_layer::loadNodeOptions(loadYaml("config/node.yaml"), &options), "");  // as tether.launch does
 
   rosbag::Bag bag(source + "/test/data/straight_excursion.bag");
   rosbag::View view(bag, rosbag::TopicQuery("/rov_pose"));
@@ -122,13 +124,18 @@ TEST(Golden, NodePipelineReplaysARecordedDive)
     }
     scheduler.tick(now);
   }
-  EXPECT_EQ(accepted + input.rejected(), poses.size());
+  EXPECT_EQ(input.rejected(), 0u);  // a clean recording: every pose is taken
+  EXPECT_EQ(accepted, poses.size());
   EXPECT_EQ(scheduler.schedule(0).resets, 0u);
   EXPECT_EQ(scheduler.schedule(0).skips, 0u);
   EXPECT_EQ(scheduler.governor(0).degraded(), "");
-  EXPECT_GT(states, 1000u);  // 30 Hz over 50 s
+  // One ~state per point of the state grid from the first tick's physics time to the last: state_rate x
+  // the span, within the one point either end may add.
+  const double span = (poses.back().first + ros::Duration(1.0) - poses.front().first).toSec();
+  EXPECT_NEAR(static_cast<double>(states), options.state_rate * span, 2.0);
   GoldenFile golden("node_replay.txt");
   golden.check("straight_excursion/state_and_wrench", hash);
+  golden.expectAllChecked();
 }
 
 }  // namespace

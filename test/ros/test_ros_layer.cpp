@@ -8,57 +8,14 @@
 #include "../test_helpers.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
+#include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
 {
+using test::loadYaml;
+
 namespace
 {
-
-/// A YAML file as the parameter server would hold it (what `rosparam load` does).
-XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node)
-{
-  if (node.IsMap())
-  {
-    XmlRpc::XmlRpcValue result;
-    for (const auto& entry : node)
-    {
-      result[entry.first.as<std::string>()] = toXmlRpc(entry.second);
-    }
-    return result;
-  }
-  if (node.IsSequence())
-  {
-    XmlRpc::XmlRpcValue result;
-    result.setSize(static_cast<int>(node.size()));
-    for (std::size_t i = 0; i < node.size(); ++i)
-    {
-      result[static_cast<int>(i)] = toXmlRpc(node[i]);
-    }
-    return result;
-  }
-  bool b;
-  int i;
-  double d;
-  if (node.Tag() != "!" && YAML::convert<bool>::decode(node, b) &&
-      node.Scalar().find_first_of("0123456789") == std::string::npos)
-  {
-    return XmlRpc::XmlRpcValue(b);
-  }
-  if (node.Tag() != "!" && YAML::convert<int>::decode(node, i))
-  {
-    return XmlRpc::XmlRpcValue(i);
-  }
-  if (node.Tag() != "!" && YAML::convert<double>::decode(node, d))
-  {
-    return XmlRpc::XmlRpcValue(d);
-  }
-  return XmlRpc::XmlRpcValue(node.Scalar());
-}
-
-XmlRpc::XmlRpcValue loadYaml(const std::string& relative)
-{
-  return toXmlRpc(YAML::LoadFile(std::string(ROV_TETHER_SOURCE_DIR) + "/" + relative));
-}
 
 Tether heavyTether()
 {
@@ -217,6 +174,19 @@ TEST(Converters, EmptyGetTensionRequestAnswersTheVehicleEnd)
   EXPECT_EQ(response.tension, tensions.back());
   EXPECT_EQ(response.tension_vehicle, tensions.back());
   EXPECT_EQ(response.tension_spool, tensions.front());
+  EXPECT_EQ(response.max_tension, *std::max_element(tensions.begin(), tensions.end()));
+  ASSERT_GT(tensions.size(), 1u);  // so the vehicle end is not segment 0
+  // Explicit requests are unchanged: segment 0 is the spool's, arc length 0 (segment -1) the vehicle's.
+  request.segment = 0;
+  request.arc_length_from_vehicle = -1.0;
+  answerGetTension(sim, tensions, request, &response);
+  EXPECT_TRUE(response.success);
+  EXPECT_EQ(response.segment, 0u);
+  request.segment = -1;
+  request.arc_length_from_vehicle = 0.0;
+  answerGetTension(sim, tensions, request, &response);
+  EXPECT_TRUE(response.success);
+  EXPECT_EQ(response.segment, tensions.size() - 1);
 }
 
 // dynamic_reconfigure fields map to the model parameters by name, both ways, through the core's table.
@@ -265,38 +235,46 @@ TEST(Reconfigure, AutoValuesShowAsWhatTheyChose)
 }
 
 // The dynamic_reconfigure server clamps the whole set on every request: its ranges are the table's (and
-// validate()'s), so no valid value is changed by a request that did not touch it. Values at the table's
-// bounds (started with iterations 400, substeps 5000, a 1e-5 s step, EA 1e12 N...) survive a round trip
-// through the config and its clamping.
+// validate()'s), so no valid value is changed by a request that did not touch it. Every live numeric
+// parameter at each end of its range (just inside an open end) survives a round trip through the config
+// and its clamping while the user changes something else.
 TEST(Reconfigure, ClampingNeverChangesAValidValue)
 {
-  TetherParams params;
-  params.iterations = 400;
-  params.substeps = 5000;
-  params.time_step = 1e-5;
-  params.axial_stiffness = 1e12;
-  params.winch_speed = -5.5;
-  params.max_winch_speed = 20.0;
-  params.noise = 0.2;
-  params.reel_in_slack = 50.0;
-  params.max_vehicle_jump = 500.0;
-  params.bending_stiffness = 1e8;
-  params.mass_per_length = 9e3;
-  params.weight_in_water = -9e3;
-  ASSERT_TRUE(params.validate().empty());
-  TetherConfig config = paramsToConfig(params);
-  config.drag = 0.8;  // the one change the user asked for
-  config.__clamp__();
-  TetherParams after = params;
-  ASSERT_EQ(configToParams(config, &after), "");
-  EXPECT_EQ(after.drag, 0.8);
-  for (const std::string& name : parameterNames())
+  int checked = 0;
+  for (const ParameterInfo& row : parameterInfo())
   {
-    if (name != "drag")
+    if (!row.live || std::isnan(row.min))
     {
-      EXPECT_TRUE(test::sameParamValue(getParameter(after, name), getParameter(params, name))) << name;
+      continue;  // choices and flags
+    }
+    const bool integer = row.type.rfind("int", 0) == 0;
+    for (double bound : {row.min_open ? row.min + 1e-9 * (row.max - row.min) : row.min,
+                         row.max_open ? row.max - 1e-9 * (row.max - row.min) : row.max})
+    {
+      TetherParams params;
+      params.max_winch_speed = 20.0;  // so winch_speed may span its whole range [-20, 20]
+      ASSERT_EQ(
+          setParameter(params, row.name, integer ? ParamValue(static_cast<std::int64_t>(bound)) : ParamValue(bound)),
+          "");
+      ASSERT_TRUE(params.validate().empty()) << row.name << " = " << bound;
+      TetherConfig config = paramsToConfig(params);
+      const std::string touched = row.name == "drag" ? "noise" : "drag";
+      (touched == "drag" ? config.drag : config.noise) = 0.3;  // the one change the user asked for
+      config.__clamp__();
+      TetherParams after = params;
+      ASSERT_EQ(configToParams(config, &after), "");
+      for (const std::string& name : parameterNames())
+      {
+        if (name != touched)
+        {
+          EXPECT_TRUE(test::sameParamValue(getParameter(after, name), getParameter(params, name)))
+              << name << " changed when " << row.name << " = " << bound;
+        }
+      }
+      ++checked;
     }
   }
+  EXPECT_GE(checked, 40);  // two ends of every live numeric parameter
 }
 
 TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
