@@ -177,6 +177,10 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
   {
     return error;
   }
+  if (result.spool.cwiseAbs().maxCoeff() > Tether::kMaxCoordinate)
+  {
+    return "spool: each coordinate must be within +-1e6 m";
+  }
   if (root["vehicle"])
   {
     const YAML::Node path = root["vehicle"];
@@ -200,6 +204,11 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
       if (!result.vehicle.empty() && values[0] < result.vehicle.back().time)
       {
         return field + ": time " + std::to_string(values[0]) + " s is before the previous waypoint's";
+      }
+      if (std::abs(values[1]) > Tether::kMaxCoordinate || std::abs(values[2]) > Tether::kMaxCoordinate ||
+          std::abs(values[3]) > Tether::kMaxCoordinate)
+      {
+        return field + ": each coordinate must be within +-1e6 m";
       }
       result.vehicle.push_back({values[0], Position(values[1], values[2], values[3])});
     }
