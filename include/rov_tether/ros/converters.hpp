@@ -47,8 +47,8 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
 
 /// The pull of the tether on the vehicle [N] at the attachment point, expressed in `frame_id` (the world
 /// frame); torque is about `vehicle_origin` [N m].
-geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin,
-                                      const ros::Time& stamp, const std::string& frame_id);
+geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin, const ros::Time& stamp,
+                                      const std::string& frame_id);
 
 /// Applies every dynamic_reconfigure field to `params` through the core's setParameter (the .cfg uses
 /// the model's parameter names). Returns "" or every problem, each naming its parameter; it does not
@@ -59,7 +59,7 @@ std::string configToParams(const TetherConfig& config, TetherParams* params);
 TetherConfig paramsToConfig(const TetherParams& params);
 
 /// Answers a GetTension request from the simulation and its segment tensions.
-void answerGetTension(const Tether& sim, const std::vector<double>& tensions,
-                      const GetTension::Request& request, GetTension::Response* response);
+void answerGetTension(const Tether& sim, const std::vector<double>& tensions, const GetTension::Request& request,
+                      GetTension::Response* response);
 
 }  // namespace rov_tether::ros_layer
