@@ -12,12 +12,27 @@ namespace rov_tether::banded
  * Tridiagonal: diagonal d[0..n), off-diagonal e[0..n-1) (e[i] couples i and i+1); b[0..n) is
  * overwritten with the solution; d and e are overwritten with the factors.
  * Banded: the lower band in LAPACK's layout (ldab = kd + 1, column-major: ab[(i - j) + j (kd + 1)] =
- * A(i, j) for j <= i <= j + kd); overwritten with the Cholesky factor; b overwritten with the solution.
+ * A(i, j) for j <= i <= j + kd); overwritten with the factors (the sweep: L D L^T, unrolled for the
+ * half-bandwidths the direct solver uses, 5 and 8; LAPACK: Cholesky); b overwritten with the solution.
  * Each returns false when the matrix is not positive definite (b is then unusable).
  */
 bool solveTridiagonalSweep(double* d, double* e, double* b, std::size_t n);
 bool solveTridiagonalLapack(double* d, double* e, double* b, std::size_t n);
 bool solveBandedSweep(double* ab, std::size_t kd, double* b, std::size_t n);
 bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
+
+/**
+ * SPD systems of 3x3 blocks with block bandwidth 1 (block tridiagonal: a cable's positions) or 2 (block
+ * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
+ * pivots in a chain. Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for l < n, first[l] =
+ * A(l + 1, l) for l < n - 1, second[l] = A(l + 2, l) for l < n - 2 (nullptr for bandwidth 1). b holds 3 n
+ * values and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite.
+ */
+bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                      double* work);
+/// The same system through LAPACK's band Cholesky (dpbtrf/dpbtrs): the blocks are copied into a band of
+/// half-bandwidth 5 (or 8), which `band` must hold ((kd + 1) 3 n doubles).
+bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                            double* band);
 
 }  // namespace rov_tether::banded

@@ -8,31 +8,43 @@ namespace rov_tether
 {
 
 /**
- * `direct`: Newton iterations on all of the chain's constraints at once, each solving
- *   (J M^-1 J^T + alpha / h^2) dlambda = C - alpha / h^2 lambda
- * exactly (Goldenthal et al. 2007, "fast projection"; Deul et al. 2018 do the same for rods). The
- * stretch constraints C_j = |x_j+1 - x_j| - L_j with the compliance L_j / EA make the matrix tridiagonal;
- * bending (bending_stiffness EI > 0 and `bending` on) adds, per pair of segments, the vector constraint
- *   C_b = (x_j+2 - x_j+1) / L_j+1 - (x_j+1 - x_j) / L_j,
- * the change of unit tangent (|C_b| = the angle for small angles), with compliance Lbar / EI, whose energy
- * EI theta^2 / (2 Lbar) is the discrete elastic rod's; the matrix is then banded (half-bandwidth 10).
- * The cost is O(N) per iteration whatever the length, the mass ratio or the stiffness.
+ * `direct`: the implicit step of the whole chain solved by Newton's method with exact linear solves, O(N)
+ * per iteration whatever the length, the stiffness or the mass ratio.
  *
- * A cable carries no compression: a stretch constraint is unilateral (lambda >= 0). Each Newton
- * iteration solves with the active set (segments not shorter than their rest length, or carrying
- * tension, or that did at the end of the last step) and lets a segment whose multiplier would turn
- * negative go slack (lambda = 0); the next iteration's residuals take in what that changed. So a slack
- * segment carries nothing. Iterations stop when every residual is below `tolerance` x the segment length, or after
- * `iterations`; the count is reported.
+ * The step's equations are those of implicit Euler with compliant constraints (XPBD's), for the predicted
+ * positions x~ (inertia, drag, weight, noise) and the multipliers lambda [kg m] (force = lambda / h^2):
+ *   M (x - x~) + J(x)^T lambda = 0                   (momentum; J = dC/dx)
+ *   C^(x) - alpha lambda = 0,  alpha = L / (EA h^2)  (each segment; C^ = |d| - L, shifted by axial damping)
+ * A cable carries no compression: without bending stiffness each segment is one-sided (lambda >= 0, and a
+ * segment shorter than its rest length carries nothing). With `axial_damping` c [N s] a segment's tension
+ * is EA strain + c strain-rate: C^ = (C - b C_prev) / (1 + b) with b = c / (EA h), and alpha / (1 + b).
  *
- * Multipliers are positive in tension, as for pbd: tension = lambda / h^2.
+ * Two Newton paths solve the same equations, so they reach the same answer:
+ * - **dual** (no bending stiffness, low tension): Newton on the multipliers with M in place of the full
+ *   Hessian: (J W J^T + alpha) dlambda = C^ - alpha lambda - J e, a tridiagonal system (Goldenthal et al.
+ *   2007's fast projection with compliance), with e = W (M (x - x~) + J^T lambda) the momentum residual as a
+ *   displacement, so the iterations converge to the implicit step, not to XPBD's approximation of it. The
+ *   one-sided segments form a primal-dual active set (Hintermueller, Ito, Kunisch 2003).
+ * - **primal** (bending stiffness, or tension high enough that a chain's transverse motion would be explicit):
+ *   Newton on the positions, minimising the step's energy
+ *     Phi(x) = 1/2 |x - x~|_M^2 + sum psi(C^_k) / alpha_k + sum |C_b|^2 / (2 gamma_b)
+ *   with its full Hessian, geometric stiffness lambda / |d| (I - n n^T) included (Tournier et al. 2015: without
+ *   it a tensioned chain's transverse step is explicit and unstable beyond h^2 T / (m L) ~ 1), a banded SPD
+ *   system (half-bandwidth 5, or 8 with bending), and a backtracking line search on Phi (convex for a
+ *   cable, so it converges from anywhere). Bending (EI) is the change of tangent between segments, C_b =
+ *   d_j+1 / L_j+1 - d_j / L_j, with compliance gamma = Lbar / (EI h^2): the discrete elastic rod's energy.
+ * The dual path is taken first; the primal takes over when the tension ratio h^2 T (w_a + w_b) / |d| of the
+ * last step exceeds 1, or when a dual iteration fails to lower the residual.
+ *
+ * Iterations stop when every residual is below `tolerance` x the segment length: the constraint residuals
+ * |C^ - alpha lambda| (dual), the momentum residual as a displacement |e|, or the Newton step |dx| (primal).
  */
 class DirectSolver : public ConstraintSolver
 {
  public:
-  /// How the linear systems are solved: a plain LDL^T sweep written here, or LAPACK (dpttrf/dpttrs for
-  /// the tridiagonal system, dpbtrf/dpbtrs for the banded one). Both give the same answer to rounding;
-  /// `BM_TridiagonalSolve` and `BM_BandedSolve` measure which is faster (README, Benchmarks).
+  /// How the linear systems are solved: the plain sweeps written in banded.cpp, or LAPACK (dpttrf/dpttrs,
+  /// dpbtrf/dpbtrs). Both give the same answer to rounding; BM_TridiagonalSolve and BM_BandedSolve measure
+  /// which is faster (README, Benchmarks).
   enum class LinearSolve
   {
     kSweep,
@@ -40,48 +52,71 @@ class DirectSolver : public ConstraintSolver
   };
   explicit DirectSolver(LinearSolve linear = LinearSolve::kSweep) : linear_(linear) {}
 
-  /// Newton iterations the last sub-step used (0: already within the tolerance).
-  int lastIterations() const override { return iterations_; }
-  /// Largest residual |C - alpha lambda| / L (or stretch of an inactive segment) when the last solve
-  /// stopped [-].
+  /// Newton iterations the last sub-step used, both paths (0: already within the tolerance).
+  int lastIterations() const override { return dual_iterations_ + primal_iterations_; }
+  /// Of those, the iterations on the primal path (full Hessian).
+  int lastPrimalIterations() const { return primal_iterations_; }
+  /// Linear solves of the dual path's active-set rounds in the last sub-step.
+  int lastActiveSetRounds() const { return active_set_rounds_; }
+  /// Largest relative residual when the last solve stopped [-].
   double lastResidual() const override { return residual_; }
-
-  /// Half-bandwidth of the system with bending (rows: 4 per segment, stretch then the 3 bending rows).
-  static constexpr int kBand = 10;
 
  protected:
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;
 
  private:
-  /// Residuals of every constraint at the current positions; returns the largest relative one.
-  double residuals(const Cable& cable, const Multipliers& lambda, bool bending, double tolerance);
-  /// One Newton step into rhs_: assemble, solve, let segments that would push go slack.
-  void newtonStep(Cable& cable, Multipliers& lambda, bool bending);
-  /// Moves the particles by -M^-1 J^T rhs_ and adds rhs_ to the multipliers.
-  void applyStep(Cable& cable, Multipliers& lambda, bool bending);
-  /// Keeps / puts back the deployed positions and the multipliers, for the backtracking.
-  void save(const Cable& cable, const Multipliers& lambda, bool bending);
-  void restore(Cable& cable, Multipliers& lambda, bool bending);
-  void solveTridiagonal(std::size_t rows);
-  void solveBanded(std::size_t rows);
-  void assembleBanded(const Cable& cable, const Multipliers& lambda, std::size_t segments);
+  /// Sizes every buffer for a cable of n particles (once: pay-out never allocates).
+  void reserve(std::size_t n);
+  /// Segment geometry at the current positions: n_k, |d_k|, C^_k; returns nothing.
+  void geometry(const Cable& cable);
+  // Dual path (direct_solver.cpp).
+  double dualResidual(const Cable& cable, const double* lambda);
+  void dualStep(Cable& cable, double* lambda);
+  // Primal path (direct_solver_primal.cpp).
+  double energy(const Cable& cable) const;
+  /// One Newton step with line search; returns the largest relative move |dx| / L taken.
+  double primalStep(Cable& cable);
+  void assemblePrimal(const Cable& cable);
+  void multipliersFromPositions(const Cable& cable, double* lambda) const;
+  void save(const Cable& cable);
+  void restore(Cable& cable) const;
 
   LinearSolve linear_;
-  int iterations_ = 0;
+  int dual_iterations_ = 0;
+  int primal_iterations_ = 0;
+  int active_set_rounds_ = 0;
   double residual_ = 0.0;
-  // Per deployed segment k (global segment first + k), sized for the whole cable on the first step.
-  std::vector<double> nx_, ny_, nz_;   ///< Unit vector of segment k.
-  std::vector<double> stretch_c_;      ///< C_k = |d_k| - L_k [m].
-  std::vector<double> stretch_alpha_;  ///< L_k / (EA h^2) [1/kg].
-  std::vector<double> on_;             ///< 1: stretch constraint k is in the active set, 0: slack.
-  std::vector<double> bend_c_;         ///< C_b of bending constraint k, 3 per k [-].
-  std::vector<double> bend_lambda_;    ///< Its multipliers, 3 per k.
-  std::vector<double> bend_alpha_;     ///< Lbar / (EI h^2) of bending constraint k.
-  // The linear system: tridiagonal (diag_, off_) or banded lower (band_, kBand + 1 per column).
-  std::vector<double> diag_, off_, rhs_, band_;
-  std::vector<double> saved_x_, saved_y_, saved_z_, saved_lambda_, saved_bend_;
-  double stretch_compliance_ = 0.0;  ///< 1 / (EA h^2) [1/(kg m)].
-  double bend_compliance_ = 0.0;     ///< 1 / (EI h^2) [1/(kg m)].
+  double tension_ratio_ = 0.0;  ///< Largest h^2 T (w_a + w_b) / |d| of the last step [-].
+
+  // The step being solved (deployed particles l = 0..m, segments k = 0..m-1, joints j = 0..m-2).
+  std::size_t first_ = 0;
+  std::size_t m_ = 0;
+  bool bending_ = false;
+  bool unilateral_ = true;
+  double nominal_ = 0.1;                    ///< Nominal segment length, the scale of the position tolerance [m].
+  std::vector<double> xt_, yt_, zt_;        ///< Predicted positions x~ [m].
+  std::vector<double> sx_, sy_, sz_;        ///< Saved positions (rejected steps).
+  std::vector<double> nx_, ny_, nz_, len_;  ///< Unit vector and length of segment k.
+  std::vector<double> c_;                   ///< C^_k [m].
+  std::vector<double> offset_;              ///< Axial damping's share of C at the step's start, b C_prev / (1 + b) [m].
+  std::vector<double> alpha_;               ///< alpha_k / (1 + b) [1/kg].
+  std::vector<double> inv_rest_;            ///< 1 / L_k [1/m].
+  std::vector<double> diag_, off_;          ///< Dual: the tridiagonal system.
+  std::vector<double> diag_active_, rhs_active_;  ///< Dual: every row as if active.
+  // Dual, padded with a zero before row 0 and after row m - 1 (the accessors point at row 0): the active set
+  // (1 or 0), each row's coupling to the next, the multipliers, and the step dlambda (the system's
+  // right-hand side, then its solution).
+  std::vector<double> on_, coupling_, padded_lambda_, dual_step_;
+  double* on() { return on_.data() + 1; }
+  double* coupling() { return coupling_.data() + 1; }
+  double* padded_lambda() { return padded_lambda_.data() + 1; }
+  double* step() { return dual_step_.data() + 1; }
+  std::vector<double> gamma_;  ///< Primal: compliance of bending joint j [1/(kg m^2)].
+  /// Primal: the Hessian's 3x3 blocks (diagonal, first and second below), 9 a particle; the Newton step and
+  /// the gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
+  std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, work_, band_;
+  std::vector<double> saved_lambda_;
+  std::vector<unsigned char> taut_;
 };
 
 }  // namespace rov_tether

@@ -4,65 +4,143 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "rov_tether/simd.hpp"
 
 namespace rov_tether::banded
 {
 
+namespace
+{
+
+/// Rows between rescalings of the leading minors (they grow or shrink geometrically).
+constexpr std::size_t kRescale = 8;
+
+/// 2^-k for the binary exponent k of v: multiplying by it is exact and brings |v| into [1, 2). Read off
+/// the bits (no library call in the loop); 1 for zero, subnormal, infinite or NaN v.
+inline double unitScale(double v)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  const std::uint64_t biased = (bits >> 52) & 0x7ff;
+  if (biased == 0 || biased >= 2046)
+  {
+    return 1.0;
+  }
+  const std::uint64_t scale_bits = (2046 - biased) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return scale;
+}
+
+/// u_i = b_i / d_i and v_i = e_i / d_i for rows [0, count) (no dependency between rows: vectorised);
+/// false when a pivot is not positive.
+ROV_TETHER_TARGET_CLONES bool reciprocals(const double* __restrict d, double* __restrict e, double* __restrict b,
+                                          std::size_t count)
+{
+  double smallest = 1.0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double r = 1.0 / d[i];
+    b[i] *= r;
+    e[i] *= r;
+    smallest = d[i] < smallest ? d[i] : smallest;
+  }
+  return smallest > 0.0;
+}
+
+}  // namespace
+
 bool solveTridiagonalSweep(double* d, double* e, double* b, std::size_t n)
 {
-  // A twisted L D L^T: elimination runs down from the top and up from the bottom at once, meeting at row
-  // p, then substitution runs outwards from p. The two halves are independent chains, so their latency
-  // (a division each row) overlaps: about twice as fast as one sweep from the top.
+  // A twisted L D L^T without divisions in its recurrences: eliminating from the top, the pivots are
+  // d_i = P_i / P_i-1 with the leading minors P_i = a_i P_i-1 - e_i-1^2 P_i-2, and the forward substitution
+  // is Y_i = P_i-1 b_i - e_i-1 Y_i-1 (Y_i = P_i-1 y_i); from the bottom the same with the trailing minors.
+  // Each recurrence step is one fused multiply-add, the two ends run at once and meet at row p, and the
+  // divisions (one reciprocal a row) come afterwards in a loop without dependencies. The minors are rescaled
+  // by powers of two every kRescale rows, which is exact. Row i < p keeps x_i = u_i - v_i x_i+1 with
+  // u_i = Y_i / P_i and v_i = e_i P_i-1 / P_i (in d, b and e); row i > p the mirror image.
   if (n == 0)
   {
     return true;
   }
+  if (n == 1)
+  {
+    if (!(d[0] > 0.0))
+    {
+      return false;
+    }
+    b[0] /= d[0];
+    return true;
+  }
   const std::size_t p = n / 2;
-  const std::size_t down = p;        // top rows 0..p-1 eliminated into the next one
-  const std::size_t up = n - 1 - p;  // bottom rows n-1..p+1 eliminated into the one above
+  // Top: rows 0 .. p-1. State: P_i-1 (pm1), P_i-2 (pm2), Y_i-1 (y), original e_i-1 (ep).
+  double pm2 = 0.0, pm1 = 1.0, y = 0.0, ep = 0.0;
+  // Bottom: rows n-1 .. p+1. State: Q_i+1 (qm1), Q_i+2 (qm2), Z_i+1 (z), original e_i (eq).
+  double qm2 = 0.0, qm1 = 1.0, z = 0.0, eq = 0.0;
+  const std::size_t down = p;
+  const std::size_t up = n - 1 - p;
   for (std::size_t s = 0; s < down || s < up; ++s)
   {
     if (s < down)
     {
       const std::size_t i = s;
-      if (!(d[i] > 0.0))
+      const double pi = d[i] * pm1 - ep * ep * pm2;
+      const double yi = pm1 * b[i] - ep * y;
+      const double ei = e[i];
+      d[i] = pi, b[i] = yi, e[i] = ei * pm1;
+      pm2 = pm1, pm1 = pi, y = yi, ep = ei;
+      if ((s + 1) % kRescale == 0)
       {
-        return false;
+        const double scale = unitScale(pm1);
+        pm1 *= scale, pm2 *= scale, y *= scale;
       }
-      const double l = e[i] / d[i];
-      d[i + 1] -= l * e[i];
-      b[i + 1] -= l * b[i];
-      e[i] = l;
     }
     if (s < up)
     {
-      const std::size_t j = n - 1 - s;
-      if (!(d[j] > 0.0))
+      const std::size_t i = n - 1 - s;
+      const double qi = d[i] * qm1 - eq * eq * qm2;
+      const double zi = qm1 * b[i] - eq * z;
+      const double ei = e[i - 1];
+      d[i] = qi, b[i] = zi, e[i - 1] = ei * qm1;
+      qm2 = qm1, qm1 = qi, z = zi, eq = ei;
+      if ((s + 1) % kRescale == 0)
       {
-        return false;
+        const double scale = unitScale(qm1);
+        qm1 *= scale, qm2 *= scale, z *= scale;
       }
-      const double u = e[j - 1] / d[j];
-      d[j - 1] -= u * e[j - 1];
-      b[j - 1] -= u * b[j];
-      e[j - 1] = u;
     }
   }
-  if (!(d[p] > 0.0))
+  // Row p: a_p x_p + e_p-1 x_p-1 + e_p x_p+1 = b_p with x_p-1 and x_p+1 from the two ends.
+  // pm1 = P_p-1, pm2 = P_p-2, y = Y_p-1 (ep = e_p-1); qm1 = Q_p+1, qm2 = Q_p+2, z = Z_p+1 (eq = e_p).
+  const double pivot = d[p] - (p > 0 ? ep * ep * pm2 / pm1 : 0.0) - (up > 0 ? eq * eq * qm2 / qm1 : 0.0);
+  const double right = b[p] - (p > 0 ? ep * y / pm1 : 0.0) - (up > 0 ? eq * z / qm1 : 0.0);
+  if (!(pivot > 0.0))
   {
     return false;
   }
-  b[p] /= d[p];
-  for (std::size_t s = 0; s < down || s < up; ++s)
+  if (!reciprocals(d, e, b, p) || !reciprocals(d + p + 1, e + p, b + p + 1, up))
   {
-    if (s < down)
+    return false;
+  }
+  b[p] = right / pivot;
+  double above = b[p];  // x_i+1 going up, x_i-1 going down: kept in registers, not reloaded
+  double below = b[p];
+  for (std::size_t s = 1; s <= down || s <= up; ++s)
+  {
+    if (s <= down)
     {
-      const std::size_t i = p - 1 - s;
-      b[i] = b[i] / d[i] - e[i] * b[i + 1];
+      const std::size_t i = p - s;
+      above = b[i] - e[i] * above;
+      b[i] = above;
     }
-    if (s < up)
+    if (s <= up)
     {
-      const std::size_t j = p + 1 + s;
-      b[j] = b[j] / d[j] - e[j - 1] * b[j - 1];
+      const std::size_t i = p + s;
+      below = b[i] - e[i - 1] * below;
+      b[i] = below;
     }
   }
   return true;
@@ -78,53 +156,140 @@ bool solveTridiagonalLapack(double* d, double* e, double* b, std::size_t n)
   return LAPACKE_dpttrs(LAPACK_COL_MAJOR, size, 1, d, e, b, size) == 0;
 }
 
-bool solveBandedSweep(double* ab, std::size_t kd, double* b, std::size_t n)
+namespace
 {
-  const std::size_t ld = kd + 1;
-  auto at = [ab, ld](std::size_t i, std::size_t j) -> double& { return ab[(i - j) + j * ld]; };
-  // Cholesky A = L L^T in the band, column by column (right-looking).
+
+/// L D L^T of an SPD band with the half-bandwidth kKd known at compile time, so each column's update is a
+/// fixed, unrolled set of independent multiply-adds; no square roots, one reciprocal a column. The band
+/// (LAPACK's lower layout) is overwritten with L below the diagonal and D on it; b with the solution.
+template <std::size_t kKd>
+bool bandLdlt(double* __restrict ab, double* __restrict b, std::size_t n)
+{
+  constexpr std::size_t ld = kKd + 1;
   for (std::size_t j = 0; j < n; ++j)
   {
-    if (!(at(j, j) > 0.0))
+    double* column = ab + j * ld;
+    const double pivot = column[0];
+    if (!(pivot > 0.0))
     {
       return false;
     }
-    const double pivot = std::sqrt(at(j, j));
-    at(j, j) = pivot;
-    const std::size_t last = std::min(n - 1, j + kd);
-    for (std::size_t i = j + 1; i <= last; ++i)
+    const double inverse = 1.0 / pivot;
+    const std::size_t below = std::min(kKd, n - 1 - j);
+    double l[kKd];
+    for (std::size_t r = 1; r <= kKd; ++r)
     {
-      at(i, j) /= pivot;
+      l[r - 1] = r <= below ? column[r] * inverse : 0.0;
     }
-    for (std::size_t k = j + 1; k <= last; ++k)
+    // A(j + r, j + q) -= l_r pivot l_q for 1 <= q <= r <= below: column j + q holds row j + r at r - q.
+    for (std::size_t q = 1; q <= kKd; ++q)
     {
-      const double ljk = at(k, j);
-      for (std::size_t i = k; i <= last; ++i)
+      if (q > below)
       {
-        at(i, k) -= at(i, j) * ljk;
+        break;
+      }
+      double* target = ab + (j + q) * ld;
+      const double scaled = l[q - 1] * pivot;
+      for (std::size_t r = q; r <= kKd; ++r)
+      {
+        target[r - q] -= l[r - 1] * scaled;
       }
     }
+    for (std::size_t r = 1; r <= below; ++r)
+    {
+      column[r] = l[r - 1];
+    }
   }
-  // L y = b, then L^T x = y.
+  // L y = b, D z = y, L^T x = z.
   for (std::size_t j = 0; j < n; ++j)
   {
-    b[j] /= at(j, j);
-    const std::size_t last = std::min(n - 1, j + kd);
-    for (std::size_t i = j + 1; i <= last; ++i)
+    const double* column = ab + j * ld;
+    const double value = b[j];
+    const std::size_t below = std::min(kKd, n - 1 - j);
+    for (std::size_t r = 1; r <= below; ++r)
     {
-      b[i] -= at(i, j) * b[j];
+      b[j + r] -= column[r] * value;
     }
   }
   for (std::size_t j = n; j-- > 0;)
   {
-    const std::size_t last = std::min(n - 1, j + kd);
-    for (std::size_t i = j + 1; i <= last; ++i)
+    const double* column = ab + j * ld;
+    double value = b[j] / column[0];
+    const std::size_t below = std::min(kKd, n - 1 - j);
+    for (std::size_t r = 1; r <= below; ++r)
     {
-      b[j] -= at(i, j) * b[i];
+      value -= column[r] * b[j + r];
     }
-    b[j] /= at(j, j);
+    b[j] = value;
   }
   return true;
+}
+
+/// The same for any half-bandwidth (columns of the band updated in loops).
+bool bandLdltAny(double* ab, std::size_t kd, double* b, std::size_t n)
+{
+  const std::size_t ld = kd + 1;
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    double* column = ab + j * ld;
+    const double pivot = column[0];
+    if (!(pivot > 0.0))
+    {
+      return false;
+    }
+    const std::size_t below = std::min(kd, n - 1 - j);
+    for (std::size_t r = 1; r <= below; ++r)
+    {
+      column[r] /= pivot;
+    }
+    for (std::size_t q = 1; q <= below; ++q)
+    {
+      double* target = ab + (j + q) * ld;
+      const double scaled = column[q] * pivot;
+      for (std::size_t r = q; r <= below; ++r)
+      {
+        target[r - q] -= column[r] * scaled;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    const double* column = ab + j * ld;
+    const std::size_t below = std::min(kd, n - 1 - j);
+    for (std::size_t r = 1; r <= below; ++r)
+    {
+      b[j + r] -= column[r] * b[j];
+    }
+  }
+  for (std::size_t j = n; j-- > 0;)
+  {
+    const double* column = ab + j * ld;
+    double value = b[j] / column[0];
+    const std::size_t below = std::min(kd, n - 1 - j);
+    for (std::size_t r = 1; r <= below; ++r)
+    {
+      value -= column[r] * b[j + r];
+    }
+    b[j] = value;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool solveBandedSweep(double* ab, std::size_t kd, double* b, std::size_t n)
+{
+  switch (kd)
+  {
+    case 5:
+      return bandLdlt<5>(ab, b, n);
+    case 8:
+      return bandLdlt<8>(ab, b, n);
+    case 10:
+      return bandLdlt<10>(ab, b, n);
+    default:
+      return bandLdltAny(ab, kd, b, n);
+  }
 }
 
 bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n)
@@ -136,6 +301,211 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n)
     return false;
   }
   return LAPACKE_dpbtrs(LAPACK_COL_MAJOR, 'L', size, band, 1, ab, band + 1, b, size) == 0;
+}
+
+namespace
+{
+
+/// One block row's factors: the diagonal block's own unit-lower L (l10, l20, l21) and D (d0, d1, d2), and
+/// the factors L(l, l-1), L(l, l-2) of the whole matrix (row-major 3x3).
+struct BlockRow
+{
+  double l10, l20, l21, d0, d1, d2;
+  double below1[9];
+  double below2[9];
+};
+static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
+
+/// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
+inline bool factorBlock(const double* s, BlockRow& row)
+{
+  row.d0 = s[0];
+  if (!(row.d0 > 0.0))
+  {
+    return false;
+  }
+  row.l10 = s[3] / row.d0;
+  row.l20 = s[6] / row.d0;
+  row.d1 = s[4] - row.l10 * s[3];
+  if (!(row.d1 > 0.0))
+  {
+    return false;
+  }
+  row.l21 = (s[7] - row.l20 * s[3]) / row.d1;
+  row.d2 = s[8] - row.l20 * s[6] - row.l21 * row.l21 * row.d1;
+  return row.d2 > 0.0;
+}
+
+/// y = a L^-T for the unit-lower L of `row` (each row of a, forward substitution): y L^T = a.
+inline void solveTransposed(const double* a, const BlockRow& row, double* y)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    y[3 * r] = a[3 * r];
+    y[3 * r + 1] = a[3 * r + 1] - row.l10 * y[3 * r];
+    y[3 * r + 2] = a[3 * r + 2] - row.l20 * y[3 * r] - row.l21 * y[3 * r + 1];
+  }
+}
+
+/// s -= y D^-1 y^T (lower triangle) and stores L(l, k) = y D^-1 into `below`.
+inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
+{
+  const double inv[3] = {1.0 / pivot.d0, 1.0 / pivot.d1, 1.0 / pivot.d2};
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      below[3 * r + c] = y[3 * r + c] * inv[c];
+    }
+  }
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t c = 0; c <= r; ++c)
+    {
+      s[3 * r + c] -= below[3 * r] * y[3 * c] + below[3 * r + 1] * y[3 * c + 1] + below[3 * r + 2] * y[3 * c + 2];
+    }
+  }
+}
+
+/// Block L D L^T with block bandwidth 1 or 2 (kSecond); see solveBlockBanded.
+template <bool kSecond>
+bool blockLdlt(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
+               double* __restrict b, std::size_t n, double* __restrict work)
+{
+  // A = L D L^T, L unit block-lower with 3x3 unit-lower diagonal blocks L_l and D diagonal; it is the
+  // scalar L D L^T of the band in the same order, computed a block row at a time with triangular solves (no
+  // explicit inverse, so as stable for a stiff, badly conditioned chain as the scalar one). For row l:
+  //   Y2 = A(l, l-2) L_l-2^-T,                       L(l, l-2) = Y2 D_l-2^-1,
+  //   Y1 = (A(l, l-1) - Y2 L(l-1, l-2)^T) L_l-1^-T,  L(l, l-1) = Y1 D_l-1^-1,
+  //   S_l = A(l, l) - Y1 D_l-1^-1 Y1^T - Y2 D_l-2^-1 Y2^T = L_l D_l L_l^T.
+  auto* rows = reinterpret_cast<BlockRow*>(work);
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    double s[9];
+    std::copy(diag + 9 * l, diag + 9 * l + 9, s);
+    double a1[9];
+    if (l >= 1)
+    {
+      std::copy(first + 9 * (l - 1), first + 9 * l, a1);
+    }
+    if (kSecond && l >= 2)
+    {
+      double y2[9];
+      solveTransposed(second + 9 * (l - 2), rows[l - 2], y2);
+      schurUpdate(y2, rows[l - 2], s, rows[l].below2);
+      const double* prev = rows[l - 1].below1;  // L(l-1, l-2)
+      for (std::size_t r = 0; r < 3; ++r)
+      {
+        for (std::size_t c = 0; c < 3; ++c)
+        {
+          a1[3 * r + c] -= y2[3 * r] * prev[3 * c] + y2[3 * r + 1] * prev[3 * c + 1] + y2[3 * r + 2] * prev[3 * c + 2];
+        }
+      }
+    }
+    if (l >= 1)
+    {
+      double y1[9];
+      solveTransposed(a1, rows[l - 1], y1);
+      schurUpdate(y1, rows[l - 1], s, rows[l].below1);
+    }
+    if (!factorBlock(s, rows[l]))
+    {
+      return false;
+    }
+  }
+  // L u = b (block forward), then D and L^T (block backward).
+  auto multiply = [](const double* m, const double* v, double* out)  // out -= m v
+  {
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      out[r] -= m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
+    }
+  };
+  auto multiplyTransposed = [](const double* m, const double* v, double* out)  // out -= m^T v
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      out[c] -= m[c] * v[0] + m[3 + c] * v[1] + m[6 + c] * v[2];
+    }
+  };
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    double* u = b + 3 * l;
+    if (l >= 1)
+    {
+      multiply(rows[l].below1, b + 3 * (l - 1), u);
+    }
+    if (kSecond && l >= 2)
+    {
+      multiply(rows[l].below2, b + 3 * (l - 2), u);
+    }
+    const BlockRow& row = rows[l];
+    u[1] -= row.l10 * u[0];
+    u[2] -= row.l20 * u[0] + row.l21 * u[1];
+  }
+  for (std::size_t l = n; l-- > 0;)
+  {
+    double* x = b + 3 * l;
+    const BlockRow& row = rows[l];
+    x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
+    if (l + 1 < n)
+    {
+      multiplyTransposed(rows[l + 1].below1, b + 3 * (l + 1), x);
+    }
+    if (kSecond && l + 2 < n)
+    {
+      multiplyTransposed(rows[l + 2].below2, b + 3 * (l + 2), x);
+    }
+    x[1] -= row.l21 * x[2];
+    x[0] -= row.l10 * x[1] + row.l20 * x[2];
+  }
+  return true;
+}
+
+}  // namespace
+
+bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                      double* work)
+{
+  return second != nullptr ? blockLdlt<true>(diag, first, second, b, n, work)
+                           : blockLdlt<false>(diag, first, nullptr, b, n, work);
+}
+
+bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                            double* band)
+{
+  const std::size_t kd = second != nullptr ? 8 : 5;
+  const std::size_t ld = kd + 1;
+  const std::size_t rows = 3 * n;
+  std::fill(band, band + ld * rows, 0.0);
+  auto put = [band, ld](std::size_t p, std::size_t q, const double* block)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        const std::size_t i = 3 * p + a;
+        const std::size_t j = 3 * q + c;
+        if (i >= j)
+        {
+          band[(i - j) + j * ld] = block[3 * a + c];
+        }
+      }
+    }
+  };
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    put(l, l, diag + 9 * l);
+    if (l + 1 < n)
+    {
+      put(l + 1, l, first + 9 * l);
+    }
+    if (second != nullptr && l + 2 < n)
+    {
+      put(l + 2, l, second + 9 * l);
+    }
+  }
+  return solveBandedLapack(band, kd, b, rows);
 }
 
 }  // namespace rov_tether::banded

@@ -1,0 +1,276 @@
+// The direct solver's primal path: Newton on the positions with the step energy's full Hessian (geometric
+// stiffness and EI bending included), a banded SPD solve and a backtracking line search. See
+// direct_solver.hpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rov_tether/banded.hpp"
+#include "rov_tether/direct_solver.hpp"
+
+namespace rov_tether
+{
+namespace
+{
+
+/// Below this largest relative move a Newton step is taken whole: the quadratic model is good there.
+constexpr double kGlobalMove = 1e-3;
+/// Halvings of a step that does not lower the energy enough (Armijo, slope fraction kArmijo).
+constexpr int kMaxHalvings = 12;
+constexpr double kArmijo = 1e-4;
+/// Rounds of the model's active set in one Newton step.
+constexpr int kMaxModelRounds = 30;
+
+/// Adds v times the 3x3 block `b` (row-major) to `target`.
+inline void addTo(double* target, const double* b, double v = 1.0)
+{
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    target[i] += v * b[i];
+  }
+}
+
+}  // namespace
+
+double DirectSolver::energy(const Cable& cable) const
+{
+  const std::size_t f = first_;
+  double kinetic = 0.0;
+  for (std::size_t l = 0; l <= m_; ++l)
+  {
+    const double w = cable.inv_mass[f + l];
+    if (w > 0.0)
+    {
+      const double dx = cable.x[f + l] - xt_[l];
+      const double dy = cable.y[f + l] - yt_[l];
+      const double dz = cable.z[f + l] - zt_[l];
+      kinetic += (dx * dx + dy * dy + dz * dz) / w;
+    }
+  }
+  double elastic = 0.0;
+  for (std::size_t k = 0; k < m_; ++k)
+  {
+    const double c = unilateral_ ? std::max(c_[k], 0.0) : c_[k];
+    elastic += c * c / alpha_[k];
+  }
+  for (std::size_t j = 0; bending_ && j + 1 < m_; ++j)
+  {
+    const double a = 1.0 / cable.rest[f + j];
+    const double b = 1.0 / cable.rest[f + j + 1];
+    const std::size_t p = f + j;
+    const double cx = a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2];
+    const double cy = a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2];
+    const double cz = a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2];
+    elastic += (cx * cx + cy * cy + cz * cz) / gamma_[j];
+  }
+  return 0.5 * (kinetic + elastic);
+}
+
+void DirectSolver::assemblePrimal(const Cable& cable)
+{
+  // The Hessian by 3x3 blocks of particles: diagonal (l, l), first below (l + 1, l), second below (l + 2, l,
+  // with bending). A pinned particle's row is the identity, and nothing couples to it.
+  const std::size_t f = first_;
+  const std::size_t m = m_;
+  const std::size_t blocks = m + 1;
+  std::fill(hessian_diag_.begin(), hessian_diag_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(hessian_first_.begin(), hessian_first_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(hessian_second_.begin(), hessian_second_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(3 * blocks), 0.0);
+  const double* w = cable.inv_mass.data() + f;
+  auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
+  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    if (pinned(l))
+    {
+      addTo(&hessian_diag_[9 * l], kIdentity);
+      continue;
+    }
+    const double mass = 1.0 / w[l];
+    grad_[3 * l] = mass * (cable.x[f + l] - xt_[l]);
+    grad_[3 * l + 1] = mass * (cable.y[f + l] - yt_[l]);
+    grad_[3 * l + 2] = mass * (cable.z[f + l] - zt_[l]);
+    addTo(&hessian_diag_[9 * l], kIdentity, mass);
+  }
+  const double* model = on();
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    // The segments of the model: all of a rod's; of a cable's, those the step stretches (primalStep).
+    if (!(model[k] > 0.0))
+    {
+      continue;
+    }
+    const double lam = c_[k] / alpha_[k];
+    const double n[3] = {nx_[k], ny_[k], nz_[k]};
+    // dC/dx_k = -n, dC/dx_k+1 = +n: the gradient gets J^T lambda.
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      grad_[3 * k + a] -= lam * n[a];
+      grad_[3 * (k + 1) + a] += lam * n[a];
+    }
+    // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
+    // lambda / |d| (I - n n^T) of the energy's lambda (not the model's), dropped when compressed (a rod in
+    // compression: the Hessian stays positive definite).
+    const double axial = 1.0 / alpha_[k];
+    const double geometric = len_[k] > 0.0 ? std::max(lam, 0.0) / len_[k] : 0.0;
+    double block[9];
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        block[3 * a + c] = (axial - geometric) * n[a] * n[c] + (a == c ? geometric : 0.0);
+      }
+    }
+    if (!pinned(k))
+    {
+      addTo(&hessian_diag_[9 * k], block);
+    }
+    if (!pinned(k + 1))
+    {
+      addTo(&hessian_diag_[9 * (k + 1)], block);
+    }
+    if (!pinned(k) && !pinned(k + 1))
+    {
+      addTo(&hessian_first_[9 * k], block, -1.0);
+    }
+  }
+  for (std::size_t j = 0; bending_ && j + 1 < m; ++j)
+  {
+    // C_b = a x_j - (a + b) x_j+1 + b x_j+2 (each axis): linear, so its Hessian is constant.
+    const double a = 1.0 / cable.rest[f + j];
+    const double b = 1.0 / cable.rest[f + j + 1];
+    const double g[3] = {a, -(a + b), b};
+    const std::size_t p = f + j;
+    const double cb[3] = {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
+                          a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
+                          a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]};
+    const double inv = 1.0 / gamma_[j];
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      if (pinned(j + r))
+      {
+        continue;
+      }
+      for (std::size_t axis = 0; axis < 3; ++axis)
+      {
+        grad_[3 * (j + r) + axis] += g[r] * cb[axis] * inv;
+      }
+      for (std::size_t s = 0; s <= r; ++s)
+      {
+        if (pinned(j + s))
+        {
+          continue;
+        }
+        std::vector<double>& target = r == s ? hessian_diag_ : r == s + 1 ? hessian_first_ : hessian_second_;
+        addTo(&target[9 * (j + s)], kIdentity, g[r] * g[s] * inv);
+      }
+    }
+  }
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    if (pinned(l))
+    {
+      grad_[3 * l] = grad_[3 * l + 1] = grad_[3 * l + 2] = 0.0;
+    }
+  }
+}
+
+double DirectSolver::primalStep(Cable& cable)
+{
+  const std::size_t f = first_;
+  const std::size_t m = m_;
+  const std::size_t rows = 3 * (m + 1);
+  // The model: the step energy's second-order expansion in the positions, with each cable segment's
+  // energy (1 / 2 alpha) max(C^, 0)^2 expanded in its linearised stretch C^ + n . (dx_k+1 - dx_k), so a
+  // segment is in the model when the step stretches it. That model is convex and piecewise quadratic; its
+  // minimiser is found by active sets (solve, take in the segments the step stretches, let go of those it
+  // does not, until the set holds), starting from the segments stretched now or taut at the end of the last
+  // step (the set changes little from step to step). A rod's segments (bending stiffness) are always in it.
+  double* model = on();
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    model[k] = !unilateral_ || c_[k] > 0.0 || taut_[first_ + k] ? 1.0 : 0.0;
+  }
+  for (int round = 0;; ++round)
+  {
+    assemblePrimal(cable);
+    std::transform(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(rows), step_.begin(),
+                   [](double g) { return -g; });
+    const double* second = bending_ ? hessian_second_.data() : nullptr;
+    const bool ok = linear_ == LinearSolve::kLapack
+                        ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second,
+                                                         step_.data(), m + 1, band_.data())
+                        : banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, step_.data(),
+                                                   m + 1, work_.data());
+    ++active_set_rounds_;
+    if (!ok)
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    std::size_t changes = 0;
+    for (std::size_t k = 0; unilateral_ && k < m; ++k)
+    {
+      const double* a = &step_[3 * k];
+      const double* b = &step_[3 * (k + 1)];
+      const double stretch = c_[k] + nx_[k] * (b[0] - a[0]) + ny_[k] * (b[1] - a[1]) + nz_[k] * (b[2] - a[2]);
+      const double now = stretch > 0.0 ? 1.0 : 0.0;
+      changes += now != model[k] ? 1 : 0;
+      model[k] = now;
+    }
+    if (changes == 0 || round + 1 >= kMaxModelRounds)
+    {
+      break;
+    }
+  }
+  // The energy's slope along the step: the model's gradient, less what the model gave the segments that
+  // are not stretched yet (their energy is flat at 0 until they are).
+  double slope = 0.0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < rows; ++i)
+  {
+    slope += grad_[i] * step_[i];
+    largest = std::max(largest, std::abs(step_[i]));
+  }
+  for (std::size_t k = 0; unilateral_ && k < m; ++k)
+  {
+    if (model[k] > 0.0 && c_[k] <= 0.0)
+    {
+      const double* a = &step_[3 * k];
+      const double* b = &step_[3 * (k + 1)];
+      slope -= c_[k] / alpha_[k] * (nx_[k] * (b[0] - a[0]) + ny_[k] * (b[1] - a[1]) + nz_[k] * (b[2] - a[2]));
+    }
+  }
+  const double move = largest / nominal_;
+  const double before = move > kGlobalMove ? energy(cable) : 0.0;
+  save(cable);
+  double t = 1.0;
+  for (int halving = 0;; ++halving)
+  {
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      cable.x[f + l] = sx_[l] + t * step_[3 * l];
+      cable.y[f + l] = sy_[l] + t * step_[3 * l + 1];
+      cable.z[f + l] = sz_[l] + t * step_[3 * l + 2];
+    }
+    geometry(cable);
+    // Near the solution Newton's step is taken whole (quadratic convergence); far from it, the step is
+    // halved until the energy falls as the slope promises (Armijo).
+    if (move <= kGlobalMove || halving == kMaxHalvings || !(slope < 0.0) ||
+        energy(cable) <= before + kArmijo * t * slope)
+    {
+      return t * move;
+    }
+    t *= 0.5;
+  }
+}
+
+void DirectSolver::multipliersFromPositions(const Cable& /*cable*/, double* lambda) const
+{
+  for (std::size_t k = 0; k < m_; ++k)
+  {
+    lambda[k] = (unilateral_ ? std::max(c_[k], 0.0) : c_[k]) / alpha_[k];
+  }
+}
+
+}  // namespace rov_tether
