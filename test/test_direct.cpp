@@ -245,9 +245,9 @@ TEST(Direct, TenThousandToOneMassRatio)
     cable.place(i, Position(0.0, 0.0, -dl * static_cast<double>(i)));
   }
   std::fill(cable.rest.begin(), cable.rest.end(), dl);
-  cable.updateMasses(0, n - 1, segment_mass / dl, false);
+  cable.updateMasses(0, n - 1, {segment_mass / dl, segment_mass / dl}, false);
   cable.inv_mass[n - 1] = 1.0 / (1e4 * segment_mass);
-  cable.updateMasses(n - 2, n - 2, segment_mass / dl, false);  // weights next to the clump
+  cable.updateMasses(n - 2, n - 2, {segment_mass / dl, segment_mass / dl}, false);  // weights next to the clump
   cable.stretch_weight[n - 2] = 1.0 / (cable.inv_mass[n - 2] + cable.inv_mass[n - 1]);
   DirectSolver solver;
   solver.multipliers().resize(n);
@@ -306,7 +306,7 @@ TEST(Direct, CantileverTipDeflectionIsWL4Over8EI)
     cable.place(i, Position(dl * static_cast<double>(i), 0.0, 0.0));
   }
   std::fill(cable.rest.begin(), cable.rest.end(), dl);
-  cable.updateMasses(0, n - 1, mu, false);
+  cable.updateMasses(0, n - 1, {mu, mu}, false);
   cable.inv_mass[1] = 0.0;  // the clamp: particles 0 and 1 hold the first segment's direction
   cable.stretch_weight[0] = 0.0;
   cable.stretch_weight[1] = 1.0 / cable.inv_mass[2];

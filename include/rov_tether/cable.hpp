@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "rov_tether/line_mass.hpp"
+
 namespace rov_tether
 {
 
@@ -24,9 +26,16 @@ using Force = Eigen::Vector3d;
  */
 struct Cable
 {
-  std::vector<double> x, y, z;         ///< Positions [m].
-  std::vector<double> px, py, pz;      ///< Positions one step ago [m].
-  std::vector<double> inv_mass;        ///< Inverse particle mass [1/kg], 0 = pinned.
+  std::vector<double> x, y, z;     ///< Positions [m].
+  std::vector<double> px, py, pz;  ///< Positions one step ago [m].
+  std::vector<double> inv_mass;    ///< Inverse particle mass across the cable [1/kg], 0 = pinned.
+  /// Inverse particle mass along the cable [1/kg], 0 = pinned: larger than inv_mass when the water adds mass
+  /// across the cable only (then `anisotropic`); the same otherwise.
+  std::vector<double> inv_mass_along;
+  /// Unit tangent at each particle (from its neighbours), the direction inv_mass_along applies in; kept only
+  /// while `anisotropic` (Tether::subStep sets it at the start of every sub-step).
+  std::vector<double> tx, ty, tz;
+  bool anisotropic = false;
   std::vector<double> rest;            ///< Rest length of segment j [m] (size - 1 entries).
   std::vector<double> stretch_weight;  ///< 1 / (w_j + w_{j+1}) [kg], 0 when both are pinned.
   std::vector<double> bend_rest;       ///< Rest distance of bending constraint j: rest_j + rest_{j+1} [m].
@@ -63,9 +72,11 @@ struct Cable
   /// Unit vector from particle a to particle b (zero when they coincide).
   Position direction(std::size_t a, std::size_t b) const;
   /// Recomputes the lumped masses of deployed particles [lo, hi] (half of each neighbouring segment at
-  /// `mass_per_length` [kg/m]; the spool outlet, and the last particle when `last_pinned`, get none) and
-  /// the weights and bending rest lengths of the constraints they take part in; marks them dirty.
-  void updateMasses(std::size_t lo, std::size_t hi, double mass_per_length, bool last_pinned);
+  /// `mass` per metre; the spool outlet, and the last particle when `last_pinned`, get none) and the
+  /// weights and bending rest lengths of the constraints they take part in; marks them dirty.
+  void updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass, bool last_pinned);
+  /// Sets the unit tangents of the deployed particles from their neighbours (one-sided at the ends).
+  void updateTangents();
 };
 
 }  // namespace rov_tether

@@ -11,33 +11,32 @@ namespace rov_tether
  * `direct`: the implicit step of the whole chain solved by Newton's method with exact linear solves, O(N)
  * per iteration whatever the length, the stiffness or the mass ratio.
  *
- * The step's equations are those of implicit Euler with compliant constraints (XPBD's), for the predicted
- * positions x~ (inertia, drag, weight, noise) and the multipliers lambda [kg m] (force = lambda / h^2):
- *   M (x - x~) + J(x)^T lambda = 0                   (momentum; J = dC/dx)
- *   C^(x) - alpha lambda = 0,  alpha = L / (EA h^2)  (each segment; C^ = |d| - L, shifted by axial damping)
+ * The step's unknowns are the positions x and the multipliers lambda [kg m] (force = lambda / h^2) for the
+ * predicted positions x~ (inertia, drag, weight, noise), with compliant constraints (XPBD's):
+ *   M (x - x~) + J(x)^T lambda = 0,   C(x) - alpha lambda = 0,   C = |d| - L,  alpha = L / (EA h^2).
  * A cable carries no compression: without bending stiffness each segment is one-sided (lambda >= 0, and a
- * segment shorter than its rest length carries nothing). With `axial_damping` c [N s] a segment's tension
- * is EA strain + c strain-rate: C^ = (C - b C_prev) / (1 + b) with b = c / (EA h), and alpha / (1 + b).
+ * segment shorter than its rest length carries nothing). With bending stiffness the chain is a rod: its
+ * segments carry compression and its joints resist bending with C_b = d_j+1 / L_j+1 - d_j / L_j (the change
+ * of tangent, |C_b| the angle for small angles) and compliance gamma = Lbar / (EI h^2): the discrete elastic
+ * rod's energy EI theta^2 / (2 Lbar), linear in the angle as the paper's (i, i+2) constraint is not.
  *
- * Two Newton paths solve the same equations, so they reach the same answer:
- * - **dual** (no bending stiffness, low tension): Newton on the multipliers with M in place of the full
- *   Hessian: (J W J^T + alpha) dlambda = C^ - alpha lambda - J e, a tridiagonal system (Goldenthal et al.
- *   2007's fast projection with compliance), with e = W (M (x - x~) + J^T lambda) the momentum residual as a
- *   displacement, so the iterations converge to the implicit step, not to XPBD's approximation of it. The
- *   one-sided segments form a primal-dual active set (Hintermueller, Ito, Kunisch 2003).
- * - **primal** (bending stiffness, or tension high enough that a chain's transverse motion would be explicit):
- *   Newton on the positions, minimising the step's energy
- *     Phi(x) = 1/2 |x - x~|_M^2 + sum psi(C^_k) / alpha_k + sum |C_b|^2 / (2 gamma_b)
- *   with its full Hessian, geometric stiffness lambda / |d| (I - n n^T) included (Tournier et al. 2015: without
- *   it a tensioned chain's transverse step is explicit and unstable beyond h^2 T / (m L) ~ 1), a banded SPD
- *   system (half-bandwidth 5, or 8 with bending), and a backtracking line search on Phi (convex for a
- *   cable, so it converges from anywhere). Bending (EI) is the change of tangent between segments, C_b =
- *   d_j+1 / L_j+1 - d_j / L_j, with compliance gamma = Lbar / (EI h^2): the discrete elastic rod's energy.
- * The dual path is taken first; the primal takes over when the tension ratio h^2 T (w_a + w_b) / |d| of the
- * last step exceeds 1, or when a dual iteration fails to lower the residual.
+ * Two Newton paths:
+ * - **dual** (no bending stiffness, low tension): Newton on the multipliers, each iteration solving
+ *   (J W J^T + alpha) dlambda = C - alpha lambda exactly, a tridiagonal system (Goldenthal et al. 2007's fast
+ *   projection with XPBD's compliance), the particles moving by W J^T dlambda. The one-sided segments form
+ *   a primal-dual active set (Hintermueller, Ito, Kunisch 2003) solved on each linearisation.
+ * - **primal** (bending stiffness, or a tension ratio h^2 T (w_a + w_b) / |d| above 1/4): Newton on the
+ *   positions, minimising the step's energy
+ *     Phi(x) = 1/2 |x - x~|_M^2 + sum max(C_k, 0)^2 / (2 alpha_k) + sum |C_b|^2 / (2 gamma_b)
+ *   (max only for a cable) with its full Hessian, geometric stiffness lambda / |d| (I - n n^T) included. The
+ *   dual path leaves it out: a tensioned chain's transverse step is then explicit, and unstable beyond that
+ *   ratio (Tournier et al. 2015, "Stable constrained dynamics"). Block-banded SPD systems, an active-set
+ *   model for the one-sided segments and an Armijo line search on Phi (convex for a cable).
+ * The dual path is taken first; the primal takes over when the last step's tension ratio exceeds 1/4, or
+ * when a dual iteration fails to lower the residual.
  *
- * Iterations stop when every residual is below `tolerance` x the segment length: the constraint residuals
- * |C^ - alpha lambda| (dual), the momentum residual as a displacement |e|, or the Newton step |dx| (primal).
+ * Iterations stop when every residual is below `tolerance` x the segment length: |C - alpha lambda| of every
+ * pulling segment and lambda (w_a + w_b) of every slack one (dual), or the Newton step |dx| (primal).
  */
 class DirectSolver : public ConstraintSolver
 {
@@ -67,7 +66,7 @@ class DirectSolver : public ConstraintSolver
  private:
   /// Sizes every buffer for a cable of n particles (once: pay-out never allocates).
   void reserve(std::size_t n);
-  /// Segment geometry at the current positions: n_k, |d_k|, C^_k; returns nothing.
+  /// Segment geometry at the current positions: n_k, |d_k|, C_k.
   void geometry(const Cable& cable);
   // Dual path (direct_solver.cpp).
   double dualResidual(const Cable& cable, const double* lambda);
@@ -93,15 +92,15 @@ class DirectSolver : public ConstraintSolver
   std::size_t m_ = 0;
   bool bending_ = false;
   bool unilateral_ = true;
-  double nominal_ = 0.1;                    ///< Nominal segment length, the scale of the position tolerance [m].
-  std::vector<double> xt_, yt_, zt_;        ///< Predicted positions x~ [m].
-  std::vector<double> sx_, sy_, sz_;        ///< Saved positions (rejected steps).
-  std::vector<double> nx_, ny_, nz_, len_;  ///< Unit vector and length of segment k.
-  std::vector<double> c_;                   ///< C^_k [m].
-  std::vector<double> offset_;              ///< Axial damping's share of C at the step's start, b C_prev / (1 + b) [m].
-  std::vector<double> alpha_;               ///< alpha_k / (1 + b) [1/kg].
-  std::vector<double> inv_rest_;            ///< 1 / L_k [1/m].
-  std::vector<double> diag_, off_;          ///< Dual: the tridiagonal system.
+  double nominal_ = 0.1;                          ///< Nominal segment length, the scale of the position tolerance [m].
+  std::vector<double> xt_, yt_, zt_;              ///< Predicted positions x~ [m].
+  std::vector<double> sx_, sy_, sz_;              ///< Saved positions (rejected steps).
+  std::vector<double> nx_, ny_, nz_, len_;        ///< Unit vector and length of segment k.
+  std::vector<double> c_;                         ///< C_k = |d_k| - L_k [m].
+  std::vector<double> alpha_;                     ///< alpha_k = L_k / (EA h^2) [1/kg].
+  std::vector<double> inv_rest_;                  ///< 1 / L_k [1/m].
+  std::vector<double> extra_mobility_;            ///< w_along - w_across of particle l (added mass) [1/kg].
+  std::vector<double> diag_, off_;                ///< Dual: the tridiagonal system.
   std::vector<double> diag_active_, rhs_active_;  ///< Dual: every row as if active.
   // Dual, padded with a zero before row 0 and after row m - 1 (the accessors point at row 0): the active set
   // (1 or 0), each row's coupling to the next, the multipliers, and the step dlambda (the system's

@@ -31,13 +31,13 @@ class Spool
   /// Sets `first` and the rest lengths for `deployed` metres off the spool (positions are not touched).
   void setDeployedLength(Cable& cable, double deployed) const;
   /// Grows (change > 0) or shrinks the first segment by `change` [m], releasing or taking back particles
-  /// to keep it within its bounds; masses are updated as Cable::updateMasses does (`mass_per_length`,
-  /// `last_pinned`). A released particle starts on the first segment with its velocity and no multiplier.
-  void payOut(Cable& cable, Multipliers& lambda, double change, double mass_per_length, bool last_pinned) const;
+  /// to keep it within its bounds; masses are updated as Cable::updateMasses does (`mass`, `last_pinned`).
+  /// A released particle starts on the first segment with its velocity and no multiplier.
+  void payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned) const;
 
  private:
-  void release(Cable& cable, Multipliers& lambda, double mass_per_length, bool last_pinned) const;
-  void merge(Cable& cable, double mass_per_length, bool last_pinned) const;
+  void release(Cable& cable, Multipliers& lambda, const LineMass& mass, bool last_pinned) const;
+  void merge(Cable& cable, const LineMass& mass, bool last_pinned) const;
 
   Position outlet_;
   double segment_ = 0.1;

@@ -7,6 +7,8 @@
 #include <variant>
 #include <vector>
 
+#include "rov_tether/line_mass.hpp"
+
 namespace rov_tether
 {
 
@@ -151,8 +153,10 @@ struct TetherParams
   double noiseAmplitude(double dt) const;
   /// Number of segments the full cable is split into.
   std::size_t segmentCount() const;
-  /// Mass per metre including added mass (morison only) [kg/m].
+  /// Mass per metre including added mass (morison only) [kg/m]: the mass across the cable.
   double effectiveMassPerLength() const;
+  /// Mass per metre along the cable (mass_per_length) and across it (effectiveMassPerLength()) [kg/m].
+  LineMass lineMass() const { return {mass_per_length, effectiveMassPerLength()}; }
   /// Sub-step length time_step / substeps [s].
   double subStep() const { return time_step / substeps; }
   /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s].

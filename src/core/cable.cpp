@@ -5,7 +5,7 @@ namespace rov_tether
 
 void Cable::resize(std::size_t particles)
 {
-  for (auto* v : {&x, &y, &z, &px, &py, &pz, &inv_mass})
+  for (auto* v : {&x, &y, &z, &px, &py, &pz, &inv_mass, &inv_mass_along, &tx, &ty, &tz})
   {
     v->assign(particles, 0.0);
   }
@@ -37,8 +37,9 @@ Position Cable::direction(std::size_t a, std::size_t b) const
   return length > 0.0 ? Position(d / length) : Position::Zero();
 }
 
-void Cable::updateMasses(std::size_t lo, std::size_t hi, double mass_per_length, bool last_pinned)
+void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_per_length, bool last_pinned)
 {
+  anisotropic = mass_per_length.along != mass_per_length.across;
   const std::size_t n = size();
   const std::size_t f = first;
   lo = std::max(lo, f);
@@ -50,9 +51,10 @@ void Cable::updateMasses(std::size_t lo, std::size_t hi, double mass_per_length,
   {
     const double left = i > f ? rest[i - 1] : 0.0;
     const double right = i + 1 < n ? rest[i] : 0.0;
-    const double mass = mass_per_length * 0.5 * (left + right);
-    const bool pinned = i <= f || (last_pinned && i + 1 == n);
-    inv_mass[i] = pinned || mass <= 0.0 ? 0.0 : 1.0 / mass;
+    const double length = 0.5 * (left + right);
+    const bool pinned = i <= f || (last_pinned && i + 1 == n) || length <= 0.0;
+    inv_mass[i] = pinned ? 0.0 : 1.0 / (mass_per_length.across * length);
+    inv_mass_along[i] = pinned ? 0.0 : 1.0 / (mass_per_length.along * length);
   }
   auto inverse_sum = [](double a, double b) { return a + b > 0.0 ? 1.0 / (a + b) : 0.0; };
   for (std::size_t j = std::max(lo, f + 1) - 1; j <= hi && j + 1 < n; ++j)
@@ -63,6 +65,18 @@ void Cable::updateMasses(std::size_t lo, std::size_t hi, double mass_per_length,
   {
     bend_rest[j] = rest[j] + rest[j + 1];
     bend_weight[j] = inverse_sum(inv_mass[j], inv_mass[j + 2]);
+  }
+}
+
+void Cable::updateTangents()
+{
+  const std::size_t n = size();
+  for (std::size_t i = first; i < n; ++i)
+  {
+    const std::size_t a = i > first ? i - 1 : i;
+    const std::size_t b = i + 1 < n ? i + 1 : i;
+    const Position t = direction(a, b);
+    tx[i] = t.x(), ty[i] = t.y(), tz[i] = t.z();
   }
 }
 

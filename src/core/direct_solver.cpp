@@ -22,12 +22,11 @@ constexpr int kMaxDualIterations = 10;
 /// Rounds of active-set changes on one linearisation.
 constexpr int kMaxActiveSetRounds = 30;
 
-/// Unit vector n_k, length |d_k| and C^_k = |d_k| - L_k - offset_k of each of m segments.
+/// Unit vector n_k, length |d_k| and C_k = |d_k| - L_k of each of m segments.
 ROV_TETHER_TARGET_CLONES void segmentGeometry(const double* __restrict x, const double* __restrict y,
                                               const double* __restrict z, const double* __restrict rest,
-                                              const double* __restrict offset, double* __restrict nx,
-                                              double* __restrict ny, double* __restrict nz, double* __restrict len,
-                                              double* __restrict c, std::size_t m)
+                                              double* __restrict nx, double* __restrict ny, double* __restrict nz,
+                                              double* __restrict len, double* __restrict c, std::size_t m)
 {
   for (std::size_t k = 0; k < m; ++k)
   {
@@ -38,14 +37,14 @@ ROV_TETHER_TARGET_CLONES void segmentGeometry(const double* __restrict x, const 
     const double inv = 1.0 / (length + 1e-300);  // a zero-length segment has n = 0
     nx[k] = dx * inv, ny[k] = dy * inv, nz[k] = dz * inv;
     len[k] = length;
-    c[k] = length - rest[k] - offset[k];
+    c[k] = length - rest[k];
   }
 }
 
 /// The primal-dual active set at the current iterate and the largest relative constraint residual: a
-/// segment that a free particle can move pulls when lambda + c (C^ - alpha lambda) > 0, c = 1 / (w_a + w_b)
-/// its effective mass. At the solution an active segment has C^ = alpha lambda with lambda > 0, an inactive
-/// one lambda = 0 with C^ <= 0; an inactive one still holding lambda has the residual lambda (w_a + w_b) / L.
+/// segment that a free particle can move pulls when lambda + c (C - alpha lambda) > 0, c = 1 / (w_a + w_b)
+/// its effective mass. At the solution an active segment has C = alpha lambda with lambda > 0, an inactive
+/// one lambda = 0 with C <= 0; an inactive one still holding lambda has the residual lambda (w_a + w_b) / L.
 ROV_TETHER_TARGET_CLONES double activeSet(const double* __restrict w, const double* __restrict inv_rest,
                                           const double* __restrict c, const double* __restrict alpha,
                                           const double* __restrict lam, double* __restrict on, std::size_t m)
@@ -64,7 +63,7 @@ ROV_TETHER_TARGET_CLONES double activeSet(const double* __restrict w, const doub
   return worst;
 }
 
-/// Every row as if active, (J W J^T + alpha) dlambda = C^ - alpha lambda: its diagonal, right-hand side,
+/// Every row as if active, (J W J^T + alpha) dlambda = C - alpha lambda: its diagonal, right-hand side,
 /// and its coupling to the next row, -w_k+1 n_k . n_k+1 (0 after the last).
 ROV_TETHER_TARGET_CLONES void activeRows(const double* __restrict w, const double* __restrict alpha,
                                          const double* __restrict c, const double* __restrict lam,
@@ -80,6 +79,33 @@ ROV_TETHER_TARGET_CLONES void activeRows(const double* __restrict w, const doubl
   for (std::size_t k = 0; k + 1 < m; ++k)
   {
     coupling[k] = -w[k + 1] * (nx[k] * nx[k + 1] + ny[k] * ny[k + 1] + nz[k] * nz[k + 1]);
+  }
+  coupling[m - 1] = 0.0;
+}
+
+/// activeRows with a mass that is larger across the cable than along it (added mass): each particle's
+/// inverse mass is W_l = w_l I + dw_l t_l t_l^T (dw = w_along - w_across, t the tangent), so a row's
+/// entries are n_k . W n_j = w (n_k . n_j) + dw (n_k . t)(n_j . t).
+ROV_TETHER_TARGET_CLONES void activeRowsAnisotropic(const double* __restrict w, const double* __restrict dw,
+                                                    const double* __restrict tx, const double* __restrict ty,
+                                                    const double* __restrict tz, const double* __restrict alpha,
+                                                    const double* __restrict c, const double* __restrict lam,
+                                                    const double* __restrict nx, const double* __restrict ny,
+                                                    const double* __restrict nz, double* __restrict diag,
+                                                    double* __restrict rhs, double* __restrict coupling, std::size_t m)
+{
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double a = nx[k] * tx[k] + ny[k] * ty[k] + nz[k] * tz[k];              // n_k . t_k
+    const double b = nx[k] * tx[k + 1] + ny[k] * ty[k + 1] + nz[k] * tz[k + 1];  // n_k . t_k+1
+    diag[k] = w[k] + w[k + 1] + dw[k] * a * a + dw[k + 1] * b * b + alpha[k];
+    rhs[k] = c[k] - alpha[k] * lam[k];
+  }
+  for (std::size_t k = 0; k + 1 < m; ++k)
+  {
+    const double b = nx[k] * tx[k + 1] + ny[k] * ty[k + 1] + nz[k] * tz[k + 1];              // n_k . t_k+1
+    const double e = nx[k + 1] * tx[k + 1] + ny[k + 1] * ty[k + 1] + nz[k + 1] * tz[k + 1];  // n_k+1 . t_k+1
+    coupling[k] = -(w[k + 1] * (nx[k] * nx[k + 1] + ny[k] * ny[k + 1] + nz[k] * nz[k + 1]) + dw[k + 1] * b * e);
   }
   coupling[m - 1] = 0.0;
 }
@@ -152,6 +178,33 @@ ROV_TETHER_TARGET_CLONES void applyDual(const double* __restrict w, const double
   }
 }
 
+/// applyDual with W_l = w_l I + dw_l t_l t_l^T.
+ROV_TETHER_TARGET_CLONES void applyDualAnisotropic(const double* __restrict w, const double* __restrict dw,
+                                                   const double* __restrict tx, const double* __restrict ty,
+                                                   const double* __restrict tz, const double* __restrict nx,
+                                                   const double* __restrict ny, const double* __restrict nz,
+                                                   const double* __restrict d, double* __restrict x,
+                                                   double* __restrict y, double* __restrict z, double* __restrict lam,
+                                                   std::size_t m)
+{
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    const double ahead = l < m ? d[l] : 0.0;
+    const double behind = l > 0 ? d[l - 1] : 0.0;
+    const double vx = (l < m ? nx[l] : 0.0) * ahead - (l > 0 ? nx[l - 1] : 0.0) * behind;
+    const double vy = (l < m ? ny[l] : 0.0) * ahead - (l > 0 ? ny[l - 1] : 0.0) * behind;
+    const double vz = (l < m ? nz[l] : 0.0) * ahead - (l > 0 ? nz[l - 1] : 0.0) * behind;
+    const double along = dw[l] * (vx * tx[l] + vy * ty[l] + vz * tz[l]);
+    x[l] += w[l] * vx + along * tx[l];
+    y[l] += w[l] * vy + along * ty[l];
+    z[l] += w[l] * vz + along * tz[l];
+  }
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    lam[k] += d[k];
+  }
+}
+
 }  // namespace
 
 void DirectSolver::reserve(std::size_t n)
@@ -160,9 +213,10 @@ void DirectSolver::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v :
-       {&xt_, &yt_,     &zt_,    &sx_,   &sy_,  &sz_,          &nx_,         &ny_,    &nz_,       &len_,
-        &c_,  &offset_, &alpha_, &diag_, &off_, &diag_active_, &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_})
+  for (auto* v : {&xt_,         &yt_,    &zt_,       &sx_,           &sy_,
+                  &sz_,         &nx_,    &ny_,       &nz_,           &len_,
+                  &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
+                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_})
   {
     v->assign(n, 0.0);
   }
@@ -202,21 +256,10 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   unilateral_ = !bending_;
   nominal_ = cable.rest[n - 2];
   const double h2 = settings.time_step * settings.time_step;
-  const double damping = settings.axial_damping / (settings.axial_stiffness * settings.time_step);
   for (std::size_t k = 0; k < m_; ++k)
   {
-    const std::size_t j = f + k;
-    alpha_[k] = cable.rest[j] / (settings.axial_stiffness * h2) / (1.0 + damping);
-    inv_rest_[k] = 1.0 / cable.rest[j];
-    offset_[k] = 0.0;
-    if (damping > 0.0)
-    {
-      // The segment's stretch at the step's start (the previous positions) for the strain rate.
-      const double dx = cable.px[j + 1] - cable.px[j];
-      const double dy = cable.py[j + 1] - cable.py[j];
-      const double dz = cable.pz[j + 1] - cable.pz[j];
-      offset_[k] = damping / (1.0 + damping) * (std::sqrt(dx * dx + dy * dy + dz * dz) - cable.rest[j]);
-    }
+    alpha_[k] = cable.rest[f + k] / (settings.axial_stiffness * h2);
+    inv_rest_[k] = 1.0 / cable.rest[f + k];
   }
   for (std::size_t k = 0; bending_ && k + 1 < m_; ++k)
   {
@@ -286,8 +329,8 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
 void DirectSolver::geometry(const Cable& cable)
 {
   const std::size_t f = first_;
-  segmentGeometry(cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, cable.rest.data() + f, offset_.data(),
-                  nx_.data(), ny_.data(), nz_.data(), len_.data(), c_.data(), m_);
+  segmentGeometry(cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, cable.rest.data() + f, nx_.data(),
+                  ny_.data(), nz_.data(), len_.data(), c_.data(), m_);
 }
 
 double DirectSolver::dualResidual(const Cable& cable, const double* lambda)
@@ -300,8 +343,21 @@ void DirectSolver::dualStep(Cable& cable, double* lambda)
   const std::size_t f = first_;
   const std::size_t m = m_;
   const double* w = cable.inv_mass.data() + f;
-  activeRows(w, alpha_.data(), c_.data(), lambda, nx_.data(), ny_.data(), nz_.data(), diag_active_.data(),
-             rhs_active_.data(), coupling(), m);
+  if (cable.anisotropic)
+  {
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      extra_mobility_[l] = cable.inv_mass_along[f + l] - w[l];
+    }
+    activeRowsAnisotropic(w, extra_mobility_.data(), cable.tx.data() + f, cable.ty.data() + f, cable.tz.data() + f,
+                          alpha_.data(), c_.data(), lambda, nx_.data(), ny_.data(), nz_.data(), diag_active_.data(),
+                          rhs_active_.data(), coupling(), m);
+  }
+  else
+  {
+    activeRows(w, alpha_.data(), c_.data(), lambda, nx_.data(), ny_.data(), nz_.data(), diag_active_.data(),
+               rhs_active_.data(), coupling(), m);
+  }
   // The padded copies: a zero before the first row and after the last.
   std::copy(lambda, lambda + m, padded_lambda());
   padded_lambda()[m] = on()[m] = step()[m] = 0.0;
@@ -327,6 +383,13 @@ void DirectSolver::dualStep(Cable& cable, double* lambda)
     {
       break;
     }
+  }
+  if (cable.anisotropic)
+  {
+    applyDualAnisotropic(w, extra_mobility_.data(), cable.tx.data() + f, cable.ty.data() + f, cable.tz.data() + f,
+                         nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
+                         cable.z.data() + f, lambda, m);
+    return;
   }
   applyDual(w, nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f, cable.z.data() + f,
             lambda, m);

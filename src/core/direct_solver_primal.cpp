@@ -45,6 +45,12 @@ double DirectSolver::energy(const Cable& cable) const
       const double dy = cable.y[f + l] - yt_[l];
       const double dz = cable.z[f + l] - zt_[l];
       kinetic += (dx * dx + dy * dy + dz * dz) / w;
+      if (cable.anisotropic)
+      {
+        // M = m_across I + (m_along - m_across) t t^T.
+        const double along = dx * cable.tx[f + l] + dy * cable.ty[f + l] + dz * cable.tz[f + l];
+        kinetic += (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * along * along;
+      }
     }
   }
   double elastic = 0.0;
@@ -87,11 +93,27 @@ void DirectSolver::assemblePrimal(const Cable& cable)
       addTo(&hessian_diag_[9 * l], kIdentity);
       continue;
     }
+    // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
     const double mass = 1.0 / w[l];
-    grad_[3 * l] = mass * (cable.x[f + l] - xt_[l]);
-    grad_[3 * l + 1] = mass * (cable.y[f + l] - yt_[l]);
-    grad_[3 * l + 2] = mass * (cable.z[f + l] - zt_[l]);
-    addTo(&hessian_diag_[9 * l], kIdentity, mass);
+    double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
+    if (cable.anisotropic)
+    {
+      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+      const double less = 1.0 / cable.inv_mass_along[f + l] - mass;
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        for (std::size_t c = 0; c < 3; ++c)
+        {
+          block[3 * a + c] += less * t[a] * t[c];
+        }
+      }
+    }
+    const double d[3] = {cable.x[f + l] - xt_[l], cable.y[f + l] - yt_[l], cable.z[f + l] - zt_[l]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      grad_[3 * l + a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
+    }
+    addTo(&hessian_diag_[9 * l], block);
   }
   const double* model = on();
   for (std::size_t k = 0; k < m; ++k)
@@ -182,7 +204,7 @@ double DirectSolver::primalStep(Cable& cable)
   const std::size_t m = m_;
   const std::size_t rows = 3 * (m + 1);
   // The model: the step energy's second-order expansion in the positions, with each cable segment's
-  // energy (1 / 2 alpha) max(C^, 0)^2 expanded in its linearised stretch C^ + n . (dx_k+1 - dx_k), so a
+  // energy (1 / 2 alpha) max(C, 0)^2 expanded in its linearised stretch C + n . (dx_k+1 - dx_k), so a
   // segment is in the model when the step stretches it. That model is convex and piecewise quadratic; its
   // minimiser is found by active sets (solve, take in the segments the step stretches, let go of those it
   // does not, until the set holds), starting from the segments stretched now or taut at the end of the last

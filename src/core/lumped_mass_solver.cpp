@@ -41,6 +41,19 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
     state.x[j + 1] -= move_b * dx;
     state.y[j + 1] -= move_b * dy;
     state.z[j + 1] -= move_b * dz;
+    if (state.anisotropic)
+    {
+      // Along the cable only its own mass: the extra mobility (w_along - w_across) along the tangent.
+      for (std::size_t i : {j, j + 1})
+      {
+        const double sign = i == j ? 1.0 : -1.0;
+        const double extra = sign * (state.inv_mass_along[i] - state.inv_mass[i]) * scale *
+                             (dx * state.tx[i] + dy * state.ty[i] + dz * state.tz[i]);
+        state.x[i] += extra * state.tx[i];
+        state.y[i] += extra * state.ty[i];
+        state.z[i] += extra * state.tz[i];
+      }
+    }
   }
   if (n >= f + 3)
   {

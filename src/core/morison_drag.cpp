@@ -15,10 +15,14 @@ void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, do
   // Morison drag on each particle's share of cable, split into the flow normal and tangential to the
   // cable. The impulse is explicit, h c |r| r, so a cable held against the flow feels exactly the drag,
   // but never more than stops the relative motion (r' = r (1 - min(h c |r| / m, 1))): stable at any step.
+  // The added mass acts across the cable only, so the flow along it (and the weight's share along it)
+  // moves the cable's own mass.
   const std::size_t n = cable.size();
   const double normal = 0.5 * params.water_density * params.normal_drag_coefficient * params.diameter;
   const double tangential = 0.5 * params.water_density * params.tangential_drag_coefficient * kPi * params.diameter;
-  const double sink = weightDisplacement(params, h);
+  const LineMass mass = params.lineMass();
+  const double sink_across = -params.weight_in_water / mass.across * h * h;
+  const double sink_along = -params.weight_in_water / mass.along * h * h;
   const bool uniform = current.uniform();
   const Position& u0 = current.mean();
   for (std::size_t i = begin; i < end; ++i)
@@ -34,12 +38,15 @@ void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, do
     tangent = tangent_length > 0.0 ? Position(tangent / tangent_length) : Position::Zero();
     const double share = 0.5 * (cable.rest[i - 1] + (i + 1 < n ? cable.rest[i] : 0.0));
     const double h_per_mass = cable.inv_mass[i] * h * share;
+    const double h_per_mass_along = cable.inv_mass_along[i] * h * share;
     Position along = relative.dot(tangent) * tangent;
     Position across = relative - along;
-    along *= 1.0 - std::min(h_per_mass * tangential * along.norm(), 1.0);
+    along *= 1.0 - std::min(h_per_mass_along * tangential * along.norm(), 1.0);
     across *= 1.0 - std::min(h_per_mass * normal * across.norm(), 1.0);
     Position next = x + (water + along + across) * h;
-    next.z() += sink;
+    // The weight: its share along the cable with the cable's mass, across with the added mass too.
+    next.z() += sink_across;
+    next += (sink_along - sink_across) * tangent.z() * tangent;
     cable.px[i] = x.x(), cable.py[i] = x.y(), cable.pz[i] = x.z();
     cable.x[i] = next.x(), cable.y[i] = next.y(), cable.z[i] = next.z();
   }

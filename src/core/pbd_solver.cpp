@@ -64,6 +64,56 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
   }
 }
 
+/**
+ * One constraint between particles a and b of the cable's own arrays, as projectPairs, for a cable whose
+ * particles are lighter along it than across it (added mass acts across only): particle i's inverse mass
+ * is W_i = w_i I + dw_i t_i t_i^T (dw = inv_mass_along - inv_mass, t the tangent), so the constraint's
+ * effective inverse mass is n . W_a n + n . W_b n and each particle moves by W_i n.
+ */
+template <int kPower>
+void projectPairAnisotropic(Cable& cable, std::size_t a, std::size_t b, double rest, double& lambda, double compliance,
+                            double relax)
+{
+  const double dx = cable.x[b] - cable.x[a];
+  const double dy = cable.y[b] - cable.y[a];
+  const double dz = cable.z[b] - cable.z[a];
+  const double length_squared = dx * dx + dy * dy + dz * dz;
+  const double inv_length = 1.0 / std::sqrt(length_squared + kMinLengthSquared);
+  const double extra_a = cable.inv_mass_along[a] - cable.inv_mass[a];
+  const double extra_b = cable.inv_mass_along[b] - cable.inv_mass[b];
+  const double da = (dx * cable.tx[a] + dy * cable.ty[a] + dz * cable.tz[a]);  // d . t_a
+  const double db = (dx * cable.tx[b] + dy * cable.ty[b] + dz * cable.tz[b]);
+  const double mobility =
+      cable.inv_mass[a] + cable.inv_mass[b] + (extra_a * da * da + extra_b * db * db) * inv_length * inv_length;
+  if (!(mobility > 0.0))
+  {
+    return;
+  }
+  double s;
+  if constexpr (kPower == 0)
+  {
+    s = (1.0 - rest * inv_length) / mobility * relax;
+    lambda += s * length_squared * inv_length;
+  }
+  else
+  {
+    const double alpha = compliance * (kPower == 1 ? rest : rest * rest * rest);
+    const double delta = (length_squared * inv_length - rest - alpha * lambda) / (mobility + alpha);
+    lambda += delta;
+    s = delta * inv_length;
+  }
+  const double along_a = s * extra_a * da;
+  const double along_b = s * extra_b * db;
+  const double wa = s * cable.inv_mass[a];
+  const double wb = s * cable.inv_mass[b];
+  cable.x[a] += wa * dx + along_a * cable.tx[a];
+  cable.y[a] += wa * dy + along_a * cable.ty[a];
+  cable.z[a] += wa * dz + along_a * cable.tz[a];
+  cable.x[b] -= wb * dx + along_b * cable.tx[b];
+  cable.y[b] -= wb * dy + along_b * cable.ty[b];
+  cable.z[b] -= wb * dz + along_b * cable.tz[b];
+}
+
 /// Number of constraints l = 4 k + r with l <= last, for k >= 0.
 inline std::size_t countResidue(std::size_t r, std::size_t last_plus_one)
 {
@@ -182,7 +232,8 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     }
   }
   const double relax = compliant_ ? 1.0 : settings.over_relaxation;
-  if (m <= direct_particles_)
+  // An anisotropic cable (added mass) is projected in place, constraint by constraint, in the same order.
+  if (m <= direct_particles_ || state.anisotropic)
   {
     solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, bend_compliance, relax);
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
@@ -273,6 +324,11 @@ void projectStrided(Cable& state, Multipliers& multipliers, std::size_t first, s
   double* lambda = bend ? multipliers.bend.data() : multipliers.stretch.data();
   for (std::size_t j = first; j < end; j += step)
   {
+    if (state.anisotropic)
+    {
+      projectPairAnisotropic<kPower>(state, j, j + span, rest[j], lambda[j], compliance, relax);
+      continue;
+    }
     projectPairs<kPower>(x + j, y + j, z + j, w + j, x + j + span, y + j + span, z + j + span, w + j + span, rest + j,
                          weight + j, lambda + j, 1, compliance, relax);
   }
@@ -343,6 +399,11 @@ void SequentialPbdSolver::project(Cable& state, Multipliers& lambda, const Solve
   {
     for (std::size_t j = f; j < segments_end; ++j)
     {
+      if (state.anisotropic)
+      {
+        projectPairAnisotropic<0>(state, j, j + 1, state.rest[j], lambda.stretch[j], 0.0, 1.0);
+        continue;
+      }
       projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 1, y + j + 1, z + j + 1, w + j + 1, &state.rest[j],
                       &state.stretch_weight[j], &lambda.stretch[j], 1);
     }
@@ -350,6 +411,11 @@ void SequentialPbdSolver::project(Cable& state, Multipliers& lambda, const Solve
     {
       for (std::size_t j = f; j < bends_end; ++j)
       {
+        if (state.anisotropic)
+        {
+          projectPairAnisotropic<0>(state, j, j + 2, state.bend_rest[j], lambda.bend[j], 0.0, 1.0);
+          continue;
+        }
         projectPairs<0>(x + j, y + j, z + j, w + j, x + j + 2, y + j + 2, z + j + 2, w + j + 2, &state.bend_rest[j],
                         &state.bend_weight[j], &lambda.bend[j], 1);
       }

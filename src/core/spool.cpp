@@ -24,7 +24,8 @@ void Spool::setDeployedLength(Cable& cable, double deployed) const
   cable.rest[cable.first] = deployed - static_cast<double>(count - 1) * segment_;
 }
 
-void Spool::payOut(Cable& cable, Multipliers& lambda, double change, double mass_per_length, bool last_pinned) const
+void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length,
+                   bool last_pinned) const
 {
   const std::size_t n = cable.size();
   cable.rest[cable.first] += change;
@@ -45,7 +46,7 @@ void Spool::payOut(Cable& cable, Multipliers& lambda, double change, double mass
   cable.updateMasses(cable.first, cable.first + 2, mass_per_length, last_pinned);
 }
 
-void Spool::release(Cable& cable, Multipliers& lambda, double mass_per_length, bool last_pinned) const
+void Spool::release(Cable& cable, Multipliers& lambda, const LineMass& mass_per_length, bool last_pinned) const
 {
   // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with
   // the segment's velocity, so neither the shape nor any constraint error changes.
@@ -65,7 +66,7 @@ void Spool::release(Cable& cable, Multipliers& lambda, double mass_per_length, b
   cable.updateMasses(cable.first, cable.first + 3, mass_per_length, last_pinned);
 }
 
-void Spool::merge(Cable& cable, double mass_per_length, bool last_pinned) const
+void Spool::merge(Cable& cable, const LineMass& mass_per_length, bool last_pinned) const
 {
   // The first free particle goes back onto the spool; its two segments become one with the summed
   // rest length, so the deployed length does not change.

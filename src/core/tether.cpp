@@ -94,7 +94,8 @@ Status Tether::setParams(const TetherParams& params)
   }
   const bool rebuild = !sameStructure(params_, params.resolved());
   const double old_step = params_.subStep();
-  const bool new_mass = params.effectiveMassPerLength() != params_.effectiveMassPerLength();
+  const bool new_mass = params.resolved().lineMass().along != params_.lineMass().along ||
+                        params.resolved().lineMass().across != params_.lineMass().across;
   applyParams(params);
   if (rebuild)
   {
@@ -190,7 +191,7 @@ void Tether::layOut(double deployed_length)
 
 void Tether::refreshDerived(std::size_t lo, std::size_t hi)
 {
-  cable_.updateMasses(lo, hi, params_.effectiveMassPerLength(), track_.attached());
+  cable_.updateMasses(lo, hi, params_.lineMass(), track_.attached());
 }
 
 Status Tether::setSpoolPosition(const Position& spool)
@@ -348,6 +349,10 @@ void Tether::subStep(double h, double t)
   {
     track_.setPosition(vehicleAt(t));
   }
+  if (cable_.anisotropic)
+  {
+    cable_.updateTangents();  // the directions the added mass does not act in, fixed for the sub-step
+  }
   if (cable_.first + 1 < freeEnd())
   {
     drag_->integrate(cable_, cable_.first + 1, freeEnd(), h, t, params_, current_);
@@ -409,7 +414,7 @@ void Tether::runWinch(double dt)
   {
     return;
   }
-  spool_.payOut(cable_, solver_->multipliers(), change, params_.effectiveMassPerLength(), track_.attached());
+  spool_.payOut(cable_, solver_->multipliers(), change, params_.lineMass(), track_.attached());
 }
 
 bool Tether::stateFinite() const

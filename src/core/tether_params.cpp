@@ -230,7 +230,8 @@ double TetherParams::effectiveMassPerLength() const
 
 double TetherParams::criticalStep() const
 {
-  return segment_length / std::sqrt(axial_stiffness / effectiveMassPerLength());
+  // The axial waves are the fastest, and added mass acts across the cable only: the cable's own mass.
+  return segment_length / std::sqrt(axial_stiffness / mass_per_length);
 }
 
 TetherParams TetherParams::resolved() const
