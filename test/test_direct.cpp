@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "rov_tether/direct_solver.hpp"
+#include "rov_tether/pbd_solver.hpp"
 #include "rov_tether/study.hpp"
 #include "test_helpers.hpp"
 
@@ -336,6 +337,65 @@ TEST(Direct, CantileverTipDeflectionIsWL4Over8EI)
       "%d Newton iterations in the last step\n",
       length, ei, tip, expected, solver.lastIterations());
   EXPECT_NEAR(tip, expected, 0.05 * expected);
+}
+
+// Bending that is EI, for direct and xpbd alike: one joint between a clamped segment and a free one holds
+// the free end's weight m g at tan(theta) = m g L^2 / EI (the energy EI (2 - 2 cos theta) / (2 L) of the
+// change of tangent, balanced against the weight's moment m g L cos(theta)), so the angle grows linearly
+// with the load: twice the weight, twice tan(theta). The paper's (i, i+2) constraint would give an angle
+// growing as the cube root of the load (its energy grows as theta^4). Within 1%.
+TEST(Bending, OneJointHoldsItsLoadAsEIPredicts)
+{
+  const double length = 0.1;
+  const double g = 9.81;
+  const double ei = 0.05;
+  for (bool direct : {true, false})
+  {
+    for (double mu : {1.0, 2.0})
+    {
+      Cable cable;
+      cable.resize(3);
+      for (std::size_t i = 0; i < 3; ++i)
+      {
+        cable.place(i, Position(length * static_cast<double>(i), 0.0, 0.0));
+      }
+      std::fill(cable.rest.begin(), cable.rest.end(), length);
+      cable.updateMasses(0, 2, {mu, mu}, false);
+      cable.inv_mass[1] = 0.0;  // the clamp: particles 0 and 1 fix the first segment
+      cable.stretch_weight[0] = 0.0;
+      cable.stretch_weight[1] = 1.0 / cable.inv_mass[2];
+      const double mass = 1.0 / cable.inv_mass[2];
+      std::unique_ptr<ConstraintSolver> solver;
+      if (direct)
+      {
+        solver = std::make_unique<DirectSolver>();
+      }
+      else
+      {
+        solver = std::make_unique<PbdSolver>(true);
+      }
+      solver->multipliers().resize(3);
+      SolverSettings settings;
+      settings.axial_stiffness = 1e9;
+      settings.bending = true;
+      settings.bending_stiffness = ei;
+      settings.iterations = direct ? 20 : 200;
+      const double h = settings.time_step;
+      for (int step = 0; step < 4000; ++step)
+      {
+        const double x = cable.x[2], z = cable.z[2];
+        cable.x[2] += 0.9 * (x - cable.px[2]);
+        cable.z[2] += 0.9 * (z - cable.pz[2]) - g * h * h;
+        cable.px[2] = x, cable.pz[2] = z;
+        solver->solve(cable, settings, Contacts{}, 3);
+      }
+      const double tangent = -(cable.z[2] - cable.z[1]) / (cable.x[2] - cable.x[1]);
+      const double expected = mass * g * length * length / ei;
+      std::printf("[ measured ] %s, one joint, end mass %.3f kg: tan(theta) %.5f, m g L^2 / EI %.5f\n",
+                  direct ? "direct" : "xpbd", mass, tangent, expected);
+      EXPECT_NEAR(tangent, expected, 0.01 * expected) << (direct ? "direct" : "xpbd") << " mu " << mu;
+    }
+  }
 }
 
 }  // namespace

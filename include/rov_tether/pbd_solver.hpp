@@ -25,8 +25,9 @@ class PbdSolver : public ConstraintSolver
   static constexpr std::size_t kDirectParticles = 48;
 
   /// `compliant` makes this XPBD (Macklin, Mueller, Chentanez 2016): each stretch constraint has the
-  /// compliance rest / EA and each bending constraint (rest / 2)^3 / EI, so the multipliers converge to
-  /// the physical force times dt^2 whatever the iteration count.
+  /// compliance rest / EA, so the multipliers converge to the physical force times dt^2 whatever the
+  /// iteration count; bending stiffness EI acts at the joints (joint_bending.hpp) instead of the paper's
+  /// (i, i+2) constraints.
   /// `direct_particles`: see kDirectParticles (tests set it to compare both paths).
   explicit PbdSolver(bool compliant = false, std::size_t direct_particles = kDirectParticles)
       : compliant_(compliant), direct_particles_(direct_particles)
@@ -38,7 +39,7 @@ class PbdSolver : public ConstraintSolver
 
  private:
   void solveDirect(Cable& cable, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                   double bend_compliance, double relax);
+                   double inv_ei_h2, double relax);
 
   bool compliant_;
   std::size_t direct_particles_;
@@ -46,6 +47,7 @@ class PbdSolver : public ConstraintSolver
   std::vector<double> x_, y_, z_, inv_mass_;
   std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
   std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
+  std::vector<double> joint_x_, joint_y_, joint_z_;            ///< xpbd: joint l's three multipliers.
   std::size_t block_ = 0;
   std::size_t copied_first_ = static_cast<std::size_t>(-1);  ///< Layout of the copied constraint data.
   std::size_t copied_size_ = 0;

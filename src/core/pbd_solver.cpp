@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rov_tether/joint_bending.hpp"
 #include "rov_tether/simd.hpp"
 
 namespace rov_tether
@@ -18,9 +19,9 @@ constexpr double kMinLengthSquared = 1e-24;
  * k of the `b` arrays. Constraint data (rest, weight, lambda) is indexed by k. The a and b ranges must
  * not overlap, so the loop has no dependency between iterations and vectorises.
  *
- * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 and
- * 3 are XPBD with the compliance alpha~ = compliance * rest^kPower (already divided by dt^2): the multiplier increment
- * is (C - alpha~ lambda) / (w_a + w_b + alpha~).
+ * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 is
+ * XPBD with the compliance alpha~ = compliance * rest (already divided by dt^2): the multiplier increment is
+ * (C - alpha~ lambda) / (w_a + w_b + alpha~).
  */
 template <int kPower>
 ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
@@ -47,7 +48,7 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
     else
     {
       const double r = rest[k];
-      const double alpha = compliance * (kPower == 1 ? r : r * r * r);
+      const double alpha = compliance * r;
       const double delta =
           (length_squared * inv_length - r - alpha * lambda[k]) / (aw[k] + bw[k] + alpha + kMinLengthSquared);
       lambda[k] += delta;
@@ -97,7 +98,7 @@ void projectPairAnisotropic(Cable& cable, std::size_t a, std::size_t b, double r
   }
   else
   {
-    const double alpha = compliance * (kPower == 1 ? rest : rest * rest * rest);
+    const double alpha = compliance * rest;
     const double delta = (length_squared * inv_length - rest - alpha * lambda) / (mobility + alpha);
     lambda += delta;
     s = delta * inv_length;
@@ -133,10 +134,13 @@ struct Blocked
   const double* bend_rest;
   const double* bend_weight;
   double* bend_lambda;
+  double* joint_x;  ///< xpbd's joint bending: the three multipliers of joint l.
+  double* joint_y;
+  double* joint_z;
   std::size_t block;          ///< Length of one block.
   std::size_t particles;      ///< Deployed particles m.
   double stretch_compliance;  ///< XPBD: 1 / (EA dt^2) [1/(kg m)]; 0 = PBD.
-  double bend_compliance;     ///< XPBD: 1 / (8 EI dt^2) [1/(kg m^3)]; 0 = PBD.
+  double inv_ei_h2;           ///< xpbd's joint bending: 1 / (EI dt^2); 0 = none.
   double relax;               ///< PBD over-relaxation factor.
 };
 
@@ -149,21 +153,47 @@ ROV_TETHER_INLINE void projectResidue(const Blocked& c, std::size_t r, std::size
   const double* rest = (bend ? c.bend_rest : c.rest) + a;
   const double* weight = (bend ? c.bend_weight : c.weight) + a;
   double* lambda = (bend ? c.bend_lambda : c.lambda) + a;
-  const double compliance = bend ? c.bend_compliance : c.stretch_compliance;
+  const double compliance = bend ? 0.0 : c.stretch_compliance;  // the paper's bending is pbd's only
   if (compliance == 0.0)
   {
     projectPairs<0>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
                     0.0, c.relax);
   }
-  else if (bend)
-  {
-    projectPairs<3>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
-                    compliance);
-  }
   else
   {
     projectPairs<1>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
                     compliance);
+  }
+}
+
+/// Projects xpbd's joints of residue r (joint l = 4 k + r, particles l, l + 1, l + 2 in blocks r, r + 1,
+/// r + 2): joints of one residue share no particle.
+ROV_TETHER_INLINE void projectJointResidue(const Blocked& c, std::size_t r, std::size_t count)
+{
+  const std::size_t a = r * c.block;
+  const std::size_t b = ((r + 1) & 3) * c.block + (r + 1) / 4;
+  const std::size_t d = ((r + 2) & 3) * c.block + (r + 2) / 4;
+  double* __restrict ax = c.x + a;
+  double* __restrict ay = c.y + a;
+  double* __restrict az = c.z + a;
+  double* __restrict bx = c.x + b;
+  double* __restrict by = c.y + b;
+  double* __restrict bz = c.z + b;
+  double* __restrict dx = c.x + d;
+  double* __restrict dy = c.y + d;
+  double* __restrict dz = c.z + d;
+  const double* wa = c.w + a;
+  const double* wb = c.w + b;
+  const double* wd = c.w + d;
+  const double* la = c.rest + a;  // segment l
+  const double* lb = c.rest + b;  // segment l + 1
+  double* __restrict mx = c.joint_x + a;
+  double* __restrict my = c.joint_y + a;
+  double* __restrict mz = c.joint_z + a;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    projectJoint(ax[k], ay[k], az[k], wa[k], bx[k], by[k], bz[k], wb[k], dx[k], dy[k], dz[k], wd[k], la[k], lb[k],
+                 mx[k], my[k], mz[k], c.inv_ei_h2);
   }
 }
 
@@ -193,6 +223,13 @@ void solveBlocked(const Blocked& c, const SolverSettings& settings, bool bending
         projectResidue(c, r, 2, true, bend_count[r]);
       }
     }
+    if (c.inv_ei_h2 > 0.0)
+    {
+      for (std::size_t r = 0; r < 4; ++r)
+      {
+        projectJointResidue(c, r, bend_count[r]);
+      }
+    }
   }
 }
 
@@ -217,16 +254,19 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     return;
   }
   const std::size_t m = state.size() - f;
-  // XPBD: with no bending stiffness there is no bending constraint at all.
-  const bool bending = settings.bending && (!compliant_ || settings.bending_stiffness > 0.0);
+  // pbd: the paper's (i, i+2) bending constraints. xpbd: bending stiffness EI at the joints
+  // (joint_bending.hpp), none without it.
+  const bool bending = settings.bending && !compliant_;
   const double inv_dt2 = 1.0 / (settings.time_step * settings.time_step);
   const double stretch_compliance = compliant_ ? inv_dt2 / settings.axial_stiffness : 0.0;
-  const double bend_compliance = compliant_ && bending ? inv_dt2 / (8.0 * settings.bending_stiffness) : 0.0;
+  const bool joints = compliant_ && settings.bending && settings.bending_stiffness > 0.0 && m >= 3;
+  const double inv_ei_h2 = joints ? inv_dt2 / settings.bending_stiffness : 0.0;
   // Sized for the whole cable on the first step, whichever path runs: pay-out never reallocates.
   const std::size_t capacity = 4 * (state.size() / 4 + 2);
   if (x_.size() < capacity)
   {
-    for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_})
+    for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_,
+                    &joint_x_, &joint_y_, &joint_z_})
     {
       v->assign(capacity, 0.0);
     }
@@ -235,7 +275,7 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
   // An anisotropic cable (added mass) is projected in place, constraint by constraint, in the same order.
   if (m <= direct_particles_ || state.anisotropic)
   {
-    solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, bend_compliance, relax);
+    solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, inv_ei_h2, relax);
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
     return;
   }
@@ -277,12 +317,27 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     z_[s] = state.z[f + l];
     lambda_[s] = 0.0;
     bend_lambda_[s] = 0.0;
+    joint_x_[s] = joint_y_[s] = joint_z_[s] = 0.0;
   }
 
-  const Blocked blocked{x_.data(),           y_.data(),           z_.data(),      inv_mass_.data(),
-                        rest_.data(),        weight_.data(),      lambda_.data(), bend_rest_.data(),
-                        bend_weight_.data(), bend_lambda_.data(), block_,         m,
-                        stretch_compliance,  bend_compliance,     relax};
+  const Blocked blocked{x_.data(),
+                        y_.data(),
+                        z_.data(),
+                        inv_mass_.data(),
+                        rest_.data(),
+                        weight_.data(),
+                        lambda_.data(),
+                        bend_rest_.data(),
+                        bend_weight_.data(),
+                        bend_lambda_.data(),
+                        joint_x_.data(),
+                        joint_y_.data(),
+                        joint_z_.data(),
+                        block_,
+                        m,
+                        stretch_compliance,
+                        inv_ei_h2,
+                        relax};
   solveBlocked(blocked, settings, bending);
 
   for (std::size_t l = 0; l < m; ++l)
@@ -334,9 +389,30 @@ void projectStrided(Cable& state, Multipliers& multipliers, std::size_t first, s
   }
 }
 
-template <int kStretch, int kBend>
+/// xpbd's joints j = first, first + 4, ... below end of the state's own arrays (multipliers by deployed index).
+void projectJointsStrided(Cable& state, std::size_t first, std::size_t end, double inv_ei_h2, double* mx, double* my,
+                          double* mz)
+{
+  const std::size_t f = state.first;
+  for (std::size_t j = first; j < end; j += 4)
+  {
+    const std::size_t l = j - f;
+    if (state.anisotropic)
+    {
+      double mu[3] = {mx[l], my[l], mz[l]};
+      projectJointAnisotropic(state, j, inv_ei_h2, mu);
+      mx[l] = mu[0], my[l] = mu[1], mz[l] = mu[2];
+      continue;
+    }
+    projectJoint(state.x[j], state.y[j], state.z[j], state.inv_mass[j], state.x[j + 1], state.y[j + 1], state.z[j + 1],
+                 state.inv_mass[j + 1], state.x[j + 2], state.y[j + 2], state.z[j + 2], state.inv_mass[j + 2],
+                 state.rest[j], state.rest[j + 1], mx[l], my[l], mz[l], inv_ei_h2);
+  }
+}
+
+template <int kStretch>
 void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                     double bend_compliance, double relax)
+                     double inv_ei_h2, double relax, double* mx, double* my, double* mz)
 {
   const std::size_t f = state.first;
   const std::size_t segments_end = state.size() - 1;
@@ -344,16 +420,21 @@ void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool ben
   for (int iteration = 0; iteration < iterations; ++iteration)
   {
     // The blocked solver's sets, merged where they are independent: all even segments, all odd ones,
-    // then bending residues {0, 1} and {2, 3} (mod 4). Same projections, same order of dependent ones.
+    // then bending residues {0, 1} and {2, 3} (mod 4), or the joints' residues 0, 1, 2, 3 in turn. Same
+    // projections, same order of dependent ones.
     projectStrided<kStretch>(state, lambda, f, segments_end, 2, 1, false, stretch_compliance, relax);
     projectStrided<kStretch>(state, lambda, f + 1, segments_end, 2, 1, false, stretch_compliance, relax);
     if (bending)
     {
       for (std::size_t r : {0, 2})
       {
-        projectStrided<kBend>(state, lambda, f + r, bends_end, 4, 2, true, bend_compliance, relax);
-        projectStrided<kBend>(state, lambda, f + r + 1, bends_end, 4, 2, true, bend_compliance, relax);
+        projectStrided<0>(state, lambda, f + r, bends_end, 4, 2, true, 0.0, relax);
+        projectStrided<0>(state, lambda, f + r + 1, bends_end, 4, 2, true, 0.0, relax);
       }
+    }
+    for (std::size_t r = 0; inv_ei_h2 > 0.0 && r < 4; ++r)
+    {
+      projectJointsStrided(state, f + r, bends_end, inv_ei_h2, mx, my, mz);
     }
   }
 }
@@ -361,21 +442,21 @@ void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool ben
 }  // namespace
 
 void PbdSolver::solveDirect(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                            double bend_compliance, double relax)
+                            double inv_ei_h2, double relax)
 {
   const std::size_t f = state.first;
   resetMultipliers(state, lambda, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
+  std::fill(joint_x_.begin(), joint_x_.end(), 0.0);
+  std::fill(joint_y_.begin(), joint_y_.end(), 0.0);
+  std::fill(joint_z_.begin(), joint_z_.end(), 0.0);
   if (stretch_compliance == 0.0)
   {
-    solveDirectImpl<0, 0>(state, lambda, iterations, bending, 0.0, 0.0, relax);
-  }
-  else if (bend_compliance == 0.0)
-  {
-    solveDirectImpl<1, 0>(state, lambda, iterations, bending, stretch_compliance, 0.0, 1.0);
+    solveDirectImpl<0>(state, lambda, iterations, bending, 0.0, 0.0, relax, nullptr, nullptr, nullptr);
   }
   else
   {
-    solveDirectImpl<1, 3>(state, lambda, iterations, bending, stretch_compliance, bend_compliance, 1.0);
+    solveDirectImpl<1>(state, lambda, iterations, bending, stretch_compliance, inv_ei_h2, 1.0, joint_x_.data(),
+                       joint_y_.data(), joint_z_.data());
   }
   state.dirty_begin = state.dirty_end = 0;
 }
