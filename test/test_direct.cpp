@@ -387,8 +387,9 @@ TEST(Direct, PeakTensionConvergesAsTheStepShrinks)
 {
   const auto [coarse, coarse_lowest] = swayedCable(SolverType::kDirect, 4e-4, 0.2);
   const auto [fine, fine_lowest] = swayedCable(SolverType::kDirect, 1e-4, 0.2);
-  std::printf("[ measured ] swayed soft cable, EI 0.2 N m^2: peak end tension %.4f N at 0.4 ms, %.4f N at 0.1 ms (%.2f%%)\n",
-              coarse, fine, 100.0 * (fine / coarse - 1.0));
+  std::printf(
+      "[ measured ] swayed soft cable, EI 0.2 N m^2: peak end tension %.4f N at 0.4 ms, %.4f N at 0.1 ms (%.2f%%)\n",
+      coarse, fine, 100.0 * (fine / coarse - 1.0));
   EXPECT_NEAR(fine, coarse, 0.01 * fine);
   EXPECT_GT(fine, 0.1);  // the sway pulls: not a cable at rest
   const double direct_lowest = swayedCable(SolverType::kDirect, 4e-4, 0.0).second;

@@ -51,6 +51,10 @@ constexpr double kReferenceStep = 0.02;
  * Names are the user interface: the same names are used in `config/default.yaml`, in scenario files
  * and (later) in dynamic_reconfigure. `validate()` names each bad field, its value and its range.
  */
+/// `iterations: auto` for `direct`: the most Newton iterations a sub-step may take (it stops on
+/// solver_tolerance, in 1-5 on every reference case).
+constexpr int kDirectIterations = 10;
+
 struct TetherParams
 {
   /// Total length of cable, all of it on the spool at most [m].
@@ -69,7 +73,7 @@ struct TetherParams
   /// Internal fixed step [s].
   double time_step = 0.005;
   /// Constraint solver.
-  SolverType solver = SolverType::kPbd;
+  SolverType solver = SolverType::kDirect;
   /// Sub-steps per time_step [-]: each integrates and solves over time_step / substeps.
   int substeps = 1;
   /// Constraint solver sweeps per sub-step [-].

@@ -253,6 +253,10 @@ TetherParams TetherParams::resolved() const
       // Stretch is physical (T / EA) once the chain is stable: half the critical step.
       r.substeps = static_cast<int>(std::clamp(std::ceil(time_step / (0.5 * r.criticalStep())), 1.0, 10000.0));
     }
+    else if (solver == SolverType::kDirect)
+    {
+      r.iterations = kDirectIterations;  // exact: it stops on solver_tolerance, this is only its limit
+    }
     else
     {
       // Residual stretch of a hanging PBD chain: about L a h^2 / (2 n dL^2) (docs/references.md, N^2 g dt^2 /
