@@ -31,26 +31,26 @@ def shapes(run_dir):
 
 
 def payout(out, docs):
-    state = read(out / "payout" / "state.csv")
-    t = [float(r["t"]) for r in state]
-    deployed = [float(r["deployed_length"]) for r in state]
-    tension = [float(r["tension_vehicle"]) for r in state]
+    """The pay-out scenario with its brake winch (direct), against the paper's strain rule (pbd)."""
+    runs = {name: read(out / name / "state.csv") for name in ("payout", "payout_strain")}
     shape = shapes(out / "payout")
-    distance = []
-    for time in t:
-        spool, vehicle = shape[time][0], shape[time][-1]
-        distance.append(math.dist(spool[:3], vehicle[:3]))
+    t = [float(r["t"]) for r in runs["payout"]]
+    distance = [math.dist(shape[time][0][:3], shape[time][-1][:3]) for time in t]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    top.plot(t, deployed, label="deployed length")
-    top.plot(t, distance, "--", label="spool-vehicle distance")
-    top.plot(t, [1.2 * d for d in distance], ":", color="grey", label="reel-in limit (1 + reel_in_slack) x distance")
+    labels = {"payout": "brake 2 N (direct)", "payout_strain": "paper's strain rule (pbd, winch_mode strain)"}
+    styles = {"payout": dict(color="tab:blue"), "payout_strain": dict(color="tab:orange", alpha=0.8)}
+    for name, state in runs.items():
+        times = [float(r["t"]) for r in state]
+        top.plot(times, [float(r["deployed_length"]) for r in state], label="deployed, " + labels[name], **styles[name])
+        bottom.plot(times, [float(r["tension_vehicle"]) for r in state], label=labels[name], **styles[name])
+    top.plot(t, distance, "--", color="black", label="spool-vehicle distance")
     top.set_ylabel("m")
     top.legend(loc="upper left", fontsize=8)
-    top.set_title("scenarios/spool_payout.yaml: out 8 m at 0.5 m/s, around, back (passive winch)")
-    bottom.plot(t, tension, color="tab:red")
+    top.set_title("scenarios/spool_payout.yaml: out 8 m at 0.5 m/s, around, back")
     bottom.set_ylabel("tension at vehicle [N]")
     bottom.set_xlabel("t [s]")
     bottom.set_yscale("symlog", linthresh=1.0)
+    bottom.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     fig.savefig(docs / "spool_payout.png", dpi=100)
 

@@ -8,6 +8,7 @@ RUN="$BUILD_DIR/devel/lib/rov_tether/rov_tether_run"
 OUT="$BUILD_DIR/figures"
 S="$ROOT/scenarios"
 "$RUN" "$S/spool_payout.yaml" --out "$OUT/payout" >/dev/null
+"$RUN" "$S/spool_payout.yaml" --out "$OUT/payout_strain" --set winch_mode=strain --set solver=pbd >/dev/null
 "$RUN" "$S/paper_2d_experiment.yaml" --out "$OUT/drag_1" --set drag=1 --set noise=0 >/dev/null
 "$RUN" "$S/paper_2d_experiment.yaml" --out "$OUT/drag_098" --set drag=0.98 --set noise=0 >/dev/null
 "$RUN" "$S/paper_2d_experiment.yaml" --out "$OUT/drag_09" --set noise=0 >/dev/null

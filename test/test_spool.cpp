@@ -22,7 +22,10 @@ struct StepRecord
 
 std::vector<StepRecord> recordPayoutRun(double duration)
 {
-  const Scenario scenario = shippedScenario("spool_payout");
+  // The shipped dive with the paper's spool rule: pbd and the strain-triggered winch (reel-in included).
+  Scenario scenario = shippedScenario("spool_payout");
+  scenario.params.solver = SolverType::kPbd;
+  scenario.params.winch_mode = WinchMode::kStrain;
   PathDriver driver(scenario);
   Tether sim = driver.makeSimulation();
   std::vector<StepRecord> records;
@@ -133,11 +136,13 @@ TEST(Spool, ReleasedParticleAppearsOnTheCableWithItsVelocity)
   EXPECT_EQ(checked, 20);
 }
 
+// (A winch that reaches its speed within one step here: the acceleration limit has its own test.)
 TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
 {
   TetherParams params;
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
+  params.max_winch_acceleration = 1000.0;
   params.cable_length = 5.0;
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   sim.advance(2.0);
@@ -158,6 +163,7 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   TetherParams params;
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
+  params.max_winch_acceleration = 1000.0;
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   ASSERT_TRUE(sim.setTargetLength(3.2).ok);
   sim.advance(2.0);
@@ -175,6 +181,32 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   ASSERT_TRUE(sim.setTargetLength(std::nan("")).ok);  // no target: plain speed again
   sim.advance(1.0);
   EXPECT_NEAR(sim.deployedLength(), 3.2, 1e-9);
+}
+
+// The winch's speed rises at max_winch_acceleration a: from rest to v = 0.5 m/s at a = 1 m/s^2 it has paid
+// out v T - v^2 / (2 a) after T = 2 s, to within one step's pay-out v dt (the speed changes once a step).
+// Towards a target it slows down in time and stops there, without overshoot.
+TEST(Spool, SpeedRisesAtTheAccelerationLimit)
+{
+  TetherParams params;
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = 0.5;
+  params.max_winch_acceleration = 1.0;
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  sim.advance(2.0);
+  const double expected = params.initial_deployed_length + 0.5 * 2.0 - 0.5 * 0.5 / (2.0 * 1.0);
+  std::printf("[ measured ] speed mode from rest: %.5f m paid out after 2 s (v T - v^2 / 2a = %.5f m)\n",
+              sim.deployedLength() - params.initial_deployed_length, expected - params.initial_deployed_length);
+  EXPECT_NEAR(sim.deployedLength(), expected, 0.5 * params.time_step);
+  ASSERT_TRUE(sim.setTargetLength(4.0).ok);
+  double longest = 0.0;
+  for (int k = 0; k < 1000; ++k)
+  {
+    sim.step();
+    longest = std::max(longest, sim.deployedLength());
+  }
+  EXPECT_LE(longest, 4.0 + 1e-12);
+  EXPECT_DOUBLE_EQ(sim.deployedLength(), 4.0);
 }
 
 TEST(Spool, ArcLengthFromTheVehicleMapsToSegments)

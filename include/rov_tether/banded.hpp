@@ -30,9 +30,13 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work);
+/// Solves the system solveBlockBanded last factored into `work` again, for another right-hand side b.
+void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* work);
 /// The same system through LAPACK's band Cholesky (dpbtrf/dpbtrs): the blocks are copied into a band of
 /// half-bandwidth 5 (or 8), which `band` must hold ((kd + 1) 3 n doubles).
 bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                             double* band);
+/// Solves with the factor solveBlockBandedLapack left in `band` again, for another right-hand side b.
+bool solveBlockBandedLapackAgain(bool second, double* b, std::size_t n, const double* band);
 
 }  // namespace rov_tether::banded

@@ -6,6 +6,7 @@
 
 #include "rov_tether/cable.hpp"
 #include "rov_tether/contact.hpp"
+#include "rov_tether/spool_drum.hpp"
 #include "rov_tether/tether_params.hpp"
 
 namespace rov_tether
@@ -21,6 +22,9 @@ struct SolverSettings
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
   double tolerance = 1e-8;       ///< direct: stop when every residual is below this x its length [-].
+  /// The winch's drum, for a solver that takes it into the step (takesDrum()): it decides the pay-out
+  /// through the spool segment's law (spool_drum.hpp) and writes it into drum->payout. nullptr: none.
+  SpoolDrum* drum = nullptr;
 
   /// The one place the settings are made from the parameters, for a (sub-)step of h [s].
   static SolverSettings from(const TetherParams& params, double h);
@@ -71,6 +75,11 @@ class ConstraintSolver
       contact->project(cable, cable.first + 1, free_end);
     }
   }
+  /// True when the method meets a SpoolDrum's law within its step (direct); the others pay out before it.
+  virtual bool takesDrum() const { return false; }
+  /// Forgets what the method carries from step to step (a re-laid cable, a reset), so the next step is
+  /// solved as a fresh run's first step.
+  virtual void forget() {}
   /// Iterations the last solve() used when the method stops on a tolerance (direct), else -1.
   virtual int lastIterations() const { return -1; }
   /// Largest relative constraint residual the last solve() stopped at when the method measures it

@@ -59,6 +59,8 @@ class DirectSolver : public ConstraintSolver
   int lastActiveSetRounds() const { return active_set_rounds_; }
   /// Largest relative residual when the last solve stopped [-].
   double lastResidual() const override { return residual_; }
+  bool takesDrum() const override { return true; }
+  void forget() override;
 
  protected:
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;
@@ -70,9 +72,16 @@ class DirectSolver : public ConstraintSolver
   void geometry(const Cable& cable);
   // Dual path (direct_solver.cpp).
   double dualResidual(const Cable& cable, const double* lambda);
+  /// Solves the tridiagonal system for the active set on_ into step(); false if it is not definite.
+  bool solveRows();
+  /// The same with row 0 (the spool segment) on the drum's law, met exactly (two solves).
+  bool solveWithDrum(const double* lambda);
   void dualStep(Cable& cable, double* lambda);
   // Primal path (direct_solver_primal.cpp).
   double energy(const Cable& cable) const;
+  /// The force (multiplier) segment k carries at stretch c: its law (one-sided for a cable; the drum's for
+  /// the spool segment when there is one).
+  double segmentForce(std::size_t k, double c) const;
   /// One Newton step with line search; returns the largest relative move |dx| / L taken.
   double primalStep(Cable& cable);
   void assemblePrimal(const Cable& cable);
@@ -84,6 +93,7 @@ class DirectSolver : public ConstraintSolver
   int dual_iterations_ = 0;
   int primal_iterations_ = 0;
   int active_set_rounds_ = 0;
+  SpoolDrum* drum_ = nullptr;  ///< The winch's drum in this step, or none.
   double residual_ = 0.0;
   double tension_ratio_ = 0.0;  ///< Largest h^2 T (w_a + w_b) / |d| of the last step [-].
 
@@ -100,6 +110,7 @@ class DirectSolver : public ConstraintSolver
   std::vector<double> alpha_;                     ///< alpha_k = L_k / (EA h^2) [1/kg].
   std::vector<double> inv_rest_;                  ///< 1 / L_k [1/m].
   std::vector<double> extra_mobility_;            ///< w_along - w_across of particle l (added mass) [1/kg].
+  std::vector<double> response_, zeros_;    ///< Dual with the drum: the solve with dlambda_0 = 0; zeros.
   std::vector<double> diag_, off_;                ///< Dual: the tridiagonal system.
   std::vector<double> diag_active_, rhs_active_;  ///< Dual: every row as if active.
   // Dual, padded with a zero before row 0 and after row m - 1 (the accessors point at row 0): the active set
@@ -113,7 +124,7 @@ class DirectSolver : public ConstraintSolver
   std::vector<double> gamma_;  ///< Primal: compliance of bending joint j [1/(kg m^2)].
   /// Primal: the Hessian's 3x3 blocks (diagonal, first and second below), 9 a particle; the Newton step and
   /// the gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
-  std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, work_, band_;
+  std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;
   std::vector<double> saved_lambda_;
   std::vector<unsigned char> taut_;
 };

@@ -32,11 +32,12 @@ class Spool
   void setDeployedLength(Cable& cable, double deployed) const;
   /// Grows (change > 0) or shrinks the first segment by `change` [m], releasing or taking back particles
   /// to keep it within its bounds; masses are updated as Cable::updateMasses does (`mass`, `last_pinned`).
-  /// A released particle starts on the first segment with its velocity and no multiplier.
+  /// A released particle starts on the first segment with the velocity of the cable material there (paid-out
+  /// material leaves the outlet at change / dt along the segment); both halves carry its tension.
   void payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned) const;
 
  private:
-  void release(Cable& cable, Multipliers& lambda, const LineMass& mass, bool last_pinned) const;
+  void release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned) const;
   void merge(Cable& cable, const LineMass& mass, bool last_pinned) const;
 
   Position outlet_;

@@ -63,6 +63,11 @@ class Tether
   Status setTargetLength(double length);
   /// The target length of `speed` mode [m], NaN when there is none.
   double targetLength() const { return target_length_; }
+  /// The winch's pay-out speed over the last (sub-)step [m/s], negative reeling in.
+  double winchSpeed() const { return winch_speed_; }
+  /// True when the winch paid out at max_winch_speed in the last (sub-)step while the spool segment pulled
+  /// harder than the winch gives way at (brake_tension, target_tension): the vehicle outruns the winch.
+  bool winchOutrun() const;
   /// Detaches the vehicle: the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }
@@ -153,7 +158,11 @@ class Tether
   double lengthToReach(const Position& vehicle) const;
   void subStep(double h, double t);
   void fail(const std::string& why);
-  void runWinch(double dt);
+  /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
+  /// a solver that takes it into the step (then returns true, and payOut follows the solve).
+  bool runWinch(double dt);
+  /// Pays out (positive) or reels in `change` [m] within the speed and length limits; sets the winch speed.
+  void payOut(double change, double dt);
   bool stateFinite() const;
 
   TetherParams params_;
@@ -168,6 +177,8 @@ class Tether
   std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
   Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
+  double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
+  SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].
   double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].

@@ -32,12 +32,14 @@ enum class DragModel
   kMorison   ///< Quadratic Morison drag per segment, separate normal and tangential coefficients, added mass.
 };
 
-/// How the spool pays cable out or reels it in.
+/// How the spool pays cable out or reels it in (winch.hpp).
 enum class WinchMode
 {
-  kPassive,  ///< Pay out when the first free segment is stretched past payout_threshold, reel in when slack.
-  kLocked,   ///< The deployed length never changes.
-  kSpeed     ///< Pay out (positive) or reel in (negative) at winch_speed.
+  kBrake,            ///< A drum held by a brake that slips at brake_tension; never reels in.
+  kConstantTension,  ///< An auto-tension winch: pays out above, reels in below target_tension.
+  kSpeed,            ///< Pay out (positive) or reel in (negative) at winch_speed, or to a target length.
+  kLocked,           ///< The deployed length never changes.
+  kStrain            ///< The paper's rule: pay out when the first segment's strain passes payout_threshold.
 };
 
 /// The step at which the paper's per-frame parameters (drag, noise) keep their literal meaning [s].
@@ -131,15 +133,25 @@ struct TetherParams
   /// Coulomb friction coefficient of the seabed [-].
   double seabed_friction = 0.5;
   /// Winch mode.
-  WinchMode winch_mode = WinchMode::kPassive;
+  WinchMode winch_mode = WinchMode::kBrake;
+  /// `brake`: the spool-end tension at which the brake slips [N].
+  double brake_tension = 5.0;
+  /// `brake`: the drum's equivalent mass at its radius [kg]; 0 = a massless drum.
+  double winch_inertia = 0.0;
+  /// `constant_tension`: the spool-end tension the winch holds [N].
+  double target_tension = 5.0;
+  /// `constant_tension`: no pay-out or reel-in while the tension is within this of the target [N].
+  double tension_deadband = 1.0;
   /// Commanded winch speed in `speed` mode [m/s], positive pays out.
   double winch_speed = 0.0;
   /// Largest winch speed in any mode [m/s].
   double max_winch_speed = 1.0;
-  /// Strain of the first free segment beyond which the passive winch pays out [-].
+  /// Largest winch acceleration of `speed` and `constant_tension` [m/s^2].
+  double max_winch_acceleration = 1.0;
+  /// `strain`: strain of the first free segment beyond which the paper's winch pays out [-].
   double payout_threshold = 0.1;
-  /// Passive winch reels in while the deployed length exceeds (1 + reel_in_slack) times the straight
-  /// spool-to-vehicle distance [-].
+  /// `strain`: the paper's winch reels in while the deployed length exceeds (1 + reel_in_slack) times the
+  /// straight spool-to-vehicle distance [-].
   double reel_in_slack = 0.2;
   /// Deployed length never goes below this [m].
   double min_deployed_length = 0.5;
@@ -228,8 +240,13 @@ std::string toString(WinchMode mode);
 std::string toString(DragModel model);
 /// Parses a solver name; returns false for an unknown name.
 bool parseSolver(const std::string& text, SolverType* solver);
-/// Parses a winch mode name; returns false for an unknown name.
+/// Parses a winch mode name; returns false for an unknown name. `passive`, the old name of `strain`, is
+/// accepted (deprecated: parameterWarnings() says so).
 bool parseWinchMode(const std::string& text, WinchMode* mode);
+
+/// Warnings about values that are accepted but deprecated (today: winch_mode `passive`), one per value,
+/// for the loaders to show; empty when there is none.
+std::vector<std::string> parameterWarnings(const std::vector<std::pair<std::string, ParamValue>>& values);
 /// Parses a drag model name; returns false for an unknown name.
 bool parseDragModel(const std::string& text, DragModel* model);
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "rov_tether/cable.hpp"
+#include "rov_tether/spool_drum.hpp"
 #include "rov_tether/tether_params.hpp"
 
 namespace rov_tether
@@ -18,12 +19,15 @@ struct WinchInput
   double dt;             ///< Step [s].
   double target_length;  ///< speed mode's target [m], NaN for none.
   bool vehicle_attached;
-  Position spool;    ///< Outlet [m].
-  Position vehicle;  ///< Attachment point [m] (when attached).
+  Position spool;        ///< Outlet [m].
+  Position vehicle;      ///< Attachment point [m] (when attached).
+  double spool_tension;  ///< Tension of the spool segment at the end of the last step [N].
+  double speed;          ///< The winch's pay-out speed over the last step [m/s], negative reeling in.
+  bool drum_in_solver;   ///< The solver meets a SpoolDrum's law within its step (direct).
 };
 
 /**
- * A winch mode: how much cable to pay out (positive) or reel in this step, before the tether applies the
+ * A winch mode: how much cable to pay out (positive) or reel in over a step, before the tether applies the
  * speed and length limits (max_winch_speed, min_deployed_length, cable_length). One small strategy per
  * mode; a new mode is one more class and one more entry in WinchModes.
  */
@@ -31,31 +35,65 @@ class Winch
 {
  public:
   virtual ~Winch() = default;
+  /// The length change decided before the step's solve [m].
   virtual double lengthChange(const WinchInput& in) = 0;
+  /// Fills `drum` for a solver that takes it into the step, which then decides the pay-out itself (after
+  /// its solve the tether pays out drum->payout); false when this mode works before the solve instead.
+  virtual bool drum(const WinchInput& /*in*/, SpoolDrum* /*drum*/) { return false; }
   /// Forgets any latched state (a reset).
   virtual void reset() {}
 };
 
-/// The deployed length never changes.
-class LockedWinch : public Winch
+/**
+ * `brake`: the drum is held by a brake that slips at brake_tension [N]. While the spool-end tension
+ * exceeds it, cable pays out, the drum's equivalent mass winch_inertia [kg] accelerating by (T - brake) / m
+ * (a massless drum pays out exactly as fast as keeps the tension at the brake); otherwise the drum slows down
+ * and stops. It never reels in. With direct the law is met within the step (spool_drum.hpp): no lag, so no
+ * stick-slip. The other methods read the last step's tension: a massless drum then pays out the spool
+ * segment's stretch while the tension is above the brake, a massive one integrates its speed.
+ */
+class BrakeWinch : public Winch
 {
  public:
-  double lengthChange(const WinchInput&) override { return 0.0; }
+  double lengthChange(const WinchInput& in) override;
+  bool drum(const WinchInput& in, SpoolDrum* drum) override;
 };
 
-/// Pays out (positive) or reels in at winch_speed, or towards the target length and holds it there.
+/**
+ * `constant_tension`: an auto-tension winch. It pays out when the spool-end tension is above target_tension
+ * + tension_deadband and reels in when it is below target_tension - tension_deadband, as fast as keeps it at
+ * that edge, within max_winch_speed and max_winch_acceleration; in between it stands. With direct this is
+ * met within the step (spool_drum.hpp). The other methods read the last step's tension and move at a speed
+ * that grows with the excess over the deadband, reaching max_winch_speed at an excess of the target itself.
+ */
+class ConstantTensionWinch : public Winch
+{
+ public:
+  double lengthChange(const WinchInput& in) override;
+  bool drum(const WinchInput& in, SpoolDrum* drum) override;
+};
+
+/// `speed`: pays out (positive) or reels in at winch_speed, or towards the target length, where it stops
+/// without overshoot; its speed changes by at most max_winch_acceleration.
 class SpeedWinch : public Winch
 {
  public:
   double lengthChange(const WinchInput& in) override;
 };
 
+/// `locked`: the deployed length never changes.
+class LockedWinch : public Winch
+{
+ public:
+  double lengthChange(const WinchInput&) override { return 0.0; }
+};
+
 /**
- * The paper's rule with hysteresis: pay-out starts when the first free segment is stretched past
+ * `strain`, the paper's rule with hysteresis: pay-out starts when the first free segment is stretched past
  * payout_threshold and goes on while it stays stretched at all and less than the reel-in limit is out;
  * slack beyond (1 + reel_in_slack) times the spool-vehicle distance is reeled in.
  */
-class PassiveWinch : public Winch
+class StrainWinch : public Winch
 {
  public:
   double lengthChange(const WinchInput& in) override;
@@ -74,7 +112,7 @@ class WinchModes
   void reset();
 
  private:
-  std::array<std::unique_ptr<Winch>, 3> modes_;
+  std::array<std::unique_ptr<Winch>, 5> modes_;
 };
 
 }  // namespace rov_tether

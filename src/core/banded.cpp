@@ -367,10 +367,10 @@ inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, doubl
   }
 }
 
-/// Block L D L^T with block bandwidth 1 or 2 (kSecond); see solveBlockBanded.
+/// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
 template <bool kSecond>
-bool blockLdlt(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
-               double* __restrict b, std::size_t n, double* __restrict work)
+bool factorBlocks(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
+                  std::size_t n, double* __restrict work)
 {
   // A = L D L^T, L unit block-lower with 3x3 unit-lower diagonal blocks L_l and D diagonal; it is the
   // scalar L D L^T of the band in the same order, computed a block row at a time with triangular solves (no
@@ -413,7 +413,14 @@ bool blockLdlt(const double* __restrict diag, const double* __restrict first, co
       return false;
     }
   }
-  // L u = b (block forward), then D and L^T (block backward).
+  return true;
+}
+
+/// L u = b (block forward), then D and L^T (block backward), with the factors in work.
+template <bool kSecond>
+void substituteBlocks(double* __restrict b, std::size_t n, const double* __restrict work)
+{
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
   auto multiply = [](const double* m, const double* v, double* out)  // out -= m v
   {
     for (std::size_t r = 0; r < 3; ++r)
@@ -459,7 +466,6 @@ bool blockLdlt(const double* __restrict diag, const double* __restrict first, co
     x[1] -= row.l21 * x[2];
     x[0] -= row.l10 * x[1] + row.l20 * x[2];
   }
-  return true;
 }
 
 }  // namespace
@@ -467,8 +473,33 @@ bool blockLdlt(const double* __restrict diag, const double* __restrict first, co
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work)
 {
-  return second != nullptr ? blockLdlt<true>(diag, first, second, b, n, work)
-                           : blockLdlt<false>(diag, first, nullptr, b, n, work);
+  if (second != nullptr)
+  {
+    if (!factorBlocks<true>(diag, first, second, n, work))
+    {
+      return false;
+    }
+    substituteBlocks<true>(b, n, work);
+    return true;
+  }
+  if (!factorBlocks<false>(diag, first, nullptr, n, work))
+  {
+    return false;
+  }
+  substituteBlocks<false>(b, n, work);
+  return true;
+}
+
+void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* work)
+{
+  if (second)
+  {
+    substituteBlocks<true>(b, n, work);
+  }
+  else
+  {
+    substituteBlocks<false>(b, n, work);
+  }
 }
 
 bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
@@ -506,6 +537,14 @@ bool solveBlockBandedLapack(const double* diag, const double* first, const doubl
     }
   }
   return solveBandedLapack(band, kd, b, rows);
+}
+
+bool solveBlockBandedLapackAgain(bool second, double* b, std::size_t n, const double* band)
+{
+  const std::size_t kd = second ? 8 : 5;
+  const auto size = static_cast<lapack_int>(3 * n);
+  const auto width = static_cast<lapack_int>(kd);
+  return LAPACKE_dpbtrs(LAPACK_COL_MAJOR, 'L', size, width, 1, band, width + 1, b, size) == 0;
 }
 
 }  // namespace rov_tether::banded

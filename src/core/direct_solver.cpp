@@ -216,12 +216,12 @@ void DirectSolver::reserve(std::size_t n)
   for (auto* v : {&xt_,         &yt_,    &zt_,       &sx_,           &sy_,
                   &sz_,         &nx_,    &ny_,       &nz_,           &len_,
                   &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
-                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_})
+                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_})
   {
     v->assign(n, 0.0);
   }
   // Padded by one zero on each side (systemRows, updateActiveSet).
-  for (auto* v : {&dual_step_, &on_, &coupling_, &padded_lambda_})
+  for (auto* v : {&dual_step_, &on_, &coupling_, &padded_lambda_, &zeros_})
   {
     v->assign(n + 2, 0.0);
   }
@@ -232,6 +232,7 @@ void DirectSolver::reserve(std::size_t n)
   taut_.assign(n, 0);
   step_.assign(3 * n, 0.0);
   grad_.assign(3 * n, 0.0);
+  grad_step_.assign(3 * n, 0.0);
   work_.assign(36 * n, 0.0);
   band_.assign(9 * 3 * n, 0.0);  // LAPACK's band, up to half-bandwidth 8
 }
@@ -272,6 +273,11 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
 
   double* lam = lambda.stretch.data() + f;
   const double tolerance = settings.tolerance;
+  drum_ = settings.drum;
+  if (drum_ != nullptr)
+  {
+    drum_->prepare(alpha_[0]);
+  }
   bool primal = bending_ || tension_ratio_ > kDualTensionRatio;
   if (!primal)
   {
@@ -312,6 +318,14 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     }
     multipliersFromPositions(cable, lam);
   }
+  if (drum_ != nullptr)
+  {
+    if (cable.inv_mass[f] + cable.inv_mass[f + 1] == 0.0)
+    {
+      lam[0] = drum_->force(c_[0]);  // a segment nothing can move: the law alone
+    }
+    drum_->payout = drum_->payoutAt(c_[0]);
+  }
   // What the next step starts from: the segments taut now, and how hard the chain is pulled.
   std::fill(taut_.begin(), taut_.end(), 0);
   tension_ratio_ = 0.0;
@@ -326,6 +340,12 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
 }
 
+void DirectSolver::forget()
+{
+  std::fill(taut_.begin(), taut_.end(), 0);
+  tension_ratio_ = 0.0;
+}
+
 void DirectSolver::geometry(const Cable& cable)
 {
   const std::size_t f = first_;
@@ -335,7 +355,68 @@ void DirectSolver::geometry(const Cable& cable)
 
 double DirectSolver::dualResidual(const Cable& cable, const double* lambda)
 {
-  return activeSet(cable.inv_mass.data() + first_, inv_rest_.data(), c_.data(), alpha_.data(), lambda, on(), m_);
+  if (drum_ == nullptr)
+  {
+    return activeSet(cable.inv_mass.data() + first_, inv_rest_.data(), c_.data(), alpha_.data(), lambda, on(), m_);
+  }
+  // The spool segment follows the drum's law, not C = alpha lambda (it lengthens by the pay-out): its
+  // residual is the force it carries against the law's, as a displacement. The others are as without a drum.
+  const double worst = activeSet(cable.inv_mass.data() + first_ + 1, inv_rest_.data() + 1, c_.data() + 1,
+                                 alpha_.data() + 1, lambda + 1, on() + 1, m_ - 1);
+  const double mobility = cable.inv_mass[first_] + cable.inv_mass[first_ + 1];
+  return std::max(worst, std::abs(lambda[0] - drum_->force(c_[0])) * mobility * inv_rest_[0]);
+}
+
+bool DirectSolver::solveRows()
+{
+  systemRows(diag_active_.data(), rhs_active_.data(), coupling(), on(), padded_lambda(), diag_.data(), off_.data(),
+             step(), m_);
+  return linear_ == LinearSolve::kLapack ? banded::solveTridiagonalLapack(diag_.data(), off_.data(), step(), m_)
+                                         : banded::solveTridiagonalSweep(diag_.data(), off_.data(), step(), m_);
+}
+
+bool DirectSolver::solveWithDrum(const double* lambda)
+{
+  // Row 0, the spool segment, follows the drum's law (monotone, piecewise linear): the rest of the chain
+  // answers its multiplier linearly, dlambda = p + q dlambda_0, so its linearised stretch is
+  // c_0 - mobility dlambda_0 - coupling_0 (p_1 + q_1 dlambda_0) = a - b lambda_0, and the law is met
+  // exactly at lambda_0 = drum.forceAgainst(a, b). Two solves: p with dlambda_0 = 0, q for a unit one.
+  const std::size_t m = m_;
+  const double mobility = diag_active_[0] - alpha_[0];  // n . (W_0 + W_1) n
+  const double lambda0 = lambda[0];
+  on()[0] = 0.0;
+  padded_lambda()[0] = 0.0;  // an inactive row 0 with dlambda_0 = -0
+  if (!solveRows())
+  {
+    return false;
+  }
+  std::copy(step(), step() + m, response_.begin());  // p
+  if (m > 1)
+  {
+    // q: row 0 fixed at 1, its coupling on row 1's right-hand side, nothing else driving.
+    systemRows(diag_active_.data(), zeros_.data(), coupling(), on(), zeros_.data() + 1, diag_.data(), off_.data(),
+               step(), m);
+    step()[0] = 1.0;
+    step()[1] = on()[1] > 0.0 ? -coupling()[0] : 0.0;
+    const bool ok = linear_ == LinearSolve::kLapack
+                        ? banded::solveTridiagonalLapack(diag_.data(), off_.data(), step(), m)
+                        : banded::solveTridiagonalSweep(diag_.data(), off_.data(), step(), m);
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  const double p1 = m > 1 ? response_[1] : 0.0;
+  const double q1 = m > 1 ? step()[1] : 0.0;
+  const double a = c_[0] - coupling()[0] * p1 + (mobility + coupling()[0] * q1) * lambda0;
+  const double b = mobility + coupling()[0] * q1;
+  const double d0 = drum_->forceAgainst(a, b) - lambda0;
+  for (std::size_t k = 1; k < m; ++k)
+  {
+    step()[k] = response_[k] + step()[k] * d0;
+  }
+  step()[0] = d0;
+  return true;
 }
 
 void DirectSolver::dualStep(Cable& cable, double* lambda)
@@ -367,19 +448,16 @@ void DirectSolver::dualStep(Cable& cable, double* lambda)
   // stretched, until the set holds.
   for (int round = 0; round < kMaxActiveSetRounds; ++round)
   {
-    systemRows(diag_active_.data(), rhs_active_.data(), coupling(), on(), padded_lambda(), diag_.data(), off_.data(),
-               step(), m);
-    const bool ok = linear_ == LinearSolve::kLapack
-                        ? banded::solveTridiagonalLapack(diag_.data(), off_.data(), step(), m)
-                        : banded::solveTridiagonalSweep(diag_.data(), off_.data(), step(), m);
-    ++active_set_rounds_;
-    if (!ok)
+    if (!(drum_ != nullptr ? solveWithDrum(lambda) : solveRows()))
     {
       std::fill(step(), step() + m, 0.0);
       break;
     }
-    if (updateActiveSet(diag_active_.data(), rhs_active_.data(), coupling(), alpha_.data(), lambda, step(), on(), m) ==
-        0)
+    ++active_set_rounds_;
+    // With the drum, row 0 follows its law exactly (solveWithDrum); the active set is that of rows 1...
+    const std::size_t skip = drum_ != nullptr ? 1 : 0;
+    if (m <= skip || updateActiveSet(diag_active_.data() + skip, rhs_active_.data() + skip, coupling() + skip,
+                                     alpha_.data() + skip, lambda + skip, step() + skip, on() + skip, m - skip) == 0)
     {
       break;
     }

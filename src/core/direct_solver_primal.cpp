@@ -54,8 +54,14 @@ double DirectSolver::energy(const Cable& cable) const
     }
   }
   double elastic = 0.0;
+  double drum = 0.0;
   for (std::size_t k = 0; k < m_; ++k)
   {
+    if (k == 0 && drum_ != nullptr)
+    {
+      drum = drum_->energy(c_[0]);  // the spool segment and the drum in series
+      continue;
+    }
     const double c = unilateral_ ? std::max(c_[k], 0.0) : c_[k];
     elastic += c * c / alpha_[k];
   }
@@ -69,7 +75,16 @@ double DirectSolver::energy(const Cable& cable) const
     const double cz = a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2];
     elastic += (cx * cx + cy * cy + cz * cz) / gamma_[j];
   }
-  return 0.5 * (kinetic + elastic);
+  return 0.5 * (kinetic + elastic) + drum;
+}
+
+double DirectSolver::segmentForce(std::size_t k, double c) const
+{
+  if (k == 0 && drum_ != nullptr)
+  {
+    return drum_->force(c);
+  }
+  return (unilateral_ ? std::max(c, 0.0) : c) / alpha_[k];
 }
 
 void DirectSolver::assemblePrimal(const Cable& cable)
@@ -118,12 +133,21 @@ void DirectSolver::assemblePrimal(const Cable& cable)
   const double* model = on();
   for (std::size_t k = 0; k < m; ++k)
   {
-    // The segments of the model: all of a rod's; of a cable's, those the step stretches (primalStep).
-    if (!(model[k] > 0.0))
+    // The segments of the model: all of a rod's; of a cable's, those the step stretches (primalStep); the
+    // spool segment on the drum's piece.
+    double lam = c_[k] / alpha_[k];
+    double axial = 1.0 / alpha_[k];
+    if (k == 0 && drum_ != nullptr)
+    {
+      // The spool segment's force is the drum's law, solved for in primalStep: here only its geometric
+      // stiffness.
+      lam = 0.0;
+      axial = 0.0;
+    }
+    else if (!(model[k] > 0.0))
     {
       continue;
     }
-    const double lam = c_[k] / alpha_[k];
     const double n[3] = {nx_[k], ny_[k], nz_[k]};
     // dC/dx_k = -n, dC/dx_k+1 = +n: the gradient gets J^T lambda.
     for (std::size_t a = 0; a < 3; ++a)
@@ -134,8 +158,7 @@ void DirectSolver::assemblePrimal(const Cable& cable)
     // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
     // lambda / |d| (I - n n^T) of the energy's lambda (not the model's), dropped when compressed (a rod in
     // compression: the Hessian stays positive definite).
-    const double axial = 1.0 / alpha_[k];
-    const double geometric = len_[k] > 0.0 ? std::max(lam, 0.0) / len_[k] : 0.0;
+    const double geometric = len_[k] > 0.0 ? std::max(segmentForce(k, c_[k]), 0.0) / len_[k] : 0.0;
     double block[9];
     for (std::size_t a = 0; a < 3; ++a)
     {
@@ -230,8 +253,32 @@ double DirectSolver::primalStep(Cable& cable)
     {
       return std::numeric_limits<double>::infinity();
     }
+    if (drum_ != nullptr && cable.inv_mass[f + 1] > 0.0)
+    {
+      // The spool segment follows the drum's law: its force f pulls particle 1 along -n_0, so the step is
+      // dx = p + f q (p the solve without it, q the answer to a unit pull), particle 1 moves n_0 . dx along
+      // the segment, its stretch is a - b f, and f = drum.forceAgainst(a, b) meets the law exactly.
+      std::copy(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), grad_step_.begin());
+      std::fill(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), 0.0);
+      step_[3] = -nx_[0], step_[4] = -ny_[0], step_[5] = -nz_[0];
+      const bool again = linear_ == LinearSolve::kLapack
+                             ? banded::solveBlockBandedLapackAgain(second != nullptr, step_.data(), m + 1, band_.data())
+                             : (banded::solveBlockBandedAgain(second != nullptr, step_.data(), m + 1, work_.data()),
+                                true);
+      if (!again)
+      {
+        return std::numeric_limits<double>::infinity();
+      }
+      const double a = c_[0] + nx_[0] * grad_step_[3] + ny_[0] * grad_step_[4] + nz_[0] * grad_step_[5];
+      const double b = -(nx_[0] * step_[3] + ny_[0] * step_[4] + nz_[0] * step_[5]);
+      const double drum_force = drum_->forceAgainst(a, std::max(b, 0.0));
+      for (std::size_t i = 0; i < rows; ++i)
+      {
+        step_[i] = grad_step_[i] + drum_force * step_[i];
+      }
+    }
     std::size_t changes = 0;
-    for (std::size_t k = 0; unilateral_ && k < m; ++k)
+    for (std::size_t k = drum_ != nullptr ? 1 : 0; unilateral_ && k < m; ++k)
     {
       const double* a = &step_[3 * k];
       const double* b = &step_[3 * (k + 1)];
@@ -245,8 +292,8 @@ double DirectSolver::primalStep(Cable& cable)
       break;
     }
   }
-  // The energy's slope along the step: the model's gradient, less what the model gave the segments that
-  // are not stretched yet (their energy is flat at 0 until they are).
+  // The energy's slope along the step: the model's gradient, corrected where the model's force differs
+  // from the energy's (a segment not stretched yet, whose energy is flat at 0; the drum's piece).
   double slope = 0.0;
   double largest = 0.0;
   for (std::size_t i = 0; i < rows; ++i)
@@ -254,14 +301,25 @@ double DirectSolver::primalStep(Cable& cable)
     slope += grad_[i] * step_[i];
     largest = std::max(largest, std::abs(step_[i]));
   }
-  for (std::size_t k = 0; unilateral_ && k < m; ++k)
+  for (std::size_t k = 0; k < m; ++k)
   {
-    if (model[k] > 0.0 && c_[k] <= 0.0)
+    double model_force = 0.0;
+    if (k == 0 && drum_ != nullptr)
     {
-      const double* a = &step_[3 * k];
-      const double* b = &step_[3 * (k + 1)];
-      slope -= c_[k] / alpha_[k] * (nx_[k] * (b[0] - a[0]) + ny_[k] * (b[1] - a[1]) + nz_[k] * (b[2] - a[2]));
+      model_force = 0.0;  // the gradient left it out: add the law's force at the current stretch
     }
+    else if (unilateral_ && model[k] > 0.0)
+    {
+      model_force = c_[k] / alpha_[k];
+    }
+    else
+    {
+      continue;  // not in the model (nothing given), or a rod's (the model's force is the energy's)
+    }
+    const double* a = &step_[3 * k];
+    const double* b = &step_[3 * (k + 1)];
+    slope -= (model_force - segmentForce(k, c_[k])) *
+             (nx_[k] * (b[0] - a[0]) + ny_[k] * (b[1] - a[1]) + nz_[k] * (b[2] - a[2]));
   }
   const double move = largest / nominal_;
   const double before = move > kGlobalMove ? energy(cable) : 0.0;
@@ -291,7 +349,7 @@ void DirectSolver::multipliersFromPositions(const Cable& /*cable*/, double* lamb
 {
   for (std::size_t k = 0; k < m_; ++k)
   {
-    lambda[k] = (unilateral_ ? std::max(c_[k], 0.0) : c_[k]) / alpha_[k];
+    lambda[k] = segmentForce(k, c_[k]);
   }
 }
 

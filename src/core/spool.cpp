@@ -33,7 +33,7 @@ void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineM
   {
     while (cable.first > 0 && cable.rest[cable.first] > kMaxFirst * segment_)
     {
-      release(cable, lambda, mass_per_length, last_pinned);
+      release(cable, lambda, change, mass_per_length, last_pinned);
     }
   }
   else
@@ -46,23 +46,29 @@ void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineM
   cable.updateMasses(cable.first, cable.first + 2, mass_per_length, last_pinned);
 }
 
-void Spool::release(Cable& cable, Multipliers& lambda, const LineMass& mass_per_length, bool last_pinned) const
+void Spool::release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length,
+                    bool last_pinned) const
 {
-  // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with
-  // the segment's velocity, so neither the shape nor any constraint error changes.
+  // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with the
+  // velocity of the cable material there, so neither the shape nor any constraint error changes and nothing
+  // is jerked. The pinned outlet particle does not move, but the material passing it does: `change` along
+  // the first segment in this step. The velocity is interpolated between that and particle f + 1's.
   const std::size_t f = cable.first;
   const double rest = cable.rest[f];
   const double fraction = (rest - segment_) / rest;
-  auto along = [fraction, f](std::vector<double>& v) { v[f] = v[f] + fraction * (v[f + 1] - v[f]); };
-  for (auto* v : {&cable.x, &cable.y, &cable.z, &cable.px, &cable.py, &cable.pz})
-  {
-    along(*v);
-  }
+  double tx = cable.x[f + 1] - cable.x[f], ty = cable.y[f + 1] - cable.y[f], tz = cable.z[f + 1] - cable.z[f];
+  const double length = std::sqrt(tx * tx + ty * ty + tz * tz);
+  const double scale = length > 0.0 ? change / length : 0.0;
+  tx *= scale, ty *= scale, tz *= scale;
+  auto along = [fraction, f](std::vector<double>& v, double from)
+  { v[f] = from + fraction * (v[f + 1] - from); };
+  along(cable.x, cable.x[f]), along(cable.y, cable.y[f]), along(cable.z, cable.z[f]);
+  along(cable.px, cable.px[f] - tx), along(cable.py, cable.py[f] - ty), along(cable.pz, cable.pz[f] - tz);
   cable.first = f - 1;
   cable.place(cable.first, outlet_);
   cable.rest[cable.first] = rest - segment_;
   cable.rest[f] = segment_;
-  lambda.stretch[cable.first] = 0.0;
+  lambda.stretch[cable.first] = lambda.stretch[f];  // both halves of the split segment carry its tension
   cable.updateMasses(cable.first, cable.first + 3, mass_per_length, last_pinned);
 }
 

@@ -186,6 +186,7 @@ void Tether::layOut(double deployed_length)
     cable_.place(n - 1, track_.position());
   }
   solver_->multipliers().clear();
+  solver_->forget();
   refreshDerived(f, n - 1);
 }
 
@@ -363,8 +364,13 @@ void Tether::subStep(double h, double t)
   {
     cable_.place(n - 1, track_.position());
   }
-  runWinch(h);
-  solver_->solve(cable_, SolverSettings::from(params_, h), contacts_, freeEnd());
+  SolverSettings settings = SolverSettings::from(params_, h);
+  settings.drum = runWinch(h) ? &drum_ : nullptr;
+  solver_->solve(cable_, settings, contacts_, freeEnd());
+  if (settings.drum != nullptr)
+  {
+    payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
+  }
   max_solver_iterations_ = std::max(max_solver_iterations_, solver_->lastIterations());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
@@ -395,26 +401,49 @@ void Tether::fail(const std::string& why)
   layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
 }
 
-void Tether::runWinch(double dt)
+bool Tether::runWinch(double dt)
 {
   const std::size_t n = cable_.size();
-  if (params_.winch_mode == WinchMode::kLocked || cable_.first + 1 >= n)
+  if (cable_.first + 1 >= n)
   {
-    return;
+    winch_speed_ = 0.0;
+    return false;
   }
-  const double max_change = params_.max_winch_speed * dt;
+  // The spool segment's tension at the end of the last step, what a tension-driven winch reads.
+  const double h = last_step_ > 0.0 ? last_step_ : dt;
+  const double spool_tension = solver_->multipliers().stretch[cable_.first] / (h * h);
+  const WinchInput input{cable_,
+                         params_,
+                         deployedLength(),
+                         dt,
+                         target_length_,
+                         track_.attached(),
+                         spool_.outlet(),
+                         track_.position(),
+                         spool_tension,
+                         winch_speed_,
+                         solver_->takesDrum()};
+  Winch& winch = winches_[params_.winch_mode];
+  if (winch.drum(input, &drum_))
+  {
+    return true;  // the solver decides the pay-out (payOut after it)
+  }
+  payOut(winch.lengthChange(input), dt);
+  return false;
+}
+
+void Tether::payOut(double change, double dt)
+{
   const double deployed = deployedLength();
-  const WinchInput input{cable_,         params_,           deployed,        dt,
-                         target_length_, track_.attached(), spool_.outlet(), track_.position()};
-  double change = winches_[params_.winch_mode].lengthChange(input);
+  const double max_change = params_.max_winch_speed * dt;
   change = std::clamp(change, -max_change, max_change);
   change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
                       std::max(0.0, params_.cable_length - deployed));
-  if (change == 0.0)
+  winch_speed_ = change / dt;
+  if (change != 0.0)
   {
-    return;
+    spool_.payOut(cable_, solver_->multipliers(), change, params_.lineMass(), track_.attached());
   }
-  spool_.payOut(cable_, solver_->multipliers(), change, params_.lineMass(), track_.attached());
 }
 
 bool Tether::stateFinite() const
@@ -438,6 +467,7 @@ Status Tether::reset(double time)
   // Detached until the next sample: a replay after a reset starts exactly as the first run did.
   track_.detach();
   winches_.reset();
+  winch_speed_ = 0.0;
   noise_.reseed(params_.seed);
   max_solver_iterations_ = -1;
   time_ = target_time_ = base_time_ = time;
@@ -447,6 +477,19 @@ Status Tether::reset(double time)
 }
 
 double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
+
+bool Tether::winchOutrun() const
+{
+  if (last_step_ <= 0.0 || deployedParticleCount() < 2)
+  {
+    return false;
+  }
+  const double gives_way = params_.winch_mode == WinchMode::kBrake              ? params_.brake_tension
+                           : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
+                                                                               : -1.0;
+  const double tension = solver_->multipliers().stretch[cable_.first] / (last_step_ * last_step_);
+  return gives_way >= 0.0 && tension > gives_way && winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9);
+}
 
 void Tether::copyPositions(std::vector<Position>& out) const
 {

@@ -67,8 +67,13 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"seabed_z", &TetherParams::seabed_z},
       {"seabed_friction", &TetherParams::seabed_friction},
       {"winch_mode", &TetherParams::winch_mode},
+      {"brake_tension", &TetherParams::brake_tension},
+      {"winch_inertia", &TetherParams::winch_inertia},
+      {"target_tension", &TetherParams::target_tension},
+      {"tension_deadband", &TetherParams::tension_deadband},
       {"winch_speed", &TetherParams::winch_speed},
       {"max_winch_speed", &TetherParams::max_winch_speed},
+      {"max_winch_acceleration", &TetherParams::max_winch_acceleration},
       {"payout_threshold", &TetherParams::payout_threshold},
       {"reel_in_slack", &TetherParams::reel_in_slack},
       {"min_deployed_length", &TetherParams::min_deployed_length},
@@ -404,7 +409,7 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
           const auto* s = std::get_if<std::string>(&value);
           if (s == nullptr || !parseWinchMode(*s, &target))
           {
-            return "parameter 'winch_mode': expected one of passive, locked, speed";
+            return "parameter 'winch_mode': expected one of brake, constant_tension, speed, locked, strain";
           }
           return "";
         }
@@ -509,10 +514,14 @@ std::string toString(WinchMode mode)
 {
   switch (mode)
   {
-    case WinchMode::kPassive:
-      return "passive";
+    case WinchMode::kBrake:
+      return "brake";
+    case WinchMode::kConstantTension:
+      return "constant_tension";
     case WinchMode::kLocked:
       return "locked";
+    case WinchMode::kStrain:
+      return "strain";
     default:
       return "speed";
   }
@@ -534,7 +543,8 @@ bool parseSolver(const std::string& text, SolverType* solver)
 
 bool parseWinchMode(const std::string& text, WinchMode* mode)
 {
-  for (WinchMode candidate : {WinchMode::kPassive, WinchMode::kLocked, WinchMode::kSpeed})
+  for (WinchMode candidate :
+       {WinchMode::kBrake, WinchMode::kConstantTension, WinchMode::kSpeed, WinchMode::kLocked, WinchMode::kStrain})
   {
     if (text == toString(candidate))
     {
@@ -542,7 +552,28 @@ bool parseWinchMode(const std::string& text, WinchMode* mode)
       return true;
     }
   }
+  if (text == "passive")
+  {
+    *mode = WinchMode::kStrain;
+    return true;
+  }
   return false;
+}
+
+std::vector<std::string> parameterWarnings(const std::vector<std::pair<std::string, ParamValue>>& values)
+{
+  std::vector<std::string> warnings;
+  for (const auto& [name, value] : values)
+  {
+    const auto* text = std::get_if<std::string>(&value);
+    if (name == "winch_mode" && text != nullptr && *text == "passive")
+    {
+      warnings.push_back(
+          "winch_mode 'passive' is deprecated: it is now 'strain' (the paper's rule, pay-out when the first "
+          "segment's strain passes payout_threshold); 'brake' pays out by tension in newtons");
+    }
+  }
+  return warnings;
 }
 
 }  // namespace rov_tether

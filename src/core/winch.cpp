@@ -5,16 +5,108 @@
 
 namespace rov_tether
 {
+namespace
+{
+
+/// The speed `wanted` reached from `speed` at most `acceleration` x dt away [m/s].
+double accelerate(double speed, double wanted, double acceleration, double dt)
+{
+  const double step = acceleration * dt;
+  return speed + std::clamp(wanted - speed, -step, step);
+}
+
+/// Stretch of the spool segment now: its length beyond its rest length [m].
+double spoolStretch(const Cable& cable)
+{
+  const std::size_t f = cable.first;
+  return (cable.position(f + 1) - cable.position(f)).norm() - cable.rest[f];
+}
+
+}  // namespace
+
+bool BrakeWinch::drum(const WinchInput& in, SpoolDrum* drum)
+{
+  if (!in.drum_in_solver)
+  {
+    return false;
+  }
+  const TetherParams& p = in.params;
+  drum->brake = p.brake_tension * in.dt * in.dt;
+  drum->floor = -1.0;  // never reels in
+  drum->inertia = p.winch_inertia;
+  drum->coast = std::max(in.speed, 0.0) * in.dt;
+  drum->min_payout = 0.0;
+  drum->max_payout = std::max(0.0, std::min(p.max_winch_speed * in.dt, p.cable_length - in.deployed));
+  drum->payout = 0.0;
+  return true;
+}
+
+bool ConstantTensionWinch::drum(const WinchInput& in, SpoolDrum* drum)
+{
+  if (!in.drum_in_solver)
+  {
+    return false;
+  }
+  const TetherParams& p = in.params;
+  const double h2 = in.dt * in.dt;
+  const double change = p.max_winch_acceleration * in.dt;
+  drum->brake = (p.target_tension + p.tension_deadband) * h2;
+  drum->floor = (p.target_tension - p.tension_deadband) * h2;  // not positive: it never reels in
+  drum->inertia = 0.0;
+  drum->coast = 0.0;
+  const double fastest_out = std::min(p.max_winch_speed, in.speed + change) * in.dt;
+  const double fastest_in = std::max(-p.max_winch_speed, in.speed - change) * in.dt;
+  drum->max_payout = std::min(fastest_out, p.cable_length - in.deployed);
+  drum->min_payout = std::min(std::max(fastest_in, p.min_deployed_length - in.deployed), drum->max_payout);
+  drum->payout = 0.0;
+  return true;
+}
+
+double BrakeWinch::lengthChange(const WinchInput& in)
+{
+  // Without the drum in the solve: the last step's tension decides.
+  const TetherParams& p = in.params;
+  if (p.winch_inertia > 0.0)
+  {
+    const double speed = std::max(0.0, std::max(in.speed, 0.0) + in.dt * (in.spool_tension - p.brake_tension) /
+                                                                      p.winch_inertia);
+    return speed * in.dt;
+  }
+  // Massless: pay out the stretch beyond what the brake holds elastically, brake_tension L / EA.
+  const double held = p.brake_tension * in.cable.rest[in.cable.first] / p.axial_stiffness;
+  return in.spool_tension > p.brake_tension ? std::max(0.0, spoolStretch(in.cable) - held) : 0.0;
+}
+
+double ConstantTensionWinch::lengthChange(const WinchInput& in)
+{
+  const TetherParams& p = in.params;
+  const double error = in.spool_tension - p.target_tension;
+  const double band = p.tension_deadband;
+  const double ramp = std::max(p.target_tension, 1e-3);
+  double wanted = 0.0;
+  if (std::abs(error) > band)
+  {
+    wanted = std::copysign(p.max_winch_speed * std::min(1.0, (std::abs(error) - band) / ramp), error);
+  }
+  return accelerate(in.speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
+}
 
 double SpeedWinch::lengthChange(const WinchInput& in)
 {
-  const double speed_change = in.params.winch_speed * in.dt;
-  return std::isnan(in.target_length)
-             ? speed_change
-             : std::clamp(in.target_length - in.deployed, -std::abs(speed_change), std::abs(speed_change));
+  const TetherParams& p = in.params;
+  if (std::isnan(in.target_length))
+  {
+    return accelerate(in.speed, p.winch_speed, p.max_winch_acceleration, in.dt) * in.dt;
+  }
+  // Towards the target: no faster than lets it stop there at max_winch_acceleration, and not past it.
+  const double distance = in.target_length - in.deployed;
+  const double stopping = std::sqrt(2.0 * p.max_winch_acceleration * std::abs(distance));
+  const double wanted = std::copysign(std::min(std::abs(p.winch_speed), stopping), distance);
+  const double change = accelerate(in.speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
+  return std::abs(change) > std::abs(distance) ? distance : change;
 }
 
-double PassiveWinch::lengthChange(const WinchInput& in)
+double StrainWinch::lengthChange(const WinchInput& in)
 {
   // The strain is read after the step's motion and before the constraints pull the segment back (a
   // post-projection reading is biased to zero). Pay-out goes on, up to max_winch_speed, while the segment
@@ -22,14 +114,14 @@ double PassiveWinch::lengthChange(const WinchInput& in)
   // reel-in limit is out (so a vehicle circling at constant distance does not unreel the whole cable).
   const Cable& cable = in.cable;
   const std::size_t f = cable.first;
-  const double length = (cable.position(f + 1) - cable.position(f)).norm();
-  const double strain = length / cable.rest[f] - 1.0;
+  const double stretch = spoolStretch(cable);
+  const double strain = stretch / cable.rest[f];
   const double excess =
       in.vehicle_attached ? in.deployed - (1.0 + in.params.reel_in_slack) * (in.vehicle - in.spool).norm() : -1.0;
   paying_out_ = strain > in.params.payout_threshold || (paying_out_ && strain > 0.0 && excess < 0.0);
   if (paying_out_)
   {
-    return length - cable.rest[f];
+    return stretch;
   }
   if (excess > 0.0)
   {
@@ -39,7 +131,8 @@ double PassiveWinch::lengthChange(const WinchInput& in)
 }
 
 WinchModes::WinchModes()
-    : modes_{std::make_unique<PassiveWinch>(), std::make_unique<LockedWinch>(), std::make_unique<SpeedWinch>()}
+    : modes_{std::make_unique<BrakeWinch>(), std::make_unique<ConstantTensionWinch>(), std::make_unique<SpeedWinch>(),
+             std::make_unique<LockedWinch>(), std::make_unique<StrainWinch>()}
 {
 }
 
@@ -47,12 +140,16 @@ Winch& WinchModes::operator[](WinchMode mode)
 {
   switch (mode)
   {
-    case WinchMode::kPassive:
+    case WinchMode::kBrake:
       return *modes_[0];
-    case WinchMode::kLocked:
+    case WinchMode::kConstantTension:
       return *modes_[1];
-    default:
+    case WinchMode::kSpeed:
       return *modes_[2];
+    case WinchMode::kLocked:
+      return *modes_[3];
+    default:
+      return *modes_[4];
   }
 }
 

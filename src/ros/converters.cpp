@@ -96,6 +96,9 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
   msg->winch_mode = toString(p.winch_mode);
   msg->winch_speed = measured_winch_speed;
   msg->target_length = sim.targetLength();
+  msg->brake_tension = p.brake_tension;
+  msg->target_tension = p.target_tension;
+  msg->winch_outrun = sim.winchOutrun();
   msg->residual_stretch = summary.mean_strain;
   msg->max_strain = summary.max_strain;
   msg->solver = toString(p.solver);

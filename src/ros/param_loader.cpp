@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include <ros/console.h>
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -180,6 +182,10 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
   if (errors.empty())
   {
     errors = applyParameters(values, params);  // the core's one loader, as for scenario files
+  }
+  for (const auto& warning : parameterWarnings(values))
+  {
+    ROS_WARN("tether_node: %s", warning.c_str());
   }
   if (!errors.empty())
   {

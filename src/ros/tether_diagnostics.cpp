@@ -5,7 +5,8 @@ namespace rov_tether::ros_layer
 namespace
 {
 
-/// Diagnostics stay ERROR for this long after a simulation failure or a skip [s].
+/// Diagnostics stay ERROR (WARN for an outrun winch) for this long after a simulation failure, a skip or the
+/// vehicle outrunning the winch [s].
 constexpr double kFailureReportTime = 5.0;
 
 }  // namespace
@@ -34,6 +35,15 @@ void TetherDiagnostics::report(const ros::Time& now)
     ROS_ERROR_THROTTLE(1.0, "tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
                        static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
   }
+  if (tether_.winchOutrun())
+  {
+    last_outrun_time_ = now;
+    ROS_WARN_THROTTLE(5.0,
+                      "tether_node%s: the vehicle outruns the winch: it pays out at max_winch_speed = %.2f m/s and "
+                      "the cable stretches (spool tension above the %s)",
+                      label_.c_str(), tether_.params().max_winch_speed,
+                      tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+  }
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();
@@ -60,6 +70,8 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("vehicle jumps", tether_.jumpCount());
   status.add("solver", toString(tether_.params().solver));
   status.add("iterations", tether_.params().iterations);
+  status.add("winch", toString(tether_.params().winch_mode));
+  status.add("winch speed [m/s]", tether_.winchSpeed());
   status.add("physics load [% of wall time]", 100.0 * governor.physicsLoad());
   status.add("skips (fell behind)", schedule.skips);
   status.add("simulation failures", tether_.recoveryCount());
@@ -84,6 +96,11 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   if (summary.deployed_length >= tether_.params().cable_length - 1e-9)
   {
     status.mergeSummary(DiagnosticStatus::WARN, "fully deployed");
+  }
+  if (!last_outrun_time_.isZero() && (now - last_outrun_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "the vehicle outruns the winch (max_winch_speed %.2f m/s)",
+                         tether_.params().max_winch_speed);
   }
   if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
   {

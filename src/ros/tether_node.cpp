@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 namespace rov_tether::ros_layer
 {
@@ -153,10 +154,20 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
   response.success = false;
   if (!request.mode.empty() && !parseWinchMode(request.mode, &params.winch_mode))
   {
-    response.message = "mode '" + request.mode + "': expected passive, locked or speed";
+    response.message = "mode '" + request.mode + "': expected brake, constant_tension, speed, locked or strain";
     return true;
   }
   params.winch_speed = request.speed;
+  for (const auto& [value, field, name] : {std::tuple{request.brake_tension, &params.brake_tension, "brake_tension"},
+                                           std::tuple{request.target_tension, &params.target_tension, "target_tension"}})
+  {
+    if (!(value >= 0.0))
+    {
+      response.message = std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
+      return true;
+    }
+    *field = value > 0.0 ? value : *field;
+  }
   const auto errors = params.validate();
   if (!errors.empty())
   {
@@ -187,6 +198,18 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
   reconfigure_server_->updateConfig(paramsToConfig(params));
   response.success = true;
   response.message = "winch " + toString(params.winch_mode);
+  if (params.winch_mode == WinchMode::kBrake)
+  {
+    response.message += ", brake_tension " + std::to_string(params.brake_tension) + " N";
+  }
+  else if (params.winch_mode == WinchMode::kConstantTension)
+  {
+    response.message += ", target_tension " + std::to_string(params.target_tension) + " N";
+  }
+  for (const std::string& warning : parameterWarnings({{"winch_mode", request.mode}}))
+  {
+    response.message += " (" + warning + ")";
+  }
   return true;
 }
 

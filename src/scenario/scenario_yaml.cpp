@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -131,6 +132,10 @@ std::string applyParamMap(const YAML::Node& map, const std::string& prefix, Teth
   for (const auto& error : applyParameters(values, params))
   {
     errors.push_back(prefix + error);
+  }
+  for (const auto& warning : parameterWarnings(values))
+  {
+    std::fprintf(stderr, "rov_tether: warning: %s%s\n", prefix.c_str(), warning.c_str());
   }
   std::string joined;
   for (const auto& error : errors)

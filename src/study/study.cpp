@@ -413,7 +413,7 @@ const Case& findCase(const std::string& name)
 StabilityPoint stability(SolverType method, double time_step, double stiffness, double speed, double over_relaxation)
 {
   // docs/references.md "Where methods fail": dL = 0.5 m, mu = 0.4 kg/m. A vehicle 5 m out pulls away at
-  // `speed` for 2 s; the passive winch pays out up to 20 m/s.
+  // `speed` for 2 s; the brake winch pays out at 10 N, up to 20 m/s.
   TetherParams p;
   p.cable_length = 50.0;
   p.segment_length = 0.5;
@@ -428,6 +428,7 @@ StabilityPoint stability(SolverType method, double time_step, double stiffness, 
   p.axial_stiffness = stiffness;
   p.over_relaxation = over_relaxation;
   p.max_winch_speed = 20.0;
+  p.brake_tension = 10.0;
   p.max_vehicle_jump = 100.0;
   StabilityPoint point;
   point.method = toString(method);

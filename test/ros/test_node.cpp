@@ -115,6 +115,7 @@ class Harness
   int wrench_count_ = 0;
   bool saw_tether_diagnostics_ = false;
   long rejected_poses_ = -1;  ///< "rejected poses" of the last tether diagnostics (-1: none yet).
+  std::string tether_summary_;  ///< Message of the last tether diagnostics.
   double sim_time_ = 1000.0;
 
  private:
@@ -159,7 +160,11 @@ class Harness
   {
     for (const auto& status : msg.status)
     {
-      saw_tether_diagnostics_ = saw_tether_diagnostics_ || status.name.find("tether") != std::string::npos;
+      if (status.name.find("tether") != std::string::npos)
+      {
+        saw_tether_diagnostics_ = true;
+        tether_summary_ = status.message;
+      }
       for (const auto& kv : status.values)
       {
         if (kv.key == "rejected poses")
@@ -210,8 +215,10 @@ TEST(TetherNode, StartsAndPublishesStateMarkersWrenchAndDiagnostics)
   ASSERT_TRUE(h.drive(1.5, home));
   EXPECT_NEAR(h.state_.deployed_length, 2.0, 0.3);  // default.yaml: 2 m out
   EXPECT_EQ(h.state_.cable_length, 10.0);
-  EXPECT_EQ(h.state_.solver, "pbd");
+  EXPECT_EQ(h.state_.solver, "direct");  // default.yaml
   EXPECT_EQ(h.state_.iterations, 10u);
+  EXPECT_EQ(h.state_.winch_mode, "brake");
+  EXPECT_DOUBLE_EQ(h.state_.brake_tension, 5.0);
   EXPECT_EQ(h.state_.segment_tension.size(), static_cast<std::size_t>(std::round(h.state_.deployed_length / 0.1)));
   EXPECT_EQ(h.state_.header.frame_id, "world");
   EXPECT_TRUE(h.waitFor([&] { return h.marker_count_ > 0 && h.wrench_count_ > 0; }, 10.0));
@@ -468,10 +475,56 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
 
-  srv.request.mode = "passive";
+  srv.request.mode = "passive";  // the old name of strain: accepted, and the answer says it is deprecated
   srv.request.speed = 0.0;
   ASSERT_TRUE(client.call(srv));
   EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_NE(srv.response.message.find("deprecated"), std::string::npos) << srv.response.message;
+}
+
+// The brake and constant-tension setpoints go through ~set_winch and come back in ~state; a vehicle faster
+// than max_winch_speed (1 m/s in default.yaml) outruns the brake winch: ~state says so and the diagnostics
+// warn "the vehicle outruns the winch".
+TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
+{
+  Harness& h = *harness;
+  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  rov_tether::SetWinch srv;
+  srv.request.mode = "brake";
+  srv.request.brake_tension = -1.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("brake_tension"), std::string::npos) << srv.response.message;
+  srv.request.brake_tension = 3.0;
+  srv.request.target_tension = 12.0;
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  const double x0 = 5.5;  // where the previous test left the vehicle
+  ASSERT_TRUE(h.drive(0.5, [&](double) { return poseAt(x0, 0.0, -0.5); }));
+  EXPECT_EQ(h.state_.winch_mode, "brake");
+  EXPECT_DOUBLE_EQ(h.state_.brake_tension, 3.0);
+  EXPECT_DOUBLE_EQ(h.state_.target_tension, 12.0);
+  srv.request.brake_tension = 0.0;  // keeps 3 N
+  srv.request.target_tension = 0.0;
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+
+  // 1.5 m/s away from the spool for 2.5 s: the slack goes within about 1 s, then the drum turns at its limit.
+  const double start = h.sim_time_;
+  bool outrun = false;
+  for (int k = 0; k < 25 && !outrun; ++k)
+  {
+    ASSERT_TRUE(h.drive(0.1, [&](double t) { return poseAt(x0 + 1.5 * (t - start), 0.0, -0.5); }));
+    outrun = h.state_.winch_outrun;
+  }
+  EXPECT_TRUE(outrun);
+  EXPECT_DOUBLE_EQ(h.state_.brake_tension, 3.0);
+  EXPECT_NEAR(h.state_.winch_speed, 1.0, 0.05);  // measured over the publishing period
+  // Held where it stopped: the diagnostics (1 s period) keep the warning for 5 s.
+  const double stop = x0 + 1.5 * (h.sim_time_ - start);
+  ASSERT_TRUE(h.drive(1.5, [&](double) { return poseAt(stop, 0.0, -0.5); }));
+  EXPECT_NE(h.tether_summary_.find("the vehicle outruns the winch"), std::string::npos) << h.tether_summary_;
 }
 
 TEST(TetherNode, TimeGoingBackwardsResetsTheTether)

@@ -93,7 +93,7 @@ TEST(PoseInput, TransformsOtherFramesThroughTheSharedBufferAndAppliesTheAttachme
   NodeOptions options;
   options.attachment_offset = Eigen::Vector3d(-0.5, 0.0, 0.0);  // 0.5 m behind the vehicle
   TetherParams params = quietParams();
-  params.winch_mode = WinchMode::kPassive;
+  params.winch_mode = WinchMode::kStrain;
   Tether tether(params, Position::Zero());
   tf2_ros::Buffer tf;
   // The boat frame is 1 m along x and turned 90 degrees about z.

@@ -66,7 +66,7 @@ TEST(Converters, StateMessageCarriesTheSimulation)
   EXPECT_EQ(msg.winch_mode, "locked");
   EXPECT_EQ(msg.winch_speed, 0.25);
   EXPECT_TRUE(std::isnan(msg.target_length));
-  EXPECT_EQ(msg.solver, "pbd");
+  EXPECT_EQ(msg.solver, "direct");
   EXPECT_EQ(msg.iterations, 10u);
   EXPECT_EQ(msg.resets, 3u);
   EXPECT_TRUE(msg.vehicle_attached);

@@ -18,7 +18,8 @@ namespace rov_tether::ros_layer
 
 /**
  * One tether's /diagnostics status ("tether", or "tether <name>" among several) and its error reports:
- * simulation failures and vehicle jumps are logged once each (throttled) as the physics finds them. It
+ * simulation failures, vehicle jumps and a vehicle outrunning the winch are logged (throttled) as the physics
+ * finds them. It
  * reads the tether, its pose input and its schedule (resets, skips, load, what overload_policy gave up).
  */
 class TetherDiagnostics
@@ -47,6 +48,7 @@ class TetherDiagnostics
   std::uint64_t reported_jumps_ = 0;     ///< Vehicle jumps already logged.
   std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
+  ros::Time last_outrun_time_;           ///< When the vehicle last outran the winch; diagnostics WARN for a while.
 };
 
 }  // namespace rov_tether::ros_layer

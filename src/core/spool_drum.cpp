@@ -1,0 +1,143 @@
+#include "rov_tether/spool_drum.hpp"
+
+#include <algorithm>
+
+namespace rov_tether
+{
+
+void SpoolDrum::prepare(double alpha)
+{
+  alpha_ = alpha;
+  const double low = std::min(min_payout, max_payout);
+  const double high = max_payout;
+  const double rest = std::clamp(0.0, low, high);  // the drum standing, as far as the limits let it
+  // The characteristic s(lambda) for lambda >= 0 as points (lambda, s) joined by straight lines, the last
+  // one continued at s = high; points with the same lambda are a drum turning at a fixed force.
+  std::array<std::pair<double, double>, 6> points;
+  std::size_t n = 0;
+  if (inertia > 0.0)
+  {
+    // s = clamp(coast + (lambda - brake) / m, low, high).
+    auto s_of = [&](double lambda) { return std::clamp(coast + (lambda - brake) / inertia, low, high); };
+    points[n++] = {0.0, s_of(0.0)};
+    const double leaves_low = brake + inertia * (low - coast);
+    const double reaches_high = brake + inertia * (high - coast);
+    if (leaves_low > 0.0)
+    {
+      points[n++] = {leaves_low, low};
+    }
+    if (reaches_high > 0.0)
+    {
+      points[n++] = {reaches_high, high};
+    }
+  }
+  else
+  {
+    if (floor > 0.0)
+    {
+      points[n++] = {0.0, low};  // reels in as fast as it can below the floor
+      points[n++] = {floor, low};
+      points[n++] = {floor, rest};
+    }
+    else
+    {
+      points[n++] = {0.0, rest};
+    }
+    const double pays = std::max(brake, floor > 0.0 ? floor : 0.0);
+    if (pays > 0.0)
+    {
+      points[n++] = {pays, rest};
+    }
+    points[n++] = {pays, high};
+  }
+  // The law lambda(c), c = s + alpha lambda: the slack piece first, then one piece between each two points,
+  // then the last point's ray (s = high: the segment stretches again).
+  slack_payout_ = points[0].second;
+  count_ = 0;
+  pieces_[count_++] = {-1e300, 0.0, 0.0};
+  for (std::size_t i = 0; i + 1 < n; ++i)
+  {
+    const double c0 = points[i].second + alpha * points[i].first;
+    const double c1 = points[i + 1].second + alpha * points[i + 1].first;
+    if (c1 > c0)
+    {
+      pieces_[count_++] = {c0, points[i].first, (points[i + 1].first - points[i].first) / (c1 - c0)};
+    }
+  }
+  const auto& last = points[n - 1];
+  pieces_[count_++] = {last.second + alpha * last.first, last.first, 1.0 / alpha};
+  // The slack piece ends where the first piece starts (c = s(0)).
+}
+
+std::size_t SpoolDrum::pieceOf(double c) const
+{
+  std::size_t piece = 0;
+  for (std::size_t i = 1; i < count_; ++i)
+  {
+    if (c > pieces_[i].c0)
+    {
+      piece = i;
+    }
+  }
+  return piece;
+}
+
+SpoolDrum::Row SpoolDrum::row(std::size_t piece) const
+{
+  const Piece& p = pieces_[piece];
+  if (p.slope == 0.0)
+  {
+    return {true, p.lambda0, 0.0};
+  }
+  // lambda = lambda0 + slope (c - c0)  <=>  c - (c0 - lambda0 / slope) - lambda / slope = 0.
+  return {false, p.c0 - p.lambda0 / p.slope, 1.0 / p.slope};
+}
+
+double SpoolDrum::force(double c) const
+{
+  const Piece& p = pieces_[pieceOf(c)];
+  return p.lambda0 + p.slope * (c - p.c0);
+}
+
+double SpoolDrum::stiffness(double c) const { return pieces_[pieceOf(c)].slope; }
+
+double SpoolDrum::energy(double c) const
+{
+  // The integral of the piecewise linear force from the start of the first loaded piece: trapezoids.
+  double total = 0.0;
+  for (std::size_t i = 1; i < count_ && c > pieces_[i].c0; ++i)
+  {
+    const double from = pieces_[i].c0;
+    const double to = i + 1 < count_ ? std::min(c, pieces_[i + 1].c0) : c;
+    total += 0.5 * (force(from) + force(to)) * (to - from);
+  }
+  return total;
+}
+
+double SpoolDrum::forceAgainst(double a, double b) const
+{
+  // On piece i: lambda = lambda0 + slope (a - b lambda - c0), so lambda = (lambda0 + slope (a - c0)) /
+  // (1 + slope b); it is the answer when the stretch a - b lambda lies on that piece.
+  for (std::size_t i = count_; i-- > 0;)
+  {
+    const Piece& p = pieces_[i];
+    const double lambda = (p.lambda0 + p.slope * (a - p.c0)) / (1.0 + p.slope * b);
+    const double c = a - b * lambda;
+    if (i == 0 || c >= p.c0)
+    {
+      return lambda;
+    }
+  }
+  return 0.0;
+}
+
+double SpoolDrum::payoutAt(double c) const
+{
+  if (pieceOf(c) == 0)
+  {
+    return slack_payout_;  // a slack segment does not hold the drum: it coasts, stands or reels in
+  }
+  return std::clamp(c - alpha_ * force(c), std::min(min_payout, max_payout), max_payout);
+}
+
+}  // namespace rov_tether
