@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
+#include <sstream>
 
+#include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 
 namespace rov_tether::camera
 {
@@ -415,6 +421,151 @@ TEST(Camera, ShapeHistoryInterpolatesToAStamp)
   history.record(tether);
   EXPECT_EQ(history.oldest(), 0.0);
   EXPECT_EQ(history.newest(), 0.0);
+}
+
+}  // namespace
+}  // namespace rov_tether::camera
+
+namespace rov_tether::camera
+{
+namespace
+{
+
+std::string readText(const std::string& path)
+{
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Dataset, CameraPoseFollowsTheVehicleItsHeadingAndTheMount)
+{
+  // A camera 0.5 m ahead of the vehicle, pitched 20 degrees down, on a vehicle heading along +y (yaw 90
+  // degrees): it sits at vehicle + (0, 0.5, 0) and looks along (0, cos 20, -sin 20); image right is +x
+  // of the world (the vehicle's right), image down is down and forward.
+  ScenarioCamera mount;
+  mount.position = {0.5, 0.0, 0.0};
+  mount.orientation = {0.0, 20.0, 0.0};
+  const Eigen::Isometry3d pose = cameraPose(mount, Position(1.0, 2.0, -3.0), M_PI / 2);
+  const double c = std::cos(20.0 * M_PI / 180.0), s = std::sin(20.0 * M_PI / 180.0);
+  EXPECT_LE((pose.translation() - Position(1.0, 2.5, -3.0)).norm(), 1e-12);
+  EXPECT_LE((pose.linear().col(2) - Eigen::Vector3d(0.0, c, -s)).norm(), 1e-12);
+  EXPECT_LE((pose.linear().col(0) - Eigen::Vector3d(1.0, 0.0, 0.0)).norm(), 1e-12);
+  EXPECT_LE((pose.linear().col(1) - Eigen::Vector3d(0.0, -s, -c)).norm(), 1e-12);
+}
+
+TEST(Dataset, TheVehicleTurnsAtItsYawRateLimit)
+{
+  // Out along +x for 10 s, then along +y: the heading starts at 0 and turns 90 degrees at 30 deg/s,
+  // so it reaches 90 degrees 3 s after the corner and is 45 degrees 1.5 s after it.
+  Scenario scenario;
+  scenario.vehicle = {{0.0, {0, 0, 0}}, {10.0, {5, 0, 0}}, {20.0, {5, 5, 0}}};
+  VehicleHeading heading(scenario);
+  EXPECT_NEAR(heading.yawAt(5.0), 0.0, 1e-12);
+  EXPECT_NEAR(heading.yawAt(11.5), M_PI / 4, 0.006);  // one 10 ms step of 0.3 degrees
+  EXPECT_NEAR(heading.yawAt(13.05), M_PI / 2, 1e-12);
+  EXPECT_NEAR(heading.yawAt(25.0), M_PI / 2, 1e-12);  // held after the path ends
+}
+
+TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
+{
+  Scenario scenario;
+  ASSERT_EQ(
+      loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/datasets/forward_camera_dive.yaml", &scenario), "");
+  scenario.duration = 32.0;  // into the return leg, where the camera sees its tether
+  ASSERT_EQ(scenario.cameras.size(), 1u);
+  const std::string dir = testing::TempDir() + "rov_tether_dataset";
+  std::filesystem::remove_all(dir);
+  DatasetWriter writer(scenario, dir);
+  ASSERT_EQ(writer.open(), "");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary, {&writer}), "");
+  ASSERT_EQ(writer.close(), "");
+  const std::string state_with_camera = readText(dir + "/state.csv");
+  const std::string shape_with_camera = readText(dir + "/shape.csv");
+  ASSERT_EQ(runScenario(scenario, dir + "/plain", &summary), "");
+  // Looking changes nothing: the same rows as a run without the camera.
+  EXPECT_EQ(state_with_camera, readText(dir + "/plain/state.csv"));
+  EXPECT_EQ(shape_with_camera, readText(dir + "/plain/shape.csv"));
+
+  const ScenarioCamera& spec = scenario.cameras[0];
+  const std::size_t frames = static_cast<std::size_t>(scenario.duration * spec.rate) + 1;  // 161
+  std::ifstream index(dir + "/cameras/forward/index.csv");
+  std::string line;
+  std::getline(index, line);
+  EXPECT_EQ(line, "frame,t,coverage");
+  std::size_t rows = 0, seen = 0;
+  double worst_coverage = 0.0, worst_time = 0.0;
+  for (; std::getline(index, line); ++rows)
+  {
+    std::size_t frame = 0;
+    double t = 0.0, coverage = 0.0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%zu,%lf,%lf", &frame, &t, &coverage), 3) << line;
+    EXPECT_EQ(frame, rows);
+    // Frame k shows the last physics step at or before k / rate.
+    worst_time = std::max(worst_time, frame / spec.rate - t);
+    EXPECT_GE(frame / spec.rate - t, -1e-9);
+    char name[32];
+    std::snprintf(name, sizeof(name), "%06zu.png", frame);
+    const cv::Mat mask = cv::imread(dir + "/cameras/forward/mask_" + name, cv::IMREAD_UNCHANGED);
+    const cv::Mat depth = cv::imread(dir + "/cameras/forward/depth_" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(mask.type(), CV_8UC1);
+    ASSERT_EQ(depth.type(), CV_16UC1);
+    ASSERT_EQ(mask.cols, 640);
+    ASSERT_EQ(depth.rows, 480);
+    // Depth where and only where the mask is set (every tether point here is under 65 m away).
+    EXPECT_EQ(cv::countNonZero(mask != ((depth > 0) & 255)), 0) << name;
+    EXPECT_EQ(cv::countNonZero((mask != 0) & (mask != 255)), 0) << name;
+    worst_coverage = std::max(worst_coverage, std::abs(coverage - cv::countNonZero(mask) / (640.0 * 480.0)));
+    if (cv::countNonZero(mask) > 0)
+    {
+      ++seen;
+      double lo = 0.0, hi = 0.0;
+      cv::minMaxLoc(depth, nullptr, &hi);
+      cv::minMaxLoc(depth, &lo, nullptr, nullptr, nullptr, depth > 0);
+      // The tether is in front of the camera and no further than the deployed cable reaches.
+      EXPECT_GE(lo, 1000.0 * TetherRenderer::kNearClip);
+      EXPECT_LE(hi, 1000.0 * (summary.deployed_max + 1.0));
+    }
+  }
+  std::printf(
+      "[ measured ] dataset: %zu frames, the tether in %zu; coverage off the mask by %.3g; frame time "
+      "at most %.4f s before k / rate\n",
+      rows, seen, worst_coverage, worst_time);
+  EXPECT_EQ(rows, frames);
+  EXPECT_GT(seen, 10u);  // it turns and looks back along its tether from 28.6 s on
+  EXPECT_LE(worst_coverage, 1e-6);
+  EXPECT_LT(worst_time, scenario.params.time_step);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Dataset, BadCamerasInAScenarioAreNamed)
+{
+  const std::string base =
+      "spool: [0, 0, 0]\nvehicle: [[0, 1, 0, 0], [10, 5, 0, 0]]\nduration: 5\ncameras:\n  - {name: front, ";
+  const std::string intrinsics = "width: 64, height: 48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]";
+  Scenario scenario;
+  EXPECT_EQ(parseScenario(base + intrinsics + "}\n", &scenario), "");
+  ASSERT_EQ(scenario.cameras.size(), 1u);
+  EXPECT_EQ(scenario.cameras[0].rate, 10.0);
+  const std::pair<std::string, std::string> cases[] = {
+      {base + "width: 64, height: 48}\n", "cameras[0].K: missing"},
+      {base + intrinsics + ", rate: 0}\n", "cameras[0].rate = 0"},
+      {base + intrinsics + ", D: [0.1, 0.2]}\n", "cameras[0].D: expected a list of 5"},
+      {base + intrinsics + ", fov: 90}\n", "cameras[0]: unknown field 'fov'"},
+      {base + "width: 64.5, height: 48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]}\n", "cameras[0].width = 64.5"},
+      {base + "width: 64, height: 48, K: [-50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]}\n", "cameras[0].K: fx"},
+      {base + intrinsics + "}\n  - {name: front, " + intrinsics + "}\n", "cameras[1].name = 'front': used twice"},
+      {"spool: [0, 0, 0]\nduration: 5\ncameras:\n  - {name: front, " + intrinsics + "}\n", "no vehicle path"},
+      {"spool: [0, 0, 0]\nvehicle: [[0, 1, 0, 0]]\nduration: 5\ncameras:\n  - {name: '../x', " + intrinsics + "}\n",
+       "cameras[0].name = '../x'"},
+  };
+  for (const auto& [text, expected] : cases)
+  {
+    const std::string error = parseScenario(text, &scenario);
+    EXPECT_NE(error.find(expected), std::string::npos) << "got: " << error << "\nexpected: " << expected;
+  }
 }
 
 }  // namespace
