@@ -277,4 +277,16 @@ std::size_t TetherRenderer::occlude(const CameraModel& camera, const Eigen::Isom
   return hidden;
 }
 
+void drawOverlay(cv::Mat& image, const std::vector<int>& pixels, const cv::Vec3b& colour)
+{
+  auto* data = image.ptr<cv::Vec3b>();
+  for (int i : pixels)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      data[i][c] = static_cast<std::uint8_t>((data[i][c] + colour[c] + 1) / 2);
+    }
+  }
+}
+
 }  // namespace rov_tether::camera

@@ -78,4 +78,8 @@ class TetherRenderer
   std::size_t segments_drawn_ = 0;
 };
 
+/// Draws the tether pixels (TetherRenderer::pixels() of a render of the same size) on an 8-bit, 3-channel
+/// image: each one half way to `colour` (BGR), so the image stays visible under the tether.
+void drawOverlay(cv::Mat& image, const std::vector<int>& pixels, const cv::Vec3b& colour = cv::Vec3b(0, 255, 255));
+
 }  // namespace rov_tether::camera
