@@ -222,4 +222,32 @@ void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor
   }
 }
 
+void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, std::vector<int>* previous,
+                        const std_msgs::Header& header, sensor_msgs::Image* msg)
+{
+  const std::size_t element = image.elemSize();
+  const bool same =
+      msg->width == static_cast<std::uint32_t>(image.cols) && msg->height == static_cast<std::uint32_t>(image.rows) &&
+      msg->step == image.cols * element && image.isContinuous() &&
+      msg->encoding ==
+          (image.type() == CV_32FC1 ? sensor_msgs::image_encodings::TYPE_32FC1 : sensor_msgs::image_encodings::MONO8);
+  if (!same)
+  {
+    toImageMessage(image, header, msg);
+    previous->reserve(image.total());
+  }
+  else
+  {
+    msg->header = header;
+    for (const std::vector<int>* changed : {static_cast<const std::vector<int>*>(previous), &current})
+    {
+      for (int i : *changed)
+      {
+        std::memcpy(&msg->data[i * element], image.data + i * element, element);
+      }
+    }
+  }
+  previous->assign(current.begin(), current.end());
+}
+
 }  // namespace rov_tether::ros_layer

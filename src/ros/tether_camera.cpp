@@ -173,12 +173,12 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   header.frame_id = config_.frame;
   if (mask_pub_.getNumSubscribers() > 0)
   {
-    toImageMessage(renderer_.mask(), header, &mask_msg_);
+    updateImageMessage(renderer_.mask(), renderer_.pixels(), &mask_msg_pixels_, header, &mask_msg_);
     mask_pub_.publish(mask_msg_);
   }
   if (depth_pub_.getNumSubscribers() > 0)
   {
-    toImageMessage(renderer_.depth(), header, &depth_msg_);
+    updateImageMessage(renderer_.depth(), renderer_.pixels(), &depth_msg_pixels_, header, &depth_msg_);
     depth_pub_.publish(depth_msg_);
   }
   if (coverage_pub_.getNumSubscribers() > 0)

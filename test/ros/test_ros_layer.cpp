@@ -7,6 +7,7 @@
 
 #include "../test_helpers.hpp"
 #include "rov_tether/camera/camera_model.hpp"
+#include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
@@ -461,6 +462,39 @@ TEST(CameraConfig, BadEntriesAndCameraInfosAreNamed)
   info.binning_x = 0;
   info.K[0] = 0.0;
   EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("fx"), std::string::npos);
+}
+
+// The mask and depth messages are updated at the pixels that changed only; they must equal full copies.
+TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
+{
+  camera::CameraIntrinsics c;
+  c.width = 160;
+  c.height = 120;
+  c.K = {100, 0, 79.5, 0, 100, 59.5, 0, 0, 1};
+  const camera::CameraModel model(c);
+  camera::TetherRenderer renderer;
+  sensor_msgs::Image mask, depth, full;
+  std::vector<int> mask_pixels, depth_pixels;
+  std_msgs::Header header;
+  for (int frame = 0; frame < 4; ++frame)  // a tether sweeping across the view, then gone, then back
+  {
+    std::vector<Position> points;
+    for (int i = 0; i <= 20; ++i)
+    {
+      points.emplace_back(-1.0 + 0.1 * i, -0.3 + 0.2 * frame, frame == 2 ? -2.0 : 1.5 + 0.05 * i);
+    }
+    renderer.render(model, Eigen::Isometry3d::Identity(), {camera::Tube{&points, 0.03}}, {});
+    header.seq = frame;
+    updateImageMessage(renderer.mask(), renderer.pixels(), &mask_pixels, header, &mask);
+    updateImageMessage(renderer.depth(), renderer.pixels(), &depth_pixels, header, &depth);
+    toImageMessage(renderer.mask(), header, &full);
+    EXPECT_EQ(mask.data, full.data) << "frame " << frame;
+    toImageMessage(renderer.depth(), header, &full);
+    // Bytewise, so NaN equals NaN.
+    EXPECT_EQ(depth.data, full.data) << "frame " << frame;
+    EXPECT_EQ(depth.encoding, "32FC1");
+    EXPECT_EQ(depth.header.seq, static_cast<std::uint32_t>(frame));
+  }
 }
 
 }  // namespace

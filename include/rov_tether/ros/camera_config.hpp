@@ -37,4 +37,11 @@ std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera
 /// Copies `image` (CV_8UC1 as mono8, CV_32FC1 as 32FC1) into `msg`, reusing its storage.
 void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor_msgs::Image* msg);
 
+/// Brings `msg`, which held `image`'s previous content, up to date by copying only the pixels (indices
+/// v * width + u) in `previous` and `current`, where it can have changed; `previous` becomes `current`.
+/// A full copy when `msg` does not have the image's size and encoding yet. (A renderer's image changes
+/// only at its last and its new tether pixels: this saves copying megabytes per frame.)
+void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, std::vector<int>* previous,
+                        const std_msgs::Header& header, sensor_msgs::Image* msg);
+
 }  // namespace rov_tether::ros_layer

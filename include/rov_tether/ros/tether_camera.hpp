@@ -73,6 +73,7 @@ class TetherCamera
   double next_frame_ = -1.0;  ///< Rate mode: physics time of the next frame [s]; < 0: not set.
   std::uint64_t dropped_ = 0;
   sensor_msgs::Image mask_msg_, depth_msg_;
+  std::vector<int> mask_msg_pixels_, depth_msg_pixels_;  ///< The tether pixels each message holds.
   TetherCoverage coverage_msg_;
 };
 
