@@ -173,8 +173,13 @@ class Replay:
         """Stops what is left and the tether node, so the launch ends."""
         for child in self.children:
             self.stop(child)
+        # A node that has not registered yet (a slow start, say under a sanitizer, and a bag missing at
+        # once) is waited for, or it would be left running and the launch would never end.
+        end = time.monotonic() + STARTUP_TIMEOUT
+        while not rospy.is_shutdown() and not self.node_alive() and time.monotonic() < end:
+            time.sleep(0.1)
         if rospy.is_shutdown() or not self.node_alive():
-            return  # roslaunch is stopping everything, or the node has already gone
+            return  # roslaunch is stopping everything, or the node has gone
         try:
             # SIGINT, as Ctrl-C would: roscpp shuts down quietly (rosnode kill would log two warnings).
             pid = xmlrpc.client.ServerProxy(self.master.lookupNode(self.node)).getPid(rospy.get_name())[2]

@@ -17,7 +17,9 @@ PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-emp
           libtf2-ros-dev libtf2-eigen-dev libdynamic-reconfigure-config-init-mutex-dev
           python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
           python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
-          python3-rosparam python3-tf2-ros bc ${PACKAGES_EXTRA:-})
+          python3-rosparam python3-tf2-ros bc
+          libopencv-dev libsensor-msgs-dev python3-sensor-msgs libimage-transport-dev libcv-bridge-dev
+          ${PACKAGES_EXTRA:-})
 
 install_missing() {
   local missing=()

@@ -10,9 +10,14 @@ attached behind the vehicle then never moves faster than the vehicle's speed plu
 With ~loop the dive repeats; when the last waypoint is not the first, a closing leg takes the vehicle back
 to the start at the dive's slowest speed, so the loop has no jump either.
 
+With ~camera_frame, the vehicle carries a camera: a static tf rov_frame -> camera_frame, the camera's
+optical frame (z forward, x right, y down) at ~camera_pose = [x, y, z, roll, pitch, yaw] (m and deg) in
+the vehicle frame, the angles those of a frame looking along its x axis with z up (pitch > 0 looks down),
+as a scenario's `cameras:` entries give them. (Debian ships no static_transform_publisher.)
+
 Parameters: ~rate [Hz] (20), ~world_frame (world), ~rov_frame (rov), ~publish_tf (false), ~loop (true),
 ~max_yaw_rate [deg/s] (30), ~waypoints (list of [t, x, y, z]; default: the dive of
-scenarios/spool_payout.yaml).
+scenarios/spool_payout.yaml), ~camera_frame ("" = none), ~camera_pose ([0, 0, 0, 0, 0, 0]).
 """
 import math
 
@@ -73,6 +78,32 @@ def closed_loop(waypoints):
     return list(waypoints) + [[waypoints[-1][0] + gap / speed] + list(waypoints[0][1:])]
 
 
+def optical_quaternion(roll, pitch, yaw):
+    """[x, y, z, w] of the optical frame (z forward, x right, y down) of a camera whose body frame (x along
+    the view, z up) has roll, pitch, yaw [deg]: R = Rz(yaw) Ry(pitch) Rx(roll) times the body-to-optical
+    rotation (optical z = body x, x = -body y, y = -body z)."""
+    r, p, y = (math.radians(a) for a in (roll, pitch, yaw))
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    body = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr]]
+    optical = [[0, 0, 1], [-1, 0, 0], [0, -1, 0]]
+    m = [[sum(body[i][k] * optical[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    # Rotation matrix to quaternion (Shepperd's method, the largest of w, x, y, z first).
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0:
+        s = 2 * math.sqrt(1 + trace)
+        return [(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, s / 4]
+    i = max(range(3), key=lambda k: m[k][k])
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = 2 * math.sqrt(1 + m[i][i] - m[j][j] - m[k][k])
+    q = [0.0, 0.0, 0.0, (m[k][j] - m[j][k]) / s]
+    q[i] = s / 4
+    q[j] = (m[j][i] + m[i][j]) / s
+    q[k] = (m[k][i] + m[i][k]) / s
+    return q
+
+
 def wrap(angle):
     """angle in (-pi, pi]"""
     return math.atan2(math.sin(angle), math.cos(angle))
@@ -125,6 +156,25 @@ def main():
     if not max_yaw_rate > 0:
         rospy.logfatal("simulated_rov: ~max_yaw_rate must be positive [deg/s], got %s", max_yaw_rate)
         return
+    camera_frame = rospy.get_param("~camera_frame", "")
+    camera_pose = rospy.get_param("~camera_pose", [0.0] * 6)
+    if camera_frame and (len(camera_pose) != 6 or not all(math.isfinite(float(v)) for v in camera_pose)):
+        rospy.logfatal("simulated_rov: ~camera_pose must be [x, y, z, roll, pitch, yaw] (m, deg), got %s",
+                       camera_pose)
+        return
+    static_broadcaster = None
+    if camera_frame:
+        static_broadcaster = tf2_ros.StaticTransformBroadcaster()
+        mount = TransformStamped()
+        mount.header.stamp = rospy.Time.now()
+        mount.header.frame_id = rov
+        mount.child_frame_id = camera_frame
+        mount.transform.translation.x, mount.transform.translation.y, mount.transform.translation.z = \
+            (float(v) for v in camera_pose[:3])
+        q = optical_quaternion(*(float(v) for v in camera_pose[3:]))
+        r = mount.transform.rotation
+        r.x, r.y, r.z, r.w = q
+        static_broadcaster.sendTransform(mount)
     dive = Dive(waypoints, loop, max_yaw_rate)
     pub = rospy.Publisher("rov_pose", PoseStamped, queue_size=10)
     broadcaster = tf2_ros.TransformBroadcaster() if publish_tf else None

@@ -104,13 +104,18 @@ TEST(ConfigFiles, DefaultYamlListsEveryParameterAtItsDefault)
 TEST(ConfigFiles, EveryShippedFileLoads)
 {
   int scenarios = 0;
-  for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
+  // scenarios/*.yaml and the camera dataset examples in scenarios/datasets/.
+  for (const auto& entry : fs::recursive_directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
   {
+    if (!entry.is_regular_file())
+    {
+      continue;
+    }
     Scenario scenario;
     EXPECT_EQ(loadScenario(entry.path().string(), &scenario), "") << entry.path();
     ++scenarios;
   }
-  EXPECT_GE(scenarios, 4);
+  EXPECT_GE(scenarios, 6);
   // config/*.yaml also hold node options: they are loaded through the ROS loader in test_ros_layer.
 }
 

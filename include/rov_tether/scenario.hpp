@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/camera/camera_intrinsics.hpp"
 #include "rov_tether/tether.hpp"
 #include "rov_tether/tether_params.hpp"
 
@@ -16,6 +17,20 @@ struct Waypoint
   Position position;
 };
 
+/// A camera carried by the vehicle, for the offline dataset of its tether masks (the runner writes
+/// DIR/cameras/<name>/; see the camera library's DatasetWriter).
+struct ScenarioCamera
+{
+  std::string name;                                    ///< Directory name: letters, digits, '_' and '-'.
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< In the vehicle frame (x forward, z up) [m].
+  /// Roll, pitch, yaw of the camera in the vehicle frame [deg], of a frame whose x axis looks along the
+  /// view and z is up (pitch > 0 looks down); the image's optical frame (z forward, x right, y down)
+  /// follows from it.
+  Eigen::Vector3d orientation = Eigen::Vector3d::Zero();
+  double rate = 10.0;  ///< Frames per simulated second [Hz].
+  camera::CameraIntrinsics intrinsics;
+};
+
 /**
  * An offline run: parameters, spool, vehicle path, duration and output rate.
  *
@@ -25,6 +40,7 @@ struct Waypoint
  *   vehicle: [[t, x, y, z], ...]        # [s, m]; followed piecewise-linearly; omit for a free end
  *   duration: 20.0                      # [s]
  *   output_rate: 10.0                   # rows per simulated second
+ *   cameras: [{name, position, orientation, rate, width, height, K, D}]   # optional, see ScenarioCamera
  */
 struct Scenario
 {
@@ -34,6 +50,7 @@ struct Scenario
   std::vector<Waypoint> vehicle;  ///< Empty: the tether hangs from its spool with a free end.
   double duration = 0.0;
   double output_rate = 10.0;
+  std::vector<ScenarioCamera> cameras;  ///< On the vehicle; only with a vehicle path.
 
   /// Vehicle position at time t [s]: piecewise-linear, held before the first and after the last
   /// waypoint; at two waypoints with the same time the later one wins from that time on (a jump).

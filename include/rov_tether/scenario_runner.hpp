@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "rov_tether/scenario.hpp"
 
@@ -26,9 +27,24 @@ struct RunSummary
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
 };
 
+/// Something that looks at a run at times of its own (the camera dataset writer): the runner advances the
+/// simulation there between its own output times. Looking changes nothing in the run.
+class RunObserver
+{
+ public:
+  virtual ~RunObserver() = default;
+  /// The simulated time it wants to look at next [s]; +inf when it is done.
+  virtual double nextTime() const = 0;
+  /// Looks at the simulation, advanced to the last step at or before nextTime(). Returns "" or an error,
+  /// which ends the run.
+  virtual std::string observe(const Tether& sim) = 0;
+};
+
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv (created together at the end, so
-/// a failed run leaves no partial file). Returns "" on success, otherwise the error.
-std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary);
+/// a failed run leaves no partial file). Each observer looks at the run at its own times up to the
+/// scenario's duration. Returns "" on success, otherwise the error.
+std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
+                        const std::vector<RunObserver*>& observers = {});
 
 /// The CSV headers, part of the documented format.
 extern const char* const kStateCsvHeader;

@@ -280,7 +280,8 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
       }
     }
     const bool known = std::find(model.begin(), model.end(), name) != model.end() ||
-                       std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" || tether_name;
+                       std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" ||
+                       name == "cameras" || tether_name;
     if (!known)
     {
       unknown += (unknown.empty() ? "" : ", ") + name;

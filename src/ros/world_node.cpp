@@ -95,6 +95,12 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     const ros::NodeHandle tether_nh = names.empty() ? private_nh_ : ros::NodeHandle(private_nh_, name);
     tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, setups[i], name, world_, *scheduler_, tf_buffer_));
   }
+  XmlRpc::XmlRpcValue cameras;
+  if (private_nh_.getParam("cameras", cameras))
+  {
+    cameras_ =
+        std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame);
+  }
   timer_ = nh_.createTimer(ros::Duration(1.0 / clock.physics_rate), &WorldNode::onTimer, this);
   if (!names.empty())
   {
@@ -103,6 +109,13 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   }
 }
 
-void WorldNode::onTimer(const ros::TimerEvent& /*event*/) { scheduler_->tick(ros::Time::now()); }
+void WorldNode::onTimer(const ros::TimerEvent& /*event*/)
+{
+  scheduler_->tick(ros::Time::now());
+  if (cameras_)
+  {
+    cameras_->afterTick();
+  }
+}
 
 }  // namespace rov_tether::ros_layer

@@ -12,7 +12,8 @@ namespace rov_tether
 const char* const kStateCsvHeader = "t,deployed_length,tension_spool,tension_vehicle,max_tension,max_strain";
 const char* const kShapeCsvHeader = "t,i,x,y,z,tension";
 
-std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary)
+std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
+                        const std::vector<RunObserver*>& observers)
 {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -47,10 +48,35 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
   std::vector<double> tensions;
   std::vector<Position> positions;
   double cpu = 0.0;
+  std::string observer_error;
+  // Lets the observers look at every time of theirs up to `until` [s], in time order.
+  const auto observe = [&](double until)
+  {
+    while (observer_error.empty())
+    {
+      RunObserver* next = nullptr;
+      for (RunObserver* observer : observers)
+      {
+        if (observer->nextTime() <= until + 1e-9 && (!next || observer->nextTime() < next->nextTime()))
+        {
+          next = observer;
+        }
+      }
+      if (next == nullptr)
+      {
+        return;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      driver.advanceTo(sim, next->nextTime());
+      cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      observer_error = next->observe(sim);
+    }
+  };
   const auto outputs = static_cast<std::size_t>(std::floor(scenario.duration * scenario.output_rate + 1e-9));
   for (std::size_t k = 0; k <= outputs; ++k)
   {
     const double t_out = static_cast<double>(k) / scenario.output_rate;
+    observe(t_out);
     const auto start = std::chrono::steady_clock::now();
     driver.advanceTo(sim, t_out);
     cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -77,14 +103,15 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
     result.max_tension_vehicle = std::max(result.max_tension_vehicle, s.tension_vehicle);
     result.max_strain = std::max(result.max_strain, s.max_strain);
   }
-  const bool written = std::ferror(state_file) == 0 && std::ferror(shape_file) == 0;
+  observe(scenario.duration);
+  const bool written = observer_error.empty() && std::ferror(state_file) == 0 && std::ferror(shape_file) == 0;
   const bool state_closed = std::fclose(state_file) == 0;
   const bool closed = std::fclose(shape_file) == 0 && state_closed;
   if (!written || !closed)
   {
     fs::remove(state_tmp, ec);
     fs::remove(shape_tmp, ec);
-    return "error while writing in '" + out_dir + "'";
+    return observer_error.empty() ? "error while writing in '" + out_dir + "'" : observer_error;
   }
   fs::rename(state_tmp, state_path, ec);
   if (!ec)

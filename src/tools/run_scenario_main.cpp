@@ -1,9 +1,12 @@
 // rov_tether_run: runs a scenario offline (no ROS master) and writes state.csv and shape.csv.
 #include <cstdio>
 #include <cstring>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/scenario_runner.hpp"
 #include "rov_tether/scenario_yaml.hpp"
 
@@ -15,7 +18,8 @@ void usage(std::FILE* out)
   std::fprintf(out,
                "usage: rov_tether_run SCENARIO.yaml --out DIR [--set name=value]...\n"
                "       rov_tether_run --parameters   (prints the parameter table, as in the README)\n"
-               "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv.\n"
+               "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
+               "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
                "  --set overrides a model parameter after the scenario's own params.\n"
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
@@ -77,8 +81,25 @@ int main(int argc, char** argv)
     return 2;
   }
 
+  std::unique_ptr<rov_tether::camera::DatasetWriter> dataset;
+  std::vector<rov_tether::RunObserver*> observers;
+  if (!scenario.cameras.empty())
+  {
+    try
+    {
+      dataset = std::make_unique<rov_tether::camera::DatasetWriter>(scenario, out_dir);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      std::fprintf(stderr, "rov_tether_run: %s: cameras: %s\n", scenario_path.c_str(), e.what());
+      return 2;
+    }
+    observers.push_back(dataset.get());
+  }
   rov_tether::RunSummary s;
-  error = rov_tether::runScenario(scenario, out_dir, &s);
+  error = dataset ? dataset->open() : "";
+  error = error.empty() ? rov_tether::runScenario(scenario, out_dir, &s, observers) : error;
+  error = error.empty() && dataset ? dataset->close() : error;
   if (!error.empty())
   {
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
@@ -105,5 +126,12 @@ int main(int argc, char** argv)
   }
   std::printf("wrote           %s/state.csv (%zu rows), %s/shape.csv (%zu rows)\n", out_dir.c_str(), s.state_rows,
               out_dir.c_str(), s.shape_rows);
+  for (const auto& camera :
+       dataset ? dataset->summary() : std::vector<rov_tether::camera::DatasetWriter::CameraSummary>{})
+  {
+    std::printf("camera %-8s %s/cameras/%s/: %zu frames, tether in %zu, coverage mean %.4f, max %.4f\n",
+                camera.name.c_str(), out_dir.c_str(), camera.name.c_str(), camera.frames, camera.frames_with_tether,
+                camera.mean_coverage, camera.max_coverage);
+  }
   return 0;
 }

@@ -6,6 +6,9 @@
 #include <filesystem>
 
 #include "../test_helpers.hpp"
+#include "rov_tether/camera/camera_model.hpp"
+#include "rov_tether/camera/tether_renderer.hpp"
+#include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "yaml_xmlrpc.hpp"
@@ -381,6 +384,15 @@ TEST(ParameterServer, EveryShippedConfigFileLoads)
     EXPECT_EQ(loadTetherParams(dict, &params), "") << entry.path();
     EXPECT_EQ(loadNodeOptions(dict, &options), "") << entry.path();
     EXPECT_EQ(unknownParameters(dict), "") << entry.path();
+    if (dict.hasMember("cameras"))
+    {
+      std::vector<CameraConfig> cameras;
+      EXPECT_EQ(loadCameraConfigs(dict["cameras"], {}, &cameras), "") << entry.path();
+      for (const auto& camera : cameras)
+      {
+        EXPECT_NO_THROW(camera::CameraModel(camera.intrinsics)) << entry.path() << ": " << camera.name;
+      }
+    }
     ++files;
   }
   EXPECT_GE(files, 3);
@@ -401,6 +413,88 @@ TEST(ParameterServer, EveryShippedConfigFileLoads)
   ASSERT_EQ(loadNodeOptions(loadYaml("config/node.yaml"), &node_defaults), "");
   EXPECT_EQ(node_defaults.physics_rate, NodeOptions{}.physics_rate);
   EXPECT_EQ(node_defaults.world_frame, NodeOptions{}.world_frame);
+}
+
+// The `cameras` list and CameraInfo: each bad entry is refused naming it.
+TEST(CameraConfig, BadEntriesAndCameraInfosAreNamed)
+{
+  const auto load = [](const std::string& yaml)
+  {
+    std::vector<CameraConfig> cameras;
+    return loadCameraConfigs(rov_tether::test::toXmlRpc(YAML::Load(yaml)), {"t0"}, &cameras);
+  };
+  const std::string fixed = "width: 64, height: 48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]";
+  EXPECT_EQ(load("[{name: a, frame: f, " + fixed + ", rate: 5}, {name: b, frame: f, info_topic: i, image_topic: c}]"),
+            "");
+  const std::pair<std::string, std::string> cases[] = {
+      {"{name: a}", "cameras: expected a list"},
+      {"[{name: a, " + fixed + "}]", "cameras[0].frame: missing"},
+      {"[{name: a, frame: f}]", "cameras[0]: give either info_topic or the fixed intrinsics"},
+      {"[{name: a, frame: f, info_topic: i, " + fixed + "}]", "give either info_topic or the fixed"},
+      {"[{name: a, frame: f, info_topic: i, image_topic: c, rate: 5}]", "cameras[0]: give either image_topic or rate"},
+      {"[{name: a, frame: f, info_topic: i, rate: 0}]", "cameras[0].rate: must be a number in (0, 1000]"},
+      {"[{name: a, frame: f, width: 64, height: 48, K: [50, 0, 31.5]}]", "cameras[0].K: expected a list of 9"},
+      {"[{name: a, frame: f, " + fixed + ", D: [1, 2]}]", "cameras[0].D: expected a list of 0 or 4 or 5"},
+      {"[{name: 2a, frame: f, info_topic: i}]", "cameras[0].name = '2a'"},
+      {"[{name: t0, frame: f, info_topic: i}]", "cameras[0].name = 't0': already used"},
+      {"[{name: a, frame: f, info_topic: i, fov: 3}]", "cameras[0]: unknown field 'fov'"},
+  };
+  for (const auto& [yaml, expected] : cases)
+  {
+    const std::string error = load(yaml);
+    EXPECT_NE(error.find(expected), std::string::npos) << yaml << " gave: " << error;
+  }
+  sensor_msgs::CameraInfo info;
+  info.width = 64;
+  info.height = 48;
+  info.K = {50, 0, 31.5, 0, 50, 23.5, 0, 0, 1};
+  info.distortion_model = "plumb_bob";
+  info.D = {-0.1, 0.01, 0, 0, 0};
+  camera::CameraIntrinsics intrinsics;
+  EXPECT_EQ(intrinsicsFromCameraInfo(info, &intrinsics), "");
+  EXPECT_EQ(intrinsics.D, info.D);
+  EXPECT_EQ(intrinsics.fx(), 50.0);
+  info.distortion_model = "equidistant";
+  EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("only plumb_bob"), std::string::npos);
+  info.distortion_model = "plumb_bob";
+  info.binning_x = 2;
+  EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("binning"), std::string::npos);
+  info.binning_x = 0;
+  info.K[0] = 0.0;
+  EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("fx"), std::string::npos);
+}
+
+// The mask and depth messages are updated at the pixels that changed only; they must equal full copies.
+TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
+{
+  camera::CameraIntrinsics c;
+  c.width = 160;
+  c.height = 120;
+  c.K = {100, 0, 79.5, 0, 100, 59.5, 0, 0, 1};
+  const camera::CameraModel model(c);
+  camera::TetherRenderer renderer;
+  sensor_msgs::Image mask, depth, full;
+  std::vector<int> mask_pixels, depth_pixels;
+  std_msgs::Header header;
+  for (int frame = 0; frame < 4; ++frame)  // a tether sweeping across the view, then gone, then back
+  {
+    std::vector<Position> points;
+    for (int i = 0; i <= 20; ++i)
+    {
+      points.emplace_back(-1.0 + 0.1 * i, -0.3 + 0.2 * frame, frame == 2 ? -2.0 : 1.5 + 0.05 * i);
+    }
+    renderer.render(model, Eigen::Isometry3d::Identity(), {camera::Tube{&points, 0.03}}, {});
+    header.seq = frame;
+    updateImageMessage(renderer.mask(), renderer.pixels(), &mask_pixels, header, &mask);
+    updateImageMessage(renderer.depth(), renderer.pixels(), &depth_pixels, header, &depth);
+    toImageMessage(renderer.mask(), header, &full);
+    EXPECT_EQ(mask.data, full.data) << "frame " << frame;
+    toImageMessage(renderer.depth(), header, &full);
+    // Bytewise, so NaN equals NaN.
+    EXPECT_EQ(depth.data, full.data) << "frame " << frame;
+    EXPECT_EQ(depth.encoding, "32FC1");
+    EXPECT_EQ(depth.header.seq, static_cast<std::uint32_t>(frame));
+  }
 }
 
 }  // namespace

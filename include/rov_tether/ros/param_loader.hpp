@@ -54,7 +54,7 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
 std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options);
 
 /// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
-/// The key `tethers` and the maps it names (one tether each, see tether_node) are known.
+/// The keys `tethers` and `cameras` and the maps `tethers` names (one tether each, see tether_node) are known.
 std::string unknownParameters(const XmlRpc::XmlRpcValue& dict);
 
 }  // namespace rov_tether::ros_layer

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rov_tether/ros/scheduler.hpp"
+#include "rov_tether/ros/tether_camera.hpp"
 #include "rov_tether/ros/tether_node.hpp"
 #include "rov_tether/world.hpp"
 
@@ -19,7 +20,8 @@ namespace rov_tether::ros_layer
  * `tethers: [a, b, ...]`, each configured under ~a/, ~b/, ... on top of the parameters they share in ~).
  * It owns the one tf buffer and listener every tether's pose input reads, the Scheduler and the one
  * timer that steps the world at physics_rate on ROS time; each tether keeps its own topics, services,
- * parameters, diagnostics and dynamic_reconfigure server (TetherNode).
+ * parameters, diagnostics and dynamic_reconfigure server (TetherNode). With a private list `cameras`,
+ * its CameraSet draws every tether in each camera after every tick.
  */
 class WorldNode
 {
@@ -40,6 +42,7 @@ class WorldNode
   World world_;
   std::unique_ptr<Scheduler> scheduler_;
   std::vector<std::unique_ptr<TetherNode>> tethers_;
+  std::unique_ptr<CameraSet> cameras_;  ///< The private list `cameras`; none without it.
   ros::Timer timer_;
 };
 

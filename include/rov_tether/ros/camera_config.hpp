@@ -1,0 +1,47 @@
+#pragma once
+// tether_node's `cameras` parameter and CameraInfo, converted to the camera library's types.
+
+#include <XmlRpcValue.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "rov_tether/camera/camera_intrinsics.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/// One entry of the private list parameter `cameras`.
+struct CameraConfig
+{
+  std::string name;                     ///< Outputs under ~<name>/.
+  std::string frame;                    ///< tf optical frame (z forward, x right, y down).
+  std::string info_topic;               ///< sensor_msgs/CameraInfo; "" uses the fixed intrinsics below.
+  camera::CameraIntrinsics intrinsics;  ///< Fixed width, height, K, D (without info_topic).
+  std::string image_topic;              ///< Render at each image's stamp and draw the overlay; "" renders at `rate`.
+  double rate = 10.0;                   ///< Frames per second without image_topic [Hz].
+};
+
+/// Reads the `cameras` list (names, frames, topics, intrinsics, rate). Returns "" or every problem, each
+/// naming the entry and field. `reserved` names may not be used (the tethers' own namespaces).
+std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector<std::string>& reserved,
+                              std::vector<CameraConfig>* cameras);
+
+/// Intrinsics from a CameraInfo: "" or why it cannot be used (distortion model other than plumb_bob,
+/// binning or a region of interest, invalid K).
+std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics);
+
+/// Copies `image` (CV_8UC1 as mono8, CV_32FC1 as 32FC1) into `msg`, reusing its storage.
+void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor_msgs::Image* msg);
+
+/// Brings `msg`, which held `image`'s previous content, up to date by copying only the pixels (indices
+/// v * width + u) in `previous` and `current`, where it can have changed; `previous` becomes `current`.
+/// A full copy when `msg` does not have the image's size and encoding yet. (A renderer's image changes
+/// only at its last and its new tether pixels: this saves copying megabytes per frame.)
+void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, std::vector<int>* previous,
+                        const std_msgs::Header& header, sensor_msgs::Image* msg);
+
+}  // namespace rov_tether::ros_layer

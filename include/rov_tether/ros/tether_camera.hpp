@@ -1,0 +1,99 @@
+#pragma once
+
+#include <image_transport/image_transport.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <tf2_ros/buffer.h>
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rov_tether/TetherCoverage.h"
+#include "rov_tether/camera/camera_scene.hpp"
+#include "rov_tether/camera/tether_renderer.hpp"
+#include "rov_tether/ros/camera_config.hpp"
+
+namespace rov_tether::ros_layer
+{
+
+/**
+ * One camera of tether_node: ~<name>/mask (mono8), ~<name>/depth (32FC1 [m]), ~<name>/overlay (the
+ * incoming image with the tether drawn, with image_topic) through image_transport, and ~<name>/coverage
+ * (TetherCoverage), each stamped with the image's stamp (or, at `rate`, a time of its grid) in the
+ * camera's frame. The tether is drawn as it was at the stamp (CameraScene's shapes, interpolated) and
+ * the camera where tf puts its frame at the stamp. Frames wait until the physics has passed their stamp
+ * (it runs interpolation_delay behind ROS time). Nothing is subscribed or computed while nobody
+ * subscribes to an output. Every frame that cannot be drawn is counted and warned about (throttled).
+ */
+class TetherCamera
+{
+ public:
+  /// Advertises under private_nh/<name>/; topics are resolved in `nh`. `tf` must outlive this.
+  TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh, const tf2_ros::Buffer& tf,
+               const std::string& world_frame);
+
+  /// Someone subscribes to one of its outputs.
+  bool active() const;
+  /// Draws and publishes every frame whose stamp the scene's shapes now cover.
+  void process(camera::CameraScene& scene);
+  /// Frames that could not be drawn (no intrinsics, no tf, stamp outside the shapes, queue full, size).
+  std::uint64_t dropped() const { return dropped_; }
+  const std::string& name() const { return config_.name; }
+
+  /// At most this many images wait for the physics to reach their stamp.
+  static constexpr std::size_t kMaxQueued = 30;
+
+ private:
+  void onConnection();
+  void onInfo(const sensor_msgs::CameraInfoConstPtr& info);
+  void onImage(const sensor_msgs::ImageConstPtr& image);
+  /// Renders at `stamp` and publishes; `image` (may be null) gets the overlay. False when it cannot.
+  bool renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image);
+  void drop(const std::string& why);
+
+  CameraConfig config_;
+  ros::NodeHandle nh_;
+  const tf2_ros::Buffer& tf_;
+  std::string world_frame_;
+  image_transport::ImageTransport transport_;
+  image_transport::Publisher mask_pub_, depth_pub_, overlay_pub_;
+  ros::Publisher coverage_pub_;
+  ros::Subscriber info_sub_;
+  image_transport::Subscriber image_sub_;
+  bool subscribed_ = false;
+  std::unique_ptr<camera::CameraModel> model_;
+  std::string info_error_;  ///< Why the last CameraInfo was refused ("" when it was taken).
+  camera::TetherRenderer renderer_;
+  std::vector<camera::Tube> tubes_;
+  std::deque<sensor_msgs::ImageConstPtr> queue_;
+  double next_frame_ = -1.0;  ///< Rate mode: physics time of the next frame [s]; < 0: not set.
+  std::uint64_t dropped_ = 0;
+  sensor_msgs::Image mask_msg_, depth_msg_;
+  std::vector<int> mask_msg_pixels_, depth_msg_pixels_;  ///< The tether pixels each message holds.
+  TetherCoverage coverage_msg_;
+};
+
+/**
+ * tether_node's cameras (the private list `cameras`): the CameraScene of the process's World and one
+ * TetherCamera each. After every physics tick it records the tethers' shapes, while any camera has a
+ * subscriber, and lets each camera draw what is due.
+ */
+class CameraSet
+{
+ public:
+  /// Throws std::runtime_error naming a bad entry of `cameras`. `world` and `tf` must outlive this.
+  CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+            const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame);
+  void afterTick();
+  std::size_t size() const { return cameras_.size(); }
+
+ private:
+  camera::CameraScene scene_;
+  std::vector<std::unique_ptr<TetherCamera>> cameras_;
+};
+
+}  // namespace rov_tether::ros_layer

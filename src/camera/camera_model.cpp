@@ -1,0 +1,125 @@
+#include "rov_tether/camera/camera_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace rov_tether::camera
+{
+namespace
+{
+
+std::string joined(const std::vector<std::string>& errors)
+{
+  std::string text;
+  for (const auto& e : errors)
+  {
+    text += (text.empty() ? "" : "; ") + e;
+  }
+  return text;
+}
+
+}  // namespace
+
+CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics), d_(intrinsics.plumbBob())
+{
+  const auto errors = intrinsics_.validate();
+  if (!errors.empty())
+  {
+    throw std::invalid_argument(joined(errors));
+  }
+  max_focal_ = std::max(intrinsics_.fx(), intrinsics_.fy()) + std::abs(intrinsics_.skew());
+  computeRays();
+}
+
+Eigen::Vector2d CameraModel::toPixel(double x, double y) const
+{
+  const double r2 = x * x + y * y;
+  const double radial = 1.0 + r2 * (d_[0] + r2 * (d_[1] + r2 * d_[4]));
+  const double xd = x * radial + 2.0 * d_[2] * x * y + d_[3] * (r2 + 2.0 * x * x);
+  const double yd = y * radial + d_[2] * (r2 + 2.0 * y * y) + 2.0 * d_[3] * x * y;
+  const auto& K = intrinsics_.K;
+  return {K[0] * xd + K[1] * yd + K[2], K[4] * yd + K[5]};
+}
+
+void CameraModel::computeRays()
+{
+  const int w = width();
+  const int h = height();
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  rays_.resize(2 * n);
+  const auto& K = intrinsics_.K;
+  if (!intrinsics_.distorted())
+  {
+    for (int v = 0; v < h; ++v)
+    {
+      const double y = (v - K[5]) / K[4];
+      for (int u = 0; u < w; ++u)
+      {
+        float* r = &rays_[2 * (static_cast<std::size_t>(v) * w + u)];
+        r[0] = static_cast<float>((u - K[2] - K[1] * y) / K[0]);
+        r[1] = static_cast<float>(y);
+      }
+    }
+  }
+  else
+  {
+    // OpenCV inverts the distortion iteratively; enough iterations to converge to 1e-12 over the image.
+    std::vector<cv::Point2d> pixels(n);
+    for (int v = 0; v < h; ++v)
+    {
+      for (int u = 0; u < w; ++u)
+      {
+        pixels[static_cast<std::size_t>(v) * w + u] = cv::Point2d(u, v);
+      }
+    }
+    std::vector<cv::Point2d> normalised;
+    const cv::Mat k_mat(3, 3, CV_64F, const_cast<double*>(K.data()));
+    const cv::Mat d_mat(1, 5, CV_64F, d_.data());
+    cv::undistortPoints(pixels, normalised, k_mat, d_mat, cv::noArray(), cv::noArray(),
+                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      rays_[2 * i] = static_cast<float>(normalised[i].x);
+      rays_[2 * i + 1] = static_cast<float>(normalised[i].y);
+      const Eigen::Vector2d back = toPixel(normalised[i].x, normalised[i].y);
+      worst = std::max(worst, std::hypot(back.x() - pixels[i].x, back.y() - pixels[i].y));
+    }
+    if (!(worst < 0.01))
+    {
+      throw std::invalid_argument("D: the distortion cannot be inverted over the image (a pixel's ray maps back " +
+                                  std::to_string(worst) + " px away): the radial distortion folds over");
+    }
+  }
+  bounds_ = {rays_[0], rays_[0], rays_[1], rays_[1]};
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    bounds_.x_min = std::min<double>(bounds_.x_min, rays_[2 * i]);
+    bounds_.x_max = std::max<double>(bounds_.x_max, rays_[2 * i]);
+    bounds_.y_min = std::min<double>(bounds_.y_min, rays_[2 * i + 1]);
+    bounds_.y_max = std::max<double>(bounds_.y_max, rays_[2 * i + 1]);
+  }
+  if (intrinsics_.distorted())
+  {
+    // The renderer maps rectangles within these bounds to pixels through toPixel: the radial factor
+    // r (1 + k1 r^2 + k2 r^4 + k3 r^6) must grow monotonically out to the bounds' farthest corner.
+    const double r_max = std::sqrt(std::max(bounds_.x_min * bounds_.x_min, bounds_.x_max * bounds_.x_max) +
+                                   std::max(bounds_.y_min * bounds_.y_min, bounds_.y_max * bounds_.y_max));
+    for (int i = 0; i <= 1000; ++i)
+    {
+      const double r2 = std::pow(r_max * i / 1000.0, 2);
+      const double slope = 1.0 + r2 * (3.0 * d_[0] + r2 * (5.0 * d_[1] + r2 * 7.0 * d_[4]));
+      if (!(slope > 0.0))
+      {
+        throw std::invalid_argument("D: the radial distortion folds over at a normalised radius of " +
+                                    std::to_string(std::sqrt(r2)) + ", within the image's rays (up to " +
+                                    std::to_string(r_max) + ")");
+      }
+    }
+  }
+}
+
+}  // namespace rov_tether::camera

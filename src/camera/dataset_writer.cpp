@@ -1,0 +1,200 @@
+#include "rov_tether/camera/dataset_writer.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+
+namespace rov_tether::camera
+{
+namespace
+{
+
+constexpr double kHeadingStep = 0.01;  ///< [s]
+
+double wrap(double angle) { return std::atan2(std::sin(angle), std::cos(angle)); }
+
+}  // namespace
+
+VehicleHeading::VehicleHeading(const Scenario& scenario) : scenario_(scenario)
+{
+  for (const Waypoint& w : scenario_.vehicle)
+  {
+    if (travelHeading(w.time, &yaw_))
+    {
+      break;
+    }
+  }
+}
+
+bool VehicleHeading::travelHeading(double t, double* heading) const
+{
+  const auto& path = scenario_.vehicle;
+  for (std::size_t k = 0; k + 1 < path.size(); ++k)
+  {
+    if (path[k].time <= t && t < path[k + 1].time)
+    {
+      const Position d = path[k + 1].position - path[k].position;
+      if (std::hypot(d.x(), d.y()) / (path[k + 1].time - path[k].time) <= 1e-6)
+      {
+        return false;
+      }
+      *heading = std::atan2(d.y(), d.x());
+      return true;
+    }
+  }
+  return false;
+}
+
+double VehicleHeading::yawAt(double t)
+{
+  const double limit = kMaxYawRate * M_PI / 180.0 * kHeadingStep;
+  while (time_ + kHeadingStep <= t + 1e-9)
+  {
+    double heading = 0.0;
+    if (travelHeading(time_, &heading))
+    {
+      yaw_ = wrap(yaw_ + std::clamp(wrap(heading - yaw_), -limit, limit));
+    }
+    time_ += kHeadingStep;
+  }
+  return yaw_;
+}
+
+Eigen::Isometry3d cameraPose(const ScenarioCamera& camera, const Position& vehicle, double yaw)
+{
+  constexpr double kDeg = M_PI / 180.0;
+  Eigen::Isometry3d world_from_vehicle = Eigen::Isometry3d::Identity();
+  world_from_vehicle.translation() = vehicle;
+  world_from_vehicle.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Eigen::Isometry3d vehicle_from_camera = Eigen::Isometry3d::Identity();
+  vehicle_from_camera.translation() = camera.position;
+  vehicle_from_camera.linear() = (Eigen::AngleAxisd(camera.orientation.z() * kDeg, Eigen::Vector3d::UnitZ()) *
+                                  Eigen::AngleAxisd(camera.orientation.y() * kDeg, Eigen::Vector3d::UnitY()) *
+                                  Eigen::AngleAxisd(camera.orientation.x() * kDeg, Eigen::Vector3d::UnitX()))
+                                     .toRotationMatrix();
+  // The optical frame in the camera's body frame: optical z = body x (the view), x = -body y, y = -body z.
+  Eigen::Isometry3d body_from_optical = Eigen::Isometry3d::Identity();
+  body_from_optical.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return world_from_vehicle * vehicle_from_camera * body_from_optical;
+}
+
+DatasetWriter::DatasetWriter(const Scenario& scenario, const std::string& out_dir)
+    : scenario_(scenario), out_dir_(out_dir), heading_(scenario)
+{
+  for (const ScenarioCamera& spec : scenario_.cameras)
+  {
+    const auto frames = static_cast<std::size_t>(std::floor(scenario_.duration * spec.rate + 1e-9)) + 1;
+    cameras_.push_back(Camera{&spec, CameraModel(spec.intrinsics), "", nullptr, 0, frames});
+    summary_.push_back(CameraSummary{spec.name});
+  }
+  if (std::isfinite(scenario_.params.seabed_z))
+  {
+    seabed_ = std::make_unique<SeabedOccluder>(scenario_.params.seabed_z);
+    occluders_.push_back(seabed_.get());
+  }
+}
+
+DatasetWriter::~DatasetWriter() { close(); }
+
+std::string DatasetWriter::open()
+{
+  namespace fs = std::filesystem;
+  for (Camera& camera : cameras_)
+  {
+    const fs::path dir = fs::path(out_dir_) / "cameras" / camera.spec->name;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    camera.dir = dir.string();
+    camera.index = ec ? nullptr : std::fopen((dir / "index.csv").c_str(), "w");
+    if (camera.index == nullptr)
+    {
+      return "cannot write in '" + camera.dir + "'";
+    }
+    std::fprintf(camera.index, "frame,t,coverage\n");
+  }
+  return "";
+}
+
+std::string DatasetWriter::close()
+{
+  std::string error;
+  for (Camera& camera : cameras_)
+  {
+    if (camera.index != nullptr)
+    {
+      const bool ok = std::ferror(camera.index) == 0;
+      if (std::fclose(camera.index) != 0 || !ok)
+      {
+        error = "error while writing '" + camera.dir + "/index.csv'";
+      }
+      camera.index = nullptr;
+    }
+  }
+  return error;
+}
+
+double DatasetWriter::nextTime() const
+{
+  double next = std::numeric_limits<double>::infinity();
+  for (const Camera& camera : cameras_)
+  {
+    if (camera.index != nullptr && camera.next_frame < camera.frames)
+    {
+      next = std::min(next, static_cast<double>(camera.next_frame) / camera.spec->rate);
+    }
+  }
+  return next;
+}
+
+std::string DatasetWriter::observe(const Tether& sim)
+{
+  const double yaw = heading_.yawAt(sim.time());
+  sim.copyPositions(shape_);
+  tubes_.assign(1, Tube{&shape_, 0.5 * sim.params().diameter});
+  for (std::size_t i = 0; i < cameras_.size(); ++i)
+  {
+    Camera& camera = cameras_[i];
+    const double due = static_cast<double>(camera.next_frame) / camera.spec->rate;
+    if (camera.index != nullptr && camera.next_frame < camera.frames && due <= sim.time() + sim.params().time_step)
+    {
+      const std::string error = writeFrame(camera, summary_[i], sim, yaw);
+      if (!error.empty())
+      {
+        return error;
+      }
+    }
+  }
+  return "";
+}
+
+std::string DatasetWriter::writeFrame(Camera& camera, CameraSummary& summary, const Tether& sim, double yaw)
+{
+  const Eigen::Isometry3d pose = cameraPose(*camera.spec, scenario_.vehicleAt(sim.time()), yaw);
+  const RenderStats stats = renderer_.render(camera.model, pose, tubes_, occluders_);
+  depth_mm_.create(camera.model.height(), camera.model.width(), CV_16UC1);
+  depth_mm_.setTo(0);
+  auto* mm = depth_mm_.ptr<std::uint16_t>();
+  const auto* depth = renderer_.depth().ptr<float>();
+  for (int p : renderer_.pixels())
+  {
+    const double value = std::round(1000.0 * depth[p]);
+    mm[p] = value <= 65535.0 ? static_cast<std::uint16_t>(value) : 0;
+  }
+  char name[32];
+  std::snprintf(name, sizeof(name), "%06zu.png", camera.next_frame);
+  const std::string mask_path = camera.dir + "/mask_" + name;
+  const std::string depth_path = camera.dir + "/depth_" + name;
+  if (!cv::imwrite(mask_path, renderer_.mask()) || !cv::imwrite(depth_path, depth_mm_))
+  {
+    return "cannot write '" + mask_path + "' or '" + depth_path + "'";
+  }
+  std::fprintf(camera.index, "%zu,%.6f,%.6g\n", camera.next_frame, sim.time(), stats.coverage);
+  ++camera.next_frame;
+  summary.mean_coverage += (stats.coverage - summary.mean_coverage) / static_cast<double>(++summary.frames);
+  summary.max_coverage = std::max(summary.max_coverage, stats.coverage);
+  summary.frames_with_tether += stats.pixels > 0;
+  return "";
+}
+
+}  // namespace rov_tether::camera

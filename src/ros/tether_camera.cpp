@@ -1,0 +1,255 @@
+#include "rov_tether/ros/tether_camera.hpp"
+
+#include <cv_bridge/cv_bridge.h>
+#include <sensor_msgs/image_encodings.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rov_tether::ros_layer
+{
+
+TetherCamera::TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+                           const tf2_ros::Buffer& tf, const std::string& world_frame)
+    : config_(config), nh_(nh), tf_(tf), world_frame_(world_frame), transport_(private_nh)
+{
+  if (config_.info_topic.empty())
+  {
+    model_ = std::make_unique<camera::CameraModel>(config_.intrinsics);  // throws naming D when it folds
+  }
+  const auto connect = [this](const image_transport::SingleSubscriberPublisher&) { onConnection(); };
+  const std::string base = config_.name + "/";
+  mask_pub_ = transport_.advertise(base + "mask", 2, connect, connect);
+  depth_pub_ = transport_.advertise(base + "depth", 2, connect, connect);
+  if (!config_.image_topic.empty())
+  {
+    overlay_pub_ = transport_.advertise(base + "overlay", 2, connect, connect);
+  }
+  const auto connect_coverage = [this](const ros::SingleSubscriberPublisher&) { onConnection(); };
+  coverage_pub_ = private_nh.advertise<TetherCoverage>(base + "coverage", 10, connect_coverage, connect_coverage);
+  ROS_INFO("tether_node: camera %s in frame %s, %s, %s", config_.name.c_str(), config_.frame.c_str(),
+           config_.info_topic.empty()
+               ? (std::to_string(config_.intrinsics.width) + "x" + std::to_string(config_.intrinsics.height)).c_str()
+               : ("intrinsics from " + nh_.resolveName(config_.info_topic)).c_str(),
+           config_.image_topic.empty() ? ("at " + std::to_string(config_.rate) + " Hz").c_str()
+                                       : ("at the stamps of " + nh_.resolveName(config_.image_topic)).c_str());
+}
+
+bool TetherCamera::active() const
+{
+  return mask_pub_.getNumSubscribers() > 0 || depth_pub_.getNumSubscribers() > 0 ||
+         (overlay_pub_ && overlay_pub_.getNumSubscribers() > 0) || coverage_pub_.getNumSubscribers() > 0;
+}
+
+void TetherCamera::onConnection()
+{
+  const bool active_now = active();
+  if (active_now && !subscribed_)
+  {
+    if (!config_.info_topic.empty())
+    {
+      info_sub_ = nh_.subscribe(config_.info_topic, 2, &TetherCamera::onInfo, this);
+    }
+    if (!config_.image_topic.empty())
+    {
+      image_transport::ImageTransport it(nh_);
+      image_sub_ = it.subscribe(config_.image_topic, 5, &TetherCamera::onImage, this);
+    }
+    next_frame_ = -1.0;
+  }
+  else if (!active_now && subscribed_)
+  {
+    info_sub_.shutdown();
+    image_sub_.shutdown();
+    queue_.clear();
+  }
+  subscribed_ = active_now;
+}
+
+void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
+{
+  camera::CameraIntrinsics intrinsics;
+  std::string error = intrinsicsFromCameraInfo(*info, &intrinsics);
+  if (error.empty() && (!model_ || model_->intrinsics() != intrinsics))
+  {
+    try
+    {
+      model_ = std::make_unique<camera::CameraModel>(intrinsics);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      error = e.what();
+    }
+  }
+  if (!error.empty())
+  {
+    model_.reset();
+    ROS_WARN_THROTTLE(5.0, "tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(),
+                      info_sub_.getTopic().c_str(), error.c_str());
+  }
+  info_error_ = error;
+}
+
+void TetherCamera::onImage(const sensor_msgs::ImageConstPtr& image)
+{
+  if (queue_.size() >= kMaxQueued)
+  {
+    queue_.pop_front();
+    drop("more than 30 images wait for the physics (is the clock or the physics stalled?)");
+  }
+  queue_.push_back(image);
+}
+
+void TetherCamera::drop(const std::string& why)
+{
+  ++dropped_;
+  ROS_WARN_THROTTLE(5.0, "tether_node: camera %s: frame not drawn (%llu so far): %s", config_.name.c_str(),
+                    static_cast<unsigned long long>(dropped_), why.c_str());
+}
+
+void TetherCamera::process(camera::CameraScene& scene)
+{
+  if (!subscribed_ || scene.empty())
+  {
+    return;
+  }
+  if (config_.image_topic.empty())
+  {
+    // Frames on a grid of physics time: k / rate.
+    if (next_frame_ < 0.0 || next_frame_ < scene.oldest())
+    {
+      next_frame_ = std::ceil(scene.newest() * config_.rate - 1e-9) / config_.rate;
+    }
+    while (next_frame_ <= scene.newest() + 1e-9)
+    {
+      renderAt(ros::Time(next_frame_), scene, nullptr);
+      next_frame_ = std::round(next_frame_ * config_.rate + 1.0) / config_.rate;
+    }
+    return;
+  }
+  while (!queue_.empty() && queue_.front()->header.stamp.toSec() <= scene.newest() + 1e-9)
+  {
+    const sensor_msgs::ImageConstPtr image = queue_.front();
+    queue_.pop_front();
+    renderAt(image->header.stamp, scene, image);
+  }
+}
+
+bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image)
+{
+  if (!model_)
+  {
+    drop(info_error_.empty() ? "no CameraInfo yet on " + nh_.resolveName(config_.info_topic)
+                             : "the last CameraInfo was refused: " + info_error_);
+    return false;
+  }
+  if (image &&
+      (static_cast<int>(image->width) != model_->width() || static_cast<int>(image->height) != model_->height()))
+  {
+    drop("image " + std::to_string(image->width) + "x" + std::to_string(image->height) + " but intrinsics for " +
+         std::to_string(model_->width()) + "x" + std::to_string(model_->height()));
+    return false;
+  }
+  if (!scene.tubesAt(stamp.toSec(), tubes_))
+  {
+    drop("stamp " + std::to_string(stamp.toSec()) + " s is older than the tether shapes kept (from " +
+         std::to_string(scene.oldest()) + " s)");
+    return false;
+  }
+  Eigen::Isometry3d pose;
+  try
+  {
+    pose = tf2::transformToEigen(tf_.lookupTransform(world_frame_, config_.frame, stamp));
+  }
+  catch (const tf2::TransformException& e)
+  {
+    drop(std::string("no transform ") + world_frame_ + " -> " + config_.frame + ": " + e.what());
+    return false;
+  }
+  const camera::RenderStats stats = renderer_.render(*model_, pose, tubes_, scene.occluders());
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = config_.frame;
+  if (mask_pub_.getNumSubscribers() > 0)
+  {
+    updateImageMessage(renderer_.mask(), renderer_.pixels(), &mask_msg_pixels_, header, &mask_msg_);
+    mask_pub_.publish(mask_msg_);
+  }
+  if (depth_pub_.getNumSubscribers() > 0)
+  {
+    updateImageMessage(renderer_.depth(), renderer_.pixels(), &depth_msg_pixels_, header, &depth_msg_);
+    depth_pub_.publish(depth_msg_);
+  }
+  if (coverage_pub_.getNumSubscribers() > 0)
+  {
+    coverage_msg_.header = header;
+    coverage_msg_.coverage = static_cast<float>(stats.coverage);
+    coverage_msg_.pixels = static_cast<std::uint32_t>(stats.pixels);
+    coverage_msg_.nearest_depth = static_cast<float>(stats.nearest_depth);
+    coverage_pub_.publish(coverage_msg_);
+  }
+  if (image && overlay_pub_.getNumSubscribers() > 0)
+  {
+    try
+    {
+      cv_bridge::CvImagePtr overlay = cv_bridge::toCvCopy(image, sensor_msgs::image_encodings::BGR8);
+      camera::drawOverlay(overlay->image, renderer_.pixels());
+      overlay_pub_.publish(overlay->toImageMsg());
+    }
+    catch (const cv_bridge::Exception& e)
+    {
+      drop("overlay: cannot convert the image's encoding '" + image->encoding + "' to bgr8: " + e.what());
+    }
+  }
+  return true;
+}
+
+CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+                     const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame)
+    : scene_(world)
+{
+  std::vector<std::string> reserved;
+  for (std::size_t i = 0; i < world.size(); ++i)
+  {
+    reserved.push_back(world.name(i));
+  }
+  std::vector<CameraConfig> configs;
+  const std::string error = loadCameraConfigs(cameras, reserved, &configs);
+  if (!error.empty())
+  {
+    throw std::runtime_error("parameter " + error);
+  }
+  for (const auto& config : configs)
+  {
+    try
+    {
+      cameras_.push_back(std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame));
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw std::runtime_error("parameter cameras: camera '" + config.name + "': " + e.what());
+    }
+  }
+}
+
+void CameraSet::afterTick()
+{
+  bool any = false;
+  for (const auto& camera : cameras_)
+  {
+    any = any || camera->active();
+  }
+  if (!any)
+  {
+    scene_.clear();
+    return;
+  }
+  scene_.record();
+  for (const auto& camera : cameras_)
+  {
+    camera->process(scene_);
+  }
+}
+
+}  // namespace rov_tether::ros_layer

@@ -1,0 +1,236 @@
+// rostest (test/ros/camera.test): a CameraInfo and a tf frame in, masks, depth, overlay and coverage out
+// at the image stamps (or on the rate grid), and nothing subscribed while nobody watches.
+#include <geometry_msgs/PoseStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include <cmath>
+#include <functional>
+#include <set>
+
+#include "rov_tether/TetherCoverage.h"
+
+namespace
+{
+
+// The vehicle holds 2.5 m out along x from the spool at the origin (default.yaml's 2 m cable pays out to
+// reach it: taut and straight). The camera is 2 m to the side (y = -2), level with it, looking along +y
+// at its middle: optical z = world y, x = world x, y = down. 320 x 240 with f = 200 px: the tether's
+// 2.5 m span is the columns 160 +- 125 and it is f d / Z = 2 px wide at a depth of 2 m.
+constexpr int kWidth = 320, kHeight = 240;
+
+bool waitFor(const std::function<bool()>& done, double seconds, const std::function<void()>& each = {})
+{
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::ok() && ros::WallTime::now() < end)
+  {
+    if (each)
+    {
+      each();
+    }
+    ros::spinOnce();
+    if (done())
+    {
+      return true;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  return done();
+}
+
+class CameraNode : public testing::Test
+{
+ protected:
+  void SetUp() override
+  {
+    pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("rov_pose", 10);
+    info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("cam/camera_info", 10);
+    image_pub_ = nh_.advertise<sensor_msgs::Image>("cam/image_raw", 10);
+    geometry_msgs::TransformStamped camera;
+    camera.header.stamp = ros::Time::now();
+    camera.header.frame_id = "world";
+    camera.child_frame_id = "cam_optical";
+    camera.transform.translation.x = 1.25;
+    camera.transform.translation.y = -2.0;
+    camera.transform.rotation.x = -std::sqrt(0.5);  // -90 degrees about x: optical z = world y
+    camera.transform.rotation.w = std::sqrt(0.5);
+    static_tf_.sendTransform(camera);
+  }
+
+  /// Publishes the vehicle pose, and with `images` a CameraInfo and an image stamped now; returns the stamp.
+  ros::Time publish(bool images)
+  {
+    const ros::Time now = ros::Time::now();
+    geometry_msgs::PoseStamped pose;
+    pose.header.stamp = now;
+    pose.header.frame_id = "world";
+    pose.pose.position.x = 2.5;
+    pose.pose.orientation.w = 1.0;
+    pose_pub_.publish(pose);
+    if (images)
+    {
+      sensor_msgs::CameraInfo info;
+      info.header.stamp = now;
+      info.header.frame_id = "cam_optical";
+      info.width = kWidth;
+      info.height = kHeight;
+      info.distortion_model = "plumb_bob";
+      info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
+      info.K = {200, 0, 159.5, 0, 200, 119.5, 0, 0, 1};
+      info_pub_.publish(info);
+      sensor_msgs::Image image;
+      image.header = info.header;
+      image.width = kWidth;
+      image.height = kHeight;
+      image.encoding = "bgr8";
+      image.step = 3 * kWidth;
+      image.data.assign(image.step * kHeight, 40);
+      image_pub_.publish(image);
+    }
+    return now;
+  }
+
+  ros::NodeHandle nh_;
+  ros::Publisher pose_pub_, info_pub_, image_pub_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  int stamps_seen_ = 0;
+};
+
+TEST_F(CameraNode, NothingIsSubscribedWhileNobodyWatches)
+{
+  // With no subscriber to any output, the node subscribes to neither the images nor the CameraInfo.
+  EXPECT_FALSE(waitFor([&] { return image_pub_.getNumSubscribers() > 0 || info_pub_.getNumSubscribers() > 0; }, 2.0,
+                       [&] { publish(false); }));
+  {
+    ros::Subscriber coverage = nh_.subscribe<rov_tether::TetherCoverage>(
+        "/tether_node/front/coverage", 10, [&](const rov_tether::TetherCoverage::ConstPtr&) { ++stamps_seen_; });
+    EXPECT_TRUE(
+        waitFor([&] { return image_pub_.getNumSubscribers() == 1 && info_pub_.getNumSubscribers() == 1; }, 10.0));
+  }
+  EXPECT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0 && info_pub_.getNumSubscribers() == 0; }, 10.0));
+}
+
+TEST_F(CameraNode, MasksDepthOverlayAndCoverageComeOutAtTheImageStamps)
+{
+  std::vector<sensor_msgs::Image> masks, depths, overlays;
+  std::vector<rov_tether::TetherCoverage> coverages;
+  auto keep = [](std::vector<sensor_msgs::Image>* into)
+  { return [into](const sensor_msgs::Image::ConstPtr& msg) { into->push_back(*msg); }; };
+  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 50, keep(&masks));
+  ros::Subscriber depth_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/depth", 50, keep(&depths));
+  ros::Subscriber overlay_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/overlay", 50, keep(&overlays));
+  ros::Subscriber coverage_sub = nh_.subscribe<rov_tether::TetherCoverage>(
+      "/tether_node/front/coverage", 50,
+      [&](const rov_tether::TetherCoverage::ConstPtr& msg) { coverages.push_back(*msg); });
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 1; }, 10.0));
+  // 3 s of images at about 15 Hz; the first second lets the cable settle taut.
+  std::set<double> stamps;
+  ros::WallTime next = ros::WallTime::now();
+  waitFor([&] { return ros::WallTime::now() > next + ros::WallDuration(3.0) && false; }, 3.0,
+          [&]
+          {
+            if (ros::WallTime::now() >= next)
+            {
+              stamps.insert(publish(true).toSec());
+              next += ros::WallDuration(1.0 / 15.0);
+            }
+          });
+  // The last images wait for the physics (interpolation_delay behind): keep the vehicle there meanwhile.
+  waitFor([&] { return masks.size() >= stamps.size() - 1 && coverages.size() >= stamps.size() - 1; }, 5.0,
+          [&] { publish(false); });
+  ASSERT_GE(stamps.size(), 35u);
+  ASSERT_GE(masks.size(), stamps.size() - 3);  // the first may come before the node had a CameraInfo
+  EXPECT_EQ(depths.size(), masks.size());
+  EXPECT_EQ(overlays.size(), masks.size());
+  EXPECT_EQ(coverages.size(), masks.size());
+  double last = 0.0;
+  for (std::size_t k = 0; k < masks.size(); ++k)
+  {
+    const double t = masks[k].header.stamp.toSec();
+    EXPECT_EQ(stamps.count(t), 1u) << "mask " << k << " stamped " << t << ", not an image's stamp";
+    EXPECT_GT(t, last);
+    last = t;
+    EXPECT_EQ(depths[k].header.stamp, masks[k].header.stamp);
+    EXPECT_EQ(overlays[k].header.stamp, masks[k].header.stamp);
+    EXPECT_EQ(coverages[k].header.stamp, masks[k].header.stamp);
+    EXPECT_EQ(masks[k].header.frame_id, "cam_optical");
+  }
+  // The last frame, the cable taut: where the geometry puts it.
+  const sensor_msgs::Image& mask = masks.back();
+  const sensor_msgs::Image& depth = depths.back();
+  ASSERT_EQ(mask.encoding, "mono8");
+  ASSERT_EQ(depth.encoding, "32FC1");
+  ASSERT_EQ(overlays.back().encoding, "bgr8");
+  ASSERT_EQ(static_cast<int>(mask.width), kWidth);
+  ASSERT_EQ(static_cast<int>(mask.height), kHeight);
+  int pixels = 0, u_min = kWidth, u_max = 0, v_min = kHeight, v_max = 0;
+  double depth_min = 1e9, depth_max = 0.0;
+  for (int v = 0; v < kHeight; ++v)
+  {
+    for (int u = 0; u < kWidth; ++u)
+    {
+      const std::size_t i = static_cast<std::size_t>(v) * kWidth + u;
+      float d;
+      std::memcpy(&d, &depth.data[4 * i], 4);
+      ASSERT_EQ(mask.data[i] == 255, std::isfinite(d)) << u << ", " << v;
+      const std::uint8_t* bgr = &overlays.back().data[3 * i];
+      // The overlay is the grey image (40) with the tether half way to yellow (0, 255, 255).
+      EXPECT_EQ(bgr[1], mask.data[i] == 255 ? 148 : 40);
+      if (mask.data[i] == 255)
+      {
+        ++pixels;
+        u_min = std::min(u_min, u), u_max = std::max(u_max, u), v_min = std::min(v_min, v), v_max = std::max(v_max, v);
+        depth_min = std::min<double>(depth_min, d), depth_max = std::max<double>(depth_max, d);
+      }
+    }
+  }
+  std::printf(
+      "[ measured ] %zu masks for %zu images; last: %d pixels in columns %d-%d, rows %d-%d, depth %.3f-%.3f m, "
+      "coverage %.5f\n",
+      masks.size(), stamps.size(), pixels, u_min, u_max, v_min, v_max, depth_min, depth_max, coverages.back().coverage);
+  // Columns 160 +- 125 (the spool end at u = 34.5, the vehicle end at 284.5), plus the tube's round end.
+  EXPECT_NEAR(u_min, 34.5, 3.0);
+  EXPECT_NEAR(u_max, 284.5, 3.0);
+  // Level with the camera: the rows 119.5 +- 1 px (f d / Z = 2 px), a few more for a taut cable's sag.
+  EXPECT_GE(v_min, 116);
+  EXPECT_LE(v_max, 123);
+  // The near surface at 2 m - r; the round ends and a small sag stay within 5 cm.
+  EXPECT_NEAR(depth_min, 1.99, 0.05);
+  EXPECT_LE(depth_max, 2.05);
+  EXPECT_NEAR(coverages.back().coverage, pixels / static_cast<double>(kWidth * kHeight), 1e-6);
+  EXPECT_EQ(coverages.back().pixels, static_cast<std::uint32_t>(pixels));
+}
+
+TEST_F(CameraNode, AFixedCameraRendersOnItsRateGrid)
+{
+  std::vector<sensor_msgs::Image> masks;
+  ros::Subscriber sub = nh_.subscribe<sensor_msgs::Image>(
+      "/tether_node/fixed/mask", 50, [&](const sensor_msgs::Image::ConstPtr& msg) { masks.push_back(*msg); });
+  waitFor([&] { return masks.size() >= 20; }, 10.0, [&] { publish(false); });
+  ASSERT_GE(masks.size(), 20u);
+  for (std::size_t k = 1; k < masks.size(); ++k)
+  {
+    const double t = masks[k].header.stamp.toSec();
+    EXPECT_NEAR(t * 10.0, std::round(t * 10.0), 1e-6) << "stamp " << t << " is not on the 10 Hz grid";
+    EXPECT_NEAR(t - masks[k - 1].header.stamp.toSec(), 0.1, 1e-6);
+  }
+  int pixels = 0;
+  for (auto value : masks.back().data)
+  {
+    pixels += value == 255;
+  }
+  EXPECT_GT(pixels, 300);  // 250 columns x about 2 rows
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "camera_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
