@@ -216,7 +216,8 @@ void DirectSolver::reserve(std::size_t n)
   for (auto* v : {&xt_,         &yt_,    &zt_,       &sx_,           &sy_,
                   &sz_,         &nx_,    &ny_,       &nz_,           &len_,
                   &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
-                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_})
+                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_,
+                  &primal_lambda_, &lambda_step_, &warm_lambda_})
   {
     v->assign(n, 0.0);
   }
@@ -251,6 +252,7 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   reserve(n);
   first_ = f;
   m_ = n - 1 - f;
+  std::copy(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), warm_lambda_.begin() + f);
   std::fill(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), 0.0);
   std::fill(lambda.bend.begin() + static_cast<std::ptrdiff_t>(std::min(f, lambda.bend.size())), lambda.bend.end(), 0.0);
   bending_ = settings.bending && settings.bending_stiffness > 0.0 && m_ >= 2;
@@ -310,13 +312,24 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
   if (primal)
   {
+    // The multipliers' first estimate: the dual's, when it ran, else the last step's (the tension changes
+    // little from step to step).
+    const double* start = dual_iterations_ > 0 ? lam : warm_lambda_.data() + f;
+    std::copy(start, start + m_, primal_lambda_.begin());
     residual_ = std::numeric_limits<double>::infinity();
     while (residual_ > tolerance && lastIterations() < settings.iterations)
     {
-      residual_ = primalStep(cable);
+      if (!std::isfinite(primalStep(cable)))
+      {
+        break;  // the system was not definite: leave the step as it is (reported through the residual)
+      }
       ++primal_iterations_;
+      residual_ = primalResidual(cable);
     }
-    multipliersFromPositions(cable, lam);
+    for (std::size_t k = 0; k < m_; ++k)
+    {
+      lam[k] = unilateral_ ? std::max(primal_lambda_[k], 0.0) : primal_lambda_[k];
+    }
   }
   if (drum_ != nullptr)
   {
