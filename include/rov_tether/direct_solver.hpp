@@ -74,6 +74,8 @@ class DirectSolver : public ConstraintSolver
   void reserve(std::size_t n);
   /// Segment geometry at the current positions: n_k, |d_k|, C_k.
   void geometry(const Cable& cable);
+  /// Starts from the last step's multipliers and, on the primal path, its correction of the positions.
+  void warmStart(Cable& cable, double* lambda, bool primal);
   // Dual path (direct_solver.cpp).
   double dualResidual(const Cable& cable, const double* lambda);
   /// Solves the tridiagonal system for the active set on_ into step(); false if it is not definite.
@@ -138,6 +140,8 @@ class DirectSolver : public ConstraintSolver
   /// multipliers eliminated from each linear solve); their change over a Newton step; the last step's
   /// multipliers, by particle index, the first estimate.
   std::vector<double> primal_lambda_, lambda_step_, warm_lambda_;
+  /// The last step's correction x - x~ of each particle, by particle index [m]: the primal path's first guess.
+  std::vector<double> correction_x_, correction_y_, correction_z_;
   std::vector<unsigned char> taut_;
 };
 

@@ -217,7 +217,7 @@ void DirectSolver::reserve(std::size_t n)
                   &sz_,         &nx_,    &ny_,       &nz_,           &len_,
                   &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
                   &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_,
-                  &primal_lambda_, &lambda_step_, &warm_lambda_})
+                  &primal_lambda_, &lambda_step_, &warm_lambda_, &correction_x_, &correction_y_, &correction_z_})
   {
     v->assign(n, 0.0);
   }
@@ -281,6 +281,7 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     drum_->prepare(alpha_[0]);
   }
   bool primal = bending_ || tension_ratio_ > kDualTensionRatio;
+  warmStart(cable, lam, primal);
   if (!primal)
   {
     residual_ = dualResidual(cable, lam);
@@ -312,10 +313,8 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
   if (primal)
   {
-    // The multipliers' first estimate: the dual's, when it ran, else the last step's (the tension changes
-    // little from step to step).
-    const double* start = dual_iterations_ > 0 ? lam : warm_lambda_.data() + f;
-    std::copy(start, start + m_, primal_lambda_.begin());
+    // The multipliers' first estimate: the dual's, or the warm start's.
+    std::copy(lam, lam + m_, primal_lambda_.begin());
     residual_ = std::numeric_limits<double>::infinity();
     while (residual_ > tolerance && lastIterations() < settings.iterations)
     {
@@ -339,11 +338,20 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     }
     drum_->payout = drum_->payoutAt(c_[0]);
   }
-  // What the next step starts from: the segments taut now, and how hard the chain is pulled.
+  // What the next step starts from: the correction this step made, the segments taut now, and how hard the
+  // chain is pulled.
+  for (std::size_t l = 0; l <= m_; ++l)
+  {
+    correction_x_[f + l] = cable.x[f + l] - xt_[l];
+    correction_y_[f + l] = cable.y[f + l] - yt_[l];
+    correction_z_[f + l] = cable.z[f + l] - zt_[l];
+  }
   std::fill(taut_.begin(), taut_.end(), 0);
   tension_ratio_ = 0.0;
   for (std::size_t k = 0; k < m_; ++k)
   {
+    // A slack cable segment carries nothing, exactly (its multiplier can end a rounding below 0).
+    lam[k] = unilateral_ ? std::max(lam[k], 0.0) : lam[k];
     taut_[f + k] = lam[k] > 0.0 ? 1 : 0;
     const double weight = cable.stretch_weight[f + k];
     if (weight > 0.0 && len_[k] > 0.0)
@@ -353,9 +361,57 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
 }
 
+void DirectSolver::warmStart(Cable& cable, double* lambda, bool primal)
+{
+  // A chain whose tension changes little from step to step (a hanging or towed tether) starts next to its
+  // solution, and Newton has little left to do: lambda = the last step's multipliers, and the positions
+  // x~ + W J^T lambda (dual path), or x~ plus the last step's correction x - x~ (primal path, where the
+  // tension ratio makes W J^T lambda, each pull larger than a segment, too sensitive to where J is taken).
+  const std::size_t f = first_;
+  const std::size_t m = m_;
+  const double* w = cable.inv_mass.data() + f;
+  if (primal)
+  {
+    std::copy(warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f),
+              warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f + m), lambda);
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      const double free = w[l] > 0.0 ? 1.0 : 0.0;
+      cable.x[f + l] += free * correction_x_[f + l];
+      cable.y[f + l] += free * correction_y_[f + l];
+      cable.z[f + l] += free * correction_z_[f + l];
+    }
+    geometry(cable);
+    return;
+  }
+  std::copy(warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f),
+            warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f + m), step());
+  step()[m] = 0.0;
+  if (cable.anisotropic)
+  {
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      extra_mobility_[l] = cable.inv_mass_along[f + l] - w[l];
+    }
+    applyDualAnisotropic(w, extra_mobility_.data(), cable.tx.data() + f, cable.ty.data() + f, cable.tz.data() + f,
+                         nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
+                         cable.z.data() + f, lambda, m);
+  }
+  else
+  {
+    applyDual(w, nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
+              cable.z.data() + f, lambda, m);
+  }
+  geometry(cable);
+}
+
 void DirectSolver::forget()
 {
   std::fill(taut_.begin(), taut_.end(), 0);
+  for (auto* v : {&correction_x_, &correction_y_, &correction_z_})
+  {
+    std::fill(v->begin(), v->end(), 0.0);
+  }
   tension_ratio_ = 0.0;
 }
 
