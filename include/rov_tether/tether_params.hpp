@@ -161,7 +161,8 @@ struct TetherParams
   TetherParams resolved() const;
 };
 
-/// True when the two parameter sets describe the same cable (a change needs no rebuild).
+/// True when the two parameter sets describe the same particle arrays (cable_length and segment_length):
+/// a change of anything else needs no rebuild.
 bool sameStructure(const TetherParams& a, const TetherParams& b);
 
 /// A parameter value from any source (YAML, parameter server, command line).
