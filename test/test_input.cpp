@@ -232,6 +232,39 @@ TEST(VehicleJump, FiveMetreJumpIsSurvived)
   }
 }
 
+// A jump is a move the vehicle could not have made: further than max_vehicle_speed x dt +
+// max_vehicle_jump from the sample dt before. 1 Hz fixes (USBL) of a vehicle at 1.5 m/s are 1.5 m apart
+// and were each taken as a jump (13 re-lays in 14 s) when the rule ignored the time between them.
+TEST(VehicleJump, AJumpIsAMoveTheVehicleCouldNotHaveMade)
+{
+  auto jumps = [](double rate, double speed, double max_vehicle_speed)
+  {
+    TetherParams params;
+    params.cable_length = 30.0;
+    params.max_winch_speed = 2.0;
+    params.max_vehicle_speed = max_vehicle_speed;
+    Tether sim(params, Position::Zero(), Position(2.0, 0.0, -1.0));
+    for (int k = 1; k <= static_cast<int>(std::round(14 * rate)); ++k)
+    {
+      const double t = k / rate;
+      EXPECT_TRUE(sim.addVehicleSample(t, Position(2.0, speed * t, -1.0)).ok);
+      sim.advanceTo(t);
+    }
+    return sim.jumpCount();
+  };
+  EXPECT_EQ(jumps(1.0, 1.5, 3.0), 0u);      // 1.5 m in 1 s: 1.5 < 3 x 1 + 1
+  EXPECT_EQ(jumps(1.0, 1.5, 0.0), 14u);     // the rule without time: every fix is a jump
+  EXPECT_EQ(jumps(10.0, 15.0, 3.0), 140u);  // 1.5 m per 0.1 s: more than 3 x 0.1 + 1 = 1.3 m, every sample
+  // At the bound: samples 0.5 s apart may be 3 x 0.5 + 1 = 2.5 m apart.
+  for (const double step : {2.5 - 1e-9, 2.5 + 1e-9})
+  {
+    Tether sim(TetherParams{}, Position::Zero(), Position(1.0, 0.0, 0.0));
+    ASSERT_TRUE(sim.addVehicleSample(0.5, Position(1.0, step, 0.0)).ok);
+    sim.advance(1.0);
+    EXPECT_EQ(sim.jumpCount(), step > 2.5 ? 1u : 0u) << step;
+  }
+}
+
 // Changing the internal step between steps keeps every particle's velocity (x - x_prev) / dt.
 TEST(LiveParameters, TimeStepChangeKeepsTheVelocities)
 {

@@ -56,8 +56,9 @@ class Tether
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
   /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle
   /// when the simulation reaches its time (the cable is laid out to it then).
-  /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
-  /// rest, from the spool to the new position when the simulation reaches t (see README).
+  /// A sample further from the previous one (dt earlier) than max_vehicle_speed * dt + max_vehicle_jump is a
+  /// jump: the cable is re-laid, at rest, from the spool to the new position when the simulation reaches t
+  /// (see README).
   /// At most 1024 samples may wait ahead of the simulation; more are refused until it advances.
   Status addVehicleSample(double t, const Position& vehicle);
   /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.

@@ -219,7 +219,7 @@ Status Tether::addVehicleSample(double t, const Position& vehicle)
         "vehicle sample rejected: time and position must be finite (time within +-1e10 s, "
         "position within +-1e6 m)");
   }
-  return track_.add(t, vehicle, params_.max_vehicle_jump, time_);
+  return track_.add(t, vehicle, params_.max_vehicle_jump, params_.max_vehicle_speed, time_);
 }
 
 Status Tether::setTargetLength(double length)

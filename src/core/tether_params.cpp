@@ -73,6 +73,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"reel_in_slack", &TetherParams::reel_in_slack},
       {"min_deployed_length", &TetherParams::min_deployed_length},
       {"max_vehicle_jump", &TetherParams::max_vehicle_jump},
+      {"max_vehicle_speed", &TetherParams::max_vehicle_speed},
   };
   return table;
 }

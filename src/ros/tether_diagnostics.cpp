@@ -37,8 +37,10 @@ void TetherDiagnostics::report(const ros::Time& now)
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: the vehicle pose jumped more than max_vehicle_jump = %.2f m: cable re-laid",
-                      label_.c_str(), tether_.params().max_vehicle_jump);
+    ROS_WARN_THROTTLE(1.0,
+                      "tether_node%s: the vehicle pose jumped further than it could move (max_vehicle_speed %.2f m/s "
+                      "x dt + max_vehicle_jump %.2f m): cable re-laid",
+                      label_.c_str(), tether_.params().max_vehicle_speed, tether_.params().max_vehicle_jump);
   }
 }
 
