@@ -34,6 +34,11 @@ void TetherDiagnostics::report(const ros::Time& now)
     ROS_ERROR_THROTTLE(1.0, "tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
                        static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
   }
+  if (pose_input_.dropped() > reported_drops_)
+  {
+    reported_drops_ = pose_input_.dropped();
+    last_drop_time_ = now;
+  }
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();
@@ -57,7 +62,10 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("step time [us]", schedule.step_seconds * 1e6);
   status.add("physics real-time factor", schedule.real_time_factor);
   status.add("residual stretch", summary.mean_strain);
+  status.add("poses taken", pose_input_.accepted());
   status.add("rejected poses", pose_input_.rejected());
+  status.add("dropped poses", pose_input_.dropped());
+  status.add("physics delay [s]", scheduler_.delay());
   status.add("resets", schedule.resets);
   status.add("vehicle jumps", tether_.jumpCount());
   status.add("solver", toString(tether_.params().solver));
@@ -78,6 +86,11 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   else if (!last_pose_time.isZero() && (now - last_pose_time).toSec() > options_.stale_pose_timeout)
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "stale pose: none for %.1f s", (now - last_pose_time).toSec());
+  }
+  if (!last_drop_time_.isZero() && (now - last_drop_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "poses dropped: %llu so far (the physics stalled)",
+                         static_cast<unsigned long long>(pose_input_.dropped()));
   }
   if (summary.max_tension > options_.max_tension_warning)
   {

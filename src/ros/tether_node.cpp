@@ -48,8 +48,9 @@ Tether& TetherNode::addTether(World& world, const std::string& name, const Tethe
   return world.tether(world.size() - 1);
 }
 
-TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const TetherSetup& setup,
-                       const std::string& name, World& world, Scheduler& scheduler, const tf2_ros::Buffer& tf)
+TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
+                       const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler,
+                       tf2_ros::Buffer& tf)
     : nh_(nh),
       private_nh_(private_nh),
       options_(setup.options),
@@ -57,7 +58,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       tether_(addTether(world, name, setup)),
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
-      pose_input_(setup.options, tf, tether_, name),
+      pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
       publisher_(private_nh_, setup.options),
       diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_)
 {
@@ -68,7 +69,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
   reconfigure_server_->updateConfig(paramsToConfig(setup.params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
-  pose_input_.subscribe(nh_, [this](const ros::Time& now) { scheduler_.checkClock(now); });
+  ros::NodeHandle pose_nh(input_nh);
+  pose_input_.subscribe(pose_nh);
   const TetherParams& p = tether_.params();
   ROS_INFO("tether_node%s: %.1f m cable in %zu segments, %s solver, pose from %s, physics at %.0f Hz",
            name_.empty() ? "" : (" " + name_).c_str(), p.cable_length, p.segmentCount(), toString(p.solver).c_str(),
@@ -99,6 +101,11 @@ void TetherNode::restarted()
 {
   pose_input_.reset();
   publisher_.restart(tether_);
+}
+
+TetherHooks::PoseTiming TetherNode::poseTiming() const
+{
+  return PoseTiming{pose_input_.latestStamp(), pose_input_.neededDelay()};
 }
 
 void TetherNode::applyPendingParams()

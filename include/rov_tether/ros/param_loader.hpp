@@ -23,13 +23,13 @@ struct NodeOptions
   /// The physics runs this far behind ROS time so that vehicle poses, which arrive late, bracket it and
   /// the vehicle end is interpolated smoothly instead of held and jerked [s].
   double interpolation_delay = 0.1;
-  double state_rate = 30.0;             ///< ~state and ~wrench rate [Hz].
-  double marker_rate = 30.0;            ///< ~markers rate when subscribed [Hz].
-  double marker_line_width = 0.03;      ///< Cable width in rviz [m].
-  double tension_full_scale = 50.0;     ///< Tension drawn red [N].
-  int stripe_segments = 5;              ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
-  double stale_pose_timeout = 1.0;      ///< No pose for this long is a diagnostics warning [s].
-  double max_tension_warning = 500.0;   ///< Tension above this is a diagnostics warning [N].
+  double state_rate = 30.0;            ///< ~state and ~wrench rate [Hz].
+  double marker_rate = 30.0;           ///< ~markers rate when subscribed [Hz].
+  double marker_line_width = 0.03;     ///< Cable width in rviz [m].
+  double tension_full_scale = 50.0;    ///< Tension drawn red [N].
+  int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
+  double stale_pose_timeout = 2.0;     ///< No pose for this long: a warning, and the physics stops waiting for one [s].
+  double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
   std::string pose_topic = "rov_pose";  ///< Vehicle pose topic (pose_source topic), relative to the node's namespace.
   /// What to give up when the physics cannot hold real time: "reduce_iterations" (down to
   /// min_iterations), "reduce_markers" (halve the marker rate, down to 1 Hz) or "none". Always reported.

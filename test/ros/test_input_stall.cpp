@@ -1,0 +1,122 @@
+// rostest (test/ros/input_stall.test): vehicle poses at 1 kHz reach a tether of a tether_node whose
+// physics ticks stall for 100 ms or more (another tether, 1 km of cable, in the same world). Before the
+// node had an input thread of its own, the poses waited in roscpp's queue of 100 behind the physics tick,
+// and every one beyond 100 was dropped without a trace; now every pose must be taken, none refused or
+// dropped, and the stall must really have happened (the slow tether's physics load says how long each
+// tick took).
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <functional>
+#include <map>
+#include <string>
+
+#include "rov_tether/TetherState.h"
+
+namespace
+{
+
+/// The last diagnostics values of each tether status ("tether fast", "tether slow").
+std::map<std::string, std::map<std::string, std::string>> g_diagnostics;
+int g_states = 0;
+
+void onDiagnostics(const diagnostic_msgs::DiagnosticArray& msg)
+{
+  for (const auto& status : msg.status)
+  {
+    for (const auto& kv : status.values)
+    {
+      g_diagnostics[status.name.substr(status.name.rfind(':') == std::string::npos ? 0 : status.name.rfind(':') + 2)]
+                   [kv.key] = kv.value;
+    }
+  }
+}
+
+/// A diagnostics value of tether `name` as a number; -1 before it is known.
+double value(const std::string& name, const std::string& key)
+{
+  for (const auto& [status, values] : g_diagnostics)
+  {
+    if (status.size() >= name.size() && status.compare(status.size() - name.size(), name.size(), name) == 0)
+    {
+      const auto it = values.find(key);
+      if (it != values.end())
+      {
+        return std::stod(it->second);
+      }
+    }
+  }
+  return -1.0;
+}
+
+bool waitFor(const std::function<bool()>& done, double timeout)
+{
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (ros::ok() && ros::WallTime::now() < deadline)
+  {
+    ros::spinOnce();
+    if (done())
+    {
+      return true;
+    }
+    ros::WallDuration(0.01).sleep();  // polling interval, not a synchronisation
+  }
+  return false;
+}
+
+TEST(InputStall, PosesAt1kHzSurviveAStalledPhysics)
+{
+  ros::NodeHandle nh;
+  ros::Subscriber diagnostics = nh.subscribe("/diagnostics", 100, onDiagnostics);
+  ros::Subscriber state =
+      nh.subscribe<rov_tether::TetherState>("/tether_node/fast/state", 100,
+                                            boost::function<void(const rov_tether::TetherState::ConstPtr&)>(
+                                                [](const rov_tether::TetherState::ConstPtr&) { ++g_states; }));
+  ros::Publisher pose = nh.advertise<geometry_msgs::PoseStamped>("/fast_pose", 5000);
+  ASSERT_TRUE(waitFor([&] { return g_states > 0 && pose.getNumSubscribers() > 0; }, 60.0))
+      << "tether_node did not come up";
+
+  // 1 kHz for 3 s: the vehicle moves out at 0.5 m/s (0.5 mm per pose).
+  geometry_msgs::PoseStamped msg;
+  msg.header.frame_id = "world";
+  msg.pose.orientation.w = 1.0;
+  msg.pose.position.z = -0.5;
+  ros::WallRate rate(1000.0);
+  const ros::Time start = ros::Time::now();
+  int sent = 0;
+  for (; (ros::Time::now() - start).toSec() < 3.0; ++sent)
+  {
+    msg.header.stamp = ros::Time::now();
+    msg.pose.position.x = 1.5 + 0.5 * (msg.header.stamp - start).toSec();
+    pose.publish(msg);
+    rate.sleep();
+  }
+  // Every pose sent is taken, once the diagnostics (1 Hz) catch up.
+  const bool all_taken = waitFor([&] { return value("tether fast", "poses taken") >= sent; }, 30.0);
+  const double tick = 1.0 / 2.0;  // physics_rate 2 Hz
+  const double slow_load = value("tether slow", "physics load [% of wall time]") / 100.0;
+  std::fprintf(stderr,
+               "[ measured ] %d poses sent at 1 kHz; fast tether: %.0f taken, %.0f rejected, %.0f dropped; slow "
+               "tether's physics load %.0f%%: each tick of the world about %.0f ms\n",
+               sent, value("tether fast", "poses taken"), value("tether fast", "rejected poses"),
+               value("tether fast", "dropped poses"), 100 * slow_load, 1000 * slow_load * tick);
+  EXPECT_TRUE(all_taken);
+  EXPECT_GT(sent, 2000);  // about 1 kHz
+  EXPECT_EQ(value("tether fast", "poses taken"), sent);
+  EXPECT_EQ(value("tether fast", "rejected poses"), 0.0);
+  EXPECT_EQ(value("tether fast", "dropped poses"), 0.0);
+  // The stall happened: the slow tether's share of the wall time, times the tick period, is how long
+  // each tick kept the physics thread (and, before the input thread, the pose callbacks) busy.
+  EXPECT_GE(slow_load * tick, 0.1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "input_stall_test");
+  return RUN_ALL_TESTS();
+}
