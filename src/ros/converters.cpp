@@ -156,15 +156,27 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   label.text = text;
 }
 
-geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin, const ros::Time& stamp,
-                                      const std::string& frame_id)
+Force pullOnVehicle(const Tether& sim)
+{
+  const std::size_t n = sim.deployedParticleCount();
+  if (!sim.vehicleAttached() || n < 2)
+  {
+    return Force::Zero();
+  }
+  const Force force = sim.vehicleForce();
+  const Eigen::Vector3d towards_cable = sim.particle(n - 2) - sim.particle(n - 1);
+  return force.dot(towards_cable) > 0.0 ? force : Force::Zero();
+}
+
+namespace
+{
+
+geometry_msgs::WrenchStamped wrenchMessage(const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                                           const ros::Time& stamp, const std::string& frame_id)
 {
   geometry_msgs::WrenchStamped wrench;
   wrench.header.stamp = stamp;
   wrench.header.frame_id = frame_id;
-  const Force force = sim.vehicleForce();
-  const Eigen::Vector3d lever = sim.particle(sim.deployedParticleCount() - 1) - vehicle_origin;
-  const Eigen::Vector3d torque = sim.vehicleAttached() ? lever.cross(force) : Eigen::Vector3d::Zero();
   wrench.wrench.force.x = force.x();
   wrench.wrench.force.y = force.y();
   wrench.wrench.force.z = force.z();
@@ -172,6 +184,24 @@ geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& 
   wrench.wrench.torque.y = torque.y();
   wrench.wrench.torque.z = torque.z();
   return wrench;
+}
+
+}  // namespace
+
+geometry_msgs::WrenchStamped toWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                      const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
+                                      const std::string& frame_id)
+{
+  const Eigen::Vector3d lever = vehicle.rotation() * attachment_offset;
+  return wrenchMessage(pull, lever.cross(pull), stamp, frame_id);
+}
+
+geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                             const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
+                                             const std::string& vehicle_frame)
+{
+  const Eigen::Vector3d force = vehicle.rotation().transpose() * pull;
+  return wrenchMessage(force, attachment_offset.cross(force), stamp, vehicle_frame);
 }
 
 std::string configToParams(const TetherConfig& config, TetherParams* params)

@@ -87,7 +87,8 @@ void TetherNode::beforeAdvance(const ros::Time& now)
 
 void TetherNode::publishState()
 {
-  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, pose_input_.lastVehicle().translation());
+  // The force is of the physics' time, behind the latest pose: its lever arm and frame are the vehicle's then.
+  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, pose_input_.vehicleAt(tether_.time()));
 }
 
 void TetherNode::afterAdvance(const ros::Time& now)

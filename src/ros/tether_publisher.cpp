@@ -19,9 +19,14 @@ const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t reset
   return msg_;
 }
 
-geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Vector3d& vehicle_origin) const
+geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
 {
-  return toWrench(tether, vehicle_origin, stamp_, frame_id_);
+  return toWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, frame_id_);
+}
+
+geometry_msgs::WrenchStamped StateBuilder::vehicleWrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
+{
+  return toVehicleWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, vehicle_frame_);
 }
 
 void StateBuilder::restart(const Tether& tether)
@@ -31,17 +36,22 @@ void StateBuilder::restart(const Tether& tether)
 }
 
 TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options)
-    : options_(options), builder_(options.world_frame)
+    : options_(options), builder_(options.world_frame, options.rov_frame, options.attachment_offset)
 {
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
+  vehicle_wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench_vehicle", 10);
   marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 2);
 }
 
-void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Vector3d& vehicle_origin)
+void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle)
 {
   state_pub_.publish(builder_.state(tether, resets));
-  wrench_pub_.publish(builder_.wrench(tether, vehicle_origin));
+  wrench_pub_.publish(builder_.wrench(tether, vehicle));
+  if (vehicle_wrench_pub_.getNumSubscribers() > 0)
+  {
+    vehicle_wrench_pub_.publish(builder_.vehicleWrench(tether, vehicle));
+  }
 }
 
 void TetherPublisher::restart(const Tether& tether)

@@ -38,7 +38,11 @@ class ReplayTether : public ros_layer::TetherHooks
 
   ReplayTether(Tether& tether, ros_layer::PoseInput& input, const ros_layer::Scheduler& scheduler,
                const ros_layer::NodeOptions& options, Publish publish)
-      : tether_(tether), input_(input), scheduler_(scheduler), builder_(options.world_frame), publish_(publish)
+      : tether_(tether),
+        input_(input),
+        scheduler_(scheduler),
+        builder_(options.world_frame, options.rov_frame, options.attachment_offset),
+        publish_(publish)
   {
   }
 
@@ -46,7 +50,7 @@ class ReplayTether : public ros_layer::TetherHooks
   void publishState() override
   {
     const TetherState& state = builder_.state(tether_, scheduler_.schedule(0).resets);
-    publish_(state, builder_.wrench(tether_, input_.lastVehicle().translation()));
+    publish_(state, builder_.wrench(tether_, input_.vehicleAt(tether_.time())));
   }
   void restarted() override
   {

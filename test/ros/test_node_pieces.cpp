@@ -549,7 +549,7 @@ TEST(StateBuilder, StampsThePhysicsTimeAndMeasuresTheWinchSpeedBetweenStates)
   EXPECT_NEAR(state.header.stamp.toSec(), tether.time(), 1e-6);
   EXPECT_NEAR(state.winch_speed, 0.5, 0.05);
   EXPECT_EQ(state.resets, 2u);
-  const auto wrench = builder.wrench(tether, Eigen::Vector3d::Zero());
+  const auto wrench = builder.wrench(tether, Eigen::Isometry3d::Identity());
   EXPECT_EQ(wrench.header.stamp, state.header.stamp);
   builder.restart(tether);
   tether.advanceTo(8.0);

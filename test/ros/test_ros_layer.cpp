@@ -8,6 +8,7 @@
 #include "../test_helpers.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/vehicle_history.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -113,15 +114,83 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
 TEST(Converters, WrenchIsThePullOnTheVehicle)
 {
   const Tether sim = heavyTether();
-  const geometry_msgs::WrenchStamped wrench = toWrench(sim, Position(2.0, 0.0, 0.5), ros::Time(1.0), "world");
-  const Force force = sim.vehicleForce();
+  // The vehicle origin 0.5 m above the attachment: attachment_offset (0, 0, -0.5).
+  const Eigen::Isometry3d vehicle(Eigen::Translation3d(2.0, 0.0, 0.5));
+  const Force force = pullOnVehicle(sim);
+  EXPECT_EQ(force, sim.vehicleForce()) << "a taut cable pulls with all its force";
+  const geometry_msgs::WrenchStamped wrench =
+      toWrench(force, vehicle, Eigen::Vector3d(0.0, 0.0, -0.5), ros::Time(1.0), "world");
   EXPECT_EQ(wrench.header.frame_id, "world");
   EXPECT_DOUBLE_EQ(wrench.wrench.force.x, force.x());
   EXPECT_DOUBLE_EQ(wrench.wrench.force.z, force.z());
   EXPECT_LT(force.z(), -0.5);  // the hanging cable pulls the vehicle down
   EXPECT_LT(force.x(), 0.0);   // and towards the spool
-  // Torque about a vehicle origin 0.5 m above the attachment: r = (0, 0, -0.5), tau = r x F.
+  // Torque about the vehicle origin: r = (0, 0, -0.5), tau = r x F.
   EXPECT_NEAR(wrench.wrench.torque.y, -0.5 * force.x(), 1e-12);
+}
+
+// The pull is of the physics' time, behind the latest pose; its lever arm and the vehicle frame it is
+// given in are the vehicle's at that time. A vehicle turning at 90 deg/s, the attachment 0.5 m behind
+// it: at the physics' time it faced 45 degrees, not the latest pose's 90.
+TEST(Converters, WrenchesUseTheVehiclePoseAtTheForcesTimeInBothFrames)
+{
+  VehicleHistory history;
+  const auto yawed = [](double degrees)
+  { return Eigen::Isometry3d(Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitZ())); };
+  history.add(10.0, yawed(0.0));
+  history.add(11.0, yawed(90.0));
+  const Eigen::Isometry3d at_force = history.at(10.5);
+  EXPECT_TRUE(at_force.isApprox(yawed(45.0), 1e-12));
+  const Force pull(3.0, -1.0, 0.5);
+  const Eigen::Vector3d offset(-0.5, 0.0, 0.0);
+  const auto world = toWrench(pull, at_force, offset, ros::Time(10.5), "world");
+  const Eigen::Vector3d lever = yawed(45.0).rotation() * offset;  // (-0.354, -0.354, 0)
+  const Eigen::Vector3d torque = lever.cross(pull);
+  EXPECT_NEAR(world.wrench.torque.x, torque.x(), 1e-12);
+  EXPECT_NEAR(world.wrench.torque.y, torque.y(), 1e-12);
+  EXPECT_NEAR(world.wrench.torque.z, torque.z(), 1e-12);
+  const Eigen::Vector3d latest_torque = (yawed(90.0).rotation() * offset).cross(pull);
+  EXPECT_GT((torque - latest_torque).norm(), 0.1) << "the latest pose's lever arm is another torque";
+
+  const auto own = toVehicleWrench(pull, at_force, offset, ros::Time(10.5), "rov");
+  EXPECT_EQ(own.header.frame_id, "rov");
+  const Eigen::Vector3d f(own.wrench.force.x, own.wrench.force.y, own.wrench.force.z);
+  const Eigen::Vector3d tau(own.wrench.torque.x, own.wrench.torque.y, own.wrench.torque.z);
+  EXPECT_TRUE((yawed(45.0).rotation() * f).isApprox(pull, 1e-12)) << "the same force, in the vehicle frame";
+  EXPECT_TRUE((yawed(45.0).rotation() * tau).isApprox(torque, 1e-12)) << "the same torque, in the vehicle frame";
+  EXPECT_TRUE(tau.isApprox(offset.cross(f), 1e-12));
+  EXPECT_NEAR(f.x(), pull.dot(yawed(45.0).rotation().col(0)), 1e-12) << "x is the vehicle's forward axis";
+}
+
+// A cable cannot push: when the vehicle drives into the cable faster than it can give way, the end
+// segment is compressed and PBD's bilateral constraint carries a negative tension, which would push the
+// vehicle away. The wrench then carries nothing.
+TEST(Converters, ACompressedEndSegmentPushesNothing)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.winch_mode = WinchMode::kLocked;
+  params.initial_deployed_length = 3.0;
+  Tether sim(params, Position::Zero(), Position(3.0, 0.0, 0.0));  // straight and taut along x
+  for (int k = 1; k <= 20; ++k)
+  {
+    sim.addVehicleSample(0.01 * k, Position(3.0 - 0.05 * k, 0.0, 0.0));  // 5 m/s back along the cable
+  }
+  bool compressed = false;
+  for (int k = 0; k < 20 && !compressed; ++k)
+  {
+    sim.step();
+    compressed = sim.summary().tension_vehicle < -0.1;
+  }
+  ASSERT_TRUE(compressed) << "the end segment never carried compression";
+  const std::size_t n = sim.deployedParticleCount();
+  const Eigen::Vector3d towards_cable = sim.particle(n - 2) - sim.particle(n - 1);
+  EXPECT_LT(sim.vehicleForce().dot(towards_cable), 0.0) << "the solver's force pushes the vehicle away";
+  EXPECT_EQ(pullOnVehicle(sim), Force::Zero());
+  const auto wrench = toWrench(pullOnVehicle(sim), Eigen::Isometry3d::Identity(), Eigen::Vector3d(-0.5, 0.0, 0.0),
+                               ros::Time(1.0), "world");
+  EXPECT_EQ(wrench.wrench.force.x, 0.0);
+  EXPECT_EQ(wrench.wrench.torque.z, 0.0);
 }
 
 TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)

@@ -15,7 +15,7 @@ struct NodeOptions
 {
   std::string world_frame = "world";  ///< Frame of the spool, the cable and all outputs.
   std::string pose_source = "topic";  ///< "topic" (rov_pose, PoseStamped) or "tf" (world_frame -> rov_frame).
-  std::string rov_frame = "rov";      ///< Vehicle frame looked up when pose_source is "tf".
+  std::string rov_frame = "rov";      ///< Vehicle frame: looked up when pose_source is "tf"; frame of ~wrench_vehicle.
   Eigen::Vector3d attachment_offset = Eigen::Vector3d::Zero();  ///< Tether attachment in the vehicle frame [m].
   std::string spool_frame;  ///< Empty: the spool is fixed at spool_position; else a tf frame.
   Eigen::Vector3d spool_position = Eigen::Vector3d::Zero();  ///< Spool outlet in world_frame [m].
