@@ -37,6 +37,18 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
   return setup;
 }
 
+NodeOptions TetherNode::withTetherFrames(NodeOptions options, const std::string& name)
+{
+  for (std::string* frame : {&options.spool_outlet_frame, &options.cable_end_frame})
+  {
+    if (!name.empty() && !frame->empty())
+    {
+      *frame = name + "/" + *frame;  // several tethers: each its own frames
+    }
+  }
+  return options;
+}
+
 Tether& TetherNode::addTether(World& world, const std::string& name, const TetherSetup& setup)
 {
   const Status status =
@@ -59,7 +71,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
       pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
-      publisher_(private_nh_, setup.options),
+      publisher_(private_nh_, withTetherFrames(setup.options, name)),
       diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_)
 {
   warnAboutStability();

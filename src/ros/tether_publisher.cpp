@@ -41,6 +41,10 @@ TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions&
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
   vehicle_wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench_vehicle", 10);
+  if (!options.spool_outlet_frame.empty() || !options.cable_end_frame.empty())
+  {
+    tf_pub_ = private_nh.advertise<tf2_msgs::TFMessage>("/tf", 10);
+  }
   marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 2);
 }
 
@@ -51,6 +55,12 @@ void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, c
   if (vehicle_wrench_pub_.getNumSubscribers() > 0)
   {
     vehicle_wrench_pub_.publish(builder_.vehicleWrench(tether, vehicle));
+  }
+  if (tf_pub_ && tf_pub_.getNumSubscribers() > 0)
+  {
+    toTransforms(tether, ros::Time(std::max(tether.time(), 0.0)), options_.world_frame, options_.spool_outlet_frame,
+                 options_.cable_end_frame, &transforms_);
+    tf_pub_.publish(transforms_);
   }
 }
 

@@ -3,7 +3,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "../test_helpers.hpp"
 #include "rov_tether/ros/converters.hpp"
@@ -34,15 +36,82 @@ TEST(Colours, TensionScaleRunsFromBlueToRedAndCompressionIsGrey)
 {
   auto near = [](const std_msgs::ColorRGBA& c, double r, double g, double b)
   { return std::abs(c.r - r) < 1e-6 && std::abs(c.g - g) < 1e-6 && std::abs(c.b - b) < 1e-6 && c.a == 1.0f; };
-  EXPECT_TRUE(near(tensionColor(0.0, 50.0, false), 0, 0, 1));    // blue
-  EXPECT_TRUE(near(tensionColor(12.5, 50.0, false), 0, 1, 1));   // cyan
-  EXPECT_TRUE(near(tensionColor(25.0, 50.0, false), 0, 1, 0));   // green
-  EXPECT_TRUE(near(tensionColor(37.5, 50.0, false), 1, 1, 0));   // yellow
-  EXPECT_TRUE(near(tensionColor(50.0, 50.0, false), 1, 0, 0));   // red
-  EXPECT_TRUE(near(tensionColor(500.0, 50.0, false), 1, 0, 0));  // saturated
+  EXPECT_TRUE(near(tensionColor(0.0, 50.0, false), 0.3, 0.55, 1));  // light blue
+  EXPECT_TRUE(near(tensionColor(12.5, 50.0, false), 0, 1, 1));      // cyan
+  EXPECT_TRUE(near(tensionColor(25.0, 50.0, false), 0, 1, 0));      // green
+  EXPECT_TRUE(near(tensionColor(37.5, 50.0, false), 1, 1, 0));      // yellow
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, false), 1, 0, 0));      // red
+  EXPECT_TRUE(near(tensionColor(500.0, 50.0, false), 1, 0, 0));     // saturated
   EXPECT_TRUE(near(tensionColor(-1.0, 50.0, false), 0.55, 0.55, 0.55));
   EXPECT_TRUE(near(tensionColor(std::nan(""), 50.0, false), 0.55, 0.55, 0.55));
-  EXPECT_TRUE(near(tensionColor(50.0, 50.0, true), 0.5, 0, 0));  // a stripe is darker
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, true), 1, 0.4, 0.4));  // a stripe is lighter
+}
+
+/// WCAG 2.1 relative luminance of an sRGB colour, components in [0, 1] (docs/references.md).
+double luminance(double r, double g, double b)
+{
+  const auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+  return 0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b);
+}
+
+/// WCAG 2.1 contrast ratio (L1 + 0.05) / (L2 + 0.05) of two luminances, the lighter first: 1 to 21.
+double contrast(double a, double b) { return (std::max(a, b) + 0.05) / (std::min(a, b) + 0.05); }
+
+// The cable must be visible in rviz at every tension, stripes included: a contrast ratio of at least 3
+// (WCAG 2.1's minimum for graphics, docs/references.md) against rviz's own default background (48, 48,
+// 48) and the one config/tether.rviz sets. The old scale started at pure blue with darker stripes:
+// 1.5 against rviz's grey, 1.2 for its stripes.
+TEST(Colours, EveryColourStandsOutOnRvizBackgrounds)
+{
+  std::ifstream rviz(std::string(ROV_TETHER_SOURCE_DIR) + "/config/tether.rviz");
+  std::string line, shipped;
+  while (std::getline(rviz, line))
+  {
+    if (line.find("Background Color:") != std::string::npos)
+    {
+      shipped = line.substr(line.find(':') + 1);
+    }
+  }
+  int r = 0, g = 0, b = 0;
+  ASSERT_EQ(std::sscanf(shipped.c_str(), " %d; %d; %d", &r, &g, &b), 3) << "no background in config/tether.rviz";
+  const double backgrounds[] = {luminance(48 / 255.0, 48 / 255.0, 48 / 255.0),
+                                luminance(r / 255.0, g / 255.0, b / 255.0)};
+  double worst = 21.0;
+  for (double tension = -5.0; tension <= 60.0; tension += 0.25)
+  {
+    for (const bool stripe : {false, true})
+    {
+      const std_msgs::ColorRGBA c = tensionColor(tension, 50.0, stripe);
+      for (const double background : backgrounds)
+      {
+        worst = std::min(worst, contrast(luminance(c.r, c.g, c.b), background));
+      }
+    }
+  }
+  std::printf("[ measured ] cable colours on rviz's backgrounds: lowest contrast ratio %.2f (minimum 3)\n", worst);
+  EXPECT_GE(worst, 3.0);
+}
+
+// With pose_source topic nothing else may put world_frame into tf, and rviz then warns that its fixed
+// frame does not exist; the node publishes the spool outlet and the cable's vehicle end under it.
+TEST(Converters, TransformsPlaceTheSpoolOutletAndTheCableEnd)
+{
+  const Tether sim = heavyTether();
+  tf2_msgs::TFMessage message;
+  toTransforms(sim, ros::Time(3.0), "world", "tether_spool", "tether_end", &message);
+  ASSERT_EQ(message.transforms.size(), 2u);
+  const auto& spool = message.transforms[0];
+  const auto& end = message.transforms[1];
+  EXPECT_EQ(spool.header.frame_id, "world");
+  EXPECT_EQ(spool.child_frame_id, "tether_spool");
+  EXPECT_EQ(end.child_frame_id, "tether_end");
+  EXPECT_EQ(end.header.stamp, ros::Time(3.0));
+  EXPECT_EQ(spool.transform.translation.x, sim.particle(0).x());
+  EXPECT_NEAR(end.transform.translation.x, 2.0, 1e-12);  // heavyTether's vehicle at (2, 0, 0)
+  EXPECT_EQ(end.transform.rotation.w, 1.0);
+  toTransforms(sim, ros::Time(3.0), "world", "", "tether_end", &message);
+  ASSERT_EQ(message.transforms.size(), 1u) << "an empty name publishes no frame";
+  EXPECT_EQ(message.transforms[0].child_frame_id, "tether_end");
 }
 
 TEST(Converters, StateMessageCarriesTheSimulation)

@@ -3,6 +3,7 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
 #include <std_msgs/ColorRGBA.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Geometry>
@@ -28,9 +29,9 @@ struct MarkerOptions
 };
 
 /**
- * Colour of a segment carrying `tension` [N]: from blue (0 N) through cyan, green and yellow to red at
- * `full_scale` and above; compression (negative) is grey. `stripe` darkens it to 50% for the alternate
- * stripes.
+ * Colour of a segment carrying `tension` [N]: from light blue (0 N) through cyan, green and yellow to red
+ * at `full_scale` and above; compression (negative) is grey. `stripe` lightens it (40% towards white) for
+ * the alternate stripes. Every colour stands out on rviz's dark backgrounds (contrast ratio 3 or more).
  */
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe);
 
@@ -45,6 +46,12 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
  */
 void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
+
+/// The tether's tf frames at `stamp`: the spool outlet (`spool_frame`) and the cable's vehicle end, its
+/// last particle (`end_frame`), as children of `world_frame` with the world's axes; an empty name leaves
+/// that frame out. Reuses `message`'s storage.
+void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& world_frame,
+                  const std::string& spool_frame, const std::string& end_frame, tf2_msgs::TFMessage* message);
 
 /// The pull of the tether on the vehicle at the attachment point [N, world frame]: Tether::vehicleForce(), or
 /// zero when the end segment is compressed (a cable cannot push: the force's component along the end

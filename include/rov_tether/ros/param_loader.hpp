@@ -39,6 +39,10 @@ struct NodeOptions
   double cpu_budget = 0.8;
   /// When the physics falls further than this behind its target time, it skips ahead (ERROR) [s].
   double max_lag = 1.0;
+  /// tf frames published under world_frame at the spool outlet and at the cable's vehicle end (with several
+  /// tethers, prefixed "name/"); "" publishes none.
+  std::string spool_outlet_frame = "tether_spool";
+  std::string cable_end_frame = "tether_end";
 };
 
 /// Converts one parameter-server value to a ParamValue; returns false for lists and maps.

@@ -68,6 +68,8 @@ class TetherNode : public TetherHooks
   void applyPendingParams();
   /// Warns when the parameters make the method unstable (lumped_mass above its critical step).
   void warnAboutStability() const;
+  /// `options` with the tf frames this tether publishes prefixed "name/" among several tethers.
+  static NodeOptions withTetherFrames(NodeOptions options, const std::string& name);
   /// Adds the tether to the world and returns it (throws when the world refuses the name).
   static Tether& addTether(World& world, const std::string& name, const TetherSetup& setup);
 

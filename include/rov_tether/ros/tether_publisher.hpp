@@ -57,12 +57,14 @@ class StateBuilder
 
 /**
  * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
- * only computed while someone subscribes), ~markers at a rate (only while someone subscribes).
+ * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
+ * (with ~state), ~markers at a rate (only while someone subscribes).
  */
 class TetherPublisher
 {
  public:
-  /// Advertises under `private_nh`.
+  /// Advertises under `private_nh` (and /tf). `options`' frame names are used as given (TetherNode prefixes
+  /// them with the tether's name among several).
   TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options);
 
   /// Publishes ~state, ~wrench and (with subscribers) ~wrench_vehicle for the tether's current physics time;
@@ -79,6 +81,8 @@ class TetherPublisher
   ros::Publisher state_pub_;
   ros::Publisher wrench_pub_;
   ros::Publisher vehicle_wrench_pub_;
+  ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
+  tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
   ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
   std::vector<double> tensions_;
