@@ -278,11 +278,39 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   return true;
 }
 
-void PoseInput::reset()
+void PoseInput::reset(const ros::Time& now)
 {
   last_pose_stamp_ = ros::Time();
   gap_count_ = 0;
   history_.clear();
+  std::size_t refused = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto later = [&now](const HandOver& pose) { return pose.arrival > now; };
+    for (auto* list : {&hand_over_, &waiting_for_tf_})
+    {
+      const auto keep = std::remove_if(list->begin(), list->end(), later);
+      refused += static_cast<std::size_t>(list->end() - keep);
+      list->erase(keep, list->end());
+    }
+  }
+  if (refused > 0)
+  {
+    rejected_ += refused;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %zu poses that arrived before the clock went back", label_.c_str(),
+                      refused);
+  }
+}
+
+ros::Time PoseInput::earliestArrival() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ros::Time earliest;
+  for (const HandOver& pose : hand_over_)
+  {
+    earliest = earliest.isZero() || pose.arrival < earliest ? pose.arrival : earliest;
+  }
+  return earliest;
 }
 
 double PoseInput::latestStamp() const

@@ -50,7 +50,7 @@ void Scheduler::restart(std::size_t i, const ros::Time& now)
 {
   world_.tether(i).reset(alignedPhysicsTime(i, now));
   tethers_[i].next_state = 0.0;
-  tethers_[i].hooks->restarted();
+  tethers_[i].hooks->restarted(now);
 }
 
 void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& why)
@@ -88,7 +88,16 @@ void Scheduler::tick(const ros::Time& now)
   }
   else if (now < last_time_)
   {
-    resetAll(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+    ros::Time at = now;
+    for (const auto& tether : tethers_)
+    {
+      const ros::Time arrival = tether.hooks->earliestArrival();
+      if (!arrival.isZero() && arrival < at)
+      {
+        at = arrival;  // a pose of the new clock, before this tick
+      }
+    }
+    resetAll(at, "time jumped backwards by " + std::to_string((last_time_ - at).toSec()) + " s");
   }
   else if ((now - last_time_).toSec() > kMaxForwardJump)
   {

@@ -110,9 +110,9 @@ void TetherNode::afterAdvance(const ros::Time& now)
   diagnostics_.publish();
 }
 
-void TetherNode::restarted()
+void TetherNode::restarted(const ros::Time& now)
 {
-  pose_input_.reset();
+  pose_input_.reset(now);
   publisher_.restart(tether_);
 }
 

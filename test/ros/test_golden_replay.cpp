@@ -52,12 +52,13 @@ class ReplayTether : public ros_layer::TetherHooks
     const TetherState& state = builder_.state(tether_, scheduler_.schedule(0).resets);
     publish_(state, builder_.wrench(tether_, input_.vehicleAt(tether_.time())));
   }
-  void restarted() override
+  void restarted(const ros::Time& now) override
   {
-    input_.reset();
+    input_.reset(now);
     builder_.restart(tether_);
   }
   PoseTiming poseTiming() const override { return PoseTiming{input_.latestStamp(), input_.neededDelay()}; }
+  ros::Time earliestArrival() const override { return input_.earliestArrival(); }
 
  private:
   Tether& tether_;

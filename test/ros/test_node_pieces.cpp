@@ -207,7 +207,7 @@ class RecordingHooks : public TetherHooks
   void publishState() override { state_times.push_back(tether_.time()); }
   void beforeAdvance(const ros::Time&) override { ++before; }
   void afterAdvance(const ros::Time&) override { ++after; }
-  void restarted() override { ++restarts; }
+  void restarted(const ros::Time&) override { ++restarts; }
 
   std::vector<double> state_times;
   int before = 0, after = 0, restarts = 0;
@@ -363,8 +363,9 @@ struct NodeRig : TetherHooks
     tensions.push_back(tether().summary().tension_vehicle);
     ends.push_back(tether().particle(tether().deployedParticleCount() - 1));
   }
-  void restarted() override { input->reset(); }
+  void restarted(const ros::Time& now) override { input->reset(now); }
   PoseTiming poseTiming() const override { return PoseTiming{input->latestStamp(), input->neededDelay()}; }
+  ros::Time earliestArrival() const override { return input->earliestArrival(); }
 
   NodeOptions options;
   World world;
@@ -452,6 +453,42 @@ TEST(PoseRates, SparsePosesMoveTheCableEndSmoothlyAndAsDensePosesDo)
     EXPECT_LE(r.scheduler.delay(), std::max(0.1, 1.0 / rate + 0.02 + 0.005) + 1e-9) << rate << " Hz";
     EXPECT_GE(r.scheduler.delay(), std::max(0.1, 1.0 / rate + 0.02) - 1e-9) << rate << " Hz";
   }
+}
+
+// A bag that loops: its last pose arrives after the last physics tick of its clock (the clock stops with
+// the bag), and then the clock goes back to the bag's start. That pose, from the old time line, must not
+// be taken after the reset: newer than every pose of the next loop, it would have every one refused. The
+// tether restarts at the arrival of the first pose on the new clock, not at the tick that noticed (whose
+// time depends on when /clock messages come), so every loop restarts the same.
+TEST(PoseInput, APoseLeftFromALoopedBagDoesNotStopTheNextLoop)
+{
+  NodeRig rig(quietParams());
+  std::uint64_t steps_at_first_tick = 0;
+  const auto loop = [&](double first_tick)
+  {
+    for (int k = 0; k <= 400; ++k)  // 20 s of poses at 20 Hz, each before the ticks of the next 50 ms
+    {
+      const double t = 1000.0 + 0.05 * k;
+      rig.input->receive(shared(poseMsg(2.0 + 0.01 * k, 0.0, -1.0, t)), ros::Time(t));
+      for (double now = std::max(t + 0.005, first_tick); now <= t + 0.05 + 1e-9 && k < 400; now += 0.005)
+      {
+        const std::uint64_t before = rig.tether().stepCount();
+        rig.scheduler.tick(ros::Time(now));
+        steps_at_first_tick =
+            k == 0 && now == std::max(t + 0.005, first_tick) ? rig.tether().stepCount() - before : steps_at_first_tick;
+      }
+    }
+  };
+  loop(1000.005);  // the clock stops with the bag, before its last pose is taken
+  const std::uint64_t taken = rig.input->accepted();
+  EXPECT_EQ(taken, 400u);
+  loop(1000.03);  // the clock goes back to 1000 s, the first tick at 1000.03: a reset, the dive again
+  EXPECT_EQ(rig.scheduler.schedule(0).resets, 1u);
+  EXPECT_EQ(rig.input->rejected(), 1u) << "the left-over pose, refused and counted";
+  EXPECT_EQ(rig.input->accepted() - taken, 400u) << "every pose of the second loop is taken (but its own last)";
+  // Restarted at the first pose's arrival (physics 999.9 s), not at the tick (999.93 s): the first tick
+  // then takes the 6 steps to 999.93 s.
+  EXPECT_EQ(steps_at_first_tick, 6u);
 }
 
 // Item 2 of issue 13: poses stamped in odom, whose world -> odom transform (a drifting localisation)

@@ -73,8 +73,10 @@ class PoseInput
   /// waiting for tf whose stamp the physics has passed, and polls tf for the spool (spool_frame) and,
   /// with pose_source tf, the vehicle (a static transform, stamp 0, is taken as a pose at `now`).
   void poll(const ros::Time& now);
-  /// After the tether was reset: forgets the poses' timing and history, so the next pose is taken.
-  void reset();
+  /// After the tether was reset at ROS time `now`: forgets the poses' timing and history, so the next
+  /// pose is taken, and refuses (counts) the poses still waiting that arrived after `now`: they came on a
+  /// clock that has since gone back (a bag that loops), and would stop every pose of the new time line.
+  void reset(const ros::Time& now);
 
   /// Poses refused (bad numbers, frames tf cannot transform in time, refused by the core).
   std::uint64_t rejected() const { return rejected_; }
@@ -89,6 +91,8 @@ class PoseInput
   Eigen::Isometry3d vehicleAt(double t) { return history_.at(t); }
   /// When the last pose was accepted (ROS time of the tick that took it); zero before the first.
   const ros::Time& lastPoseTime() const { return last_pose_time_; }
+  /// ROS time the earliest pose waiting for the physics arrived; zero when none waits.
+  ros::Time earliestArrival() const;
   /// Stamp of the last pose taken [s]; NaN before the first (the physics need not wait for poses).
   double latestStamp() const;
   /// How far behind ROS time the physics must run for the poses to bracket it [s]: the largest gap, over
@@ -134,7 +138,7 @@ class PoseInput
   ros::Subscriber subscriber_;
   std::unique_ptr<Filter> filter_;  ///< Poses in other frames wait here for their transform.
 
-  std::mutex mutex_;                      ///< Guards the two lists below (input and physics threads).
+  mutable std::mutex mutex_;              ///< Guards the two lists below (input and physics threads).
   std::vector<HandOver> hand_over_;       ///< Received, for the physics thread (capacity kMaxHandOver).
   std::vector<HandOver> waiting_for_tf_;  ///< In the MessageFilter, with their arrival times.
   std::vector<HandOver> taking_;          ///< Physics thread: the poses being taken (swapped with hand_over_).

@@ -27,8 +27,8 @@ class TetherHooks
   virtual void publishState() = 0;
   /// After the physics advanced on this tick: reports, markers, diagnostics.
   virtual void afterAdvance(const ros::Time& /*now*/) {}
-  /// The tether was re-laid at a new time (start, clock jump, ~reset): inputs and outputs start over.
-  virtual void restarted() {}
+  /// The tether was re-laid at ROS time `now` (start, clock jump, ~reset): inputs and outputs start over.
+  virtual void restarted(const ros::Time& /*now*/) {}
 
   /// When the tether's vehicle poses come, for the physics' place behind ROS time.
   struct PoseTiming
@@ -37,6 +37,10 @@ class TetherHooks
     double needed_delay = 0.0;  ///< Behind ROS time the poses bracket the physics (PoseInput::neededDelay) [s].
   };
   virtual PoseTiming poseTiming() const { return {}; }
+  /// ROS time the earliest pose still waiting for the physics arrived; zero when none waits. When the
+  /// clock went back, the tethers restart at the first arrival on the new clock, not at the tick that
+  /// noticed (its time depends on when /clock messages come), so a bag replayed twice restarts the same.
+  virtual ros::Time earliestArrival() const { return ros::Time(); }
 };
 
 /// One tether's schedule and what it reports (read by the diagnostics).

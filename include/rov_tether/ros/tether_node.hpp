@@ -57,8 +57,9 @@ class TetherNode : public TetherHooks
   void beforeAdvance(const ros::Time& now) override;
   void publishState() override;
   void afterAdvance(const ros::Time& now) override;
-  void restarted() override;
+  void restarted(const ros::Time& now) override;
   PoseTiming poseTiming() const override;
+  ros::Time earliestArrival() const override { return pose_input_.earliestArrival(); }
 
  private:
   bool onGetTension(GetTension::Request& request, GetTension::Response& response);
