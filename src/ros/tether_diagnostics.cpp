@@ -71,6 +71,7 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("solver", toString(tether_.params().solver));
   status.add("iterations", tether_.params().iterations);
   status.add("physics load [% of wall time]", 100.0 * governor.physicsLoad());
+  status.add("marker load [% of wall time]", 100.0 * governor.markerLoad());
   status.add("skips (fell behind)", schedule.skips);
   status.add("simulation failures", tether_.recoveryCount());
   if (!tether_.lastFailure().empty())
@@ -109,6 +110,12 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "degraded to hold real time: %s (overload_policy %s)",
                          governor.degraded().c_str(), governor.policy().c_str());
+  }
+  if (governor.overloaded())
+  {
+    // Given up what it could, or nothing: either way the budget is not held, and it says so.
+    status.mergeSummaryf(DiagnosticStatus::WARN, "over cpu_budget: physics %.1f%% + markers %.1f%% of %.0f%%",
+                         100.0 * governor.physicsLoad(), 100.0 * governor.markerLoad(), 100.0 * options_.cpu_budget);
   }
   if (!schedule.last_skip_time.isZero() && (now - schedule.last_skip_time).toSec() < kFailureReportTime)
   {

@@ -106,7 +106,8 @@ void TetherNode::publishState()
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
-  publisher_.publishMarkers(tether_, now, scheduler_.schedule(index_).governor.markerRate());
+  const double marker_wall = publisher_.publishMarkers(tether_, now, scheduler_.schedule(index_).governor.markerRate());
+  scheduler_.governor(index_).addMarkerTime(marker_wall);
   diagnostics_.publish();
 }
 

@@ -70,17 +70,18 @@ void TetherPublisher::restart(const Tether& tether)
   next_marker_time_ = ros::Time();
 }
 
-void TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
+double TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
 {
   const ros::Duration period(1.0 / rate);
   if (marker_pub_.getNumSubscribers() == 0)
   {
-    return;  // markers cost nothing when nobody looks
+    return 0.0;  // markers cost nothing when nobody looks
   }
   if (!next_marker_time_.isZero() && now < next_marker_time_ && next_marker_time_ - now <= period)
   {
-    return;
+    return 0.0;
   }
+  const ros::WallTime start = ros::WallTime::now();
   // A fixed schedule (next += period) keeps the average rate exact on the physics timer's grid.
   const bool behind =
       next_marker_time_.isZero() || now - next_marker_time_ > period || next_marker_time_ - now > period;
@@ -92,7 +93,8 @@ void TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now,
   marker_options.tension_full_scale = options_.tension_full_scale;
   marker_options.stripe_segments = options_.stripe_segments;
   toMarkers(tether, tensions_, ros::Time(std::max(tether.time(), 0.0)), marker_options, &markers_);
-  marker_pub_.publish(markers_);
+  marker_pub_.publish(markers_);  // serialised here for every remote subscriber: part of the cost
+  return (ros::WallTime::now() - start).toSec();
 }
 
 }  // namespace rov_tether::ros_layer

@@ -538,10 +538,12 @@ TEST(LoadGovernor, GivesUpOneNotchPerSecondAndUndoesItWhenTheLoadFalls)
   options.overload_policy = "reduce_markers";
   LoadGovernor markers(options, 10, "t");
   ros::WallTime wall(100.0);
-  const auto second = [&](double load, LoadGovernor& governor)
+  // One second of wall time with the physics taking `load` of it and the markers `marker_load`.
+  const auto second = [&](double load, LoadGovernor& governor, double marker_load = 0.0)
   {
     for (int i = 0; i < 10; ++i)
     {
+      governor.addMarkerTime(0.1 * marker_load);
       governor.update(0.1 * load, wall, tether);
       wall += ros::WallDuration(0.1);
     }
@@ -562,14 +564,68 @@ TEST(LoadGovernor, GivesUpOneNotchPerSecondAndUndoesItWhenTheLoadFalls)
   EXPECT_EQ(tether.params().iterations, 10);
   EXPECT_EQ(iterations.degraded(), "");
 
-  second(0.9, markers);
-  second(0.9, markers);
+  second(0.9, markers, 0.1);
+  second(0.9, markers, 0.1);
   EXPECT_DOUBLE_EQ(markers.markerRate(), 7.5);
   EXPECT_EQ(markers.degraded(), "markers at 7.50 Hz");
   EXPECT_EQ(tether.params().iterations, 10) << "reduce_markers keeps the iterations";
   markers.reconfigured(10);
   EXPECT_DOUBLE_EQ(markers.markerRate(), 30.0);
   EXPECT_EQ(markers.degraded(), "");
+}
+
+// reduce_markers gives up what the markers cost, and that relieves the load: markers costing 10 ms each
+// at 30 Hz (30% of the wall time) on 10% of physics, with a 20% budget, go to 15 Hz (25%), then to
+// 7.5 Hz (17.5%), within the budget, and stay (above half of it). With nobody subscribing the markers
+// cost nothing: halving their rate would relieve nothing, so the policy gives nothing up and says the
+// budget is not held.
+TEST(LoadGovernor, ReduceMarkersRelievesWhatTheMarkersCost)
+{
+  NodeOptions options;
+  options.overload_policy = "reduce_markers";
+  options.cpu_budget = 0.2;
+  Tether tether(quietParams(), Position::Zero());
+  LoadGovernor governor(options, 10, "t");
+  ros::WallTime wall(100.0);
+  const double per_marker = 0.010;  // [s] to build and serialise one ~markers message
+  std::vector<double> loads;
+  for (int s = 0; s < 6; ++s)
+  {
+    // One second: 100 physics ticks of 1 ms each, and the markers' time at the current rate.
+    for (int i = 0; i < 100; ++i)
+    {
+      governor.update(0.001, wall, tether);
+      wall += ros::WallDuration(0.01);
+    }
+    governor.addMarkerTime(per_marker * governor.markerRate());
+    governor.update(0.0, wall, tether);
+    loads.push_back(governor.physicsLoad() + governor.markerLoad());
+  }
+  std::printf(
+      "[ measured ] reduce_markers, 10 ms per ~markers on 10%% physics, budget 20%%: load %.3f, %.3f, %.3f "
+      "... %.3f; markers at %.2f Hz\n",
+      loads[0], loads[1], loads[2], loads.back(), governor.markerRate());
+  EXPECT_NEAR(loads[0], 0.1 + 0.3, 1e-9);        // at 30 Hz
+  EXPECT_NEAR(loads[1], 0.1 + 0.15, 1e-9);       // at 15 Hz
+  EXPECT_NEAR(loads.back(), 0.1 + 0.075, 1e-9);  // at 7.5 Hz: relieved
+  EXPECT_LE(loads.back(), options.cpu_budget);
+  EXPECT_FALSE(governor.overloaded());
+  EXPECT_EQ(governor.degraded(), "markers at 7.50 Hz");
+  EXPECT_EQ(tether.params().iterations, 10) << "reduce_markers keeps the iterations";
+
+  LoadGovernor unwatched(options, 10, "t");
+  for (int s = 0; s < 3; ++s)
+  {
+    for (int i = 0; i < 100; ++i)
+    {
+      unwatched.update(0.004, wall, tether);  // 40% of physics, no markers: nobody subscribes
+      wall += ros::WallDuration(0.01);
+    }
+    unwatched.update(0.0, wall, tether);
+  }
+  EXPECT_DOUBLE_EQ(unwatched.markerRate(), 30.0);
+  EXPECT_EQ(unwatched.degraded(), "") << "nothing was given up";
+  EXPECT_TRUE(unwatched.overloaded()) << "and the budget is not held: the diagnostics say so";
 }
 
 TEST(StateBuilder, StampsThePhysicsTimeAndMeasuresTheWinchSpeedBetweenStates)

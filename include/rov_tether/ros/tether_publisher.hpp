@@ -70,8 +70,9 @@ class TetherPublisher
   /// Publishes ~state, ~wrench and (with subscribers) ~wrench_vehicle for the tether's current physics time;
   /// `vehicle` is the vehicle's pose at that time.
   void publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle);
-  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes.
-  void publishMarkers(const Tether& tether, const ros::Time& now, double rate);
+  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes. Returns the wall time it took [s]
+  /// (0 when it published nothing), which the load governor counts.
+  double publishMarkers(const Tether& tether, const ros::Time& now, double rate);
   /// After a reset of the tether.
   void restart(const Tether& tether);
 
