@@ -14,6 +14,7 @@
 #include <string>
 
 #include "rov_tether/TetherState.h"
+#include "wait_for.hpp"
 
 namespace
 {
@@ -51,21 +52,6 @@ double value(const std::string& name, const std::string& key)
   return -1.0;
 }
 
-bool waitFor(const std::function<bool()>& done, double timeout)
-{
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-  while (ros::ok() && ros::WallTime::now() < deadline)
-  {
-    ros::spinOnce();
-    if (done())
-    {
-      return true;
-    }
-    ros::WallDuration(0.01).sleep();  // polling interval, not a synchronisation
-  }
-  return false;
-}
-
 TEST(InputStall, PosesAt1kHzSurviveAStalledPhysics)
 {
   ros::NodeHandle nh;
@@ -75,7 +61,7 @@ TEST(InputStall, PosesAt1kHzSurviveAStalledPhysics)
                                             boost::function<void(const rov_tether::TetherState::ConstPtr&)>(
                                                 [](const rov_tether::TetherState::ConstPtr&) { ++g_states; }));
   ros::Publisher pose = nh.advertise<geometry_msgs::PoseStamped>("/fast_pose", 5000);
-  ASSERT_TRUE(waitFor([&] { return g_states > 0 && pose.getNumSubscribers() > 0; }, 60.0))
+  ASSERT_TRUE(rov_tether::test::waitFor([&] { return g_states > 0 && pose.getNumSubscribers() > 0; }, 60.0, 0.01))
       << "tether_node did not come up";
 
   // 1 kHz for 3 s: the vehicle moves out at 0.5 m/s (0.5 mm per pose).
@@ -94,7 +80,8 @@ TEST(InputStall, PosesAt1kHzSurviveAStalledPhysics)
     rate.sleep();
   }
   // Every pose sent is taken, once the diagnostics (1 Hz) catch up.
-  const bool all_taken = waitFor([&] { return value("tether fast", "poses taken") >= sent; }, 30.0);
+  const bool all_taken =
+      rov_tether::test::waitFor([&] { return value("tether fast", "poses taken") >= sent; }, 30.0, 0.01);
   const double tick = 1.0 / 2.0;  // physics_rate 2 Hz
   const double slow_load = value("tether slow", "physics load [% of wall time]") / 100.0;
   std::fprintf(stderr,

@@ -22,6 +22,7 @@
 #include "rov_tether/GetTension.h"
 #include "rov_tether/SetWinch.h"
 #include "rov_tether/TetherState.h"
+#include "wait_for.hpp"
 
 namespace
 {
@@ -45,20 +46,7 @@ class Harness
   }
 
   /// Spins until `done` or the wall timeout [s]; returns whether `done` became true.
-  bool waitFor(const std::function<bool()>& done, double timeout)
-  {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline)
-    {
-      ros::spinOnce();
-      if (done())
-      {
-        return true;
-      }
-      ros::WallDuration(0.0005).sleep();  // polling interval, not a synchronisation
-    }
-    return false;
-  }
+  bool waitFor(const std::function<bool()>& done, double timeout) { return rov_tether::test::waitFor(done, timeout); }
 
   /// Advances simulated time by `seconds`, publishing the clock and, when `pose` is set, a vehicle pose
   /// every other tick; waits until the node has published a state at or after the new time.
@@ -117,6 +105,8 @@ class Harness
   void startFresh();
   /// From home, the vehicle goes out 4 m along x at 0.4 m/s and stops 5.5 m out (deployed above 5 m).
   void moveVehicleOut();
+  /// ~set_winch to `mode` (passive, locked), no speed, no target.
+  void setWinch(const std::string& mode);
 
   ros::NodeHandle nh_;
   rov_tether::TetherState state_;
@@ -287,11 +277,7 @@ void Harness::startFresh()
   ASSERT_TRUE(parameters.waitForExistence(ros::Duration(10.0)));
   auto defaults = reconfigure({{"drag", 0.9}}, {{"iterations", 10}}, {{"solver", "pbd"}});
   ASSERT_TRUE(parameters.call(defaults));
-  ros::ServiceClient winch = nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  ASSERT_TRUE(winch.waitForExistence(ros::Duration(10.0)));
-  rov_tether::SetWinch passive;
-  passive.request.mode = "passive";
-  ASSERT_TRUE(winch.call(passive) && passive.response.success) << passive.response.message;
+  ASSERT_NO_FATAL_FAILURE(setWinch("passive"));
   // A reset detaches the vehicle; the next pose attaches it at home on a cable laid out afresh.
   ros::ServiceClient reset = nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
   ASSERT_TRUE(reset.waitForExistence(ros::Duration(10.0)));
@@ -304,6 +290,15 @@ void Harness::startFresh()
   ASSERT_NEAR(state_.deployed_length, 1.2 * std::hypot(1.5, 0.5), 0.01);
   ASSERT_EQ(state_.iterations, 10u);
   ASSERT_EQ(state_.solver, "pbd");
+}
+
+void Harness::setWinch(const std::string& mode)
+{
+  ros::ServiceClient winch = nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(winch.waitForExistence(ros::Duration(10.0)));
+  rov_tether::SetWinch command;
+  command.request.mode = mode;
+  ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
 }
 
 void Harness::moveVehicleOut()
@@ -436,10 +431,7 @@ TEST(TetherNode, SolverChangeKeepsTheCable)
   Harness& h = *harness;
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
-  ros::ServiceClient winch = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  rov_tether::SetWinch lock;
-  lock.request.mode = "locked";
-  ASSERT_TRUE(winch.call(lock) && lock.response.success) << lock.response.message;
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("locked"));
   const auto still = [](double) { return poseAt(5.5, 0.0, -0.5); };
   ASSERT_TRUE(h.drive(1.0, still));
   const double deployed = h.state_.deployed_length;
@@ -462,10 +454,7 @@ TEST(TetherNode, NanAndUnnormalisedPosesNeitherCrashNorCorrupt)
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   // Lock the winch so that the deployed length must stay exactly where it is.
-  ros::ServiceClient winch = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  rov_tether::SetWinch lock;
-  lock.request.mode = "locked";
-  ASSERT_TRUE(winch.call(lock) && lock.response.success) << lock.response.message;
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("locked"));
   ASSERT_TRUE(h.drive(0.1, [](double) { return poseAt(5.5, 0.0, -0.5); }));
   const double before = h.state_.deployed_length;
   geometry_msgs::Pose nan_pose = poseAt(std::nan(""), 0.0, -0.5);
