@@ -69,7 +69,7 @@ TEST(BadInput, DuplicateStampReplacesTheSample)
   EXPECT_EQ(kept.particle(kept.deployedParticleCount() - 1), Position(2.0, 0.5, 0.0));
 }
 
-// Samples far ahead of the simulation: at most 1024 wait; more are refused (never silently dropped, which
+// Samples far ahead of the simulation: at most 4096 wait; more are refused (never silently dropped, which
 // would make the vehicle jump), and accepted again once the simulation has consumed some.
 TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
 {
@@ -78,16 +78,16 @@ TEST(BadInput, TooManySamplesAheadAreRefusedNotDropped)
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   int accepted = 0;
   std::string refusal;
-  for (int k = 1; k <= 1500; ++k)
+  for (int k = 1; k <= 5000; ++k)
   {
-    const Status status = sim.addVehicleSample(0.01 * k, Position(1.0 + 0.001 * k, 0.0, -1.0));
+    const Status status = sim.addVehicleSample(0.0025 * k, Position(1.0 + 0.00025 * k, 0.0, -1.0));
     accepted += status.ok;
     if (!status.ok && refusal.empty())
     {
       refusal = status.message;
     }
   }
-  EXPECT_EQ(accepted, 1023);  // plus the constructor's sample
+  EXPECT_EQ(accepted, 4095);  // plus the constructor's sample
   EXPECT_NE(refusal.find("wait ahead of the simulation"), std::string::npos) << refusal;
   sim.advanceTo(1.0);
   EXPECT_NEAR(sim.particle(sim.deployedParticleCount() - 1).x(), 1.1, 1e-9) << "followed the samples, no jump";

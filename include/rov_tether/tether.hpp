@@ -59,7 +59,8 @@ class Tether
   /// A sample further from the previous one (dt earlier) than max_vehicle_speed * dt + max_vehicle_jump is a
   /// jump: the cable is re-laid, at rest, from the spool to the new position when the simulation reaches t
   /// (see README).
-  /// At most 1024 samples may wait ahead of the simulation; more are refused until it advances.
+  /// At most VehicleTrack::kMaxSamples (4096) samples may wait ahead of the simulation; more are refused until it
+  /// advances.
   Status addVehicleSample(double t, const Position& vehicle);
   /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.
   /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length].

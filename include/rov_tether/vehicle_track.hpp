@@ -20,8 +20,10 @@ namespace rov_tether
 class VehicleTrack
 {
  public:
-  /// Samples that may wait ahead of the simulation; more are refused until it advances.
-  static constexpr std::size_t kMaxSamples = 1024;
+  /// Samples that may wait ahead of the simulation; more are refused until it advances. The node runs the
+  /// physics up to 2 s (stale_pose_timeout) behind its poses when some tether's poses come sparsely, so a
+  /// tether fed at 1 kHz needs some 2,000 [-].
+  static constexpr std::size_t kMaxSamples = 4096;
 
   /// Attaches the vehicle at `position` now, with that sample at time t.
   void attachAt(double t, const Position& position);
