@@ -5,12 +5,13 @@ namespace rov_tether::ros_layer
 
 void VehicleHistory::add(double t, const Eigen::Isometry3d& pose)
 {
+  const Timed timed{t, pose.translation(), Eigen::Quaterniond(pose.rotation())};
   if (!poses_.empty() && poses_.back().time == t)
   {
-    poses_.back().pose = pose;
+    poses_.back() = timed;
     return;
   }
-  poses_.push_back(Timed{t, pose});
+  poses_.push_back(timed);
 }
 
 Eigen::Isometry3d VehicleHistory::at(double t)
@@ -25,17 +26,12 @@ Eigen::Isometry3d VehicleHistory::at(double t)
     poses_.pop_front();
   }
   const Timed& a = poses_.front();
-  if (poses_.size() == 1 || t <= a.time)
-  {
-    return a.pose;
-  }
-  const Timed& b = poses_[1];
-  const double alpha = (t - a.time) / (b.time - a.time);
-  const Eigen::Quaterniond qa(a.pose.rotation());
-  const Eigen::Quaterniond qb(b.pose.rotation());
+  const bool between = poses_.size() >= 2 && t > a.time;
+  const double alpha = between ? (t - a.time) / (poses_[1].time - a.time) : 0.0;
+  const Timed& b = between ? poses_[1] : a;
   Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = qa.slerp(alpha, qb).toRotationMatrix();
-  result.translation() = a.pose.translation() + alpha * (b.pose.translation() - a.pose.translation());
+  result.linear() = a.orientation.slerp(alpha, b.orientation).toRotationMatrix();
+  result.translation() = a.position + alpha * (b.position - a.position);
   return result;
 }
 

@@ -16,8 +16,9 @@ namespace rov_tether::ros_layer
 class VehicleHistory
 {
  public:
-  /// Poses kept; the oldest go first when it is full (the core refuses more than 1024 waiting ahead).
-  static constexpr std::size_t kCapacity = 2048;
+  /// Poses kept (64 bytes each); the oldest go first when it is full (the core refuses more than 4096
+  /// waiting ahead).
+  static constexpr std::size_t kCapacity = 4200;
 
   VehicleHistory() : poses_(kCapacity) {}
 
@@ -33,7 +34,8 @@ class VehicleHistory
   struct Timed
   {
     double time;
-    Eigen::Isometry3d pose;
+    Eigen::Vector3d position;
+    Eigen::Quaterniond orientation;
   };
   boost::circular_buffer<Timed> poses_;
 };
