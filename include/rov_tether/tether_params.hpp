@@ -155,8 +155,12 @@ struct TetherParams
   double reel_in_slack = 0.2;
   /// Deployed length never goes below this [m].
   double min_deployed_length = 0.5;
-  /// A vehicle sample further than this from the previous one is a jump (re-lays the cable) [m].
+  /// A vehicle sample further than max_vehicle_speed * dt + max_vehicle_jump from the previous one (dt after it)
+  /// is a jump (re-lays the cable) [m].
   double max_vehicle_jump = 1.0;
+  /// The fastest the vehicle can move [m/s]: between samples dt apart it may move this * dt more than
+  /// max_vehicle_jump without being a jump.
+  double max_vehicle_speed = 3.0;
 
   /// Returns one message per invalid field ("field = value: allowed range"); empty when valid.
   std::vector<std::string> validate() const;
@@ -181,7 +185,8 @@ struct TetherParams
   TetherParams resolved() const;
 };
 
-/// True when the two parameter sets describe the same cable (a change needs no rebuild).
+/// True when the two parameter sets describe the same particle arrays (cable_length and segment_length):
+/// a change of anything else needs no rebuild.
 bool sameStructure(const TetherParams& a, const TetherParams& b);
 
 /// A parameter value from any source (YAML, parameter server, command line).
