@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "rov_tether/banded.hpp"
@@ -55,7 +56,7 @@ ROV_TETHER_TARGET_CLONES double activeSet(const double* __restrict w, const doub
   {
     const double r = c[k] - alpha[k] * lam[k];
     const double mobility = w[k] + w[k + 1];  // 0: both ends pinned
-    const double a = (mobility > 0.0) & (lam[k] * mobility + r > 0.0) ? 1.0 : 0.0;
+    const double a = ((mobility > 0.0) & (lam[k] * mobility + r > 0.0)) ? 1.0 : 0.0;
     on[k] = a;
     const double residual = (a * std::abs(r) + (1.0 - a) * std::abs(lam[k]) * mobility) * inv_rest[k];
     worst = residual > worst ? residual : worst;
@@ -121,7 +122,8 @@ ROV_TETHER_TARGET_CLONES void systemRows(const double* __restrict diag_active, c
   for (std::size_t k = 0; k < m; ++k)
   {
     const double a = on[k];
-    const double before = (1.0 - on[k - 1]) * coupling[k - 1] * lam[k - 1];
+    const std::ptrdiff_t prev = static_cast<std::ptrdiff_t>(k) - 1;  // -1 at k = 0: the padding
+    const double before = (1.0 - on[prev]) * coupling[prev] * lam[prev];
     const double after = (1.0 - on[k + 1]) * coupling[k] * lam[k + 1];
     diag[k] = a * diag_active[k] + (1.0 - a);
     rhs[k] = a * (rhs_active[k] + before + after) - (1.0 - a) * lam[k];
@@ -142,12 +144,13 @@ ROV_TETHER_TARGET_CLONES std::size_t updateActiveSet(const double* __restrict di
   double changes = 0.0;
   for (std::size_t k = 0; k < m; ++k)
   {
+    const std::ptrdiff_t prev = static_cast<std::ptrdiff_t>(k) - 1;  // -1 at k = 0: the padding
     const double stretch =
-        rhs_active[k] + diag_active[k] * lam[k] - coupling[k - 1] * d[k - 1] - coupling[k] * d[k + 1];
+        rhs_active[k] + diag_active[k] * lam[k] - coupling[prev] * d[prev] - coupling[k] * d[k + 1];
     const double a = on[k];
     const double push = lam[k] + d[k] < 0.0 ? 1.0 : 0.0;
     // (diag_active > alpha: not both ends pinned.)
-    const double pull = (diag_active[k] > alpha[k]) & (stretch > 0.0) ? 1.0 : 0.0;
+    const double pull = ((diag_active[k] > alpha[k]) & (stretch > 0.0)) ? 1.0 : 0.0;
     const double change = a * push + (1.0 - a) * pull;
     on[k] = a + change - 2.0 * a * change;
     changes += change;

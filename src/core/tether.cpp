@@ -406,7 +406,9 @@ void Tether::fail(const std::string& why)
   std::ostringstream message;
   message << "t = " << time_ << " s: " << why << "; the cable was re-laid at rest";
   last_failure_ = message.str();
-  layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
+  const double deployed = deployedLength();
+  layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
+                                 : params_.initial_deployed_length);
 }
 
 bool Tether::runWinch(double dt)
@@ -444,6 +446,10 @@ void Tether::payOut(double change, double dt)
 {
   const double deployed = deployedLength();
   const double max_change = params_.max_winch_speed * dt;
+  if (!std::isfinite(change))
+  {
+    change = 0.0;  // a diverged solve's drum: subStep's checks re-lay the cable next, the spool stays as it was
+  }
   change = std::clamp(change, -max_change, max_change);
   change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
                       std::max(0.0, params_.cable_length - deployed));
