@@ -108,10 +108,11 @@ struct TetherParams
   /// Axial stiffness EA [N]. xpbd and lumped_mass use it; the pbd solvers do not (see README), for them it
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
-  /// Bending stiffness EI [N m^2] for xpbd: each (i, i+2) constraint is a spring of stiffness EI / dL^3
-  /// (when `bending` is on); 0 = no bending resistance. pbd's bending constraints are rigid; lumped_mass
-  /// has no bending.
-  double bending_stiffness = 0.0;
+  /// Bending stiffness EI [N m^2] of xpbd's and direct's bending at the joints (when `bending` is on); 0 = no
+  /// bending resistance. The default is a 2 cm polyurethane-jacketed tether's (E 25 MPa, I = pi d^4 / 64):
+  /// without it direct's one-sided segments let the paper's noise crumple a slack cable. pbd's bending
+  /// constraints are the paper's, rigid; lumped_mass has no bending.
+  double bending_stiffness = 0.2;
   /// Drag model.
   DragModel drag_model = DragModel::kDamping;
   /// Outer diameter of the cable [m] (Morison drag and added mass).

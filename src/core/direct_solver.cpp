@@ -282,6 +282,13 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   if (drum_ != nullptr)
   {
     drum_->prepare(alpha_[0]);
+    if (bending_)
+    {
+      // The spool segment lengthens by the drum's pay-out within the solve, which its rest length does not
+      // know: the joint's curvature a x_0 - (a + b) x_1 + b x_2 would read that as a kink and pull along the
+      // cable (2 N at 1 m/s with EI 0.2). The cable leaves the spool over a sheave: a hinge there.
+      gamma_[0] = std::numeric_limits<double>::infinity();
+    }
   }
   bool primal = bending_ || tension_ratio_ > kDualTensionRatio;
   warmStart(cable, lam, primal);
