@@ -32,6 +32,7 @@ TITLES = {
     "taut_string": "taut string, first mode",
     "hanging_chain": "hanging chain, period",
     "paper_experiment": "paper's 2D experiment, stretch",
+    "catenary_100m": "catenary S = 8, 100 m in 1,000 segments",
 }
 
 
@@ -97,10 +98,15 @@ def speed_vs_accuracy(rows, docs):
     for ax in axes[len(cases):]:
         ax.axis("off")
     handles, labels = axes[0].get_legend_handles_labels()
-    axes[-1].legend(handles, labels, loc="center", fontsize=10)
+    if len(cases) < len(axes):
+        axes[-1].legend(handles, labels, loc="center", fontsize=10)
+        bottom = 0.0
+    else:  # every panel holds a case: the legend goes under them in one row
+        fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=10)
+        bottom = 0.05
     fig.suptitle("Speed against accuracy: each point one method x resolution x effort; lines: Pareto fronts; "
                  "dotted: 1 %; x on the top line: failed (blow-up, not at rest, error >= 1000 %)", fontsize=11)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0.0, bottom, 1.0, 1.0))
     fig.savefig(docs / "speed_vs_accuracy.png", dpi=90)
     plt.close(fig)
 
