@@ -236,6 +236,31 @@ TEST(Spool, ArcLengthFromTheVehicleMapsToSegments)
   }
 }
 
+// A slack cable with bending stiffness is laid out along a circular arc (a polygon of its rest lengths), not
+// a V, whose kink would spring open. 2 m laid between a spool and a vehicle 1.5 m apart, no noise: it is a
+// rod buckled between two hinges (the spool outlet is one while the brake holds), whose equilibrium, the
+// elastica, pushes its ends with the thrust P = 4 K(k)^2 EI / s^2, where 2 E(k) / K(k) - 1 = 1.5 / 2
+// gives k = 0.49, K = 1.681: P = 0.565 N at EI 0.2 N m^2 (Timoshenko and Gere, elastica; docs/references.md).
+// Below the brake's 2 N, so the brake never slips (deployed within 1 mm of 2 m: the V slipped it by
+// 12 mm), and once settled the vehicle end is pushed along the cable by at most P.
+TEST(Spool, ElasticCableLaidOutAtRestDoesNotSpringOpen)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.winch_mode = WinchMode::kBrake;
+  params.brake_tension = 2.0;
+  params.initial_deployed_length = 2.0;
+  const double thrust = 4.0 * 1.681 * 1.681 * params.bending_stiffness / (2.0 * 2.0);
+  Tether sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
+  sim.advance(4.0);
+  const double end_force = sim.summary().tension_vehicle;
+  std::printf("[ measured ] elastic cable laid at rest: deployed %.5f m after 4 s, vehicle end %.3f N (thrust P %.3f N)\n",
+              sim.deployedLength(), end_force, thrust);
+  EXPECT_NEAR(sim.deployedLength(), 2.0, 1e-3);
+  EXPECT_LT(end_force, 0.0);  // a buckled rod pushes
+  EXPECT_GT(end_force, -thrust);
+}
+
 TEST(Spool, LockedWinchNeverChangesLength)
 {
   Scenario scenario = shippedScenario("spool_payout");

@@ -10,6 +10,76 @@ namespace rov_tether
 namespace
 {
 
+/// A polygon inscribed in a circular arc from `from` to `to` (`distance` apart), bulging towards the unit
+/// vector `side` (normal to the chord), whose chords are the segments' rest lengths, so the cable starts
+/// with no stretch and no kink. A chord l subtends 2 asin(l / 2R) of the circle; the radius R is found by
+/// bisection so that the polygon's ends are `distance` apart, 2 R sin(theta / 2) = distance with theta the
+/// sum of the chords' angles, below a full turn (the ends close in monotonically as R shrinks to there).
+class InscribedArc
+{
+public:
+  InscribedArc(const Position& from, const Position& to, const Position& side, const double* rest, std::size_t count,
+               double distance)
+    : side_(side), rest_(rest), count_(count)
+  {
+    direction_ = distance > 1e-9 ? Position((to - from) / distance) : Position::UnitX();
+    double longest = 0.0, length = 0.0;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      longest = std::max(longest, rest[k]);
+      length += rest[k];
+    }
+    // R from a full turn (the ends meet) to a nearly straight polygon.
+    double lo = 0.5 * longest, hi = 1e6 * std::max(length, 1e-9);
+    for (int k = 0; k < 200 && total(lo) > 2.0 * kPi; ++k)
+    {
+      lo *= 1.01;
+    }
+    for (int k = 0; k < 200; ++k)
+    {
+      const double r = std::sqrt(lo * hi);  // bisection on log R: R spans many decades
+      (reach(r) > distance ? hi : lo) = r;
+    }
+    radius_ = std::sqrt(lo * hi);
+    const double half = 0.5 * total(radius_);
+    start_ = -half;
+    centre_ = 0.5 * (from + to) - side * (radius_ * std::cos(half));
+  }
+
+  /// The angle of the first vertex, and that of each chord: vertex k is at start() plus the first k angles.
+  double start() const { return start_; }
+  double angleOf(double chord) const { return chordAngle(chord, radius_); }
+  /// The point of the circle at angle theta.
+  Position at(double theta) const { return centre_ + radius_ * (std::sin(theta) * direction_ + std::cos(theta) * side_); }
+
+private:
+  static constexpr double kPi = 3.14159265358979323846;
+  static double chordAngle(double chord, double radius) { return 2.0 * std::asin(std::min(chord / (2.0 * radius), 1.0)); }
+  double total(double radius) const
+  {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < count_; ++k)
+    {
+      sum += chordAngle(rest_[k], radius);
+    }
+    return sum;
+  }
+  double reach(double radius) const { return 2.0 * radius * std::sin(0.5 * std::min(total(radius), 2.0 * kPi)); }
+
+  Position side_;
+  const double* rest_;
+  std::size_t count_;
+  Position direction_ = Position::UnitX();
+  Position centre_ = Position::Zero();
+  double radius_ = 1.0;
+  double start_ = 0.0;
+};
+
+}  // namespace
+
+namespace
+{
+
 /// A segment strain beyond this is a blow-up (a real cable breaks long before) [-].
 constexpr double kDivergenceStrain = 1.0;
 
@@ -149,27 +219,32 @@ void Tether::layOut(double deployed_length)
   {
     cable_.place(i, spool);
   }
-  // The deployed cable is laid at rest along two straight legs spool -> apex -> end, by arc length.
+  // The deployed cable is laid at rest by arc length along two straight legs spool -> apex -> end, or, for a
+  // cable that resists bending by EI, along a circular arc through the same three points' plane: a V's
+  // kink would spring open in the first steps (a 2 m cable at EI 0.2 N m^2 pushed its vehicle with 1 N).
   const double length = deployedLength();
   Position apex;
   Position end;
+  Position side = Position::Zero();
+  double distance = 0.0;
   if (track_.attached())
   {
     end = track_.position();
     const Position chord = end - spool;
-    const double distance = chord.norm();
+    distance = chord.norm();
     apex = spool + 0.5 * chord;  // taut or stretched: a straight line
     if (distance < length)
     {
       // Slack: a V hanging below the chord (sideways when the chord is vertical).
       const Position direction = distance > 1e-9 ? Position(chord / distance) : Position::UnitX();
-      Position side = -Position::UnitZ() + direction * direction.z();
+      side = -Position::UnitZ() + direction * direction.z();
       if (side.norm() < 0.1)
       {
         side = Position::UnitX() - direction * direction.x();
       }
+      side.normalize();
       const double offset = std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0));
-      apex += offset * side.normalized();
+      apex += offset * side;
     }
   }
   else
@@ -178,15 +253,30 @@ void Tether::layOut(double deployed_length)
     end = spool + (params_.weight_in_water < 0.0 ? 1.0 : -1.0) * length * Position::UnitZ();
     apex = 0.5 * (spool + end);
   }
-  double arc = 0.0;
-  for (std::size_t i = f; i < n; ++i)
+  const bool elastic = params_.bending && params_.bending_stiffness > 0.0 &&
+                       (params_.solver == SolverType::kDirect || params_.solver == SolverType::kXpbd);
+  if (elastic && side.squaredNorm() > 0.0 && n > f + 1)
   {
-    const double fraction = length > 0.0 ? std::min(arc / length, 1.0) : 0.0;
-    cable_.place(i, fraction <= 0.5 ? Position(spool + 2.0 * fraction * (apex - spool))
-                                    : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
-    if (i + 1 < n)
+    const InscribedArc shape(spool, end, side, &cable_.rest[f], n - 1 - f, distance);
+    double theta = shape.start();
+    for (std::size_t i = f; i < n; ++i)
     {
-      arc += cable_.rest[i];
+      cable_.place(i, shape.at(theta));
+      theta += i + 1 < n ? shape.angleOf(cable_.rest[i]) : 0.0;
+    }
+  }
+  else
+  {
+    double arc = 0.0;
+    for (std::size_t i = f; i < n; ++i)
+    {
+      const double fraction = length > 0.0 ? std::min(arc / length, 1.0) : 0.0;
+      cable_.place(i, fraction <= 0.5 ? Position(spool + 2.0 * fraction * (apex - spool))
+                                      : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
+      if (i + 1 < n)
+      {
+        arc += cable_.rest[i];
+      }
     }
   }
   if (track_.attached())
