@@ -36,8 +36,8 @@ struct RenderStats
  * Each segment is a capsule (a cylinder of the tube's radius with round ends, so joints are seamless).
  * A pixel belongs to the tether when the ray through its centre hits a capsule; its depth is that of the
  * first hit, nearest over all tubes. Segments are clipped at kNearClip + radius in front of the camera
- * (what lies behind is dropped) and culled outside the image's rays; the rest are cut into pieces of
- * about 16 px whose pixel rectangles (mapped through the distortion) bound the pixels tested. Occluders
+ * (what lies behind is dropped) and culled outside the image's rays; for the rest, each row's pixels
+ * tested are those whose rays lie in the segment's CapsuleFootprint over the row's band of y. Occluders
  * then hide the tether pixels behind their surface. Buffers are kept between renders and only the
  * previous render's pixels are cleared, so a render allocates nothing once the image size is set.
  */
@@ -58,16 +58,11 @@ class TetherRenderer
   const std::vector<int>& pixels() const { return pixels_; }
 
  private:
-  /// A piece of a segment in the optical frame: its end points and radius.
-  struct Capsule
-  {
-    Eigen::Vector3d a, b;
-    double radius;
-  };
   void prepare(const CameraModel& camera);
-  /// Clips segment (a, b) (optical frame) and draws its pieces.
+  /// Clips segment (a, b) (optical frame) and draws it.
   void drawSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius);
-  void drawPiece(const CameraModel& camera, const Capsule& piece);
+  /// Draws the capsule (a, b, radius), both ends at z > radius, into the depth image and pixels_.
+  void drawCapsule(const CameraModel& camera, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
   /// Removes the pixels an occluder hides; returns how many.
   std::size_t occlude(const CameraModel& camera, const Eigen::Isometry3d& world_from_camera,
                       const std::vector<const Occluder*>& occluders);
