@@ -14,7 +14,7 @@ PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-emp
           ros-core-dev libroscpp-dev ros-message-generation python3-genmsg python3-gencpp libstd-msgs-dev
           libstd-srvs-dev python3-std-srvs libgeometry-msgs-dev python3-geometry-msgs libvisualization-msgs-dev
           python3-visualization-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-updater-dev
-          libtf2-ros-dev libtf2-eigen-dev libdynamic-reconfigure-config-init-mutex-dev
+          libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev
           python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
           python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
           python3-rosparam python3-tf2-ros bc

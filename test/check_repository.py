@@ -5,10 +5,16 @@
 - every rostest launch file test/ros/*.test is registered in CMakeLists.txt (add_rostest or
   add_rostest_gtest), so `catkin run_tests` runs what scripts/test.sh runs;
 - every node of launch/*.launch has clear_params="true", so parameters an earlier launch left on a running
-  master do not leak into it (the rostest launch_params.test shows the effect for tether.launch).
+  master do not leak into it (the rostest launch_params.test shows the effect for tether.launch);
+- no build output is tracked, and git ignores what the build and the scripts write (build*.log and
+  catkin_build*.log were once committed, with this machine's paths, and rewritten by demo.sh);
+- every repository file the README, the docs, the code and the scenarios cite by path exists (REFERENCES.md
+  was cited some fifty times but was never in the repository), and LICENSE holds the license package.xml
+  names.
 """
 import pathlib
 import re
+import subprocess
 import unittest
 import xml.etree.ElementTree as ET
 
@@ -35,6 +41,43 @@ class Repository(unittest.TestCase):
             for node in ET.parse(launch).getroot().iter("node"):
                 self.assertEqual(node.get("clear_params"), "true",
                                  "%s: node %s" % (launch.relative_to(ROOT), node.get("name")))
+
+
+    def test_no_build_output_is_tracked_and_build_output_is_ignored(self):
+        tracked = subprocess.run(["git", "-C", str(ROOT), "ls-files"], check=True, capture_output=True,
+                                 text=True).stdout.split()
+        self.assertTrue(tracked, "not a git checkout")
+        built = [f for f in tracked if re.match(r"(build|catkin_build)[^/]*(/|\.log$)", f)]
+        self.assertEqual(built, [], "build output is tracked")
+        written = ["catkin_build.build.log", "catkin_build.cmake.log", "build.log", "catkin_build/x",
+                   "catkin_build_sanitize/x", "out/x", "scripts/__pycache__/x.pyc"]
+        ignored = subprocess.run(["git", "-C", str(ROOT), "check-ignore", "--no-index"] + written,
+                                 capture_output=True, text=True).stdout.split()
+        self.assertEqual(sorted(ignored), sorted(written), "not ignored by .gitignore")
+
+    def test_every_cited_file_exists_and_the_license_is_package_xmls(self):
+        sources = [ROOT / "README.md", ROOT / "package.xml", ROOT / "CMakeLists.txt"]
+        for folder, pattern in [("docs", "*.md"), ("include", "*.hpp"), ("src", "*.cpp"), ("test", "*.cpp"),
+                                ("test", "*.py"), ("scenarios", "*.yaml"), ("config", "*.yaml"), ("scripts", "*.py"),
+                                ("scripts", "*.sh"), ("launch", "*.launch"), ("cfg", "*.cfg")]:
+            sources += sorted((ROOT / folder).rglob(pattern))
+        cited = re.compile(r"(?<![\w/.$])((?:docs|config|scenarios|launch|scripts|test|cfg|include|src)/[\w./-]+\.\w+"
+                           r"|REFERENCES\.md|LICENSE)")
+        missing = set()
+        for source in sources:
+            if "fuzz/corpus" in str(source) or source.name == "check_repository.py":
+                continue
+            for path in cited.findall(source.read_text(errors="replace")):
+                path = path.rstrip(".")
+                placeholder = "*" in path or "NAME" in path  # a pattern or a usage text's NAME
+                if not placeholder and not (ROOT / path).exists() and not (source.parent / path).exists():
+                    missing.add("%s cites %s" % (source.relative_to(ROOT), path))
+        self.assertEqual(sorted(missing), [])
+        license_name = ET.parse(ROOT / "package.xml").getroot().findtext("license")
+        self.assertEqual(license_name, "BSD-3-Clause")
+        text = (ROOT / "LICENSE").read_text()
+        self.assertIn("BSD 3-Clause License", text)
+        self.assertIn("Neither the name of the copyright holder", text)  # the third clause
 
 
 if __name__ == "__main__":

@@ -122,17 +122,27 @@ double shapeChangeLate(double noise, bool bending)
 }
 
 // Paper Fig. 11: random micro-current displacements make the cable "lose the memory" of its shape;
-// without them it freezes. The freeze needs bending off: the (i, i+2) bending constraints cannot all be
-// met in a slack cable and make it creep by a few cm per 8 s on their own (README, known limitations).
+// without them it freezes. The freeze needs bending off (see the next test).
 TEST(PaperFig11, NoiseMakesTheShapeLoseItsMemory)
 {
   const double with_noise = shapeChangeLate(0.0005, false);
   const double without = shapeChangeLate(0.0, false);
-  const double bending_creep = shapeChangeLate(0.0, true);
-  std::printf("[ measured ] RMS shape change 8-16 s: noise %.4f m, no noise %.2e m (bending on: %.4f m)\n", with_noise,
-              without, bending_creep);
+  std::printf("[ measured ] RMS shape change 8-16 s: noise %.4f m, no noise %.2e m\n", with_noise, without);
   EXPECT_GT(with_noise, 0.01);
   EXPECT_LT(without, 1e-4);
+}
+
+// The README's known limitation, pinned: the (i, i+2) bending constraints cannot all be met in a slack
+// cable, so Gauss-Seidel keeps moving it by centimetres per 8 s without any noise, while the same cable
+// without them freezes (1e-11 m, above). When this fails the limitation is gone: update the README.
+TEST(PaperFig11, BendingConstraintsMakeASlackCableCreepWithoutNoise)
+{
+  const double bending_creep = shapeChangeLate(0.0, true);
+  const double frozen = shapeChangeLate(0.0, false);
+  std::printf("[ measured ] RMS shape change 8-16 s without noise: bending on %.4f m, off %.2e m\n", bending_creep,
+              frozen);
+  EXPECT_GT(bending_creep, 0.01);  // "a few cm per 8 s"
+  EXPECT_GT(bending_creep, 1e6 * frozen);
 }
 
 TEST(Reproducibility, SameSeedGivesIdenticalRuns)

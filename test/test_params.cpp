@@ -51,6 +51,8 @@ TEST(Params, EveryOutOfRangeFieldIsNamed)
       {"min_deployed_length", 0.0},
       {"max_vehicle_jump", 0.0},
       {"max_vehicle_jump", std::numeric_limits<double>::infinity()},
+      {"max_vehicle_speed", -1.0},
+      {"max_vehicle_speed", 2e3},
   };
   for (const auto& c : cases)
   {
@@ -122,7 +124,7 @@ TEST(Params, EveryNameRoundTrips)
     EXPECT_EQ(setParameter(params, name, value), "") << name;
     EXPECT_TRUE(sameParamValue(getParameter(params, name), value)) << name;
   }
-  EXPECT_EQ(parameterNames().size(), 42u);
+  EXPECT_EQ(parameterNames().size(), 43u);
   EXPECT_THROW(getParameter(params, "nope"), std::out_of_range);
 }
 

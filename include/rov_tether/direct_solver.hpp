@@ -26,17 +26,21 @@ namespace rov_tether
  *   projection with XPBD's compliance), the particles moving by W J^T dlambda. The one-sided segments form
  *   a primal-dual active set (Hintermueller, Ito, Kunisch 2003) solved on each linearisation.
  * - **primal** (bending stiffness, or a tension ratio h^2 T (w_a + w_b) / |d| above 1/4): Newton on the
- *   positions, minimising the step's energy
+ *   positions and the multipliers together, minimising the step's energy
  *     Phi(x) = 1/2 |x - x~|_M^2 + sum max(C_k, 0)^2 / (2 alpha_k) + sum |C_b|^2 / (2 gamma_b)
- *   (max only for a cable) with its full Hessian, geometric stiffness lambda / |d| (I - n n^T) included. The
+ *   (max only for a cable) with the full Hessian, geometric stiffness lambda / |d| (I - n n^T) included. The
  *   dual path leaves it out: a tensioned chain's transverse step is then explicit, and unstable beyond that
- *   ratio (Tournier et al. 2015, "Stable constrained dynamics"). Block-banded SPD systems, an active-set
- *   model for the one-sided segments and an Armijo line search on Phi (convex for a cable).
+ *   ratio (Tournier et al. 2015, "Stable constrained dynamics"). The multipliers are unknowns of their own
+ *   (the saddle-point system of that paper, with them eliminated from each solve): the geometric stiffness
+ *   uses their Newton estimate, not C(x) / alpha, which a nearly inextensible segment (alpha -> 0) makes
+ *   useless. Block-banded SPD systems, an active-set model for the one-sided segments and an Armijo line
+ *   search on Phi (convex for a cable).
  * The dual path is taken first; the primal takes over when the last step's tension ratio exceeds 1/4, or
  * when a dual iteration fails to lower the residual.
  *
  * Iterations stop when every residual is below `tolerance` x the segment length: |C - alpha lambda| of every
- * pulling segment and lambda (w_a + w_b) of every slack one (dual), or the Newton step |dx| (primal).
+ * pulling segment and lambda (w_a + w_b) of every slack one (dual), and the force balance of every particle
+ * as a displacement (primal; no extra solve is spent to confirm convergence).
  */
 class DirectSolver : public ConstraintSolver
 {
@@ -70,6 +74,8 @@ class DirectSolver : public ConstraintSolver
   void reserve(std::size_t n);
   /// Segment geometry at the current positions: n_k, |d_k|, C_k.
   void geometry(const Cable& cable);
+  /// Starts from the last step's multipliers and, on the primal path, its correction of the positions.
+  void warmStart(Cable& cable, double* lambda, bool primal);
   // Dual path (direct_solver.cpp).
   double dualResidual(const Cable& cable, const double* lambda);
   /// Solves the tridiagonal system for the active set on_ into step(); false if it is not definite.
@@ -84,8 +90,12 @@ class DirectSolver : public ConstraintSolver
   double segmentForce(std::size_t k, double c) const;
   /// One Newton step with line search; returns the largest relative move |dx| / L taken.
   double primalStep(Cable& cable);
+  /// The largest residual of the step's equations at the current positions and multipliers, as a
+  /// displacement relative to the segment length: the force balance M (x - x~) + J^T lambda (+ bending)
+  /// of each free particle times its inverse mass, and C - alpha lambda of each segment (max(C, 0) of one
+  /// out of the model; lambda against the law for the drum's).
+  double primalResidual(const Cable& cable) const;
   void assemblePrimal(const Cable& cable);
-  void multipliersFromPositions(const Cable& cable, double* lambda) const;
   void save(const Cable& cable);
   void restore(Cable& cable) const;
 
@@ -126,6 +136,12 @@ class DirectSolver : public ConstraintSolver
   /// the gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
   std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;
   std::vector<double> saved_lambda_;
+  /// Primal: the multipliers as unknowns of their own (Newton on positions and multipliers together, the
+  /// multipliers eliminated from each linear solve); their change over a Newton step; the last step's
+  /// multipliers, by particle index, the first estimate.
+  std::vector<double> primal_lambda_, lambda_step_, warm_lambda_;
+  /// The last step's correction x - x~ of each particle, by particle index [m]: the primal path's first guess.
+  std::vector<double> correction_x_, correction_y_, correction_z_;
   std::vector<unsigned char> taut_;
 };
 

@@ -44,8 +44,10 @@ class Tether
   Tether(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time = 0.0);
 
   /// Replaces the parameters between steps. `auto` values are resolved (params() returns the chosen ones). A change of
-  /// cable_length, segment_length, initial_deployed_length or solver rebuilds the cable; other changes keep the state.
-  /// A change of time_step keeps particle velocities. Invalid params are refused and the old ones kept.
+  /// cable_length or segment_length rebuilds the cable, at rest, at the deployed length (within the new limits, grown
+  /// to reach the vehicle unless the winch is locked); other changes keep the state: a new solver takes the cable's
+  /// particles and deployed length as they are, a new initial_deployed_length waits for reset(), a change of
+  /// time_step keeps particle velocities. Invalid params are refused and the old ones kept.
   Status setParams(const TetherParams& params);
   const TetherParams& params() const { return params_; }
 
@@ -54,9 +56,11 @@ class Tether
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
   /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle
   /// when the simulation reaches its time (the cable is laid out to it then).
-  /// A sample further than max_vehicle_jump from the previous one is a jump: the cable is re-laid, at
-  /// rest, from the spool to the new position when the simulation reaches t (see README).
-  /// At most 1024 samples may wait ahead of the simulation; more are refused until it advances.
+  /// A sample further from the previous one (dt earlier) than max_vehicle_speed * dt + max_vehicle_jump is a
+  /// jump: the cable is re-laid, at rest, from the spool to the new position when the simulation reaches t
+  /// (see README).
+  /// At most VehicleTrack::kMaxSamples (4096) samples may wait ahead of the simulation; more are refused until it
+  /// advances.
   Status addVehicleSample(double t, const Position& vehicle);
   /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.
   /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length].
@@ -146,7 +150,8 @@ class Tether
 
  private:
   void applyParams(const TetherParams& params);
-  void build();
+  /// Sizes the cable for the parameters and lays it out at `deployed_length` [m].
+  void build(double deployed_length);
   void layOut(double deployed_length);
   /// Recomputes masses and weights of deployed particles [lo, hi] (Cable::updateMasses).
   void refreshDerived(std::size_t lo, std::size_t hi);

@@ -108,10 +108,11 @@ struct TetherParams
   /// Axial stiffness EA [N]. xpbd and lumped_mass use it; the pbd solvers do not (see README), for them it
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
-  /// Bending stiffness EI [N m^2] for xpbd: each (i, i+2) constraint is a spring of stiffness EI / dL^3
-  /// (when `bending` is on); 0 = no bending resistance. pbd's bending constraints are rigid; lumped_mass
-  /// has no bending.
-  double bending_stiffness = 0.0;
+  /// Bending stiffness EI [N m^2] of xpbd's and direct's bending at the joints (when `bending` is on); 0 = no
+  /// bending resistance. The default is a 2 cm polyurethane-jacketed tether's (E 25 MPa, I = pi d^4 / 64):
+  /// without it direct's one-sided segments let the paper's noise crumple a slack cable. pbd's bending
+  /// constraints are the paper's, rigid; lumped_mass has no bending.
+  double bending_stiffness = 0.2;
   /// Drag model.
   DragModel drag_model = DragModel::kDamping;
   /// Outer diameter of the cable [m] (Morison drag and added mass).
@@ -155,8 +156,12 @@ struct TetherParams
   double reel_in_slack = 0.2;
   /// Deployed length never goes below this [m].
   double min_deployed_length = 0.5;
-  /// A vehicle sample further than this from the previous one is a jump (re-lays the cable) [m].
+  /// A vehicle sample further than max_vehicle_speed * dt + max_vehicle_jump from the previous one (dt after it)
+  /// is a jump (re-lays the cable) [m].
   double max_vehicle_jump = 1.0;
+  /// The fastest the vehicle can move [m/s]: between samples dt apart it may move this * dt more than
+  /// max_vehicle_jump without being a jump.
+  double max_vehicle_speed = 3.0;
 
   /// Returns one message per invalid field ("field = value: allowed range"); empty when valid.
   std::vector<std::string> validate() const;
@@ -181,7 +186,8 @@ struct TetherParams
   TetherParams resolved() const;
 };
 
-/// True when the two parameter sets describe the same cable (a change needs no rebuild).
+/// True when the two parameter sets describe the same particle arrays (cable_length and segment_length):
+/// a change of anything else needs no rebuild.
 bool sameStructure(const TetherParams& a, const TetherParams& b);
 
 /// A parameter value from any source (YAML, parameter server, command line).

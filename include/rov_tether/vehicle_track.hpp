@@ -13,21 +13,24 @@ namespace rov_tether
  * interpolation between them, and the jump rule.
  *
  * The first sample attaches the vehicle when the simulation reaches its time (attachIfDue), so when a
- * sample arrives does not change a run. A sample further than max_vehicle_jump from the previous one is
- * a jump: the position goes there when the simulation reaches it, without interpolation, and the tether
- * re-lays its cable (advance() reports it).
+ * sample arrives does not change a run. A sample further from the previous one than the vehicle could
+ * have moved, max_speed * dt + max_jump for samples dt apart, is a jump: the position goes there when the
+ * simulation reaches it, without interpolation, and the tether re-lays its cable (advance() reports it).
  */
 class VehicleTrack
 {
  public:
-  /// Samples that may wait ahead of the simulation; more are refused until it advances.
-  static constexpr std::size_t kMaxSamples = 1024;
+  /// Samples that may wait ahead of the simulation; more are refused until it advances. The node runs the
+  /// physics up to 2 s (stale_pose_timeout) behind its poses when some tether's poses come sparsely, so a
+  /// tether fed at 1 kHz needs some 2,000 [-].
+  static constexpr std::size_t kMaxSamples = 4096;
 
   /// Attaches the vehicle at `position` now, with that sample at time t.
   void attachAt(double t, const Position& position);
   /// Queues a sample (finite values are the caller's check). Refuses times older than the last sample
-  /// (the same time replaces it) and more than kMaxSamples waiting; `now` [s] only words the message.
-  Status add(double t, const Position& position, double max_jump, double now);
+  /// (the same time replaces it) and more than kMaxSamples waiting; `now` [s] only words the message. A move
+  /// beyond max_speed [m/s] * dt + max_jump [m] from the sample dt before is a jump.
+  Status add(double t, const Position& position, double max_jump, double max_speed, double now);
   /// Drops the samples and detaches: the last particle becomes a free end.
   void detach();
 

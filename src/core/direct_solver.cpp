@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "rov_tether/banded.hpp"
@@ -55,7 +56,7 @@ ROV_TETHER_TARGET_CLONES double activeSet(const double* __restrict w, const doub
   {
     const double r = c[k] - alpha[k] * lam[k];
     const double mobility = w[k] + w[k + 1];  // 0: both ends pinned
-    const double a = (mobility > 0.0) & (lam[k] * mobility + r > 0.0) ? 1.0 : 0.0;
+    const double a = ((mobility > 0.0) & (lam[k] * mobility + r > 0.0)) ? 1.0 : 0.0;
     on[k] = a;
     const double residual = (a * std::abs(r) + (1.0 - a) * std::abs(lam[k]) * mobility) * inv_rest[k];
     worst = residual > worst ? residual : worst;
@@ -121,7 +122,8 @@ ROV_TETHER_TARGET_CLONES void systemRows(const double* __restrict diag_active, c
   for (std::size_t k = 0; k < m; ++k)
   {
     const double a = on[k];
-    const double before = (1.0 - on[k - 1]) * coupling[k - 1] * lam[k - 1];
+    const std::ptrdiff_t prev = static_cast<std::ptrdiff_t>(k) - 1;  // -1 at k = 0: the padding
+    const double before = (1.0 - on[prev]) * coupling[prev] * lam[prev];
     const double after = (1.0 - on[k + 1]) * coupling[k] * lam[k + 1];
     diag[k] = a * diag_active[k] + (1.0 - a);
     rhs[k] = a * (rhs_active[k] + before + after) - (1.0 - a) * lam[k];
@@ -142,12 +144,13 @@ ROV_TETHER_TARGET_CLONES std::size_t updateActiveSet(const double* __restrict di
   double changes = 0.0;
   for (std::size_t k = 0; k < m; ++k)
   {
+    const std::ptrdiff_t prev = static_cast<std::ptrdiff_t>(k) - 1;  // -1 at k = 0: the padding
     const double stretch =
-        rhs_active[k] + diag_active[k] * lam[k] - coupling[k - 1] * d[k - 1] - coupling[k] * d[k + 1];
+        rhs_active[k] + diag_active[k] * lam[k] - coupling[prev] * d[prev] - coupling[k] * d[k + 1];
     const double a = on[k];
     const double push = lam[k] + d[k] < 0.0 ? 1.0 : 0.0;
     // (diag_active > alpha: not both ends pinned.)
-    const double pull = (diag_active[k] > alpha[k]) & (stretch > 0.0) ? 1.0 : 0.0;
+    const double pull = ((diag_active[k] > alpha[k]) & (stretch > 0.0)) ? 1.0 : 0.0;
     const double change = a * push + (1.0 - a) * pull;
     on[k] = a + change - 2.0 * a * change;
     changes += change;
@@ -216,7 +219,8 @@ void DirectSolver::reserve(std::size_t n)
   for (auto* v : {&xt_,         &yt_,    &zt_,       &sx_,           &sy_,
                   &sz_,         &nx_,    &ny_,       &nz_,           &len_,
                   &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
-                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_})
+                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_,
+                  &primal_lambda_, &lambda_step_, &warm_lambda_, &correction_x_, &correction_y_, &correction_z_})
   {
     v->assign(n, 0.0);
   }
@@ -251,6 +255,7 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   reserve(n);
   first_ = f;
   m_ = n - 1 - f;
+  std::copy(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), warm_lambda_.begin() + f);
   std::fill(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), 0.0);
   std::fill(lambda.bend.begin() + static_cast<std::ptrdiff_t>(std::min(f, lambda.bend.size())), lambda.bend.end(), 0.0);
   bending_ = settings.bending && settings.bending_stiffness > 0.0 && m_ >= 2;
@@ -277,8 +282,16 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   if (drum_ != nullptr)
   {
     drum_->prepare(alpha_[0]);
+    if (bending_)
+    {
+      // The spool segment lengthens by the drum's pay-out within the solve, which its rest length does not
+      // know: the joint's curvature a x_0 - (a + b) x_1 + b x_2 would read that as a kink and pull along the
+      // cable (2 N at 1 m/s with EI 0.2). The cable leaves the spool over a sheave: a hinge there.
+      gamma_[0] = std::numeric_limits<double>::infinity();
+    }
   }
   bool primal = bending_ || tension_ratio_ > kDualTensionRatio;
+  warmStart(cable, lam, primal);
   if (!primal)
   {
     residual_ = dualResidual(cable, lam);
@@ -310,13 +323,22 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
   if (primal)
   {
+    // The multipliers' first estimate: the dual's, or the warm start's.
+    std::copy(lam, lam + m_, primal_lambda_.begin());
     residual_ = std::numeric_limits<double>::infinity();
     while (residual_ > tolerance && lastIterations() < settings.iterations)
     {
-      residual_ = primalStep(cable);
+      if (!std::isfinite(primalStep(cable)))
+      {
+        break;  // the system was not definite: leave the step as it is (reported through the residual)
+      }
       ++primal_iterations_;
+      residual_ = primalResidual(cable);
     }
-    multipliersFromPositions(cable, lam);
+    for (std::size_t k = 0; k < m_; ++k)
+    {
+      lam[k] = unilateral_ ? std::max(primal_lambda_[k], 0.0) : primal_lambda_[k];
+    }
   }
   if (drum_ != nullptr)
   {
@@ -326,11 +348,20 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     }
     drum_->payout = drum_->payoutAt(c_[0]);
   }
-  // What the next step starts from: the segments taut now, and how hard the chain is pulled.
+  // What the next step starts from: the correction this step made, the segments taut now, and how hard the
+  // chain is pulled.
+  for (std::size_t l = 0; l <= m_; ++l)
+  {
+    correction_x_[f + l] = cable.x[f + l] - xt_[l];
+    correction_y_[f + l] = cable.y[f + l] - yt_[l];
+    correction_z_[f + l] = cable.z[f + l] - zt_[l];
+  }
   std::fill(taut_.begin(), taut_.end(), 0);
   tension_ratio_ = 0.0;
   for (std::size_t k = 0; k < m_; ++k)
   {
+    // A slack cable segment carries nothing, exactly (its multiplier can end a rounding below 0).
+    lam[k] = unilateral_ ? std::max(lam[k], 0.0) : lam[k];
     taut_[f + k] = lam[k] > 0.0 ? 1 : 0;
     const double weight = cable.stretch_weight[f + k];
     if (weight > 0.0 && len_[k] > 0.0)
@@ -340,9 +371,57 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   }
 }
 
+void DirectSolver::warmStart(Cable& cable, double* lambda, bool primal)
+{
+  // A chain whose tension changes little from step to step (a hanging or towed tether) starts next to its
+  // solution, and Newton has little left to do: lambda = the last step's multipliers, and the positions
+  // x~ + W J^T lambda (dual path), or x~ plus the last step's correction x - x~ (primal path, where the
+  // tension ratio makes W J^T lambda, each pull larger than a segment, too sensitive to where J is taken).
+  const std::size_t f = first_;
+  const std::size_t m = m_;
+  const double* w = cable.inv_mass.data() + f;
+  if (primal)
+  {
+    std::copy(warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f),
+              warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f + m), lambda);
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      const double free = w[l] > 0.0 ? 1.0 : 0.0;
+      cable.x[f + l] += free * correction_x_[f + l];
+      cable.y[f + l] += free * correction_y_[f + l];
+      cable.z[f + l] += free * correction_z_[f + l];
+    }
+    geometry(cable);
+    return;
+  }
+  std::copy(warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f),
+            warm_lambda_.begin() + static_cast<std::ptrdiff_t>(f + m), step());
+  step()[m] = 0.0;
+  if (cable.anisotropic)
+  {
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      extra_mobility_[l] = cable.inv_mass_along[f + l] - w[l];
+    }
+    applyDualAnisotropic(w, extra_mobility_.data(), cable.tx.data() + f, cable.ty.data() + f, cable.tz.data() + f,
+                         nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
+                         cable.z.data() + f, lambda, m);
+  }
+  else
+  {
+    applyDual(w, nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
+              cable.z.data() + f, lambda, m);
+  }
+  geometry(cable);
+}
+
 void DirectSolver::forget()
 {
   std::fill(taut_.begin(), taut_.end(), 0);
+  for (auto* v : {&correction_x_, &correction_y_, &correction_z_})
+  {
+    std::fill(v->begin(), v->end(), 0.0);
+  }
   tension_ratio_ = 0.0;
 }
 

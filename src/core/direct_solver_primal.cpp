@@ -156,9 +156,10 @@ void DirectSolver::assemblePrimal(const Cable& cable)
       grad_[3 * (k + 1) + a] += lam * n[a];
     }
     // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
-    // lambda / |d| (I - n n^T) of the energy's lambda (not the model's), dropped when compressed (a rod in
-    // compression: the Hessian stays positive definite).
-    const double geometric = len_[k] > 0.0 ? std::max(segmentForce(k, c_[k]), 0.0) / len_[k] : 0.0;
+    // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
+    // rounding makes useless), dropped when compressed (a rod in compression: the Hessian stays positive
+    // definite).
+    const double geometric = len_[k] > 0.0 ? std::max(primal_lambda_[k], 0.0) / len_[k] : 0.0;
     double block[9];
     for (std::size_t a = 0; a < 3; ++a)
     {
@@ -276,6 +277,7 @@ double DirectSolver::primalStep(Cable& cable)
       {
         step_[i] = grad_step_[i] + drum_force * step_[i];
       }
+      lambda_step_[0] = drum_force - primal_lambda_[0];
     }
     std::size_t changes = 0;
     for (std::size_t k = drum_ != nullptr ? 1 : 0; unilateral_ && k < m; ++k)
@@ -291,6 +293,19 @@ double DirectSolver::primalStep(Cable& cable)
     {
       break;
     }
+  }
+  // Each multiplier's Newton step: to the linearised force (C + n . (dx_k+1 - dx_k)) / alpha of a segment in
+  // the model, to 0 for one out of it (the drum's was set with its solve).
+  for (std::size_t k = drum_ != nullptr ? 1 : 0; k < m; ++k)
+  {
+    const double* a = &step_[3 * k];
+    const double* b = &step_[3 * (k + 1)];
+    const double stretch = c_[k] + nx_[k] * (b[0] - a[0]) + ny_[k] * (b[1] - a[1]) + nz_[k] * (b[2] - a[2]);
+    lambda_step_[k] = (model[k] > 0.0 ? stretch / alpha_[k] : 0.0) - primal_lambda_[k];
+  }
+  if (drum_ != nullptr && !(cable.inv_mass[f + 1] > 0.0))
+  {
+    lambda_step_[0] = drum_->force(c_[0]) - primal_lambda_[0];  // a segment nothing can move: the law alone
   }
   // The energy's slope along the step: the model's gradient, corrected where the model's force differs
   // from the energy's (a segment not stretched yet, whose energy is flat at 0; the drum's piece).
@@ -339,18 +354,95 @@ double DirectSolver::primalStep(Cable& cable)
     if (move <= kGlobalMove || halving == kMaxHalvings || !(slope < 0.0) ||
         energy(cable) <= before + kArmijo * t * slope)
     {
+      for (std::size_t k = 0; k < m; ++k)
+      {
+        primal_lambda_[k] += t * lambda_step_[k];
+      }
       return t * move;
     }
     t *= 0.5;
   }
 }
 
-void DirectSolver::multipliersFromPositions(const Cable& /*cable*/, double* lambda) const
+double DirectSolver::primalResidual(const Cable& cable) const
 {
-  for (std::size_t k = 0; k < m_; ++k)
+  const std::size_t f = first_;
+  const std::size_t m = m_;
+  const double* model = on_.data() + 1;
+  // Each free particle's force balance M (x - x~) + J^T lambda + the bending terms, accumulated per axis in
+  // grad_step_ (free here: primalStep refills it before use).
+  double* force = const_cast<double*>(grad_step_.data());
+  double worst = 0.0;
+  for (std::size_t l = 0; l <= m; ++l)
   {
-    lambda[k] = segmentForce(k, c_[k]);
+    const double w = cable.inv_mass[f + l];
+    const double d[3] = {cable.x[f + l] - xt_[l], cable.y[f + l] - yt_[l], cable.z[f + l] - zt_[l]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      force[3 * l + a] = w > 0.0 ? d[a] / w : 0.0;
+    }
+    if (w > 0.0 && cable.anisotropic)
+    {
+      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+      const double along = (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]);
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        force[3 * l + a] += along * t[a];
+      }
+    }
   }
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double lam = primal_lambda_[k];
+    const double n[3] = {nx_[k], ny_[k], nz_[k]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      force[3 * k + a] -= lam * n[a];
+      force[3 * (k + 1) + a] += lam * n[a];
+    }
+    double r = 0.0;
+    if (k == 0 && drum_ != nullptr)
+    {
+      r = std::abs(lam - drum_->force(c_[0])) * (cable.inv_mass[f] + cable.inv_mass[f + 1]);
+    }
+    else if (!unilateral_ || model[k] > 0.0)
+    {
+      r = std::abs(c_[k] - alpha_[k] * lam);
+    }
+    else
+    {
+      r = std::max(c_[k], 0.0) + std::abs(lam) * (cable.inv_mass[f + k] + cable.inv_mass[f + k + 1]);
+    }
+    worst = std::max(worst, r * inv_rest_[k]);
+  }
+  for (std::size_t j = 0; bending_ && j + 1 < m; ++j)
+  {
+    const double a = 1.0 / cable.rest[f + j];
+    const double b = 1.0 / cable.rest[f + j + 1];
+    const double g[3] = {a, -(a + b), b};
+    const std::size_t p = f + j;
+    const double cb[3] = {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
+                          a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
+                          a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]};
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      for (std::size_t axis = 0; axis < 3; ++axis)
+      {
+        force[3 * (j + r) + axis] += g[r] * cb[axis] / gamma_[j];
+      }
+    }
+  }
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    // As a displacement: times the largest inverse mass (along the cable, where added mass does not act).
+    const double w = std::max(cable.inv_mass[f + l], cable.anisotropic ? cable.inv_mass_along[f + l] : 0.0);
+    if (w > 0.0)
+    {
+      const double* r = &force[3 * l];
+      worst = std::max(worst, w * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) / nominal_);
+    }
+  }
+  return worst;
 }
 
 }  // namespace rov_tether

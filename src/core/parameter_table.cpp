@@ -144,7 +144,9 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"min_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[segment_length, cable_length]",
        "never reel in below this", kAtStart},
       {"max_vehicle_jump", "double", "m", 0.0, 1e4, kOpen, kClosed, "",
-       "a larger step between vehicle samples is a jump", kLive},
+       "a step between vehicle samples dt apart larger than this + `max_vehicle_speed` dt is a jump", kLive},
+      {"max_vehicle_speed", "double", "m/s", 0.0, 1e3, kClosed, kClosed, "",
+       "fastest the vehicle moves; 0: a jump is any step beyond `max_vehicle_jump`", kLive},
   };
   return table;
 }

@@ -41,7 +41,7 @@ Tether::Tether(const TetherParams& params, const Position& spool, double start_t
   }
   time_ = target_time_ = base_time_ = start_time;
   applyParams(params);
-  build();
+  build(params_.initial_deployed_length);
 }
 
 Tether::Tether(const TetherParams& params, const Position& spool, const Position& vehicle, double start_time)
@@ -93,15 +93,23 @@ Status Tether::setParams(const TetherParams& params)
     return Status::error(joinErrors(errors));
   }
   const bool rebuild = !sameStructure(params_, params.resolved());
+  const bool new_solver = params.solver != params_.solver;
   const double old_step = params_.subStep();
   const bool new_mass = params.resolved().lineMass().along != params_.lineMass().along ||
                         params.resolved().lineMass().across != params_.lineMass().across;
+  // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
+  const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
   if (rebuild)
   {
     noise_.reseed(params_.seed);
-    build();
-    return Status{true, "cable rebuilt for the new cable_length, segment_length or solver"};
+    build(std::clamp(deployed, params_.min_deployed_length, params_.cable_length));
+    return Status{true, "cable rebuilt for the new cable_length or segment_length at the deployed length"};
+  }
+  if (new_solver)
+  {
+    // The new method takes the cable as it is: same particles, same deployed length, no multipliers yet.
+    solver_->multipliers().resize(cable_.size());
   }
   if (params_.subStep() != old_step)
   {
@@ -123,12 +131,12 @@ Status Tether::setParams(const TetherParams& params)
   return Status::success();
 }
 
-void Tether::build()
+void Tether::build(double deployed_length)
 {
   cable_.resize(params_.segmentCount() + 1);
   solver_->multipliers().resize(cable_.size());
   tension_scratch_.reserve(cable_.size());
-  layOut(params_.initial_deployed_length);
+  layOut(deployed_length);
 }
 
 void Tether::layOut(double deployed_length)
@@ -213,7 +221,7 @@ Status Tether::addVehicleSample(double t, const Position& vehicle)
         "vehicle sample rejected: time and position must be finite (time within +-1e10 s, "
         "position within +-1e6 m)");
   }
-  return track_.add(t, vehicle, params_.max_vehicle_jump, time_);
+  return track_.add(t, vehicle, params_.max_vehicle_jump, params_.max_vehicle_speed, time_);
 }
 
 Status Tether::setTargetLength(double length)
@@ -398,7 +406,9 @@ void Tether::fail(const std::string& why)
   std::ostringstream message;
   message << "t = " << time_ << " s: " << why << "; the cable was re-laid at rest";
   last_failure_ = message.str();
-  layOut(std::clamp(deployedLength(), params_.min_deployed_length, params_.cable_length));
+  const double deployed = deployedLength();
+  layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
+                                 : params_.initial_deployed_length);
 }
 
 bool Tether::runWinch(double dt)
@@ -436,6 +446,10 @@ void Tether::payOut(double change, double dt)
 {
   const double deployed = deployedLength();
   const double max_change = params_.max_winch_speed * dt;
+  if (!std::isfinite(change))
+  {
+    change = 0.0;  // a diverged solve's drum: subStep's checks re-lay the cable next, the spool stays as it was
+  }
   change = std::clamp(change, -max_change, max_change);
   change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
                       std::max(0.0, params_.cable_length - deployed));

@@ -78,6 +78,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"reel_in_slack", &TetherParams::reel_in_slack},
       {"min_deployed_length", &TetherParams::min_deployed_length},
       {"max_vehicle_jump", &TetherParams::max_vehicle_jump},
+      {"max_vehicle_speed", &TetherParams::max_vehicle_speed},
   };
   return table;
 }
@@ -290,8 +291,9 @@ std::size_t TetherParams::segmentCount() const
 
 bool sameStructure(const TetherParams& a, const TetherParams& b)
 {
-  // initial_deployed_length only matters at a reset, so it is not structure.
-  return a.cable_length == b.cable_length && a.segment_length == b.segment_length && a.solver == b.solver;
+  // initial_deployed_length only matters at a reset, and a new solver takes the cable as it is: neither is
+  // structure.
+  return a.cable_length == b.cable_length && a.segment_length == b.segment_length;
 }
 
 const std::vector<std::string>& parameterNames()

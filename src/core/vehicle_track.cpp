@@ -12,7 +12,7 @@ void VehicleTrack::attachAt(double t, const Position& position)
   samples_.assign(1, Sample{t, position, false});
 }
 
-Status VehicleTrack::add(double t, const Position& position, double max_jump, double now)
+Status VehicleTrack::add(double t, const Position& position, double max_jump, double max_speed, double now)
 {
   if (!attached_ && samples_.empty())
   {
@@ -39,8 +39,10 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
         << " s); advance it first";
     return Status::error(out.str());
   }
+  // The sample before (none left when this one replaced the only one: then it is where the vehicle is).
   const Position& previous = samples_.empty() ? position_ : samples_.back().position;
-  const bool jump = (position - previous).norm() > max_jump;
+  const double dt = samples_.empty() ? 0.0 : t - samples_.back().time;
+  const bool jump = (position - previous).norm() > max_speed * dt + max_jump;
   samples_.push_back(Sample{t, position, jump});
   return Status::success();
 }

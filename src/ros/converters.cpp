@@ -51,17 +51,19 @@ visualization_msgs::Marker& startMarker(visualization_msgs::MarkerArray* markers
 
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
 {
-  const double shade = stripe ? 0.5 : 1.0;
+  // Stripes are lighter, not darker: rviz's backgrounds are dark, and a darker stripe of blue or red
+  // vanished in them.
+  const auto shade = [stripe](double c) { return stripe ? c + 0.4 * (1.0 - c) : c; };
   if (!(tension >= 0.0))  // compression, and NaN
   {
-    return rgba(0.55 * shade, 0.55 * shade, 0.55 * shade);
+    return rgba(shade(0.55), shade(0.55), shade(0.55));
   }
-  // Piecewise-linear blue -> cyan -> green -> yellow -> red over [0, full_scale].
+  // Piecewise-linear light blue -> cyan -> green -> yellow -> red over [0, full_scale].
   const double u = std::min(tension / full_scale, 1.0) * 4.0;
   double r = 0.0, g = 0.0, b = 0.0;
   if (u < 1.0)
   {
-    g = u, b = 1.0;
+    r = 0.3 * (1.0 - u), g = 0.55 + 0.45 * u, b = 1.0;
   }
   else if (u < 2.0)
   {
@@ -75,7 +77,7 @@ std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
   {
     r = 1.0, g = 4.0 - u;
   }
-  return rgba(r * shade, g * shade, b * shade);
+  return rgba(shade(r), shade(g), shade(b));
 }
 
 void toStateMessage(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
@@ -159,15 +161,51 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   label.text = text;
 }
 
-geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin, const ros::Time& stamp,
-                                      const std::string& frame_id)
+void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& world_frame,
+                  const std::string& spool_frame, const std::string& end_frame, tf2_msgs::TFMessage* message)
+{
+  message->transforms.clear();
+  const std::pair<const std::string*, Position> frames[] = {
+      {&spool_frame, sim.particle(0)}, {&end_frame, sim.particle(sim.deployedParticleCount() - 1)}};
+  for (const auto& [name, at] : frames)
+  {
+    if (name->empty())
+    {
+      continue;
+    }
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = world_frame;
+    t.child_frame_id = *name;
+    t.transform.translation.x = at.x();
+    t.transform.translation.y = at.y();
+    t.transform.translation.z = at.z();
+    t.transform.rotation.w = 1.0;
+    message->transforms.push_back(t);
+  }
+}
+
+Force pullOnVehicle(const Tether& sim)
+{
+  const std::size_t n = sim.deployedParticleCount();
+  if (!sim.vehicleAttached() || n < 2)
+  {
+    return Force::Zero();
+  }
+  const Force force = sim.vehicleForce();
+  const Eigen::Vector3d towards_cable = sim.particle(n - 2) - sim.particle(n - 1);
+  return force.dot(towards_cable) > 0.0 ? force : Force::Zero();
+}
+
+namespace
+{
+
+geometry_msgs::WrenchStamped wrenchMessage(const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                                           const ros::Time& stamp, const std::string& frame_id)
 {
   geometry_msgs::WrenchStamped wrench;
   wrench.header.stamp = stamp;
   wrench.header.frame_id = frame_id;
-  const Force force = sim.vehicleForce();
-  const Eigen::Vector3d lever = sim.particle(sim.deployedParticleCount() - 1) - vehicle_origin;
-  const Eigen::Vector3d torque = sim.vehicleAttached() ? lever.cross(force) : Eigen::Vector3d::Zero();
   wrench.wrench.force.x = force.x();
   wrench.wrench.force.y = force.y();
   wrench.wrench.force.z = force.z();
@@ -175,6 +213,24 @@ geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& 
   wrench.wrench.torque.y = torque.y();
   wrench.wrench.torque.z = torque.z();
   return wrench;
+}
+
+}  // namespace
+
+geometry_msgs::WrenchStamped toWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                      const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
+                                      const std::string& frame_id)
+{
+  const Eigen::Vector3d lever = vehicle.rotation() * attachment_offset;
+  return wrenchMessage(pull, lever.cross(pull), stamp, frame_id);
+}
+
+geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                             const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
+                                             const std::string& vehicle_frame)
+{
+  const Eigen::Vector3d force = vehicle.rotation().transpose() * pull;
+  return wrenchMessage(force, attachment_offset.cross(force), stamp, vehicle_frame);
 }
 
 std::string configToParams(const TetherConfig& config, TetherParams* params)

@@ -46,13 +46,16 @@ void LoadGovernor::update(double physics_wall, const ros::WallTime& wall_now, Te
     return;
   }
   physics_load_ = window_physics_ / window;
+  marker_load_ = window_markers_ / window;
   window_start_ = wall_now;
   window_physics_ = 0.0;
-  if (physics_load_ > options_.cpu_budget)
+  window_markers_ = 0.0;
+  const double load = physics_load_ + marker_load_;
+  if (load > options_.cpu_budget)
   {
     degrade(tether);
   }
-  else if (physics_load_ < 0.5 * options_.cpu_budget && !degraded_.empty())
+  else if (load < 0.5 * options_.cpu_budget && !degraded_.empty())
   {
     recover(tether);
   }
@@ -67,14 +70,14 @@ void LoadGovernor::degrade(Tether& tether)
     tether.setParams(params);
     degraded_ = iterationsText(params.iterations, configured_iterations_);
   }
-  else if (options_.overload_policy == "reduce_markers" && marker_rate_ > 1.0)
+  else if (options_.overload_policy == "reduce_markers" && marker_rate_ > 1.0 && marker_load_ > 0.0)
   {
     marker_rate_ = std::max(1.0, marker_rate_ / 2.0);
     degraded_ = markersText(marker_rate_);
   }
   ROS_WARN_THROTTLE(
-      5.0, "tether_node%s: physics uses %.0f%% of the wall time (cpu_budget %.0f%%): %s", label_.c_str(),
-      100 * physics_load_, 100 * options_.cpu_budget,
+      5.0, "tether_node%s: physics and markers use %.1f%% + %.1f%% of the wall time (cpu_budget %.0f%%): %s",
+      label_.c_str(), 100 * physics_load_, 100 * marker_load_, 100 * options_.cpu_budget,
       degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
 }
 

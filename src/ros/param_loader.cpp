@@ -15,10 +15,11 @@ namespace
 const std::vector<std::string>& nodeOptionNames()
 {
   static const std::vector<std::string> names = {
-      "world_frame",       "pose_source",        "rov_frame",           "attachment_offset",  "spool_frame",
-      "spool_position",    "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
-      "marker_line_width", "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
-      "pose_topic",        "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag"};
+      "world_frame",        "pose_source",        "rov_frame",           "attachment_offset",  "spool_frame",
+      "spool_position",     "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
+      "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
+      "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
+      "spool_outlet_frame", "cable_end_frame"};
   return names;
 }
 
@@ -227,6 +228,8 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   candidate.min_iterations = static_cast<int>(min_iterations);
   read.number("cpu_budget", &candidate.cpu_budget, 0.01, 1.0);
   read.number("max_lag", &candidate.max_lag, 0.01, 3600.0);
+  read.text("spool_outlet_frame", &candidate.spool_outlet_frame);
+  read.text("cable_end_frame", &candidate.cable_end_frame);
   if (candidate.overload_policy != "reduce_iterations" && candidate.overload_policy != "reduce_markers" &&
       candidate.overload_policy != "none")
   {

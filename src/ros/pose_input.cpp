@@ -3,8 +3,10 @@
 #include <ros/console.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace rov_tether::ros_layer
 {
@@ -35,66 +37,203 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose)
   return Eigen::Translation3d(p.x, p.y, p.z) * Eigen::Quaterniond(q.w, q.x, q.y, q.z);
 }
 
-PoseInput::PoseInput(const NodeOptions& options, const tf2_ros::Buffer& tf, Tether& tether, const std::string& label)
+PoseInput::PoseInput(const NodeOptions& options, tf2_ros::Buffer& tf, Tether& tether, const std::string& label,
+                     ros::CallbackQueueInterface* input_queue)
     : options_(options), tf_(tf), tether_(tether), label_(label.empty() ? "" : " " + label)
 {
+  hand_over_.reserve(kMaxHandOver);
+  taking_.reserve(kMaxHandOver);
+  waiting_for_tf_.reserve(kMaxWaitingForTf + 1);
+  if (options_.pose_source == "topic")
+  {
+    filter_ = std::make_unique<Filter>(tf_, options_.world_frame, kMaxWaitingForTf, input_queue);
+    filter_->registerCallback(&PoseInput::onTransformable, this);
+    filter_->registerFailureCallback([this](const geometry_msgs::PoseStamped::ConstPtr& msg,
+                                            tf2_ros::filter_failure_reasons::FilterFailureReason reason)
+                                     { onFilterFailure(msg, reason); });
+  }
 }
 
-void PoseInput::subscribe(ros::NodeHandle& nh, BeforeAdd before_add)
+void PoseInput::subscribe(ros::NodeHandle& nh)
 {
   if (options_.pose_source != "topic")
   {
     return;
   }
-  // Deep enough for poses at 1 kHz between two physics ticks.
-  subscriber_ = nh.subscribe<geometry_msgs::PoseStamped>(
-      options_.pose_topic, 100,
-      [this, before_add = std::move(before_add)](const geometry_msgs::PoseStamped::ConstPtr& msg)
-      { onMessage(*msg, ros::Time::now(), before_add); });
+  // The callback only checks and hands over, on the input's own thread: a deep queue never fills.
+  subscriber_ = nh.subscribe<geometry_msgs::PoseStamped>(options_.pose_topic, kMaxHandOver,
+                                                         [this](const geometry_msgs::PoseStamped::ConstPtr& msg)
+                                                         { receive(msg, ros::Time::now()); });
 }
 
-bool PoseInput::onMessage(const geometry_msgs::PoseStamped& msg, const ros::Time& now, const BeforeAdd& before_add)
+void PoseInput::refuse(const std::string& why)
 {
-  const std::string problem = checkPose(msg.pose);
+  ++rejected_;
+  ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %s", label_.c_str(), why.c_str());
+}
+
+void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& now)
+{
+  const std::string problem = checkPose(msg->pose);
   if (!problem.empty())
   {
-    ++rejected_;
-    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %s", label_.c_str(), problem.c_str());
-    return false;
+    refuse(problem);
+    return;
   }
-  if (before_add)
+  geometry_msgs::PoseStamped::ConstPtr pose = msg;
+  if (msg->header.stamp.isZero())
   {
-    before_add(now);
+    auto stamped = boost::make_shared<geometry_msgs::PoseStamped>(*msg);
+    stamped->header.stamp = now;  // a zero stamp means "now"
+    pose = stamped;
   }
-  const ros::Time stamp = msg.header.stamp.isZero() ? now : msg.header.stamp;
-  Eigen::Isometry3d pose = toIsometry(msg.pose);
-  const std::string& frame = msg.header.frame_id;
-  if (!frame.empty() && frame != options_.world_frame)
+  const std::string& frame = pose->header.frame_id;
+  if (frame.empty() || frame == options_.world_frame || !filter_)
   {
-    Eigen::Isometry3d frame_in_world;
-    if (!lookup(frame, stamp, &frame_in_world))
+    handOver(pose, now);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    waiting_for_tf_.push_back(HandOver{pose, now});
+  }
+  filter_->add(pose);
+}
+
+void PoseInput::handOver(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& arrival)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (hand_over_.size() >= kMaxHandOver)
+  {
+    ++dropped_;
+    ROS_WARN_THROTTLE(1.0, "rov_pose dropped%s: %zu poses already wait for the physics (it is stalled)", label_.c_str(),
+                      hand_over_.size());
+    return;
+  }
+  hand_over_.push_back(HandOver{msg, arrival});
+}
+
+ros::Time PoseInput::stopWaiting(const geometry_msgs::PoseStamped* msg)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = std::find_if(waiting_for_tf_.begin(), waiting_for_tf_.end(),
+                               [msg](const HandOver& w) { return w.msg.get() == msg; });
+  if (it == waiting_for_tf_.end())
+  {
+    return ros::Time();
+  }
+  const ros::Time arrival = it->arrival;
+  waiting_for_tf_.erase(it);
+  return arrival;
+}
+
+void PoseInput::onTransformable(const geometry_msgs::PoseStamped::ConstPtr& msg)
+{
+  const ros::Time arrival = stopWaiting(msg.get());
+  if (!arrival.isZero())
+  {
+    handOver(msg, arrival);
+  }
+}
+
+void PoseInput::onFilterFailure(const geometry_msgs::PoseStamped::ConstPtr& msg,
+                                tf2_ros::filter_failure_reasons::FilterFailureReason reason)
+{
+  if (stopWaiting(msg.get()).isZero())
+  {
+    return;  // already refused as too late
+  }
+  refuse("no transform " + options_.world_frame + " -> " + msg->header.frame_id + " at " +
+         std::to_string(msg->header.stamp.toSec()) + " s (" +
+         (reason == tf2_ros::filter_failure_reasons::OutTheBack ? "older than the tf buffer" : "dropped by tf") + ")");
+}
+
+void PoseInput::expireWaiting()
+{
+  std::string late;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double physics = tether_.time();
+    const auto passed = [physics](const HandOver& w) { return w.msg->header.stamp.toSec() < physics; };
+    const auto first = std::find_if(waiting_for_tf_.begin(), waiting_for_tf_.end(), passed);
+    if (first != waiting_for_tf_.end())
     {
-      ++rejected_;
-      return false;
+      late = first->msg->header.frame_id;
     }
-    pose = frame_in_world * pose;
+    for (auto it = waiting_for_tf_.begin(); it != waiting_for_tf_.end();)
+    {
+      if (passed(*it))
+      {
+        ++rejected_;
+        it = waiting_for_tf_.erase(it);
+      }
+      else
+      {
+        ++it;
+      }
+    }
   }
-  return addVehicle(pose, stamp, now);
+  if (!late.empty())
+  {
+    ROS_WARN_THROTTLE(1.0,
+                      "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it "
+                      "(the physics runs interpolation_delay behind ROS time: that is tf's slack)",
+                      label_.c_str(), options_.world_frame.c_str(), late.c_str());
+  }
 }
 
 void PoseInput::poll(const ros::Time& now)
 {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    taking_.swap(hand_over_);
+  }
+  // In stamp order: the MessageFilter releases the poses a new transform makes ready in no set order.
+  std::sort(taking_.begin(), taking_.end(),
+            [](const HandOver& a, const HandOver& b) { return a.msg->header.stamp < b.msg->header.stamp; });
+  for (const HandOver& pose : taking_)
+  {
+    take(pose, now);
+  }
+  taking_.clear();
+  expireWaiting();
+
   Eigen::Isometry3d pose;
   if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))
   {
     tether_.setSpoolPosition(pose.translation());
   }
   ros::Time stamp;
-  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose, &stamp) &&
-      stamp > last_pose_stamp_)
+  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose, &stamp))
   {
-    addVehicle(pose, stamp, now);
+    // A static transform (stamp 0) holds at every time: it is taken now, as a pose that does not move.
+    if (stamp.isZero())
+    {
+      stamp = now;
+    }
+    if (stamp > last_pose_stamp_)
+    {
+      addVehicle(pose, stamp, now);
+    }
   }
+}
+
+void PoseInput::take(const HandOver& pose, const ros::Time& now)
+{
+  const geometry_msgs::PoseStamped& msg = *pose.msg;
+  Eigen::Isometry3d vehicle = toIsometry(msg.pose);
+  const std::string& frame = msg.header.frame_id;
+  if (!frame.empty() && frame != options_.world_frame)
+  {
+    Eigen::Isometry3d frame_in_world;
+    if (!lookup(frame, msg.header.stamp, &frame_in_world))
+    {
+      ++rejected_;
+      return;
+    }
+    vehicle = frame_in_world * vehicle;
+  }
+  addVehicle(vehicle, msg.header.stamp, now);
 }
 
 bool PoseInput::lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp)
@@ -123,14 +262,66 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   const Status status = tether_.addVehicleSample(stamp.toSec(), attachment);
   if (!status.ok)
   {
-    ++rejected_;
-    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %s", label_.c_str(), status.message.c_str());
+    refuse(status.message);
     return false;
   }
+  if (!last_pose_stamp_.isZero())
+  {
+    gaps_[gap_count_ % kGaps] = (now - last_pose_stamp_).toSec();
+    ++gap_count_;
+  }
+  ++accepted_;
+  history_.add(stamp.toSec(), vehicle);
   last_vehicle_ = vehicle;
   last_pose_time_ = now;
   last_pose_stamp_ = stamp;
   return true;
+}
+
+void PoseInput::reset(const ros::Time& now)
+{
+  last_pose_stamp_ = ros::Time();
+  gap_count_ = 0;
+  history_.clear();
+  std::size_t refused = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto later = [&now](const HandOver& pose) { return pose.arrival > now; };
+    for (auto* list : {&hand_over_, &waiting_for_tf_})
+    {
+      const auto keep = std::remove_if(list->begin(), list->end(), later);
+      refused += static_cast<std::size_t>(list->end() - keep);
+      list->erase(keep, list->end());
+    }
+  }
+  if (refused > 0)
+  {
+    rejected_ += refused;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %zu poses that arrived before the clock went back", label_.c_str(),
+                      refused);
+  }
+}
+
+ros::Time PoseInput::earliestArrival() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ros::Time earliest;
+  for (const HandOver& pose : hand_over_)
+  {
+    earliest = earliest.isZero() || pose.arrival < earliest ? pose.arrival : earliest;
+  }
+  return earliest;
+}
+
+double PoseInput::latestStamp() const
+{
+  return last_pose_stamp_.isZero() ? std::numeric_limits<double>::quiet_NaN() : last_pose_stamp_.toSec();
+}
+
+double PoseInput::neededDelay() const
+{
+  const std::size_t n = std::min(gap_count_, kGaps);
+  return n == 0 ? 0.0 : *std::max_element(gaps_.begin(), gaps_.begin() + static_cast<std::ptrdiff_t>(n));
 }
 
 }  // namespace rov_tether::ros_layer

@@ -24,7 +24,11 @@ double stepWork(const Tether& tether)
 }  // namespace
 
 Scheduler::Scheduler(World& world, double interpolation_delay, WallClock wall_clock)
-    : world_(world), interpolation_delay_(interpolation_delay), wall_clock_(std::move(wall_clock))
+    : world_(world),
+      interpolation_delay_(interpolation_delay),
+      delay_(interpolation_delay),
+      hold_limit_(interpolation_delay),
+      wall_clock_(std::move(wall_clock))
 {
 }
 
@@ -32,20 +36,21 @@ std::size_t Scheduler::add(const NodeOptions& options, TetherHooks& hooks, const
 {
   const std::size_t i = tethers_.size();
   tethers_.emplace_back(hooks, options, world_.tether(i).params().iterations, label);
+  hold_limit_ = std::max(hold_limit_, options.stale_pose_timeout);
   return i;
 }
 
 double Scheduler::alignedPhysicsTime(std::size_t i, const ros::Time& now) const
 {
   const double dt = world_.tether(i).params().time_step;
-  return std::floor((now.toSec() - interpolation_delay_) / dt) * dt;
+  return std::floor((now.toSec() - delay_) / dt) * dt;
 }
 
 void Scheduler::restart(std::size_t i, const ros::Time& now)
 {
   world_.tether(i).reset(alignedPhysicsTime(i, now));
   tethers_[i].next_state = 0.0;
-  tethers_[i].hooks->restarted();
+  tethers_[i].hooks->restarted(now);
 }
 
 void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& why)
@@ -59,17 +64,10 @@ void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& wh
 
 void Scheduler::resetAll(const ros::Time& now, const std::string& why)
 {
+  delay_ = interpolation_delay_;  // the poses' timing starts over with the tethers
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     reset(i, now, why);
-  }
-}
-
-void Scheduler::checkClock(const ros::Time& now)
-{
-  if (started_ && now < last_time_)
-  {
-    resetAll(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
   }
 }
 
@@ -90,7 +88,16 @@ void Scheduler::tick(const ros::Time& now)
   }
   else if (now < last_time_)
   {
-    resetAll(now, "time jumped backwards by " + std::to_string((last_time_ - now).toSec()) + " s");
+    ros::Time at = now;
+    for (const auto& tether : tethers_)
+    {
+      const ros::Time arrival = tether.hooks->earliestArrival();
+      if (!arrival.isZero() && arrival < at)
+      {
+        at = arrival;  // a pose of the new clock, before this tick
+      }
+    }
+    resetAll(at, "time jumped backwards by " + std::to_string((last_time_ - at).toSec()) + " s");
   }
   else if ((now - last_time_).toSec() > kMaxForwardJump)
   {
@@ -100,8 +107,7 @@ void Scheduler::tick(const ros::Time& now)
   {
     tether.hooks->beforeAdvance(now);
   }
-  // Poses arrive late: running the physics behind ROS time lets them bracket it.
-  const double target = now.toSec() - interpolation_delay_;
+  const double target = physicsTarget(now);
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     prepare(i, target, now);
@@ -120,6 +126,31 @@ void Scheduler::tick(const ros::Time& now)
   {
     tether.hooks->afterAdvance(now);
   }
+}
+
+double Scheduler::physicsTarget(const ros::Time& now)
+{
+  // Poses arrive late, and sparse ones (1 Hz navigation) far apart: running the physics behind ROS time
+  // by the largest gap the poses leave lets two of them bracket every step, so the vehicle end moves
+  // between them instead of holding and then leaping.
+  double wanted = interpolation_delay_;
+  double latest = std::numeric_limits<double>::infinity();
+  for (const auto& tether : tethers_)
+  {
+    const TetherHooks::PoseTiming timing = tether.hooks->poseTiming();
+    wanted = std::max(wanted, std::min(timing.needed_delay, hold_limit_));
+    if (!std::isnan(timing.latest_stamp))
+    {
+      latest = std::min(latest, timing.latest_stamp);
+    }
+  }
+  const double elapsed = std::max(0.0, (now - last_time_).toSec());
+  delay_ = wanted >= delay_ ? wanted : std::max(wanted, delay_ - kDelayShrinkRate * elapsed);
+  // Never past the latest pose (the next one will say where the vehicle went), unless it is older than
+  // the hold limit: then the vehicle is stale and the physics goes on with it where it was last.
+  const double t = now.toSec();
+  target_ = std::max(std::min(t - delay_, latest), t - hold_limit_);
+  return target_;
 }
 
 void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)

@@ -44,11 +44,18 @@ void TetherDiagnostics::report(const ros::Time& now)
                       label_.c_str(), tether_.params().max_winch_speed,
                       tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
   }
+  if (pose_input_.dropped() > reported_drops_)
+  {
+    reported_drops_ = pose_input_.dropped();
+    last_drop_time_ = now;
+  }
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: the vehicle pose jumped more than max_vehicle_jump = %.2f m: cable re-laid",
-                      label_.c_str(), tether_.params().max_vehicle_jump);
+    ROS_WARN_THROTTLE(1.0,
+                      "tether_node%s: the vehicle pose jumped further than it could move (max_vehicle_speed %.2f m/s "
+                      "x dt + max_vehicle_jump %.2f m): cable re-laid",
+                      label_.c_str(), tether_.params().max_vehicle_speed, tether_.params().max_vehicle_jump);
   }
 }
 
@@ -65,7 +72,10 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("step time [us]", schedule.step_seconds * 1e6);
   status.add("physics real-time factor", schedule.real_time_factor);
   status.add("residual stretch", summary.mean_strain);
+  status.add("poses taken", pose_input_.accepted());
   status.add("rejected poses", pose_input_.rejected());
+  status.add("dropped poses", pose_input_.dropped());
+  status.add("physics delay [s]", scheduler_.delay());
   status.add("resets", schedule.resets);
   status.add("vehicle jumps", tether_.jumpCount());
   status.add("solver", toString(tether_.params().solver));
@@ -73,6 +83,7 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("winch", toString(tether_.params().winch_mode));
   status.add("winch speed [m/s]", tether_.winchSpeed());
   status.add("physics load [% of wall time]", 100.0 * governor.physicsLoad());
+  status.add("marker load [% of wall time]", 100.0 * governor.markerLoad());
   status.add("skips (fell behind)", schedule.skips);
   status.add("simulation failures", tether_.recoveryCount());
   if (!tether_.lastFailure().empty())
@@ -88,6 +99,11 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   else if (!last_pose_time.isZero() && (now - last_pose_time).toSec() > options_.stale_pose_timeout)
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "stale pose: none for %.1f s", (now - last_pose_time).toSec());
+  }
+  if (!last_drop_time_.isZero() && (now - last_drop_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "poses dropped: %llu so far (the physics stalled)",
+                         static_cast<unsigned long long>(pose_input_.dropped()));
   }
   if (summary.max_tension > options_.max_tension_warning)
   {
@@ -111,6 +127,12 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "degraded to hold real time: %s (overload_policy %s)",
                          governor.degraded().c_str(), governor.policy().c_str());
+  }
+  if (governor.overloaded())
+  {
+    // Given up what it could, or nothing: either way the budget is not held, and it says so.
+    status.mergeSummaryf(DiagnosticStatus::WARN, "over cpu_budget: physics %.1f%% + markers %.1f%% of %.0f%%",
+                         100.0 * governor.physicsLoad(), 100.0 * governor.markerLoad(), 100.0 * options_.cpu_budget);
   }
   if (!schedule.last_skip_time.isZero() && (now - schedule.last_skip_time).toSec() < kFailureReportTime)
   {

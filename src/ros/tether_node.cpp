@@ -38,6 +38,18 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
   return setup;
 }
 
+NodeOptions TetherNode::withTetherFrames(NodeOptions options, const std::string& name)
+{
+  for (std::string* frame : {&options.spool_outlet_frame, &options.cable_end_frame})
+  {
+    if (!name.empty() && !frame->empty())
+    {
+      *frame = name + "/" + *frame;  // several tethers: each its own frames
+    }
+  }
+  return options;
+}
+
 Tether& TetherNode::addTether(World& world, const std::string& name, const TetherSetup& setup)
 {
   const Status status =
@@ -49,8 +61,9 @@ Tether& TetherNode::addTether(World& world, const std::string& name, const Tethe
   return world.tether(world.size() - 1);
 }
 
-TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const TetherSetup& setup,
-                       const std::string& name, World& world, Scheduler& scheduler, const tf2_ros::Buffer& tf)
+TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
+                       const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler,
+                       tf2_ros::Buffer& tf)
     : nh_(nh),
       private_nh_(private_nh),
       options_(setup.options),
@@ -58,8 +71,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       tether_(addTether(world, name, setup)),
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
-      pose_input_(setup.options, tf, tether_, name),
-      publisher_(private_nh_, setup.options),
+      pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
+      publisher_(private_nh_, withTetherFrames(setup.options, name)),
       diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_)
 {
   warnAboutStability();
@@ -69,7 +82,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
   reconfigure_server_->updateConfig(paramsToConfig(setup.params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
-  pose_input_.subscribe(nh_, [this](const ros::Time& now) { scheduler_.checkClock(now); });
+  ros::NodeHandle pose_nh(input_nh);
+  pose_input_.subscribe(pose_nh);
   const TetherParams& p = tether_.params();
   ROS_INFO("tether_node%s: %.1f m cable in %zu segments, %s solver, pose from %s, physics at %.0f Hz",
            name_.empty() ? "" : (" " + name_).c_str(), p.cable_length, p.segmentCount(), toString(p.solver).c_str(),
@@ -86,20 +100,27 @@ void TetherNode::beforeAdvance(const ros::Time& now)
 
 void TetherNode::publishState()
 {
-  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, pose_input_.lastVehicle().translation());
+  // The force is of the physics' time, behind the latest pose: its lever arm and frame are the vehicle's then.
+  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, pose_input_.vehicleAt(tether_.time()));
 }
 
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
-  publisher_.publishMarkers(tether_, now, scheduler_.schedule(index_).governor.markerRate());
+  const double marker_wall = publisher_.publishMarkers(tether_, now, scheduler_.schedule(index_).governor.markerRate());
+  scheduler_.governor(index_).addMarkerTime(marker_wall);
   diagnostics_.publish();
 }
 
-void TetherNode::restarted()
+void TetherNode::restarted(const ros::Time& now)
 {
-  pose_input_.reset();
+  pose_input_.reset(now);
   publisher_.restart(tether_);
+}
+
+TetherHooks::PoseTiming TetherNode::poseTiming() const
+{
+  return PoseTiming{pose_input_.latestStamp(), pose_input_.neededDelay()};
 }
 
 void TetherNode::applyPendingParams()

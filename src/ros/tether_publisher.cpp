@@ -19,9 +19,14 @@ const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t reset
   return msg_;
 }
 
-geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Vector3d& vehicle_origin) const
+geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
 {
-  return toWrench(tether, vehicle_origin, stamp_, frame_id_);
+  return toWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, frame_id_);
+}
+
+geometry_msgs::WrenchStamped StateBuilder::vehicleWrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
+{
+  return toVehicleWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, vehicle_frame_);
 }
 
 void StateBuilder::restart(const Tether& tether)
@@ -31,17 +36,32 @@ void StateBuilder::restart(const Tether& tether)
 }
 
 TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options)
-    : options_(options), builder_(options.world_frame)
+    : options_(options), builder_(options.world_frame, options.rov_frame, options.attachment_offset)
 {
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
+  vehicle_wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench_vehicle", 10);
+  if (!options.spool_outlet_frame.empty() || !options.cable_end_frame.empty())
+  {
+    tf_pub_ = private_nh.advertise<tf2_msgs::TFMessage>("/tf", 10);
+  }
   marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 2);
 }
 
-void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Vector3d& vehicle_origin)
+void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle)
 {
   state_pub_.publish(builder_.state(tether, resets));
-  wrench_pub_.publish(builder_.wrench(tether, vehicle_origin));
+  wrench_pub_.publish(builder_.wrench(tether, vehicle));
+  if (vehicle_wrench_pub_.getNumSubscribers() > 0)
+  {
+    vehicle_wrench_pub_.publish(builder_.vehicleWrench(tether, vehicle));
+  }
+  if (tf_pub_ && tf_pub_.getNumSubscribers() > 0)
+  {
+    toTransforms(tether, ros::Time(std::max(tether.time(), 0.0)), options_.world_frame, options_.spool_outlet_frame,
+                 options_.cable_end_frame, &transforms_);
+    tf_pub_.publish(transforms_);
+  }
 }
 
 void TetherPublisher::restart(const Tether& tether)
@@ -50,17 +70,18 @@ void TetherPublisher::restart(const Tether& tether)
   next_marker_time_ = ros::Time();
 }
 
-void TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
+double TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
 {
   const ros::Duration period(1.0 / rate);
   if (marker_pub_.getNumSubscribers() == 0)
   {
-    return;  // markers cost nothing when nobody looks
+    return 0.0;  // markers cost nothing when nobody looks
   }
   if (!next_marker_time_.isZero() && now < next_marker_time_ && next_marker_time_ - now <= period)
   {
-    return;
+    return 0.0;
   }
+  const ros::WallTime start = ros::WallTime::now();
   // A fixed schedule (next += period) keeps the average rate exact on the physics timer's grid.
   const bool behind =
       next_marker_time_.isZero() || now - next_marker_time_ > period || next_marker_time_ - now > period;
@@ -72,7 +93,8 @@ void TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now,
   marker_options.tension_full_scale = options_.tension_full_scale;
   marker_options.stripe_segments = options_.stripe_segments;
   toMarkers(tether, tensions_, ros::Time(std::max(tether.time(), 0.0)), marker_options, &markers_);
-  marker_pub_.publish(markers_);
+  marker_pub_.publish(markers_);  // serialised here for every remote subscriber: part of the cost
+  return (ros::WallTime::now() - start).toSec();
 }
 
 }  // namespace rov_tether::ros_layer

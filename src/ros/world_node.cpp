@@ -89,11 +89,14 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   const NodeOptions& clock = setups.front().options;
   scheduler_ = std::make_unique<Scheduler>(world_, clock.interpolation_delay);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+  ros::NodeHandle input_nh(nh_);
+  input_nh.setCallbackQueue(&input_queue_);
   for (std::size_t i = 0; i < setups.size(); ++i)
   {
     const std::string name = names.empty() ? "" : names[i];
     const ros::NodeHandle tether_nh = names.empty() ? private_nh_ : ros::NodeHandle(private_nh_, name);
-    tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, setups[i], name, world_, *scheduler_, tf_buffer_));
+    tethers_.push_back(
+        std::make_unique<TetherNode>(nh_, tether_nh, input_nh, setups[i], name, world_, *scheduler_, tf_buffer_));
   }
   XmlRpc::XmlRpcValue cameras;
   if (private_nh_.getParam("cameras", cameras))
@@ -101,11 +104,21 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     cameras_ =
         std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame);
   }
+  input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);
+  input_spinner_->start();
   timer_ = nh_.createTimer(ros::Duration(1.0 / clock.physics_rate), &WorldNode::onTimer, this);
   if (!names.empty())
   {
     ROS_INFO("tether_node: %zu tethers in one process, one world stepped at %.0f Hz", tethers_.size(),
              clock.physics_rate);
+  }
+}
+
+WorldNode::~WorldNode()
+{
+  if (input_spinner_)
+  {
+    input_spinner_->stop();
   }
 }
 

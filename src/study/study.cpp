@@ -16,6 +16,9 @@ namespace
 {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Settling time of the 100 m catenary [s]: its slowest mode (pendulum-like, omega^2 ~ g / sag) is
+/// overdamped by the drag's 5.3 1/s and creeps at omega^2 / gamma ~ 0.05 1/s.
+constexpr double kLongSettle = 150.0;
 constexpr double kPi = 3.14159265358979323846;
 
 /// Relative error |value / reference - 1|, infinite for a non-finite value.
@@ -384,6 +387,9 @@ const std::vector<Case>& cases()
       {"catenary_s8", "Statics, S = 8 (EA = 1e5 N, w = 1 N/m)",
        [](TetherParams p) { return runCatenary("catenary_s8", p, 8.0, 30.0); },
        [](int n) { return catenaryBase(10.0, 1.0, 0.1, 1e5, n); }},
+      {"catenary_100m", "Statics, S = 8 scaled to a 100 m tether (span 80 m, EA = 1e5 N, w = 1 N/m)",
+       [](TetherParams p) { return runCatenary("catenary_100m", p, 80.0, kLongSettle); },
+       [](int n) { return catenaryBase(100.0, 1.0, 0.1, 1e5, n); }},
       {"catenary_ea100", "Statics, S = 8, EA = 100 N",
        [](TetherParams p) { return runCatenary("catenary_ea100", p, 8.0, 30.0); },
        [](int n) { return catenaryBase(10.0, 1.0, 0.1, 100.0, n); }},

@@ -38,6 +38,10 @@ std::vector<int> resolutions(const std::string& name, bool quick)
   {
     return {10, 25, 50, 100};
   }
+  if (name == "catenary_100m")
+  {
+    return {1000};  // the 1,000-segment case: 0.1 m segments
+  }
   if (name == "paper_experiment")
   {
     return {25, 50, 100};

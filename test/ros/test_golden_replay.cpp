@@ -38,7 +38,11 @@ class ReplayTether : public ros_layer::TetherHooks
 
   ReplayTether(Tether& tether, ros_layer::PoseInput& input, const ros_layer::Scheduler& scheduler,
                const ros_layer::NodeOptions& options, Publish publish)
-      : tether_(tether), input_(input), scheduler_(scheduler), builder_(options.world_frame), publish_(publish)
+      : tether_(tether),
+        input_(input),
+        scheduler_(scheduler),
+        builder_(options.world_frame, options.rov_frame, options.attachment_offset),
+        publish_(publish)
   {
   }
 
@@ -46,13 +50,15 @@ class ReplayTether : public ros_layer::TetherHooks
   void publishState() override
   {
     const TetherState& state = builder_.state(tether_, scheduler_.schedule(0).resets);
-    publish_(state, builder_.wrench(tether_, input_.lastVehicle().translation()));
+    publish_(state, builder_.wrench(tether_, input_.vehicleAt(tether_.time())));
   }
-  void restarted() override
+  void restarted(const ros::Time& now) override
   {
-    input_.reset();
+    input_.reset(now);
     builder_.restart(tether_);
   }
+  PoseTiming poseTiming() const override { return PoseTiming{input_.latestStamp(), input_.neededDelay()}; }
+  ros::Time earliestArrival() const override { return input_.earliestArrival(); }
 
  private:
   Tether& tether_;
@@ -110,28 +116,31 @@ TEST(Golden, NodePipelineReplaysARecordedDive)
                                  [&now] { return ros::WallTime(now.sec, now.nsec); });
   ReplayTether hooks(tether, input, scheduler, options, publish);
   scheduler.add(options, hooks);
-  const auto check_clock = [&scheduler](const ros::Time& arrival) { scheduler.checkClock(arrival); };
-
   // The physics tick at 200 Hz on the bag's clock; poses received up to a tick are delivered before it.
   const ros::Duration tick(1.0 / options.physics_rate);
   std::size_t next = 0;
-  std::size_t accepted = 0;
   for (now = poses.front().first + tick; now <= poses.back().first + ros::Duration(1.0); now += tick)
   {
     for (; next < poses.size() && poses[next].first <= now; ++next)
     {
-      accepted += input.onMessage(poses[next].second, poses[next].first, check_clock) ? 1 : 0;
+      input.receive(boost::make_shared<geometry_msgs::PoseStamped>(poses[next].second), poses[next].first);
     }
     scheduler.tick(now);
   }
   EXPECT_EQ(input.rejected(), 0u);  // a clean recording: every pose is taken
-  EXPECT_EQ(accepted, poses.size());
+  EXPECT_EQ(input.dropped(), 0u);
+  EXPECT_EQ(input.accepted(), poses.size());
+  EXPECT_DOUBLE_EQ(scheduler.delay(), options.interpolation_delay) << "20 Hz poses need no more delay";
   EXPECT_EQ(scheduler.schedule(0).resets, 0u);
   EXPECT_EQ(scheduler.schedule(0).skips, 0u);
   EXPECT_EQ(scheduler.governor(0).degraded(), "");
-  // One ~state per point of the state grid from the first tick's physics time to the last: state_rate x
-  // the span, within the one point either end may add.
-  const double span = (poses.back().first + ros::Duration(1.0) - poses.front().first).toSec();
+  // After the last pose the physics waits for the next one (up to stale_pose_timeout, 2 s, longer than
+  // the replay goes on): it ends at the last pose's stamp.
+  EXPECT_NEAR(tether.time(), poses.back().second.header.stamp.toSec(), tether.params().time_step);
+  // One ~state per point of the state grid from the first tick's physics time (interpolation_delay
+  // behind it) to the last pose: state_rate x the span, within the one point either end may add.
+  const double span =
+      (poses.back().first - (poses.front().first + tick) + ros::Duration(options.interpolation_delay)).toSec();
   EXPECT_NEAR(static_cast<double>(states), options.state_rate * span, 2.0);
   GoldenFile golden("node_replay.txt");
   golden.check("straight_excursion/state_and_wrench", hash);

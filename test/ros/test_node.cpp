@@ -1,5 +1,7 @@
 // rostest of tether_node (test/ros/node.test): the test owns simulated time (/clock) and the vehicle
-// pose, and waits on topics and services with wall-clock timeouts, never on fixed sleeps.
+// pose, and waits on topics and services with wall-clock timeouts, never on fixed sleeps. Every case
+// sets up what it needs (Harness::startFresh, moveVehicleOut), so each passes alone and in any order
+// (checked with --gtest_filter on each case and --gtest_shuffle).
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/PoseStamped.h>
@@ -8,16 +10,19 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 
 #include "rov_tether/GetTension.h"
 #include "rov_tether/SetWinch.h"
 #include "rov_tether/TetherState.h"
+#include "wait_for.hpp"
 
 namespace
 {
@@ -35,24 +40,13 @@ class Harness
     state_sub_ = nh_.subscribe("/tether_node/state", 100, &Harness::onState, this);
     marker_sub_ = nh_.subscribe("/tether_node/markers", 10, &Harness::onMarkers, this);
     wrench_sub_ = nh_.subscribe("/tether_node/wrench", 10, &Harness::onWrench, this);
+    vehicle_wrench_sub_ = nh_.subscribe("/tether_node/wrench_vehicle", 10, &Harness::onVehicleWrench, this);
+    tf_sub_ = nh_.subscribe("/tf", 100, &Harness::onTf, this);
     diagnostics_sub_ = nh_.subscribe("/diagnostics", 10, &Harness::onDiagnostics, this);
   }
 
   /// Spins until `done` or the wall timeout [s]; returns whether `done` became true.
-  bool waitFor(const std::function<bool()>& done, double timeout)
-  {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline)
-    {
-      ros::spinOnce();
-      if (done())
-      {
-        return true;
-      }
-      ros::WallDuration(0.0005).sleep();  // polling interval, not a synchronisation
-    }
-    return false;
-  }
+  bool waitFor(const std::function<bool()>& done, double timeout) { return rov_tether::test::waitFor(done, timeout); }
 
   /// Advances simulated time by `seconds`, publishing the clock and, when `pose` is set, a vehicle pose
   /// every other tick; waits until the node has published a state at or after the new time.
@@ -106,6 +100,14 @@ class Harness
     pose_pub_.publish(msg);
   }
 
+  /// The node up, with default.yaml's parameters (dynamic_reconfigure and the winch restored), the
+  /// tether just reset and the vehicle attached at home, 1.58 m from the spool with 2 m deployed.
+  void startFresh();
+  /// From home, the vehicle goes out 4 m along x at 0.4 m/s and stops 5.5 m out (deployed above 5 m).
+  void moveVehicleOut();
+  /// ~set_winch to `mode` (brake, locked, ...), no speed, no target, default.yaml's brake and target tensions.
+  void setWinch(const std::string& mode);
+
   ros::NodeHandle nh_;
   rov_tether::TetherState state_;
   int state_count_ = 0;
@@ -113,6 +115,10 @@ class Harness
   int marker_count_ = 0;
   geometry_msgs::WrenchStamped wrench_;
   int wrench_count_ = 0;
+  geometry_msgs::WrenchStamped vehicle_wrench_;
+  int vehicle_wrench_count_ = 0;
+  std::map<std::string, geometry_msgs::TransformStamped> transforms_;  ///< Last /tf transform per child frame.
+  bool started_ = false;
   bool saw_tether_diagnostics_ = false;
   long rejected_poses_ = -1;  ///< "rejected poses" of the last tether diagnostics (-1: none yet).
   std::string tether_summary_;  ///< Message of the last tether diagnostics.
@@ -156,6 +162,18 @@ class Harness
     wrench_ = msg;
     ++wrench_count_;
   }
+  void onVehicleWrench(const geometry_msgs::WrenchStamped& msg)
+  {
+    vehicle_wrench_ = msg;
+    ++vehicle_wrench_count_;
+  }
+  void onTf(const tf2_msgs::TFMessage& msg)
+  {
+    for (const auto& t : msg.transforms)
+    {
+      transforms_[t.child_frame_id] = t;
+    }
+  }
   void onDiagnostics(const diagnostic_msgs::DiagnosticArray& msg)
   {
     for (const auto& status : msg.status)
@@ -181,6 +199,8 @@ class Harness
   ros::Subscriber state_sub_;
   ros::Subscriber marker_sub_;
   ros::Subscriber wrench_sub_;
+  ros::Subscriber vehicle_wrench_sub_;
+  ros::Subscriber tf_sub_;
   ros::Subscriber diagnostics_sub_;
 };
 
@@ -199,19 +219,107 @@ geometry_msgs::Pose poseAt(double x, double y, double z)
 /// The vehicle near the spool: 1.5 m away, 0.5 m down.
 geometry_msgs::Pose home(double /*t*/) { return poseAt(1.5, 0.0, -0.5); }
 
-TEST(TetherNode, StartsAndPublishesStateMarkersWrenchAndDiagnostics)
+/// A dynamic_reconfigure request setting the given fields.
+dynamic_reconfigure::Reconfigure reconfigure(const std::vector<std::pair<std::string, double>>& doubles,
+                                             const std::vector<std::pair<std::string, int>>& ints,
+                                             const std::vector<std::pair<std::string, std::string>>& strings = {})
+{
+  dynamic_reconfigure::Reconfigure srv;
+  for (const auto& [name, value] : doubles)
+  {
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.doubles.push_back(p);
+  }
+  for (const auto& [name, value] : ints)
+  {
+    dynamic_reconfigure::IntParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.ints.push_back(p);
+  }
+  for (const auto& [name, value] : strings)
+  {
+    dynamic_reconfigure::StrParameter p;
+    p.name = name;
+    p.value = value;
+    srv.request.config.strs.push_back(p);
+  }
+  return srv;
+}
+
+double configDouble(const dynamic_reconfigure::Config& config, const std::string& name)
+{
+  for (const auto& p : config.doubles)
+  {
+    if (p.name == name)
+    {
+      return p.value;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void Harness::startFresh()
+{
+  if (!started_)
+  {
+    // Start the clock and wait for the node to come up (a fresh state after it got a pose).
+    ASSERT_TRUE(waitFor(
+        [&]
+        {
+          setTime(sim_time_ + kTick);
+          publishPose(home(0));
+          return state_count_ > 0 && state_.vehicle_attached;
+        },
+        60.0))
+        << "no ~state with a vehicle from tether_node";
+    started_ = true;
+  }
+  // default.yaml's values of what the cases change, and its brake winch without a target.
+  ros::ServiceClient parameters = nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
+  ASSERT_TRUE(parameters.waitForExistence(ros::Duration(10.0)));
+  auto defaults = reconfigure({{"drag", 0.9}}, {{"iterations", 10}}, {{"solver", "direct"}});
+  ASSERT_TRUE(parameters.call(defaults));
+  ASSERT_NO_FATAL_FAILURE(setWinch("brake"));
+  // A reset detaches the vehicle; the next pose attaches it at home on a cable laid out afresh.
+  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
+  ASSERT_TRUE(reset.waitForExistence(ros::Duration(10.0)));
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(reset.call(trigger) && trigger.response.success);
+  ASSERT_TRUE(drive(1.0, home));
+  ASSERT_TRUE(state_.vehicle_attached);
+  // Laid out at initial_deployed_length, 2 m, which the brake keeps (the vehicle, 1.58 m out, pulls nothing).
+  ASSERT_NEAR(state_.deployed_length, 2.0, 1e-9);
+  ASSERT_EQ(state_.iterations, 10u);
+  ASSERT_EQ(state_.solver, "direct");
+}
+
+void Harness::setWinch(const std::string& mode)
+{
+  ros::ServiceClient winch = nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(winch.waitForExistence(ros::Duration(10.0)));
+  rov_tether::SetWinch command;
+  command.request.mode = mode;
+  command.request.brake_tension = 5.0;  // default.yaml
+  command.request.target_tension = 5.0;
+  ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
+}
+
+void Harness::moveVehicleOut()
+{
+  const double t0 = sim_time_;
+  // 0.4 m/s away from the spool for 10 s: from 1.5 m to 5.5 m along x.
+  ASSERT_TRUE(drive(10.0, [t0](double t) { return poseAt(1.5 + 0.4 * std::min(t - t0, 10.0), 0.0, -0.5); }));
+  ASSERT_TRUE(drive(0.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  ASSERT_GT(state_.deployed_length, 5.0);
+}
+
+TEST(TetherNode, StartsAndPublishesStateMarkersWrenchTfAndDiagnostics)
 {
   Harness& h = *harness;
-  // Start the clock and wait for the node to come up (a fresh state after it got a pose).
-  ASSERT_TRUE(h.waitFor(
-      [&]
-      {
-        h.setTime(h.sim_time_ + kTick);
-        h.publishPose(home(0));
-        return h.state_count_ > 0 && h.state_.vehicle_attached;
-      },
-      60.0))
-      << "no ~state with a vehicle from tether_node";
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_TRUE(h.drive(1.5, home));
   EXPECT_NEAR(h.state_.deployed_length, 2.0, 0.3);  // default.yaml: 2 m out
   EXPECT_EQ(h.state_.cable_length, 10.0);
@@ -221,10 +329,22 @@ TEST(TetherNode, StartsAndPublishesStateMarkersWrenchAndDiagnostics)
   EXPECT_DOUBLE_EQ(h.state_.brake_tension, 5.0);
   EXPECT_EQ(h.state_.segment_tension.size(), static_cast<std::size_t>(std::round(h.state_.deployed_length / 0.1)));
   EXPECT_EQ(h.state_.header.frame_id, "world");
-  EXPECT_TRUE(h.waitFor([&] { return h.marker_count_ > 0 && h.wrench_count_ > 0; }, 10.0));
+  EXPECT_TRUE(
+      h.waitFor([&] { return h.marker_count_ > 0 && h.wrench_count_ > 0 && h.vehicle_wrench_count_ > 0; }, 10.0));
   ASSERT_GE(h.markers_.markers.size(), 3u);
   EXPECT_EQ(h.markers_.markers[0].type, visualization_msgs::Marker::LINE_LIST);
   EXPECT_EQ(h.markers_.markers[0].points.size(), 2 * h.state_.segment_tension.size());
+  EXPECT_EQ(h.vehicle_wrench_.header.frame_id, "rov") << "~wrench_vehicle is in the vehicle's frame (rov_frame)";
+  // The vehicle does not turn: the pull in its frame is the pull in the world's.
+  EXPECT_NEAR(h.vehicle_wrench_.wrench.force.x, h.wrench_.wrench.force.x,
+              1e-3 + 1e-3 * std::abs(h.wrench_.wrench.force.x));
+  // tf: the spool outlet and the cable's vehicle end under world (rviz's fixed frame with pose topics).
+  ASSERT_TRUE(
+      h.waitFor([&] { return h.transforms_.count("tether_spool") && h.transforms_.count("tether_end"); }, 10.0));
+  EXPECT_EQ(h.transforms_["tether_spool"].header.frame_id, "world");
+  EXPECT_NEAR(h.transforms_["tether_spool"].transform.translation.x, 0.0, 1e-9);  // node.yaml: spool at the origin
+  EXPECT_NEAR(h.transforms_["tether_end"].transform.translation.x, 1.5, 1e-6);    // the vehicle at home
+  EXPECT_NEAR(h.transforms_["tether_end"].transform.translation.z, -0.5, 1e-6);
   // The updater publishes once per (simulated) second.
   EXPECT_TRUE(h.waitFor(
       [&]
@@ -238,11 +358,9 @@ TEST(TetherNode, StartsAndPublishesStateMarkersWrenchAndDiagnostics)
 TEST(TetherNode, DeployedLengthGrowsAsTheVehicleMovesAway)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
   const double start_length = h.state_.deployed_length;
-  const double t0 = h.sim_time_;
-  // 0.4 m/s away from the spool for 10 s: from 1.5 m to 5.5 m along x.
-  ASSERT_TRUE(h.drive(10.0, [t0](double t) { return poseAt(1.5 + 0.4 * std::min(t - t0, 10.0), 0.0, -0.5); }));
-  ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   const double distance = std::hypot(5.5, 0.5);
   EXPECT_GT(h.state_.deployed_length, start_length + 3.0);
   EXPECT_GT(h.state_.deployed_length, 0.95 * distance);
@@ -253,6 +371,8 @@ TEST(TetherNode, DeployedLengthGrowsAsTheVehicleMovesAway)
 TEST(TetherNode, GetTensionAnswersAndRefusesBadRequests)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   ros::ServiceClient client = h.nh_.serviceClient<rov_tether::GetTension>("/tether_node/get_tension");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
   rov_tether::GetTension srv;
@@ -289,47 +409,15 @@ TEST(TetherNode, GetTensionAnswersAndRefusesBadRequests)
   EXPECT_NE(srv.response.message.find("exactly one"), std::string::npos) << srv.response.message;
 }
 
-dynamic_reconfigure::Reconfigure reconfigure(const std::vector<std::pair<std::string, double>>& doubles,
-                                             const std::vector<std::pair<std::string, int>>& ints)
-{
-  dynamic_reconfigure::Reconfigure srv;
-  for (const auto& [name, value] : doubles)
-  {
-    dynamic_reconfigure::DoubleParameter p;
-    p.name = name;
-    p.value = value;
-    srv.request.config.doubles.push_back(p);
-  }
-  for (const auto& [name, value] : ints)
-  {
-    dynamic_reconfigure::IntParameter p;
-    p.name = name;
-    p.value = value;
-    srv.request.config.ints.push_back(p);
-  }
-  return srv;
-}
-
-double configDouble(const dynamic_reconfigure::Config& config, const std::string& name)
-{
-  for (const auto& p : config.doubles)
-  {
-    if (p.name == name)
-    {
-      return p.value;
-    }
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradictions)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ros::ServiceClient client = h.nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
   auto srv = reconfigure({{"drag", 0.5}}, {{"iterations", 3}});
   ASSERT_TRUE(client.call(srv));
-  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.iterations, 3u);
   EXPECT_DOUBLE_EQ(h.state_.drag, 0.5);
 
@@ -337,24 +425,44 @@ TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradicti
   auto bad = reconfigure({{"winch_speed", 3.0}}, {});
   ASSERT_TRUE(client.call(bad));
   EXPECT_EQ(configDouble(bad.response.config, "winch_speed"), 0.0);
-  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.iterations, 3u);
+}
 
-  auto restore = reconfigure({{"drag", 0.9}}, {{"iterations", 10}});
-  ASSERT_TRUE(client.call(restore));
-  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
-  EXPECT_EQ(h.state_.iterations, 10u);
-  EXPECT_DOUBLE_EQ(h.state_.drag, 0.9);
+// A live change of solver with a vehicle attached keeps the deployed length and the cable's shape (it
+// used to re-lay the cable at initial_deployed_length, 2 m for a vehicle 5.5 m away: 1.4 kN and 660%
+// strain with xpbd). The winch is locked and the vehicle holds still, so the cable must stay where it
+// is: the same deployed length, strained under 1%, under 10 N (a slack cable at rest carries a few
+// newtons at most; a re-lay, kilonewtons).
+TEST(TetherNode, SolverChangeKeepsTheCable)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("locked"));
+  const auto still = [](double) { return poseAt(5.5, 0.0, -0.5); };
+  ASSERT_TRUE(h.drive(1.0, still));
+  const double deployed = h.state_.deployed_length;
+  ros::ServiceClient client = h.nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
+  for (const std::string solver : {"xpbd", "direct"})
+  {
+    auto change = reconfigure({}, {}, {{"solver", solver}});
+    ASSERT_TRUE(client.call(change));
+    ASSERT_TRUE(h.drive(1.0, still));
+    EXPECT_EQ(h.state_.solver, solver);
+    EXPECT_NEAR(h.state_.deployed_length, deployed, 1e-9) << solver;
+    EXPECT_LT(h.state_.max_strain, 0.01) << solver;
+    EXPECT_LT(h.state_.max_tension, 10.0) << solver;
+  }
 }
 
 TEST(TetherNode, NanAndUnnormalisedPosesNeitherCrashNorCorrupt)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   // Lock the winch so that the deployed length must stay exactly where it is.
-  ros::ServiceClient winch = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  rov_tether::SetWinch lock;
-  lock.request.mode = "locked";
-  ASSERT_TRUE(winch.call(lock) && lock.response.success) << lock.response.message;
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("locked"));
   ASSERT_TRUE(h.drive(0.1, [](double) { return poseAt(5.5, 0.0, -0.5); }));
   const double before = h.state_.deployed_length;
   geometry_msgs::Pose nan_pose = poseAt(std::nan(""), 0.0, -0.5);
@@ -393,6 +501,8 @@ TEST(TetherNode, NanAndUnnormalisedPosesNeitherCrashNorCorrupt)
 TEST(TetherNode, BadPosesAreRefusedAndCounted)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   // A moving frame "boat" (transforms exist only from now on), broadcast on every tick. The broadcaster
   // belongs to the harness, so the node's tf listener has long been connected to it.
   auto boatAndVehicle = [&](double)
@@ -449,6 +559,8 @@ TEST(TetherNode, BadPosesAreRefusedAndCounted)
 TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
   rov_tether::SetWinch srv;
@@ -488,6 +600,8 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
 TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
   rov_tether::SetWinch srv;
@@ -500,7 +614,7 @@ TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
   srv.request.target_tension = 12.0;
   ASSERT_TRUE(client.call(srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
-  const double x0 = 5.5;  // where the previous test left the vehicle
+  const double x0 = 5.5;  // where moveVehicleOut left the vehicle
   ASSERT_TRUE(h.drive(0.5, [&](double) { return poseAt(x0, 0.0, -0.5); }));
   EXPECT_EQ(h.state_.winch_mode, "brake");
   EXPECT_DOUBLE_EQ(h.state_.brake_tension, 3.0);
@@ -530,6 +644,8 @@ TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
 TEST(TetherNode, TimeGoingBackwardsResetsTheTether)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   const std::uint32_t resets = h.state_.resets;
   ASSERT_GT(h.state_.deployed_length, 5.0);
   h.setTime(h.sim_time_ - 50.0);  // a bag loops
@@ -550,7 +666,7 @@ TEST(TetherNode, TimeGoingBackwardsResetsTheTether)
 TEST(TetherNode, TimeLeapingForwardResetsTheTether)
 {
   Harness& h = *harness;
-  ASSERT_TRUE(h.drive(0.2, home));
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
   const std::uint32_t resets = h.state_.resets;
   h.setTime(h.sim_time_ + 60.0);
   ASSERT_TRUE(h.waitFor(
@@ -568,6 +684,8 @@ TEST(TetherNode, TimeLeapingForwardResetsTheTether)
 TEST(TetherNode, ResetServiceResets)
 {
   Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   const std::uint32_t resets = h.state_.resets;
   ros::ServiceClient client = h.nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
@@ -576,6 +694,7 @@ TEST(TetherNode, ResetServiceResets)
   EXPECT_TRUE(srv.response.success);
   ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.resets, resets + 1);
+  EXPECT_LE(h.state_.deployed_length, 2.0 + 1e-6) << "re-laid at initial_deployed_length (then reeled in)";
 }
 
 }  // namespace

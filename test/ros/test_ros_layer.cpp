@@ -3,7 +3,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "../test_helpers.hpp"
 #include "rov_tether/camera/camera_model.hpp"
@@ -11,6 +13,7 @@
 #include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/vehicle_history.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -36,15 +39,82 @@ TEST(Colours, TensionScaleRunsFromBlueToRedAndCompressionIsGrey)
 {
   auto near = [](const std_msgs::ColorRGBA& c, double r, double g, double b)
   { return std::abs(c.r - r) < 1e-6 && std::abs(c.g - g) < 1e-6 && std::abs(c.b - b) < 1e-6 && c.a == 1.0f; };
-  EXPECT_TRUE(near(tensionColor(0.0, 50.0, false), 0, 0, 1));    // blue
-  EXPECT_TRUE(near(tensionColor(12.5, 50.0, false), 0, 1, 1));   // cyan
-  EXPECT_TRUE(near(tensionColor(25.0, 50.0, false), 0, 1, 0));   // green
-  EXPECT_TRUE(near(tensionColor(37.5, 50.0, false), 1, 1, 0));   // yellow
-  EXPECT_TRUE(near(tensionColor(50.0, 50.0, false), 1, 0, 0));   // red
-  EXPECT_TRUE(near(tensionColor(500.0, 50.0, false), 1, 0, 0));  // saturated
+  EXPECT_TRUE(near(tensionColor(0.0, 50.0, false), 0.3, 0.55, 1));  // light blue
+  EXPECT_TRUE(near(tensionColor(12.5, 50.0, false), 0, 1, 1));      // cyan
+  EXPECT_TRUE(near(tensionColor(25.0, 50.0, false), 0, 1, 0));      // green
+  EXPECT_TRUE(near(tensionColor(37.5, 50.0, false), 1, 1, 0));      // yellow
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, false), 1, 0, 0));      // red
+  EXPECT_TRUE(near(tensionColor(500.0, 50.0, false), 1, 0, 0));     // saturated
   EXPECT_TRUE(near(tensionColor(-1.0, 50.0, false), 0.55, 0.55, 0.55));
   EXPECT_TRUE(near(tensionColor(std::nan(""), 50.0, false), 0.55, 0.55, 0.55));
-  EXPECT_TRUE(near(tensionColor(50.0, 50.0, true), 0.5, 0, 0));  // a stripe is darker
+  EXPECT_TRUE(near(tensionColor(50.0, 50.0, true), 1, 0.4, 0.4));  // a stripe is lighter
+}
+
+/// WCAG 2.1 relative luminance of an sRGB colour, components in [0, 1] (docs/references.md).
+double luminance(double r, double g, double b)
+{
+  const auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+  return 0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b);
+}
+
+/// WCAG 2.1 contrast ratio (L1 + 0.05) / (L2 + 0.05) of two luminances, the lighter first: 1 to 21.
+double contrast(double a, double b) { return (std::max(a, b) + 0.05) / (std::min(a, b) + 0.05); }
+
+// The cable must be visible in rviz at every tension, stripes included: a contrast ratio of at least 3
+// (WCAG 2.1's minimum for graphics, docs/references.md) against rviz's own default background (48, 48,
+// 48) and the one config/tether.rviz sets. The old scale started at pure blue with darker stripes:
+// 1.5 against rviz's grey, 1.2 for its stripes.
+TEST(Colours, EveryColourStandsOutOnRvizBackgrounds)
+{
+  std::ifstream rviz(std::string(ROV_TETHER_SOURCE_DIR) + "/config/tether.rviz");
+  std::string line, shipped;
+  while (std::getline(rviz, line))
+  {
+    if (line.find("Background Color:") != std::string::npos)
+    {
+      shipped = line.substr(line.find(':') + 1);
+    }
+  }
+  int r = 0, g = 0, b = 0;
+  ASSERT_EQ(std::sscanf(shipped.c_str(), " %d; %d; %d", &r, &g, &b), 3) << "no background in config/tether.rviz";
+  const double backgrounds[] = {luminance(48 / 255.0, 48 / 255.0, 48 / 255.0),
+                                luminance(r / 255.0, g / 255.0, b / 255.0)};
+  double worst = 21.0;
+  for (double tension = -5.0; tension <= 60.0; tension += 0.25)
+  {
+    for (const bool stripe : {false, true})
+    {
+      const std_msgs::ColorRGBA c = tensionColor(tension, 50.0, stripe);
+      for (const double background : backgrounds)
+      {
+        worst = std::min(worst, contrast(luminance(c.r, c.g, c.b), background));
+      }
+    }
+  }
+  std::printf("[ measured ] cable colours on rviz's backgrounds: lowest contrast ratio %.2f (minimum 3)\n", worst);
+  EXPECT_GE(worst, 3.0);
+}
+
+// With pose_source topic nothing else may put world_frame into tf, and rviz then warns that its fixed
+// frame does not exist; the node publishes the spool outlet and the cable's vehicle end under it.
+TEST(Converters, TransformsPlaceTheSpoolOutletAndTheCableEnd)
+{
+  const Tether sim = heavyTether();
+  tf2_msgs::TFMessage message;
+  toTransforms(sim, ros::Time(3.0), "world", "tether_spool", "tether_end", &message);
+  ASSERT_EQ(message.transforms.size(), 2u);
+  const auto& spool = message.transforms[0];
+  const auto& end = message.transforms[1];
+  EXPECT_EQ(spool.header.frame_id, "world");
+  EXPECT_EQ(spool.child_frame_id, "tether_spool");
+  EXPECT_EQ(end.child_frame_id, "tether_end");
+  EXPECT_EQ(end.header.stamp, ros::Time(3.0));
+  EXPECT_EQ(spool.transform.translation.x, sim.particle(0).x());
+  EXPECT_NEAR(end.transform.translation.x, 2.0, 1e-12);  // heavyTether's vehicle at (2, 0, 0)
+  EXPECT_EQ(end.transform.rotation.w, 1.0);
+  toTransforms(sim, ros::Time(3.0), "world", "", "tether_end", &message);
+  ASSERT_EQ(message.transforms.size(), 1u) << "an empty name publishes no frame";
+  EXPECT_EQ(message.transforms[0].child_frame_id, "tether_end");
 }
 
 TEST(Converters, StateMessageCarriesTheSimulation)
@@ -116,15 +186,84 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
 TEST(Converters, WrenchIsThePullOnTheVehicle)
 {
   const Tether sim = heavyTether();
-  const geometry_msgs::WrenchStamped wrench = toWrench(sim, Position(2.0, 0.0, 0.5), ros::Time(1.0), "world");
-  const Force force = sim.vehicleForce();
+  // The vehicle origin 0.5 m above the attachment: attachment_offset (0, 0, -0.5).
+  const Eigen::Isometry3d vehicle(Eigen::Translation3d(2.0, 0.0, 0.5));
+  const Force force = pullOnVehicle(sim);
+  EXPECT_EQ(force, sim.vehicleForce()) << "a taut cable pulls with all its force";
+  const geometry_msgs::WrenchStamped wrench =
+      toWrench(force, vehicle, Eigen::Vector3d(0.0, 0.0, -0.5), ros::Time(1.0), "world");
   EXPECT_EQ(wrench.header.frame_id, "world");
   EXPECT_DOUBLE_EQ(wrench.wrench.force.x, force.x());
   EXPECT_DOUBLE_EQ(wrench.wrench.force.z, force.z());
   EXPECT_LT(force.z(), -0.5);  // the hanging cable pulls the vehicle down
   EXPECT_LT(force.x(), 0.0);   // and towards the spool
-  // Torque about a vehicle origin 0.5 m above the attachment: r = (0, 0, -0.5), tau = r x F.
+  // Torque about the vehicle origin: r = (0, 0, -0.5), tau = r x F.
   EXPECT_NEAR(wrench.wrench.torque.y, -0.5 * force.x(), 1e-12);
+}
+
+// The pull is of the physics' time, behind the latest pose; its lever arm and the vehicle frame it is
+// given in are the vehicle's at that time. A vehicle turning at 90 deg/s, the attachment 0.5 m behind
+// it: at the physics' time it faced 45 degrees, not the latest pose's 90.
+TEST(Converters, WrenchesUseTheVehiclePoseAtTheForcesTimeInBothFrames)
+{
+  VehicleHistory history;
+  const auto yawed = [](double degrees)
+  { return Eigen::Isometry3d(Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitZ())); };
+  history.add(10.0, yawed(0.0));
+  history.add(11.0, yawed(90.0));
+  const Eigen::Isometry3d at_force = history.at(10.5);
+  EXPECT_TRUE(at_force.isApprox(yawed(45.0), 1e-12));
+  const Force pull(3.0, -1.0, 0.5);
+  const Eigen::Vector3d offset(-0.5, 0.0, 0.0);
+  const auto world = toWrench(pull, at_force, offset, ros::Time(10.5), "world");
+  const Eigen::Vector3d lever = yawed(45.0).rotation() * offset;  // (-0.354, -0.354, 0)
+  const Eigen::Vector3d torque = lever.cross(pull);
+  EXPECT_NEAR(world.wrench.torque.x, torque.x(), 1e-12);
+  EXPECT_NEAR(world.wrench.torque.y, torque.y(), 1e-12);
+  EXPECT_NEAR(world.wrench.torque.z, torque.z(), 1e-12);
+  const Eigen::Vector3d latest_torque = (yawed(90.0).rotation() * offset).cross(pull);
+  EXPECT_GT((torque - latest_torque).norm(), 0.1) << "the latest pose's lever arm is another torque";
+
+  const auto own = toVehicleWrench(pull, at_force, offset, ros::Time(10.5), "rov");
+  EXPECT_EQ(own.header.frame_id, "rov");
+  const Eigen::Vector3d f(own.wrench.force.x, own.wrench.force.y, own.wrench.force.z);
+  const Eigen::Vector3d tau(own.wrench.torque.x, own.wrench.torque.y, own.wrench.torque.z);
+  EXPECT_TRUE((yawed(45.0).rotation() * f).isApprox(pull, 1e-12)) << "the same force, in the vehicle frame";
+  EXPECT_TRUE((yawed(45.0).rotation() * tau).isApprox(torque, 1e-12)) << "the same torque, in the vehicle frame";
+  EXPECT_TRUE(tau.isApprox(offset.cross(f), 1e-12));
+  EXPECT_NEAR(f.x(), pull.dot(yawed(45.0).rotation().col(0)), 1e-12) << "x is the vehicle's forward axis";
+}
+
+// A cable cannot push: when the vehicle drives into the cable faster than it can give way, the end
+// segment is compressed and PBD's bilateral constraint carries a negative tension, which would push the
+// vehicle away. The wrench then carries nothing.
+TEST(Converters, ACompressedEndSegmentPushesNothing)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.solver = SolverType::kPbd;  // bilateral: it carries the compression (direct's segments cannot)
+  params.winch_mode = WinchMode::kLocked;
+  params.initial_deployed_length = 3.0;
+  Tether sim(params, Position::Zero(), Position(3.0, 0.0, 0.0));  // straight and taut along x
+  for (int k = 1; k <= 20; ++k)
+  {
+    sim.addVehicleSample(0.01 * k, Position(3.0 - 0.05 * k, 0.0, 0.0));  // 5 m/s back along the cable
+  }
+  bool compressed = false;
+  for (int k = 0; k < 20 && !compressed; ++k)
+  {
+    sim.step();
+    compressed = sim.summary().tension_vehicle < -0.1;
+  }
+  ASSERT_TRUE(compressed) << "the end segment never carried compression";
+  const std::size_t n = sim.deployedParticleCount();
+  const Eigen::Vector3d towards_cable = sim.particle(n - 2) - sim.particle(n - 1);
+  EXPECT_LT(sim.vehicleForce().dot(towards_cable), 0.0) << "the solver's force pushes the vehicle away";
+  EXPECT_EQ(pullOnVehicle(sim), Force::Zero());
+  const auto wrench = toWrench(pullOnVehicle(sim), Eigen::Isometry3d::Identity(), Eigen::Vector3d(-0.5, 0.0, 0.0),
+                               ros::Time(1.0), "world");
+  EXPECT_EQ(wrench.wrench.force.x, 0.0);
+  EXPECT_EQ(wrench.wrench.torque.z, 0.0);
 }
 
 TEST(Converters, GetTensionAnswersBySegmentOrArcLengthAndRefusesTheRest)

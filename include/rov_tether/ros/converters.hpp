@@ -3,8 +3,10 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
 #include <std_msgs/ColorRGBA.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
@@ -27,9 +29,9 @@ struct MarkerOptions
 };
 
 /**
- * Colour of a segment carrying `tension` [N]: from blue (0 N) through cyan, green and yellow to red at
- * `full_scale` and above; compression (negative) is grey. `stripe` darkens it to 50% for the alternate
- * stripes.
+ * Colour of a segment carrying `tension` [N]: from light blue (0 N) through cyan, green and yellow to red
+ * at `full_scale` and above; compression (negative) is grey. `stripe` lightens it (40% towards white) for
+ * the alternate stripes. Every colour stands out on rviz's dark backgrounds (contrast ratio 3 or more).
  */
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe);
 
@@ -45,10 +47,29 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
 void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
 
-/// The pull of the tether on the vehicle [N] at the attachment point, expressed in `frame_id` (the world
-/// frame); torque is about `vehicle_origin` [N m].
-geometry_msgs::WrenchStamped toWrench(const Tether& sim, const Eigen::Vector3d& vehicle_origin, const ros::Time& stamp,
+/// The tether's tf frames at `stamp`: the spool outlet (`spool_frame`) and the cable's vehicle end, its
+/// last particle (`end_frame`), as children of `world_frame` with the world's axes; an empty name leaves
+/// that frame out. Reuses `message`'s storage.
+void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& world_frame,
+                  const std::string& spool_frame, const std::string& end_frame, tf2_msgs::TFMessage* message);
+
+/// The pull of the tether on the vehicle at the attachment point [N, world frame]: Tether::vehicleForce(), or
+/// zero when the end segment is compressed (a cable cannot push: the force's component along the end
+/// segment, towards the cable, is not positive). Zero without a vehicle.
+Force pullOnVehicle(const Tether& sim);
+
+/// `pull` [N] in `frame_id` (the world frame), with its torque about the vehicle origin [N m]: the lever arm
+/// is `attachment_offset` (vehicle frame) turned by the orientation of `vehicle`, the vehicle's pose at the
+/// time of the force (the physics' time).
+geometry_msgs::WrenchStamped toWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                      const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
                                       const std::string& frame_id);
+
+/// The same pull in the vehicle's own frame `vehicle_frame`, as a vehicle simulator applies it: force
+/// R^T pull and torque attachment_offset x R^T pull, R the orientation of `vehicle` at the force's time.
+geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
+                                             const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
+                                             const std::string& vehicle_frame);
 
 /// Applies every dynamic_reconfigure field to `params` through the core's setParameter (the .cfg uses
 /// the model's parameter names). Returns "" or every problem, each naming its parameter; it does not

@@ -11,11 +11,13 @@ namespace rov_tether::ros_layer
 {
 
 /**
- * One tether's overload_policy. It is fed the wall time the tether's physics took on every tick; once a
- * second of wall time it compares the share of that second with cpu_budget. Above it, it gives up one
- * notch (reduce_iterations: iterations * 3/4, not below min_iterations; reduce_markers: half the marker
- * rate, not below 1 Hz) and warns; below half of it, it undoes one notch. What it has given up is
- * degraded() (shown by the diagnostics). Needs no ROS master.
+ * One tether's overload_policy. It is fed the wall time the tether's physics took on every tick and the
+ * wall time its ~markers took (what reduce_markers can change); once a second of wall time it compares
+ * their share of that second with cpu_budget. Above it, it gives up one notch (reduce_iterations:
+ * iterations * 3/4, not below min_iterations; reduce_markers: half the marker rate, not below 1 Hz, and
+ * only while the markers cost something: nobody subscribing, they cost nothing to give up) and warns;
+ * below half of it, it undoes one notch. What it has given up is degraded(); whether the load is still
+ * over the budget after that is overloaded() (both shown by the diagnostics). Needs no ROS master.
  */
 class LoadGovernor
 {
@@ -27,6 +29,9 @@ class LoadGovernor
   /// Adds `physics_wall` [s] spent on the tether up to `wall_now`; at the end of a one-second window,
   /// applies the policy to `tether` (its iterations) or to markerRate().
   void update(double physics_wall, const ros::WallTime& wall_now, Tether& tether);
+  /// Adds `marker_wall` [s] spent building and publishing the tether's ~markers (counted in the window
+  /// that the next update() closes).
+  void addMarkerTime(double marker_wall) { window_markers_ += marker_wall; }
   /// A new configuration (dynamic_reconfigure) with these iterations ends any reduction, markers included.
   void reconfigured(int iterations);
 
@@ -36,6 +41,10 @@ class LoadGovernor
   const std::string& degraded() const { return degraded_; }
   /// Share of wall time the physics used in the last complete window [-].
   double physicsLoad() const { return physics_load_; }
+  /// Share of wall time the ~markers used in the last complete window [-].
+  double markerLoad() const { return marker_load_; }
+  /// True when the last complete window was over cpu_budget (whatever was given up).
+  bool overloaded() const { return physics_load_ + marker_load_ > options_.cpu_budget; }
   const std::string& policy() const { return options_.overload_policy; }
 
  private:
@@ -48,7 +57,9 @@ class LoadGovernor
   double marker_rate_;
   ros::WallTime window_start_;   ///< Start of the current one-second window.
   double window_physics_ = 0.0;  ///< Wall time spent in physics in that window [s].
+  double window_markers_ = 0.0;  ///< Wall time spent on ~markers in that window [s].
   double physics_load_ = 0.0;    ///< Fraction of wall time spent in physics, last window [-].
+  double marker_load_ = 0.0;     ///< Fraction of wall time spent on ~markers, last window [-].
   std::string degraded_;
 };
 

@@ -15,7 +15,7 @@ struct NodeOptions
 {
   std::string world_frame = "world";  ///< Frame of the spool, the cable and all outputs.
   std::string pose_source = "topic";  ///< "topic" (rov_pose, PoseStamped) or "tf" (world_frame -> rov_frame).
-  std::string rov_frame = "rov";      ///< Vehicle frame looked up when pose_source is "tf".
+  std::string rov_frame = "rov";      ///< Vehicle frame: looked up when pose_source is "tf"; frame of ~wrench_vehicle.
   Eigen::Vector3d attachment_offset = Eigen::Vector3d::Zero();  ///< Tether attachment in the vehicle frame [m].
   std::string spool_frame;  ///< Empty: the spool is fixed at spool_position; else a tf frame.
   Eigen::Vector3d spool_position = Eigen::Vector3d::Zero();  ///< Spool outlet in world_frame [m].
@@ -23,13 +23,13 @@ struct NodeOptions
   /// The physics runs this far behind ROS time so that vehicle poses, which arrive late, bracket it and
   /// the vehicle end is interpolated smoothly instead of held and jerked [s].
   double interpolation_delay = 0.1;
-  double state_rate = 30.0;             ///< ~state and ~wrench rate [Hz].
-  double marker_rate = 30.0;            ///< ~markers rate when subscribed [Hz].
-  double marker_line_width = 0.03;      ///< Cable width in rviz [m].
-  double tension_full_scale = 50.0;     ///< Tension drawn red [N].
-  int stripe_segments = 5;              ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
-  double stale_pose_timeout = 1.0;      ///< No pose for this long is a diagnostics warning [s].
-  double max_tension_warning = 500.0;   ///< Tension above this is a diagnostics warning [N].
+  double state_rate = 30.0;            ///< ~state and ~wrench rate [Hz].
+  double marker_rate = 30.0;           ///< ~markers rate when subscribed [Hz].
+  double marker_line_width = 0.03;     ///< Cable width in rviz [m].
+  double tension_full_scale = 50.0;    ///< Tension drawn red [N].
+  int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
+  double stale_pose_timeout = 2.0;     ///< No pose for this long: a warning, and the physics stops waiting for one [s].
+  double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
   std::string pose_topic = "rov_pose";  ///< Vehicle pose topic (pose_source topic), relative to the node's namespace.
   /// What to give up when the physics cannot hold real time: "reduce_iterations" (down to
   /// min_iterations), "reduce_markers" (halve the marker rate, down to 1 Hz) or "none". Always reported.
@@ -39,6 +39,10 @@ struct NodeOptions
   double cpu_budget = 0.8;
   /// When the physics falls further than this behind its target time, it skips ahead (ERROR) [s].
   double max_lag = 1.0;
+  /// tf frames published under world_frame at the spool outlet and at the cable's vehicle end (with several
+  /// tethers, prefixed "name/"); "" publishes none.
+  std::string spool_outlet_frame = "tether_spool";
+  std::string cable_end_frame = "tether_end";
 };
 
 /// Converts one parameter-server value to a ParamValue; returns false for lists and maps.

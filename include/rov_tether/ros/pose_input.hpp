@@ -1,17 +1,24 @@
 #pragma once
 
 #include <geometry_msgs/PoseStamped.h>
+#include <ros/callback_queue_interface.h>
 #include <ros/node_handle.h>
 #include <ros/subscriber.h>
 #include <ros/time.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/message_filter.h>
 
 #include <Eigen/Geometry>
+#include <array>
+#include <atomic>
 #include <cstdint>
-#include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/vehicle_history.hpp"
 #include "rov_tether/tether.hpp"
 
 namespace rov_tether::ros_layer
@@ -26,59 +33,125 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose);
 
 /**
  * One tether's vehicle (and spool) input: the `rov_pose` subscription or, with `pose_source: tf`, the
- * lookup of world_frame -> rov_frame; and `spool_frame` when the spool moves. A pose is checked (finite,
- * normalised), brought into world_frame through the process's one tf buffer, moved to the attachment
- * point (attachment_offset in the vehicle frame) and handed to Tether::addVehicleSample. Every refused
- * pose is counted and logged (throttled) with the reason. Needs no ROS master except for subscribe().
+ * lookup of world_frame -> rov_frame; and `spool_frame` when the spool moves.
+ *
+ * Poses are received on the input's own callback queue (its own thread in the node), so a slow physics
+ * tick never holds them up: receive() checks a pose's numbers (finite, normalised) and hands it to the
+ * physics thread, after waiting, when it is stamped in another frame, in a tf2_ros::MessageFilter until tf
+ * can transform it at its stamp. On the physics thread, poll() takes what was handed over: brings each
+ * pose into world_frame, moves it to the attachment point (attachment_offset in the vehicle frame) and
+ * hands it to Tether::addVehicleSample. A pose still waiting for tf when the physics reaches its stamp is
+ * refused: the physics' delay behind ROS time is the slack tf has. Every refused pose is counted and
+ * logged (throttled) with the reason; more than kMaxHandOver poses waiting for the physics are dropped
+ * and counted. Needs no ROS master except for subscribe().
  */
 class PoseInput
 {
  public:
-  /// Runs before an accepted message's pose is added, with the time it arrived: the node's clock policy
-  /// (a clock that went backwards resets the tether first).
-  using BeforeAdd = std::function<void(const ros::Time& now)>;
+  /// Poses that may wait for the physics thread; more are dropped and counted (1 kHz for 4 s).
+  static constexpr std::size_t kMaxHandOver = 4096;
+  /// Poses that may wait in the MessageFilter for their transform (1 kHz for 1 s).
+  static constexpr std::uint32_t kMaxWaitingForTf = 1000;
 
   /// `tf` is shared by every tether of the process and must outlive this; so must `tether`. `label`
-  /// names the tether in log messages ("" alone).
-  PoseInput(const NodeOptions& options, const tf2_ros::Buffer& tf, Tether& tether, const std::string& label = "");
+  /// names the tether in log messages ("" alone). The MessageFilter delivers on `input_queue` (the
+  /// thread that calls the tf buffer's setTransform when null).
+  PoseInput(const NodeOptions& options, tf2_ros::Buffer& tf, Tether& tether, const std::string& label = "",
+            ros::CallbackQueueInterface* input_queue = nullptr);
 
-  /// Subscribes to pose_topic (relative to `nh`) when pose_source is "topic"; messages go to onMessage at
-  /// ros::Time::now().
-  void subscribe(ros::NodeHandle& nh, BeforeAdd before_add);
+  /// Subscribes to pose_topic (relative to `nh`, whose callback queue should be the input queue) when
+  /// pose_source is "topic"; messages go to receive() at ros::Time::now().
+  void subscribe(ros::NodeHandle& nh);
   /// The subscribed topic's resolved name, "" without a subscription.
   std::string topic() const { return subscriber_.getTopic(); }
 
-  /// A pose message that arrived at `now`: checked, transformed and added (a zero stamp means `now`).
-  /// `before_add` (may be empty) runs once the numbers are checked. Returns whether it was accepted.
-  bool onMessage(const geometry_msgs::PoseStamped& msg, const ros::Time& now, const BeforeAdd& before_add = {});
-  /// Once per physics tick at `now`: the spool from spool_frame (when set) and, with pose_source tf, the
-  /// vehicle from rov_frame when tf has a newer transform than the last one taken.
+  /// Any thread: a pose message that arrived at `now`. Refused (counted) when its numbers are bad; else
+  /// handed to the physics thread, in another frame once tf can transform it (a zero stamp means `now`).
+  void receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& now);
+  /// Physics thread, once per tick at `now` (after the tick's clock policy, so a pose of a clock that
+  /// went back meets a tether already reset): takes every pose handed over, refuses the poses still
+  /// waiting for tf whose stamp the physics has passed, and polls tf for the spool (spool_frame) and,
+  /// with pose_source tf, the vehicle (a static transform, stamp 0, is taken as a pose at `now`).
   void poll(const ros::Time& now);
-  /// Forgets the last pose's stamp after the tether was reset, so the next tf pose is taken.
-  void reset() { last_pose_stamp_ = ros::Time(); }
+  /// After the tether was reset at ROS time `now`: forgets the poses' timing and history, so the next
+  /// pose is taken, and refuses (counts) the poses still waiting that arrived after `now`: they came on a
+  /// clock that has since gone back (a bag that loops), and would stop every pose of the new time line.
+  void reset(const ros::Time& now);
 
+  /// Poses refused (bad numbers, frames tf cannot transform in time, refused by the core).
   std::uint64_t rejected() const { return rejected_; }
+  /// Poses dropped because more than kMaxHandOver waited for the physics.
+  std::uint64_t dropped() const { return dropped_; }
+  /// Poses taken into the tether.
+  std::uint64_t accepted() const { return accepted_; }
   /// The last accepted vehicle pose in world_frame (the vehicle origin, not the attachment).
   const Eigen::Isometry3d& lastVehicle() const { return last_vehicle_; }
-  /// When the last pose was accepted (ROS time of arrival); zero before the first.
+  /// The vehicle pose in world_frame at time t [s], interpolated between the poses taken; t must not
+  /// decrease between calls (the physics' time). Identity before the first pose.
+  Eigen::Isometry3d vehicleAt(double t) { return history_.at(t); }
+  /// When the last pose was accepted (ROS time of the tick that took it); zero before the first.
   const ros::Time& lastPoseTime() const { return last_pose_time_; }
+  /// ROS time the earliest pose waiting for the physics arrived; zero when none waits.
+  ros::Time earliestArrival() const;
+  /// Stamp of the last pose taken [s]; NaN before the first (the physics need not wait for poses).
+  double latestStamp() const;
+  /// How far behind ROS time the physics must run for the poses to bracket it [s]: the largest gap, over
+  /// the last kGaps poses taken, between a pose being taken (the tick that took it) and the stamp of
+  /// the pose before it. 0 before two poses.
+  double neededDelay() const;
 
  private:
+  using Filter = tf2_ros::MessageFilter<geometry_msgs::PoseStamped>;
+  static constexpr std::size_t kGaps = 16;
+
+  /// A pose handed to the physics thread: the message and when it arrived.
+  struct HandOver
+  {
+    geometry_msgs::PoseStamped::ConstPtr msg;
+    ros::Time arrival;
+  };
+
+  /// Input side: queues a checked pose for the physics thread (counts it dropped when full).
+  void handOver(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& arrival);
+  /// MessageFilter callbacks (input thread): the pose can be transformed now, or never.
+  void onTransformable(const geometry_msgs::PoseStamped::ConstPtr& msg);
+  void onFilterFailure(const geometry_msgs::PoseStamped::ConstPtr& msg,
+                       tf2_ros::filter_failure_reasons::FilterFailureReason reason);
+  /// Removes `msg` from the poses waiting for tf; returns its arrival time, or zero when it was not there
+  /// (already refused as too late).
+  ros::Time stopWaiting(const geometry_msgs::PoseStamped* msg);
+  /// Physics side: refuses the poses waiting for tf whose stamp the physics has passed.
+  void expireWaiting();
+  /// Physics side: one handed-over pose into the tether.
+  void take(const HandOver& pose, const ros::Time& now);
   /// world_frame -> frame at `time` (0: latest) with the transform's stamp; false and a throttled
   /// warning when tf cannot tell.
   bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp = nullptr);
   /// The vehicle at `vehicle` (world frame) at `stamp` into the tether; counts and logs a refusal.
   bool addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now);
+  void refuse(const std::string& why);
 
   NodeOptions options_;
-  const tf2_ros::Buffer& tf_;
+  tf2_ros::Buffer& tf_;
   Tether& tether_;
   std::string label_;  ///< " name" for log messages, "" alone.
   ros::Subscriber subscriber_;
-  std::uint64_t rejected_ = 0;
-  ros::Time last_pose_time_;   ///< ROS time the last accepted pose arrived.
+  std::unique_ptr<Filter> filter_;  ///< Poses in other frames wait here for their transform.
+
+  mutable std::mutex mutex_;              ///< Guards the two lists below (input and physics threads).
+  std::vector<HandOver> hand_over_;       ///< Received, for the physics thread (capacity kMaxHandOver).
+  std::vector<HandOver> waiting_for_tf_;  ///< In the MessageFilter, with their arrival times.
+  std::vector<HandOver> taking_;          ///< Physics thread: the poses being taken (swapped with hand_over_).
+
+  std::atomic<std::uint64_t> rejected_{0};
+  std::atomic<std::uint64_t> dropped_{0};
+  std::uint64_t accepted_ = 0;
+  ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
+  VehicleHistory history_;
+  std::array<double, kGaps> gaps_{};  ///< Ring of the last gaps (see neededDelay) [s].
+  std::size_t gap_count_ = 0;
 };
 
 }  // namespace rov_tether::ros_layer

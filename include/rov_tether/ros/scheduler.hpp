@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,20 @@ class TetherHooks
   virtual void publishState() = 0;
   /// After the physics advanced on this tick: reports, markers, diagnostics.
   virtual void afterAdvance(const ros::Time& /*now*/) {}
-  /// The tether was re-laid at a new time (start, clock jump, ~reset): inputs and outputs start over.
-  virtual void restarted() {}
+  /// The tether was re-laid at ROS time `now` (start, clock jump, ~reset): inputs and outputs start over.
+  virtual void restarted(const ros::Time& /*now*/) {}
+
+  /// When the tether's vehicle poses come, for the physics' place behind ROS time.
+  struct PoseTiming
+  {
+    double latest_stamp = std::numeric_limits<double>::quiet_NaN();  ///< Of the last pose taken; NaN: none [s].
+    double needed_delay = 0.0;  ///< Behind ROS time the poses bracket the physics (PoseInput::neededDelay) [s].
+  };
+  virtual PoseTiming poseTiming() const { return {}; }
+  /// ROS time the earliest pose still waiting for the physics arrived; zero when none waits. When the
+  /// clock went back, the tethers restart at the first arrival on the new clock, not at the tick that
+  /// noticed (its time depends on when /clock messages come), so a bag replayed twice restarts the same.
+  virtual ros::Time earliestArrival() const { return ros::Time(); }
 };
 
 /// One tether's schedule and what it reports (read by the diagnostics).
@@ -58,8 +71,13 @@ struct TetherSchedule
 /**
  * Runs the physics of a World on ROS time, one tick at a time (the node's one timer), for every tether in
  * lockstep. Clock policy: the first tick starts the tethers at the current time; a clock that goes
- * backwards, or leaps more than 5 s forwards, resets them (warning). The physics runs interpolation_delay
- * behind ROS time, its start aligned to each tether's time_step grid. Each tether has its own ~state grid
+ * backwards, or leaps more than 5 s forwards, resets them (warning). The physics runs behind ROS time so
+ * that the vehicle poses bracket it: interpolation_delay, or more when poses come further apart (the
+ * largest needed delay of any tether, up to the hold limit; it grows at once and shrinks at
+ * kDelayShrinkRate, so the physics never jumps), and it never passes the latest pose of any tether
+ * (it waits for the next one) while that pose is less than the hold limit old: the largest of
+ * interpolation_delay and every tether's stale_pose_timeout. Its start is aligned to each tether's
+ * time_step grid. Each tether has its own ~state grid
  * (multiples of 1 / its state_rate in physics time, so a replay gives the same series): the world
  * advances from one due point to the next and the tethers due there publish. A tether more than its
  * max_lag behind skips ahead with its cable held (error, counted). After the physics, the wall time it
@@ -73,6 +91,9 @@ class Scheduler
 
   /// Forward clock jumps larger than this reset the tethers instead of being integrated [s].
   static constexpr double kMaxForwardJump = 5.0;
+  /// The delay behind ROS time shrinks at most this fast when poses come closer together: the physics
+  /// then runs at most 1.5x real time to catch up, never skipping [s/s].
+  static constexpr double kDelayShrinkRate = 0.5;
 
   /// `world` must outlive the scheduler. `interpolation_delay` [s] is the world's (one clock for all).
   explicit Scheduler(World& world, double interpolation_delay, WallClock wall_clock = &ros::WallTime::now);
@@ -84,18 +105,23 @@ class Scheduler
 
   /// One physics tick at ROS time `now` (nothing before the clock starts, at zero).
   void tick(const ros::Time& now);
-  /// A pose arrived at `now`: once started, a clock that went backwards resets every tether first.
-  void checkClock(const ros::Time& now);
   /// Re-lays tether i at the physics time of `now`, counts a reset and warns with `why`.
   void reset(std::size_t i, const ros::Time& now, const std::string& why);
 
-  /// The physics time for ROS time `now`: interpolation_delay behind, on the grid of tether i's time_step.
+  /// The physics time for ROS time `now`: the current delay behind, on the grid of tether i's time_step.
   double alignedPhysicsTime(std::size_t i, const ros::Time& now) const;
   double interpolationDelay() const { return interpolation_delay_; }
+  /// How far behind ROS time the physics runs now [s] (interpolation_delay, or more for sparse poses).
+  double delay() const { return delay_; }
+  /// The physics' target time for ROS time `now` on the last tick [s].
+  double target() const { return target_; }
   const TetherSchedule& schedule(std::size_t i) const { return tethers_[i]; }
   LoadGovernor& governor(std::size_t i) { return tethers_[i].governor; }
 
  private:
+  /// The physics' target for ROS time `now`: the delay updated from the tethers' pose timing, and held
+  /// at the latest pose (see the class).
+  double physicsTarget(const ros::Time& now);
   /// Re-lays tether i at the physics time of `now` and restarts its state grid and its hooks.
   void restart(std::size_t i, const ros::Time& now);
   void resetAll(const ros::Time& now, const std::string& why);
@@ -108,6 +134,9 @@ class Scheduler
 
   World& world_;
   double interpolation_delay_;
+  double delay_;         ///< Current delay behind ROS time [s].
+  double hold_limit_;    ///< The physics never runs further behind ROS time than this [s].
+  double target_ = 0.0;  ///< Physics target of the last tick [s].
   WallClock wall_clock_;
   std::vector<TetherSchedule> tethers_;
   bool started_ = false;

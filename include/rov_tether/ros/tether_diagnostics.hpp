@@ -19,8 +19,8 @@ namespace rov_tether::ros_layer
 /**
  * One tether's /diagnostics status ("tether", or "tether <name>" among several) and its error reports:
  * simulation failures, vehicle jumps and a vehicle outrunning the winch are logged (throttled) as the physics
- * finds them. It
- * reads the tether, its pose input and its schedule (resets, skips, load, what overload_policy gave up).
+ * finds them. It reads the tether, its pose input (poses taken, refused, dropped) and its schedule (resets,
+ * skips, load, what overload_policy gave up, the physics' delay behind ROS time).
  */
 class TetherDiagnostics
 {
@@ -49,6 +49,8 @@ class TetherDiagnostics
   std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;          ///< When the last failure was seen; diagnostics show ERROR for a while.
   ros::Time last_outrun_time_;           ///< When the vehicle last outran the winch; diagnostics WARN for a while.
+  std::uint64_t reported_drops_ = 0;     ///< Dropped poses already seen.
+  ros::Time last_drop_time_;             ///< When poses were last dropped; diagnostics show WARN for a while.
 };
 
 }  // namespace rov_tether::ros_layer

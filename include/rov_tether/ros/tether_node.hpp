@@ -47,15 +47,19 @@ class TetherNode : public TetherHooks
 {
  public:
   /// Builds the tether from `setup`, adds it to `world` (as `name`, or "tether" alone) and to `scheduler`,
-  /// then advertises under `private_nh` and subscribes. `tf` is the process's one buffer. `world`,
+  /// then advertises under `private_nh` and subscribes to poses under `input_nh` (whose callback queue is
+  /// the process's input queue, served by its own thread). `tf` is the process's one buffer. `world`,
   /// `scheduler` and `tf` must outlive this.
-  TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const TetherSetup& setup,
-             const std::string& name, World& world, Scheduler& scheduler, const tf2_ros::Buffer& tf);
+  TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
+             const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler,
+             tf2_ros::Buffer& tf);
 
   void beforeAdvance(const ros::Time& now) override;
   void publishState() override;
   void afterAdvance(const ros::Time& now) override;
-  void restarted() override;
+  void restarted(const ros::Time& now) override;
+  PoseTiming poseTiming() const override;
+  ros::Time earliestArrival() const override { return pose_input_.earliestArrival(); }
 
  private:
   bool onGetTension(GetTension::Request& request, GetTension::Response& response);
@@ -65,6 +69,8 @@ class TetherNode : public TetherHooks
   void applyPendingParams();
   /// Warns when the parameters make the method unstable (lumped_mass above its critical step).
   void warnAboutStability() const;
+  /// `options` with the tf frames this tether publishes prefixed "name/" among several tethers.
+  static NodeOptions withTetherFrames(NodeOptions options, const std::string& name);
   /// Adds the tether to the world and returns it (throws when the world refuses the name).
   static Tether& addTether(World& world, const std::string& name, const TetherSetup& setup);
 

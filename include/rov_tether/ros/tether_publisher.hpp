@@ -6,7 +6,7 @@
 #include <ros/time.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,23 +20,34 @@ namespace rov_tether::ros_layer
 {
 
 /**
- * Builds ~state and ~wrench for a tether at its current physics time (stamped with it), measuring the
- * winch speed between two states. Needs no ROS master.
+ * Builds ~state, ~wrench and ~wrench_vehicle for a tether at its current physics time (stamped with it),
+ * measuring the winch speed between two states. Needs no ROS master.
  */
 class StateBuilder
 {
  public:
-  explicit StateBuilder(const std::string& frame_id) : frame_id_(frame_id) {}
+  /// `frame_id`: the world frame; `vehicle_frame`: the frame of ~wrench_vehicle; `attachment_offset`: the
+  /// attachment point in the vehicle frame [m].
+  StateBuilder(const std::string& frame_id, const std::string& vehicle_frame = "rov",
+               const Eigen::Vector3d& attachment_offset = Eigen::Vector3d::Zero())
+      : frame_id_(frame_id), vehicle_frame_(vehicle_frame), attachment_offset_(attachment_offset)
+  {
+  }
 
   /// The state of `tether` now; `resets` is reported in the message. Reuses its storage.
   const TetherState& state(const Tether& tether, std::uint32_t resets);
-  /// The pull on the vehicle at the same time, torque about `vehicle_origin` (call after state()).
-  geometry_msgs::WrenchStamped wrench(const Tether& tether, const Eigen::Vector3d& vehicle_origin) const;
+  /// The pull on the vehicle at the same time (call after state()), in the world frame with its torque
+  /// about the vehicle origin; `vehicle` is the vehicle's pose at the tether's time (the force's).
+  geometry_msgs::WrenchStamped wrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const;
+  /// The same pull in the vehicle frame (~wrench_vehicle).
+  geometry_msgs::WrenchStamped vehicleWrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const;
   /// After a reset of the tether: the winch speed is measured afresh.
   void restart(const Tether& tether);
 
  private:
   std::string frame_id_;
+  std::string vehicle_frame_;
+  Eigen::Vector3d attachment_offset_;
   double last_state_physics_ = 0.0;  ///< Physics time of the last state [s].
   double last_deployed_ = 0.0;
   ros::Time stamp_;
@@ -45,19 +56,23 @@ class StateBuilder
 };
 
 /**
- * One tether's topics: ~state and ~wrench (on its state grid, see Scheduler), ~markers at a rate (only
- * computed while someone subscribes).
+ * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
+ * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
+ * (with ~state), ~markers at a rate (only while someone subscribes).
  */
 class TetherPublisher
 {
  public:
-  /// Advertises under `private_nh`.
+  /// Advertises under `private_nh` (and /tf). `options`' frame names are used as given (TetherNode prefixes
+  /// them with the tether's name among several).
   TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options);
 
-  /// Publishes ~state and ~wrench for the tether's current physics time.
-  void publishState(const Tether& tether, std::uint32_t resets, const Eigen::Vector3d& vehicle_origin);
-  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes.
-  void publishMarkers(const Tether& tether, const ros::Time& now, double rate);
+  /// Publishes ~state, ~wrench and (with subscribers) ~wrench_vehicle for the tether's current physics time;
+  /// `vehicle` is the vehicle's pose at that time.
+  void publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle);
+  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes. Returns the wall time it took [s]
+  /// (0 when it published nothing), which the load governor counts.
+  double publishMarkers(const Tether& tether, const ros::Time& now, double rate);
   /// After a reset of the tether.
   void restart(const Tether& tether);
 
@@ -66,6 +81,9 @@ class TetherPublisher
   StateBuilder builder_;
   ros::Publisher state_pub_;
   ros::Publisher wrench_pub_;
+  ros::Publisher vehicle_wrench_pub_;
+  ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
+  tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
   ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
   std::vector<double> tensions_;

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
+#include <ros/spinner.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
@@ -20,8 +22,10 @@ namespace rov_tether::ros_layer
  * `tethers: [a, b, ...]`, each configured under ~a/, ~b/, ... on top of the parameters they share in ~).
  * It owns the one tf buffer and listener every tether's pose input reads, the Scheduler and the one
  * timer that steps the world at physics_rate on ROS time; each tether keeps its own topics, services,
- * parameters, diagnostics and dynamic_reconfigure server (TetherNode). With a private list `cameras`,
- * its CameraSet draws every tether in each camera after every tick.
+ * parameters, diagnostics and dynamic_reconfigure server (TetherNode). Vehicle poses (and the tf
+ * MessageFilter's callbacks) come on a callback queue of their own, served by a thread of its own, so
+ * a slow physics tick (one heavy tether) never stalls them. With a private list `cameras`, its CameraSet
+ * draws every tether in each camera after every tick.
  */
 class WorldNode
 {
@@ -29,6 +33,8 @@ class WorldNode
   /// Loads every tether's parameters first; throws std::runtime_error naming a bad parameter before
   /// anything is advertised or subscribed.
   WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+  /// Stops the input thread before the tethers it feeds go.
+  ~WorldNode();
 
   std::size_t size() const { return tethers_.size(); }
 
@@ -41,9 +47,11 @@ class WorldNode
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created once the parameters loaded.
   World world_;
   std::unique_ptr<Scheduler> scheduler_;
+  ros::CallbackQueue input_queue_;  ///< Vehicle poses and the tf MessageFilter's callbacks.
   std::vector<std::unique_ptr<TetherNode>> tethers_;
   std::unique_ptr<CameraSet> cameras_;  ///< The private list `cameras`; none without it.
   ros::Timer timer_;
+  std::unique_ptr<ros::AsyncSpinner> input_spinner_;  ///< The input queue's one thread; stopped first.
 };
 
 }  // namespace rov_tether::ros_layer
