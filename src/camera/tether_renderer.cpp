@@ -39,7 +39,7 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
                                    const std::vector<Tube>& tubes, const std::vector<const Occluder*>& occluders)
 {
   prepare(camera);
-  segments_drawn_ = 0;
+  capsules_.clear();
   const Eigen::Isometry3d camera_from_world = world_from_camera.inverse();
   for (const Tube& tube : tubes)
   {
@@ -52,12 +52,19 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
     for (std::size_t i = 1; i < points.size(); ++i)
     {
       const Eigen::Vector3d next = camera_from_world * points[i];
-      drawSegment(camera, previous, next, tube.radius);
+      addSegment(camera, previous, next, tube.radius);
       previous = next;
     }
   }
+  // Nearest first: where a nearer segment already hides a pixel, a farther one skips it.
+  std::sort(capsules_.begin(), capsules_.end(),
+            [](const Capsule& p, const Capsule& q) { return p.nearest < q.nearest; });
+  for (const Capsule& capsule : capsules_)
+  {
+    drawCapsule(camera, capsule);
+  }
   RenderStats stats;
-  stats.segments_drawn = segments_drawn_;
+  stats.segments_drawn = capsules_.size();
   stats.occluded_pixels = occlude(camera, world_from_camera, occluders);
   auto* mask = mask_.ptr<std::uint8_t>();
   const auto* depth = depth_.ptr<float>();
@@ -73,7 +80,7 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
   return stats;
 }
 
-void TetherRenderer::drawSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius)
+void TetherRenderer::addSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius)
 {
   // Behind the camera (or too close to see): clip at the near plane.
   const double near = kNearClip + radius;
@@ -106,13 +113,15 @@ void TetherRenderer::drawSegment(const CameraModel& camera, Eigen::Vector3d a, E
   {
     return;
   }
-  ++segments_drawn_;
-  drawCapsule(camera, a, b, radius);
+  capsules_.push_back(Capsule{a, b, radius, std::min(a.z(), b.z()) - radius});
 }
 
-void TetherRenderer::drawCapsule(const CameraModel& camera, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                 double radius)
+void TetherRenderer::drawCapsule(const CameraModel& camera, const Capsule& segment)
 {
+  const Eigen::Vector3d& a = segment.a;
+  const Eigen::Vector3d& b = segment.b;
+  const double radius = segment.radius;
+  const float nearest = static_cast<float>(segment.nearest);
   // Row by row, the columns whose rays can hit the capsule (its footprint over the row's band of y),
   // widened by a pixel against rounding; each of those pixels' rays is intersected exactly.
   const CapsuleFootprint footprint(a, b, radius);
@@ -150,6 +159,10 @@ void TetherRenderer::drawCapsule(const CameraModel& camera, const Eigen::Vector3
     const int u0 = std::max(0, first - 1), u1 = std::min(width - 1, last + 1);
     for (int i = v * width + u0, end = v * width + u1; i <= end; ++i)
     {
+      if (depth[i] <= nearest)
+      {
+        continue;  // a nearer segment hides it (false while NaN: nothing drawn there yet)
+      }
       const double t = capsule.hit(rays[2 * i], rays[2 * i + 1]);
       if (t == kInf)
       {
