@@ -25,12 +25,21 @@ void TetherRenderer::prepare(const CameraModel& camera)
     pixels_.reserve(static_cast<std::size_t>(camera.width()) * camera.height());
     return;
   }
-  auto* mask = mask_.ptr<std::uint8_t>();
-  auto* depth = depth_.ptr<float>();
-  for (int i : pixels_)
+  if (pixels_.size() > mask_.total() / 8)
   {
-    mask[i] = 0;
-    depth[i] = std::nanf("");
+    // Many pixels drawn (a tether filling the view): clearing whole images is cheaper than pixel by pixel.
+    mask_.setTo(cv::Scalar(0));
+    depth_.setTo(cv::Scalar(std::nanf("")));
+  }
+  else
+  {
+    auto* mask = mask_.ptr<std::uint8_t>();
+    auto* depth = depth_.ptr<float>();
+    for (int i : pixels_)
+    {
+      mask[i] = 0;
+      depth[i] = std::nanf("");
+    }
   }
   pixels_.clear();
 }

@@ -256,6 +256,13 @@ void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, s
     toImageMessage(image, header, msg);
     previous->reserve(image.total());
   }
+  else if (previous->size() + current.size() > image.total() / 8)
+  {
+    // Many changed pixels (a tether filling the view): one straight copy of the image is cheaper than
+    // a scattered copy per pixel.
+    std::memcpy(msg->data.data(), image.data, image.total() * element);
+    msg->header = header;
+  }
   else
   {
     msg->header = header;
