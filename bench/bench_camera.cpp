@@ -71,6 +71,36 @@ void render(benchmark::State& state, int width, int height, bool distorted, doub
   state.counters["segments_drawn"] = static_cast<double>(stats.segments_drawn);
 }
 
+/// The camera of scripts/camera_cpu.sh (config/camera_720p.yaml: 1280 x 720, f = 900 px, a mild barrel)
+/// looking back along its vehicle's tether, which runs past 3.5 cm beside the lens and away over 8 m (as
+/// in that script, where the tether leaves the vehicle 0.3 m in front of the camera's mount): its
+/// nearest segments fill a good part of the image and hide one another.
+void BM_RenderMaskAndDepth720pBesideLens(benchmark::State& state)
+{
+  CameraIntrinsics c;
+  c.width = 1280;
+  c.height = 720;
+  c.K = {900.0, 0.0, 639.5, 0.0, 900.0, 359.5, 0.0, 0.0, 1.0};
+  c.D = {-0.05, 0.01, 0.0, 0.0, 0.0};
+  const CameraModel camera(c);
+  std::vector<Position> points;
+  for (int i = 0; i <= 100; ++i)
+  {
+    const double s = i / 100.0;
+    points.emplace_back(0.035 + 3.0 * s * s, 0.012 - 0.5 * s + 1.5 * s * s, -0.3 + 8.0 * s);
+  }
+  const std::vector<Tube> tubes = {Tube{&points, 0.01}};
+  TetherRenderer renderer;
+  RenderStats stats;
+  for (auto _ : state)
+  {
+    stats = renderer.render(camera, Eigen::Isometry3d::Identity(), tubes, {});
+    benchmark::DoNotOptimize(renderer.mask().data);
+  }
+  state.counters["tether_pixels"] = static_cast<double>(stats.pixels);
+  state.counters["segments_drawn"] = static_cast<double>(stats.segments_drawn);
+}
+
 void BM_RenderMaskAndDepth(benchmark::State& state) { render(state, 640, 480, false, 1.0, false); }
 void BM_RenderMaskAndDepthDistorted(benchmark::State& state) { render(state, 640, 480, true, 1.0, false); }
 void BM_RenderMaskAndDepthSeabed(benchmark::State& state) { render(state, 640, 480, false, 1.0, true); }
@@ -81,6 +111,7 @@ BENCHMARK(BM_RenderMaskAndDepthDistorted)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderMaskAndDepthSeabed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderMaskAndDepthClose)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RenderMaskAndDepth720p)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RenderMaskAndDepth720pBesideLens)->Unit(benchmark::kMicrosecond);
 
 /// For comparison: the mask alone drawn the usual OpenCV way, cv::projectPoints then one cv::line per
 /// segment as thick as f d / Z at its middle (no depth, no clipping: the arch is all in front). Integer

@@ -11,6 +11,25 @@ namespace rov_tether::camera
 namespace
 {
 
+/// The first index in [lo, hi) where `holds` does (hi when none); `holds` is false, then true.
+template <typename Predicate>
+int firstWhere(int lo, int hi, Predicate holds)
+{
+  while (lo < hi)
+  {
+    const int mid = lo + (hi - lo) / 2;
+    if (holds(mid))
+    {
+      hi = mid;
+    }
+    else
+    {
+      lo = mid + 1;
+    }
+  }
+  return lo;
+}
+
 std::string joined(const std::vector<std::string>& errors)
 {
   std::string text;
@@ -32,6 +51,7 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
   }
   max_focal_ = std::max(intrinsics_.fx(), intrinsics_.fy()) + std::abs(intrinsics_.skew());
   computeRays();
+  computeRowTables();
 }
 
 Eigen::Vector2d CameraModel::toPixel(double x, double y) const
@@ -104,8 +124,8 @@ void CameraModel::computeRays()
   }
   if (intrinsics_.distorted())
   {
-    // The renderer maps rectangles within these bounds to pixels through toPixel: the radial factor
-    // r (1 + k1 r^2 + k2 r^4 + k3 r^6) must grow monotonically out to the bounds' farthest corner.
+    // Each pixel has one ray only if the distortion does not fold over within the image's rays: the radial
+    // factor r (1 + k1 r^2 + k2 r^4 + k3 r^6) must grow monotonically out to the bounds' farthest corner.
     const double r_max = std::sqrt(std::max(bounds_.x_min * bounds_.x_min, bounds_.x_max * bounds_.x_max) +
                                    std::max(bounds_.y_min * bounds_.y_min, bounds_.y_max * bounds_.y_max));
     for (int i = 0; i <= 1000; ++i)
@@ -120,6 +140,98 @@ void CameraModel::computeRays()
       }
     }
   }
+}
+
+void CameraModel::computeRowTables()
+{
+  const int w = width();
+  const int h = height();
+  blocks_ = (w + kBandColumns - 1) / kBandColumns;
+  row_y_.assign(2 * static_cast<std::size_t>(h), 0.0);
+  block_y_.assign(2 * static_cast<std::size_t>(h) * blocks_, 0.0f);
+  rows_sorted_ = true;
+  for (int v = 0; v < h; ++v)
+  {
+    const float* row = &rays_[2 * static_cast<std::size_t>(v) * w];
+    float* blocks = &block_y_[2 * static_cast<std::size_t>(v) * blocks_];
+    for (int u = 0; u < w; ++u)
+    {
+      float* block = &blocks[2 * (u / kBandColumns)];
+      const float y = row[2 * u + 1];
+      block[0] = u % kBandColumns == 0 ? y : std::min(block[0], y);
+      block[1] = u % kBandColumns == 0 ? y : std::max(block[1], y);
+      rows_sorted_ = rows_sorted_ && (u == 0 || row[2 * u] > row[2 * u - 2]);
+    }
+    row_y_[2 * v] = *std::min_element(blocks, blocks + 2 * blocks_);
+    row_y_[2 * v + 1] = *std::max_element(blocks, blocks + 2 * blocks_);
+  }
+  bands_sorted_ = true;
+  for (int v = 1; v < h; ++v)
+  {
+    bands_sorted_ = bands_sorted_ && rowYMin(v) >= rowYMin(v - 1) && rowYMax(v) >= rowYMax(v - 1);
+  }
+}
+
+std::pair<double, double> CameraModel::rowYBetween(int v, int first, int last) const
+{
+  const float* blocks = &block_y_[2 * static_cast<std::size_t>(v) * blocks_];
+  float y_min = blocks[2 * (first / kBandColumns)], y_max = blocks[2 * (first / kBandColumns) + 1];
+  for (int b = first / kBandColumns + 1; b <= last / kBandColumns; ++b)
+  {
+    y_min = std::min(y_min, blocks[2 * b]);
+    y_max = std::max(y_max, blocks[2 * b + 1]);
+  }
+  return {y_min, y_max};
+}
+
+std::pair<int, int> CameraModel::rowsBetween(double y_lo, double y_hi) const
+{
+  if (!bands_sorted_)
+  {
+    return {0, height() - 1};
+  }
+  // The first row reaching y_lo, and the first one starting beyond y_hi.
+  const int first = firstWhere(0, height(), [&](int v) { return rowYMax(v) >= y_lo; });
+  const int past = firstWhere(first, height(), [&](int v) { return rowYMin(v) > y_hi; });
+  return {first, past - 1};
+}
+
+std::pair<int, int> CameraModel::columnsBetween(int v, double x_lo, double x_hi, std::pair<int, int> near) const
+{
+  const int w = width();
+  if (!rows_sorted_)
+  {
+    return {0, w - 1};
+  }
+  const float* row = &rays_[2 * static_cast<std::size_t>(v) * w];
+  // The first column with x >= x_lo and the first with x > x_hi: by bisection, or by walking from `near`
+  // (the answer for a neighbouring row: a few steps for a tube's consecutive rows).
+  int first, past;
+  if (near.first < 0 || near.first > w || near.second + 1 < 0 || near.second + 1 > w)
+  {
+    first = firstWhere(0, w, [&](int u) { return row[2 * u] >= x_lo; });
+    past = firstWhere(first, w, [&](int u) { return row[2 * u] > x_hi; });
+    return {first, past - 1};
+  }
+  first = near.first;
+  while (first > 0 && row[2 * (first - 1)] >= x_lo)
+  {
+    --first;
+  }
+  while (first < w && row[2 * first] < x_lo)
+  {
+    ++first;
+  }
+  past = std::max(near.second + 1, first);
+  while (past > first && row[2 * (past - 1)] > x_hi)
+  {
+    --past;
+  }
+  while (past < w && row[2 * past] <= x_hi)
+  {
+    ++past;
+  }
+  return {first, past - 1};
 }
 
 }  // namespace rov_tether::camera

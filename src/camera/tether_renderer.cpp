@@ -4,70 +4,14 @@
 #include <cmath>
 #include <limits>
 
+#include "rov_tether/camera/capsule.hpp"
+
 namespace rov_tether::camera
 {
 namespace
 {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// Pieces are about this long on the image (or as long as the tube is wide, when wider) [px].
-constexpr double kPiecePixels = 16.0;
-/// At most this many pieces per segment.
-constexpr int kMaxPieces = 512;
-
-/// Depth of the first hit of the ray t (x, y, 1), t > 0, on a capsule; +inf when it misses. The capsule
-/// is the set of points within `r` of the segment from a to b (Quilez's ray-capsule intersection,
-/// with a direction that is not normalised, so t is the depth along the optical axis).
-struct CapsuleRay
-{
-  CapsuleRay(const Eigen::Vector3d& a_in, const Eigen::Vector3d& b_in, double r)
-      : a(a_in), b(b_in), ba(b_in - a_in), baba(ba.squaredNorm()), baoa(-ba.dot(a_in)), r2(r * r)
-  {
-    c = baba * a.squaredNorm() - baoa * baoa - r2 * baba;
-    cap_a = a.squaredNorm() - r2;
-    cap_b = b.squaredNorm() - r2;
-  }
-
-  double hit(double x, double y) const
-  {
-    const double dd = x * x + y * y + 1.0;
-    const double bard = ba.x() * x + ba.y() * y + ba.z();
-    const double rdoa = -(a.x() * x + a.y() * y + a.z());
-    const double k2 = baba * dd - bard * bard;
-    const double k1 = baba * rdoa - baoa * bard;
-    const double h = k1 * k1 - k2 * c;
-    if (h < 0.0)
-    {
-      return kInf;  // misses the infinite cylinder, and so the capsule inside it
-    }
-    if (k2 > 1e-12 * baba * dd)
-    {
-      const double t = (-k1 - std::sqrt(h)) / k2;
-      const double along = baoa + t * bard;
-      if (along > 0.0 && along < baba && t > 0.0)
-      {
-        return t;
-      }
-    }
-    // The round ends: the nearer hit of the two balls (the first hit of a union is the nearest).
-    return std::min(ball(a, cap_a, x, y, dd), ball(b, cap_b, x, y, dd));
-  }
-
-  static double ball(const Eigen::Vector3d& centre, double cc, double x, double y, double dd)
-  {
-    const double dc = centre.x() * x + centre.y() * y + centre.z();
-    const double disc = dc * dc - dd * cc;
-    if (disc < 0.0)
-    {
-      return kInf;
-    }
-    const double t = (dc - std::sqrt(disc)) / dd;
-    return t > 0.0 ? t : kInf;
-  }
-
-  Eigen::Vector3d a, b, ba;
-  double baba, baoa, r2, c = 0.0, cap_a = 0.0, cap_b = 0.0;
-};
 
 }  // namespace
 
@@ -81,12 +25,21 @@ void TetherRenderer::prepare(const CameraModel& camera)
     pixels_.reserve(static_cast<std::size_t>(camera.width()) * camera.height());
     return;
   }
-  auto* mask = mask_.ptr<std::uint8_t>();
-  auto* depth = depth_.ptr<float>();
-  for (int i : pixels_)
+  if (pixels_.size() > mask_.total() / 8)
   {
-    mask[i] = 0;
-    depth[i] = std::nanf("");
+    // Many pixels drawn (a tether filling the view): clearing whole images is cheaper than pixel by pixel.
+    mask_.setTo(cv::Scalar(0));
+    depth_.setTo(cv::Scalar(std::nanf("")));
+  }
+  else
+  {
+    auto* mask = mask_.ptr<std::uint8_t>();
+    auto* depth = depth_.ptr<float>();
+    for (int i : pixels_)
+    {
+      mask[i] = 0;
+      depth[i] = std::nanf("");
+    }
   }
   pixels_.clear();
 }
@@ -95,7 +48,7 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
                                    const std::vector<Tube>& tubes, const std::vector<const Occluder*>& occluders)
 {
   prepare(camera);
-  segments_drawn_ = 0;
+  capsules_.clear();
   const Eigen::Isometry3d camera_from_world = world_from_camera.inverse();
   for (const Tube& tube : tubes)
   {
@@ -108,12 +61,19 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
     for (std::size_t i = 1; i < points.size(); ++i)
     {
       const Eigen::Vector3d next = camera_from_world * points[i];
-      drawSegment(camera, previous, next, tube.radius);
+      addSegment(camera, previous, next, tube.radius);
       previous = next;
     }
   }
+  // Nearest first: where a nearer segment already hides a pixel, a farther one skips it.
+  std::sort(capsules_.begin(), capsules_.end(),
+            [](const Capsule& p, const Capsule& q) { return p.nearest < q.nearest; });
+  for (const Capsule& capsule : capsules_)
+  {
+    drawCapsule(camera, capsule);
+  }
   RenderStats stats;
-  stats.segments_drawn = segments_drawn_;
+  stats.segments_drawn = capsules_.size();
   stats.occluded_pixels = occlude(camera, world_from_camera, occluders);
   auto* mask = mask_.ptr<std::uint8_t>();
   const auto* depth = depth_.ptr<float>();
@@ -129,7 +89,7 @@ RenderStats TetherRenderer::render(const CameraModel& camera, const Eigen::Isome
   return stats;
 }
 
-void TetherRenderer::drawSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius)
+void TetherRenderer::addSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius)
 {
   // Behind the camera (or too close to see): clip at the near plane.
   const double near = kNearClip + radius;
@@ -162,67 +122,56 @@ void TetherRenderer::drawSegment(const CameraModel& camera, Eigen::Vector3d a, E
   {
     return;
   }
-  ++segments_drawn_;
-  const double length_px = camera.maxFocal() * std::hypot(a.x() / a.z() - b.x() / b.z(), a.y() / a.z() - b.y() / b.z());
-  const double radius_px = camera.maxFocal() * radius / std::max(a.z(), b.z());
-  const int pieces =
-      std::clamp(static_cast<int>(std::ceil(length_px / std::max(kPiecePixels, radius_px))), 1, kMaxPieces);
-  Eigen::Vector3d start = a;
-  for (int k = 1; k <= pieces; ++k)
-  {
-    const Eigen::Vector3d end = k == pieces ? b : a + (b - a) * (static_cast<double>(k) / pieces);
-    drawPiece(camera, Capsule{start, end, radius});
-    start = end;
-  }
+  capsules_.push_back(Capsule{a, b, radius, std::min(a.z(), b.z()) - radius});
 }
 
-void TetherRenderer::drawPiece(const CameraModel& camera, const Capsule& piece)
+void TetherRenderer::drawCapsule(const CameraModel& camera, const Capsule& segment)
 {
-  // The capsule lies in the box [lo, hi]; its image in normalised coordinates in the box's (z > 0).
-  const Eigen::Vector3d lo = piece.a.cwiseMin(piece.b).array() - piece.radius;
-  const Eigen::Vector3d hi = piece.a.cwiseMax(piece.b).array() + piece.radius;
+  const Eigen::Vector3d& a = segment.a;
+  const Eigen::Vector3d& b = segment.b;
+  const double radius = segment.radius;
+  const float nearest = static_cast<float>(segment.nearest);
+  // Row by row, the columns whose rays can hit the capsule (its footprint over the row's band of y),
+  // widened by a pixel against rounding; each of those pixels' rays is intersected exactly.
+  const CapsuleFootprint footprint(a, b, radius);
   const RayBounds& rb = camera.rayBounds();
-  const double x_min = std::max(lo.x() / (lo.x() >= 0.0 ? hi.z() : lo.z()), rb.x_min);
-  const double x_max = std::min(hi.x() / (hi.x() >= 0.0 ? lo.z() : hi.z()), rb.x_max);
-  const double y_min = std::max(lo.y() / (lo.y() >= 0.0 ? hi.z() : lo.z()), rb.y_min);
-  const double y_max = std::min(hi.y() / (hi.y() >= 0.0 ? lo.z() : hi.z()), rb.y_max);
-  if (x_min > x_max || y_min > y_max)
+  if (footprint.xMin() > rb.x_max || footprint.xMax() < rb.x_min)
   {
     return;
   }
-  // The rectangle's pixels: its corners without distortion (an affine map); with distortion, points
-  // along its edges every 8 px or so (the distortion is monotonic within the image's rays).
-  double u_min = kInf, u_max = -kInf, v_min = kInf, v_max = -kInf;
-  const auto extend = [&](double x, double y)
-  {
-    const Eigen::Vector2d p = camera.toPixel(x, y);
-    u_min = std::min(u_min, p.x()), u_max = std::max(u_max, p.x());
-    v_min = std::min(v_min, p.y()), v_max = std::max(v_max, p.y());
-  };
-  const int samples = camera.intrinsics().distorted()
-                          ? 2 + static_cast<int>(camera.maxFocal() * std::max(x_max - x_min, y_max - y_min) / 8.0)
-                          : 1;
-  for (int k = 0; k <= samples; ++k)
-  {
-    const double s = static_cast<double>(k) / samples;
-    const double x = x_min + s * (x_max - x_min);
-    const double y = y_min + s * (y_max - y_min);
-    extend(x, y_min), extend(x, y_max), extend(x_min, y), extend(x_max, y);
-  }
-  const int u0 = std::max(0, static_cast<int>(std::floor(u_min)) - 1);
-  const int u1 = std::min(camera.width() - 1, static_cast<int>(std::ceil(u_max)) + 1);
-  const int v0 = std::max(0, static_cast<int>(std::floor(v_min)) - 1);
-  const int v1 = std::min(camera.height() - 1, static_cast<int>(std::ceil(v_max)) + 1);
-
-  const CapsuleRay capsule(piece.a, piece.b, piece.radius);
+  const CapsuleRay capsule(a, b, radius);
   const int width = camera.width();
   const float* rays = camera.rays();
   auto* depth = depth_.ptr<float>();
+  const auto [v0, v1] = camera.rowsBetween(footprint.yMin(), footprint.yMax());
+  std::pair<int, int> columns(-1, -2);  // the previous row's, to start from
   for (int v = v0; v <= v1; ++v)
   {
-    for (int u = u0; u <= u1; ++u)
+    XRange x = footprint.xRange(camera.rowYMin(v), camera.rowYMax(v));
+    if (x.empty())
     {
-      const int i = v * width + u;
+      continue;
+    }
+    columns = camera.columnsBetween(v, x.lo, x.hi, columns);
+    if (camera.rowYMin(v) < camera.rowYMax(v) && columns.first <= columns.second)
+    {
+      // A distorted row bends: over those columns alone its band of y is narrower, and so is x's range.
+      const auto [y_lo, y_hi] = camera.rowYBetween(v, columns.first, columns.second);
+      x = footprint.xRange(y_lo, y_hi);
+      if (x.empty())
+      {
+        continue;
+      }
+      columns = camera.columnsBetween(v, x.lo, x.hi, columns);
+    }
+    const auto [first, last] = columns;
+    const int u0 = std::max(0, first - 1), u1 = std::min(width - 1, last + 1);
+    for (int i = v * width + u0, end = v * width + u1; i <= end; ++i)
+    {
+      if (depth[i] <= nearest)
+      {
+        continue;  // a nearer segment hides it (false while NaN: nothing drawn there yet)
+      }
       const double t = capsule.hit(rays[2 * i], rays[2 * i + 1]);
       if (t == kInf)
       {

@@ -222,6 +222,26 @@ void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor
   }
 }
 
+namespace
+{
+
+/// The pixels `previous` and `current` of `image`, of `size` bytes each, into msg's data: a copy of a
+/// size known at compile time is a move, where one of a size known at run time is a call per pixel.
+template <std::size_t size>
+void copyPixels(const cv::Mat& image, const std::vector<int>& previous, const std::vector<int>& current,
+                sensor_msgs::Image* msg)
+{
+  for (const std::vector<int>* changed : {&previous, &current})
+  {
+    for (int i : *changed)
+    {
+      std::memcpy(&msg->data[i * size], image.data + i * size, size);
+    }
+  }
+}
+
+}  // namespace
+
 void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, std::vector<int>* previous,
                         const std_msgs::Header& header, sensor_msgs::Image* msg)
 {
@@ -236,15 +256,23 @@ void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, s
     toImageMessage(image, header, msg);
     previous->reserve(image.total());
   }
+  else if (previous->size() + current.size() > image.total() / 8)
+  {
+    // Many changed pixels (a tether filling the view): one straight copy of the image is cheaper than
+    // a scattered copy per pixel.
+    std::memcpy(msg->data.data(), image.data, image.total() * element);
+    msg->header = header;
+  }
   else
   {
     msg->header = header;
-    for (const std::vector<int>* changed : {static_cast<const std::vector<int>*>(previous), &current})
+    if (element == 1)
     {
-      for (int i : *changed)
-      {
-        std::memcpy(&msg->data[i * element], image.data + i * element, element);
-      }
+      copyPixels<1>(image, *previous, current, msg);  // mono8
+    }
+    else
+    {
+      copyPixels<4>(image, *previous, current, msg);  // 32FC1
     }
   }
   previous->assign(current.begin(), current.end());

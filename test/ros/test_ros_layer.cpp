@@ -615,14 +615,23 @@ TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
   sensor_msgs::Image mask, depth, full;
   std::vector<int> mask_pixels, depth_pixels;
   std_msgs::Header header;
-  for (int frame = 0; frame < 4; ++frame)  // a tether sweeping across the view, then gone, then back
+  // A tether sweeping across the view, then gone, then back; then close enough to fill a third of the
+  // view (more changed pixels than the per-pixel copy is used for), then back in the distance twice.
+  for (int frame = 0; frame < 7; ++frame)
   {
+    const bool close = frame == 4;
     std::vector<Position> points;
     for (int i = 0; i <= 20; ++i)
     {
-      points.emplace_back(-1.0 + 0.1 * i, -0.3 + 0.2 * frame, frame == 2 ? -2.0 : 1.5 + 0.05 * i);
+      points.emplace_back(-1.0 + 0.1 * i, close ? 0.0 : -0.3 + 0.1 * frame,
+                          frame == 2 ? -2.0 : (close ? 0.5 : 1.5 + 0.05 * i));
     }
-    renderer.render(model, Eigen::Isometry3d::Identity(), {camera::Tube{&points, 0.03}}, {});
+    const camera::RenderStats stats =
+        renderer.render(model, Eigen::Isometry3d::Identity(), {camera::Tube{&points, close ? 0.1 : 0.03}}, {});
+    if (close)
+    {
+      EXPECT_GT(stats.coverage, 0.25);
+    }
     header.seq = frame;
     updateImageMessage(renderer.mask(), renderer.pixels(), &mask_pixels, header, &mask);
     updateImageMessage(renderer.depth(), renderer.pixels(), &depth_pixels, header, &depth);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "rov_tether/camera/camera_intrinsics.hpp"
@@ -16,11 +17,17 @@ struct RayBounds
 
 /**
  * A calibrated pinhole camera with plumb_bob distortion: projection of points (OpenCV's projectPoints
- * model) and, once per calibration, the ray through every pixel centre (the distortion inverted).
+ * model) and, once per calibration, the ray through every pixel centre (the distortion inverted), with
+ * what the renderer needs to find the pixels whose rays fall in a region: each row's band of y, and the
+ * columns of a row between two values of x (the rays' x grows along each row for any calibration that
+ * does not fold; where it would not, the lookups return whole rows and columns, which is slow but right).
  */
 class CameraModel
 {
  public:
+  /// Columns per block of a row whose band of y is kept (rowYBetween).
+  static constexpr int kBandColumns = 32;
+
   /// Throws std::invalid_argument naming the field when the intrinsics are invalid, or when D cannot be
   /// inverted over the image (the radial distortion folds over within it).
   explicit CameraModel(const CameraIntrinsics& intrinsics);
@@ -48,15 +55,32 @@ class CameraModel
   const RayBounds& rayBounds() const { return bounds_; }
   /// Largest focal length [px]: pixels per unit of normalised coordinate, at most.
   double maxFocal() const { return max_focal_; }
+  /// The rays of row v have y in [rowYMin(v), rowYMax(v)].
+  double rowYMin(int v) const { return row_y_[2 * v]; }
+  double rowYMax(int v) const { return row_y_[2 * v + 1]; }
+  /// The rays of row v in columns [first, last] have y in the returned (min, max) (a little wider: the
+  /// bands of the kBandColumns-wide blocks of columns that hold them).
+  std::pair<double, double> rowYBetween(int v, int first, int last) const;
+  /// The rows [first, last] that may hold rays with y in [y_lo, y_hi]; first > last when none.
+  std::pair<int, int> rowsBetween(double y_lo, double y_hi) const;
+  /// The columns [first, last] of row v whose rays have x in [x_lo, x_hi]; first > last when none. `near`,
+  /// when it holds columns (first in [0, width], last in [-1, width - 1]), is a guess to start from.
+  std::pair<int, int> columnsBetween(int v, double x_lo, double x_hi, std::pair<int, int> near = {-1, -2}) const;
 
  private:
   void computeRays();
+  void computeRowTables();
 
   CameraIntrinsics intrinsics_;
   std::array<double, 5> d_;  ///< k1, k2, p1, p2, k3
   std::vector<float> rays_;
   RayBounds bounds_{};
   double max_focal_ = 0.0;
+  std::vector<double> row_y_;   ///< Each row's (min, max) of the rays' y.
+  std::vector<float> block_y_;  ///< Each row's blocks' (min, max) of the rays' y, row by row.
+  int blocks_ = 0;              ///< Blocks of kBandColumns columns per row.
+  bool rows_sorted_ = false;    ///< The rays' x grows along every row.
+  bool bands_sorted_ = false;   ///< rowYMin and rowYMax never decrease down the image.
 };
 
 }  // namespace rov_tether::camera

@@ -36,8 +36,9 @@ struct RenderStats
  * Each segment is a capsule (a cylinder of the tube's radius with round ends, so joints are seamless).
  * A pixel belongs to the tether when the ray through its centre hits a capsule; its depth is that of the
  * first hit, nearest over all tubes. Segments are clipped at kNearClip + radius in front of the camera
- * (what lies behind is dropped) and culled outside the image's rays; the rest are cut into pieces of
- * about 16 px whose pixel rectangles (mapped through the distortion) bound the pixels tested. Occluders
+ * (what lies behind is dropped) and culled outside the image's rays; the rest are drawn nearest first,
+ * each testing, row by row, the pixels whose rays lie in its CapsuleFootprint over the row's band of y,
+ * but for those where a nearer segment is already drawn in front of its nearest point. Occluders
  * then hide the tether pixels behind their surface. Buffers are kept between renders and only the
  * previous render's pixels are cleared, so a render allocates nothing once the image size is set.
  */
@@ -58,16 +59,18 @@ class TetherRenderer
   const std::vector<int>& pixels() const { return pixels_; }
 
  private:
-  /// A piece of a segment in the optical frame: its end points and radius.
+  /// A segment to draw, clipped, in the optical frame: both ends at z > radius.
   struct Capsule
   {
     Eigen::Vector3d a, b;
     double radius;
+    double nearest;  ///< Smallest depth of its points [m].
   };
   void prepare(const CameraModel& camera);
-  /// Clips segment (a, b) (optical frame) and draws its pieces.
-  void drawSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius);
-  void drawPiece(const CameraModel& camera, const Capsule& piece);
+  /// Clips segment (a, b) (optical frame) and, unless it is out of view, adds it to capsules_.
+  void addSegment(const CameraModel& camera, Eigen::Vector3d a, Eigen::Vector3d b, double radius);
+  /// Draws a capsule into the depth image and pixels_ where it is nearer than what is drawn.
+  void drawCapsule(const CameraModel& camera, const Capsule& segment);
   /// Removes the pixels an occluder hides; returns how many.
   std::size_t occlude(const CameraModel& camera, const Eigen::Isometry3d& world_from_camera,
                       const std::vector<const Occluder*>& occluders);
@@ -75,7 +78,7 @@ class TetherRenderer
   cv::Mat mask_;
   cv::Mat depth_;
   std::vector<int> pixels_;
-  std::size_t segments_drawn_ = 0;
+  std::vector<Capsule> capsules_;  ///< This render's segments in view.
 };
 
 /// Draws the tether pixels (TetherRenderer::pixels() of a render of the same size) on an 8-bit, 3-channel

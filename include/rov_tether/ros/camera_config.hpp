@@ -39,8 +39,9 @@ void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor
 
 /// Brings `msg`, which held `image`'s previous content, up to date by copying only the pixels (indices
 /// v * width + u) in `previous` and `current`, where it can have changed; `previous` becomes `current`.
-/// A full copy when `msg` does not have the image's size and encoding yet. (A renderer's image changes
-/// only at its last and its new tether pixels: this saves copying megabytes per frame.)
+/// A full copy when `msg` does not have the image's size and encoding yet, or when the changed pixels are
+/// more than an eighth of the image (one straight copy is then cheaper than one per pixel). (A renderer's
+/// image changes only at its last and its new tether pixels: this saves copying megabytes per frame.)
 void updateImageMessage(const cv::Mat& image, const std::vector<int>& current, std::vector<int>* previous,
                         const std_msgs::Header& header, sensor_msgs::Image* msg);
 
