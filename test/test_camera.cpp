@@ -13,6 +13,7 @@
 #include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
+#include "camera_fixtures.hpp"
 #include "rov_tether/scenario_yaml.hpp"
 
 namespace rov_tether::camera
@@ -20,19 +21,10 @@ namespace rov_tether::camera
 namespace
 {
 
-/// A 640 x 480 pinhole camera, f = 500 px, principal point at the image centre; `d` its distortion.
-CameraIntrinsics vga(std::vector<double> d = {})
-{
-  CameraIntrinsics c;
-  c.width = 640;
-  c.height = 480;
-  c.K = {500.0, 0.0, 319.5, 0.0, 500.0, 239.5, 0.0, 0.0, 1.0};
-  c.D = std::move(d);
-  return c;
-}
+/// The VGA test camera: 640 x 480, f = 500 px; `d` its distortion.
+CameraIntrinsics vga(std::vector<double> d = {}) { return test::pinhole(640, 480, 500.0, std::move(d)); }
 
-/// A strong barrel distortion of a wide lens (a GoPro-like calibration), invertible over the image.
-const std::vector<double> kBarrel = {-0.28, 0.09, 0.0012, -0.0008, -0.012};
+using test::kBarrel;
 
 /// `n` segments from a to b.
 std::vector<Position> line(const Position& a, const Position& b, int n = 100)

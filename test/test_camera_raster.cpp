@@ -6,24 +6,17 @@
 
 #include "rov_tether/camera/capsule.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
+#include "camera_fixtures.hpp"
 
 namespace rov_tether::camera
 {
 namespace
 {
 
-CameraIntrinsics camera720p(std::vector<double> d = {})
-{
-  CameraIntrinsics c;
-  c.width = 1280;
-  c.height = 720;
-  c.K = {900.0, 0.0, 639.5, 0.0, 900.0, 359.5, 0.0, 0.0, 1.0};
-  c.D = std::move(d);
-  return c;
-}
+/// The 720p test camera: 1280 x 720, f = 900 px; `d` its distortion.
+CameraIntrinsics camera720p(std::vector<double> d = {}) { return test::pinhole(1280, 720, 900.0, std::move(d)); }
 
-/// A strong barrel distortion of a wide lens, whose image rows bend far from straight.
-const std::vector<double> kBarrel = {-0.28, 0.09, 0.0012, -0.0008, -0.012};
+using test::kBarrel;
 
 /// A random capsule in front of the camera (both ends at z > r) and random rays near it.
 struct RandomCapsules
