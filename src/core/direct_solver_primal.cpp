@@ -21,6 +21,25 @@ constexpr double kArmijo = 1e-4;
 /// Rounds of the model's active set in one Newton step.
 constexpr int kMaxModelRounds = 30;
 
+/// Joint curvature C_b = a x_p - (a + b) x_p+1 + b x_p+2 at the joint after particle p (each axis; a and b
+/// the inverse rest lengths of its two segments), and its weights g = (a, -(a + b), b): linear in the
+/// positions. The energy, its gradient and Hessian, and the force residual all read it from here.
+struct JointCurvature
+{
+  double g[3];
+  double c[3];
+};
+
+JointCurvature jointCurvature(const Cable& cable, std::size_t p)
+{
+  const double a = 1.0 / cable.rest[p];
+  const double b = 1.0 / cable.rest[p + 1];
+  return {{a, -(a + b), b},
+          {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
+           a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
+           a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]}};
+}
+
 /// Adds v times the 3x3 block `b` (row-major) to `target`.
 inline void addTo(double* target, const double* b, double v = 1.0)
 {
@@ -67,13 +86,9 @@ double DirectSolver::energy(const Cable& cable) const
   }
   for (std::size_t j = 0; bending_ && j + 1 < m_; ++j)
   {
-    const double a = 1.0 / cable.rest[f + j];
-    const double b = 1.0 / cable.rest[f + j + 1];
-    const std::size_t p = f + j;
-    const double cx = a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2];
-    const double cy = a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2];
-    const double cz = a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2];
-    elastic += (cx * cx + cy * cy + cz * cz) / gamma_[j];
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* cb = joint.c;
+    elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) / gamma_[j];
   }
   return 0.5 * (kinetic + elastic) + drum;
 }
@@ -183,14 +198,10 @@ void DirectSolver::assemblePrimal(const Cable& cable)
   }
   for (std::size_t j = 0; bending_ && j + 1 < m; ++j)
   {
-    // C_b = a x_j - (a + b) x_j+1 + b x_j+2 (each axis): linear, so its Hessian is constant.
-    const double a = 1.0 / cable.rest[f + j];
-    const double b = 1.0 / cable.rest[f + j + 1];
-    const double g[3] = {a, -(a + b), b};
-    const std::size_t p = f + j;
-    const double cb[3] = {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
-                          a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
-                          a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]};
+    // C_b is linear in the positions, so its Hessian is constant.
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* g = joint.g;
+    const double* cb = joint.c;
     const double inv = 1.0 / gamma_[j];
     for (std::size_t r = 0; r < 3; ++r)
     {
@@ -262,10 +273,10 @@ double DirectSolver::primalStep(Cable& cable)
       std::copy(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), grad_step_.begin());
       std::fill(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), 0.0);
       step_[3] = -nx_[0], step_[4] = -ny_[0], step_[5] = -nz_[0];
-      const bool again = linear_ == LinearSolve::kLapack
-                             ? banded::solveBlockBandedLapackAgain(second != nullptr, step_.data(), m + 1, band_.data())
-                             : (banded::solveBlockBandedAgain(second != nullptr, step_.data(), m + 1, work_.data()),
-                                true);
+      const bool again =
+          linear_ == LinearSolve::kLapack
+              ? banded::solveBlockBandedLapackAgain(second != nullptr, step_.data(), m + 1, band_.data())
+              : (banded::solveBlockBandedAgain(second != nullptr, step_.data(), m + 1, work_.data()), true);
       if (!again)
       {
         return std::numeric_limits<double>::infinity();
@@ -417,13 +428,9 @@ double DirectSolver::primalResidual(const Cable& cable) const
   }
   for (std::size_t j = 0; bending_ && j + 1 < m; ++j)
   {
-    const double a = 1.0 / cable.rest[f + j];
-    const double b = 1.0 / cable.rest[f + j + 1];
-    const double g[3] = {a, -(a + b), b};
-    const std::size_t p = f + j;
-    const double cb[3] = {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
-                          a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
-                          a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]};
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* g = joint.g;
+    const double* cb = joint.c;
     for (std::size_t r = 0; r < 3; ++r)
     {
       for (std::size_t axis = 0; axis < 3; ++axis)
