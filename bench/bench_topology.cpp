@@ -2,10 +2,9 @@
 // tethers and the turns of one around an axis. See README "Benchmarks".
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "rov_tether/topology.hpp"
 

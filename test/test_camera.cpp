@@ -10,10 +10,10 @@
 #include <random>
 #include <sstream>
 
+#include "camera_fixtures.hpp"
 #include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
-#include "camera_fixtures.hpp"
 #include "rov_tether/scenario_yaml.hpp"
 
 namespace rov_tether::camera

@@ -4,9 +4,9 @@
 
 #include <random>
 
+#include "camera_fixtures.hpp"
 #include "rov_tether/camera/capsule.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
-#include "camera_fixtures.hpp"
 
 namespace rov_tether::camera
 {

@@ -104,7 +104,9 @@ TEST(Params, SetParameterChecksNamesAndTypes)
   EXPECT_NE(setParameter(params, "iterations", std::string("ten")).find("iterations"), std::string::npos);
   EXPECT_NE(setParameter(params, "bending", 1.0).find("bending"), std::string::npos);
   EXPECT_NE(setParameter(params, "solver", std::string("rk4")).find("pbd, pbd_sequential"), std::string::npos);
-  EXPECT_NE(setParameter(params, "winch_mode", std::string("auto")).find("brake, constant_tension, speed, locked, strain"), std::string::npos);
+  EXPECT_NE(
+      setParameter(params, "winch_mode", std::string("auto")).find("brake, constant_tension, speed, locked, strain"),
+      std::string::npos);
   EXPECT_EQ(params.iterations, TetherParams{}.iterations);  // refused values changed nothing
 
   EXPECT_EQ(setParameter(params, "iterations", 7.0), "");  // an integral number is an integer

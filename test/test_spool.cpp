@@ -254,8 +254,9 @@ TEST(Spool, ElasticCableLaidOutAtRestDoesNotSpringOpen)
   Tether sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
   sim.advance(4.0);
   const double end_force = sim.summary().tension_vehicle;
-  std::printf("[ measured ] elastic cable laid at rest: deployed %.5f m after 4 s, vehicle end %.3f N (thrust P %.3f N)\n",
-              sim.deployedLength(), end_force, thrust);
+  std::printf(
+      "[ measured ] elastic cable laid at rest: deployed %.5f m after 4 s, vehicle end %.3f N (thrust P %.3f N)\n",
+      sim.deployedLength(), end_force, thrust);
   EXPECT_NEAR(sim.deployedLength(), 2.0, 1e-3);
   EXPECT_LT(end_force, 0.0);  // a buckled rod pushes
   EXPECT_GT(end_force, -thrust);

@@ -4,10 +4,9 @@
 // construction: docs/references.md, "Wraps and links".
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "rov_tether/cable.hpp"
 #include "rov_tether/topology.hpp"

@@ -74,30 +74,31 @@ TEST(Winch, BrakePullOutCarriesTheBrakePlusTheAxialDrag)
   const double breakaway_jerk = p.mass_per_length * 2.0 * breakaway_time / h;  // mu l a t_b / h, a = 1 m/s^2
   double breakaway_excess = -1e9, worst = 0.0, worst_strain = -1.0;
   std::vector<double> tensions;
-  drive(sim, 1.0, 20.0, x,
-        [&]
+  drive(
+      sim, 1.0, 20.0, x,
+      [&]
+      {
+        const TetherSummary s = sim.summary();
+        const double t = sim.time();
+        const double v = (x(t) - x(t - h)) / h, a = (x(t) - 2.0 * x(t - h) + x(t - 2.0 * h)) / (h * h);
+        const double segment = p.segment_length;
+        const double spool_segment = s.deployed_length - segment * static_cast<double>(sim.deployedParticleCount() - 2);
+        const double l = s.deployed_length - 0.5 * (spool_segment + segment);
+        const double reference = p.brake_tension + axialDrag(p, v) * l + p.mass_per_length * l * a;
+        if (t < 1.05)
         {
-          const TetherSummary s = sim.summary();
-          const double t = sim.time();
-          const double v = (x(t) - x(t - h)) / h, a = (x(t) - 2.0 * x(t - h) + x(t - 2.0 * h)) / (h * h);
-          const double segment = p.segment_length;
-          const double spool_segment = s.deployed_length - segment * static_cast<double>(sim.deployedParticleCount() - 2);
-          const double l = s.deployed_length - 0.5 * (spool_segment + segment);
-          const double reference = p.brake_tension + axialDrag(p, v) * l + p.mass_per_length * l * a;
-          if (t < 1.05)
-          {
-            breakaway_excess = std::max(breakaway_excess, s.tension_vehicle - reference - breakaway_jerk);
-          }
-          else
-          {
-            worst = std::max(worst, std::abs(s.tension_vehicle / reference - 1.0));
-          }
-          sim.computeSegmentTensions(tensions);
-          for (std::size_t k = 0; k < tensions.size(); ++k)
-          {
-            worst_strain = std::max(worst_strain, sim.segmentStrain(k) - std::max(tensions[k], 0.0) / p.axial_stiffness);
-          }
-        });
+          breakaway_excess = std::max(breakaway_excess, s.tension_vehicle - reference - breakaway_jerk);
+        }
+        else
+        {
+          worst = std::max(worst, std::abs(s.tension_vehicle / reference - 1.0));
+        }
+        sim.computeSegmentTensions(tensions);
+        for (std::size_t k = 0; k < tensions.size(); ++k)
+        {
+          worst_strain = std::max(worst_strain, sim.segmentStrain(k) - std::max(tensions[k], 0.0) / p.axial_stiffness);
+        }
+      });
   std::printf(
       "[ measured ] brake pull-out at 1 m/s: breaking away at most %.3f N above T + mu l v_b / h (%.3f N); then "
       "within %.2f%% of T = brake + R_t l + mu l a; strain beyond T/EA at most %.2g\n",
@@ -263,7 +264,8 @@ TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
 // scenarios/heavy_dive.yaml (the case): a 60 m tether of 2 N/m in a 0.5 m/s cross current, the ROV
 // descending to 40 m in 60 s off a 150 N brake. The deployed length follows the dive without stalls (it grows
 // over every 2 s while the ROV goes down), the largest tension is at most 1.5 times the final steady spool
-// tension (the mean of the last 5 s), and the largest strain is below 1% (the paper's strain rule with pbd: 16%, README).
+// tension (the mean of the last 5 s), and the largest strain is below 1% (the paper's strain rule with pbd: 16%,
+// README).
 TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
 {
   const Scenario scenario = shippedScenario("heavy_dive");

@@ -120,7 +120,7 @@ class DirectSolver : public ConstraintSolver
   std::vector<double> alpha_;                     ///< alpha_k = L_k / (EA h^2) [1/kg].
   std::vector<double> inv_rest_;                  ///< 1 / L_k [1/m].
   std::vector<double> extra_mobility_;            ///< w_along - w_across of particle l (added mass) [1/kg].
-  std::vector<double> response_, zeros_;    ///< Dual with the drum: the solve with dlambda_0 = 0; zeros.
+  std::vector<double> response_, zeros_;          ///< Dual with the drum: the solve with dlambda_0 = 0; zeros.
   std::vector<double> diag_, off_;                ///< Dual: the tridiagonal system.
   std::vector<double> diag_active_, rhs_active_;  ///< Dual: every row as if active.
   // Dual, padded with a zero before row 0 and after row m - 1 (the accessors point at row 0): the active set

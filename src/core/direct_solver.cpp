@@ -145,8 +145,7 @@ ROV_TETHER_TARGET_CLONES std::size_t updateActiveSet(const double* __restrict di
   for (std::size_t k = 0; k < m; ++k)
   {
     const std::ptrdiff_t prev = static_cast<std::ptrdiff_t>(k) - 1;  // -1 at k = 0: the padding
-    const double stretch =
-        rhs_active[k] + diag_active[k] * lam[k] - coupling[prev] * d[prev] - coupling[k] * d[k + 1];
+    const double stretch = rhs_active[k] + diag_active[k] * lam[k] - coupling[prev] * d[prev] - coupling[k] * d[k + 1];
     const double a = on[k];
     const double push = lam[k] + d[k] < 0.0 ? 1.0 : 0.0;
     // (diag_active > alpha: not both ends pinned.)
@@ -216,11 +215,33 @@ void DirectSolver::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&xt_,         &yt_,    &zt_,       &sx_,           &sy_,
-                  &sz_,         &nx_,    &ny_,       &nz_,           &len_,
-                  &c_,          &alpha_, &diag_,     &off_,          &diag_active_,
-                  &rhs_active_, &gamma_, &inv_rest_, &saved_lambda_, &extra_mobility_, &response_,
-                  &primal_lambda_, &lambda_step_, &warm_lambda_, &correction_x_, &correction_y_, &correction_z_})
+  for (auto* v : {&xt_,
+                  &yt_,
+                  &zt_,
+                  &sx_,
+                  &sy_,
+                  &sz_,
+                  &nx_,
+                  &ny_,
+                  &nz_,
+                  &len_,
+                  &c_,
+                  &alpha_,
+                  &diag_,
+                  &off_,
+                  &diag_active_,
+                  &rhs_active_,
+                  &gamma_,
+                  &inv_rest_,
+                  &saved_lambda_,
+                  &extra_mobility_,
+                  &response_,
+                  &primal_lambda_,
+                  &lambda_step_,
+                  &warm_lambda_,
+                  &correction_x_,
+                  &correction_y_,
+                  &correction_z_})
   {
     v->assign(n, 0.0);
   }
@@ -409,8 +430,8 @@ void DirectSolver::warmStart(Cable& cable, double* lambda, bool primal)
   }
   else
   {
-    applyDual(w, nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f,
-              cable.z.data() + f, lambda, m);
+    applyDual(w, nx_.data(), ny_.data(), nz_.data(), step(), cable.x.data() + f, cable.y.data() + f, cable.z.data() + f,
+              lambda, m);
   }
   geometry(cable);
 }

@@ -60,8 +60,7 @@ void Spool::release(Cable& cable, Multipliers& lambda, double change, const Line
   const double length = std::sqrt(tx * tx + ty * ty + tz * tz);
   const double scale = length > 0.0 ? change / length : 0.0;
   tx *= scale, ty *= scale, tz *= scale;
-  auto along = [fraction, f](std::vector<double>& v, double from)
-  { v[f] = from + fraction * (v[f + 1] - from); };
+  auto along = [fraction, f](std::vector<double>& v, double from) { v[f] = from + fraction * (v[f + 1] - from); };
   along(cable.x, cable.x[f]), along(cable.y, cable.y[f]), along(cable.z, cable.z[f]);
   along(cable.px, cable.px[f] - tx), along(cable.py, cable.py[f] - ty), along(cable.pz, cable.pz[f] - tz);
   cable.first = f - 1;

@@ -17,10 +17,10 @@ namespace
 /// sum of the chords' angles, below a full turn (the ends close in monotonically as R shrinks to there).
 class InscribedArc
 {
-public:
+ public:
   InscribedArc(const Position& from, const Position& to, const Position& side, const double* rest, std::size_t count,
                double distance)
-    : side_(side), rest_(rest), count_(count)
+      : side_(side), rest_(rest), count_(count)
   {
     direction_ = distance > 1e-9 ? Position((to - from) / distance) : Position::UnitX();
     double longest = 0.0, length = 0.0;
@@ -50,11 +50,17 @@ public:
   double start() const { return start_; }
   double angleOf(double chord) const { return chordAngle(chord, radius_); }
   /// The point of the circle at angle theta.
-  Position at(double theta) const { return centre_ + radius_ * (std::sin(theta) * direction_ + std::cos(theta) * side_); }
+  Position at(double theta) const
+  {
+    return centre_ + radius_ * (std::sin(theta) * direction_ + std::cos(theta) * side_);
+  }
 
-private:
+ private:
   static constexpr double kPi = 3.14159265358979323846;
-  static double chordAngle(double chord, double radius) { return 2.0 * std::asin(std::min(chord / (2.0 * radius), 1.0)); }
+  static double chordAngle(double chord, double radius)
+  {
+    return 2.0 * std::asin(std::min(chord / (2.0 * radius), 1.0));
+  }
   double total(double radius) const
   {
     double sum = 0.0;
@@ -512,17 +518,9 @@ bool Tether::runWinch(double dt)
   // The spool segment's tension at the end of the last step, what a tension-driven winch reads.
   const double h = last_step_ > 0.0 ? last_step_ : dt;
   const double spool_tension = solver_->multipliers().stretch[cable_.first] / (h * h);
-  const WinchInput input{cable_,
-                         params_,
-                         deployedLength(),
-                         dt,
-                         target_length_,
-                         track_.attached(),
-                         spool_.outlet(),
-                         track_.position(),
-                         spool_tension,
-                         winch_speed_,
-                         solver_->takesDrum()};
+  const WinchInput input{cable_,         params_,           deployedLength(),    dt,
+                         target_length_, track_.attached(), spool_.outlet(),     track_.position(),
+                         spool_tension,  winch_speed_,      solver_->takesDrum()};
   Winch& winch = winches_[params_.winch_mode];
   if (winch.drum(input, &drum_))
   {
@@ -588,7 +586,7 @@ bool Tether::winchOutrun() const
   {
     return false;
   }
-  const double gives_way = params_.winch_mode == WinchMode::kBrake              ? params_.brake_tension
+  const double gives_way = params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
                            : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
                                                                                : -1.0;
   const double tension = solver_->multipliers().stretch[cable_.first] / (last_step_ * last_step_);

@@ -1,10 +1,9 @@
 #include "rov_tether/topology.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 namespace rov_tether::topology
 {
@@ -43,8 +42,8 @@ double pairLinking(const Position& p1, const Position& p2, const Position& p3, c
     }
     v /= length;
   }
-  const double omega = safeAsin(n[0].dot(n[1])) + safeAsin(n[1].dot(n[2])) + safeAsin(n[2].dot(n[3])) +
-                       safeAsin(n[3].dot(n[0]));
+  const double omega =
+      safeAsin(n[0].dot(n[1])) + safeAsin(n[1].dot(n[2])) + safeAsin(n[2].dot(n[3])) + safeAsin(n[3].dot(n[0]));
   const double orientation = (p4 - p3).cross(p2 - p1).dot(r13);
   return orientation > 0.0 ? omega / (4.0 * kPi) : orientation < 0.0 ? -omega / (4.0 * kPi) : 0.0;
 }

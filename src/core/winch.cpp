@@ -68,8 +68,8 @@ double BrakeWinch::lengthChange(const WinchInput& in)
   const TetherParams& p = in.params;
   if (p.winch_inertia > 0.0)
   {
-    const double speed = std::max(0.0, std::max(in.speed, 0.0) + in.dt * (in.spool_tension - p.brake_tension) /
-                                                                      p.winch_inertia);
+    const double speed =
+        std::max(0.0, std::max(in.speed, 0.0) + in.dt * (in.spool_tension - p.brake_tension) / p.winch_inertia);
     return speed * in.dt;
   }
   // Massless: pay out the stretch beyond what the brake holds elastically, brake_tension L / EA.

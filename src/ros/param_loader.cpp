@@ -1,11 +1,11 @@
 #include "rov_tether/ros/param_loader.hpp"
 
+#include <ros/console.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
-
-#include <ros/console.h>
 
 namespace rov_tether::ros_layer
 {

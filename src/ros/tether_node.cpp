@@ -179,12 +179,14 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
     return true;
   }
   params.winch_speed = request.speed;
-  for (const auto& [value, field, name] : {std::tuple{request.brake_tension, &params.brake_tension, "brake_tension"},
-                                           std::tuple{request.target_tension, &params.target_tension, "target_tension"}})
+  for (const auto& [value, field, name] :
+       {std::tuple{request.brake_tension, &params.brake_tension, "brake_tension"},
+        std::tuple{request.target_tension, &params.target_tension, "target_tension"}})
   {
     if (!(value >= 0.0))
     {
-      response.message = std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
+      response.message =
+          std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
       return true;
     }
     *field = value > 0.0 ? value : *field;

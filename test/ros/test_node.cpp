@@ -120,7 +120,7 @@ class Harness
   std::map<std::string, geometry_msgs::TransformStamped> transforms_;  ///< Last /tf transform per child frame.
   bool started_ = false;
   bool saw_tether_diagnostics_ = false;
-  long rejected_poses_ = -1;  ///< "rejected poses" of the last tether diagnostics (-1: none yet).
+  long rejected_poses_ = -1;    ///< "rejected poses" of the last tether diagnostics (-1: none yet).
   std::string tether_summary_;  ///< Message of the last tether diagnostics.
   double sim_time_ = 1000.0;
 
