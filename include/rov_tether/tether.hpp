@@ -51,6 +51,16 @@ class Tether
   Status setParams(const TetherParams& params);
   const TetherParams& params() const { return params_; }
 
+  /// Contact with what a World holds (obstacles, other tethers, itself), projected after the seabed; null
+  /// for none. Not owned. While it is set, each step is cut into enough sub-steps (at least `substeps`)
+  /// that no particle moves more than the cable's radius in one, judged from the last step's motion, so a
+  /// capsule cannot pass through another or through an obstacle between two sub-steps.
+  void setWorldContact(const Contact* contact);
+  /// Sub-steps the last step took (`substeps`, or more for contact) [-].
+  int lastSubsteps() const { return last_substeps_; }
+  /// How far the fastest particle moved in the last step, while a World contact is set [m].
+  double lastMotion() const { return last_motion_; }
+
   /// Moves the spool outlet [m]. Refuses non-finite positions.
   Status setSpoolPosition(const Position& spool);
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
@@ -162,6 +172,9 @@ class Tether
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
   void subStep(double h, double t);
+  /// Sub-steps the next step needs for contact, from the step just taken (see setWorldContact).
+  int contactSubsteps();
+  static constexpr int kMaxContactSubsteps = 64;
   void fail(const std::string& why);
   /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
   /// a solver that takes it into the step (then returns true, and payOut follows the solve).
@@ -181,6 +194,11 @@ class Tether
   MicroCurrentNoise noise_;
   std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
   Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
+  const Contact* world_contact_ = nullptr;  ///< World's contact for this tether; not owned.
+  int contact_substeps_ = 1;                ///< Sub-steps the next step needs for contact (see setWorldContact).
+  int last_substeps_ = 1;
+  double last_motion_ = 0.0;
+  std::vector<double> step_start_x_, step_start_y_, step_start_z_;  ///< Positions at the step's start [m].
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
   SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.

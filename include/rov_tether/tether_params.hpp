@@ -133,6 +133,8 @@ struct TetherParams
   double seabed_z = std::numeric_limits<double>::quiet_NaN();
   /// Coulomb friction coefficient of the seabed [-].
   double seabed_friction = 0.5;
+  /// Coulomb friction coefficient of the cable on another cable or on itself (World contact) [-].
+  double cable_friction = 0.3;
   /// Winch mode.
   WinchMode winch_mode = WinchMode::kBrake;
   /// `brake`: the spool-end tension at which the brake slips [N].

@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/obstacle.hpp"
 #include "rov_tether/status.hpp"
 #include "rov_tether/tether.hpp"
+#include "rov_tether/world_contact.hpp"
 
 namespace rov_tether
 {
@@ -15,9 +17,29 @@ namespace rov_tether
  * Several tethers in one scene, stepped in lockstep: advanceTo(t) takes the step that comes first in time
  * among all tethers, then the next, so no tether runs ahead of another by more than its own step. Tethers
  * with the same time_step (the usual case) step in turn, in the order they were added, at the same time.
- * This is where what tethers share goes: the colliders they touch and contact between them (a later step
- * of the design, see docs/architecture.md). A world of one tether behaves exactly as that tether alone.
+ * This is where what tethers share goes: the obstacles they touch, and contact between them and of each with
+ * itself (WorldContact; on by default, setContactBetweenTethers). A world of one tether that touches neither
+ * an obstacle nor itself moves as that tether alone, though it may take more sub-steps (see
+ * Tether::setWorldContact); without obstacles and with contact between tethers off, it is that tether alone.
  */
+/// One line of the topology report (World::topology; README "Topology").
+struct TopologyEntry
+{
+  enum class Kind
+  {
+    WrapTurns,      ///< Signed turns around an obstacle's axis, closed by the chord [-]; NaN on the axis.
+    ContactAngle,   ///< Angle the tether turns through where it touches the object [rad].
+    LinkingNumber,  ///< Gauss linking number with another tether, both closed by their chords [-].
+    CapstanRatio    ///< e^(mu contact angle): how much the contact can multiply a tension [-].
+  };
+  std::size_t tether = 0;
+  bool object_is_tether = false;  ///< object indexes World::obstacle, or (true) World::tether.
+  std::size_t object = 0;
+  Kind kind = Kind::WrapTurns;
+  double value = 0.0;
+};
+const char* topologyKindName(TopologyEntry::Kind kind);
+
 class World
 {
  public:
@@ -39,13 +61,40 @@ class World
   /// The earliest time among the tethers [s]; 0 for an empty world.
   double time() const;
 
+  /// Replaces the obstacles (names unique and not a tether's). Refuses a missing one or a taken name.
+  Status setObstacles(std::vector<std::unique_ptr<Obstacle>> obstacles);
+  std::size_t obstacleCount() const { return scene_.obstacles.size(); }
+  const Obstacle& obstacle(std::size_t i) const { return *scene_.obstacles[i]; }
+  /// Index of the obstacle called `name`, or npos.
+  std::size_t findObstacle(const std::string& name) const;
+  /// Moves obstacle i (one that moves with a frame).
+  void setObstaclePose(std::size_t i, const Position& position, const Eigen::Quaterniond& orientation);
+  /// Contact between tethers and of a tether with itself (obstacles always collide); on by default.
+  void setContactBetweenTethers(bool on);
+  /// What tether i touched in its last step, segment by segment.
+  const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }
+
+  /// The topology now, into `out` (cleared first): for each tether, its wrap turns around every obstacle with
+  /// an axis; for each object it touches (obstacle or tether), the contact angle and the capstan ratio with
+  /// that object's friction; for each pair of tethers (once, the lower index first), the linking number.
+  /// Pairs whose bounds, chords included, do not overlap cannot be linked and read 0 without the O(n m) sum.
+  void topology(std::vector<TopologyEntry>& out) const;
+
  private:
+  /// Gives every tether its WorldContact when the scene needs contact, none otherwise.
+  void wireContacts();
+  /// Files every tether's segments in the grid before tether `next` steps.
+  void rebuildGrid();
+
   struct Entry
   {
     std::string name;
     std::unique_ptr<Tether> tether;
   };
   std::vector<Entry> tethers_;
+  ContactScene scene_;
+  std::vector<std::unique_ptr<WorldContact>> contacts_;  ///< One per tether, in World order.
+  bool contact_on_ = false;                               ///< Whether tethers have their WorldContact.
 };
 
 }  // namespace rov_tether

@@ -122,6 +122,8 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"seabed_z", "double", "m", -1e5, 1e5, kClosed, kClosed, "[-1e5, 1e5] or absent (.nan)",
        "height of a flat seabed", kAtStart},
       {"seabed_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "", "Coulomb friction on the seabed", kLive},
+      {"cable_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "",
+       "Coulomb friction on another tether or itself (obstacles: their own `friction`)", kLive},
       {"winch_mode", "string", "-", kNone, kNone, kClosed, kClosed,
        "`brake`, `constant_tension`, `speed`, `locked`, `strain`", "winch behaviour (see The model)", kLive},
       {"brake_tension", "double", "N", 0.0, 1e7, kClosed, kClosed, "", "`brake`: the spool tension at which it slips",

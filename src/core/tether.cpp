@@ -157,6 +157,22 @@ void Tether::applyParams(const TetherParams& requested)
     seabed_ = std::make_unique<SeabedContact>(params_.seabed_z, params_.seabed_friction);
     contacts_.push_back(seabed_.get());
   }
+  if (world_contact_ != nullptr)
+  {
+    contacts_.push_back(world_contact_);
+  }
+}
+
+void Tether::setWorldContact(const Contact* contact)
+{
+  world_contact_ = contact;
+  contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const Contact* c) { return c != seabed_.get(); }),
+                  contacts_.end());
+  if (contact != nullptr)
+  {
+    contacts_.push_back(contact);
+  }
+  contact_substeps_ = 1;
 }
 
 Position Tether::currentAt(const Position& point, double t) const { return current_.at(point, t); }
@@ -430,20 +446,53 @@ void Tether::step()
 {
   const double dt = params_.time_step;
   const double next_time = nextStepTime();
-  const int substeps = params_.substeps;
+  const int substeps = world_contact_ != nullptr ? std::max(params_.substeps, contact_substeps_) : params_.substeps;
   const double h = dt / substeps;
   const std::uint64_t failures = recoveries_;
+  if (world_contact_ != nullptr)
+  {
+    step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
+    step_start_y_.assign(cable_.y.begin(), cable_.y.end());
+    step_start_z_.assign(cable_.z.begin(), cable_.z.end());
+  }
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
     subStep(h, k == substeps ? next_time : next_time - dt + k * h);
   }
   last_step_ = h;
+  last_substeps_ = substeps;
+  if (world_contact_ != nullptr)
+  {
+    contact_substeps_ = contactSubsteps();
+  }
   ++steps_;
   time_ = next_time;
   if (recoveries_ == failures && !stateFinite())
   {
     fail("non-finite particle position");
   }
+}
+
+int Tether::contactSubsteps()
+{
+  // How far the fastest particle moved in the step just taken (the noise's random walk and a pay-out's new
+  // particle included: both are motion a contact must see); the next step is cut so that it moves at most
+  // 0.8 of the cable's radius in each sub-step, and no finer than kMaxContactSubsteps.
+  double fastest2 = 0.0;
+  const std::size_t n = std::min(cable_.size(), step_start_x_.size());
+  for (std::size_t i = cable_.first; i < n; ++i)
+  {
+    const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i], dz = cable_.z[i] - step_start_z_[i];
+    fastest2 = std::max(fastest2, dx * dx + dy * dy + dz * dz);
+  }
+  const double per_step = std::sqrt(fastest2);
+  last_motion_ = std::isfinite(per_step) ? per_step : 0.0;
+  const double allowed = 0.8 * 0.5 * params_.diameter;
+  if (!(per_step < allowed * kMaxContactSubsteps))
+  {
+    return std::isfinite(per_step) ? kMaxContactSubsteps : 1;
+  }
+  return std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
 }
 
 void Tether::subStep(double h, double t)

@@ -66,6 +66,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"current_variation", &TetherParams::current_variation},
       {"seabed_z", &TetherParams::seabed_z},
       {"seabed_friction", &TetherParams::seabed_friction},
+      {"cable_friction", &TetherParams::cable_friction},
       {"winch_mode", &TetherParams::winch_mode},
       {"brake_tension", &TetherParams::brake_tension},
       {"winch_inertia", &TetherParams::winch_inertia},

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rov_tether/topology.hpp"
+
 namespace rov_tether
 {
 
@@ -20,7 +22,12 @@ Status World::add(const std::string& name, std::unique_ptr<Tether> tether)
   {
     return Status::error("world: there is already a tether called '" + name + "'");
   }
+  if (findObstacle(name) != npos)
+  {
+    return Status::error("world: there is already an obstacle called '" + name + "'");
+  }
   tethers_.push_back(Entry{name, std::move(tether)});
+  wireContacts();
   return Status::success();
 }
 
@@ -60,6 +67,10 @@ Status World::advanceTo(double t, std::size_t* steps)
     {
       break;
     }
+    if (contact_on_)
+    {
+      rebuildGrid();
+    }
     tethers_[next].tether->step();
     ++taken;
   }
@@ -82,6 +93,206 @@ double World::time() const
     earliest = std::min(earliest, entry.tether->time());
   }
   return earliest;
+}
+
+}  // namespace rov_tether
+
+namespace rov_tether
+{
+
+const char* topologyKindName(TopologyEntry::Kind kind)
+{
+  switch (kind)
+  {
+    case TopologyEntry::Kind::WrapTurns:
+      return "wrap_turns";
+    case TopologyEntry::Kind::ContactAngle:
+      return "contact_angle";
+    case TopologyEntry::Kind::LinkingNumber:
+      return "linking_number";
+    case TopologyEntry::Kind::CapstanRatio:
+      return "capstan_ratio";
+  }
+  return "?";
+}
+
+Status World::setObstacles(std::vector<std::unique_ptr<Obstacle>> obstacles)
+{
+  for (std::size_t i = 0; i < obstacles.size(); ++i)
+  {
+    if (!obstacles[i])
+    {
+      return Status::error("world: obstacle " + std::to_string(i) + " is missing");
+    }
+    const std::string& name = obstacles[i]->name();
+    if (find(name) != npos)
+    {
+      return Status::error("world: obstacle '" + name + "' has the name of a tether");
+    }
+    for (std::size_t k = 0; k < i; ++k)
+    {
+      if (obstacles[k]->name() == name)
+      {
+        return Status::error("world: two obstacles are called '" + name + "'");
+      }
+    }
+  }
+  scene_.obstacles = std::move(obstacles);
+  scene_.bounds.clear();
+  for (const auto& obstacle : scene_.obstacles)
+  {
+    scene_.bounds.push_back(obstacle->bounds());
+  }
+  wireContacts();
+  return Status::success();
+}
+
+std::size_t World::findObstacle(const std::string& name) const
+{
+  for (std::size_t i = 0; i < scene_.obstacles.size(); ++i)
+  {
+    if (scene_.obstacles[i]->name() == name)
+    {
+      return i;
+    }
+  }
+  return npos;
+}
+
+void World::setObstaclePose(std::size_t i, const Position& position, const Eigen::Quaterniond& orientation)
+{
+  scene_.obstacles[i]->setPose(position, orientation);
+  scene_.bounds[i] = scene_.obstacles[i]->bounds();
+}
+
+void World::setContactBetweenTethers(bool on)
+{
+  scene_.between_tethers = on;
+  wireContacts();
+}
+
+void World::wireContacts()
+{
+  contact_on_ = !tethers_.empty() && (!scene_.obstacles.empty() || scene_.between_tethers);
+  contacts_.clear();
+  scene_.cables.clear();
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    scene_.cables.push_back(&tethers_[i].tether->state());
+    contacts_.push_back(std::make_unique<WorldContact>(scene_, i));
+  }
+  scene_.radius.assign(tethers_.size(), 0.0);
+  scene_.cable_friction.assign(tethers_.size(), 0.0);
+  scene_.self_gap.assign(tethers_.size(), 1);
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    contacts_[i]->resize();
+    tethers_[i].tether->setWorldContact(contact_on_ ? contacts_[i].get() : nullptr);
+  }
+  if (contact_on_)
+  {
+    rebuildGrid();
+  }
+}
+
+void World::rebuildGrid()
+{
+  double widest = 0.0, longest = 0.0, motion = 0.0;
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    const Tether& tether = *tethers_[i].tether;
+    const TetherParams& p = tether.params();
+    scene_.radius[i] = 0.5 * p.diameter;
+    scene_.cable_friction[i] = p.cable_friction;
+    // A cable turns back onto itself over half a turn of about its diameter: segments closer than that
+    // along it touch through their joints, not as contacts.
+    scene_.self_gap[i] = 1 + static_cast<std::size_t>(std::ceil(0.5 * 3.14159265358979 * p.diameter / p.segment_length));
+    widest = std::max(widest, scene_.radius[i]);
+    longest = std::max(longest, p.segment_length);
+    const Cable& cable = tether.state();
+    if (contacts_[i]->record().obstacle.size() != cable.size())
+    {
+      contacts_[i]->resize();  // the cable was rebuilt (a new cable or segment length)
+    }
+    motion = std::max(motion, tether.lastMotion());
+  }
+  if (!scene_.between_tethers)
+  {
+    return;
+  }
+  // Filed boxes reach as far as a segment of the stepping tether can move in its step (twice the last
+  // step's motion) and as wide as the widest capsule, so the query with the moved segment finds them.
+  const double margin = widest + 2.0 * motion;
+  scene_.grid.build(scene_.cables, std::max(longest, 2.0 * margin) + 2.0 * widest, margin);
+}
+
+void World::topology(std::vector<TopologyEntry>& out) const
+{
+  out.clear();
+  const std::size_t obstacles = scene_.obstacles.size();
+  std::vector<double> angle(obstacles + tethers_.size());
+  std::vector<Aabb> hull(tethers_.size());
+  for (std::size_t t = 0; t < tethers_.size(); ++t)
+  {
+    const Cable& cable = tethers_[t].tether->state();
+    const topology::Polyline curve = topology::deployed(cable);
+    for (std::size_t i = 0; i < curve.count; ++i)
+    {
+      hull[t].grow(curve.at(i));
+    }
+    for (std::size_t o = 0; o < obstacles; ++o)
+    {
+      const Obstacle& obstacle = *scene_.obstacles[o];
+      if (obstacle.hasAxis())
+      {
+        out.push_back({t, false, o, TopologyEntry::Kind::WrapTurns,
+                       topology::windingTurns(curve, obstacle.axisPoint(), obstacle.axisDirection())});
+      }
+    }
+    // The contact angle: the turn of the tangent at every joint one of whose segments touches the object.
+    std::fill(angle.begin(), angle.end(), 0.0);
+    const ContactRecord& record = contacts_[t]->record();
+    for (std::size_t j = cable.first + 1; j + 1 < cable.size(); ++j)
+    {
+      const Position before = cable.direction(j - 1, j), after = cable.direction(j, j + 1);
+      const double turn = std::atan2(before.cross(after).norm(), before.dot(after));
+      int seen[4] = {-1, -1, -1, -1};
+      const int touched[4] = {record.obstacle[j - 1], record.obstacle[j],
+                              record.tether[j - 1] < 0 ? -1 : static_cast<int>(obstacles) + record.tether[j - 1],
+                              record.tether[j] < 0 ? -1 : static_cast<int>(obstacles) + record.tether[j]};
+      for (int k = 0; k < 4; ++k)
+      {
+        if (touched[k] >= 0 && std::find(seen, seen + 4, touched[k]) == seen + 4)
+        {
+          seen[k] = touched[k];
+          angle[static_cast<std::size_t>(touched[k])] += turn;
+        }
+      }
+    }
+    for (std::size_t k = 0; k < angle.size(); ++k)
+    {
+      if (angle[k] > 0.0)
+      {
+        const bool is_tether = k >= obstacles;
+        const std::size_t object = is_tether ? k - obstacles : k;
+        const double mu = is_tether ? scene_.cable_friction[t] : scene_.obstacles[k]->friction();
+        out.push_back({t, is_tether, object, TopologyEntry::Kind::ContactAngle, angle[k]});
+        out.push_back({t, is_tether, object, TopologyEntry::Kind::CapstanRatio, std::exp(mu * angle[k])});
+      }
+    }
+  }
+  for (std::size_t a = 0; a < tethers_.size(); ++a)
+  {
+    for (std::size_t b = a + 1; b < tethers_.size(); ++b)
+    {
+      // Closed curves in disjoint boxes are unlinked (a closed curve lies in its points' box: the chord too).
+      const double link = hull[a].overlaps(hull[b])
+                              ? topology::linkingNumber(topology::deployed(tethers_[a].tether->state()),
+                                                        topology::deployed(tethers_[b].tether->state()))
+                              : 0.0;
+      out.push_back({a, true, b, TopologyEntry::Kind::LinkingNumber, link});
+    }
+  }
 }
 
 }  // namespace rov_tether

@@ -1,0 +1,75 @@
+#pragma once
+/**
+ * Contact of one tether with what its World holds: the obstacles, the other tethers and itself. The cable is
+ * a chain of capsules of its diameter; a capsule that overlaps something is moved out along the way out
+ * (its two particles in proportion to their inverse masses and to where along it the contact sits), and its
+ * sliding over the contact this step is limited by Coulomb friction to mu times that normal correction
+ * (position-based friction, Macklin et al. 2014). The other tethers are fixed while this one steps (World
+ * steps them in turn); their capsules and this one's own non-adjacent capsules are found through a uniform
+ * grid (SegmentGrid) that World rebuilds before each step.
+ *
+ * What was touched in the last step is kept per segment (record()), for the topology report (contact angle,
+ * capstan ratio) and the contact markers. Nothing here allocates after construction.
+ */
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "rov_tether/contact.hpp"
+#include "rov_tether/obstacle.hpp"
+#include "rov_tether/segment_grid.hpp"
+
+namespace rov_tether
+{
+
+/// What each segment of one tether touched in its last step: -1 for nothing.
+struct ContactRecord
+{
+  std::vector<int> obstacle;    ///< Index of the obstacle touched (World::obstacle), per segment.
+  std::vector<int> tether;      ///< Index of the tether touched (itself included), per segment.
+  std::vector<Position> point;  ///< Where (the deepest point on the segment's axis), per segment [m].
+
+  void clear()
+  {
+    std::fill(obstacle.begin(), obstacle.end(), -1);
+    std::fill(tether.begin(), tether.end(), -1);
+  }
+};
+
+/// The shared scene a WorldContact reads: obstacles with their bounds, every tether's cable, radius and
+/// friction, and the grid of their segments. Owned by World.
+struct ContactScene
+{
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  std::vector<Aabb> bounds;               ///< obstacles[i]->bounds(), refreshed when poses change.
+  std::vector<const Cable*> cables;       ///< Every tether's cable, in World order.
+  std::vector<double> radius;             ///< Every tether's capsule radius [m].
+  std::vector<double> cable_friction;     ///< Every tether's Coulomb coefficient against a cable [-].
+  std::vector<std::size_t> self_gap;      ///< Segments this close along one cable never collide.
+  SegmentGrid grid;                       ///< Every tether's segments, rebuilt before each step.
+  bool between_tethers = true;            ///< Contact between tethers and of a tether with itself.
+};
+
+class WorldContact : public Contact
+{
+ public:
+  WorldContact(const ContactScene& scene, std::size_t self) : scene_(scene), self_(self) {}
+  void project(Cable& cable, std::size_t begin, std::size_t end) const override;
+  /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
+  void resize();
+  const ContactRecord& record() const { return record_; }
+
+ private:
+  /// Moves segment j's particles so the point at t clears by depth along n, then removes up to mu depth
+  /// of the point's sliding this step.
+  void resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
+
+  const ContactScene& scene_;
+  std::size_t self_;
+  mutable ContactRecord record_;
+  mutable std::vector<int> candidates_;  ///< Obstacles that overlap this cable's bounds this step.
+  mutable std::vector<SegmentGrid::Entry> near_;  ///< Grid query result.
+};
+
+}  // namespace rov_tether

@@ -1,0 +1,134 @@
+#include "rov_tether/segment_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rov_tether
+{
+namespace
+{
+constexpr long kMaxCells = 4096;
+}
+
+std::size_t SegmentGrid::bucket(long ix, long iy, long iz) const
+{
+  // Teschner et al. 2003's spatial hash.
+  const std::uint64_t h = (static_cast<std::uint64_t>(ix) * 73856093u) ^ (static_cast<std::uint64_t>(iy) * 19349663u) ^
+                          (static_cast<std::uint64_t>(iz) * 83492791u);
+  return static_cast<std::size_t>(h) & mask_;
+}
+
+template <typename F>
+void SegmentGrid::forCells(const Aabb& box, F&& visit) const
+{
+  const double inv = 1.0 / cell_;
+  const long x0 = static_cast<long>(std::floor(box.lo.x() * inv)), x1 = static_cast<long>(std::floor(box.hi.x() * inv));
+  const long y0 = static_cast<long>(std::floor(box.lo.y() * inv)), y1 = static_cast<long>(std::floor(box.hi.y() * inv));
+  const long z0 = static_cast<long>(std::floor(box.lo.z() * inv)), z1 = static_cast<long>(std::floor(box.hi.z() * inv));
+  // Boxes are a segment and its margin, a few cells wide, and cells are at least a segment long; a box
+  // thousands of cells wide comes only from a torn cable, which its tether re-lays at its next step.
+  const long sx = x1 - x0 + 1, sy = y1 - y0 + 1, sz = z1 - z0 + 1;
+  if (sx > kMaxCells || sy > kMaxCells || sz > kMaxCells || sx * sy * sz > kMaxCells)
+  {
+    return;
+  }
+  for (long ix = x0; ix <= x1; ++ix)
+  {
+    for (long iy = y0; iy <= y1; ++iy)
+    {
+      for (long iz = z0; iz <= z1; ++iz)
+      {
+        visit(bucket(ix, iy, iz));
+      }
+    }
+  }
+}
+
+void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, double margin)
+{
+  cell_ = cell;
+  std::size_t segments = 0;
+  offset_.resize(cables.size());
+  for (std::size_t c = 0; c < cables.size(); ++c)
+  {
+    offset_[c] = static_cast<std::uint32_t>(segments);
+    segments += cables[c]->size();
+  }
+  seen_.assign(segments, 0u);
+  query_ = 0;
+  std::size_t table = 64;
+  while (table < 2 * segments)
+  {
+    table *= 2;
+  }
+  mask_ = table - 1;
+  staged_.clear();
+  staged_bucket_.clear();
+  for (std::size_t c = 0; c < cables.size(); ++c)
+  {
+    const Cable& cable = *cables[c];
+    for (std::size_t j = cable.first; j + 1 < cable.size(); ++j)
+    {
+      Aabb box;
+      box.grow(cable.position(j)), box.grow(cable.position(j + 1));
+      box.inflate(margin);
+      if (!box.lo.allFinite() || !box.hi.allFinite())
+      {
+        continue;  // a diverged cable (re-laid by its tether's next step) files nothing
+      }
+      forCells(box, [&](std::size_t b) {
+        staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
+        staged_bucket_.push_back(static_cast<std::uint32_t>(b));
+      });
+    }
+  }
+  start_.assign(table + 1, 0u);
+  for (const std::uint32_t b : staged_bucket_)
+  {
+    ++start_[b + 1];
+  }
+  for (std::size_t b = 0; b < table; ++b)
+  {
+    start_[b + 1] += start_[b];
+  }
+  entries_.resize(staged_.size());
+  // Each bucket keeps staging order, so the grid (and the contact order) is deterministic.
+  for (std::size_t k = 0; k < staged_.size(); ++k)
+  {
+    entries_[start_[staged_bucket_[k]]++] = staged_[k];
+  }
+  // start_[b] now holds the end of bucket b: shift back so it holds its start again.
+  for (std::size_t b = table; b > 0; --b)
+  {
+    start_[b] = start_[b - 1];
+  }
+  start_[0] = 0;
+}
+
+void SegmentGrid::query(const Aabb& box, std::vector<Entry>& out) const
+{
+  out.clear();
+  if (entries_.empty() || !box.lo.allFinite() || !box.hi.allFinite())
+  {
+    return;
+  }
+  if (++query_ == 0)
+  {
+    std::fill(seen_.begin(), seen_.end(), 0u);
+    query_ = 1;
+  }
+  forCells(box, [&](std::size_t b) {
+    for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
+    {
+      const Entry& e = entries_[k];
+      std::uint32_t& mark = seen_[offset_[e.cable] + e.segment];
+      if (mark != query_)
+      {
+        mark = query_;
+        out.push_back(e);
+      }
+    }
+  });
+}
+
+}  // namespace rov_tether
