@@ -72,7 +72,7 @@ class ConstraintSolver
     project(cable, multipliers_, settings);
     for (const Contact* contact : contacts)
     {
-      contact->project(cable, cable.first + 1, free_end);
+      contact->project(cable, cable.first + 1, free_end, multipliers_.stretch);
     }
   }
   /// True when the method meets a SpoolDrum's law within its step (direct); the others pay out before it.

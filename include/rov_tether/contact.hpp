@@ -17,9 +17,12 @@ class Contact
 {
  public:
   virtual ~Contact() = default;
-  /// Projects the free particles [begin, end) out of the obstacle, with the contact's friction; must
-  /// not allocate.
-  virtual void project(Cable& cable, std::size_t begin, std::size_t end) const = 0;
+  /// Projects the free particles [begin, end) out of the obstacle, with the contact's friction; must not
+  /// allocate. `stretch` holds the step's multiplier of every segment (force = lambda / h^2), so a contact
+  /// can tell how hard the cable pulls a particle into it.
+  virtual void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const = 0;
+  /// The deepest overlap the last project() found before resolving it [m]; 0 when it does not say.
+  virtual double lastDeepest() const { return 0.0; }
 };
 
 /// The contacts one solve sees (not owned: the tether and, later, the world own them).
@@ -34,7 +37,7 @@ class SeabedContact : public Contact
 {
  public:
   SeabedContact(double z, double friction) : z_(z), friction_(friction) {}
-  void project(Cable& cable, std::size_t begin, std::size_t end) const override;
+  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const override;
 
  private:
   double z_;

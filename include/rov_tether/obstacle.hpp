@@ -37,7 +37,7 @@ struct ObstacleSpec
 {
   std::string name;
   ShapeType type = ShapeType::Sphere;
-  Position position = Position::Zero();  ///< [m], in the world frame (the node: in `frame`).
+  Position position = Position::Zero();                   ///< [m], in the world frame (the node: in `frame`).
   Eigen::Vector3d orientation = Eigen::Vector3d::Zero();  ///< roll, pitch, yaw [rad] (fixed axes x, y, z).
   double radius = 0.0;                                    ///< sphere, cylinder, capsule [m].
   double length = 0.0;                                    ///< cylinder and capsule, along their local z [m].
@@ -58,7 +58,10 @@ struct Aabb
   Position lo = Position::Constant(std::numeric_limits<double>::infinity());
   Position hi = Position::Constant(-std::numeric_limits<double>::infinity());
 
-  bool overlaps(const Aabb& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
+  bool overlaps(const Aabb& o) const
+  {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
   void grow(const Position& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
   void inflate(double margin) { lo.array() -= margin, hi.array() += margin; }
 };
@@ -86,7 +89,10 @@ class Obstacle
   void setPose(const Position& position, const Eigen::Quaterniond& orientation);
   const Eigen::Isometry3d& pose() const { return pose_; }
   /// Box, cylinder, capsule: their local z through their centre, the axis wraps are counted around.
-  bool hasAxis() const { return spec_.type == ShapeType::Box || spec_.type == ShapeType::Cylinder || spec_.type == ShapeType::Capsule; }
+  bool hasAxis() const
+  {
+    return spec_.type == ShapeType::Box || spec_.type == ShapeType::Cylinder || spec_.type == ShapeType::Capsule;
+  }
   Position axisPoint() const { return pose_.translation(); }
   Position axisDirection() const { return pose_.linear().col(2); }
   /// World bounds (a plane: a box reaching far along it).

@@ -38,9 +38,9 @@ class SegmentGrid
 
   double cell_ = 1.0;
   std::size_t mask_ = 0;
-  std::vector<std::uint32_t> start_;   ///< Bucket b's entries are entries_[start_[b], start_[b + 1]).
+  std::vector<std::uint32_t> start_;  ///< Bucket b's entries are entries_[start_[b], start_[b + 1]).
   std::vector<Entry> entries_;
-  std::vector<Entry> staged_;          ///< (entry, bucket) pairs before the counting sort.
+  std::vector<Entry> staged_;  ///< (entry, bucket) pairs before the counting sort.
   std::vector<std::uint32_t> staged_bucket_;
   mutable std::vector<std::uint32_t> seen_;  ///< Per filed segment: the query that last returned it.
   std::vector<std::uint32_t> offset_;        ///< Per cable: index of its first segment in seen_.

@@ -192,13 +192,14 @@ class Tether
   std::unique_ptr<Drag> drag_;
   CurrentField current_;
   MicroCurrentNoise noise_;
-  std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
-  Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
+  std::unique_ptr<SeabedContact> seabed_;   ///< None without seabed_z.
+  Contacts contacts_;                       ///< What the solver projects besides the chain's constraints.
   const Contact* world_contact_ = nullptr;  ///< World's contact for this tether; not owned.
   int contact_substeps_ = 1;                ///< Sub-steps the next step needs for contact (see setWorldContact).
   int last_substeps_ = 1;
   double last_motion_ = 0.0;
-  std::vector<double> step_start_x_, step_start_y_, step_start_z_;  ///< Positions at the step's start [m].
+  double max_contact_depth_ = 0.0;  ///< Deepest overlap the contact found in the step's sub-steps [m].
+  std::vector<double> step_start_x_, step_start_y_, step_start_z_;   ///< Positions at the step's start [m].
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
   SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.

@@ -18,8 +18,8 @@ namespace rov_tether
  * among all tethers, then the next, so no tether runs ahead of another by more than its own step. Tethers
  * with the same time_step (the usual case) step in turn, in the order they were added, at the same time.
  * This is where what tethers share goes: the obstacles they touch, and contact between them and of each with
- * itself (WorldContact; on by default, setContactBetweenTethers). A world of one tether that touches neither
- * an obstacle nor itself moves as that tether alone, though it may take more sub-steps (see
+ * itself (WorldContact; the latter off by default, setContactBetweenTethers). A world of one tether that touches
+ * neither an obstacle nor itself moves as that tether alone, though it may take more sub-steps (see
  * Tether::setWorldContact); without obstacles and with contact between tethers off, it is that tether alone.
  */
 /// One line of the topology report (World::topology; README "Topology").
@@ -69,7 +69,8 @@ class World
   std::size_t findObstacle(const std::string& name) const;
   /// Moves obstacle i (one that moves with a frame).
   void setObstaclePose(std::size_t i, const Position& position, const Eigen::Quaterniond& orientation);
-  /// Contact between tethers and of a tether with itself (obstacles always collide); on by default.
+  /// Contact between tethers and of a tether with itself (obstacles always collide); off by default (each
+  /// tether moves itself out of the others, which do not yield: README "Known limitations").
   void setContactBetweenTethers(bool on);
   /// What tether i touched in its last step, segment by segment.
   const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }
@@ -94,7 +95,7 @@ class World
   std::vector<Entry> tethers_;
   ContactScene scene_;
   std::vector<std::unique_ptr<WorldContact>> contacts_;  ///< One per tether, in World order.
-  bool contact_on_ = false;                               ///< Whether tethers have their WorldContact.
+  bool contact_on_ = false;                              ///< Whether tethers have their WorldContact.
 };
 
 }  // namespace rov_tether

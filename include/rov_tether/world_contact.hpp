@@ -2,11 +2,17 @@
 /**
  * Contact of one tether with what its World holds: the obstacles, the other tethers and itself. The cable is
  * a chain of capsules of its diameter; a capsule that overlaps something is moved out along the way out
- * (its two particles in proportion to their inverse masses and to where along it the contact sits), and its
- * sliding over the contact this step is limited by Coulomb friction to mu times that normal correction
- * (position-based friction, Macklin et al. 2014). The other tethers are fixed while this one steps (World
- * steps them in turn); their capsules and this one's own non-adjacent capsules are found through a uniform
- * grid (SegmentGrid) that World rebuilds before each step.
+ * (its two particles in proportion to their inverse masses and to where along it the contact sits). Then
+ * each particle of a touching capsule may be held back, over the whole step, by no more than mu times its
+ * normal displacement: the larger of the corrections that pushed it out (a load such as its weight
+ * pressing it in) and the pull of its two segments into the contact, lambda w, from the solve's
+ * multipliers (a tensioned cable around a pillar). The contact is projected once after the step's solve
+ * (as the seabed is), so the solve's tension does not yet carry what friction holds back: a known limit,
+ * README "Known limitations". Position-based Coulomb friction (Macklin et al. 2014)
+ * with the normal force a wrapped cable really exerts, so the capstan law holds (docs/references.md).
+ * The other tethers are fixed while this one steps (World steps them in turn): each tether moves itself out
+ * of the others, and none pushes another (a known limit: README "Known limitations"). Their capsules and this one's own
+ * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World rebuilds before each step.
  *
  * What was touched in the last step is kept per segment (record()), for the topology report (contact angle,
  * capstan ratio) and the contact markers. Nothing here allocates after construction.
@@ -42,34 +48,48 @@ struct ContactRecord
 struct ContactScene
 {
   std::vector<std::unique_ptr<Obstacle>> obstacles;
-  std::vector<Aabb> bounds;               ///< obstacles[i]->bounds(), refreshed when poses change.
-  std::vector<const Cable*> cables;       ///< Every tether's cable, in World order.
-  std::vector<double> radius;             ///< Every tether's capsule radius [m].
-  std::vector<double> cable_friction;     ///< Every tether's Coulomb coefficient against a cable [-].
-  std::vector<std::size_t> self_gap;      ///< Segments this close along one cable never collide.
-  SegmentGrid grid;                       ///< Every tether's segments, rebuilt before each step.
-  bool between_tethers = true;            ///< Contact between tethers and of a tether with itself.
+  std::vector<Aabb> bounds;            ///< obstacles[i]->bounds(), refreshed when poses change.
+  std::vector<const Cable*> cables;    ///< Every tether's cable, in World order.
+  std::vector<double> radius;          ///< Every tether's capsule radius [m].
+  std::vector<double> cable_friction;  ///< Every tether's Coulomb coefficient against a cable [-].
+  std::vector<std::size_t> self_gap;   ///< Segments this close along one cable never collide.
+  SegmentGrid grid;                    ///< Every tether's segments, rebuilt before each step.
+  bool between_tethers = false;        ///< Contact between tethers and of a tether with itself.
 };
 
 class WorldContact : public Contact
 {
  public:
   WorldContact(const ContactScene& scene, std::size_t self) : scene_(scene), self_(self) {}
-  void project(Cable& cable, std::size_t begin, std::size_t end) const override;
+  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const override;
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
   const ContactRecord& record() const { return record_; }
+  double lastDeepest() const override { return deepest_; }
 
  private:
-  /// Moves segment j's particles so the point at t clears by depth along n, then removes up to mu depth
-  /// of the point's sliding this step.
+  /// Moves segment j's particles so the point at t clears by depth along n, and notes for each the normal,
+  /// the correction and the friction coefficient.
   void resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
+  /// Resolves segment j against the obstacles and (when `others`) the cables; returns its deepest overlap.
+  double contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap) const;
+  static constexpr int kContactSweeps = 6;
+  static constexpr double kSettled = 0.01;  ///< Sweeps stop when no overlap exceeded this x the radius.
+  /// Coulomb friction on every particle resolve() touched (see the class comment).
+  void applyFriction(Cable& cable, const std::vector<double>& stretch) const;
 
   const ContactScene& scene_;
   std::size_t self_;
   mutable ContactRecord record_;
-  mutable std::vector<int> candidates_;  ///< Obstacles that overlap this cable's bounds this step.
+  mutable double deepest_ = 0.0;
+  mutable std::vector<int> candidates_;           ///< Obstacles that overlap this cable's bounds this step.
   mutable std::vector<SegmentGrid::Entry> near_;  ///< Grid query result.
+  /// Per particle, this step: the contact normal (summed), the normal corrections [m], the friction
+  /// coefficient and the displacement friction already took back [m]; and the particles touched, in order.
+  mutable std::vector<Position> normal_;
+  mutable std::vector<double> pushed_, mu_, held_;
+  mutable std::vector<std::size_t> touched_;
+  mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
 };
 
 }  // namespace rov_tether

@@ -10,7 +10,8 @@ namespace
 {
 
 /// Parameters (s on [a, b], u on [c, d]) of the closest points of two segments (Ericson 2005, 5.1.9).
-void closestSegmentParameters(const Position& a, const Position& b, const Position& c, const Position& d, double* s, double* u)
+void closestSegmentParameters(const Position& a, const Position& b, const Position& c, const Position& d, double* s,
+                              double* u)
 {
   const Position e1 = b - a, e2 = d - c, r = a - c;
   const double aa = e1.squaredNorm(), ee = e2.squaredNorm(), f = e2.dot(r);
@@ -54,7 +55,8 @@ Position perpendicular(const Position& v)
 }
 
 /// A capsule of `radius` against a core segment [c, d] of `core_radius` (a sphere when c = d).
-bool pushFromCore(const Position& a, const Position& b, double radius, const Position& c, const Position& d, double core_radius, Push* out)
+bool pushFromCore(const Position& a, const Position& b, double radius, const Position& c, const Position& d,
+                  double core_radius, Push* out)
 {
   double s = 0.0, u = 0.0;
   closestSegmentParameters(a, b, c, d, &s, &u);
@@ -71,7 +73,9 @@ bool pushFromCore(const Position& a, const Position& b, double radius, const Pos
   out->u = u;
   out->depth = reach - distance;
   // On the core itself no side is defined: out across the segment and the core.
-  out->normal = distance > 1e-12 * reach ? Position(gap / distance) : (b - a).cross(d - c).norm() > 0.0 ? Position((b - a).cross(d - c).normalized()) : perpendicular(b - a + d - c + Position::UnitZ() * 1e-30);
+  out->normal = distance > 1e-12 * reach            ? Position(gap / distance)
+                : (b - a).cross(d - c).norm() > 0.0 ? Position((b - a).cross(d - c).normalized())
+                                                    : perpendicular(b - a + d - c + Position::UnitZ() * 1e-30);
   return true;
 }
 
@@ -179,7 +183,8 @@ class BoxObstacle : public ConvexSdfObstacle
     const Position half = 0.5 * spec_.size;
     for (int corner = 0; corner < 8; ++corner)
     {
-      box.grow(pose_ * Position((corner & 1) ? half.x() : -half.x(), (corner & 2) ? half.y() : -half.y(), (corner & 4) ? half.z() : -half.z()));
+      box.grow(pose_ * Position((corner & 1) ? half.x() : -half.x(), (corner & 2) ? half.y() : -half.y(),
+                                (corner & 4) ? half.z() : -half.z()));
     }
     return box;
   }
@@ -218,7 +223,8 @@ class CylinderObstacle : public ConvexSdfObstacle
   {
     Aabb box;
     const Position axis = axisDirection();
-    const Position ends[2] = {pose_ * Position(0.0, 0.0, -0.5 * spec_.length), pose_ * Position(0.0, 0.0, 0.5 * spec_.length)};
+    const Position ends[2] = {pose_ * Position(0.0, 0.0, -0.5 * spec_.length),
+                              pose_ * Position(0.0, 0.0, 0.5 * spec_.length)};
     for (const Position& end : ends)
     {
       // A disc of radius R across `axis` reaches R sqrt(1 - axis_i^2) along world axis i.
@@ -329,7 +335,8 @@ const char* shapeTypeName(ShapeType type)
 
 bool parseShapeType(const std::string& name, ShapeType* type)
 {
-  for (ShapeType t : {ShapeType::Sphere, ShapeType::Box, ShapeType::Cylinder, ShapeType::Capsule, ShapeType::Plane, ShapeType::Mesh})
+  for (ShapeType t :
+       {ShapeType::Sphere, ShapeType::Box, ShapeType::Cylinder, ShapeType::Capsule, ShapeType::Plane, ShapeType::Mesh})
   {
     if (name == shapeTypeName(t))
     {
@@ -355,7 +362,8 @@ Status validate(const ObstacleSpec& spec)
   {
     return Status::error(who + "friction must be in [0, 10]");
   }
-  const bool round = spec.type == ShapeType::Sphere || spec.type == ShapeType::Cylinder || spec.type == ShapeType::Capsule;
+  const bool round =
+      spec.type == ShapeType::Sphere || spec.type == ShapeType::Cylinder || spec.type == ShapeType::Capsule;
   if (round && !positive(spec.radius))
   {
     return Status::error(who + "radius must be > 0 m");

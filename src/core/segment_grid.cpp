@@ -76,10 +76,12 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
       {
         continue;  // a diverged cable (re-laid by its tether's next step) files nothing
       }
-      forCells(box, [&](std::size_t b) {
-        staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
-        staged_bucket_.push_back(static_cast<std::uint32_t>(b));
-      });
+      forCells(box,
+               [&](std::size_t b)
+               {
+                 staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
+                 staged_bucket_.push_back(static_cast<std::uint32_t>(b));
+               });
     }
   }
   start_.assign(table + 1, 0u);
@@ -117,18 +119,20 @@ void SegmentGrid::query(const Aabb& box, std::vector<Entry>& out) const
     std::fill(seen_.begin(), seen_.end(), 0u);
     query_ = 1;
   }
-  forCells(box, [&](std::size_t b) {
-    for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
-    {
-      const Entry& e = entries_[k];
-      std::uint32_t& mark = seen_[offset_[e.cable] + e.segment];
-      if (mark != query_)
-      {
-        mark = query_;
-        out.push_back(e);
-      }
-    }
-  });
+  forCells(box,
+           [&](std::size_t b)
+           {
+             for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
+             {
+               const Entry& e = entries_[k];
+               std::uint32_t& mark = seen_[offset_[e.cable] + e.segment];
+               if (mark != query_)
+               {
+                 mark = query_;
+                 out.push_back(e);
+               }
+             }
+           });
 }
 
 }  // namespace rov_tether

@@ -166,8 +166,9 @@ void Tether::applyParams(const TetherParams& requested)
 void Tether::setWorldContact(const Contact* contact)
 {
   world_contact_ = contact;
-  contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const Contact* c) { return c != seabed_.get(); }),
-                  contacts_.end());
+  contacts_.erase(
+      std::remove_if(contacts_.begin(), contacts_.end(), [&](const Contact* c) { return c != seabed_.get(); }),
+      contacts_.end());
   if (contact != nullptr)
   {
     contacts_.push_back(contact);
@@ -464,6 +465,7 @@ void Tether::step()
   if (world_contact_ != nullptr)
   {
     contact_substeps_ = contactSubsteps();
+    max_contact_depth_ = 0.0;
   }
   ++steps_;
   time_ = next_time;
@@ -482,7 +484,8 @@ int Tether::contactSubsteps()
   const std::size_t n = std::min(cable_.size(), step_start_x_.size());
   for (std::size_t i = cable_.first; i < n; ++i)
   {
-    const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i], dz = cable_.z[i] - step_start_z_[i];
+    const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i],
+                 dz = cable_.z[i] - step_start_z_[i];
     fastest2 = std::max(fastest2, dx * dx + dy * dy + dz * dz);
   }
   const double per_step = std::sqrt(fastest2);
@@ -492,7 +495,23 @@ int Tether::contactSubsteps()
   {
     return std::isfinite(per_step) ? kMaxContactSubsteps : 1;
   }
-  return std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
+  const int for_motion = std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
+  // What a solve pulls a particle into a contact within a sub-step, which the contact then undoes, grows
+  // as h^2 (a tension's pull lambda w): at n sub-steps instead of the `taken` it is (taken / n)^2 as deep.
+  // Aim at half the bound on penetration (10% of the diameter).
+  const double aimed = 0.05 * params_.diameter;
+  // More sub-steps at once when needed; one fewer only when the depth predicted for it stays below the aim,
+  // so the count does not swing between two values (each swing changes h, and the tension's transient).
+  const double ratio = std::sqrt(max_contact_depth_ / aimed);
+  int for_depth = static_cast<int>(std::min<double>(kMaxContactSubsteps, std::ceil(last_substeps_ * ratio)));
+  if (for_depth < last_substeps_)
+  {
+    const int fewer = last_substeps_ - 1;
+    const double predicted = max_contact_depth_ * (static_cast<double>(last_substeps_) / std::max(fewer, 1)) *
+                             (static_cast<double>(last_substeps_) / std::max(fewer, 1));
+    for_depth = predicted < aimed ? fewer : last_substeps_;
+  }
+  return std::min(kMaxContactSubsteps, std::max(for_motion, for_depth));
 }
 
 void Tether::subStep(double h, double t)
@@ -520,6 +539,10 @@ void Tether::subStep(double h, double t)
   SolverSettings settings = SolverSettings::from(params_, h);
   settings.drum = runWinch(h) ? &drum_ : nullptr;
   solver_->solve(cable_, settings, contacts_, freeEnd());
+  if (world_contact_ != nullptr)
+  {
+    max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastDeepest());
+  }
   if (settings.drum != nullptr)
   {
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve

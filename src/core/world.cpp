@@ -206,7 +206,8 @@ void World::rebuildGrid()
     scene_.cable_friction[i] = p.cable_friction;
     // A cable turns back onto itself over half a turn of about its diameter: segments closer than that
     // along it touch through their joints, not as contacts.
-    scene_.self_gap[i] = 1 + static_cast<std::size_t>(std::ceil(0.5 * 3.14159265358979 * p.diameter / p.segment_length));
+    scene_.self_gap[i] =
+        1 + static_cast<std::size_t>(std::ceil(0.5 * 3.14159265358979 * p.diameter / p.segment_length));
     widest = std::max(widest, scene_.radius[i]);
     longest = std::max(longest, p.segment_length);
     const Cable& cable = tether.state();

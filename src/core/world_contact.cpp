@@ -11,6 +11,13 @@ void WorldContact::resize()
 {
   const std::size_t n = scene_.cables[self_]->size();
   record_.obstacle.assign(n, -1);
+  normal_.assign(n, Position::Zero());
+  pushed_.assign(n, -1.0);
+  held_.assign(n, 0.0);
+  mu_.assign(n, 0.0);
+  touched_.clear();
+  touched_.reserve(n);
+  touching_.reserve(n);
   record_.tether.assign(n, -1);
   record_.point.assign(n, Position::Zero());
   candidates_.reserve(scene_.obstacles.size());
@@ -32,32 +39,139 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
   {
     return;  // both ends pinned (the spool outlet and the vehicle): nothing here can move
   }
-  // Moving a by ca wa v / D and b by cb wb v / D moves the point at t by exactly v.
-  auto move = [&](const Position& v) {
-    const Position va = (ca * wa / denominator) * v, vb = (cb * wb / denominator) * v;
-    cable.x[j] += va.x(), cable.y[j] += va.y(), cable.z[j] += va.z();
-    cable.x[k] += vb.x(), cable.y[k] += vb.y(), cable.z[k] += vb.z();
-  };
-  move(push.depth * push.normal);
-  if (!(mu > 0.0))
+  // Moving a by ca wa d / D and b by cb wb d / D along n moves the point at t by exactly d.
+  const double moves[2] = {ca * wa / denominator * push.depth, cb * wb / denominator * push.depth};
+  const std::size_t ends[2] = {j, k};
+  for (int e = 0; e < 2; ++e)
   {
-    return;
-  }
-  const Position now = ca * cable.position(j) + cb * cable.position(k);
-  const Position before = ca * Position(cable.px[j], cable.py[j], cable.pz[j]) + cb * Position(cable.px[k], cable.py[k], cable.pz[k]);
-  const Position moved = now - before;
-  const Position slide = moved - moved.dot(push.normal) * push.normal;
-  const double length = slide.norm();
-  const double limit = mu * push.depth;
-  if (length > 0.0)
-  {
-    move(-(length > limit ? limit / length : 1.0) * slide);
+    const std::size_t i = ends[e];
+    if (!(cable.inv_mass[i] > 0.0))
+    {
+      continue;
+    }
+    cable.x[i] += moves[e] * push.normal.x(), cable.y[i] += moves[e] * push.normal.y(),
+        cable.z[i] += moves[e] * push.normal.z();
+    if (pushed_[i] < 0.0)
+    {
+      pushed_[i] = 0.0, normal_[i] = Position::Zero(), mu_[i] = 0.0;
+      touched_.push_back(i);
+    }
+    pushed_[i] += moves[e];
+    normal_[i] += push.normal;
+    mu_[i] = std::max(mu_[i], mu);
   }
 }
 
-void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end) const
+void WorldContact::applyFriction(Cable& cable, const std::vector<double>& stretch) const
+{
+  for (const std::size_t i : touched_)
+  {
+    const double length = normal_[i].norm();
+    const double mu = mu_[i];
+    if (!(length > 0.0) || !(mu > 0.0))
+    {
+      continue;
+    }
+    const Position n = normal_[i] / length;
+    // The pull of the two segments on particle i over the step, as a displacement: lambda w per segment.
+    Position pull = Position::Zero();
+    if (i > cable.first && i - 1 < stretch.size())
+    {
+      pull += stretch[i - 1] * cable.direction(i, i - 1);
+    }
+    if (i + 1 < cable.size() && i < stretch.size())
+    {
+      pull += stretch[i] * cable.direction(i, i + 1);
+    }
+    const double into = std::max(0.0, -n.dot(pull)) * cable.inv_mass[i];
+    const double limit = mu * std::max(pushed_[i], into) - held_[i];
+    const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
+    const Position slide = moved - moved.dot(n) * n;
+    const double distance = slide.norm();
+    if (distance > 0.0 && limit > 0.0)
+    {
+      const double take = std::min(distance, limit);
+      const Position back = -(take / distance) * slide;
+      cable.x[i] += back.x(), cable.y[i] += back.y(), cable.z[i] += back.z();
+      held_[i] += take;
+    }
+  }
+}
+
+double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others,
+                                    std::size_t gap) const
+{
+  double deepest = 0.0;
+  Push push;
+  Aabb box;
+  box.grow(cable.position(j)), box.grow(cable.position(j + 1));
+  box.inflate(r);
+  for (const int i : candidates_)
+  {
+    const Obstacle& obstacle = *scene_.obstacles[i];
+    if (scene_.bounds[i].overlaps(box) && obstacle.push(cable.position(j), cable.position(j + 1), r, &push))
+    {
+      resolve(cable, j, push, obstacle.friction());
+      deepest = std::max(deepest, push.depth);
+      record_.obstacle[j] = i;
+      record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
+    }
+  }
+  if (!others)
+  {
+    return deepest;
+  }
+  box.inflate(widest);
+  scene_.grid.query(box, near_);
+  for (const SegmentGrid::Entry& e : near_)
+  {
+    const bool own = e.cable == self_;
+    const std::size_t s = e.segment;
+    if (own && static_cast<std::size_t>(std::labs(static_cast<long>(s) - static_cast<long>(j))) <= gap)
+    {
+      continue;  // neighbours along the cable: joined, not in contact
+    }
+    const Cable& other = own ? cable : *scene_.cables[e.cable];
+    if (s + 1 >= other.size() || s < other.first)
+    {
+      continue;
+    }
+    if (!pushCapsule(cable.position(j), cable.position(j + 1), r, other.position(s), other.position(s + 1),
+                     scene_.radius[e.cable], &push))
+    {
+      continue;
+    }
+    deepest = std::max(deepest, push.depth);
+    if (own)
+    {
+      // Both capsules are this cable's: each moves half the way.
+      push.depth *= 0.5;
+      Push back = push;
+      back.t = push.u;
+      back.normal = -push.normal;
+      resolve(cable, j, push, scene_.cable_friction[self_]);
+      resolve(cable, s, back, scene_.cable_friction[self_]);
+      record_.tether[s] = static_cast<int>(self_);
+    }
+    else
+    {
+      resolve(cable, j, push, scene_.cable_friction[self_]);
+    }
+    record_.tether[j] = static_cast<int>(e.cable);
+    record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
+  }
+  return deepest;
+}
+
+void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const
 {
   record_.clear();
+  deepest_ = 0.0;
+  for (const std::size_t i : touched_)
+  {
+    pushed_[i] = -1.0, held_[i] = 0.0;
+  }
+  touched_.clear();
   const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
   const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
   if (lo >= hi)
@@ -86,50 +200,34 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end) con
   }
   const bool others = scene_.between_tethers && !scene_.grid.empty();
   const std::size_t gap = scene_.self_gap[self_];
-  Push push;
-  for (std::size_t j = lo; j < hi; ++j)
+  // Gauss-Seidel over the contacts: the first sweep visits every segment, the next ones only those that
+  // touched something (a push can press a segment into another contact: a second layer of cable wound on
+  // a pillar presses the first into it), until no segment moved more than kSettled of the radius.
+  touching_.clear();
+  for (int sweep = 0; sweep < kContactSweeps; ++sweep)
   {
-    Aabb box;
-    box.grow(cable.position(j)), box.grow(cable.position(j + 1));
-    box.inflate(r);
-    for (const int i : candidates_)
+    double deepest = 0.0;
+    const std::size_t count = sweep == 0 ? hi - lo : touching_.size();
+    for (std::size_t n = 0; n < count; ++n)
     {
-      const Obstacle& obstacle = *scene_.obstacles[i];
-      if (scene_.bounds[i].overlaps(box) && obstacle.push(cable.position(j), cable.position(j + 1), r, &push))
+      const std::size_t j = sweep == 0 ? lo + n : touching_[n];
+      const double depth = contactSegment(cable, j, r, widest, others, gap);
+      deepest = std::max(deepest, depth);
+      if (sweep == 0)
       {
-        resolve(cable, j, push, obstacle.friction());
-        record_.obstacle[j] = i;
-        record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
+        deepest_ = std::max(deepest_, depth);
+      }
+      if (sweep == 0 && depth > 0.0)
+      {
+        touching_.push_back(j);
       }
     }
-    if (!others)
+    if (!(deepest > kSettled * r))
     {
-      continue;
-    }
-    box.inflate(widest);
-    scene_.grid.query(box, near_);
-    for (const SegmentGrid::Entry& e : near_)
-    {
-      const bool own = e.cable == self_;
-      if (own && static_cast<std::size_t>(std::labs(static_cast<long>(e.segment) - static_cast<long>(j))) <= gap)
-      {
-        continue;  // neighbours along the cable: joined, not in contact
-      }
-      const Cable& other = own ? cable : *scene_.cables[e.cable];
-      const std::size_t s = e.segment;
-      if (s + 1 >= other.size())
-      {
-        continue;
-      }
-      if (pushCapsule(cable.position(j), cable.position(j + 1), r, other.position(s), other.position(s + 1),
-                      scene_.radius[e.cable], &push))
-      {
-        resolve(cable, j, push, scene_.cable_friction[self_]);
-        record_.tether[j] = static_cast<int>(e.cable);
-        record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
-      }
+      break;
     }
   }
+  applyFriction(cable, stretch);
 }
 
 }  // namespace rov_tether
