@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rov_tether/ros/obstacle_config.hpp"
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -159,6 +161,143 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   std::snprintf(text, sizeof(text), "%.2f m out, %.2f N", sim.deployedLength(),
                 tensions.empty() ? 0.0 : tensions.back());
   label.text = text;
+}
+
+namespace
+{
+
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& pose)
+{
+  geometry_msgs::Pose out;
+  out.position = toPoint(pose.translation());
+  const Eigen::Quaterniond q(pose.linear());
+  out.orientation.x = q.x();
+  out.orientation.y = q.y();
+  out.orientation.z = q.z();
+  out.orientation.w = q.w();
+  return out;
+}
+
+}  // namespace
+
+void toObstacleMarkers(const World& world, const ros::Time& stamp, const std::string& frame_id,
+                       visualization_msgs::MarkerArray* markers)
+{
+  markers->markers.clear();
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = frame_id;
+  const std_msgs::ColorRGBA colour = rgba(0.62, 0.55, 0.45, 0.6);  // weathered concrete; the cable shows through
+  const auto add = [&](int type, const Eigen::Isometry3d& pose,
+                       const Eigen::Vector3d& scale) -> visualization_msgs::Marker&
+  {
+    visualization_msgs::Marker& marker = startMarker(markers, markers->markers.size(), type, header, "obstacles");
+    marker.pose = toPose(pose);
+    marker.scale.x = scale.x();
+    marker.scale.y = scale.y();
+    marker.scale.z = scale.z();
+    marker.color = colour;
+    return marker;
+  };
+  std::vector<std::pair<std::string, Position>> labels;
+  for (std::size_t i = 0; i < world.obstacleCount(); ++i)
+  {
+    const Obstacle& obstacle = world.obstacle(i);
+    const ObstacleSpec& spec = obstacle.spec();
+    const Eigen::Isometry3d& pose = obstacle.pose();
+    const double d = 2.0 * spec.radius;
+    double top = 0.0;  // [m] above the obstacle's origin along world z, where its name goes
+    switch (spec.type)
+    {
+      case ShapeType::Sphere:
+        add(visualization_msgs::Marker::SPHERE, pose, Eigen::Vector3d::Constant(d));
+        top = spec.radius;
+        break;
+      case ShapeType::Box:
+        add(visualization_msgs::Marker::CUBE, pose, spec.size);
+        top = 0.5 * (pose.linear().cwiseAbs() * spec.size).z();
+        break;
+      case ShapeType::Cylinder:
+        add(visualization_msgs::Marker::CYLINDER, pose, Eigen::Vector3d(d, d, spec.length));
+        top = 0.5 * std::abs(pose.linear()(2, 2)) * spec.length + spec.radius;
+        break;
+      case ShapeType::Capsule:
+        add(visualization_msgs::Marker::CYLINDER, pose, Eigen::Vector3d(d, d, spec.length));
+        for (const double end : {-0.5, 0.5})
+        {
+          add(visualization_msgs::Marker::SPHERE, pose * Eigen::Translation3d(0.0, 0.0, end * spec.length),
+              Eigen::Vector3d::Constant(d));
+        }
+        top = 0.5 * std::abs(pose.linear()(2, 2)) * spec.length + spec.radius;
+        break;
+      case ShapeType::Plane:
+        add(visualization_msgs::Marker::CUBE, pose * Eigen::Translation3d(0.0, 0.0, -0.5 * kPlaneMarkerThickness),
+            Eigen::Vector3d(kPlaneMarkerSize, kPlaneMarkerSize, kPlaneMarkerThickness));
+        break;
+      case ShapeType::Mesh:
+      {
+        visualization_msgs::Marker& mesh =
+            add(visualization_msgs::Marker::MESH_RESOURCE, pose, Eigen::Vector3d::Constant(spec.scale));
+        mesh.mesh_resource = meshResourceUri(spec.file);
+        top = obstacle.bounds().hi.z() - pose.translation().z();
+        break;
+      }
+    }
+    labels.emplace_back(spec.name, pose.translation() + Position(0.0, 0.0, top + 0.3));
+  }
+  for (const auto& [name, at] : labels)
+  {
+    visualization_msgs::Marker& label = startMarker(
+        markers, markers->markers.size(), visualization_msgs::Marker::TEXT_VIEW_FACING, header, "obstacle_names");
+    label.pose.position = toPoint(at);
+    label.scale.z = 0.3;
+    label.color = rgba(1.0, 1.0, 1.0);
+    label.text = name;
+  }
+}
+
+void toContactMarker(const ContactRecord& record, const ros::Time& stamp, const MarkerOptions& options,
+                     visualization_msgs::Marker* marker)
+{
+  marker->header.stamp = stamp;
+  marker->header.frame_id = options.frame_id;
+  marker->ns = "contacts";
+  marker->id = 0;
+  marker->type = visualization_msgs::Marker::SPHERE_LIST;
+  marker->pose = geometry_msgs::Pose();
+  marker->pose.orientation.w = 1.0;
+  marker->scale.x = marker->scale.y = marker->scale.z = 3.0 * options.line_width;
+  marker->color = rgba(1.0, 0.5, 0.0);
+  marker->points.clear();
+  marker->colors.clear();
+  for (std::size_t j = 0; j < record.point.size(); ++j)
+  {
+    const bool obstacle = record.obstacle[j] >= 0, tether = record.tether[j] >= 0;
+    if (obstacle || tether)
+    {
+      marker->points.push_back(toPoint(record.point[j]));
+      marker->colors.push_back(obstacle ? rgba(1.0, 0.5, 0.0) : rgba(1.0, 0.2, 1.0));
+    }
+  }
+  marker->action = marker->points.empty() ? visualization_msgs::Marker::DELETE : visualization_msgs::Marker::ADD;
+}
+
+void toTopologyMessage(const World& world, const std::vector<TopologyEntry>& entries, const ros::Time& stamp,
+                       const std::string& frame_id, Topology* msg)
+{
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame_id;
+  msg->entries.resize(entries.size());
+  for (std::size_t k = 0; k < entries.size(); ++k)
+  {
+    const TopologyEntry& entry = entries[k];
+    TopologyValue& out = msg->entries[k];
+    out.tether = world.name(entry.tether);
+    out.object_is_tether = entry.object_is_tether;
+    out.object = entry.object_is_tether ? world.name(entry.object) : world.obstacle(entry.object).name();
+    out.kind = topologyKindName(entry.kind);
+    out.value = entry.value;
+  }
 }
 
 void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& world_frame,

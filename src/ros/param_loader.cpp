@@ -19,7 +19,7 @@ const std::vector<std::string>& nodeOptionNames()
       "spool_position",     "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
       "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
       "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
-      "spool_outlet_frame", "cable_end_frame"};
+      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio"};
   return names;
 }
 
@@ -70,6 +70,24 @@ class OptionReader
     {
       std::ostringstream message;
       message << name << ": expected a number in [" << min << ", " << max << "]";
+      errors_.push_back(message.str());
+      return;
+    }
+    *out = v;
+  }
+
+  /// A number in (above, max].
+  void numberAbove(const std::string& name, double* out, double above, double max)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    double v = 0.0;
+    if (!readNumber(dict_[name], &v) || !std::isfinite(v) || !(v > above) || v > max)
+    {
+      std::ostringstream message;
+      message << name << ": expected a number in (" << above << ", " << max << "]";
       errors_.push_back(message.str());
       return;
     }
@@ -230,6 +248,8 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.number("max_lag", &candidate.max_lag, 0.01, 3600.0);
   read.text("spool_outlet_frame", &candidate.spool_outlet_frame);
   read.text("cable_end_frame", &candidate.cable_end_frame);
+  read.numberAbove("wrap_warning_turns", &candidate.wrap_warning_turns, 0.0, 1e6);
+  read.numberAbove("snag_ratio", &candidate.snag_ratio, 1.0, 1e9);  // a capstan ratio is at least 1
   if (candidate.overload_policy != "reduce_iterations" && candidate.overload_policy != "reduce_markers" &&
       candidate.overload_policy != "none")
   {
@@ -284,7 +304,7 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
     }
     const bool known = std::find(model.begin(), model.end(), name) != model.end() ||
                        std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" ||
-                       name == "cameras" || tether_name;
+                       name == "cameras" || name == "obstacles" || name == "tether_contact" || tether_name;
     if (!known)
     {
       unknown += (unknown.empty() ? "" : ", ") + name;

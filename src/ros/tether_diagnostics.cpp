@@ -1,5 +1,7 @@
 #include "rov_tether/ros/tether_diagnostics.hpp"
 
+#include <cmath>
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -13,13 +15,14 @@ constexpr double kFailureReportTime = 5.0;
 
 TetherDiagnostics::TetherDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeOptions& options,
                                      const std::string& name, const Tether& tether, const PoseInput& pose_input,
-                                     const Scheduler& scheduler, std::size_t index)
+                                     const Scheduler& scheduler, std::size_t index, TopologyReport& topology)
     : options_(options),
       label_(name.empty() ? "" : " " + name),
       tether_(tether),
       pose_input_(pose_input),
       scheduler_(scheduler),
-      index_(index)
+      index_(index),
+      topology_(topology)
 {
   updater_ = std::make_unique<diagnostic_updater::Updater>(nh, private_nh);
   updater_->setHardwareID(name.empty() ? "rov_tether" : "rov_tether/" + name);
@@ -141,6 +144,59 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   if (schedule.real_time_factor > 0.0 && schedule.real_time_factor < 1.0)
   {
     status.mergeSummaryf(DiagnosticStatus::ERROR, "physics slower than real time (%.2fx)", schedule.real_time_factor);
+  }
+  diagnoseTopology(status);
+}
+
+void TetherDiagnostics::diagnoseTopology(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const World& world = topology_.world();
+  const std::string who = "tether" + label_;
+  for (const TopologyEntry& entry : topology_.current())
+  {
+    // A linking number is listed once per pair, under the lower index: it is the other tether's too.
+    const bool mine = entry.tether == index_;
+    const bool linked_to_me = entry.kind == TopologyEntry::Kind::LinkingNumber && entry.object == index_;
+    if (!mine && !linked_to_me)
+    {
+      continue;
+    }
+    const std::size_t other_index = mine ? entry.object : entry.tether;
+    const std::string other = entry.object_is_tether
+                                  ? (other_index == index_ ? "itself" : "tether " + world.name(other_index))
+                                  : world.obstacle(entry.object).name();
+    const double value = entry.value;
+    switch (entry.kind)
+    {
+      case TopologyEntry::Kind::WrapTurns:
+        status.add("wrap turns around " + other, value);
+        if (std::abs(value) >= options_.wrap_warning_turns)  // NaN (on the axis) never warns
+        {
+          status.mergeSummaryf(DiagnosticStatus::WARN, "%s wrapped %.2f turns around %s", who.c_str(), value,
+                               other.c_str());
+        }
+        break;
+      case TopologyEntry::Kind::LinkingNumber:
+        status.add("linking number with " + other, value);
+        if (std::abs(value) >= 0.5)  // an integer up to rounding: any non-zero one
+        {
+          status.mergeSummaryf(DiagnosticStatus::WARN, "%s linked with %s (linking number %.2f)", who.c_str(),
+                               other.c_str(), value);
+        }
+        break;
+      case TopologyEntry::Kind::ContactAngle:
+        status.add("contact angle on " + other + " [rad]", value);
+        break;
+      case TopologyEntry::Kind::CapstanRatio:
+        status.add("capstan ratio on " + other, value);
+        if (value > options_.snag_ratio)
+        {
+          status.mergeSummaryf(DiagnosticStatus::WARN, "%s snagged on %s: capstan ratio %.1f > snag_ratio %.1f",
+                               who.c_str(), other.c_str(), value, options_.snag_ratio);
+        }
+        break;
+    }
   }
 }
 

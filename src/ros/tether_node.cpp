@@ -63,17 +63,18 @@ Tether& TetherNode::addTether(World& world, const std::string& name, const Tethe
 
 TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
                        const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler,
-                       tf2_ros::Buffer& tf)
+                       tf2_ros::Buffer& tf, TopologyReport& topology)
     : nh_(nh),
       private_nh_(private_nh),
       options_(setup.options),
       name_(name),
+      world_(world),
       tether_(addTether(world, name, setup)),
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
       pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
       publisher_(private_nh_, withTetherFrames(setup.options, name)),
-      diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_)
+      diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_, topology)
 {
   warnAboutStability();
   get_tension_srv_ = private_nh_.advertiseService("get_tension", &TetherNode::onGetTension, this);
@@ -107,7 +108,8 @@ void TetherNode::publishState()
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
-  const double marker_wall = publisher_.publishMarkers(tether_, now, scheduler_.schedule(index_).governor.markerRate());
+  const double marker_wall = publisher_.publishMarkers(tether_, world_.contacts(index_), now,
+                                                       scheduler_.schedule(index_).governor.markerRate());
   scheduler_.governor(index_).addMarkerTime(marker_wall);
   diagnostics_.publish();
 }

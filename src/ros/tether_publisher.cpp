@@ -4,6 +4,13 @@
 
 namespace rov_tether::ros_layer
 {
+namespace
+{
+
+/// Index of the contact points in ~markers, after toMarkers' four.
+constexpr std::size_t kContactMarker = 4;
+
+}  // namespace
 
 const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t resets)
 {
@@ -70,7 +77,8 @@ void TetherPublisher::restart(const Tether& tether)
   next_marker_time_ = ros::Time();
 }
 
-double TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& now, double rate)
+double TetherPublisher::publishMarkers(const Tether& tether, const ContactRecord& contacts, const ros::Time& now,
+                                       double rate)
 {
   const ros::Duration period(1.0 / rate);
   if (marker_pub_.getNumSubscribers() == 0)
@@ -92,7 +100,10 @@ double TetherPublisher::publishMarkers(const Tether& tether, const ros::Time& no
   marker_options.line_width = options_.marker_line_width;
   marker_options.tension_full_scale = options_.tension_full_scale;
   marker_options.stripe_segments = options_.stripe_segments;
-  toMarkers(tether, tensions_, ros::Time(std::max(tether.time(), 0.0)), marker_options, &markers_);
+  const ros::Time stamp(std::max(tether.time(), 0.0));
+  toMarkers(tether, tensions_, stamp, marker_options, &markers_);
+  markers_.markers.resize(std::max<std::size_t>(markers_.markers.size(), kContactMarker + 1));
+  toContactMarker(contacts, stamp, marker_options, &markers_.markers[kContactMarker]);
   marker_pub_.publish(markers_);  // serialised here for every remote subscriber: part of the cost
   return (ros::WallTime::now() - start).toSec();
 }

@@ -86,8 +86,33 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     }
     shareOneClock(names, &setups);
   }
+  // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
+  XmlRpc::XmlRpcValue top;
+  private_nh_.getParam(private_nh_.getNamespace(), top);
+  WorldOptions world_options;
+  const std::string world_error = loadWorldOptions(top, &world_options);
+  if (!world_error.empty())
+  {
+    throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);
+  }
+  for (const ObstacleSpec& spec : world_options.obstacles)
+  {
+    const bool taken = names.empty() ? spec.name == "tether" : std::count(names.begin(), names.end(), spec.name) > 0;
+    if (taken)
+    {
+      throw std::runtime_error("obstacle '" + spec.name + "' name: taken by a tether");
+    }
+  }
+  std::vector<std::unique_ptr<Obstacle>> obstacles = makeObstacles(world_options);
   const NodeOptions& clock = setups.front().options;
+  double state_rate = 0.0;
+  for (const auto& setup : setups)
+  {
+    state_rate = std::max(state_rate, setup.options.state_rate);
+  }
+  world_.setContactBetweenTethers(world_options.tether_contact);
   scheduler_ = std::make_unique<Scheduler>(world_, clock.interpolation_delay);
+  topology_ = std::make_unique<TopologyReport>(private_nh_, world_, clock.world_frame, state_rate);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
   ros::NodeHandle input_nh(nh_);
   input_nh.setCallbackQueue(&input_queue_);
@@ -95,8 +120,15 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   {
     const std::string name = names.empty() ? "" : names[i];
     const ros::NodeHandle tether_nh = names.empty() ? private_nh_ : ros::NodeHandle(private_nh_, name);
-    tethers_.push_back(
-        std::make_unique<TetherNode>(nh_, tether_nh, input_nh, setups[i], name, world_, *scheduler_, tf_buffer_));
+    tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, input_nh, setups[i], name, world_, *scheduler_,
+                                                    tf_buffer_, *topology_));
+  }
+  if (!obstacles.empty())
+  {
+    obstacles_ = std::make_unique<ObstacleScene>(private_nh_, std::move(obstacles), clock.world_frame,
+                                                 clock.marker_rate, world_, tf_buffer_);
+    ROS_INFO("tether_node: %zu obstacles%s", world_.obstacleCount(),
+             world_options.tether_contact ? ", contact between tethers on" : ", contact between tethers off");
   }
   XmlRpc::XmlRpcValue cameras;
   if (private_nh_.getParam("cameras", cameras))
@@ -124,7 +156,13 @@ WorldNode::~WorldNode()
 
 void WorldNode::onTimer(const ros::TimerEvent& /*event*/)
 {
-  scheduler_->tick(ros::Time::now());
+  const ros::Time now = ros::Time::now();
+  if (obstacles_)
+  {
+    obstacles_->update(now);  // obstacles that move with a frame, before the physics steps
+  }
+  scheduler_->tick(now);
+  topology_->publish();
   if (cameras_)
   {
     cameras_->afterTick();

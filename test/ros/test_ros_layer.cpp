@@ -12,8 +12,10 @@
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
+#include "rov_tether/ros/world_report.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -523,6 +525,8 @@ TEST(ParameterServer, EveryShippedConfigFileLoads)
     EXPECT_EQ(loadTetherParams(dict, &params), "") << entry.path();
     EXPECT_EQ(loadNodeOptions(dict, &options), "") << entry.path();
     EXPECT_EQ(unknownParameters(dict), "") << entry.path();
+    WorldOptions world_options;
+    EXPECT_EQ(loadWorldOptions(dict, &world_options), "") << entry.path();
     if (dict.hasMember("cameras"))
     {
       std::vector<CameraConfig> cameras;
@@ -643,6 +647,247 @@ TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
     EXPECT_EQ(depth.encoding, "32FC1");
     EXPECT_EQ(depth.header.seq, static_cast<std::uint32_t>(frame));
   }
+}
+
+// ---- Obstacles (issue 14): the `obstacles` list, ~obstacles, contact points, ~topology. ----
+
+std::string loadObstacles(const std::string& yaml, WorldOptions* options = nullptr)
+{
+  WorldOptions scratch;
+  return loadWorldOptions(rov_tether::test::toXmlRpc(YAML::Load(yaml)), options ? options : &scratch);
+}
+
+// Every entry the list can get wrong is refused naming the entry (index and name) and the field, and the
+// options are left as they were; the node refuses to start with this message (WorldNode throws, main logs
+// it with ROS_FATAL), as for any bad parameter.
+TEST(Obstacles, BadEntriesAreRefusedNamingTheEntryAndTheField)
+{
+  WorldOptions options;
+  ASSERT_EQ(loadObstacles("{tether_contact: false, obstacles: [{name: pillar, type: cylinder, position: [4, 0, -5], "
+                          "radius: 0.5, length: 12}, {name: deck, type: plane, orientation: [0, 0.1, 0], "
+                          "friction: 0.2, frame: ship}]}",
+                          &options),
+            "");
+  ASSERT_EQ(options.obstacles.size(), 2u);
+  EXPECT_FALSE(options.tether_contact);
+  EXPECT_EQ(options.obstacles[0].type, ShapeType::Cylinder);
+  EXPECT_EQ(options.obstacles[0].position, Position(4.0, 0.0, -5.0));
+  EXPECT_EQ(options.obstacles[0].friction, 0.5);  // the default
+  EXPECT_EQ(options.obstacles[1].frame, "ship");
+  EXPECT_EQ(options.obstacles[1].orientation, Eigen::Vector3d(0.0, 0.1, 0.0));
+
+  const std::pair<std::string, std::string> cases[] = {
+      {"{obstacles: {name: a}}", "obstacles: expected a list"},
+      {"{obstacles: [3]}", "obstacles[0]: expected a map"},
+      {"{obstacles: [{type: sphere, radius: 1}]}", "obstacles[0] name: expected a non-empty string"},
+      {"{obstacles: [{name: a, type: cone, radius: 1}]}", "obstacles[0] 'a' type: expected sphere, box"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1, colour: red}]}", "obstacles[0] 'a': unknown field 'colour'"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1, position: [1, 2]}]}",
+       "obstacles[0] 'a' position: expected [x, y, z]"},
+      {"{obstacles: [{name: a, type: sphere, radius: one}]}", "obstacles[0] 'a' radius: expected a number"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1, frame: 3}]}", "obstacles[0] 'a' frame: expected a string"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1}, {name: p, type: cylinder, radius: 0.5}]}",
+       "obstacles[1]: obstacle 'p' (cylinder): length must be > 0 m"},
+      {"{obstacles: [{name: b, type: box, size: [1, 0, 1]}]}", "obstacles[0]: obstacle 'b' (box): size must be"},
+      {"{obstacles: [{name: w, type: mesh}]}", "obstacles[0]: obstacle 'w' (mesh): a mesh needs a file"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1, friction: 11}]}",
+       "obstacle 'a' (sphere): friction must be in [0, 10]"},
+      {"{obstacles: [{name: a, type: sphere, radius: 1}, {name: a, type: sphere, radius: 2}]}",
+       "obstacles[1] 'a' name: taken by an earlier obstacle"},
+      {"{tether_contact: 1}", "tether_contact: expected true or false"},
+  };
+  for (const auto& [yaml, expected] : cases)
+  {
+    WorldOptions unchanged = options;
+    const std::string error = loadObstacles(yaml, &unchanged);
+    EXPECT_NE(error.find(expected), std::string::npos) << yaml << " gave: " << error;
+    EXPECT_EQ(unchanged.obstacles.size(), 2u) << yaml;
+  }
+  // Every bad entry of a list is reported, not just the first.
+  const std::string both = loadObstacles("{obstacles: [{name: a, type: cone}, {name: b, type: sphere}]}");
+  EXPECT_NE(both.find("obstacles[0] 'a' type"), std::string::npos) << both;
+  EXPECT_NE(both.find("obstacles[1]: obstacle 'b' (sphere): radius must be > 0 m"), std::string::npos) << both;
+}
+
+TEST(Obstacles, WarningThresholdsAreCheckedNodeOptions)
+{
+  NodeOptions options;
+  EXPECT_EQ(options.wrap_warning_turns, 0.5);
+  EXPECT_EQ(options.snag_ratio, 3.0);
+  XmlRpc::XmlRpcValue dict;
+  dict["wrap_warning_turns"] = 0.25;
+  dict["snag_ratio"] = 2;
+  ASSERT_EQ(loadNodeOptions(dict, &options), "");
+  EXPECT_EQ(options.wrap_warning_turns, 0.25);
+  EXPECT_EQ(options.snag_ratio, 2.0);
+  dict["wrap_warning_turns"] = 0.0;
+  dict["snag_ratio"] = 1.0;  // a capstan ratio is e^(mu angle) >= 1: every contact would be a snag
+  const std::string error = loadNodeOptions(dict, &options);
+  EXPECT_NE(error.find("wrap_warning_turns: expected a number in (0, 1e+06]"), std::string::npos) << error;
+  EXPECT_NE(error.find("snag_ratio: expected a number in (1, 1e+09]"), std::string::npos) << error;
+  EXPECT_EQ(options.wrap_warning_turns, 0.25);  // unchanged
+}
+
+TEST(Obstacles, MeshFilesResolveToPathsAndToRvizUris)
+{
+  std::string error;
+  EXPECT_EQ(resolveMeshFile("/data/wreck.stl", &error), "/data/wreck.stl");
+  EXPECT_EQ(resolveMeshFile("file:///data/wreck.stl", &error), "/data/wreck.stl");
+  EXPECT_EQ(resolveMeshFile("meshes/wreck.stl", &error), "");
+  EXPECT_NE(error.find("expected an absolute path, file:///path or package://package/path"), std::string::npos);
+  EXPECT_EQ(resolveMeshFile("package://no_such_package_here/wreck.stl", &error), "");
+  EXPECT_NE(error.find("no package 'no_such_package_here'"), std::string::npos) << error;
+  EXPECT_EQ(meshResourceUri("/data/wreck.stl"), "file:///data/wreck.stl");
+  EXPECT_EQ(meshResourceUri("file:///data/wreck.stl"), "file:///data/wreck.stl");
+  EXPECT_EQ(meshResourceUri("package://rov_tether/meshes/wreck.stl"), "package://rov_tether/meshes/wreck.stl");
+}
+
+/// A mesh as toObstacleMarkers sees one: its spec, pose and bounds (its geometry, assimp and FCL, is
+/// mesh_obstacle's, not the markers'). A 2 m cube of bounds about its origin.
+class MeshForMarkers : public Obstacle
+{
+ public:
+  using Obstacle::Obstacle;
+  Aabb bounds() const override
+  {
+    Aabb box;
+    box.grow(pose_ * Position(-1.0, -1.0, -1.0));
+    box.grow(pose_ * Position(1.0, 1.0, 1.0));
+    return box;
+  }
+  bool push(const Position&, const Position&, double, Push*) const override { return false; }
+};
+
+TEST(Obstacles, MarkersDrawEveryTypeWhereItIs)
+{
+  WorldOptions options;
+  ASSERT_EQ(loadObstacles("{obstacles: ["
+                          "{name: s, type: sphere, position: [1, 2, 3], radius: 0.5},"
+                          "{name: b, type: box, position: [0, 0, -1], orientation: [0, 0, 1.5707963267948966], "
+                          "size: [1, 2, 3]},"
+                          "{name: c, type: cylinder, radius: 0.25, length: 4},"
+                          "{name: k, type: capsule, orientation: [1.5707963267948966, 0, 0], radius: 0.1, length: 2},"
+                          "{name: p, type: plane, position: [0, 0, -30]},"
+                          "{name: m, type: mesh, file: /data/wreck.stl, scale: 0.001, position: [5, 0, -20]}]}",
+                          &options),
+            "");
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  for (const ObstacleSpec& spec : options.obstacles)
+  {
+    Status status;
+    obstacles.push_back(spec.type == ShapeType::Mesh ? std::make_unique<MeshForMarkers>(spec)
+                                                     : makePrimitive(spec, &status));
+    ASSERT_TRUE(obstacles.back()) << status.message;
+  }
+  World world;
+  ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
+  visualization_msgs::MarkerArray array;
+  toObstacleMarkers(world, ros::Time(0), "map", &array);
+  std::vector<visualization_msgs::Marker> shapes, names;
+  for (const auto& marker : array.markers)
+  {
+    (marker.ns == "obstacles" ? shapes : names).push_back(marker);
+    EXPECT_EQ(marker.header.frame_id, "map");
+  }
+  using visualization_msgs::Marker;
+  ASSERT_EQ(shapes.size(), 8u);  // the capsule is three
+  const int types[] = {Marker::SPHERE, Marker::CUBE,   Marker::CYLINDER, Marker::CYLINDER,
+                       Marker::SPHERE, Marker::SPHERE, Marker::CUBE,     Marker::MESH_RESOURCE};
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+  {
+    EXPECT_EQ(shapes[i].type, types[i]) << i;
+    EXPECT_EQ(shapes[i].id, static_cast<int>(i));  // unique in the namespace
+  }
+  EXPECT_EQ(shapes[0].scale.x, 1.0);  // a diameter
+  EXPECT_EQ(shapes[0].pose.position.z, 3.0);
+  EXPECT_EQ(shapes[1].scale.y, 2.0);  // a box's edge lengths, turned by its pose
+  EXPECT_NEAR(shapes[1].pose.orientation.z, std::sin(M_PI / 4), 1e-12);
+  EXPECT_EQ(shapes[2].scale.x, 0.5);
+  EXPECT_EQ(shapes[2].scale.z, 4.0);
+  // The capsule along -y (rolled +90 degrees about x): its end spheres at y = -+1.
+  EXPECT_NEAR(shapes[4].pose.position.y, 1.0, 1e-12);
+  EXPECT_NEAR(shapes[5].pose.position.y, -1.0, 1e-12);
+  EXPECT_EQ(shapes[4].scale.x, 0.2);
+  // The plane: a thin square just below its surface.
+  EXPECT_EQ(shapes[6].scale.x, kPlaneMarkerSize);
+  EXPECT_EQ(shapes[6].scale.z, kPlaneMarkerThickness);
+  EXPECT_NEAR(shapes[6].pose.position.z, -30.0 - 0.5 * kPlaneMarkerThickness, 1e-12);
+  EXPECT_EQ(shapes[7].mesh_resource, "file:///data/wreck.stl");
+  EXPECT_EQ(shapes[7].scale.x, 0.001);
+  ASSERT_EQ(names.size(), 6u);
+  EXPECT_EQ(names[5].text, "m");
+  EXPECT_EQ(names[5].type, Marker::TEXT_VIEW_FACING);
+  EXPECT_GT(names[0].pose.position.z, 3.5);  // above the sphere's top
+
+  // Moved (as the node does for an obstacle on a frame): drawn where it now is.
+  world.setObstaclePose(0, Position(-1.0, 0.0, 0.0), Eigen::Quaterniond::Identity());
+  toObstacleMarkers(world, ros::Time(0), "map", &array);
+  EXPECT_EQ(array.markers[0].pose.position.x, -1.0);
+  EXPECT_EQ(array.markers.size(), 14u);  // rebuilt, not appended
+}
+
+TEST(Obstacles, ContactPointsAreDrawnWhereTheCableTouches)
+{
+  ContactRecord record;
+  record.obstacle = {-1, 2, -1, -1};
+  record.tether = {-1, -1, 0, -1};
+  record.point = {Position(9, 9, 9), Position(1, 0, 0), Position(2, 0, 0), Position(9, 9, 9)};
+  MarkerOptions options;
+  options.line_width = 0.05;
+  visualization_msgs::Marker marker;
+  toContactMarker(record, ros::Time(3.0), options, &marker);
+  EXPECT_EQ(marker.ns, "contacts");
+  EXPECT_EQ(marker.type, visualization_msgs::Marker::SPHERE_LIST);
+  EXPECT_EQ(marker.action, visualization_msgs::Marker::ADD);
+  ASSERT_EQ(marker.points.size(), 2u);
+  EXPECT_EQ(marker.points[0].x, 1.0);
+  EXPECT_EQ(marker.points[1].x, 2.0);
+  EXPECT_NE(marker.colors[0].g, marker.colors[1].g);  // an obstacle and a tether apart
+  EXPECT_NEAR(marker.scale.x, 0.15, 1e-12);
+  record.clear();
+  toContactMarker(record, ros::Time(3.1), options, &marker);
+  EXPECT_EQ(marker.action, visualization_msgs::Marker::DELETE);
+  EXPECT_TRUE(marker.points.empty());
+}
+
+// ~topology carries World::topology line for line, with the names of the tethers and obstacles.
+TEST(Obstacles, TopologyMessageNamesTethersAndObjects)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  World world;
+  ASSERT_TRUE(world.add("a", std::make_unique<Tether>(params, Position::Zero(), Position(2.0, 0.0, 0.0))).ok);
+  ASSERT_TRUE(world.add("b", std::make_unique<Tether>(params, Position(0, 1, 0), Position(2.0, 1.0, 0.0))).ok);
+  ObstacleSpec pillar;
+  pillar.name = "pillar";
+  pillar.type = ShapeType::Cylinder;
+  pillar.position = Position(1.0, 0.5, 0.0);
+  pillar.radius = 0.1;
+  pillar.length = 4.0;
+  Status status;
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  obstacles.push_back(makePrimitive(pillar, &status));
+  ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
+  std::vector<TopologyEntry> entries;
+  world.topology(entries);
+  Topology msg;
+  toTopologyMessage(world, entries, ros::Time(1.5), "world", &msg);
+  EXPECT_EQ(msg.header.frame_id, "world");
+  EXPECT_EQ(msg.header.stamp, ros::Time(1.5));
+  ASSERT_EQ(msg.entries.size(), entries.size());
+  int wraps = 0, links = 0;
+  for (std::size_t k = 0; k < entries.size(); ++k)
+  {
+    EXPECT_EQ(msg.entries[k].tether, world.name(entries[k].tether));
+    EXPECT_EQ(msg.entries[k].kind, topologyKindName(entries[k].kind));
+    EXPECT_EQ(msg.entries[k].value, entries[k].value);
+    wraps +=
+        msg.entries[k].kind == "wrap_turns" && msg.entries[k].object == "pillar" && !msg.entries[k].object_is_tether;
+    links += msg.entries[k].kind == "linking_number" && msg.entries[k].tether == "a" && msg.entries[k].object == "b" &&
+             msg.entries[k].object_is_tether;
+  }
+  EXPECT_EQ(wraps, 2);  // each tether around the pillar
+  EXPECT_EQ(links, 1);  // the pair, once
 }
 
 }  // namespace

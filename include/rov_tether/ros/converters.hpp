@@ -13,7 +13,9 @@
 #include "rov_tether/GetTension.h"
 #include "rov_tether/TetherConfig.h"
 #include "rov_tether/TetherState.h"
+#include "rov_tether/Topology.h"
 #include "rov_tether/tether.hpp"
+#include "rov_tether/world.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -46,6 +48,32 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
  */
 void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
+
+/// Side of the square that draws a plane obstacle, and its thickness (a plane is unbounded; rviz gets a
+/// thin square slab just below its surface) [m].
+constexpr double kPlaneMarkerSize = 100.0;
+constexpr double kPlaneMarkerThickness = 0.01;
+
+/**
+ * Draws the world's obstacles where they are now, in `frame_id` (the world frame), namespace "obstacles",
+ * and their names above them (namespace "obstacle_names"): a sphere as a SPHERE, a box as a CUBE, a
+ * cylinder as a CYLINDER (rviz's is along its local z, as ours), a capsule as a CYLINDER and two SPHEREs
+ * at its ends, a plane as a thin CUBE of kPlaneMarkerSize below its surface, a mesh as a MESH_RESOURCE
+ * of its file (meshResourceUri) at its scale. Replaces `markers`' content.
+ */
+void toObstacleMarkers(const World& world, const ros::Time& stamp, const std::string& frame_id,
+                       visualization_msgs::MarkerArray* markers);
+
+/// The points where the tether touched an obstacle (orange) or a tether (magenta; itself included) in its
+/// last step, from its ContactRecord, as a SPHERE_LIST in namespace "contacts" (id 0) of diameter 3 x the
+/// cable's line width; DELETE when it touches nothing.
+void toContactMarker(const ContactRecord& record, const ros::Time& stamp, const MarkerOptions& options,
+                     visualization_msgs::Marker* marker);
+
+/// The world's topology report (World::topology) as a ~topology message: objects and tethers by name,
+/// kinds by topologyKindName. Reuses `msg`'s storage.
+void toTopologyMessage(const World& world, const std::vector<TopologyEntry>& entries, const ros::Time& stamp,
+                       const std::string& frame_id, Topology* msg);
 
 /// The tether's tf frames at `stamp`: the spool outlet (`spool_frame`) and the cable's vehicle end, its
 /// last particle (`end_frame`), as children of `world_frame` with the world's axes; an empty name leaves

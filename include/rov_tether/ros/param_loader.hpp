@@ -43,6 +43,10 @@ struct NodeOptions
   /// tethers, prefixed "name/"); "" publishes none.
   std::string spool_outlet_frame = "tether_spool";
   std::string cable_end_frame = "tether_end";
+  /// /diagnostics WARN when the tether winds this many turns (either way) around an obstacle [-], > 0.
+  double wrap_warning_turns = 0.5;
+  /// /diagnostics WARN ("snag") when a contact's capstan ratio e^(mu angle) exceeds this [-], > 1.
+  double snag_ratio = 3.0;
 };
 
 /// Converts one parameter-server value to a ParamValue; returns false for lists and maps.
@@ -58,7 +62,8 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
 std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options);
 
 /// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
-/// The keys `tethers` and `cameras` and the maps `tethers` names (one tether each, see tether_node) are known.
+/// The keys `tethers`, `cameras`, `obstacles` and `tether_contact` and the maps `tethers` names (one tether each,
+/// see tether_node) are known.
 std::string unknownParameters(const XmlRpc::XmlRpcValue& dict);
 
 }  // namespace rov_tether::ros_layer

@@ -11,6 +11,7 @@
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
+#include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/tether.hpp"
 
 namespace rov_tether::ros_layer
@@ -20,15 +21,17 @@ namespace rov_tether::ros_layer
  * One tether's /diagnostics status ("tether", or "tether <name>" among several) and its error reports:
  * simulation failures, vehicle jumps and a vehicle outrunning the winch are logged (throttled) as the physics
  * finds them. It reads the tether, its pose input (poses taken, refused, dropped) and its schedule (resets,
- * skips, load, what overload_policy gave up, the physics' delay behind ROS time).
+ * skips, load, what overload_policy gave up, the physics' delay behind ROS time) and the world's topology
+ * report (wraps around obstacles, links with other tethers, snags: warnings at wrap_warning_turns, any
+ * linking number, capstan ratios above snag_ratio).
  */
 class TetherDiagnostics
 {
  public:
-  /// Everything referenced must outlive this.
+  /// Everything referenced must outlive this. `index`: the tether's in the scheduler and the world.
   TetherDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeOptions& options,
                     const std::string& name, const Tether& tether, const PoseInput& pose_input,
-                    const Scheduler& scheduler, std::size_t index);
+                    const Scheduler& scheduler, std::size_t index, TopologyReport& topology);
 
   /// After the physics advanced at `now`: logs the failures and jumps it found.
   void report(const ros::Time& now);
@@ -38,12 +41,16 @@ class TetherDiagnostics
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
  private:
+  /// This tether's lines of the topology report, as values and warnings.
+  void diagnoseTopology(diagnostic_updater::DiagnosticStatusWrapper& status);
+
   NodeOptions options_;
   std::string label_;  ///< " name" for log messages, "" alone.
   const Tether& tether_;
   const PoseInput& pose_input_;
   const Scheduler& scheduler_;
   std::size_t index_;
+  TopologyReport& topology_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   std::uint64_t reported_jumps_ = 0;     ///< Vehicle jumps already logged.
   std::uint64_t reported_failures_ = 0;  ///< Simulation failures (blow-ups) already logged.

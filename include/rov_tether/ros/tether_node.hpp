@@ -19,6 +19,7 @@
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_diagnostics.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
+#include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/tether.hpp"
 #include "rov_tether/world.hpp"
 
@@ -48,11 +49,11 @@ class TetherNode : public TetherHooks
  public:
   /// Builds the tether from `setup`, adds it to `world` (as `name`, or "tether" alone) and to `scheduler`,
   /// then advertises under `private_nh` and subscribes to poses under `input_nh` (whose callback queue is
-  /// the process's input queue, served by its own thread). `tf` is the process's one buffer. `world`,
-  /// `scheduler` and `tf` must outlive this.
+  /// the process's input queue, served by its own thread). `tf` is the process's one buffer; `topology` the
+  /// world's topology report (for the diagnostics). `world`, `scheduler`, `tf` and `topology` must outlive this.
   TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
-             const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler,
-             tf2_ros::Buffer& tf);
+             const TetherSetup& setup, const std::string& name, World& world, Scheduler& scheduler, tf2_ros::Buffer& tf,
+             TopologyReport& topology);
 
   void beforeAdvance(const ros::Time& now) override;
   void publishState() override;
@@ -78,6 +79,7 @@ class TetherNode : public TetherHooks
   ros::NodeHandle private_nh_;
   NodeOptions options_;
   std::string name_;  ///< This tether's name among several ("" alone).
+  const World& world_;
   Tether& tether_;
   Scheduler& scheduler_;
   std::size_t index_;  ///< In the world and the scheduler.

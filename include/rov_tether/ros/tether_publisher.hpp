@@ -58,7 +58,7 @@ class StateBuilder
 /**
  * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
  * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
- * (with ~state), ~markers at a rate (only while someone subscribes).
+ * (with ~state), ~markers at a rate (only while someone subscribes), contact points included.
  */
 class TetherPublisher
 {
@@ -70,9 +70,10 @@ class TetherPublisher
   /// Publishes ~state, ~wrench and (with subscribers) ~wrench_vehicle for the tether's current physics time;
   /// `vehicle` is the vehicle's pose at that time.
   void publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle);
-  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes. Returns the wall time it took [s]
+  /// Publishes ~markers when due at `rate` [Hz] and someone subscribes: the cable (toMarkers) and where it
+  /// touched something in its last step (`contacts`, toContactMarker). Returns the wall time it took [s]
   /// (0 when it published nothing), which the load governor counts.
-  double publishMarkers(const Tether& tether, const ros::Time& now, double rate);
+  double publishMarkers(const Tether& tether, const ContactRecord& contacts, const ros::Time& now, double rate);
   /// After a reset of the tether.
   void restart(const Tether& tether);
 

@@ -12,6 +12,7 @@
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_camera.hpp"
 #include "rov_tether/ros/tether_node.hpp"
+#include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/world.hpp"
 
 namespace rov_tether::ros_layer
@@ -25,7 +26,9 @@ namespace rov_tether::ros_layer
  * parameters, diagnostics and dynamic_reconfigure server (TetherNode). Vehicle poses (and the tf
  * MessageFilter's callbacks) come on a callback queue of their own, served by a thread of its own, so
  * a slow physics tick (one heavy tether) never stalls them. With a private list `cameras`, its CameraSet
- * draws every tether in each camera after every tick.
+ * draws every tether in each camera after every tick. The private list `obstacles` puts obstacles in the
+ * world (ObstacleScene: those with a tf frame follow it, ~obstacles draws them), `tether_contact` switches
+ * contact between tethers, and TopologyReport publishes ~topology and feeds every tether's diagnostics.
  */
 class WorldNode
 {
@@ -47,6 +50,8 @@ class WorldNode
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created once the parameters loaded.
   World world_;
   std::unique_ptr<Scheduler> scheduler_;
+  std::unique_ptr<TopologyReport> topology_;
+  std::unique_ptr<ObstacleScene> obstacles_;
   ros::CallbackQueue input_queue_;  ///< Vehicle poses and the tf MessageFilter's callbacks.
   std::vector<std::unique_ptr<TetherNode>> tethers_;
   std::unique_ptr<CameraSet> cameras_;  ///< The private list `cameras`; none without it.
