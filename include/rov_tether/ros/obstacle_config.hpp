@@ -14,7 +14,7 @@ namespace rov_tether::ros_layer
 struct WorldOptions
 {
   std::vector<ObstacleSpec> obstacles;  ///< The list `obstacles` (README "Obstacles and topology").
-  bool tether_contact = true;           ///< World::setContactBetweenTethers: tethers touch each other and themselves.
+  bool tether_contact = false;          ///< World::setContactBetweenTethers: tethers touch each other and themselves.
 };
 
 /// Reads one entry of `obstacles` (a map with ObstacleSpec's fields: name, type, position, orientation,
