@@ -114,7 +114,9 @@ TEST(Contact, WrapTurnsCountTheTimesTheVehicleCircledThePillar)
     world.setContactBetweenTethers(true);  // the second turn lies on the first
     const Position spool(-4.0, 0.0, 0.0);
     const double orbit = 1.5;
-    ASSERT_TRUE(world.add("rov", std::make_unique<Tether>(tautParams(5.0), spool, Position(-orbit, 0.0, 0.0))).ok);
+    TetherParams p = tautParams(5.0);
+    p.segment_length = 0.2;  // a third of the pillar's radius: a fine enough polygon, half the cost
+    ASSERT_TRUE(world.add("rov", std::make_unique<Tether>(p, spool, Position(-orbit, 0.0, 0.0))).ok);
     std::vector<std::unique_ptr<Obstacle>> obstacles;
     obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.3, 10.0, 0.5));
     ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
@@ -188,6 +190,84 @@ TEST(Contact, TwistedTethersReadTheLinkingNumberTheirVehiclesMade)
     else
     {
       EXPECT_NEAR(link, 0.0, 0.1);
+    }
+  }
+}
+
+/// What a cable pulled around a pillar reads: the mean tensions of its spool and vehicle segments over the
+/// last 5 s, and the angle it turns through on the pillar at the end.
+struct PillarPull
+{
+  double spool = 0.0, vehicle = 0.0, angle = 0.0;
+};
+
+/// A weightless cable (Morison drag: 0.1 N of axial drag at 0.2 m/s over its 8 m, 0.5% of 20 N) runs north
+/// from a braked spool (20 N) along the west side of a 0.5 m pillar with Coulomb friction mu; the vehicle
+/// crosses over the pillar's north side in 3 s, then pulls the cable off the spool at 0.2 m/s: south down
+/// the east side (the cable turns through pi on the pillar) or away east (about pi / 2).
+PillarPull pullAroundPillar(double mu, bool south)
+{
+  TetherParams p = tautParams(0.0);
+  p.winch_mode = WinchMode::kBrake;
+  p.brake_tension = 20.0;
+  p.drag_model = DragModel::kMorison;
+  p.initial_deployed_length = 7.0;
+  const double reach = 0.5 + 0.5 * p.diameter;  // the cable's axis on the pillar's surface
+  World world;
+  EXPECT_TRUE(
+      world.add("rov", std::make_unique<Tether>(p, Position(-reach, -5.0, 0.0), Position(-reach, 2.0, 0.0))).ok);
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.5, 4.0, mu));
+  EXPECT_TRUE(world.setObstacles(std::move(obstacles)).ok);
+  const Path path = [&](double t)
+  {
+    const double a = std::min(t, 3.0) / 3.0, v = 0.2 * std::max(t - 3.0, 0.0);
+    return south ? Position(-reach + 2.0 * reach * a, 2.0 - v, 0.0)
+                 : Position(-reach + (2.0 * reach + 3.0) * a + v, 2.0, 0.0);
+  };
+  PillarPull out;
+  int samples = 0;
+  std::vector<double> tensions;
+  drive(world, {path}, 0.0, 23.0,
+        [&]
+        {
+          if (world.tether(0).time() > 18.0)  // wrapped, and past the snap taut at about 16.5 s, from 18 s on
+          {
+            world.tether(0).computeSegmentTensions(tensions);
+            out.spool += tensions.front(), out.vehicle += tensions.back(), ++samples;
+          }
+        });
+  out.spool /= samples, out.vehicle /= samples;
+  out.angle = entry(world, TopologyEntry::Kind::ContactAngle, 0, 0);
+  return out;
+}
+
+// A frictionless contact carries no force along the cable, so a weightless cable has one tension on both
+// sides of a pillar (string statics: dT/ds = the friction per length, here 0): the vehicle's segment and
+// the spool's carry the same tension within 1% (the bound), the spool's that of its slipping brake.
+TEST(Contact, FrictionlessPillarCarriesTheSameTensionOnBothSides)
+{
+  const PillarPull pull = pullAroundPillar(0.0, true);
+  EXPECT_NEAR(pull.angle, kPi, 0.1 * kPi);
+  EXPECT_NEAR(pull.vehicle / pull.spool, 1.0, 0.01);
+}
+
+// The capstan: a cable sliding over a fixed cylinder with friction mu, held back at T0 on one side, needs
+// T1 = T0 e^(mu theta) on the other (Euler-Eytelwein; docs/references.md), theta the angle it turns through
+// on the cylinder, here as the topology reports it. Within 10% (the bound) at two wrap angles and
+// two coefficients.
+TEST(Contact, CapstanRatioAtTwoWrapAngles)
+{
+  for (const bool south : {true, false})
+  {
+    for (const double mu : {0.3, 0.6})
+    {
+      const PillarPull pull = pullAroundPillar(mu, south);
+      EXPECT_NEAR(pull.angle, south ? kPi : 0.5 * kPi, 0.15 * kPi) << "mu " << mu;
+      const double capstan = std::exp(mu * pull.angle);
+      EXPECT_NEAR(pull.vehicle / pull.spool, capstan, 0.1 * capstan)
+          << "mu " << mu << ", theta " << pull.angle << ", spool " << pull.spool << " N, vehicle " << pull.vehicle
+          << " N";
     }
   }
 }

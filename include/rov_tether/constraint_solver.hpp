@@ -67,14 +67,19 @@ class ConstraintSolver
   virtual ~ConstraintSolver() = default;
   /// Projects the constraints, then the contacts on the free particles [first + 1, free_end); must not
   /// allocate.
-  void solve(Cable& cable, const SolverSettings& settings, const Contacts& contacts, std::size_t free_end)
-  {
-    project(cable, multipliers_, settings);
-    for (const Contact* contact : contacts)
-    {
-      contact->project(cable, cable.first + 1, free_end, multipliers_.stretch);
-    }
-  }
+  ///
+  /// Friction of a contact that holds() is a force the step's solve balances, so the tension around the
+  /// contact carries it (a capstan): after the solve and the contacts, each touching particle is held back
+  /// against its slip by up to mu times its normal force (Contact::updateHold), the positions return to
+  /// the step's prediction moved back by the holds, and the step is solved again; up to kFrictionPasses
+  /// times, until no hold changes. The first hold is the full mu N (sliding); a particle the solve then
+  /// moves backwards sticks, and its hold shrinks by that motion. A method that cannot solve again
+  /// (lumped_mass) takes the friction as a correction after its solve.
+  void solve(Cable& cable, const SolverSettings& settings, const Contacts& contacts, std::size_t free_end);
+  static constexpr int kFrictionPasses = 4;
+  /// Whether project() may be called again on the step's prediction (it projects positions from where
+  /// they are); lumped_mass, which integrates forces, may not.
+  virtual bool reprojects() const { return true; }
   /// True when the method meets a SpoolDrum's law within its step (direct); the others pay out before it.
   virtual bool takesDrum() const { return false; }
   /// Forgets what the method carries from step to step (a re-laid cable, a reset), so the next step is
@@ -97,6 +102,7 @@ class ConstraintSolver
 
  private:
   Multipliers multipliers_;
+  std::vector<double> predicted_x_, predicted_y_, predicted_z_;  ///< The step's prediction, for the passes.
 };
 
 /// Creates the solver for `type` (pbd_solver.hpp and lumped_mass_solver.hpp hold the methods).

@@ -17,10 +17,26 @@ class Contact
 {
  public:
   virtual ~Contact() = default;
-  /// Projects the free particles [begin, end) out of the obstacle, with the contact's friction; must not
-  /// allocate. `stretch` holds the step's multiplier of every segment (force = lambda / h^2), so a contact
-  /// can tell how hard the cable pulls a particle into it.
-  virtual void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const = 0;
+  /// Projects the free particles [begin, end) out of the obstacle, with the contact's friction unless it
+  /// holds friction in the solve (holds()); must not allocate. `stretch` holds the step's multiplier of
+  /// every segment (force = lambda / h^2), so a contact can tell how hard the cable pulls a particle into
+  /// it. `first_pass`: the step's first projection (ConstraintSolver::solve may solve and project again).
+  virtual void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
+                       bool first_pass) const = 0;
+  /// Whether its friction is a force the solve balances (updateHold, applyHold, friction()), rather than a
+  /// correction after the solve.
+  virtual bool holds() const { return false; }
+  /// After a solve: how far friction holds each touching particle back against its slip this step, given
+  /// the cable as solved and its multipliers; `first` in the step's first pass. Returns whether a hold
+  /// changed (then the step is solved again from the prediction moved by applyHold).
+  virtual bool updateHold(const Cable& /*cable*/, const std::vector<double>& /*stretch*/, bool /*first*/) const
+  {
+    return false;
+  }
+  /// Moves the predicted positions back by the holds.
+  virtual void applyHold(Cable& /*cable*/) const {}
+  /// Friction as a correction after the solve, for a method that cannot solve again (lumped_mass).
+  virtual void friction(Cable& /*cable*/, const std::vector<double>& /*stretch*/) const {}
   /// The deepest overlap the last project() found before resolving it [m]; 0 when it does not say.
   virtual double lastDeepest() const { return 0.0; }
 };
@@ -37,7 +53,8 @@ class SeabedContact : public Contact
 {
  public:
   SeabedContact(double z, double friction) : z_(z), friction_(friction) {}
-  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const override;
+  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
+               bool first_pass) const override;
 
  private:
   double z_;

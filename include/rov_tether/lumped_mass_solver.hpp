@@ -16,6 +16,7 @@ class LumpedMassSolver : public ConstraintSolver
 {
  public:
   double lastMaxStrain() const override { return max_strain_; }
+  bool reprojects() const override { return false; }
 
  protected:
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;

@@ -175,6 +175,7 @@ class Tether
   /// Sub-steps the next step needs for contact, from the step just taken (see setWorldContact).
   int contactSubsteps();
   static constexpr int kMaxContactSubsteps = 64;
+  static constexpr int kDepthSubsteps = 4;
   void fail(const std::string& why);
   /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
   /// a solver that takes it into the step (then returns true, and payOut follows the solve).
@@ -200,6 +201,7 @@ class Tether
   double last_motion_ = 0.0;
   double max_contact_depth_ = 0.0;  ///< Deepest overlap the contact found in the step's sub-steps [m].
   std::vector<double> step_start_x_, step_start_y_, step_start_z_;   ///< Positions at the step's start [m].
+  std::size_t step_start_first_ = 0;                                 ///< The spool outlet at the step's start.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
   SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.

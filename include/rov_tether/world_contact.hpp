@@ -61,7 +61,12 @@ class WorldContact : public Contact
 {
  public:
   WorldContact(const ContactScene& scene, std::size_t self) : scene_(scene), self_(self) {}
-  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const override;
+  void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
+               bool first_pass) const override;
+  bool holds() const override { return true; }
+  bool updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const override;
+  void applyHold(Cable& cable) const override;
+  void friction(Cable& cable, const std::vector<double>& stretch) const override;
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
   const ContactRecord& record() const { return record_; }
@@ -75,8 +80,9 @@ class WorldContact : public Contact
   double contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap) const;
   static constexpr int kContactSweeps = 6;
   static constexpr double kSettled = 0.01;  ///< Sweeps stop when no overlap exceeded this x the radius.
-  /// Coulomb friction on every particle resolve() touched (see the class comment).
-  void applyFriction(Cable& cable, const std::vector<double>& stretch) const;
+  /// The most friction can hold particle i back this step: mu times the larger of its normal corrections
+  /// and its segments' pull into the contact, lambda w [m]; and the unit normal (zero when untouched).
+  double holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal) const;
 
   const ContactScene& scene_;
   std::size_t self_;
@@ -88,6 +94,8 @@ class WorldContact : public Contact
   /// coefficient and the displacement friction already took back [m]; and the particles touched, in order.
   mutable std::vector<Position> normal_;
   mutable std::vector<double> pushed_, mu_, held_;
+  mutable std::vector<double> hold_;    ///< How far friction holds the particle back in the solve [m].
+  mutable std::vector<Position> slip_;  ///< The direction it holds against (the first solve's slip).
   mutable std::vector<std::size_t> touched_;
   mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
 };

@@ -20,6 +20,61 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   return settings;
 }
 
+void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const Contacts& contacts,
+                             std::size_t free_end)
+{
+  const std::size_t f = cable.first;
+  bool passes = false;
+  for (const Contact* contact : contacts)
+  {
+    passes = passes || (contact->holds() && reprojects());
+  }
+  if (passes)
+  {
+    // The same size every step: no allocation once sized.
+    predicted_x_.assign(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end());
+    predicted_y_.assign(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end());
+    predicted_z_.assign(cable.z.begin() + static_cast<std::ptrdiff_t>(f), cable.z.end());
+  }
+  project(cable, multipliers_, settings);
+  for (const Contact* contact : contacts)
+  {
+    contact->project(cable, f + 1, free_end, multipliers_.stretch, true);
+  }
+  if (!passes)
+  {
+    for (const Contact* contact : contacts)
+    {
+      contact->friction(cable, multipliers_.stretch);
+    }
+    return;
+  }
+  for (int pass = 1; pass <= kFrictionPasses; ++pass)
+  {
+    bool changed = false;
+    for (const Contact* contact : contacts)
+    {
+      changed = contact->updateHold(cable, multipliers_.stretch, pass == 1) || changed;
+    }
+    if (!changed)
+    {
+      break;
+    }
+    std::copy(predicted_x_.begin(), predicted_x_.end(), cable.x.begin() + static_cast<std::ptrdiff_t>(f));
+    std::copy(predicted_y_.begin(), predicted_y_.end(), cable.y.begin() + static_cast<std::ptrdiff_t>(f));
+    std::copy(predicted_z_.begin(), predicted_z_.end(), cable.z.begin() + static_cast<std::ptrdiff_t>(f));
+    for (const Contact* contact : contacts)
+    {
+      contact->applyHold(cable);
+    }
+    project(cable, multipliers_, settings);
+    for (const Contact* contact : contacts)
+    {
+      contact->project(cable, f + 1, free_end, multipliers_.stretch, false);
+    }
+  }
+}
+
 std::unique_ptr<ConstraintSolver> makeSolver(SolverType type)
 {
   switch (type)

@@ -455,6 +455,7 @@ void Tether::step()
     step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
     step_start_y_.assign(cable_.y.begin(), cable_.y.end());
     step_start_z_.assign(cable_.z.begin(), cable_.z.end());
+    step_start_first_ = cable_.first;
   }
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
@@ -482,7 +483,9 @@ int Tether::contactSubsteps()
   // 0.8 of the cable's radius in each sub-step, and no finer than kMaxContactSubsteps.
   double fastest2 = 0.0;
   const std::size_t n = std::min(cable_.size(), step_start_x_.size());
-  for (std::size_t i = cable_.first; i < n; ++i)
+  // Particles paid out during the step were on the drum at its start, and the outlet (pinned) jumps along
+  // the cable when one is reeled in: neither is motion.
+  for (std::size_t i = std::max(cable_.first, step_start_first_) + 1; i < n; ++i)
   {
     const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i],
                  dz = cable_.z[i] - step_start_z_[i];
@@ -511,7 +514,10 @@ int Tether::contactSubsteps()
                              (static_cast<double>(last_substeps_) / std::max(fewer, 1));
     for_depth = predicted < aimed ? fewer : last_substeps_;
   }
-  return std::min(kMaxContactSubsteps, std::max(for_motion, for_depth));
+  // Not every overlap shrinks with h (a chord's sagitta on a thin pillar, layers of cable pressed on each
+  // other): the depth may ask for at most kDepthSubsteps times what the motion and `substeps` ask.
+  const int floor = std::max(for_motion, params_.substeps);
+  return std::min({kMaxContactSubsteps, kDepthSubsteps * floor, std::max(floor, for_depth)});
 }
 
 void Tether::subStep(double h, double t)

@@ -14,6 +14,8 @@ void WorldContact::resize()
   normal_.assign(n, Position::Zero());
   pushed_.assign(n, -1.0);
   held_.assign(n, 0.0);
+  hold_.assign(n, 0.0);
+  slip_.assign(n, Position::Zero());
   mu_.assign(n, 0.0);
   touched_.clear();
   touched_.reserve(n);
@@ -62,29 +64,39 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
   }
 }
 
-void WorldContact::applyFriction(Cable& cable, const std::vector<double>& stretch) const
+double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch,
+                               Position* normal) const
+{
+  const double length = normal_[i].norm();
+  if (!(length > 0.0) || !(mu_[i] > 0.0))
+  {
+    *normal = Position::Zero();
+    return 0.0;
+  }
+  *normal = normal_[i] / length;
+  // The pull of the two segments on particle i over the step, as a displacement: lambda w per segment.
+  Position pull = Position::Zero();
+  if (i > cable.first && i - 1 < stretch.size())
+  {
+    pull += stretch[i - 1] * cable.direction(i, i - 1);
+  }
+  if (i + 1 < cable.size() && i < stretch.size())
+  {
+    pull += stretch[i] * cable.direction(i, i + 1);
+  }
+  // A force F held over the step moves the particle by F h^2 w: w across the cable for the pull into the
+  // contact, along it for the slip (which runs along the cable where it slides; added mass acts across only).
+  const double along = cable.inv_mass[i] > 0.0 ? cable.inv_mass_along[i] / cable.inv_mass[i] : 1.0;
+  const double into = std::max(0.0, -normal->dot(pull)) * cable.inv_mass_along[i];
+  return mu_[i] * std::max(pushed_[i] * along, into);
+}
+
+void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) const
 {
   for (const std::size_t i : touched_)
   {
-    const double length = normal_[i].norm();
-    const double mu = mu_[i];
-    if (!(length > 0.0) || !(mu > 0.0))
-    {
-      continue;
-    }
-    const Position n = normal_[i] / length;
-    // The pull of the two segments on particle i over the step, as a displacement: lambda w per segment.
-    Position pull = Position::Zero();
-    if (i > cable.first && i - 1 < stretch.size())
-    {
-      pull += stretch[i - 1] * cable.direction(i, i - 1);
-    }
-    if (i + 1 < cable.size() && i < stretch.size())
-    {
-      pull += stretch[i] * cable.direction(i, i + 1);
-    }
-    const double into = std::max(0.0, -n.dot(pull)) * cable.inv_mass[i];
-    const double limit = mu * std::max(pushed_[i], into) - held_[i];
+    Position n;
+    const double limit = holdLimit(cable, i, stretch, &n) - held_[i];
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     const double distance = slide.norm();
@@ -95,6 +107,45 @@ void WorldContact::applyFriction(Cable& cable, const std::vector<double>& stretc
       cable.x[i] += back.x(), cable.y[i] += back.y(), cable.z[i] += back.z();
       held_[i] += take;
     }
+  }
+}
+
+bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const
+{
+  // A change below this does not warrant another solve [m].
+  const double settled = 1e-3 * scene_.radius[self_];
+  bool changed = false;
+  for (const std::size_t i : touched_)
+  {
+    Position n;
+    const double limit = holdLimit(cable, i, stretch, &n);
+    const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
+    const Position slide = moved - moved.dot(n) * n;
+    double hold = 0.0;
+    if (first)
+    {
+      // Sliding, friction holds back with all it has; along the slip of the solve without it.
+      const double distance = slide.norm();
+      slip_[i] = distance > 0.0 ? Position(slide / distance) : Position::Zero();
+      hold = distance > 0.0 ? limit : 0.0;
+    }
+    else
+    {
+      // Still slipping forwards: hold more; moved backwards: the particle sticks, hold less.
+      hold = std::clamp(hold_[i] + slide.dot(slip_[i]), 0.0, limit);
+    }
+    changed = changed || std::abs(hold - hold_[i]) > settled;
+    hold_[i] = hold;
+  }
+  return changed;
+}
+
+void WorldContact::applyHold(Cable& cable) const
+{
+  for (const std::size_t i : touched_)
+  {
+    const Position back = -hold_[i] * slip_[i];
+    cable.x[i] += back.x(), cable.y[i] += back.y(), cable.z[i] += back.z();
   }
 }
 
@@ -163,15 +214,28 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   return deepest;
 }
 
-void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch) const
+void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& /*stretch*/,
+                           bool first_pass) const
 {
-  record_.clear();
-  deepest_ = 0.0;
-  for (const std::size_t i : touched_)
+  if (first_pass)
   {
-    pushed_[i] = -1.0, held_[i] = 0.0;
+    record_.clear();
+    deepest_ = 0.0;
+    for (const std::size_t i : touched_)
+    {
+      pushed_[i] = -1.0, held_[i] = 0.0, hold_[i] = 0.0;
+    }
+    touched_.clear();
   }
-  touched_.clear();
+  else
+  {
+    // Another pass of the same step: the particles touched so far keep their holds; their normals and
+    // corrections are this pass's.
+    for (const std::size_t i : touched_)
+    {
+      pushed_[i] = 0.0, normal_[i] = Position::Zero();
+    }
+  }
   const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
   const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
   if (lo >= hi)
@@ -213,7 +277,7 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
       const std::size_t j = sweep == 0 ? lo + n : touching_[n];
       const double depth = contactSegment(cable, j, r, widest, others, gap);
       deepest = std::max(deepest, depth);
-      if (sweep == 0)
+      if (sweep == 0 && first_pass)
       {
         deepest_ = std::max(deepest_, depth);
       }
@@ -227,7 +291,6 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
       break;
     }
   }
-  applyFriction(cable, stretch);
 }
 
 }  // namespace rov_tether
