@@ -208,6 +208,13 @@ TEST(Runner, WritesStateAndShapeCsv)
   EXPECT_EQ(shape[1].rfind("0.000000,0,0.000000,0.000000,-1.000000,", 0), 0u) << shape[1];
   EXPECT_EQ(shape[21].back(), ',') << "the last particle has no segment, so no tension";
   EXPECT_EQ(shape[21].rfind("0.000000,20,1.500000,0.000000,-1.000000", 0), 0u) << shape[21];
+  // Without obstacles, tethers or tether_contact, exactly the two files (no topology.csv, no directories).
+  std::set<std::string> written;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+  {
+    written.insert(fs::relative(entry.path(), dir).string());
+  }
+  EXPECT_EQ(written, (std::set<std::string>{"state.csv", "shape.csv"}));
   fs::remove_all(dir);
   fs::remove(scenario_path);
 }
