@@ -39,7 +39,8 @@ fi
 
 OUT="$ROOT/catkin_build/fuzz"
 mkdir -p "$OUT/artifacts"
-CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/scenario/*.cpp)
+# The scenario code builds obstacles through makeObstacle (src/geometry, rov_tether_geometry).
+CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/geometry/*.cpp "$ROOT"/src/scenario/*.cpp)
 status=0
 cases=""
 for target in "${TARGETS[@]}"; do

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rov_tether/camera/camera_intrinsics.hpp"
+#include "rov_tether/obstacle.hpp"
 #include "rov_tether/tether.hpp"
 #include "rov_tether/tether_params.hpp"
 
@@ -31,8 +32,22 @@ struct ScenarioCamera
   camera::CameraIntrinsics intrinsics;
 };
 
+/// Position on a piecewise-linear path at time t [s]: held before the first and after the last waypoint;
+/// at two waypoints with the same time the later one wins from that time on (a jump). Zero for no path.
+Position pathAt(const std::vector<Waypoint>& path, double t);
+
+/// One tether of a scenario's `tethers:` list: its own parameters, spool and vehicle path.
+struct ScenarioTether
+{
+  std::string name;  ///< Directory name under the output directory: letters, digits, '_' and '-'.
+  TetherParams params;
+  Position spool = Position::Zero();
+  std::vector<Waypoint> vehicle;  ///< Empty: a free end.
+};
+
 /**
- * An offline run: parameters, spool, vehicle path, duration and output rate.
+ * An offline run: parameters, spool, vehicle path, duration and output rate; or several tethers and the
+ * obstacles they share, in one World.
  *
  * YAML form (z up):
  *   params: {iterations: 5, drag: 0.9}   # any model parameter; missing ones take defaults
@@ -41,6 +56,9 @@ struct ScenarioCamera
  *   duration: 20.0                      # [s]
  *   output_rate: 10.0                   # rows per simulated second
  *   cameras: [{name, position, orientation, rate, width, height, K, D}]   # optional, see ScenarioCamera
+ *   obstacles: [{name, type, position, orientation, radius, length, size, file, scale, friction}]
+ *   tethers: [{name, params, spool, vehicle}]   # instead of the top-level params, spool, vehicle
+ *   tether_contact: false               # contact between tethers and of each with itself
  */
 struct Scenario
 {
@@ -51,6 +69,17 @@ struct Scenario
   double duration = 0.0;
   double output_rate = 10.0;
   std::vector<ScenarioCamera> cameras;  ///< On the vehicle; only with a vehicle path.
+  /// Several tethers in one world, each written to DIR/<name>/; empty: the one tether of params, spool and
+  /// vehicle, written to DIR itself.
+  std::vector<ScenarioTether> tethers;
+  std::vector<ObstacleSpec> obstacles;  ///< Shared by every tether; mesh files resolved to usable paths.
+  bool tether_contact = false;          ///< World::setContactBetweenTethers.
+
+  /// Whether the run is a world's (obstacles, a `tethers` list or contact between tethers): then the runner
+  /// also writes DIR/topology.csv. Otherwise it writes exactly state.csv and shape.csv, as it always has.
+  bool usesWorld() const { return !tethers.empty() || !obstacles.empty() || tether_contact; }
+  /// The tethers to run: `tethers`, or the one of params, spool and vehicle (named "tether").
+  std::vector<ScenarioTether> tetherList() const;
 
   /// Vehicle position at time t [s]: piecewise-linear, held before the first and after the last
   /// waypoint; at two waypoints with the same time the later one wins from that time on (a jump).
@@ -64,16 +93,31 @@ struct Scenario
 class PathDriver
 {
  public:
-  explicit PathDriver(const Scenario& scenario) : scenario_(scenario) {}
+  explicit PathDriver(const Scenario& scenario)
+      : params_(scenario.params), spool_(scenario.spool), vehicle_(scenario.vehicle)
+  {
+  }
+  explicit PathDriver(const ScenarioTether& tether)
+      : params_(tether.params), spool_(tether.spool), vehicle_(tether.vehicle)
+  {
+  }
   /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position.
   Tether makeSimulation() const;
   /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s].
   void advanceTo(Tether& sim, double t);
+  /// Whether every sample up to t (plus one sample interval) is fed (always, without a path).
+  bool fedUpTo(double t) const;
+  /// Feeds at most 100 further samples towards t (plus one sample interval), so the simulation's sample
+  /// buffer never overfills; returns the time the simulation may advance to with what it holds [s].
+  /// advanceTo is: while not fedUpTo(t), advance to feed(sim, t); then advance to t.
+  double feed(Tether& sim, double t);
   /// Interval between fed samples [s].
   static constexpr double kSampleInterval = 0.01;
 
  private:
-  const Scenario& scenario_;
+  const TetherParams& params_;
+  const Position& spool_;
+  const std::vector<Waypoint>& vehicle_;
   std::uint64_t fed_samples_ = 0;  ///< Samples fed so far; sample k is at k * kSampleInterval.
 };
 

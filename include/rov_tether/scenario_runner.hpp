@@ -1,6 +1,6 @@
 #pragma once
-// Running a scenario offline and writing its CSV files (state.csv, shape.csv). No YAML here: the
-// scenario comes from scenario_yaml.hpp or is built in code.
+// Running a scenario offline and writing its CSV files (state.csv, shape.csv; per tether, and topology.csv, for
+// a world's scenario). No YAML here: the scenario comes from scenario_yaml.hpp or is built in code.
 
 #include <cstdint>
 #include <string>
@@ -11,9 +11,11 @@
 namespace rov_tether
 {
 
-/// What a scenario run produced.
+/// What a scenario run produced: for a `tethers` list, the first tether's figures, every tether's in
+/// `tethers`; steps and CPU time are the whole world's.
 struct RunSummary
 {
+  std::string name;  ///< The tether's ("tether" for a single-tether scenario).
   std::uint64_t steps = 0;
   double cpu_seconds = 0.0;  ///< Time spent in the simulation (output excluded) [s].
   std::size_t state_rows = 0;
@@ -25,6 +27,8 @@ struct RunSummary
   double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle at any output time [N].
   double max_strain = 0.0;           ///< Largest geometric strain at any output time [-].
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
+  std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
+  std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
 };
 
 /// Something that looks at a run at times of its own (the camera dataset writer): the runner advances the
@@ -40,14 +44,17 @@ class RunObserver
   virtual std::string observe(const Tether& sim) = 0;
 };
 
-/// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv (created together at the end, so
-/// a failed run leaves no partial file). Each observer looks at the run at its own times up to the
-/// scenario's duration. Returns "" on success, otherwise the error.
+/// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list
+/// out_dir/<name>/state.csv and shape.csv for each, and for a world's scenario (Scenario::usesWorld)
+/// out_dir/topology.csv; all created together at the end, so a failed run leaves no partial file. Each
+/// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
+/// otherwise the error (an obstacle that cannot be built: naming it).
 std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers = {});
 
 /// The CSV headers, part of the documented format.
 extern const char* const kStateCsvHeader;
 extern const char* const kShapeCsvHeader;
+extern const char* const kTopologyCsvHeader;
 
 }  // namespace rov_tether

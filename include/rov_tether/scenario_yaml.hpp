@@ -8,9 +8,11 @@
 namespace rov_tether
 {
 
-/// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field.
+/// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field. A mesh
+/// obstacle's relative `file` stays relative (to the working directory).
 std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
-/// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field.
+/// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field. A mesh
+/// obstacle's relative `file` is taken from the scenario file's directory.
 std::string loadScenario(const std::string& path, Scenario* scenario);
 /// Applies a flat YAML map of parameters (as in config/default.yaml) on top of `params` and validates
 /// the result. Returns "" on success, otherwise every problem found.

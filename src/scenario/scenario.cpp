@@ -5,57 +5,79 @@
 namespace rov_tether
 {
 
-Position Scenario::vehicleAt(double t) const
+Position pathAt(const std::vector<Waypoint>& path, double t)
 {
-  if (vehicle.empty())
+  if (path.empty())
   {
     return Position::Zero();
   }
-  if (t < vehicle.front().time)
+  if (t < path.front().time)
   {
-    return vehicle.front().position;
+    return path.front().position;
   }
-  for (std::size_t k = vehicle.size(); k-- > 0;)
+  for (std::size_t k = path.size(); k-- > 0;)
   {
-    if (vehicle[k].time <= t)
+    if (path[k].time <= t)
     {
-      if (k + 1 == vehicle.size())
+      if (k + 1 == path.size())
       {
-        return vehicle[k].position;
+        return path[k].position;
       }
-      const Waypoint& a = vehicle[k];
-      const Waypoint& b = vehicle[k + 1];
+      const Waypoint& a = path[k];
+      const Waypoint& b = path[k + 1];
       const double alpha = (t - a.time) / (b.time - a.time);
       return a.position + alpha * (b.position - a.position);
     }
   }
-  return vehicle.front().position;
+  return path.front().position;
+}
+
+Position Scenario::vehicleAt(double t) const { return pathAt(vehicle, t); }
+
+std::vector<ScenarioTether> Scenario::tetherList() const
+{
+  if (!tethers.empty())
+  {
+    return tethers;
+  }
+  return {ScenarioTether{"tether", params, spool, vehicle}};
 }
 
 Tether PathDriver::makeSimulation() const
 {
-  if (scenario_.vehicle.empty())
+  if (vehicle_.empty())
   {
-    return Tether(scenario_.params, scenario_.spool, 0.0);
+    return Tether(params_, spool_, 0.0);
   }
-  return Tether(scenario_.params, scenario_.spool, scenario_.vehicleAt(0.0), 0.0);
+  return Tether(params_, spool_, pathAt(vehicle_, 0.0), 0.0);
+}
+
+bool PathDriver::fedUpTo(double t) const
+{
+  return vehicle_.empty() || static_cast<double>(fed_samples_) * kSampleInterval >= t + kSampleInterval;
+}
+
+double PathDriver::feed(Tether& sim, double t)
+{
+  if (fedUpTo(t))
+  {
+    return t;
+  }
+  for (int k = 0; k < 100 && static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval; ++k)
+  {
+    const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
+    sim.addVehicleSample(sample_time, pathAt(vehicle_, sample_time));
+  }
+  return std::min(t, static_cast<double>(fed_samples_ - 1) * kSampleInterval);
 }
 
 void PathDriver::advanceTo(Tether& sim, double t)
 {
-  if (!scenario_.vehicle.empty())
+  // Feed and advance in chunks of 100 samples, so a long interval never overfills the simulation's
+  // sample buffer; the result is the same as feeding everything first.
+  while (!fedUpTo(t))
   {
-    // Feed and advance in chunks of 100 samples, so a long interval never overfills the simulation's
-    // sample buffer; the result is the same as feeding everything first.
-    while (static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval)
-    {
-      for (int k = 0; k < 100 && static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval; ++k)
-      {
-        const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
-        sim.addVehicleSample(sample_time, scenario_.vehicleAt(sample_time));
-      }
-      sim.advanceTo(std::min(t, static_cast<double>(fed_samples_ - 1) * kSampleInterval));
-    }
+    sim.advanceTo(feed(sim, t));
   }
   sim.advanceTo(t);
 }

@@ -5,49 +5,225 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+
+#include "rov_tether/make_obstacle.hpp"
+#include "rov_tether/world.hpp"
 
 namespace rov_tether
 {
 
 const char* const kStateCsvHeader = "t,deployed_length,tension_spool,tension_vehicle,max_tension,max_strain";
 const char* const kShapeCsvHeader = "t,i,x,y,z,tension";
+const char* const kTopologyCsvHeader = "t,tether,object,kind,value";
+
+namespace
+{
+
+namespace fs = std::filesystem;
+
+/// An output file written under a temporary name and moved into place only when the whole run succeeded.
+struct OutputFile
+{
+  fs::path path;
+  fs::path partial;
+  std::FILE* file = nullptr;
+};
+
+/// Opens every file (creating its directory); "" or the error, with nothing left behind.
+std::string openAll(std::vector<OutputFile>& files)
+{
+  std::error_code ec;
+  for (OutputFile& out : files)
+  {
+    fs::create_directories(out.path.parent_path(), ec);
+    if (ec)
+    {
+      return "cannot create output directory '" + out.path.parent_path().string() + "': " + ec.message();
+    }
+    out.partial = out.path.parent_path() / ("." + out.path.filename().string() + ".partial");
+    out.file = std::fopen(out.partial.c_str(), "w");
+    if (out.file == nullptr)
+    {
+      for (OutputFile& opened : files)
+      {
+        if (opened.file != nullptr)
+        {
+          std::fclose(opened.file);
+          fs::remove(opened.partial, ec);
+        }
+      }
+      return "cannot write in '" + out.path.parent_path().string() + "'";
+    }
+  }
+  return "";
+}
+
+/// Closes every file; on success (`keep`) moves each into place, otherwise removes them. "" or the error.
+std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::string& out_dir)
+{
+  bool written = keep;
+  for (OutputFile& out : files)
+  {
+    written = std::ferror(out.file) == 0 && written;
+    written = std::fclose(out.file) == 0 && written;
+  }
+  std::error_code ec;
+  if (!written)
+  {
+    for (OutputFile& out : files)
+    {
+      fs::remove(out.partial, ec);
+    }
+    return "error while writing in '" + out_dir + "'";
+  }
+  for (OutputFile& out : files)
+  {
+    fs::rename(out.partial, out.path, ec);
+    if (ec)
+    {
+      return "cannot move the output into place in '" + out_dir + "': " + ec.message();
+    }
+  }
+  return "";
+}
+
+/// A tether's state row and shape rows at t_out, and its running maxima.
+void writeTether(const Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file,
+                 std::vector<double>& tensions, std::vector<Position>& positions, RunSummary* result)
+{
+  sim.computeSegmentTensions(tensions);
+  const TetherSummary s = sim.summarize(tensions);
+  sim.copyPositions(positions);
+  std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g\n", t_out, s.deployed_length, s.tension_spool,
+               s.tension_vehicle, s.max_tension, s.max_strain);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+  {
+    std::fprintf(shape_file, "%.6f,%zu,%.6f,%.6f,%.6f,", t_out, i, positions[i].x(), positions[i].y(),
+                 positions[i].z());
+    if (i < tensions.size())
+    {
+      std::fprintf(shape_file, "%.6g", tensions[i]);
+    }
+    std::fputc('\n', shape_file);
+  }
+  ++result->state_rows;
+  result->shape_rows += positions.size();
+  result->deployed_max = std::max(result->deployed_max, s.deployed_length);
+  result->max_tension = std::max(result->max_tension, s.max_tension);
+  result->max_tension_vehicle = std::max(result->max_tension_vehicle, s.tension_vehicle);
+  result->max_strain = std::max(result->max_strain, s.max_strain);
+}
+
+/// The world's topology at t_out as rows of topology.csv; returns how many.
+std::size_t writeTopology(const World& world, double t_out, std::FILE* file, std::vector<TopologyEntry>& entries)
+{
+  world.topology(entries);
+  for (const TopologyEntry& e : entries)
+  {
+    const std::string& object = e.object_is_tether ? world.name(e.object) : world.obstacle(e.object).name();
+    std::fprintf(file, "%.6f,%s,%s,%s,%.6g\n", t_out, world.name(e.tether).c_str(), object.c_str(),
+                 topologyKindName(e.kind), e.value);
+  }
+  return entries.size();
+}
+
+}  // namespace
 
 std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers)
 {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec)
+  // The world: tethers in scenario order, then the obstacles (built before any file is opened).
+  const std::vector<ScenarioTether> tethers = scenario.tetherList();
+  World world;
+  world.setContactBetweenTethers(scenario.tether_contact);
+  std::vector<PathDriver> drivers;
+  drivers.reserve(tethers.size());
+  for (const ScenarioTether& tether : tethers)
   {
-    return "cannot create output directory '" + out_dir + "': " + ec.message();
-  }
-  const fs::path state_path = fs::path(out_dir) / "state.csv";
-  const fs::path shape_path = fs::path(out_dir) / "shape.csv";
-  const fs::path state_tmp = fs::path(out_dir) / ".state.csv.partial";
-  const fs::path shape_tmp = fs::path(out_dir) / ".shape.csv.partial";
-  std::FILE* state_file = std::fopen(state_tmp.c_str(), "w");
-  std::FILE* shape_file = state_file ? std::fopen(shape_tmp.c_str(), "w") : nullptr;
-  if (state_file == nullptr || shape_file == nullptr)
-  {
-    if (state_file)
+    drivers.emplace_back(tether);
+    const Status added = world.add(tether.name, std::make_unique<Tether>(drivers.back().makeSimulation()));
+    if (!added.ok)
     {
-      std::fclose(state_file);
-      fs::remove(state_tmp, ec);
+      return "tethers: " + added.message;
     }
-    return "cannot write in '" + out_dir + "'";
+  }
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  for (std::size_t k = 0; k < scenario.obstacles.size(); ++k)
+  {
+    Status status;
+    obstacles.push_back(makeObstacle(scenario.obstacles[k], &status));
+    if (!obstacles.back())
+    {
+      return "obstacles[" + std::to_string(k) + "]: " + status.message;
+    }
+  }
+  const Status placed = world.setObstacles(std::move(obstacles));
+  if (!placed.ok)
+  {
+    return "obstacles: " + placed.message;
   }
 
-  PathDriver driver(scenario);
-  Tether sim = driver.makeSimulation();
-  RunSummary result;
-  result.deployed_start = sim.deployedLength();
-  std::fprintf(state_file, "%s\n", kStateCsvHeader);
-  std::fprintf(shape_file, "%s\n", kShapeCsvHeader);
+  // state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), then topology.csv.
+  std::vector<OutputFile> files;
+  for (const ScenarioTether& tether : tethers)
+  {
+    const fs::path dir = scenario.tethers.empty() ? fs::path(out_dir) : fs::path(out_dir) / tether.name;
+    files.push_back({dir / "state.csv", {}, nullptr});
+    files.push_back({dir / "shape.csv", {}, nullptr});
+  }
+  if (scenario.usesWorld())
+  {
+    files.push_back({fs::path(out_dir) / "topology.csv", {}, nullptr});
+  }
+  const std::string open_error = openAll(files);
+  if (!open_error.empty())
+  {
+    return open_error;
+  }
+  std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
 
-  std::vector<double> tensions;
-  std::vector<Position> positions;
+  RunSummary result;
+  std::vector<RunSummary> each(tethers.size());
+  for (std::size_t i = 0; i < tethers.size(); ++i)
+  {
+    each[i].name = tethers[i].name;
+    each[i].deployed_start = world.tether(i).deployedLength();
+    std::fprintf(files[2 * i].file, "%s\n", kStateCsvHeader);
+    std::fprintf(files[2 * i + 1].file, "%s\n", kShapeCsvHeader);
+  }
+  if (topology_file != nullptr)
+  {
+    std::fprintf(topology_file, "%s\n", kTopologyCsvHeader);
+  }
+
   double cpu = 0.0;
+  // Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
+  // (for one tether, the very same calls: a world of one tether without contact steps as that tether).
+  const auto advance = [&](double t)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    for (;;)
+    {
+      bool fed = true;
+      double reach = t;
+      for (std::size_t i = 0; i < drivers.size(); ++i)
+      {
+        if (!drivers[i].fedUpTo(t))
+        {
+          fed = false;
+          reach = std::min(reach, drivers[i].feed(world.tether(i), t));
+        }
+      }
+      if (fed)
+      {
+        break;
+      }
+      world.advanceTo(reach);
+    }
+    world.advanceTo(t);
+    cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   std::string observer_error;
   // Lets the observers look at every time of theirs up to `until` [s], in time order.
   const auto observe = [&](double until)
@@ -66,66 +242,52 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
       {
         return;
       }
-      const auto start = std::chrono::steady_clock::now();
-      driver.advanceTo(sim, next->nextTime());
-      cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      observer_error = next->observe(sim);
+      advance(next->nextTime());
+      observer_error = next->observe(world.tether(0));
     }
   };
+  std::vector<double> tensions;
+  std::vector<Position> positions;
+  std::vector<TopologyEntry> entries;
   const auto outputs = static_cast<std::size_t>(std::floor(scenario.duration * scenario.output_rate + 1e-9));
   for (std::size_t k = 0; k <= outputs; ++k)
   {
     const double t_out = static_cast<double>(k) / scenario.output_rate;
     observe(t_out);
-    const auto start = std::chrono::steady_clock::now();
-    driver.advanceTo(sim, t_out);
-    cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    sim.computeSegmentTensions(tensions);
-    const TetherSummary s = sim.summarize(tensions);
-    sim.copyPositions(positions);
-    std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g\n", t_out, s.deployed_length, s.tension_spool,
-                 s.tension_vehicle, s.max_tension, s.max_strain);
-    for (std::size_t i = 0; i < positions.size(); ++i)
+    advance(t_out);
+    for (std::size_t i = 0; i < tethers.size(); ++i)
     {
-      std::fprintf(shape_file, "%.6f,%zu,%.6f,%.6f,%.6f,", t_out, i, positions[i].x(), positions[i].y(),
-                   positions[i].z());
-      if (i < tensions.size())
-      {
-        std::fprintf(shape_file, "%.6g", tensions[i]);
-      }
-      std::fputc('\n', shape_file);
+      writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
     }
-    ++result.state_rows;
-    result.shape_rows += positions.size();
-    result.deployed_max = std::max(result.deployed_max, s.deployed_length);
-    result.max_tension = std::max(result.max_tension, s.max_tension);
-    result.max_tension_vehicle = std::max(result.max_tension_vehicle, s.tension_vehicle);
-    result.max_strain = std::max(result.max_strain, s.max_strain);
+    if (topology_file != nullptr)
+    {
+      result.topology_rows += writeTopology(world, t_out, topology_file, entries);
+    }
   }
   observe(scenario.duration);
-  const bool written = observer_error.empty() && std::ferror(state_file) == 0 && std::ferror(shape_file) == 0;
-  const bool state_closed = std::fclose(state_file) == 0;
-  const bool closed = std::fclose(shape_file) == 0 && state_closed;
-  if (!written || !closed)
+  const std::string close_error = closeAll(files, observer_error.empty(), out_dir);
+  if (!observer_error.empty())
   {
-    fs::remove(state_tmp, ec);
-    fs::remove(shape_tmp, ec);
-    return observer_error.empty() ? "error while writing in '" + out_dir + "'" : observer_error;
+    return observer_error;
   }
-  fs::rename(state_tmp, state_path, ec);
-  if (!ec)
+  if (!close_error.empty())
   {
-    fs::rename(shape_tmp, shape_path, ec);
+    return close_error;
   }
-  if (ec)
+  for (std::size_t i = 0; i < tethers.size(); ++i)
   {
-    return "cannot move the output into place in '" + out_dir + "': " + ec.message();
+    each[i].steps = world.tether(i).stepCount();
+    each[i].deployed_end = world.tether(i).deployedLength();
+    each[i].jumps = world.tether(i).jumpCount();
+    result.steps += each[i].steps;
   }
-  result.steps = sim.stepCount();
+  const std::uint64_t steps = result.steps;
+  const std::size_t topology_rows = result.topology_rows;
+  result = each.front();
+  result.steps = steps;
   result.cpu_seconds = cpu;
-  result.deployed_end = sim.deployedLength();
-  result.jumps = sim.jumpCount();
+  result.topology_rows = topology_rows;
+  result.tethers = std::move(each);
   if (summary != nullptr)
   {
     *summary = result;

@@ -2,10 +2,17 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <tuple>
+#include <utility>
+
+#include "rov_tether/make_obstacle.hpp"
 
 namespace rov_tether
 {
@@ -264,7 +271,265 @@ std::string readCameras(const YAML::Node& node, double duration, std::vector<Sce
   return "";
 }
 
-std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
+/// Whether `name` can name a directory of the output: 1-64 letters, digits, '_' or '-'.
+bool isDirectoryName(const std::string& name)
+{
+  return !name.empty() && name.size() <= 64 &&
+         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
+             std::string::npos;
+}
+
+/// Reads a spool position; "" or a message naming `field`.
+std::string readSpool(const YAML::Node& node, const std::string& field, Position* spool)
+{
+  if (!node)
+  {
+    return field + ": missing (expected [x, y, z] in m)";
+  }
+  const std::string error = readVector(node, field, 3, spool->data());
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (spool->cwiseAbs().maxCoeff() > Tether::kMaxCoordinate)
+  {
+    return field + ": each coordinate must be within +-1e6 m";
+  }
+  return "";
+}
+
+/// Reads a vehicle path of [t, x, y, z] waypoints; "" or a message naming `field`.
+std::string readPath(const YAML::Node& path, const std::string& field, std::vector<Waypoint>* vehicle)
+{
+  if (!path.IsSequence() || path.size() == 0)
+  {
+    return field + ": expected a non-empty list of [t, x, y, z] waypoints (omit it for a free end)";
+  }
+  for (std::size_t k = 0; k < path.size(); ++k)
+  {
+    double values[4];
+    const std::string point = field + "[" + std::to_string(k) + "]";
+    const std::string error = readVector(path[k], point, 4, values);
+    if (!error.empty())
+    {
+      return error;
+    }
+    if (values[0] < 0.0)
+    {
+      return point + ": time " + std::to_string(values[0]) + " s must be >= 0";
+    }
+    if (!vehicle->empty() && values[0] < vehicle->back().time)
+    {
+      return point + ": time " + std::to_string(values[0]) + " s is before the previous waypoint's";
+    }
+    if (std::abs(values[1]) > Tether::kMaxCoordinate || std::abs(values[2]) > Tether::kMaxCoordinate ||
+        std::abs(values[3]) > Tether::kMaxCoordinate)
+    {
+      return point + ": each coordinate must be within +-1e6 m";
+    }
+    vehicle->push_back({values[0], Position(values[1], values[2], values[3])});
+  }
+  return "";
+}
+
+/// Reads one entry of `tethers` (see ScenarioTether); "" or a message naming the field.
+std::string readTether(const YAML::Node& node, const std::string& field, ScenarioTether* tether)
+{
+  if (!node.IsMap())
+  {
+    return field + ": expected a map with name, params, spool, vehicle";
+  }
+  for (const auto& entry : node)
+  {
+    const std::string key = entry.first.as<std::string>();
+    if (key != "name" && key != "params" && key != "spool" && key != "vehicle")
+    {
+      return field + ": unknown field '" + key + "' (expected name, params, spool, vehicle)";
+    }
+  }
+  if (!node["name"])
+  {
+    return field + ".name: missing";
+  }
+  tether->name = node["name"].IsScalar() ? node["name"].Scalar() : "";
+  if (!isDirectoryName(tether->name))
+  {
+    return field + ".name = '" + tether->name + "': expected 1-64 letters, digits, '_' or '-' (a directory name)";
+  }
+  if (node["params"])
+  {
+    const std::string error = applyParamMap(node["params"], field + ".params.", &tether->params);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  const std::string error = readSpool(node["spool"], field + ".spool", &tether->spool);
+  if (!error.empty())
+  {
+    return error;
+  }
+  return node["vehicle"] ? readPath(node["vehicle"], field + ".vehicle", &tether->vehicle) : "";
+}
+
+std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tethers)
+{
+  if (!node.IsSequence() || node.size() == 0)
+  {
+    return "tethers: expected a non-empty list of maps (name, params, spool, vehicle)";
+  }
+  for (std::size_t k = 0; k < node.size(); ++k)
+  {
+    ScenarioTether tether;
+    const std::string field = "tethers[" + std::to_string(k) + "]";
+    const std::string error = readTether(node[k], field, &tether);
+    if (!error.empty())
+    {
+      return error;
+    }
+    for (const auto& other : *tethers)
+    {
+      if (other.name == tether.name)
+      {
+        return field + ".name = '" + tether.name + "': used twice";
+      }
+    }
+    tethers->push_back(tether);
+  }
+  return "";
+}
+
+/// The fields of an `obstacles` entry, as the node's (ros/obstacle_config.cpp) less `frame`.
+const char* const kObstacleFields[] = {"name",   "type", "position", "orientation", "radius",
+                                       "length", "size", "file",     "scale",       "friction"};
+
+/// Reads one entry of `obstacles` (ObstacleSpec) with the node's field names and wording; a relative mesh
+/// `file` is taken from `base_dir`. "" or a message naming the entry and the field.
+std::string readObstacle(const YAML::Node& node, std::size_t index, const std::string& base_dir, ObstacleSpec* spec)
+{
+  const std::string entry_name = "obstacles[" + std::to_string(index) + "]";
+  if (!node.IsMap())
+  {
+    return entry_name + ": expected a map (name, type, position, ...)";
+  }
+  ObstacleSpec candidate;
+  if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty())
+  {
+    return entry_name + " name: expected a non-empty string";
+  }
+  candidate.name = node["name"].Scalar();
+  const std::string who = entry_name + " '" + candidate.name + "'";
+  for (const auto& entry : node)
+  {
+    const std::string key = entry.first.as<std::string>();
+    if (key == "frame")
+    {
+      return who +
+             " frame: node only (the tf frame an obstacle moves with); a scenario's obstacles stay "
+             "where `position` and `orientation` put them";
+    }
+    if (std::find(std::begin(kObstacleFields), std::end(kObstacleFields), key) == std::end(kObstacleFields))
+    {
+      return who + ": unknown field '" + key +
+             "' (expected name, type, position, orientation, radius, length, size, file, scale, friction)";
+    }
+  }
+  if (!node["type"] || !node["type"].IsScalar() || !parseShapeType(node["type"].Scalar(), &candidate.type))
+  {
+    return who + " type: expected sphere, box, cylinder, capsule, plane or mesh";
+  }
+  for (const auto& [field, out, unit] : {std::tuple{"position", &candidate.position, "[x, y, z] in m"},
+                                         std::tuple{"orientation", &candidate.orientation, "[roll, pitch, yaw] in rad"},
+                                         std::tuple{"size", &candidate.size, "[x, y, z] in m"}})
+  {
+    if (node[field] && !readVector(node[field], field, 3, out->data()).empty())
+    {
+      return who + " " + field + ": expected " + unit;
+    }
+  }
+  for (const auto& [field, out] : {std::pair{"radius", &candidate.radius}, std::pair{"length", &candidate.length},
+                                   std::pair{"scale", &candidate.scale}, std::pair{"friction", &candidate.friction}})
+  {
+    if (node[field] && !readNumber(node[field], field, out).empty())
+    {
+      return who + " " + field + ": expected a number";
+    }
+  }
+  if (node["file"])
+  {
+    if (!node["file"].IsScalar() || node["file"].Scalar().empty())
+    {
+      return who + " file: expected a string";
+    }
+    const std::string file = node["file"].Scalar();
+    if (file.find("://") != std::string::npos)
+    {
+      return who + " file: expected a path (absolute, or relative to the scenario file's directory); '" + file +
+             "' is a URI, which only the node resolves";
+    }
+    const std::filesystem::path path(file);
+    candidate.file = path.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / path).string();
+  }
+  const Status status = validate(candidate);  // the core's checks: each names the obstacle and the field
+  if (!status.ok)
+  {
+    return entry_name + ": " + status.message;
+  }
+  // Bounds the node leaves to its operator: a scenario's (fuzzed) numbers stay within the coordinates a
+  // tether may have.
+  if (candidate.position.cwiseAbs().maxCoeff() > Tether::kMaxCoordinate ||
+      std::max({candidate.radius, candidate.length, candidate.size.maxCoeff(), candidate.scale}) >
+          Tether::kMaxCoordinate)
+  {
+    return who + ": position, radius, length, size and scale must be within 1e6 (m)";
+  }
+  *spec = candidate;
+  return "";
+}
+
+std::string readObstacles(const YAML::Node& node, const std::string& base_dir, const Scenario& scenario,
+                          std::vector<ObstacleSpec>* obstacles)
+{
+  if (!node.IsSequence())
+  {
+    return "obstacles: expected a list of maps (name, type, position, ...)";
+  }
+  const std::vector<ScenarioTether> tethers = scenario.tetherList();
+  for (std::size_t k = 0; k < node.size(); ++k)
+  {
+    ObstacleSpec spec;
+    const std::string error = readObstacle(node[k], k, base_dir, &spec);
+    if (!error.empty())
+    {
+      return error;
+    }
+    const std::string who = "obstacles[" + std::to_string(k) + "] '" + spec.name + "'";
+    for (const auto& other : *obstacles)
+    {
+      if (other.name == spec.name)
+      {
+        return who + " name: taken by an earlier obstacle";
+      }
+    }
+    for (const auto& tether : tethers)
+    {
+      if (tether.name == spec.name)
+      {
+        return who + " name: taken by a tether" +
+               (scenario.tethers.empty() ? " (a single-tether scenario's tether is called 'tether')" : "");
+      }
+    }
+    Status status;  // what the runner will build: a mesh must load
+    if (!makeObstacle(spec, &status))
+    {
+      return "obstacles[" + std::to_string(k) + "]: " + status.message;
+    }
+    obstacles->push_back(spec);
+  }
+  return "";
+}
+
+std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)
 {
   if (!root.IsMap())
   {
@@ -274,10 +539,11 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
   {
     const std::string key = entry.first.as<std::string>();
     if (key != "description" && key != "params" && key != "spool" && key != "vehicle" && key != "duration" &&
-        key != "output_rate" && key != "cameras")
+        key != "output_rate" && key != "cameras" && key != "obstacles" && key != "tethers" && key != "tether_contact")
     {
       return "unknown field '" + key +
-             "' (expected description, params, spool, vehicle, duration, output_rate, cameras)";
+             "' (expected description, params, spool, vehicle, duration, output_rate, cameras, obstacles, tethers, "
+             "tether_contact)";
     }
   }
   Scenario result;
@@ -285,57 +551,47 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
   {
     result.description = root["description"].as<std::string>();
   }
-  if (root["params"])
+  std::string error;
+  if (root["tethers"])
   {
-    const std::string error = applyParamMap(root["params"], "params.", &result.params);
+    // Either one tether at the top level or a list of them, never both: a top-level field beside the list
+    // would be ambiguous (a default for each, or a tether of its own?).
+    for (const char* single : {"params", "spool", "vehicle", "cameras"})
+    {
+      if (root[single])
+      {
+        return std::string(single) + ": not with `tethers` (each tether has its own params, spool and vehicle" +
+               (std::string(single) == "cameras" ? "; cameras ride only on a single tether's vehicle)" : ")");
+      }
+    }
+    error = readTethers(root["tethers"], &result.tethers);
     if (!error.empty())
     {
       return error;
     }
   }
-  if (!root["spool"])
+  else
   {
-    return "spool: missing (expected [x, y, z] in m)";
-  }
-  std::string error = readVector(root["spool"], "spool", 3, result.spool.data());
-  if (!error.empty())
-  {
-    return error;
-  }
-  if (result.spool.cwiseAbs().maxCoeff() > Tether::kMaxCoordinate)
-  {
-    return "spool: each coordinate must be within +-1e6 m";
-  }
-  if (root["vehicle"])
-  {
-    const YAML::Node path = root["vehicle"];
-    if (!path.IsSequence() || path.size() == 0)
+    if (root["params"])
     {
-      return "vehicle: expected a non-empty list of [t, x, y, z] waypoints (omit it for a free end)";
-    }
-    for (std::size_t k = 0; k < path.size(); ++k)
-    {
-      double values[4];
-      const std::string field = "vehicle[" + std::to_string(k) + "]";
-      error = readVector(path[k], field, 4, values);
+      error = applyParamMap(root["params"], "params.", &result.params);
       if (!error.empty())
       {
         return error;
       }
-      if (values[0] < 0.0)
+    }
+    error = readSpool(root["spool"], "spool", &result.spool);
+    if (!error.empty())
+    {
+      return error;
+    }
+    if (root["vehicle"])
+    {
+      error = readPath(root["vehicle"], "vehicle", &result.vehicle);
+      if (!error.empty())
       {
-        return field + ": time " + std::to_string(values[0]) + " s must be >= 0";
+        return error;
       }
-      if (!result.vehicle.empty() && values[0] < result.vehicle.back().time)
-      {
-        return field + ": time " + std::to_string(values[0]) + " s is before the previous waypoint's";
-      }
-      if (std::abs(values[1]) > Tether::kMaxCoordinate || std::abs(values[2]) > Tether::kMaxCoordinate ||
-          std::abs(values[3]) > Tether::kMaxCoordinate)
-      {
-        return field + ": each coordinate must be within +-1e6 m";
-      }
-      result.vehicle.push_back({values[0], Position(values[1], values[2], values[3])});
     }
   }
   if (!root["duration"])
@@ -380,6 +636,22 @@ std::string parseScenarioNode(const YAML::Node& root, Scenario* scenario)
       return "cameras: a camera rides on the vehicle, and this scenario has no vehicle path";
     }
   }
+  if (root["tether_contact"])
+  {
+    const YAML::Node node = root["tether_contact"];
+    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<bool>::decode(node, result.tether_contact))
+    {
+      return "tether_contact: expected true or false";
+    }
+  }
+  if (root["obstacles"])
+  {
+    error = readObstacles(root["obstacles"], base_dir, result, &result.obstacles);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
   *scenario = result;
   return "";
 }
@@ -415,12 +687,14 @@ std::string guardYaml(Parse parse)
 
 std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
 {
-  return guardYaml([&] { return parseScenarioNode(YAML::Load(yaml_text), scenario); });
+  return guardYaml([&] { return parseScenarioNode(YAML::Load(yaml_text), "", scenario); });
 }
 
 std::string loadScenario(const std::string& path, Scenario* scenario)
 {
-  return parseFile(path, [scenario](const std::string& text) { return parseScenario(text, scenario); });
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return parseFile(path, [&](const std::string& text)
+                   { return guardYaml([&] { return parseScenarioNode(YAML::Load(text), base_dir, scenario); }); });
 }
 
 std::string parseParams(const std::string& yaml_text, TetherParams* params)

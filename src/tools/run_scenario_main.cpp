@@ -1,4 +1,5 @@
-// rov_tether_run: runs a scenario offline (no ROS master) and writes state.csv and shape.csv.
+// rov_tether_run: runs a scenario offline (no ROS master) and writes state.csv and shape.csv (per tether, and
+// topology.csv, for a scenario with obstacles or several tethers).
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -20,7 +21,9 @@ void usage(std::FILE* out)
                "       rov_tether_run --parameters   (prints the parameter table, as in the README)\n"
                "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
                "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
-               "  --set overrides a model parameter after the scenario's own params.\n"
+               "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
+               "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv.\n"
+               "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
 
@@ -72,6 +75,10 @@ int main(int argc, char** argv)
     if (error.empty())
     {
       error = rov_tether::applyAssignment(assignment, &scenario.params);
+      for (auto& tether : scenario.tethers)
+      {
+        error = error.empty() ? rov_tether::applyAssignment(assignment, &tether.params) : error;
+      }
       error = error.empty() ? "" : "--set " + error;
     }
   }
@@ -105,9 +112,19 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 1;
   }
-  const rov_tether::TetherParams p = scenario.params.resolved();  // what ran: `auto` replaced by its choice
+  // What ran (`auto` replaced by its choice): the first tether's model, for a `tethers` list.
+  const rov_tether::TetherParams p =
+      (scenario.tethers.empty() ? scenario.params : scenario.tethers.front().params).resolved();
   std::printf("scenario        %s%s%s\n", scenario_path.c_str(), scenario.description.empty() ? "" : ": ",
               scenario.description.c_str());
+  if (!scenario.tethers.empty())
+  {
+    std::printf(
+        "tethers         %zu in one world, %zu obstacles, contact between tethers %s; the lines up to "
+        "max strain are tether '%s''s (steps: all tethers')\n",
+        scenario.tethers.size(), scenario.obstacles.size(), scenario.tether_contact ? "on" : "off",
+        scenario.tethers.front().name.c_str());
+  }
   std::printf(
       "model           solver %s, %d iterations, bending %s, drag %.3g, noise %.3g m, dt %.4g s, "
       "segment %.3g m\n",
@@ -124,8 +141,22 @@ int main(int argc, char** argv)
   {
     std::printf("vehicle jumps   %llu (cable re-laid)\n", static_cast<unsigned long long>(s.jumps));
   }
-  std::printf("wrote           %s/state.csv (%zu rows), %s/shape.csv (%zu rows)\n", out_dir.c_str(), s.state_rows,
-              out_dir.c_str(), s.shape_rows);
+  if (scenario.tethers.empty())
+  {
+    std::printf("wrote           %s/state.csv (%zu rows), %s/shape.csv (%zu rows)\n", out_dir.c_str(), s.state_rows,
+                out_dir.c_str(), s.shape_rows);
+  }
+  for (const auto& t : scenario.tethers.empty() ? std::vector<rov_tether::RunSummary>{} : s.tethers)
+  {
+    std::printf(
+        "tether %-8s deployed end %.3f m, max tension %.4g N; wrote %s/%s/state.csv (%zu rows), shape.csv "
+        "(%zu rows)\n",
+        t.name.c_str(), t.deployed_end, t.max_tension, out_dir.c_str(), t.name.c_str(), t.state_rows, t.shape_rows);
+  }
+  if (scenario.usesWorld())
+  {
+    std::printf("wrote           %s/topology.csv (%zu rows)\n", out_dir.c_str(), s.topology_rows);
+  }
   for (const auto& camera :
        dataset ? dataset->summary() : std::vector<rov_tether::camera::DatasetWriter::CameraSummary>{})
   {
