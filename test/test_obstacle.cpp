@@ -395,6 +395,41 @@ double seabedSurface(double x, double y)
   return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
 }
 
+TEST(MeshObstacle, ItsOwnWalkOfTheTreeAgreesWithFclCollide)
+{
+  // push walks FCL's tree itself; pushThroughFclCollide asks FCL's collide (GJK per triangle) which
+  // triangles the capsule overlaps; both then measure the same triangles exactly, so where both touch they
+  // agree to rounding. GJK decides overlap to its tolerance (1e-6 m): cases shallower than 1e-5 m may differ.
+  ObstacleSpec s = spec(ShapeType::Mesh);
+  s.file = kSource + "/meshes/seabed.stl";
+  s.orientation = Position(0.0, 0.1, 0.3);
+  const auto made = make(s);
+  const auto& seabed = dynamic_cast<const MeshObstacle&>(*made);
+  int both = 0;
+  for (int k = 0; k < 500; ++k)
+  {
+    const double u = std::fmod(0.618034 * k, 1.0), v = std::fmod(0.414214 * k, 1.0), w = std::fmod(0.732051 * k, 1.0);
+    // Over the bed, from 0.5 r under the surface to 1.5 r over it (heights by the mesh's own closed form).
+    const double x = 30.0 * u - 15.0, y = 30.0 * v - 15.0;
+    const Position start = made->pose() * Position(x, y, seabedSurface(x, y) + kCable * (2.0 * w - 0.5));
+    const Position end = start + 0.4 * Position(std::cos(5.0 * k), std::sin(5.0 * k), 0.3 * std::cos(11.0 * k));
+    Push own, through_fcl;
+    const bool own_hit = seabed.push(start, end, kCable, &own);
+    const bool fcl_hit = seabed.pushThroughFclCollide(start, end, kCable, &through_fcl);
+    if (own_hit && fcl_hit)
+    {
+      ++both;
+      EXPECT_NEAR(own.depth, through_fcl.depth, kExact) << k;
+      expectNear(through_fcl.normal, own.normal, kExact);
+    }
+    else
+    {
+      EXPECT_LT(own_hit ? own.depth : fcl_hit ? through_fcl.depth : 0.0, 1e-5) << k;
+    }
+  }
+  EXPECT_GT(both, 250);  // starts uniform over [-0.5 r, 1.5 r]: more than half touch
+}
+
 TEST(MeshObstacle, ATetherLyingOnTheShippedSeabedStaysOnIt)
 {
   // 16 m of heavy cable (1 N/m in water) between two ends held 0.3 m over the seabed 12 m apart: it sinks

@@ -1,26 +1,28 @@
 #pragma once
 /**
  * A triangle mesh obstacle (a seabed, a wreck): read from STL, OBJ or DAE through assimp (triangulated,
- * scaled by spec.scale, placed by the spec's pose), queried through FCL 0.7 (a BVHModel of OBBRSS boxes
- * in the mesh's own frame, so moving it rebuilds nothing). Part of rov_tether_geometry; the header needs
- * neither library.
+ * scaled by spec.scale, placed by the spec's pose), queried through FCL 0.7's bounding-volume tree. Part of
+ * rov_tether_geometry; the header needs neither library.
  *
- * push: FCL finds the triangles the capsule overlaps (a capsule-against-BVH collide query, independent
- * GJK solver, no contact points); each is then measured exactly here (segment against triangle, Ericson
- * 2005, 5.1.5 and 5.1.9) and the deepest one answers. The way out is the triangle's front side (its winding,
- * counter-clockwise seen from outside): from the cable's axis in front of a triangle, along the shortest
- * gap to it (the face normal over its face, rounded over its edges); from behind it or through it, along its
- * face normal. So a seabed, front up, holds a cable lying on it, and a closed mesh with outward normals
- * pushes a cable out. A cable deeper inside a closed mesh than its radius touches no triangle and is not
- * found (substeps keep a cable from getting there).
+ * push: walks FCL's tree (BVHModel<OBBRSS>, built once in the mesh's frame, so moving the mesh rebuilds
+ * nothing) with the capsule's oriented box, skipping every node whose OBB misses it (FCL's OBB overlap
+ * test), and measures each triangle it reaches exactly (segment against triangle, Ericson 2005, 5.1.5 and
+ * 5.1.9); the deepest answers. The way out is the triangle's front side (its winding, counter-clockwise seen
+ * from outside): from the cable's axis in front of a triangle, along the shortest gap to it (the face normal
+ * over its face, rounded over its edges and corners); through it, or from behind it within reach, the deeper
+ * end of the segment goes back to one radius in front of its plane, along its face normal. So a seabed,
+ * front up, holds a cable lying on it, and a closed mesh with outward normals pushes a cable out. A cable more
+ * than its radius behind every triangle (deep inside a closed mesh) touches none and is not found; contact
+ * substeps keep a cable from getting there.
  *
- * Allocation: none per query once warm. The query's result and request are kept here and reused (FCL
- * keeps a result's contact list capacity across clear()), the capsule is built on the stack, the OBBRSS
- * mesh-against-shape traversal does not copy the model (FCL copies it only for AABB-type BVHs), and the
- * independent GJK solver works in fixed arrays (the libccd one allocates a triangle per test, so it is not
- * used). bench_contact (BM_MeshPush) counts operator new calls per query and reports them. Because of the
- * kept result, push is not thread-safe: one thread queries an obstacle at a time (World steps its
- * tethers in turn).
+ * Allocation. push allocates nothing: its traversal stack is sized to the tree's depth here, the query box
+ * and the result live on the stack. FCL's own capsule-against-mesh collide query (pushThroughFclCollide,
+ * kept to measure the choice) does allocate, even with its result kept and reused and the independent GJK
+ * solver: 2 operator new calls per query for the capsule's bounding volume (Capsule::getBoundVertices, the
+ * RSS fit) and about one more per triangle touched (EPA::initialize); and it runs GJK on every triangle.
+ * bench_contact, BM_ContactMeshPush, counts both (allocs_per_query) and times both: README "Benchmarks".
+ * Both use scratch kept in the obstacle (the stack; FCL's result), so one thread queries an obstacle at a
+ * time (World steps its tethers in turn).
  */
 
 #include <memory>
@@ -52,13 +54,17 @@ class MeshObstacle : public Obstacle
 
   Aabb bounds() const override { return bounds_; }
   bool push(const Position& a, const Position& b, double radius, Push* out) const override;
+  /// The same answer found through FCL's capsule-against-mesh collide query (GJK on each triangle it reaches,
+  /// up to 64 triangles) instead of push's own walk: allocates (see above); for the benchmark and the test
+  /// that the two agree.
+  bool pushThroughFclCollide(const Position& a, const Position& b, double radius, Push* out) const;
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
 
  protected:
   void placed() override;
 
  private:
-  struct Fcl;  ///< The BVH model and the kept query request and result (mesh_obstacle.cpp).
+  struct Fcl;  ///< The BVH model, push's stack, the kept FCL request and result (mesh_obstacle.cpp).
 
   TriangleMesh mesh_;
   std::vector<Position> normals_;  ///< Unit front normal of each triangle, mesh frame.

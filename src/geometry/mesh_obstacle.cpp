@@ -181,7 +181,8 @@ struct MeshObstacle::Fcl
 {
   fcl::BVHModel<fcl::OBBRSSd> model;
   fcl::CollisionRequestd request{kMaxTriangles, false};
-  fcl::CollisionResultd result;  ///< Kept so its contact list keeps its capacity (no allocation once warm).
+  fcl::CollisionResultd result;  ///< Kept so its contact list keeps its capacity.
+  std::vector<int> stack;        ///< push's traversal: the nodes still to visit, sized to the tree's depth.
 };
 
 Status loadTriangleMesh(const std::string& file, double scale, TriangleMesh* mesh)
@@ -265,8 +266,24 @@ MeshObstacle::MeshObstacle(const ObstacleSpec& spec, TriangleMesh mesh)
   fcl_->model.beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
   fcl_->model.addSubModel(points, triangles);
   fcl_->model.endModel();
-  fcl_->request.gjk_solver_type = fcl::GST_INDEP;  // fixed arrays; libccd's allocates per triangle
+  fcl_->request.gjk_solver_type = fcl::GST_INDEP;  // libccd's allocates a triangle per test
   fcl_->result.clear();
+  // The depth of FCL's tree bounds push's stack (one pending sibling per level, plus the root).
+  std::vector<std::pair<int, int>> pending{{0, 1}};
+  int depth = 1;
+  while (!pending.empty())
+  {
+    const auto [node, level] = pending.back();
+    pending.pop_back();
+    depth = std::max(depth, level);
+    const auto& bv = fcl_->model.getBV(node);
+    if (!bv.isLeaf())
+    {
+      pending.emplace_back(bv.leftChild(), level + 1);
+      pending.emplace_back(bv.rightChild(), level + 1);
+    }
+  }
+  fcl_->stack.resize(depth + 1);
   placed();
 }
 
@@ -284,6 +301,56 @@ void MeshObstacle::placed()
 }
 
 bool MeshObstacle::push(const Position& a, const Position& b, double radius, Push* out) const
+{
+  // Into the mesh frame: the BVH was built there once.
+  const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
+  const Position la = to_local * a, lb = to_local * b;
+  // The capsule's box: along the segment, r wider all round.
+  fcl::OBBd query;
+  const Position axis = lb - la;
+  const double length = axis.norm();
+  query.axis = length > 0.0 ? Eigen::Quaterniond::FromTwoVectors(Position::UnitZ(), axis).toRotationMatrix()
+                            : Eigen::Matrix3d::Identity();
+  query.To = 0.5 * (la + lb);
+  query.extent = Position(radius, radius, 0.5 * length + radius);
+  // Depth first through FCL's tree: a node whose box misses the capsule's is skipped with all below it.
+  int* stack = fcl_->stack.data();
+  int top = 0;
+  stack[top++] = 0;
+  bool hit = false;
+  Push candidate;
+  while (top > 0)
+  {
+    const auto& node = fcl_->model.getBV(stack[--top]);
+    if (!node.bv.obb.overlap(query))
+    {
+      continue;
+    }
+    if (!node.isLeaf())
+    {
+      stack[top++] = node.rightChild();
+      stack[top++] = node.leftChild();
+      continue;
+    }
+    const int triangle = node.primitiveId();
+    const Eigen::Vector3i& t = mesh_.triangles[triangle];
+    if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
+                     normals_[triangle], &candidate) &&
+        (!hit || candidate.depth > out->depth))
+    {
+      hit = true;
+      *out = candidate;
+    }
+  }
+  if (hit)
+  {
+    out->u = 0.0;
+    out->normal = pose_.linear() * out->normal;
+  }
+  return hit;
+}
+
+bool MeshObstacle::pushThroughFclCollide(const Position& a, const Position& b, double radius, Push* out) const
 {
   // Into the mesh frame: the BVH was built there once.
   const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
