@@ -46,7 +46,7 @@ cases=""
 for target in "${TARGETS[@]}"; do
   echo "== $target: building"
   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I"$ROOT/include" -I/usr/include/eigen3 "$ROOT/test/fuzz/$target.cpp" "${CORE[@]}" -lyaml-cpp -llapacke \
+    -I"$ROOT/include" -I/usr/include/eigen3 "$ROOT/test/fuzz/$target.cpp" "${CORE[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp \
     -o "$OUT/$target"
   corpus="$ROOT/test/fuzz/corpus/$target"
   scratch="$OUT/corpus_$target"

@@ -10,7 +10,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/catkin_build}"
 export PATH="/usr/bin:/bin:$PATH"
 
 PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-empy libeigen3-dev libyaml-cpp-dev liblapacke-dev
-          libgtest-dev libbenchmark-dev
+          libgtest-dev libbenchmark-dev libfcl-dev libassimp-dev
           ros-core-dev libroscpp-dev ros-message-generation python3-genmsg python3-gencpp libstd-msgs-dev
           libstd-srvs-dev python3-std-srvs libgeometry-msgs-dev python3-geometry-msgs libvisualization-msgs-dev
           python3-visualization-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-updater-dev

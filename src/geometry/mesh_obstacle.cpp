@@ -1,0 +1,421 @@
+#include "rov_tether/mesh_obstacle.hpp"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+namespace rov_tether
+{
+namespace
+{
+
+/// At most this many overlapping triangles are measured per query; a cable segment over a mesh finer than
+/// itself touches a few, so this only bounds a pathological query (a segment lying along a fan of slivers).
+constexpr std::size_t kMaxTriangles = 64;
+
+/// Parameters (s on [a, b], u on [c, d]) of the closest points of two segments (Ericson 2005, 5.1.9).
+void closestSegmentParameters(const Position& a, const Position& b, const Position& c, const Position& d, double* s,
+                              double* u)
+{
+  const Position e1 = b - a, e2 = d - c, r = a - c;
+  const double aa = e1.squaredNorm(), ee = e2.squaredNorm(), f = e2.dot(r);
+  constexpr double kTiny = 1e-24;
+  if (aa <= kTiny && ee <= kTiny)
+  {
+    *s = *u = 0.0;
+    return;
+  }
+  if (aa <= kTiny)
+  {
+    *s = 0.0, *u = std::clamp(f / ee, 0.0, 1.0);
+    return;
+  }
+  const double cc = e1.dot(r);
+  if (ee <= kTiny)
+  {
+    *u = 0.0, *s = std::clamp(-cc / aa, 0.0, 1.0);
+    return;
+  }
+  const double bb = e1.dot(e2);
+  const double denominator = aa * ee - bb * bb;
+  double sv = denominator > kTiny * aa * ee ? std::clamp((bb * f - cc * ee) / denominator, 0.0, 1.0) : 0.0;
+  double uv = (bb * sv + f) / ee;
+  if (uv < 0.0)
+  {
+    uv = 0.0, sv = std::clamp(-cc / aa, 0.0, 1.0);
+  }
+  else if (uv > 1.0)
+  {
+    uv = 1.0, sv = std::clamp((bb - cc) / aa, 0.0, 1.0);
+  }
+  *s = sv, *u = uv;
+}
+
+/// The point of triangle (a, b, c) closest to p (Ericson 2005, 5.1.5: Voronoi regions of the corners, the
+/// edges, the face).
+Position closestPointOnTriangle(const Position& p, const Position& a, const Position& b, const Position& c)
+{
+  const Position ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0)
+  {
+    return a;
+  }
+  const Position bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3)
+  {
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+  {
+    return a + (d1 / (d1 - d3)) * ab;
+  }
+  const Position cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6)
+  {
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+  {
+    return a + (d2 / (d2 - d6)) * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+  {
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+/// Whether segment [p, q] passes through triangle (a, b, c) of unit normal n (its plane crossed inside it).
+bool crossesTriangle(const Position& p, const Position& q, const Position& a, const Position& b, const Position& c,
+                     const Position& n)
+{
+  const double hp = n.dot(p - a), hq = n.dot(q - a);
+  if ((hp > 0.0 && hq > 0.0) || (hp < 0.0 && hq < 0.0) || hp == hq)
+  {
+    return false;
+  }
+  const Position x = p + (hp / (hp - hq)) * (q - p);
+  // Inside when x is on the inner side of all three edges.
+  return n.dot((b - a).cross(x - a)) >= 0.0 && n.dot((c - b).cross(x - b)) >= 0.0 && n.dot((a - c).cross(x - c)) >= 0.0;
+}
+
+/**
+ * The capsule [p, q] of `radius` against one triangle (a, b, c) with unit front normal n, all in the mesh
+ * frame: false when they do not overlap, else where and how deep (see mesh_obstacle.hpp for the way out).
+ */
+bool pushTriangle(const Position& p, const Position& q, double radius, const Position& a, const Position& b,
+                  const Position& c, const Position& n, Push* out)
+{
+  const double hp = n.dot(p - a), hq = n.dot(q - a);
+  // Through the face, or behind it within reach: the deeper end goes back to `radius` in front of it.
+  auto from_behind = [&]()
+  {
+    out->t = hp <= hq ? 0.0 : 1.0;
+    out->depth = radius - std::min(hp, hq);
+    out->normal = n;
+    return true;
+  };
+  if (crossesTriangle(p, q, a, b, c, n))
+  {
+    return from_behind();
+  }
+  // Not crossing: the closest pair has an end of the segment or an edge of the triangle in it.
+  double best = std::numeric_limits<double>::infinity(), best_t = 0.0;
+  Position best_gap = Position::Zero();
+  for (int end = 0; end < 2; ++end)
+  {
+    const Position& e = end == 0 ? p : q;
+    const Position gap = e - closestPointOnTriangle(e, a, b, c);
+    if (gap.squaredNorm() < best)
+    {
+      best = gap.squaredNorm(), best_t = end, best_gap = gap;
+    }
+  }
+  const Position* corners[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k)
+  {
+    double s = 0.0, u = 0.0;
+    const Position& c0 = *corners[k];
+    const Position& c1 = *corners[(k + 1) % 3];
+    closestSegmentParameters(p, q, c0, c1, &s, &u);
+    const Position gap = (p + s * (q - p)) - (c0 + u * (c1 - c0));
+    if (gap.squaredNorm() < best)
+    {
+      best = gap.squaredNorm(), best_t = s, best_gap = gap;
+    }
+  }
+  const double distance = std::sqrt(best);
+  if (!(distance < radius))
+  {
+    return false;
+  }
+  if (hp + best_t * (hq - hp) < 0.0)  // the closest point on the axis is behind the plane
+  {
+    return from_behind();
+  }
+  out->t = best_t;
+  out->depth = radius - distance;
+  out->normal = distance > 1e-12 * radius ? Position(best_gap / distance) : n;
+  return true;
+}
+
+}  // namespace
+
+struct MeshObstacle::Fcl
+{
+  fcl::BVHModel<fcl::OBBRSSd> model;
+  fcl::CollisionRequestd request{kMaxTriangles, false};
+  fcl::CollisionResultd result;  ///< Kept so its contact list keeps its capacity.
+  std::vector<int> stack;        ///< push's traversal: the nodes still to visit, sized to the tree's depth.
+};
+
+Status loadTriangleMesh(const std::string& file, double scale, TriangleMesh* mesh)
+{
+  const std::string who = "mesh file '" + file + "': ";
+  if (!std::ifstream(file).good())
+  {
+    return Status::error(who + "cannot be read (missing, or no permission)");
+  }
+  Assimp::Importer importer;
+  // Polygons to triangles, node transforms into the vertices (DAE scenes), points and lines dropped.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                     aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  if (scene == nullptr)
+  {
+    return Status::error(who + "not a mesh assimp reads (" + importer.GetErrorString() + ")");
+  }
+  mesh->vertices.clear();
+  mesh->triangles.clear();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+  {
+    const aiMesh& part = *scene->mMeshes[m];
+    const int base = static_cast<int>(mesh->vertices.size());
+    for (unsigned v = 0; v < part.mNumVertices; ++v)
+    {
+      const aiVector3D& p = part.mVertices[v];
+      mesh->vertices.emplace_back(scale * p.x, scale * p.y, scale * p.z);
+    }
+    for (unsigned f = 0; f < part.mNumFaces; ++f)
+    {
+      const aiFace& face = part.mFaces[f];
+      if (face.mNumIndices == 3)
+      {
+        mesh->triangles.emplace_back(base + static_cast<int>(face.mIndices[0]),
+                                     base + static_cast<int>(face.mIndices[1]),
+                                     base + static_cast<int>(face.mIndices[2]));
+      }
+    }
+  }
+  // Triangles of no area have no normal: dropped.
+  mesh->triangles.erase(
+      std::remove_if(mesh->triangles.begin(), mesh->triangles.end(),
+                     [&](const Eigen::Vector3i& t)
+                     {
+                       const Position& a = mesh->vertices[t[0]];
+                       return !((mesh->vertices[t[1]] - a).cross(mesh->vertices[t[2]] - a).norm() > 0.0);
+                     }),
+      mesh->triangles.end());
+  if (mesh->triangles.empty())
+  {
+    return Status::error(who + "holds no triangle");
+  }
+  for (const Position& v : mesh->vertices)
+  {
+    if (!v.allFinite())
+    {
+      return Status::error(who + "has a vertex that is not a finite number");
+    }
+  }
+  return Status::success();
+}
+
+MeshObstacle::MeshObstacle(const ObstacleSpec& spec, TriangleMesh mesh)
+    : Obstacle(spec), mesh_(std::move(mesh)), fcl_(std::make_unique<Fcl>())
+{
+  std::vector<fcl::Vector3d> points(mesh_.vertices.begin(), mesh_.vertices.end());
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh_.triangles.size());
+  normals_.reserve(mesh_.triangles.size());
+  for (const Eigen::Vector3i& t : mesh_.triangles)
+  {
+    triangles.emplace_back(t[0], t[1], t[2]);
+    const Position& a = mesh_.vertices[t[0]];
+    normals_.push_back((mesh_.vertices[t[1]] - a).cross(mesh_.vertices[t[2]] - a).normalized());
+  }
+  for (const Position& v : mesh_.vertices)
+  {
+    local_bounds_.grow(v);
+  }
+  fcl_->model.beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+  fcl_->model.addSubModel(points, triangles);
+  fcl_->model.endModel();
+  fcl_->request.gjk_solver_type = fcl::GST_INDEP;  // libccd's allocates a triangle per test
+  fcl_->result.clear();
+  // The depth of FCL's tree bounds push's stack (one pending sibling per level, plus the root).
+  std::vector<std::pair<int, int>> pending{{0, 1}};
+  int depth = 1;
+  while (!pending.empty())
+  {
+    const auto [node, level] = pending.back();
+    pending.pop_back();
+    depth = std::max(depth, level);
+    const auto& bv = fcl_->model.getBV(node);
+    if (!bv.isLeaf())
+    {
+      pending.emplace_back(bv.leftChild(), level + 1);
+      pending.emplace_back(bv.rightChild(), level + 1);
+    }
+  }
+  fcl_->stack.resize(depth + 1);
+  placed();
+}
+
+MeshObstacle::~MeshObstacle() = default;
+
+void MeshObstacle::placed()
+{
+  bounds_ = Aabb();
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    bounds_.grow(pose_ * Position((corner & 1) ? local_bounds_.hi.x() : local_bounds_.lo.x(),
+                                  (corner & 2) ? local_bounds_.hi.y() : local_bounds_.lo.y(),
+                                  (corner & 4) ? local_bounds_.hi.z() : local_bounds_.lo.z()));
+  }
+}
+
+bool MeshObstacle::push(const Position& a, const Position& b, double radius, Push* out) const
+{
+  // Into the mesh frame: the BVH was built there once.
+  const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
+  const Position la = to_local * a, lb = to_local * b;
+  // The capsule's box: along the segment, r wider all round.
+  fcl::OBBd query;
+  const Position axis = lb - la;
+  const double length = axis.norm();
+  query.axis = length > 0.0 ? Eigen::Quaterniond::FromTwoVectors(Position::UnitZ(), axis).toRotationMatrix()
+                            : Eigen::Matrix3d::Identity();
+  query.To = 0.5 * (la + lb);
+  query.extent = Position(radius, radius, 0.5 * length + radius);
+  // Depth first through FCL's tree: a node whose box misses the capsule's is skipped with all below it.
+  int* stack = fcl_->stack.data();
+  int top = 0;
+  stack[top++] = 0;
+  bool hit = false;
+  Push candidate;
+  while (top > 0)
+  {
+    const auto& node = fcl_->model.getBV(stack[--top]);
+    if (!node.bv.obb.overlap(query))
+    {
+      continue;
+    }
+    if (!node.isLeaf())
+    {
+      stack[top++] = node.rightChild();
+      stack[top++] = node.leftChild();
+      continue;
+    }
+    const int triangle = node.primitiveId();
+    const Eigen::Vector3i& t = mesh_.triangles[triangle];
+    if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
+                     normals_[triangle], &candidate) &&
+        (!hit || candidate.depth > out->depth))
+    {
+      hit = true;
+      *out = candidate;
+    }
+  }
+  if (hit)
+  {
+    out->u = 0.0;
+    out->normal = pose_.linear() * out->normal;
+  }
+  return hit;
+}
+
+bool MeshObstacle::pushThroughFclCollide(const Position& a, const Position& b, double radius, Push* out) const
+{
+  // Into the mesh frame: the BVH was built there once.
+  const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
+  const Position la = to_local * a, lb = to_local * b;
+  const Position axis = lb - la;
+  const double length = axis.norm();
+  fcl::Transform3d capsule_pose = fcl::Transform3d::Identity();
+  capsule_pose.translation() = 0.5 * (la + lb);
+  if (length > 0.0)
+  {
+    capsule_pose.linear() = Eigen::Quaterniond::FromTwoVectors(Position::UnitZ(), axis).toRotationMatrix();
+  }
+  const fcl::Capsuled capsule(radius, length);
+  fcl_->result.clear();
+  fcl::collide(&fcl_->model, fcl::Transform3d::Identity(), &capsule, capsule_pose, fcl_->request, fcl_->result);
+  const std::size_t found = fcl_->result.numContacts();
+  bool hit = false;
+  Push candidate;
+  for (std::size_t k = 0; k < found; ++k)
+  {
+    const fcl::Contactd& contact = fcl_->result.getContact(k);
+    const int triangle = contact.o1 == &fcl_->model ? contact.b1 : contact.b2;
+    const Eigen::Vector3i& t = mesh_.triangles[triangle];
+    if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
+                     normals_[triangle], &candidate) &&
+        (!hit || candidate.depth > out->depth))
+    {
+      hit = true;
+      *out = candidate;
+    }
+  }
+  if (hit)
+  {
+    out->u = 0.0;
+    out->normal = pose_.linear() * out->normal;
+  }
+  return hit;
+}
+
+std::unique_ptr<Obstacle> makeMeshObstacle(const ObstacleSpec& spec, Status* status)
+{
+  Status check = validate(spec);
+  TriangleMesh mesh;
+  if (check && spec.type != ShapeType::Mesh)
+  {
+    check = Status::error("obstacle '" + spec.name + "': is a " + shapeTypeName(spec.type) + ", not a mesh");
+  }
+  if (check)
+  {
+    check = loadTriangleMesh(spec.file, spec.scale, &mesh);
+    if (!check)
+    {
+      check.message = "obstacle '" + spec.name + "': " + check.message;
+    }
+  }
+  std::unique_ptr<Obstacle> made;
+  if (check)
+  {
+    made = std::make_unique<MeshObstacle>(spec, std::move(mesh));
+  }
+  if (status != nullptr)
+  {
+    *status = check;
+  }
+  return made;
+}
+
+}  // namespace rov_tether
