@@ -118,7 +118,9 @@ TEST(Contact, WrapTurnsCountTheTimesTheVehicleCircledThePillar)
     p.segment_length = 0.2;  // a third of the pillar's radius: a fine enough polygon, half the cost
     ASSERT_TRUE(world.add("rov", std::make_unique<Tether>(p, spool, Position(-orbit, 0.0, 0.0))).ok);
     std::vector<std::unique_ptr<Obstacle>> obstacles;
-    obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.3, 10.0, 0.5));
+    // A smooth pillar (friction 0.1): at 0.5, two turns would hold e^(0.5 x 4 pi) = 535 times the winch's 5 N
+    // against the vehicle unwinding them (Known limitations).
+    obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.3, 10.0, 0.1));
     ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
     const double speed = 1.0, lap = 2.0 * kPi * orbit / speed;
     // Out twice round, then back twice round, each along the circle from the west point.
@@ -208,7 +210,8 @@ TEST(Contact, TethersPulledAcrossEachOtherDoNotPassThrough)
   const Path hold = [](double) { return Position(5.0, 0.0, 0.0); };
   const Path down = [](double t) { return Position(0.0, 5.0, 0.3 - 1.0 * std::min(t, 3.0)); };
   // The height of a tether where it crosses the vertical plane through the origin across `axis`.
-  const auto heightAt = [](const Tether& t, int axis) {
+  const auto heightAt = [](const Tether& t, int axis)
+  {
     for (std::size_t k = 0; k + 1 < t.deployedParticleCount(); ++k)
     {
       const Position u = t.particle(k), v = t.particle(k + 1);

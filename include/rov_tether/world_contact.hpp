@@ -81,8 +81,10 @@ class WorldContact : public Contact
   static constexpr int kContactSweeps = 6;
   static constexpr double kSettled = 0.01;  ///< Sweeps stop when no overlap exceeded this x the radius.
   /// The most friction can hold particle i back this step: mu times the larger of its normal corrections
-  /// and its segments' pull into the contact, lambda w [m]; and the unit normal (zero when untouched).
-  double holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal) const;
+  /// and its segments' pull into the contact, lambda w [m]; the unit normal (zero when untouched); and mu
+  /// times that pull alone [m] (`pulled`).
+  double holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal,
+                   double* pulled) const;
 
   const ContactScene& scene_;
   std::size_t self_;

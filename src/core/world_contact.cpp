@@ -64,13 +64,14 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
   }
 }
 
-double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch,
-                               Position* normal) const
+double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal,
+                               double* pulled) const
 {
   const double length = normal_[i].norm();
   if (!(length > 0.0) || !(mu_[i] > 0.0))
   {
     *normal = Position::Zero();
+    *pulled = 0.0;
     return 0.0;
   }
   *normal = normal_[i] / length;
@@ -88,6 +89,7 @@ double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vec
   // contact, along it for the slip (which runs along the cable where it slides; added mass acts across only).
   const double along = cable.inv_mass[i] > 0.0 ? cable.inv_mass_along[i] / cable.inv_mass[i] : 1.0;
   const double into = std::max(0.0, -normal->dot(pull)) * cable.inv_mass_along[i];
+  *pulled = mu_[i] * into;
   return mu_[i] * std::max(pushed_[i] * along, into);
 }
 
@@ -96,7 +98,8 @@ void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) co
   for (const std::size_t i : touched_)
   {
     Position n;
-    const double limit = holdLimit(cable, i, stretch, &n) - held_[i];
+    double pulled = 0.0;
+    const double limit = holdLimit(cable, i, stretch, &n, &pulled) - held_[i];
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     const double distance = slide.norm();
@@ -118,16 +121,19 @@ bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& str
   for (const std::size_t i : touched_)
   {
     Position n;
-    const double limit = holdLimit(cable, i, stretch, &n);
+    double pulled = 0.0;
+    const double limit = holdLimit(cable, i, stretch, &n, &pulled);
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     double hold = 0.0;
     if (first)
     {
-      // Sliding, friction holds back with all it has; along the slip of the solve without it.
+      // A cable pulled round the contact slides: friction holds back with the mu N of that pull, along the
+      // slip of the solve without it. A particle pressed in otherwise (landing, a load) is held by its slip
+      // at first. Later passes correct either guess.
       const double distance = slide.norm();
       slip_[i] = distance > 0.0 ? Position(slide / distance) : Position::Zero();
-      hold = distance > 0.0 ? limit : 0.0;
+      hold = distance > 0.0 ? std::min(limit, std::max(pulled, distance)) : 0.0;
     }
     else
     {
