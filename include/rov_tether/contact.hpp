@@ -37,8 +37,9 @@ class Contact
   virtual void applyHold(Cable& /*cable*/) const {}
   /// Friction as a correction after the solve, for a method that cannot solve again (lumped_mass).
   virtual void friction(Cable& /*cable*/, const std::vector<double>& /*stretch*/) const {}
-  /// The deepest overlap the last project() found before resolving it [m]; 0 when it does not say.
-  virtual double lastDeepest() const { return 0.0; }
+  /// How far the solve's tension pulled a particle into the contact in the last step's first projection
+  /// [m] (it grows as h^2); 0 when the contact does not say.
+  virtual double lastPullIn() const { return 0.0; }
 };
 
 /// The contacts one solve sees (not owned: the tether and, later, the world own them).

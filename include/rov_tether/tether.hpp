@@ -199,7 +199,7 @@ class Tether
   int contact_substeps_ = 1;                ///< Sub-steps the next step needs for contact (see setWorldContact).
   int last_substeps_ = 1;
   double last_motion_ = 0.0;
-  double max_contact_depth_ = 0.0;  ///< Deepest overlap the contact found in the step's sub-steps [m].
+  double max_contact_depth_ = 0.0;  ///< Largest Contact::lastPullIn() of the step's sub-steps [m].
   std::vector<double> step_start_x_, step_start_y_, step_start_z_;   ///< Positions at the step's start [m].
   std::size_t step_start_first_ = 0;                                 ///< The spool outlet at the step's start.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]

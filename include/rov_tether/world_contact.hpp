@@ -70,7 +70,7 @@ class WorldContact : public Contact
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
   const ContactRecord& record() const { return record_; }
-  double lastDeepest() const override { return deepest_; }
+  double lastPullIn() const override { return deepest_; }
 
  private:
   /// Moves segment j's particles so the point at t clears by depth along n, and notes for each the normal,
@@ -85,11 +85,13 @@ class WorldContact : public Contact
   /// times that pull alone [m] (`pulled`).
   double holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal,
                    double* pulled) const;
+  /// The pull of particle i's two segments into a contact of normal n, lambda [kg m] (0 when it pulls out).
+  static double pullInto(const Cable& cable, std::size_t i, const std::vector<double>& stretch, const Position& n);
 
   const ContactScene& scene_;
   std::size_t self_;
   mutable ContactRecord record_;
-  mutable double deepest_ = 0.0;
+  mutable double deepest_ = 0.0;                  ///< lastPullIn() [m].
   mutable std::vector<int> candidates_;           ///< Obstacles that overlap this cable's bounds this step.
   mutable std::vector<SegmentGrid::Entry> near_;  ///< Grid query result.
   /// Per particle, this step: the contact normal (summed), the normal corrections [m], the friction

@@ -499,11 +499,11 @@ int Tether::contactSubsteps()
     return std::isfinite(per_step) ? kMaxContactSubsteps : 1;
   }
   const int for_motion = std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
-  // What a solve pulls a particle into a contact within a sub-step, which the contact then undoes, grows
-  // as h^2 (a tension's pull lambda w): at n sub-steps instead of the `taken` it is (taken / n)^2 as deep.
-  // Aim at half the bound on penetration (10% of the diameter).
+  // What a solve's tension pulls a particle into a contact within a sub-step (Contact::lastPullIn), which
+  // the contact then undoes, grows as h^2 (lambda w): at n sub-steps instead of the `taken` it is
+  // (taken / n)^2 as deep. Aim at half the bound on penetration (10% of the diameter).
   const double aimed = 0.05 * params_.diameter;
-  // More sub-steps at once when needed; one fewer only when the depth predicted for it stays below the aim,
+  // More sub-steps at once when needed; one fewer only when the pull predicted for it stays below the aim,
   // so the count does not swing between two values (each swing changes h, and the tension's transient).
   const double ratio = std::sqrt(max_contact_depth_ / aimed);
   int for_depth = static_cast<int>(std::min<double>(kMaxContactSubsteps, std::ceil(last_substeps_ * ratio)));
@@ -514,8 +514,8 @@ int Tether::contactSubsteps()
                              (static_cast<double>(last_substeps_) / std::max(fewer, 1));
     for_depth = predicted < aimed ? fewer : last_substeps_;
   }
-  // Not every overlap shrinks with h (a chord's sagitta on a thin pillar, layers of cable pressed on each
-  // other): the depth may ask for at most kDepthSubsteps times what the motion and `substeps` ask.
+  // At most kDepthSubsteps times what the motion and `substeps` ask: a tension the vehicle keeps raising
+  // (a capstan of kilonewtons) would otherwise ask without end.
   const int floor = std::max(for_motion, params_.substeps);
   return std::min({kMaxContactSubsteps, kDepthSubsteps * floor, std::max(floor, for_depth)});
 }
@@ -547,7 +547,7 @@ void Tether::subStep(double h, double t)
   solver_->solve(cable_, settings, contacts_, freeEnd());
   if (world_contact_ != nullptr)
   {
-    max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastDeepest());
+    max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastPullIn());
   }
   if (settings.drum != nullptr)
   {

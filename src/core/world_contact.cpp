@@ -64,6 +64,21 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
   }
 }
 
+double WorldContact::pullInto(const Cable& cable, std::size_t i, const std::vector<double>& stretch, const Position& n)
+{
+  // The pull of the two segments on particle i over the step, lambda per segment [kg m] (force lambda / h^2).
+  Position pull = Position::Zero();
+  if (i > cable.first && i - 1 < stretch.size())
+  {
+    pull += stretch[i - 1] * cable.direction(i, i - 1);
+  }
+  if (i + 1 < cable.size() && i < stretch.size())
+  {
+    pull += stretch[i] * cable.direction(i, i + 1);
+  }
+  return std::max(0.0, -n.dot(pull));
+}
+
 double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal,
                                double* pulled) const
 {
@@ -75,20 +90,10 @@ double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vec
     return 0.0;
   }
   *normal = normal_[i] / length;
-  // The pull of the two segments on particle i over the step, as a displacement: lambda w per segment.
-  Position pull = Position::Zero();
-  if (i > cable.first && i - 1 < stretch.size())
-  {
-    pull += stretch[i - 1] * cable.direction(i, i - 1);
-  }
-  if (i + 1 < cable.size() && i < stretch.size())
-  {
-    pull += stretch[i] * cable.direction(i, i + 1);
-  }
-  // A force F held over the step moves the particle by F h^2 w: w across the cable for the pull into the
-  // contact, along it for the slip (which runs along the cable where it slides; added mass acts across only).
+  // A force F held over the step moves the particle by F h^2 w: w along the cable for the slip (which runs
+  // along it where it slides; added mass acts across only), so the pull lambda counts as lambda w_along.
   const double along = cable.inv_mass[i] > 0.0 ? cable.inv_mass_along[i] / cable.inv_mass[i] : 1.0;
-  const double into = std::max(0.0, -normal->dot(pull)) * cable.inv_mass_along[i];
+  const double into = pullInto(cable, i, stretch, *normal) * cable.inv_mass_along[i];
   *pulled = mu_[i] * into;
   return mu_[i] * std::max(pushed_[i] * along, into);
 }
@@ -220,7 +225,7 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   return deepest;
 }
 
-void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& /*stretch*/,
+void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
                            bool first_pass) const
 {
   if (first_pass)
@@ -283,10 +288,6 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
       const std::size_t j = sweep == 0 ? lo + n : touching_[n];
       const double depth = contactSegment(cable, j, r, widest, others, gap);
       deepest = std::max(deepest, depth);
-      if (sweep == 0 && first_pass)
-      {
-        deepest_ = std::max(deepest_, depth);
-      }
       if (sweep == 0 && depth > 0.0)
       {
         touching_.push_back(j);
@@ -295,6 +296,20 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
     if (!(deepest > kSettled * r))
     {
       break;
+    }
+  }
+  if (first_pass)
+  {
+    // How far the solve's tension pulled a touching particle into its contact this sub-step: it grows as
+    // h^2 (lambda w), and a pull beyond the clearance drags the cable through a thin obstacle within one
+    // solve. Tether::step cuts the next step finer when it is large (an impact's overlap does not count).
+    for (const std::size_t i : touched_)
+    {
+      const double length = normal_[i].norm();
+      if (length > 0.0)
+      {
+        deepest_ = std::max(deepest_, pullInto(cable, i, stretch, normal_[i] / length) * cable.inv_mass[i]);
+      }
     }
   }
 }
