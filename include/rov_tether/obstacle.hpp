@@ -108,6 +108,10 @@ class Obstacle
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
 };
 
+/// Parameters (s on [a, b], u on [c, d]) of the closest points of two segments (Ericson 2005, 5.1.9).
+void closestSegmentParameters(const Position& a, const Position& b, const Position& c, const Position& d, double* s,
+                              double* u);
+
 /// The capsule [a, b] of `radius` against the capsule [c, d] of `other_radius` (a cable segment of another
 /// tether, a capsule obstacle; a sphere when c = d): whether they overlap, and how to clear [a, b].
 bool pushCapsule(const Position& a, const Position& b, double radius, const Position& c, const Position& d,

@@ -22,44 +22,6 @@ namespace
 /// itself touches a few, so this only bounds a pathological query (a segment lying along a fan of slivers).
 constexpr std::size_t kMaxTriangles = 64;
 
-/// Parameters (s on [a, b], u on [c, d]) of the closest points of two segments (Ericson 2005, 5.1.9).
-void closestSegmentParameters(const Position& a, const Position& b, const Position& c, const Position& d, double* s,
-                              double* u)
-{
-  const Position e1 = b - a, e2 = d - c, r = a - c;
-  const double aa = e1.squaredNorm(), ee = e2.squaredNorm(), f = e2.dot(r);
-  constexpr double kTiny = 1e-24;
-  if (aa <= kTiny && ee <= kTiny)
-  {
-    *s = *u = 0.0;
-    return;
-  }
-  if (aa <= kTiny)
-  {
-    *s = 0.0, *u = std::clamp(f / ee, 0.0, 1.0);
-    return;
-  }
-  const double cc = e1.dot(r);
-  if (ee <= kTiny)
-  {
-    *u = 0.0, *s = std::clamp(-cc / aa, 0.0, 1.0);
-    return;
-  }
-  const double bb = e1.dot(e2);
-  const double denominator = aa * ee - bb * bb;
-  double sv = denominator > kTiny * aa * ee ? std::clamp((bb * f - cc * ee) / denominator, 0.0, 1.0) : 0.0;
-  double uv = (bb * sv + f) / ee;
-  if (uv < 0.0)
-  {
-    uv = 0.0, sv = std::clamp(-cc / aa, 0.0, 1.0);
-  }
-  else if (uv > 1.0)
-  {
-    uv = 1.0, sv = std::clamp((bb - cc) / aa, 0.0, 1.0);
-  }
-  *s = sv, *u = uv;
-}
-
 /// The point of triangle (a, b, c) closest to p (Ericson 2005, 5.1.5: Voronoi regions of the corners, the
 /// edges, the face).
 Position closestPointOnTriangle(const Position& p, const Position& a, const Position& b, const Position& c)
