@@ -64,6 +64,16 @@ def circle_waypoints(turns, start_time):
     return points
 
 
+def sibling_node():
+    """The tether_node of the workspace this test runs in: the first devel space on CMAKE_PREFIX_PATH (rosrun
+    would be ambiguous beside a second, sanitizer build of the package, and exits 127 there)."""
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        path = os.path.join(prefix, "lib", "rov_tether", "tether_node")
+        if os.access(path, os.X_OK):
+            return path
+    raise RuntimeError("no tether_node under CMAKE_PREFIX_PATH")
+
+
 class Obstacles(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -244,8 +254,7 @@ class Obstacles(unittest.TestCase):
         name = "bad_obstacles_node"
         rospy.set_param("/%s/obstacles" % name, [
             {"name": "pillar", "type": "cylinder", "position": [4.0, 0.0, -5.0], "radius": 0.5}])  # no length
-        node = subprocess.run(["rosrun", "rov_tether", "tether_node", "__name:=" + name], capture_output=True,
-                              text=True, timeout=TIMEOUT)
+        node = subprocess.run([sibling_node(), "__name:=" + name], capture_output=True, text=True, timeout=TIMEOUT)
         output = node.stdout + node.stderr
         print("[ measured ] exit %d: %s" % (node.returncode, output.strip().splitlines()[-1:]), file=sys.stderr)
         self.assertEqual(node.returncode, 1)
