@@ -64,6 +64,11 @@ class MeshObstacle : public Obstacle
   void placed() override;
 
  private:
+  /// Measures triangle `triangle` against the local capsule [la, lb] and keeps it in `out` when it overlaps
+  /// deeper than what `out` holds (nothing yet unless `hit`); returns whether it kept it.
+  bool keepDeeper(int triangle, const Position& la, const Position& lb, double radius, bool hit, Push* out) const;
+  /// Turns the kept push's normal into the world frame; returns true.
+  bool toWorld(Push* out) const;
   struct Fcl;  ///< The BVH model, push's stack, the kept FCL request and result (mesh_obstacle.cpp).
 
   TriangleMesh mesh_;

@@ -280,7 +280,6 @@ bool MeshObstacle::push(const Position& a, const Position& b, double radius, Pus
   int top = 0;
   stack[top++] = 0;
   bool hit = false;
-  Push candidate;
   while (top > 0)
   {
     const auto& node = fcl_->model.getBV(stack[--top]);
@@ -295,21 +294,31 @@ bool MeshObstacle::push(const Position& a, const Position& b, double radius, Pus
       continue;
     }
     const int triangle = node.primitiveId();
-    const Eigen::Vector3i& t = mesh_.triangles[triangle];
-    if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
-                     normals_[triangle], &candidate) &&
-        (!hit || candidate.depth > out->depth))
-    {
-      hit = true;
-      *out = candidate;
-    }
+    hit = keepDeeper(triangle, la, lb, radius, hit, out) || hit;
   }
-  if (hit)
+  return hit && toWorld(out);
+}
+
+bool MeshObstacle::keepDeeper(int triangle, const Position& la, const Position& lb, double radius, bool hit,
+                              Push* out) const
+{
+  const Eigen::Vector3i& t = mesh_.triangles[triangle];
+  Push candidate;
+  if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]], normals_[triangle],
+                   &candidate) &&
+      (!hit || candidate.depth > out->depth))
   {
-    out->u = 0.0;
-    out->normal = pose_.linear() * out->normal;
+    *out = candidate;
+    return true;
   }
-  return hit;
+  return false;
+}
+
+bool MeshObstacle::toWorld(Push* out) const
+{
+  out->u = 0.0;
+  out->normal = pose_.linear() * out->normal;
+  return true;
 }
 
 bool MeshObstacle::pushThroughFclCollide(const Position& a, const Position& b, double radius, Push* out) const
@@ -330,26 +339,13 @@ bool MeshObstacle::pushThroughFclCollide(const Position& a, const Position& b, d
   fcl::collide(&fcl_->model, fcl::Transform3d::Identity(), &capsule, capsule_pose, fcl_->request, fcl_->result);
   const std::size_t found = fcl_->result.numContacts();
   bool hit = false;
-  Push candidate;
   for (std::size_t k = 0; k < found; ++k)
   {
     const fcl::Contactd& contact = fcl_->result.getContact(k);
     const int triangle = contact.o1 == &fcl_->model ? contact.b1 : contact.b2;
-    const Eigen::Vector3i& t = mesh_.triangles[triangle];
-    if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
-                     normals_[triangle], &candidate) &&
-        (!hit || candidate.depth > out->depth))
-    {
-      hit = true;
-      *out = candidate;
-    }
+    hit = keepDeeper(triangle, la, lb, radius, hit, out) || hit;
   }
-  if (hit)
-  {
-    out->u = 0.0;
-    out->normal = pose_.linear() * out->normal;
-  }
-  return hit;
+  return hit && toWorld(out);
 }
 
 std::unique_ptr<Obstacle> makeMeshObstacle(const ObstacleSpec& spec, Status* status)
