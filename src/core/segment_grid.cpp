@@ -7,46 +7,24 @@ namespace rov_tether
 {
 namespace
 {
+/// Boxes are a segment and its margin, a few cells wide, and cells are at least a segment long; a box
+/// thousands of cells wide comes only from a torn cable.
 constexpr long kMaxCells = 4096;
 }
 
-std::size_t SegmentGrid::bucket(long ix, long iy, long iz) const
+void HashedCells::reset(double cell, std::size_t items)
 {
-  // Teschner et al. 2003's spatial hash.
-  const std::uint64_t h = (static_cast<std::uint64_t>(ix) * 73856093u) ^ (static_cast<std::uint64_t>(iy) * 19349663u) ^
-                          (static_cast<std::uint64_t>(iz) * 83492791u);
-  return static_cast<std::size_t>(h) & mask_;
-}
-
-template <typename F>
-void SegmentGrid::forCells(const Aabb& box, F&& visit) const
-{
-  const double inv = 1.0 / cell_;
-  const long x0 = static_cast<long>(std::floor(box.lo.x() * inv)), x1 = static_cast<long>(std::floor(box.hi.x() * inv));
-  const long y0 = static_cast<long>(std::floor(box.lo.y() * inv)), y1 = static_cast<long>(std::floor(box.hi.y() * inv));
-  const long z0 = static_cast<long>(std::floor(box.lo.z() * inv)), z1 = static_cast<long>(std::floor(box.hi.z() * inv));
-  // Boxes are a segment and its margin, a few cells wide, and cells are at least a segment long; a box
-  // thousands of cells wide comes only from a torn cable, which its tether re-lays at its next step.
-  const long sx = x1 - x0 + 1, sy = y1 - y0 + 1, sz = z1 - z0 + 1;
-  if (sx > kMaxCells || sy > kMaxCells || sz > kMaxCells || sx * sy * sz > kMaxCells)
+  cell_ = cell;
+  std::size_t table = 64;
+  while (table < 2 * items)
   {
-    return;
+    table *= 2;
   }
-  for (long ix = x0; ix <= x1; ++ix)
-  {
-    for (long iy = y0; iy <= y1; ++iy)
-    {
-      for (long iz = z0; iz <= z1; ++iz)
-      {
-        visit(bucket(ix, iy, iz));
-      }
-    }
-  }
+  mask_ = table - 1;
 }
 
 void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, double margin)
 {
-  cell_ = cell;
   std::size_t segments = 0;
   offset_.resize(cables.size());
   for (std::size_t c = 0; c < cables.size(); ++c)
@@ -56,12 +34,8 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
   }
   seen_.assign(segments, 0u);
   query_ = 0;
-  std::size_t table = 64;
-  while (table < 2 * segments)
-  {
-    table *= 2;
-  }
-  mask_ = table - 1;
+  cells_.reset(cell, segments);
+  const std::size_t table = cells_.buckets();
   staged_.clear();
   staged_bucket_.clear();
   for (std::size_t c = 0; c < cables.size(); ++c)
@@ -72,11 +46,8 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
       Aabb box;
       box.grow(cable.position(j)), box.grow(cable.position(j + 1));
       box.inflate(margin);
-      if (!box.lo.allFinite() || !box.hi.allFinite())
-      {
-        continue;  // a diverged cable (re-laid by its tether's next step) files nothing
-      }
-      forCells(box,
+      // A diverged or torn cable (re-laid by its tether's next step) files nothing.
+      cells_.forCells(box, kMaxCells,
                [&](std::size_t b)
                {
                  staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
@@ -119,8 +90,8 @@ void SegmentGrid::query(const Aabb& box, std::vector<Entry>& out) const
     std::fill(seen_.begin(), seen_.end(), 0u);
     query_ = 1;
   }
-  forCells(box,
-           [&](std::size_t b)
+  cells_.forCells(box, kMaxCells,
+                  [&](std::size_t b)
            {
              for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
              {

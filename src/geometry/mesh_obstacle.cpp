@@ -21,6 +21,11 @@ namespace
 /// At most this many overlapping triangles are measured per query; a cable segment over a mesh finer than
 /// itself touches a few, so this only bounds a pathological query (a segment lying along a fan of slivers).
 constexpr std::size_t kMaxTriangles = 64;
+/// A capsule whose box spans more cells of the grid than this walks FCL's tree instead.
+constexpr long kMaxQueryCells = 27;
+/// Cells are at least this fraction of the widest triangle, so no triangle is filed in more than
+/// (1 / kWidestFraction + 1)^3 cells.
+constexpr double kWidestFraction = 1.0 / 8.0;
 
 /// The point of triangle (a, b, c) closest to p (Ericson 2005, 5.1.5: Voronoi regions of the corners, the
 /// edges, the face).
@@ -246,7 +251,59 @@ MeshObstacle::MeshObstacle(const ObstacleSpec& spec, TriangleMesh mesh)
     }
   }
   fcl_->stack.resize(depth + 1);
+  fileTriangles();
   placed();
+}
+
+void MeshObstacle::fileTriangles()
+{
+  // Cells as wide as a triangle on average: a cable segment's box then meets a few cells of a few triangles.
+  double mean = 0.0, widest = 0.0;
+  std::vector<Aabb> boxes(mesh_.triangles.size());
+  for (std::size_t k = 0; k < mesh_.triangles.size(); ++k)
+  {
+    for (int corner = 0; corner < 3; ++corner)
+    {
+      boxes[k].grow(mesh_.vertices[mesh_.triangles[k][corner]]);
+    }
+    const double extent = (boxes[k].hi - boxes[k].lo).maxCoeff();
+    mean += extent / static_cast<double>(mesh_.triangles.size());
+    widest = std::max(widest, extent);
+  }
+  const double cell = std::max({mean, kWidestFraction * widest, 1e-9 * (local_bounds_.hi - local_bounds_.lo).maxCoeff(),
+                                std::numeric_limits<double>::min()});
+  constexpr long kAll = std::numeric_limits<long>::max();
+  std::vector<std::uint32_t> bucket_of;
+  std::vector<std::uint32_t> triangle_of;
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+  {
+    boxes[k].inflate(1e-9 * cell);  // a triangle on a cell's face is filed on both sides
+  }
+  cells_.reset(cell, 4 * boxes.size());
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+  {
+    cells_.forCells(boxes[k], kAll,
+                    [&](std::size_t b)
+                    {
+                      bucket_of.push_back(static_cast<std::uint32_t>(b));
+                      triangle_of.push_back(static_cast<std::uint32_t>(k));
+                    });
+  }
+  start_.assign(cells_.buckets() + 1, 0u);
+  for (const std::uint32_t b : bucket_of)
+  {
+    ++start_[b + 1];
+  }
+  for (std::size_t b = 0; b < cells_.buckets(); ++b)
+  {
+    start_[b + 1] += start_[b];
+  }
+  filed_.resize(triangle_of.size());
+  std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+  for (std::size_t k = 0; k < triangle_of.size(); ++k)
+  {
+    filed_[next[bucket_of[k]]++] = triangle_of[k];
+  }
 }
 
 MeshObstacle::~MeshObstacle() = default;
@@ -264,9 +321,57 @@ void MeshObstacle::placed()
 
 bool MeshObstacle::push(const Position& a, const Position& b, double radius, Push* out) const
 {
-  // Into the mesh frame: the BVH was built there once.
+  // Into the mesh frame: the grid and the BVH were built there once.
   const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
   const Position la = to_local * a, lb = to_local * b;
+  // The filters below leave the exact test a little slack: a cable resting on the mesh sits at one radius
+  // to rounding, and whether it touches decides whether friction holds it.
+  const double reach = radius * (1.0 + 1e-9);
+  Aabb box;
+  box.grow(la), box.grow(lb);
+  box.inflate(reach);
+  int kept = -1;
+  const bool small = cells_.forCells(
+      box, kMaxQueryCells,
+      [&](std::size_t cell)
+      {
+        for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k)
+        {
+          const std::uint32_t triangle = filed_[k];
+          const Eigen::Vector3i& t = mesh_.triangles[triangle];
+          const Position& v0 = mesh_.vertices[t[0]];
+          // Both ends more than a radius on one side of its plane, or its box apart: it cannot touch.
+          const double hp = normals_[triangle].dot(la - v0), hq = normals_[triangle].dot(lb - v0);
+          if ((hp > reach && hq > reach) || (hp < -reach && hq < -reach))
+          {
+            continue;
+          }
+          const Position& v1 = mesh_.vertices[t[1]];
+          const Position& v2 = mesh_.vertices[t[2]];
+          if ((v0.array().max(v1.array()).max(v2.array()) < box.lo.array()).any() ||
+              (v0.array().min(v1.array()).min(v2.array()) > box.hi.array()).any())
+          {
+            continue;
+          }
+          // A triangle filed in two of these cells is measured twice, to the same answer.
+          keepDeeper(static_cast<int>(triangle), la, lb, radius, &kept, out);
+        }
+      });
+  if (!small)
+  {
+    return walkTree(la, lb, radius, out);
+  }
+  return kept >= 0 && toWorld(out);
+}
+
+bool MeshObstacle::pushThroughTree(const Position& a, const Position& b, double radius, Push* out) const
+{
+  const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
+  return walkTree(to_local * a, to_local * b, radius, out);
+}
+
+bool MeshObstacle::walkTree(const Position& la, const Position& lb, double radius, Push* out) const
+{
   // The capsule's box: along the segment, r wider all round.
   fcl::OBBd query;
   const Position axis = lb - la;
@@ -279,7 +384,7 @@ bool MeshObstacle::push(const Position& a, const Position& b, double radius, Pus
   int* stack = fcl_->stack.data();
   int top = 0;
   stack[top++] = 0;
-  bool hit = false;
+  int kept = -1;
   while (top > 0)
   {
     const auto& node = fcl_->model.getBV(stack[--top]);
@@ -294,24 +399,29 @@ bool MeshObstacle::push(const Position& a, const Position& b, double radius, Pus
       continue;
     }
     const int triangle = node.primitiveId();
-    hit = keepDeeper(triangle, la, lb, radius, hit, out) || hit;
+    keepDeeper(triangle, la, lb, radius, &kept, out);
   }
-  return hit && toWorld(out);
+  return kept >= 0 && toWorld(out);
 }
 
-bool MeshObstacle::keepDeeper(int triangle, const Position& la, const Position& lb, double radius, bool hit,
+void MeshObstacle::keepDeeper(int triangle, const Position& la, const Position& lb, double radius, int* kept,
                               Push* out) const
 {
   const Eigen::Vector3i& t = mesh_.triangles[triangle];
   Push candidate;
-  if (pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]], normals_[triangle],
-                   &candidate) &&
-      (!hit || candidate.depth > out->depth))
+  if (!pushTriangle(la, lb, radius, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]],
+                    normals_[triangle], &candidate))
+  {
+    return;
+  }
+  // Depths equal to rounding (two triangles meeting at the closest point) go to the lower-numbered
+  // triangle, so the answer does not depend on the order the grid or the tree visits them in.
+  const double tie = 1e-12 * radius;
+  if (*kept < 0 || candidate.depth > out->depth + tie || (candidate.depth >= out->depth - tie && triangle < *kept))
   {
     *out = candidate;
-    return true;
+    *kept = triangle;
   }
-  return false;
 }
 
 bool MeshObstacle::toWorld(Push* out) const
@@ -338,14 +448,14 @@ bool MeshObstacle::pushThroughFclCollide(const Position& a, const Position& b, d
   fcl_->result.clear();
   fcl::collide(&fcl_->model, fcl::Transform3d::Identity(), &capsule, capsule_pose, fcl_->request, fcl_->result);
   const std::size_t found = fcl_->result.numContacts();
-  bool hit = false;
+  int kept = -1;
   for (std::size_t k = 0; k < found; ++k)
   {
     const fcl::Contactd& contact = fcl_->result.getContact(k);
     const int triangle = contact.o1 == &fcl_->model ? contact.b1 : contact.b2;
-    hit = keepDeeper(triangle, la, lb, radius, hit, out) || hit;
+    keepDeeper(triangle, la, lb, radius, &kept, out);
   }
-  return hit && toWorld(out);
+  return kept >= 0 && toWorld(out);
 }
 
 std::unique_ptr<Obstacle> makeMeshObstacle(const ObstacleSpec& spec, Status* status)
