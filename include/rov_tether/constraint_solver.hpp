@@ -72,8 +72,10 @@ class ConstraintSolver
   /// contact carries it (a capstan): after the solve and the contacts, each touching particle is held back
   /// against its slip by up to mu times its normal force (Contact::updateHold), the positions return to
   /// the step's prediction moved back by the holds, and the step is solved again; up to kFrictionPasses
-  /// times, until no hold changes. The first hold is the full mu N (sliding); a particle the solve then
-  /// moves backwards sticks, and its hold shrinks by that motion. A method that cannot solve again
+  /// times, until no hold changes. The first solve starts from the last step's holds (Contact::warmStart),
+  /// so a cable that keeps sticking or sliding as it did is solved once. A particle touching for the first
+  /// time is first held by the full mu N (sliding); a particle the solve then moves backwards sticks, and
+  /// its hold shrinks by that motion. A method that cannot solve again
   /// (lumped_mass) takes the friction as a correction after its solve.
   void solve(Cable& cable, const SolverSettings& settings, const Contacts& contacts, std::size_t free_end);
   static constexpr int kFrictionPasses = 4;

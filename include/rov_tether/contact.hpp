@@ -35,6 +35,9 @@ class Contact
   }
   /// Moves the predicted positions back by the holds.
   virtual void applyHold(Cable& /*cable*/) const {}
+  /// Before a step's first solve: moves the predicted positions back by the holds of the last step (scaled
+  /// to a step of `h` [s]), so a contact that sticks or slides as it did needs no further solve.
+  virtual void warmStart(Cable& /*cable*/, double /*h*/) const {}
   /// Friction as a correction after the solve, for a method that cannot solve again (lumped_mass).
   virtual void friction(Cable& /*cable*/, const std::vector<double>& /*stretch*/) const {}
   /// How far the solve's tension pulled a particle into the contact in the last step's first projection

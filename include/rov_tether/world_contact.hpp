@@ -6,9 +6,9 @@
  * each particle of a touching capsule may be held back, over the whole step, by no more than mu times its
  * normal displacement: the larger of the corrections that pushed it out (a load such as its weight
  * pressing it in) and the pull of its two segments into the contact, lambda w, from the solve's
- * multipliers (a tensioned cable around a pillar). The contact is projected once after the step's solve
- * (as the seabed is), so the solve's tension does not yet carry what friction holds back: a known limit,
- * README "Known limitations". Position-based Coulomb friction (Macklin et al. 2014)
+ * multipliers (a tensioned cable around a pillar). The hold is a force the solve balances: the step is
+ * solved again from its prediction moved back by the holds (ConstraintSolver::solve), starting from the
+ * last step's holds, so the tension carries friction. Position-based Coulomb friction (Macklin et al. 2014)
  * with the normal force a wrapped cable really exerts, so the capstan law holds (docs/references.md).
  * The other tethers are fixed while this one steps (World steps them in turn): each tether moves itself out
  * of the others, and none pushes another (a known limit: README "Known limitations"). Their capsules and this one's own
@@ -66,6 +66,7 @@ class WorldContact : public Contact
   bool holds() const override { return true; }
   bool updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const override;
   void applyHold(Cable& cable) const override;
+  void warmStart(Cable& cable, double h) const override;
   void friction(Cable& cable, const std::vector<double>& stretch) const override;
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
@@ -100,6 +101,10 @@ class WorldContact : public Contact
   mutable std::vector<double> pushed_, mu_, held_;
   mutable std::vector<double> hold_;    ///< How far friction holds the particle back in the solve [m].
   mutable std::vector<Position> slip_;  ///< The direction it holds against (the first solve's slip).
+  /// The particles touched in the last step, whose holds (hold_, slip_, for a step of warm_h_) warm-start
+  /// this one.
+  mutable std::vector<std::size_t> warm_;
+  mutable double warm_h_ = 0.0;
   mutable std::vector<std::size_t> touched_;
   mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
 };

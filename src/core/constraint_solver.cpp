@@ -35,6 +35,10 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
     predicted_x_.assign(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end());
     predicted_y_.assign(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end());
     predicted_z_.assign(cable.z.begin() + static_cast<std::ptrdiff_t>(f), cable.z.end());
+    for (const Contact* contact : contacts)
+    {
+      contact->warmStart(cable, settings.time_step);
+    }
   }
   project(cable, multipliers_, settings);
   for (const Contact* contact : contacts)

@@ -19,6 +19,9 @@ void WorldContact::resize()
   mu_.assign(n, 0.0);
   touched_.clear();
   touched_.reserve(n);
+  warm_.clear();
+  warm_.reserve(n);
+  warm_h_ = 0.0;
   touching_.reserve(n);
   record_.tether.assign(n, -1);
   record_.point.assign(n, Position::Zero());
@@ -118,11 +121,39 @@ void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) co
   }
 }
 
+void WorldContact::warmStart(Cable& cable, double h) const
+{
+  // A hold is a force over the step times h^2 w: the same force over a step of another length.
+  const double scale = warm_h_ > 0.0 ? (h / warm_h_) * (h / warm_h_) : 0.0;
+  warm_h_ = h;
+  for (const std::size_t i : touched_)
+  {
+    hold_[i] *= scale;
+    if (i <= cable.first || i >= cable.size())
+    {
+      hold_[i] = 0.0;  // reeled in onto the drum, or now the outlet
+    }
+  }
+  applyHold(cable);
+}
+
 bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const
 {
   // A change below this does not warrant another solve [m].
   const double settled = 1e-3 * scene_.radius[self_];
   bool changed = false;
+  if (first)
+  {
+    // A particle held in the last step that touches nothing now lets go: solve again without its hold.
+    for (const std::size_t i : warm_)
+    {
+      if (pushed_[i] < 0.0)
+      {
+        changed = changed || hold_[i] > settled;
+        hold_[i] = 0.0;
+      }
+    }
+  }
   for (const std::size_t i : touched_)
   {
     Position n;
@@ -131,6 +162,19 @@ bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& str
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     double hold = 0.0;
+    if (first && hold_[i] > 0.0)
+    {
+      // Solved with the last step's hold: without it the particle would have slid by about the slide left
+      // plus that hold. Friction takes that back whole while it can (sticking), else mu N against it.
+      const Position free = slide + hold_[i] * slip_[i];
+      const double distance = free.norm();
+      const Position before = hold_[i] * slip_[i];
+      slip_[i] = distance > 0.0 ? Position(free / distance) : Position::Zero();
+      hold = std::min(distance, limit);
+      changed = changed || (hold * slip_[i] - before).norm() > settled;
+      hold_[i] = hold;
+      continue;
+    }
     if (first)
     {
       // A cable pulled round the contact slides: friction holds back with the mu N of that pull, along the
@@ -232,10 +276,13 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
   {
     record_.clear();
     deepest_ = 0.0;
+    // Last step's particles keep their holds (warmStart applied them) until updateHold sees whether they
+    // still touch; no other particle holds anything.
     for (const std::size_t i : touched_)
     {
-      pushed_[i] = -1.0, held_[i] = 0.0, hold_[i] = 0.0;
+      pushed_[i] = -1.0, held_[i] = 0.0;
     }
+    warm_.swap(touched_);
     touched_.clear();
   }
   else
