@@ -35,6 +35,11 @@ class Contact
   }
   /// Moves the predicted positions back by the holds.
   virtual void applyHold(Cable& /*cable*/) const {}
+  /// Before the solve of a sub-step of `h` [s]: gives the free particles [begin, end) the change of velocity
+  /// other bodies' contacts gave them since the last one (their reaction), and forgets it.
+  virtual void takeReaction(Cable& /*cable*/, std::size_t /*begin*/, std::size_t /*end*/, double /*h*/) const {}
+  /// After a sub-step's solve: hands the reactions of its contacts on other bodies over to them.
+  virtual void sendReaction() const {}
   /// Before a step's first solve: moves the predicted positions back by the holds of the last step (scaled
   /// to a step of `h` [s]), so a contact that sticks or slides as it did needs no further solve.
   virtual void warmStart(Cable& /*cable*/, double /*h*/) const {}

@@ -69,8 +69,8 @@ class World
   std::size_t findObstacle(const std::string& name) const;
   /// Moves obstacle i (one that moves with a frame).
   void setObstaclePose(std::size_t i, const Position& position, const Eigen::Quaterniond& orientation);
-  /// Contact between tethers and of a tether with itself (obstacles always collide); off by default (each
-  /// tether moves itself out of the others, which do not yield: README "Known limitations").
+  /// Contact between tethers and of a tether with itself (obstacles always collide); off by default
+  /// (README "Known limitations"). Each tether moves itself out of the others and sends them the reaction.
   void setContactBetweenTethers(bool on);
   /// What tether i touched in its last step, segment by segment.
   const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }

@@ -11,7 +11,9 @@
  * last step's holds, so the tension carries friction. Position-based Coulomb friction (Macklin et al. 2014)
  * with the normal force a wrapped cable really exerts, so the capstan law holds (docs/references.md).
  * The other tethers are fixed while this one steps (World steps them in turn): each tether moves itself out
- * of the others, and none pushes another (a known limit: README "Known limitations"). Their capsules and this one's own
+ * of the others, so none passes through another, and each push sends the other tether the opposite momentum,
+ * which it takes at its next sub-step (ContactScene::reaction): the one lying on another weighs on it, the
+ * one dragged across another drags it along. Their capsules and this one's own
  * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World rebuilds before each step.
  *
  * What was touched in the last step is kept per segment (record()), for the topology report (contact angle,
@@ -19,7 +21,9 @@
  */
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "rov_tether/contact.hpp"
@@ -55,6 +59,9 @@ struct ContactScene
   std::vector<std::size_t> self_gap;   ///< Segments this close along one cable never collide.
   SegmentGrid grid;                    ///< Every tether's segments, rebuilt before each step.
   bool between_tethers = false;        ///< Contact between tethers and of a tether with itself.
+  /// Per tether, per particle: the change of velocity the other tethers' contacts gave it since its last
+  /// sub-step (the reaction of each push, Newton's third law), which it takes at its next one [m/s].
+  mutable std::vector<std::vector<Position>> reaction;
 };
 
 class WorldContact : public Contact
@@ -67,6 +74,8 @@ class WorldContact : public Contact
   bool updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const override;
   void applyHold(Cable& cable) const override;
   void warmStart(Cable& cable, double h) const override;
+  void takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) const override;
+  void sendReaction() const override;
   void friction(Cable& cable, const std::vector<double>& stretch) const override;
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
@@ -75,8 +84,10 @@ class WorldContact : public Contact
 
  private:
   /// Moves segment j's particles so the point at t clears by depth along n, and notes for each the normal,
-  /// the correction and the friction coefficient.
-  void resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
+  /// the correction and the friction coefficient; returns the momentum given along n, m dx [kg m].
+  double resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
+  /// Notes the reaction to a push of this tether of `momentum` along n off tether k's segment s at u.
+  void react(std::size_t k, std::size_t s, const Push& push, double momentum) const;
   /// Resolves segment j against the obstacles and (when `others`) the cables; returns its deepest overlap.
   double contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap) const;
   static constexpr int kContactSweeps = 6;
@@ -107,6 +118,22 @@ class WorldContact : public Contact
   /// this one.
   mutable std::vector<std::size_t> warm_;
   mutable double warm_h_ = 0.0;
+  /// The reactions this pass of the contacts owes the other tethers, per tether and particle [m/s], with the
+  /// (tether, particle) pairs noted (each once: sent_mark_); sendReaction() hands over the last pass's.
+  mutable std::vector<std::vector<Position>> sent_;
+  mutable std::vector<std::vector<std::uint8_t>> sent_mark_;
+  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> sent_list_;
+  mutable double h_ = 1.0;  ///< This sub-step's length [s] (takeReaction).
+  /// Per particle, this step: the other tether's segment it last slid on and where along it; tether -1 when
+  /// it touched none, kNotATether when it also touched an obstacle or its own cable.
+  struct Partner
+  {
+    int tether = -1;
+    std::size_t segment = 0;
+    double u = 0.0;
+  };
+  static constexpr int kNotATether = -2;
+  mutable std::vector<Partner> partner_;
   mutable std::vector<std::size_t> touched_;
   mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
 };

@@ -542,11 +542,16 @@ void Tether::subStep(double h, double t)
   {
     cable_.place(n - 1, track_.position());
   }
+  if (world_contact_ != nullptr)
+  {
+    world_contact_->takeReaction(cable_, cable_.first + 1, freeEnd(), h);
+  }
   SolverSettings settings = SolverSettings::from(params_, h);
   settings.drum = runWinch(h) ? &drum_ : nullptr;
   solver_->solve(cable_, settings, contacts_, freeEnd());
   if (world_contact_ != nullptr)
   {
+    world_contact_->sendReaction();
     max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastPullIn());
   }
   if (settings.drum != nullptr)

@@ -198,6 +198,7 @@ void World::wireContacts()
 void World::rebuildGrid()
 {
   double widest = 0.0, longest = 0.0, motion = 0.0;
+  bool resized = false;
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     const Tether& tether = *tethers_[i].tether;
@@ -211,11 +212,16 @@ void World::rebuildGrid()
     widest = std::max(widest, scene_.radius[i]);
     longest = std::max(longest, p.segment_length);
     const Cable& cable = tether.state();
-    if (contacts_[i]->record().obstacle.size() != cable.size())
-    {
-      contacts_[i]->resize();  // the cable was rebuilt (a new cable or segment length)
-    }
+    resized = resized || contacts_[i]->record().obstacle.size() != cable.size();
     motion = std::max(motion, tether.lastMotion());
+  }
+  if (resized)
+  {
+    // A cable was rebuilt (a new cable or segment length): every contact sizes what it keeps of it anew.
+    for (const auto& contact : contacts_)
+    {
+      contact->resize();
+    }
   }
   if (!scene_.between_tethers)
   {

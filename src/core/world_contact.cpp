@@ -32,9 +32,100 @@ void WorldContact::resize()
     segments += cable->size();
   }
   near_.reserve(segments);
+  sent_.resize(scene_.cables.size());
+  sent_mark_.resize(scene_.cables.size());
+  for (std::size_t k = 0; k < scene_.cables.size(); ++k)
+  {
+    sent_[k].assign(scene_.cables[k]->size(), Position::Zero());
+    sent_mark_[k].assign(scene_.cables[k]->size(), 0);
+  }
+  sent_list_.clear();
+  sent_list_.reserve(segments);
+  partner_.assign(n, Partner{});
+  scene_.reaction.resize(scene_.cables.size());
+  scene_.reaction[self_].assign(n, Position::Zero());
 }
 
-void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double mu) const
+void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double momentum) const
+{
+  const Cable& other = *scene_.cables[k];
+  if (s + 1 >= other.size() || k >= sent_.size() || sent_[k].size() != other.size())
+  {
+    return;  // the other cable was rebuilt since this one was sized: World resizes before its next step
+  }
+  // The impulse -momentum / h n, shared by the other segment's ends as the contact point divides it (so
+  // the momentum it gives them sums to it), as the change of velocity it makes; a pinned end (a spool
+  // outlet, a vehicle) takes its share itself.
+  const double shares[2] = {1.0 - push.u, push.u};
+  for (int e = 0; e < 2; ++e)
+  {
+    const std::size_t p = s + static_cast<std::size_t>(e);
+    const double move = -shares[e] * momentum / h_ * other.inv_mass[p];
+    if (!(move != 0.0))
+    {
+      continue;
+    }
+    if (sent_mark_[k][p] == 0)
+    {
+      sent_mark_[k][p] = 1;
+      sent_list_.emplace_back(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(p));
+    }
+    sent_[k][p] += move * push.normal;
+  }
+}
+
+void WorldContact::sendReaction() const
+{
+  // Friction between tethers: what holds a particle back pushes the tether it slides on forwards (a
+  // particle that also touched an obstacle or its own cable keeps its friction's reaction to itself).
+  const Cable& cable = *scene_.cables[self_];
+  for (const std::size_t i : touched_)
+  {
+    const Partner& partner = partner_[i];
+    if (partner.tether < 0 || !(hold_[i] > 0.0) || !(cable.inv_mass[i] > 0.0))
+    {
+      continue;
+    }
+    std::vector<Position>& other = scene_.reaction[static_cast<std::size_t>(partner.tether)];
+    const Cable& other_cable = *scene_.cables[static_cast<std::size_t>(partner.tether)];
+    if (partner.segment + 1 >= other.size() || other.size() != other_cable.size())
+    {
+      continue;
+    }
+    // The hold moved the particle back by hold along -slip: momentum -hold slip / w over the sub-step.
+    const Position impulse = hold_[i] / (cable.inv_mass[i] * h_) * slip_[i];
+    other[partner.segment] += (1.0 - partner.u) * other_cable.inv_mass[partner.segment] * impulse;
+    other[partner.segment + 1] += partner.u * other_cable.inv_mass[partner.segment + 1] * impulse;
+  }
+  for (const auto& [k, p] : sent_list_)
+  {
+    if (p < scene_.reaction[k].size())
+    {
+      scene_.reaction[k][p] += sent_[k][p];
+    }
+  }
+}
+
+void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) const
+{
+  h_ = h;
+  if (self_ >= scene_.reaction.size())
+  {
+    return;
+  }
+  // A change of velocity v, taken within this sub-step, moves the particle by v h by its end.
+  std::vector<Position>& mine = scene_.reaction[self_];
+  for (std::size_t i = begin; i < std::min(end, mine.size()); ++i)
+  {
+    if (cable.inv_mass[i] > 0.0)
+    {
+      cable.x[i] += h * mine[i].x(), cable.y[i] += h * mine[i].y(), cable.z[i] += h * mine[i].z();
+    }
+  }
+  std::fill(mine.begin(), mine.end(), Position::Zero());
+}
+
+double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double mu) const
 {
   const std::size_t k = j + 1;
   const double wa = cable.inv_mass[j], wb = cable.inv_mass[k];
@@ -42,8 +133,9 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
   const double denominator = ca * ca * wa + cb * cb * wb;
   if (!(denominator > 0.0))
   {
-    return;  // both ends pinned (the spool outlet and the vehicle): nothing here can move
+    return 0.0;  // both ends pinned (the spool outlet and the vehicle): nothing here can move
   }
+  double momentum = 0.0;
   // Moving a by ca wa d / D and b by cb wb d / D along n moves the point at t by exactly d.
   const double moves[2] = {ca * wa / denominator * push.depth, cb * wb / denominator * push.depth};
   const std::size_t ends[2] = {j, k};
@@ -58,13 +150,15 @@ void WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double
         cable.z[i] += moves[e] * push.normal.z();
     if (pushed_[i] < 0.0)
     {
-      pushed_[i] = 0.0, normal_[i] = Position::Zero(), mu_[i] = 0.0;
+      pushed_[i] = 0.0, normal_[i] = Position::Zero(), mu_[i] = 0.0, partner_[i].tether = -1;
       touched_.push_back(i);
     }
     pushed_[i] += moves[e];
     normal_[i] += push.normal;
     mu_[i] = std::max(mu_[i], mu);
+    momentum += moves[e] / cable.inv_mass[i];
   }
+  return momentum;
 }
 
 double WorldContact::pullInto(const Cable& cable, std::size_t i, const std::vector<double>& stretch, const Position& n)
@@ -220,6 +314,7 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
     if (scene_.bounds[i].overlaps(box) && obstacle.push(cable.position(j), cable.position(j + 1), r, &push))
     {
       resolve(cable, j, push, obstacle.friction());
+      partner_[j].tether = partner_[j + 1].tether = kNotATether;
       deepest = std::max(deepest, push.depth);
       record_.obstacle[j] = i;
       record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
@@ -259,11 +354,19 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
       back.normal = -push.normal;
       resolve(cable, j, push, scene_.cable_friction[self_]);
       resolve(cable, s, back, scene_.cable_friction[self_]);
+      partner_[j].tether = partner_[j + 1].tether = partner_[s].tether = partner_[s + 1].tether = kNotATether;
       record_.tether[s] = static_cast<int>(self_);
     }
     else
     {
-      resolve(cable, j, push, scene_.cable_friction[self_]);
+      react(e.cable, s, push, resolve(cable, j, push, scene_.cable_friction[self_]));
+      for (const std::size_t i : {j, j + 1})
+      {
+        if (partner_[i].tether != kNotATether)
+        {
+          partner_[i] = {static_cast<int>(e.cable), s, push.u};
+        }
+      }
     }
     record_.tether[j] = static_cast<int>(e.cable);
     record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
@@ -296,6 +399,13 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
       pushed_[i] = 0.0, normal_[i] = Position::Zero();
     }
   }
+  // Each pass of the step's contacts owes its own reactions: the last pass's are sent (sendReaction).
+  for (const auto& [k, p] : sent_list_)
+  {
+    sent_[k][p] = Position::Zero();
+    sent_mark_[k][p] = 0;
+  }
+  sent_list_.clear();
   const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
   const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
   if (lo >= hi)
