@@ -67,11 +67,18 @@ Status World::advanceTo(double t, std::size_t* steps)
     {
       break;
     }
-    if (contact_on_)
+    Tether& stepping = *tethers_[next].tether;
+    // The grid is filed once a round (when the first tether steps from a later time than it was filed at):
+    // its margin covers twice the last step's fastest motion, so a tether that stepped since is still
+    // found. One that moved further (a fast turn, a reset) has it filed again before the next step.
+    if (contact_on_ && (grid_stale_ || stepping.time() > grid_time_))
     {
       rebuildGrid();
+      grid_time_ = stepping.time();
+      grid_stale_ = false;
     }
-    tethers_[next].tether->step();
+    stepping.step();
+    grid_stale_ = grid_stale_ || !(stepping.lastMotion() <= grid_motion_);
     ++taken;
   }
   for (auto& entry : tethers_)
@@ -193,6 +200,7 @@ void World::wireContacts()
   {
     rebuildGrid();
   }
+  grid_stale_ = true;  // sized for the new scene: filed again before the next step
 }
 
 void World::rebuildGrid()
@@ -229,6 +237,7 @@ void World::rebuildGrid()
   }
   // Filed boxes reach as far as a segment of the stepping tether can move in its step (twice the last
   // step's motion) and as wide as the widest capsule, so the query with the moved segment finds them.
+  grid_motion_ = motion;
   const double margin = widest + 2.0 * motion;
   scene_.grid.build(scene_.cables, std::max(longest, 2.0 * margin) + 2.0 * widest, margin);
 }
