@@ -395,6 +395,45 @@ double seabedSurface(double x, double y)
   return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
 }
 
+TEST(MeshObstacle, WhatASegmentKeepsNearItGivesTheSameAnswer)
+{
+  // pushNear measures only the triangles it kept near the segment while the segment's box stays inside the
+  // box they were kept for, and refills otherwise: every triangle that can touch is then among them, so it
+  // answers as push does, bit for bit. A segment travels some 30 m over the rotated seabed, from half a
+  // radius under the surface to two over it, by steps of up to 3 cm (many refills, more reuses).
+  ObstacleSpec s = spec(ShapeType::Mesh);
+  s.file = kSource + "/meshes/seabed.stl";
+  s.orientation = Position(0.0, 0.1, 0.3);
+  const auto made = make(s);
+  Obstacle::Near near;
+  int reused = 0, hits = 0;
+  Position centre(2.0, -3.0, 0.0);
+  for (int k = 0; k < 2000; ++k)
+  {
+    // Round a circle of about 5 m over the 2000 steps, each 0 to 3 cm.
+    centre += 0.03 * Position(std::cos(0.003 * k), std::sin(0.003 * k), 0.0) * std::fmod(0.618034 * k, 1.0);
+    const double height = kCable * (2.5 * std::fmod(0.414214 * k, 1.0) - 0.5);
+    const Position middle = made->pose() * Position(centre.x(), centre.y(), seabedSurface(centre.x(), centre.y()) + height);
+    const Position half = 0.05 * made->pose().linear() * Position(std::cos(0.1 * k), std::sin(0.1 * k), 0.1);
+    const Aabb kept = near.box;
+    const int count = near.count;
+    Push plain, kept_push;
+    const bool plain_hit = made->push(middle - half, middle + half, kCable, &plain);
+    ASSERT_EQ(made->pushNear(middle - half, middle + half, kCable, &kept_push, &near), plain_hit) << k;
+    reused += count >= 0 && near.count == count && (near.box.lo == kept.lo) && (near.box.hi == kept.hi) ? 1 : 0;
+    if (plain_hit)
+    {
+      ++hits;
+      EXPECT_EQ(kept_push.depth, plain.depth) << k;
+      EXPECT_EQ(kept_push.t, plain.t) << k;
+      EXPECT_EQ(kept_push.normal, plain.normal) << k;
+    }
+  }
+  // The walk touches the bed about half the time, and the kept triangles served most queries.
+  EXPECT_GT(hits, 500);
+  EXPECT_GT(reused, 1000);
+}
+
 TEST(MeshObstacle, ItsGridItsWalkOfTheTreeAndFclCollideAgree)
 {
   // push finds triangles in its grid, pushThroughTree by walking FCL's tree, pushThroughFclCollide by asking

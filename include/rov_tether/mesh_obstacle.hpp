@@ -58,6 +58,10 @@ class MeshObstacle : public Obstacle
 
   Aabb bounds() const override { return bounds_; }
   bool push(const Position& a, const Position& b, double radius, Push* out) const override;
+  /// push, measuring only the triangles kept in `near` while the segment's box stays inside the box they
+  /// were kept for (the box grown by two radii and a tenth of the segment); refilled from the grid when it
+  /// leaves it. Up to Near::kCapacity triangles; more near, and the grid is queried each time.
+  bool pushNear(const Position& a, const Position& b, double radius, Push* out, Near* near) const override;
   /// The same answer found through FCL's capsule-against-mesh collide query (GJK on each triangle it reaches,
   /// up to 64 triangles) instead of push's own walk: allocates (see above); for the benchmark and the test
   /// that the two agree.

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -100,6 +102,22 @@ class Obstacle
   /// Whether the capsule [a, b] of `radius` overlaps the obstacle, and if so where and how to clear it
   /// (the deepest point). Must not allocate.
   virtual bool push(const Position& a, const Position& b, double radius, Push* out) const = 0;
+  /// What an obstacle may keep between queries of one cable segment, which moves little from one to the
+  /// next: a mesh keeps the triangles near it (MeshObstacle::pushNear). One per segment, owned by the caller.
+  struct Near
+  {
+    static constexpr int kCapacity = 16;
+    const Obstacle* owner = nullptr;  ///< The obstacle that filled it.
+    Aabb box;                         ///< In the owner's frame: what overlaps it is listed.
+    std::array<std::uint32_t, kCapacity> items{};
+    int count = -1;  ///< -1: nothing kept.
+  };
+  /// push for a segment that keeps `near` from one query to the next: the same answer, found faster where
+  /// the obstacle keeps something (a mesh); the others ignore it.
+  virtual bool pushNear(const Position& a, const Position& b, double radius, Push* out, Near* /*near*/) const
+  {
+    return push(a, b, radius, out);
+  }
 
  protected:
   /// Called after the pose changed.

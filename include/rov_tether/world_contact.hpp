@@ -134,6 +134,8 @@ class WorldContact : public Contact
   };
   static constexpr int kNotATether = -2;
   mutable std::vector<Partner> partner_;
+  /// Per segment: what a mesh keeps between its queries (Obstacle::pushNear).
+  mutable std::vector<Obstacle::Near> near_obstacle_;
   mutable std::vector<std::size_t> touched_;
   mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
 };

@@ -42,6 +42,7 @@ void WorldContact::resize()
   sent_list_.clear();
   sent_list_.reserve(segments);
   partner_.assign(n, Partner{});
+  near_obstacle_.assign(n, Obstacle::Near{});
   scene_.reaction.resize(scene_.cables.size());
   scene_.reaction[self_].assign(n, Position::Zero());
 }
@@ -311,7 +312,8 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   for (const int i : candidates_)
   {
     const Obstacle& obstacle = *scene_.obstacles[i];
-    if (scene_.bounds[i].overlaps(box) && obstacle.push(cable.position(j), cable.position(j + 1), r, &push))
+    if (scene_.bounds[i].overlaps(box) &&
+        obstacle.pushNear(cable.position(j), cable.position(j + 1), r, &push, &near_obstacle_[j]))
     {
       resolve(cable, j, push, obstacle.friction());
       partner_[j].tether = partner_[j + 1].tether = kNotATether;

@@ -321,7 +321,13 @@ void MeshObstacle::placed()
 
 bool MeshObstacle::push(const Position& a, const Position& b, double radius, Push* out) const
 {
-  // Into the mesh frame: the grid and the BVH were built there once.
+  return pushNear(a, b, radius, out, nullptr);
+}
+
+bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius, Push* out, Near* near) const
+{
+  // Into the mesh frame: the grid and the BVH were built there once (and a kept box stays valid as the
+  // mesh moves).
   const Eigen::Isometry3d to_local = pose_.inverse(Eigen::Isometry);
   const Position la = to_local * a, lb = to_local * b;
   // The filters below leave the exact test a little slack: a cable resting on the mesh sits at one radius
@@ -331,32 +337,82 @@ bool MeshObstacle::push(const Position& a, const Position& b, double radius, Pus
   box.grow(la), box.grow(lb);
   box.inflate(reach);
   int kept = -1;
-  const bool small = cells_.forCells(
-      box, kMaxQueryCells,
-      [&](std::size_t cell)
-      {
-        for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k)
+  // A triangle that can touch the capsule: within reach of its plane, and its box meeting the capsule's.
+  auto measure = [&](std::uint32_t triangle)
+  {
+    const Eigen::Vector3i& t = mesh_.triangles[triangle];
+    const Position& v0 = mesh_.vertices[t[0]];
+    const double hp = normals_[triangle].dot(la - v0), hq = normals_[triangle].dot(lb - v0);
+    if ((hp > reach && hq > reach) || (hp < -reach && hq < -reach))
+    {
+      return;
+    }
+    const Position& v1 = mesh_.vertices[t[1]];
+    const Position& v2 = mesh_.vertices[t[2]];
+    if ((v0.array().max(v1.array()).max(v2.array()) < box.lo.array()).any() ||
+        (v0.array().min(v1.array()).min(v2.array()) > box.hi.array()).any())
+    {
+      return;
+    }
+    // Measured in any order, to the same answer (keepDeeper breaks ties by number); twice if listed twice.
+    keepDeeper(static_cast<int>(triangle), la, lb, radius, &kept, out);
+  };
+  const bool inside = near != nullptr && near->owner == this && near->count >= 0 &&
+                      (near->box.lo.array() <= box.lo.array()).all() && (box.hi.array() <= near->box.hi.array()).all();
+  if (!inside && near != nullptr)
+  {
+    // Keep the triangles near the segment's box grown by a skin of two radii and a tenth of its length, as
+    // far as they fit: while the box stays inside, they are all that can touch it.
+    near->owner = this;
+    near->count = 0;
+    near->box = box;
+    near->box.inflate(2.0 * radius + 0.1 * (lb - la).norm());
+    const Aabb& wide = near->box;
+    const bool listed = cells_.forCells(
+        wide, kMaxQueryCells,
+        [&](std::size_t cell)
         {
-          const std::uint32_t triangle = filed_[k];
-          const Eigen::Vector3i& t = mesh_.triangles[triangle];
-          const Position& v0 = mesh_.vertices[t[0]];
-          // Both ends more than a radius on one side of its plane, or its box apart: it cannot touch.
-          const double hp = normals_[triangle].dot(la - v0), hq = normals_[triangle].dot(lb - v0);
-          if ((hp > reach && hq > reach) || (hp < -reach && hq < -reach))
+          for (std::uint32_t k = start_[cell]; k < start_[cell + 1] && near->count >= 0; ++k)
           {
-            continue;
+            const std::uint32_t triangle = filed_[k];
+            const Eigen::Vector3i& t = mesh_.triangles[triangle];
+            const Position &v0 = mesh_.vertices[t[0]], &v1 = mesh_.vertices[t[1]], &v2 = mesh_.vertices[t[2]];
+            if ((v0.array().max(v1.array()).max(v2.array()) < wide.lo.array()).any() ||
+                (v0.array().min(v1.array()).min(v2.array()) > wide.hi.array()).any() ||
+                std::find(near->items.begin(), near->items.begin() + near->count, triangle) !=
+                    near->items.begin() + near->count)
+            {
+              continue;
+            }
+            if (near->count == Near::kCapacity)
+            {
+              near->count = -1;  // too many to keep: this segment queries the grid each time
+              return;
+            }
+            near->items[static_cast<std::size_t>(near->count++)] = triangle;
           }
-          const Position& v1 = mesh_.vertices[t[1]];
-          const Position& v2 = mesh_.vertices[t[2]];
-          if ((v0.array().max(v1.array()).max(v2.array()) < box.lo.array()).any() ||
-              (v0.array().min(v1.array()).min(v2.array()) > box.hi.array()).any())
-          {
-            continue;
-          }
-          // A triangle filed in two of these cells is measured twice, to the same answer.
-          keepDeeper(static_cast<int>(triangle), la, lb, radius, &kept, out);
-        }
-      });
+        });
+    if (!listed)
+    {
+      near->count = -1;
+    }
+  }
+  if (near != nullptr && near->count >= 0)
+  {
+    for (int k = 0; k < near->count; ++k)
+    {
+      measure(near->items[static_cast<std::size_t>(k)]);
+    }
+    return kept >= 0 && toWorld(out);
+  }
+  const bool small = cells_.forCells(box, kMaxQueryCells,
+                                     [&](std::size_t cell)
+                                     {
+                                       for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k)
+                                       {
+                                         measure(filed_[k]);
+                                       }
+                                     });
   if (!small)
   {
     return walkTree(la, lb, radius, out);
