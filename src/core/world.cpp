@@ -239,7 +239,9 @@ void World::rebuildGrid()
   // step's motion) and as wide as the widest capsule, so the query with the moved segment finds them.
   grid_motion_ = motion;
   const double margin = widest + 2.0 * motion;
-  scene_.grid.build(scene_.cables, std::max(longest, 2.0 * margin) + 2.0 * widest, margin);
+  // Cells three segments (or margins) long: a cable is a line, so fewer, fuller cells cost less per query
+  // than many sparse ones (BM_ContactWorldStep/0: 2.57 ms at 1x, 2.26 at 2x, 2.09 at 3x, 2.18 at 4x).
+  scene_.grid.build(scene_.cables, 3.0 * std::max(longest, 2.0 * margin) + 2.0 * widest, margin);
 }
 
 void World::topology(std::vector<TopologyEntry>& out) const
