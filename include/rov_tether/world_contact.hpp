@@ -14,7 +14,7 @@
  * of the others, so none passes through another, and each push sends the other tether the opposite momentum,
  * which it takes at its next sub-step (ContactScene::reaction): the one lying on another weighs on it, the
  * one dragged across another drags it along. Their capsules and this one's own
- * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World rebuilds before each step.
+ * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World files once a round of steps.
  *
  * What was touched in the last step is kept per segment (record()), for the topology report (contact angle,
  * capstan ratio) and the contact markers. Nothing here allocates after construction.
