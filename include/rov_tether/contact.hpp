@@ -40,6 +40,9 @@ class Contact
   virtual void takeReaction(Cable& /*cable*/, std::size_t /*begin*/, std::size_t /*end*/, double /*h*/) const {}
   /// After a sub-step's solve: hands the reactions of its contacts on other bodies over to them.
   virtual void sendReaction() const {}
+  /// The cable was laid out anew (a reset, a recovery): forgets what the contact kept of it (holds, pending
+  /// reactions).
+  virtual void forget() const {}
   /// Before a step's first solve: moves the predicted positions back by the holds of the last step (scaled
   /// to a step of `h` [s]), so a contact that sticks or slides as it did needs no further solve.
   virtual void warmStart(Cable& /*cable*/, double /*h*/) const {}

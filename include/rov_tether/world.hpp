@@ -84,6 +84,8 @@ class World
  private:
   /// Gives every tether its WorldContact when the scene needs contact, none otherwise.
   void wireContacts();
+  /// Whether a tether's cable was rebuilt (another size) since the contacts were sized for it.
+  bool cableRebuilt() const;
   /// Files every tether's segments in the grid (World::advanceTo does, once a round of steps).
   void rebuildGrid();
 

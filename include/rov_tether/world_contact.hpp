@@ -57,7 +57,7 @@ struct ContactScene
   std::vector<double> radius;          ///< Every tether's capsule radius [m].
   std::vector<double> cable_friction;  ///< Every tether's Coulomb coefficient against a cable [-].
   std::vector<std::size_t> self_gap;   ///< Segments this close along one cable never collide.
-  SegmentGrid grid;                    ///< Every tether's segments, rebuilt before each step.
+  SegmentGrid grid;                    ///< Every tether's segments, filed once a round of steps.
   bool between_tethers = false;        ///< Contact between tethers and of a tether with itself.
   /// Per tether, per particle: the change of velocity the other tethers' contacts gave it since its last
   /// sub-step (the reaction of each push, Newton's third law), which it takes at its next one [m/s].
@@ -76,6 +76,7 @@ class WorldContact : public Contact
   void warmStart(Cable& cable, double h) const override;
   void takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) const override;
   void sendReaction() const override;
+  void forget() const override;
   void friction(Cable& cable, const std::vector<double>& stretch) const override;
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();

@@ -234,6 +234,10 @@ void Tether::build(double deployed_length)
 
 void Tether::layOut(double deployed_length)
 {
+  if (world_contact_ != nullptr)
+  {
+    world_contact_->forget();
+  }
   spool_.setDeployedLength(cable_, deployed_length);
   const std::size_t n = cable_.size();
   const std::size_t f = cable_.first;

@@ -68,10 +68,11 @@ Status World::advanceTo(double t, std::size_t* steps)
       break;
     }
     Tether& stepping = *tethers_[next].tether;
-    // The grid is filed once a round (when the first tether steps from a later time than it was filed at):
-    // its margin covers twice the last step's fastest motion, so a tether that stepped since is still
-    // found. One that moved further (a fast turn, a reset) has it filed again before the next step.
-    if (contact_on_ && (grid_stale_ || stepping.time() > grid_time_))
+    // The grid is filed once a round (when a tether steps from another time than it was filed at: the
+    // first of the next round, or any after a clock that went back): its margin covers twice the last
+    // step's fastest motion, so a tether that stepped since is still found. One that moved further (a
+    // fast turn) or whose cable was rebuilt (new parameters, a reset) has it filed again first.
+    if (contact_on_ && (grid_stale_ || stepping.time() != grid_time_ || cableRebuilt()))
     {
       rebuildGrid();
       grid_time_ = stepping.time();
@@ -201,6 +202,18 @@ void World::wireContacts()
     rebuildGrid();
   }
   grid_stale_ = true;  // sized for the new scene: filed again before the next step
+}
+
+bool World::cableRebuilt() const
+{
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    if (contacts_[i]->record().obstacle.size() != tethers_[i].tether->state().size())
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 void World::rebuildGrid()

@@ -47,6 +47,27 @@ void WorldContact::resize()
   scene_.reaction[self_].assign(n, Position::Zero());
 }
 
+void WorldContact::forget() const
+{
+  for (const std::size_t i : touched_)
+  {
+    pushed_[i] = -1.0, held_[i] = 0.0, hold_[i] = 0.0;
+  }
+  touched_.clear();
+  warm_.clear();
+  warm_h_ = 0.0;
+  for (const auto& [k, p] : sent_list_)
+  {
+    sent_[k][p] = Position::Zero();
+    sent_mark_[k][p] = 0;
+  }
+  sent_list_.clear();
+  if (self_ < scene_.reaction.size())
+  {
+    std::fill(scene_.reaction[self_].begin(), scene_.reaction[self_].end(), Position::Zero());
+  }
+}
+
 void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double momentum) const
 {
   const Cable& other = *scene_.cables[k];
@@ -62,9 +83,9 @@ void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double 
   {
     const std::size_t p = s + static_cast<std::size_t>(e);
     const double move = -shares[e] * momentum / h_ * other.inv_mass[p];
-    if (!(move != 0.0))
+    if (!(move != 0.0) || !std::isfinite(move))
     {
-      continue;
+      continue;  // nothing, or from a solve that diverged (its tether recovers; the other is not harmed)
     }
     if (sent_mark_[k][p] == 0)
     {
@@ -83,7 +104,7 @@ void WorldContact::sendReaction() const
   for (const std::size_t i : touched_)
   {
     const Partner& partner = partner_[i];
-    if (partner.tether < 0 || !(hold_[i] > 0.0) || !(cable.inv_mass[i] > 0.0))
+    if (partner.tether < 0 || !(hold_[i] > 0.0) || !(cable.inv_mass_along[i] > 0.0))
     {
       continue;
     }
@@ -93,8 +114,13 @@ void WorldContact::sendReaction() const
     {
       continue;
     }
-    // The hold moved the particle back by hold along -slip: momentum -hold slip / w over the sub-step.
-    const Position impulse = hold_[i] / (cable.inv_mass[i] * h_) * slip_[i];
+    // The hold moved the particle back by hold along -slip, along the cable (holdLimit sizes it with the
+    // mass along it): momentum -hold slip / w_along over the sub-step.
+    const Position impulse = hold_[i] / (cable.inv_mass_along[i] * h_) * slip_[i];
+    if (!impulse.allFinite())
+    {
+      continue;
+    }
     other[partner.segment] += (1.0 - partner.u) * other_cable.inv_mass[partner.segment] * impulse;
     other[partner.segment + 1] += partner.u * other_cable.inv_mass[partner.segment + 1] * impulse;
   }
@@ -118,7 +144,7 @@ void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end
   std::vector<Position>& mine = scene_.reaction[self_];
   for (std::size_t i = begin; i < std::min(end, mine.size()); ++i)
   {
-    if (cable.inv_mass[i] > 0.0)
+    if (cable.inv_mass[i] > 0.0 && mine[i].allFinite())
     {
       cable.x[i] += h * mine[i].x(), cable.y[i] += h * mine[i].y(), cable.z[i] += h * mine[i].z();
     }
