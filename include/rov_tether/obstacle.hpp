@@ -103,14 +103,17 @@ class Obstacle
   /// (the deepest point). Must not allocate.
   virtual bool push(const Position& a, const Position& b, double radius, Push* out) const = 0;
   /// What an obstacle may keep between queries of one cable segment, which moves little from one to the
-  /// next: a mesh keeps the triangles near it (MeshObstacle::pushNear). One per segment, owned by the caller.
+  /// next: a mesh keeps the triangles near it (MeshObstacle::pushNear). One per segment, owned by the caller;
+  /// the first mesh to fill it keeps it.
   struct Near
   {
     static constexpr int kCapacity = 16;
     const Obstacle* owner = nullptr;  ///< The obstacle that filled it.
     Aabb box;                         ///< In the owner's frame: what overlaps it is listed.
     std::array<std::uint32_t, kCapacity> items{};
-    int count = -1;  ///< -1: nothing kept.
+    static constexpr int kEmpty = -1;    ///< Nothing kept.
+    static constexpr int kTooMany = -2;  ///< More than kCapacity overlap `box`: none kept for it.
+    int count = kEmpty;
   };
   /// push for a segment that keeps `near` from one query to the next: the same answer, found faster where
   /// the obstacle keeps something (a mesh); the others ignore it.

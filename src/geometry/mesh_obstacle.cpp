@@ -357,7 +357,11 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
     // Measured in any order, to the same answer (keepDeeper breaks ties by number); twice if listed twice.
     keepDeeper(static_cast<int>(triangle), la, lb, radius, &kept, out);
   };
-  const bool inside = near != nullptr && near->owner == this && near->count >= 0 &&
+  if (near != nullptr && near->owner != nullptr && near->owner != this)
+  {
+    near = nullptr;  // kept by another mesh (a segment near two): this one queries its grid each time
+  }
+  const bool inside = near != nullptr && near->owner == this && near->count != Near::kEmpty &&
                       (near->box.lo.array() <= box.lo.array()).all() && (box.hi.array() <= near->box.hi.array()).all();
   if (!inside && near != nullptr)
   {
@@ -372,7 +376,7 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
         wide, kMaxQueryCells,
         [&](std::size_t cell)
         {
-          for (std::uint32_t k = start_[cell]; k < start_[cell + 1] && near->count >= 0; ++k)
+          for (std::uint32_t k = start_[cell]; k < start_[cell + 1] && near->count != Near::kTooMany; ++k)
           {
             const std::uint32_t triangle = filed_[k];
             const Eigen::Vector3i& t = mesh_.triangles[triangle];
@@ -386,7 +390,7 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
             }
             if (near->count == Near::kCapacity)
             {
-              near->count = -1;  // too many to keep: this segment queries the grid each time
+              near->count = Near::kTooMany;  // queries the grid until the segment leaves the box
               return;
             }
             near->items[static_cast<std::size_t>(near->count++)] = triangle;
@@ -394,7 +398,7 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
         });
     if (!listed)
     {
-      near->count = -1;
+      near->count = Near::kEmpty;  // a box too wide for the grid: nothing kept
     }
   }
   if (near != nullptr && near->count >= 0)
