@@ -338,7 +338,8 @@ TEST(Contact, TethersPushEachOtherEquallyAndOppositely)
             load += std::abs(on_b.z());
             ++samples;
           });
-    EXPECT_LT(sum.norm() / samples, 0.05 * load / samples) << "friction 0.3: mean residual " << (sum / samples).transpose();
+    EXPECT_LT(sum.norm() / samples, 0.05 * load / samples)
+        << "friction 0.3: mean residual " << (sum / samples).transpose();
   }
 }
 

@@ -413,7 +413,8 @@ TEST(MeshObstacle, WhatASegmentKeepsNearItGivesTheSameAnswer)
     // Round a circle of about 5 m over the 2000 steps, each 0 to 3 cm.
     centre += 0.03 * Position(std::cos(0.003 * k), std::sin(0.003 * k), 0.0) * std::fmod(0.618034 * k, 1.0);
     const double height = kCable * (2.5 * std::fmod(0.414214 * k, 1.0) - 0.5);
-    const Position middle = made->pose() * Position(centre.x(), centre.y(), seabedSurface(centre.x(), centre.y()) + height);
+    const Position middle =
+        made->pose() * Position(centre.x(), centre.y(), seabedSurface(centre.x(), centre.y()) + height);
     const Position half = 0.05 * made->pose().linear() * Position(std::cos(0.1 * k), std::sin(0.1 * k), 0.1);
     const Aabb kept = near.box;
     const int count = near.count;

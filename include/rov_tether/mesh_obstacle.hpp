@@ -10,12 +10,12 @@
  * 5.1.9); the deepest answers. A capsule wider than a few cells (a long segment over a fine mesh) walks FCL's
  * tree instead (BVHModel<OBBRSS>), skipping every node whose OBB misses the capsule's oriented box. The grid
  * answers a cable segment on the 100,000-triangle seabed several times faster than the tree walk, which is
- * itself faster than FCL's own collide query: bench_contact, BM_ContactMeshPush. The way out is the triangle's front side (its winding, counter-clockwise seen
- * from outside): from the cable's axis in front of a triangle, along the shortest gap to it (the face normal
- * over its face, rounded over its edges and corners); through it, or from behind it within reach, the deeper
- * end of the segment goes back to one radius in front of its plane, along its face normal. So a seabed,
- * front up, holds a cable lying on it, and a closed mesh with outward normals pushes a cable out. A cable more
- * than its radius behind every triangle (deep inside a closed mesh) touches none and is not found; contact
+ * itself faster than FCL's own collide query: bench_contact, BM_ContactMeshPush. The way out is the triangle's front
+ * side (its winding, counter-clockwise seen from outside): from the cable's axis in front of a triangle, along the
+ * shortest gap to it (the face normal over its face, rounded over its edges and corners); through it, or from behind it
+ * within reach, the deeper end of the segment goes back to one radius in front of its plane, along its face normal. So
+ * a seabed, front up, holds a cable lying on it, and a closed mesh with outward normals pushes a cable out. A cable
+ * more than its radius behind every triangle (deep inside a closed mesh) touches none and is not found; contact
  * substeps keep a cable from getting there.
  *
  * Allocation. push allocates nothing: its traversal stack is sized to the tree's depth here, the query box

@@ -98,9 +98,9 @@ class World
   ContactScene scene_;
   std::vector<std::unique_ptr<WorldContact>> contacts_;  ///< One per tether, in World order.
   bool contact_on_ = false;                              ///< Whether tethers have their WorldContact.
-  double grid_time_ = 0.0;     ///< The time the grid was filed at (the first stepping tether's).
-  double grid_motion_ = 0.0;   ///< The fastest motion of a step it was filed for [m].
-  bool grid_stale_ = true;     ///< To be filed before the next step whatever the time.
+  double grid_time_ = 0.0;    ///< The time the grid was filed at (the first stepping tether's).
+  double grid_motion_ = 0.0;  ///< The fastest motion of a step it was filed for [m].
+  bool grid_stale_ = true;    ///< To be filed before the next step whatever the time.
 };
 
 }  // namespace rov_tether

@@ -10,7 +10,7 @@ namespace
 /// Boxes are a segment and its margin, a few cells wide, and cells are at least a segment long; a box
 /// thousands of cells wide comes only from a torn cable.
 constexpr long kMaxCells = 4096;
-}
+}  // namespace
 
 void HashedCells::reset(double cell, std::size_t items)
 {
@@ -48,11 +48,11 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
       box.inflate(margin);
       // A diverged or torn cable (re-laid by its tether's next step) files nothing.
       cells_.forCells(box, kMaxCells,
-               [&](std::size_t b)
-               {
-                 staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
-                 staged_bucket_.push_back(static_cast<std::uint32_t>(b));
-               });
+                      [&](std::size_t b)
+                      {
+                        staged_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j)});
+                        staged_bucket_.push_back(static_cast<std::uint32_t>(b));
+                      });
     }
   }
   start_.assign(table + 1, 0u);
@@ -92,18 +92,18 @@ void SegmentGrid::query(const Aabb& box, std::vector<Entry>& out) const
   }
   cells_.forCells(box, kMaxCells,
                   [&](std::size_t b)
-           {
-             for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
-             {
-               const Entry& e = entries_[k];
-               std::uint32_t& mark = seen_[offset_[e.cable] + e.segment];
-               if (mark != query_)
-               {
-                 mark = query_;
-                 out.push_back(e);
-               }
-             }
-           });
+                  {
+                    for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k)
+                    {
+                      const Entry& e = entries_[k];
+                      std::uint32_t& mark = seen_[offset_[e.cable] + e.segment];
+                      if (mark != query_)
+                      {
+                        mark = query_;
+                        out.push_back(e);
+                      }
+                    }
+                  });
 }
 
 }  // namespace rov_tether
