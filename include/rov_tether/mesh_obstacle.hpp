@@ -76,6 +76,8 @@ class MeshObstacle : public Obstacle
   void placed() override;
 
  private:
+  /// Whether triangle `triangle`'s box and `box` (mesh frame) are apart.
+  bool apart(std::uint32_t triangle, const Aabb& box) const;
   /// pushThroughTree in the mesh frame.
   bool walkTree(const Position& la, const Position& lb, double radius, Push* out) const;
   /// Measures triangle `triangle` against the local capsule [la, lb] and keeps it in `out` (and its index

@@ -87,6 +87,8 @@ class WorldContact : public Contact
   /// Moves segment j's particles so the point at t clears by depth along n, and notes for each the normal,
   /// the correction and the friction coefficient; returns the momentum given along n, m dx [kg m].
   double resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
+  /// Forgets the reactions noted in this pass (sent_, sent_mark_, sent_list_).
+  void clearSent() const;
   /// Notes the reaction to a push of this tether of `momentum` along n off tether k's segment s at u.
   void react(std::size_t k, std::size_t s, const Push& push, double momentum) const;
   /// Resolves segment j against the obstacles and (when `others`) the cables; returns its deepest overlap.

@@ -47,6 +47,16 @@ void WorldContact::resize()
   scene_.reaction[self_].assign(n, Position::Zero());
 }
 
+void WorldContact::clearSent() const
+{
+  for (const auto& [k, p] : sent_list_)
+  {
+    sent_[k][p] = Position::Zero();
+    sent_mark_[k][p] = 0;
+  }
+  sent_list_.clear();
+}
+
 void WorldContact::forget() const
 {
   for (const std::size_t i : touched_)
@@ -56,12 +66,7 @@ void WorldContact::forget() const
   touched_.clear();
   warm_.clear();
   warm_h_ = 0.0;
-  for (const auto& [k, p] : sent_list_)
-  {
-    sent_[k][p] = Position::Zero();
-    sent_mark_[k][p] = 0;
-  }
-  sent_list_.clear();
+  clearSent();
   if (self_ < scene_.reaction.size())
   {
     std::fill(scene_.reaction[self_].begin(), scene_.reaction[self_].end(), Position::Zero());
@@ -428,12 +433,7 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
     }
   }
   // Each pass of the step's contacts owes its own reactions: the last pass's are sent (sendReaction).
-  for (const auto& [k, p] : sent_list_)
-  {
-    sent_[k][p] = Position::Zero();
-    sent_mark_[k][p] = 0;
-  }
-  sent_list_.clear();
+  clearSent();
   const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
   const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
   if (lo >= hi)

@@ -347,10 +347,7 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
     {
       return;
     }
-    const Position& v1 = mesh_.vertices[t[1]];
-    const Position& v2 = mesh_.vertices[t[2]];
-    if ((v0.array().max(v1.array()).max(v2.array()) < box.lo.array()).any() ||
-        (v0.array().min(v1.array()).min(v2.array()) > box.hi.array()).any())
+    if (apart(triangle, box))
     {
       return;
     }
@@ -379,12 +376,8 @@ bool MeshObstacle::pushNear(const Position& a, const Position& b, double radius,
           for (std::uint32_t k = start_[cell]; k < start_[cell + 1] && near->count != Near::kTooMany; ++k)
           {
             const std::uint32_t triangle = filed_[k];
-            const Eigen::Vector3i& t = mesh_.triangles[triangle];
-            const Position &v0 = mesh_.vertices[t[0]], &v1 = mesh_.vertices[t[1]], &v2 = mesh_.vertices[t[2]];
-            if ((v0.array().max(v1.array()).max(v2.array()) < wide.lo.array()).any() ||
-                (v0.array().min(v1.array()).min(v2.array()) > wide.hi.array()).any() ||
-                std::find(near->items.begin(), near->items.begin() + near->count, triangle) !=
-                    near->items.begin() + near->count)
+            if (apart(triangle, wide) || std::find(near->items.begin(), near->items.begin() + near->count, triangle) !=
+                                             near->items.begin() + near->count)
             {
               continue;
             }
@@ -462,6 +455,14 @@ bool MeshObstacle::walkTree(const Position& la, const Position& lb, double radiu
     keepDeeper(triangle, la, lb, radius, &kept, out);
   }
   return kept >= 0 && toWorld(out);
+}
+
+bool MeshObstacle::apart(std::uint32_t triangle, const Aabb& box) const
+{
+  const Eigen::Vector3i& t = mesh_.triangles[triangle];
+  const Position &v0 = mesh_.vertices[t[0]], &v1 = mesh_.vertices[t[1]], &v2 = mesh_.vertices[t[2]];
+  return (v0.array().max(v1.array()).max(v2.array()) < box.lo.array()).any() ||
+         (v0.array().min(v1.array()).min(v2.array()) > box.hi.array()).any();
 }
 
 void MeshObstacle::keepDeeper(int triangle, const Position& la, const Position& lb, double radius, int* kept,
