@@ -68,6 +68,12 @@ Position closestPointOnTriangle(const Position& p, const Position& a, const Posi
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
+/// Whether x projects onto triangle (a, b, c) of normal n along n (on the inner side of all three edges).
+bool overFace(const Position& x, const Position& a, const Position& b, const Position& c, const Position& n)
+{
+  return n.dot((b - a).cross(x - a)) >= 0.0 && n.dot((c - b).cross(x - b)) >= 0.0 && n.dot((a - c).cross(x - c)) >= 0.0;
+}
+
 /// Whether segment [p, q] passes through triangle (a, b, c) of unit normal n (its plane crossed inside it).
 bool crossesTriangle(const Position& p, const Position& q, const Position& a, const Position& b, const Position& c,
                      const Position& n)
@@ -77,9 +83,7 @@ bool crossesTriangle(const Position& p, const Position& q, const Position& a, co
   {
     return false;
   }
-  const Position x = p + (hp / (hp - hq)) * (q - p);
-  // Inside when x is on the inner side of all three edges.
-  return n.dot((b - a).cross(x - a)) >= 0.0 && n.dot((c - b).cross(x - b)) >= 0.0 && n.dot((a - c).cross(x - c)) >= 0.0;
+  return overFace(p + (hp / (hp - hq)) * (q - p), a, b, c, n);
 }
 
 /**
@@ -98,6 +102,20 @@ bool pushTriangle(const Position& p, const Position& q, double radius, const Pos
     out->normal = n;
     return true;
   };
+  // Both ends in front of the face and over it (a cable lying on the mesh, the common case): the whole
+  // segment is over the face (it is convex), where the gap to it is the height, so the lower end is closest.
+  if (hp >= 0.0 && hq >= 0.0 && overFace(p, a, b, c, n) && overFace(q, a, b, c, n))
+  {
+    const double height = std::min(hp, hq);
+    if (!(height < radius))
+    {
+      return false;
+    }
+    out->t = hp <= hq ? 0.0 : 1.0;
+    out->depth = radius - height;
+    out->normal = n;
+    return true;
+  }
   if (crossesTriangle(p, q, a, b, c, n))
   {
     return from_behind();
