@@ -48,6 +48,10 @@ class Contact
   virtual void warmStart(Cable& /*cable*/, double /*h*/) const {}
   /// Friction as a correction after the solve, for a method that cannot solve again (lumped_mass).
   virtual void friction(Cable& /*cable*/, const std::vector<double>& /*stretch*/) const {}
+  /// After a sub-step of `h` [s]: limits how fast the contact sends a particle off (the velocity its
+  /// push-out leaves in x - px), so an overlap older than the sub-step (a cable laid out through an
+  /// obstacle) is undone in position without throwing the cable.
+  virtual void limitRebound(Cable& /*cable*/, double /*h*/) const {}
   /// How far the solve's tension pulled a particle into the contact in the last step's first projection
   /// [m] (it grows as h^2); 0 when the contact does not say.
   virtual double lastPullIn() const { return 0.0; }

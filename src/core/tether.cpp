@@ -556,6 +556,7 @@ void Tether::subStep(double h, double t)
   if (world_contact_ != nullptr)
   {
     world_contact_->sendReaction();
+    world_contact_->limitRebound(cable_, h);
     max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastPullIn());
   }
   if (settings.drum != nullptr)

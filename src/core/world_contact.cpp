@@ -247,6 +247,31 @@ void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) co
   }
 }
 
+void WorldContact::limitRebound(Cable& cable, double h) const
+{
+  // A push that cancels the particle's own motion into the contact leaves it at rest along n (an impact
+  // is inelastic); one that undoes an overlap the sub-step did not make (a cable laid out through an
+  // obstacle, a tether pressed in by another) would leave it the overlap over h. Beyond kMaxRebound, the
+  // sub-step's start moves out with the particle: the position keeps the push, the velocity does not.
+  const double most = kMaxRebound * h;
+  for (const std::size_t i : touched_)
+  {
+    const double length = normal_[i].norm();
+    if (!(length > 0.0) || !(cable.inv_mass[i] > 0.0))
+    {
+      continue;
+    }
+    const Position n = normal_[i] / length;
+    const double off =
+        n.x() * (cable.x[i] - cable.px[i]) + n.y() * (cable.y[i] - cable.py[i]) + n.z() * (cable.z[i] - cable.pz[i]);
+    if (off > most)
+    {
+      const double shift = off - most;
+      cable.px[i] += shift * n.x(), cable.py[i] += shift * n.y(), cable.pz[i] += shift * n.z();
+    }
+  }
+}
+
 void WorldContact::warmStart(Cable& cable, double h) const
 {
   // A hold is a force over the step times h^2 w: the same force over a step of another length.
