@@ -28,7 +28,8 @@ namespace rov_tether
  * - **primal** (bending stiffness, or a tension ratio h^2 T (w_a + w_b) / |d| above 1/4): Newton on the
  *   positions and the multipliers together, minimising the step's energy
  *     Phi(x) = 1/2 |x - x~|_M^2 + sum max(C_k, 0)^2 / (2 alpha_k) + sum |C_b|^2 / (2 gamma_b)
- *   (max only for a cable) with the full Hessian, geometric stiffness lambda / |d| (I - n n^T) included. The
+ *   (max only for a cable) with the full Hessian, geometric stiffness lambda / |d| (I - n n^T) included (in
+ *   compression, a rod's, only while it takes at most an eighth of either end's mass: positive definite). The
  *   dual path leaves it out: a tensioned chain's transverse step is then explicit, and unstable beyond that
  *   ratio (Tournier et al. 2015, "Stable constrained dynamics"). The multipliers are unknowns of their own
  *   (the saddle-point system of that paper, with them eliminated from each solve): the geometric stiffness
