@@ -1,5 +1,6 @@
 #include "rov_tether/tether.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -271,6 +272,14 @@ void Tether::layOut(double deployed_length)
       }
       side.normalize();
       const double offset = std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0));
+      if (std::isfinite(params_.seabed_z) && (apex + offset * side).z() < params_.seabed_z)
+      {
+        // It would hang through the flat seabed: bowed sideways instead, level across the chord, from where
+        // it sinks onto the seabed. (Laid through it, the seabed's projection flattened metres of sag in
+        // one step; a rod folded, its solve failed, and the recovery laid it out the same way again.)
+        const Position level = direction.cross(Position::UnitZ());
+        side = level.norm() > 1e-6 ? Position(level.normalized()) : Position(Position::UnitX());
+      }
       apex += offset * side;
     }
   }
