@@ -102,9 +102,31 @@ bool pushTriangle(const Position& p, const Position& q, double radius, const Pos
     out->normal = n;
     return true;
   };
+  // How far each end is beyond each edge, across it in the face's plane (times the edge's length: the
+  // outward normal (c1 - c0) x n is not unit), and whether it is beyond it by more than the radius.
+  const Position* corners[3] = {&a, &b, &c};
+  double sp[3], sq[3];
+  bool p_far[3], q_far[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const Position& c0 = *corners[k];
+    const Position outward = (*corners[(k + 1) % 3] - c0).cross(n);  // counter-clockwise: points out
+    const double reach2 = radius * radius * outward.squaredNorm();
+    sp[k] = outward.dot(p - c0), sq[k] = outward.dot(q - c0);
+    p_far[k] = sp[k] * sp[k] > reach2, q_far[k] = sq[k] * sq[k] > reach2;
+    // Both ends beyond one edge by more than the radius: the triangle is behind that plane, out of reach
+    // (a neighbour of the triangle a lying cable is over).
+    if (sp[k] > 0.0 && sq[k] > 0.0 && p_far[k] && q_far[k])
+    {
+      return false;
+    }
+  }
+  // An end over the face: inside all three edges.
+  const bool p_over = sp[0] <= 0.0 && sp[1] <= 0.0 && sp[2] <= 0.0;
+  const bool q_over = sq[0] <= 0.0 && sq[1] <= 0.0 && sq[2] <= 0.0;
   // Both ends in front of the face and over it (a cable lying on the mesh, the common case): the whole
   // segment is over the face (it is convex), where the gap to it is the height, so the lower end is closest.
-  if (hp >= 0.0 && hq >= 0.0 && overFace(p, a, b, c, n) && overFace(q, a, b, c, n))
+  if (hp >= 0.0 && hq >= 0.0 && p_over && q_over)
   {
     const double height = std::min(hp, hq);
     if (!(height < radius))
@@ -120,21 +142,27 @@ bool pushTriangle(const Position& p, const Position& q, double radius, const Pos
   {
     return from_behind();
   }
-  // Not crossing: the closest pair has an end of the segment or an edge of the triangle in it.
+  // Not crossing: the closest pair has an end of the segment or an edge of the triangle in it. An end over
+  // the face is its height from it; an edge both ends are inside of by more than the radius is further.
   double best = std::numeric_limits<double>::infinity(), best_t = 0.0;
   Position best_gap = Position::Zero();
   for (int end = 0; end < 2; ++end)
   {
     const Position& e = end == 0 ? p : q;
-    const Position gap = e - closestPointOnTriangle(e, a, b, c);
+    const double h = end == 0 ? hp : hq;
+    const Position gap =
+        (end == 0 ? p_over : q_over) ? Position(h * n) : Position(e - closestPointOnTriangle(e, a, b, c));
     if (gap.squaredNorm() < best)
     {
       best = gap.squaredNorm(), best_t = end, best_gap = gap;
     }
   }
-  const Position* corners[3] = {&a, &b, &c};
   for (int k = 0; k < 3; ++k)
   {
+    if (sp[k] < 0.0 && sq[k] < 0.0 && p_far[k] && q_far[k])
+    {
+      continue;
+    }
     double s = 0.0, u = 0.0;
     const Position& c0 = *corners[k];
     const Position& c1 = *corners[(k + 1) % 3];
