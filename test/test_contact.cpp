@@ -2,11 +2,13 @@
 // comes from geometry or a conservation law, stated at the test; docs/references.md, "Wraps and links".
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
 
 #include "rov_tether/obstacle.hpp"
+#include "rov_tether/segment_grid.hpp"
 #include "rov_tether/topology.hpp"
 #include "rov_tether/world.hpp"
 #include "test_helpers.hpp"
@@ -99,6 +101,93 @@ double poleOverlap(const Tether& tether, double pole)
     }
   }
   return worst;
+}
+
+// The grid's pair lists stand in for a query (SegmentGrid): World files every segment with a margin F of
+// twice the widest radius w plus twice the last step's motion m, and a segment then touches only its pairs
+// as long as it has moved at most `moved` = w + 2m and the others at most 2m since: two capsules that touch
+// have boxes within r_a + r_b <= 2w of each other, so their filed boxes were within 2w + (w + 2m) + 2m,
+// less than 2F apart. Three tangled cables (random walks of 0.1 m steps in a 1 m cube, so they cross each
+// other and themselves), moved at random within those bounds: every touching pair (exact capsule test, not
+// neighbours along a cable) is listed whenever pairsOf answers, and pairsOf answers for every segment that
+// moved no more than `moved`.
+TEST(SegmentGrid, ListsEveryPairOfCapsulesThatCanTouchAfterTheyMove)
+{
+  const double w = 0.02, m = 0.01, moved = w + 2.0 * m;
+  const std::vector<std::size_t> gap = {2, 2, 2};
+  std::uint64_t state = 7;
+  auto uniform = [&state]()
+  {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  auto jitter = [&](double size) -> Position
+  { return Position(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5) * (2.0 * size); };
+  std::vector<Cable> cables(3);
+  for (Cable& cable : cables)
+  {
+    cable.resize(61);
+    Position at(uniform(), uniform(), uniform());
+    for (std::size_t i = 0; i < cable.size(); ++i)
+    {
+      cable.place(i, at);
+      at += 0.1 * jitter(1.0).normalized();
+      at = at.cwiseMax(Position::Zero()).cwiseMin(Position::Ones());
+    }
+  }
+  std::vector<const Cable*> filed = {&cables[0], &cables[1], &cables[2]};
+  SegmentGrid grid;
+  grid.build(filed, 3.0 * std::max(0.1, 2.0 * moved) + 2.0 * w, moved + w, gap, moved);
+  int touching = 0, answered = 0;
+  for (int round = 0; round < 20; ++round)
+  {
+    // Each particle moves by up to 2m per axis, but for one cable's (the stepping tether's), which move by
+    // up to `moved` (a segment's box moves no further than its ends).
+    std::vector<Cable> now = cables;
+    const std::size_t stepping = static_cast<std::size_t>(round) % 3;
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      for (std::size_t i = 0; i < now[c].size(); ++i)
+      {
+        now[c].place(i, cables[c].position(i) + jitter(c == stepping ? moved : 2.0 * m));
+      }
+    }
+    for (std::size_t j = 0; j + 1 < now[stepping].size(); ++j)
+    {
+      Aabb box;
+      box.grow(now[stepping].position(j)), box.grow(now[stepping].position(j + 1));
+      const SegmentGrid::Entry* first = nullptr;
+      const SegmentGrid::Entry* last = nullptr;
+      ASSERT_TRUE(grid.pairsOf(stepping, j, box, &first, &last)) << j;  // moved no more than `moved`
+      ++answered;
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        for (std::size_t s = 0; s + 1 < now[c].size(); ++s)
+        {
+          Push push;
+          if ((c == stepping && (s > j ? s - j : j - s) <= gap[c]) ||
+              !pushCapsule(now[stepping].position(j), now[stepping].position(j + 1), w, now[c].position(s),
+                           now[c].position(s + 1), w, &push))
+          {
+            continue;
+          }
+          ++touching;
+          const bool listed =
+              std::any_of(first, last, [&](const SegmentGrid::Entry& e) { return e.cable == c && e.segment == s; });
+          EXPECT_TRUE(listed) << "round " << round << ": segment " << j << " of cable " << stepping
+                              << " touches segment " << s << " of cable " << c;
+        }
+      }
+    }
+  }
+  EXPECT_GT(touching, 100);  // coverage: the tangle touches often
+  // A segment moved further than `moved` queries instead.
+  Aabb away;
+  away.grow(cables[0].position(0) + Position(2.0 * moved, 0.0, 0.0));
+  away.grow(cables[0].position(1) + Position(2.0 * moved, 0.0, 0.0));
+  const SegmentGrid::Entry* first = nullptr;
+  const SegmentGrid::Entry* last = nullptr;
+  EXPECT_FALSE(grid.pairsOf(0, 0, away, &first, &last));
 }
 
 // A vehicle circling a pillar: the tether, closed by the chord from the vehicle back to the spool, winds

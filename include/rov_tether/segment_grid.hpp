@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,13 @@ class HashedCells
   /// Cubes of side `cell` [m] in a table of at least twice `items` buckets (and at least 64).
   void reset(double cell, std::size_t items);
   std::size_t buckets() const { return mask_ + 1; }
+  /// The bucket of the cell that holds point p (finite).
+  std::size_t bucketOf(const Position& p) const
+  {
+    const double inv = 1.0 / cell_;
+    return bucket(static_cast<long>(std::floor(p.x() * inv)), static_cast<long>(std::floor(p.y() * inv)),
+                  static_cast<long>(std::floor(p.z() * inv)));
+  }
   /// Calls visit(bucket) for each cell `box` touches, and returns true; when the box spans more than
   /// `most` cells (or is not finite) it visits none and returns false.
   template <typename F>
@@ -69,6 +77,11 @@ class HashedCells
  * sort, so rebuilding it allocates nothing once it has seen the largest scene. A segment is filed in every
  * cell its bounds (inflated by a margin) touch; a query returns every segment filed in the cells a box
  * touches, each once.
+ *
+ * It also lists, once per filing, the pairs of segments whose filed bounds overlap (each found in the one
+ * cell that holds the corner of their overlap, so once), leaving out segments of one cable closer along it
+ * than its `gap`. A segment that has moved less than `moved` from where it was filed finds every segment
+ * the query with its box grown by `moved` would in its list (pairsOf); one that moved further queries.
  */
 class SegmentGrid
 {
@@ -79,13 +92,22 @@ class SegmentGrid
     std::uint32_t segment;
   };
 
-  /// Files the deployed segments of every cable, each inflated by `margin` [m], in cells of `cell` [m].
-  void build(const std::vector<const Cable*>& cables, double cell, double margin);
+  /// Files the deployed segments of every cable, each inflated by `margin` [m], in cells of `cell` [m], and
+  /// lists the pairs whose filed bounds overlap, but for segments of cable c within gap[c] of each other
+  /// along it. pairsOf answers for a segment within `moved` [m] (at most `margin`) of where it was filed.
+  void build(const std::vector<const Cable*>& cables, double cell, double margin, const std::vector<std::size_t>& gap,
+             double moved);
   /// The segments filed in the cells `box` touches, each once, into `out` (cleared first; reserve it).
   void query(const Aabb& box, std::vector<Entry>& out) const;
+  /// The segments listed with segment `segment` of cable `cable`, now at `now` (its bounds, not inflated),
+  /// in [*begin, *end), ordered by cable and segment; false when it was not filed or has moved further than
+  /// `moved` from where it was (then query with its box).
+  bool pairsOf(std::size_t cable, std::size_t segment, const Aabb& now, const Entry** begin, const Entry** end) const;
   bool empty() const { return entries_.empty(); }
 
  private:
+  /// Lists the pairs (after build has filed every segment).
+  void listPairs(const std::vector<std::size_t>& gap);
   HashedCells cells_;
   std::vector<std::uint32_t> start_;  ///< Bucket b's entries are entries_[start_[b], start_[b + 1]).
   std::vector<Entry> entries_;
@@ -94,6 +116,13 @@ class SegmentGrid
   mutable std::vector<std::uint32_t> seen_;  ///< Per filed segment: the query that last returned it.
   std::vector<std::uint32_t> offset_;        ///< Per cable: index of its first segment in seen_.
   mutable std::uint32_t query_ = 0;
+  std::vector<Aabb> filed_;                ///< Per segment (offset_ order): its bounds when filed (empty: not).
+  std::vector<std::uint32_t> pair_start_;  ///< Segment i's pairs are pairs_[pair_start_[i], pair_start_[i + 1]).
+  std::vector<Entry> pairs_;
+  std::vector<std::uint32_t> staged_owner_;  ///< (owner, pair) before the counting sort.
+  std::vector<Entry> staged_pair_;
+  double margin_ = 0.0;
+  double moved_ = 0.0;
 };
 
 }  // namespace rov_tether

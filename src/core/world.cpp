@@ -248,13 +248,17 @@ void World::rebuildGrid()
   {
     return;
   }
-  // Filed boxes reach as far as a segment of the stepping tether can move in its step (twice the last
-  // step's motion) and as wide as the widest capsule, so the query with the moved segment finds them.
+  // Segments a segment can touch: the other's capsule within its own, where the other may have moved
+  // since it was filed (by up to twice the last step's motion) and it may itself have moved too. Filed with
+  // a margin of twice the widest radius plus that motion, two segments whose filed boxes overlap are listed
+  // as a pair; a segment that has moved up to `moved` from where it was filed touches none but its pairs
+  // (widest r_a + r_b + 2 motion + moved <= twice the margin), and one that moved further queries the grid.
   grid_motion_ = motion;
-  const double margin = widest + 2.0 * motion;
+  const double moved = widest + 2.0 * motion;
   // Cells three segments (or margins) long: a cable is a line, so fewer, fuller cells cost less per query
   // than many sparse ones (BM_ContactWorldStep/0: 2.57 ms at 1x, 2.26 at 2x, 2.09 at 3x, 2.18 at 4x).
-  scene_.grid.build(scene_.cables, 3.0 * std::max(longest, 2.0 * margin) + 2.0 * widest, margin);
+  scene_.grid.build(scene_.cables, 3.0 * std::max(longest, 2.0 * moved) + 2.0 * widest, moved + widest, scene_.self_gap,
+                    moved);
 }
 
 void World::topology(std::vector<TopologyEntry>& out) const

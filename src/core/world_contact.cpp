@@ -382,10 +382,20 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   {
     return deepest;
   }
-  box.inflate(widest);
-  scene_.grid.query(box, near_);
-  for (const SegmentGrid::Entry& e : near_)
+  // Where the obstacles left it: its pairs in the grid, or (moved further since it was filed) a query.
+  Aabb now;
+  now.grow(cable.position(j)), now.grow(cable.position(j + 1));
+  const SegmentGrid::Entry* first = nullptr;
+  const SegmentGrid::Entry* last = nullptr;
+  if (!scene_.grid.pairsOf(self_, j, now, &first, &last))
   {
+    now.inflate(r + widest);
+    scene_.grid.query(now, near_);
+    first = near_.data(), last = near_.data() + near_.size();
+  }
+  for (const SegmentGrid::Entry* pair = first; pair != last; ++pair)
+  {
+    const SegmentGrid::Entry& e = *pair;
     const bool own = e.cable == self_;
     const std::size_t s = e.segment;
     if (own && static_cast<std::size_t>(std::labs(static_cast<long>(s) - static_cast<long>(j))) <= gap)
