@@ -181,6 +181,20 @@ TEST(SegmentGrid, ListsEveryPairOfCapsulesThatCanTouchAfterTheyMove)
     }
   }
   EXPECT_GT(touching, 100);  // coverage: the tangle touches often
+  // A cable holds its filing while each particle stays within `moved` of its segments' filed boxes; moved
+  // further, or paid out (another spool outlet: a segment never filed), it does not.
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    EXPECT_TRUE(grid.holds(c, cables[c])) << c;
+  }
+  Cable shifted = cables[1];
+  shifted.place(30, cables[1].position(30) + Position(0.0, 0.0, 0.5 * moved));
+  EXPECT_TRUE(grid.holds(1, shifted));
+  shifted.place(30, cables[1].position(30) + Position(0.0, 0.0, 1.01 * moved + 0.1));
+  EXPECT_FALSE(grid.holds(1, shifted));
+  Cable paid_out = cables[2];
+  paid_out.first = 1;
+  EXPECT_FALSE(grid.holds(2, paid_out));
   // A segment moved further than `moved` queries instead.
   Aabb away;
   away.grow(cables[0].position(0) + Position(2.0 * moved, 0.0, 0.0));

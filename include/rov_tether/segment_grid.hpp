@@ -103,6 +103,9 @@ class SegmentGrid
   /// in [*begin, *end), ordered by cable and segment; false when it was not filed or has moved further than
   /// `moved` from where it was (then query with its box).
   bool pairsOf(std::size_t cable, std::size_t segment, const Aabb& now, const Entry** begin, const Entry** end) const;
+  /// Whether cable `cable` still has the segments it was filed with, each within `moved` of where it was
+  /// filed (so every pair the lists miss is further apart than its capsules reach).
+  bool holds(std::size_t cable, const Cable& now) const;
   bool empty() const { return entries_.empty(); }
 
  private:
@@ -115,6 +118,7 @@ class SegmentGrid
   std::vector<std::uint32_t> staged_bucket_;
   mutable std::vector<std::uint32_t> seen_;  ///< Per filed segment: the query that last returned it.
   std::vector<std::uint32_t> offset_;        ///< Per cable: index of its first segment in seen_.
+  std::vector<std::size_t> first_;           ///< Per cable: its spool outlet when filed (Cable::first).
   mutable std::uint32_t query_ = 0;
   std::vector<Aabb> filed_;                ///< Per segment (offset_ order): its bounds when filed (empty: not).
   std::vector<std::uint32_t> pair_start_;  ///< Segment i's pairs are pairs_[pair_start_[i], pair_start_[i + 1]).

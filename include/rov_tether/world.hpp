@@ -86,8 +86,13 @@ class World
   void wireContacts();
   /// Whether a tether's cable was rebuilt (another size) since the contacts were sized for it.
   bool cableRebuilt() const;
-  /// Files every tether's segments in the grid (World::advanceTo does, once a round of steps).
-  void rebuildGrid();
+  /// The scene's per-tether values (radius, friction, self gap; contacts resized for rebuilt cables), and
+  /// the grid of every tether's segments filed again when `file`, when those changed, or when a segment
+  /// has left its skin (World::advanceTo calls it once a round of steps, and when stale).
+  void refreshContact(bool file);
+  /// How far a cable at rest may move from where it was filed before the grid is filed again, in widest
+  /// radii.
+  static constexpr double kSkin = 0.5;
 
   struct Entry
   {
@@ -98,9 +103,10 @@ class World
   ContactScene scene_;
   std::vector<std::unique_ptr<WorldContact>> contacts_;  ///< One per tether, in World order.
   bool contact_on_ = false;                              ///< Whether tethers have their WorldContact.
-  double grid_time_ = 0.0;    ///< The time the grid was filed at (the first stepping tether's).
-  double grid_motion_ = 0.0;  ///< The fastest motion of a step it was filed for [m].
-  bool grid_stale_ = true;    ///< To be filed before the next step whatever the time.
+  double grid_time_ = 0.0;     ///< The time of the last round's check (the first stepping tether's).
+  double grid_widest_ = 0.0;   ///< The widest radius the grid was filed for [m].
+  double grid_longest_ = 0.0;  ///< The longest segment it was filed for [m].
+  bool grid_stale_ = true;     ///< To be filed before the next step whatever the time.
 };
 
 }  // namespace rov_tether

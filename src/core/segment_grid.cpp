@@ -28,8 +28,10 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
 {
   std::size_t segments = 0;
   offset_.resize(cables.size());
+  first_.resize(cables.size());
   for (std::size_t c = 0; c < cables.size(); ++c)
   {
+    first_[c] = cables[c]->first;
     offset_[c] = static_cast<std::uint32_t>(segments);
     segments += cables[c]->size();
   }
@@ -185,6 +187,28 @@ bool SegmentGrid::pairsOf(std::size_t cable, std::size_t segment, const Aabb& no
   }
   *begin = pairs_.data() + pair_start_[i];
   *end = pairs_.data() + pair_start_[i + 1];
+  return true;
+}
+
+bool SegmentGrid::holds(std::size_t cable, const Cable& now) const
+{
+  const std::size_t stop = cable + 1 < offset_.size() ? offset_[cable + 1] : filed_.size();
+  if (cable >= offset_.size() || now.first != first_[cable] || offset_[cable] + now.size() != stop)
+  {
+    return false;
+  }
+  for (std::size_t j = now.first; j + 1 < now.size(); ++j)
+  {
+    const Aabb& filed = filed_[offset_[cable] + j];
+    for (const std::size_t i : {j, j + 1})
+    {
+      const Position p = now.position(i);
+      if (!((p.array() >= filed.lo.array() - moved_).all() && (p.array() <= filed.hi.array() + moved_).all()))
+      {
+        return false;
+      }
+    }
+  }
   return true;
 }
 

@@ -68,18 +68,19 @@ Status World::advanceTo(double t, std::size_t* steps)
       break;
     }
     Tether& stepping = *tethers_[next].tether;
-    // The grid is filed once a round (when a tether steps from another time than it was filed at: the
-    // first of the next round, or any after a clock that went back): its margin covers twice the last
-    // step's fastest motion, so a tether that stepped since is still found. One that moved further (a
-    // fast turn) or whose cable was rebuilt (new parameters, a reset) has it filed again first.
+    // Once a round (when a tether steps from another time than the last check: the first of the next round,
+    // or any after a clock that went back) the scene takes the tethers' live parameters, and the grid is
+    // filed again unless every segment is still within its skin of where it was filed. A tether that has
+    // moved out of it in its step, or whose cable was rebuilt (new parameters, a reset), has it filed again
+    // before the next step.
     if (contact_on_ && (grid_stale_ || stepping.time() != grid_time_ || cableRebuilt()))
     {
-      rebuildGrid();
+      refreshContact(grid_stale_);
       grid_time_ = stepping.time();
       grid_stale_ = false;
     }
     stepping.step();
-    grid_stale_ = grid_stale_ || !(stepping.lastMotion() <= grid_motion_);
+    grid_stale_ = grid_stale_ || (contact_on_ && scene_.between_tethers && !scene_.grid.holds(next, stepping.state()));
     ++taken;
   }
   for (auto& entry : tethers_)
@@ -199,7 +200,7 @@ void World::wireContacts()
   }
   if (contact_on_)
   {
-    rebuildGrid();
+    refreshContact(true);
   }
   grid_stale_ = true;  // sized for the new scene: filed again before the next step
 }
@@ -216,10 +217,10 @@ bool World::cableRebuilt() const
   return false;
 }
 
-void World::rebuildGrid()
+void World::refreshContact(bool file)
 {
   double widest = 0.0, longest = 0.0, motion = 0.0;
-  bool resized = false;
+  bool resized = false, regapped = false;
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     const Tether& tether = *tethers_[i].tether;
@@ -228,8 +229,10 @@ void World::rebuildGrid()
     scene_.cable_friction[i] = p.cable_friction;
     // A cable turns back onto itself over half a turn of about its diameter: segments closer than that
     // along it touch through their joints, not as contacts.
-    scene_.self_gap[i] =
+    const std::size_t gap =
         1 + static_cast<std::size_t>(std::ceil(0.5 * 3.14159265358979 * p.diameter / p.segment_length));
+    regapped = regapped || gap != scene_.self_gap[i];
+    scene_.self_gap[i] = gap;
     widest = std::max(widest, scene_.radius[i]);
     longest = std::max(longest, p.segment_length);
     const Cable& cable = tether.state();
@@ -248,17 +251,29 @@ void World::rebuildGrid()
   {
     return;
   }
-  // Segments a segment can touch: the other's capsule within its own, where the other may have moved
-  // since it was filed (by up to twice the last step's motion) and it may itself have moved too. Filed with
-  // a margin of twice the widest radius plus that motion, two segments whose filed boxes overlap are listed
-  // as a pair; a segment that has moved up to `moved` from where it was filed touches none but its pairs
-  // (widest r_a + r_b + 2 motion + moved <= twice the margin), and one that moved further queries the grid.
-  grid_motion_ = motion;
-  const double moved = widest + 2.0 * motion;
+  bool holds = !file && !resized && !regapped && widest == grid_widest_ && longest == grid_longest_;
+  for (std::size_t i = 0; holds && i < tethers_.size(); ++i)
+  {
+    holds = scene_.grid.holds(i, tethers_[i].tether->state());
+  }
+  if (holds)
+  {
+    return;  // every segment still within its skin of where it was filed: the pairs still hold
+  }
+  grid_widest_ = widest;
+  grid_longest_ = longest;
+  // Filed with a margin of the widest radius w plus a skin, two segments whose filed boxes overlap are
+  // listed as a pair. While every segment stays within the skin of where it was filed (checked after each
+  // step), a segment that has itself moved up to the skin touches none but its pairs: two capsules that
+  // touch have boxes within r_a + r_b <= 2w, so their filed boxes were within 2w + 2 skin, twice the
+  // margin. One that moved further within its step queries the grid instead. The skin is twice the last
+  // step's fastest motion (what a tether moves in a step, as the grid was once filed every round for), and
+  // at least kSkin w, so a cable at rest keeps its filing for many rounds.
+  const double skin = std::max(2.0 * motion, kSkin * widest);
   // Cells three segments (or margins) long: a cable is a line, so fewer, fuller cells cost less per query
   // than many sparse ones (BM_ContactWorldStep/0: 2.57 ms at 1x, 2.26 at 2x, 2.09 at 3x, 2.18 at 4x).
-  scene_.grid.build(scene_.cables, 3.0 * std::max(longest, 2.0 * moved) + 2.0 * widest, moved + widest, scene_.self_gap,
-                    moved);
+  scene_.grid.build(scene_.cables, 3.0 * std::max(longest, 2.0 * skin) + 2.0 * widest, widest + skin, scene_.self_gap,
+                    skin);
 }
 
 void World::topology(std::vector<TopologyEntry>& out) const
