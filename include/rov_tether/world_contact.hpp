@@ -146,6 +146,8 @@ class WorldContact : public Contact
   mutable std::vector<Obstacle::Near> near_obstacle_;
   mutable std::vector<std::size_t> touched_;
   mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
+  mutable std::vector<std::size_t> deep_;      ///< Segments the next sweep revisits (deep in the last one).
+  mutable std::vector<std::size_t> next_deep_;
 };
 
 }  // namespace rov_tether

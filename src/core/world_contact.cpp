@@ -23,6 +23,8 @@ void WorldContact::resize()
   warm_.reserve(n);
   warm_h_ = 0.0;
   touching_.reserve(n);
+  deep_.reserve(n);
+  next_deep_.reserve(n);
   record_.tether.assign(n, -1);
   record_.point.assign(n, Position::Zero());
   candidates_.reserve(scene_.obstacles.size());
@@ -511,21 +513,37 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
   {
     double deepest = 0.0;
     const bool every = sweep == 0 && first_pass;
-    const std::size_t count = every ? hi - lo : touching_.size();
+    // After the first sweep only the segments that were deep in the last one, and their neighbours (whose
+    // shared particle their push moved): any other was left within kSettled of the radius by the last
+    // sweep and moved by no push since.
+    const std::vector<std::size_t>& list = sweep == 0 ? touching_ : deep_;
+    const std::size_t count = every ? hi - lo : list.size();
+    next_deep_.clear();
     for (std::size_t n = 0; n < count; ++n)
     {
-      const std::size_t j = every ? lo + n : touching_[n];
+      const std::size_t j = every ? lo + n : list[n];
       const double depth = contactSegment(cable, j, r, widest, others, gap);
       deepest = std::max(deepest, depth);
       if (every && depth > 0.0)
       {
         touching_.push_back(j);
       }
+      if (depth > kSettled * r)
+      {
+        for (std::size_t k = j > lo ? j - 1 : j; k <= j + 1 && k < hi; ++k)
+        {
+          if (next_deep_.empty() || next_deep_.back() < k)
+          {
+            next_deep_.push_back(k);
+          }
+        }
+      }
     }
     if (!(deepest > kSettled * r))
     {
       break;
     }
+    deep_.swap(next_deep_);
   }
   if (first_pass)
   {
