@@ -515,7 +515,8 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
     const bool every = sweep == 0 && first_pass;
     // After the first sweep only the segments that were deep in the last one, and their neighbours (whose
     // shared particle their push moved): any other was left within kSettled of the radius by the last
-    // sweep and moved by no push since.
+    // sweep, and only a push of another segment of its own cable against it (self-contact) can have moved
+    // it since; the next step's first sweep finds what that left.
     const std::vector<std::size_t>& list = sweep == 0 ? touching_ : deep_;
     const std::size_t count = every ? hi - lo : list.size();
     next_deep_.clear();
