@@ -571,6 +571,35 @@ TEST(MeshObstacle, ItsGridItsWalkOfTheTreeAndFclCollideAgree)
   EXPECT_LT(resting, 500);
 }
 
+/// `length` of heavy cable (1 N/m in water) all deployed, in segments of `segment`, locked winch, no noise.
+TetherParams heavyCable(double length, double segment)
+{
+  TetherParams params;
+  params.cable_length = length;
+  params.initial_deployed_length = length;
+  params.segment_length = segment;
+  params.weight_in_water = 1.0;
+  params.noise = 0.0;
+  params.winch_mode = WinchMode::kLocked;
+  return params;
+}
+
+/// Adds a tether of `params` to `world`, laid out straight up from `spool` (laid out slack between spool
+/// and vehicle, it would hang through the seabed), whose vehicle comes down to `rest` over `seconds`,
+/// easing in and out.
+void addLoweredTether(World& world, const TetherParams& params, const Position& spool, const Position& rest,
+                      double seconds)
+{
+  const Position above = spool + Position(0.0, 0.0, params.cable_length);
+  ASSERT_TRUE(world.add("tether", std::make_unique<Tether>(params, spool, above)).ok);
+  const int samples = static_cast<int>(std::lround(10.0 * seconds));
+  for (int k = 1; k <= samples; ++k)
+  {
+    const double s = 0.5 - 0.5 * std::cos(3.14159265358979 * k / samples);
+    ASSERT_TRUE(world.tether(world.size() - 1).addVehicleSample(0.1 * k, above + s * (rest - above)).ok);
+  }
+}
+
 TEST(MeshObstacle, ATetherLyingOnTheShippedSeabedStaysOnIt)
 {
   // 16 m of heavy cable (1 N/m in water) between two ends held 0.3 m over the seabed 12 m apart: it sinks
@@ -582,24 +611,12 @@ TEST(MeshObstacle, ATetherLyingOnTheShippedSeabedStaysOnIt)
   s.file = kSource + "/meshes/seabed.stl";
   std::vector<std::unique_ptr<Obstacle>> obstacles;
   obstacles.push_back(make(s));
-  TetherParams params;
-  params.cable_length = 16.0;
-  params.initial_deployed_length = 16.0;
-  params.segment_length = 0.2;
-  params.weight_in_water = 1.0;
-  params.noise = 0.0;
-  params.winch_mode = WinchMode::kLocked;
+  const TetherParams params = heavyCable(16.0, 0.2);
   const Position spool(-6.0, 1.0, seabedSurface(-6.0, 1.0) + 0.3), vehicle(6.0, 1.0, seabedSurface(6.0, 1.0) + 0.3);
   World world;
   world.setContactBetweenTethers(false);  // the seabed alone (and 5x faster)
-  const Position above = spool + Position(0.0, 0.0, params.cable_length);
-  ASSERT_TRUE(world.add("tether", std::make_unique<Tether>(params, spool, above)).ok);
+  addLoweredTether(world, params, spool, vehicle, 8.0);
   ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
-  for (int k = 1; k <= 80; ++k)
-  {
-    const double s = 0.5 - 0.5 * std::cos(3.14159265358979 * k / 80.0);  // eases in and out
-    ASSERT_TRUE(world.tether(0).addVehicleSample(0.1 * k, above + s * (vehicle - above)).ok);
-  }
   ASSERT_TRUE(world.advanceTo(20.0).ok);
   const double radius = 0.5 * params.diameter;
   auto heights = [&]()
@@ -657,25 +674,12 @@ TEST(MeshObstacle, ATetherLyingOnSwellsTakesTwoNewtonIterationsAStep)
   m.file = "(in memory)";
   std::vector<std::unique_ptr<Obstacle>> obstacles;
   obstacles.push_back(std::make_unique<MeshObstacle>(m, swells));
-  TetherParams params;
-  params.segment_length = 0.1;
-  params.cable_length = 20.0;
-  params.initial_deployed_length = 20.0;
-  params.weight_in_water = 1.0;
-  params.noise = 0.0;
-  params.winch_mode = WinchMode::kLocked;
-  // Laid out straight up from a spool 4 m over the swells; the vehicle comes down to 0.3 m over them,
-  // 16 m away, over 6 s (laid out slack, the cable would hang through them).
-  const Position spool(0.0, -8.0, 4.0), above = spool + Position(0.0, 0.0, params.cable_length);
+  const TetherParams params = heavyCable(20.0, 0.1);
+  // From a spool 4 m over the swells; the vehicle comes down to 0.3 m over them, 16 m away, over 6 s.
   World world;
   world.setContactBetweenTethers(false);
-  ASSERT_TRUE(world.add("tether", std::make_unique<Tether>(params, spool, above)).ok);
+  addLoweredTether(world, params, Position(0.0, -8.0, 4.0), Position(0.5, 8.0, 0.3), 6.0);
   ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
-  for (int k = 1; k <= 60; ++k)
-  {
-    const double s = 0.5 - 0.5 * std::cos(3.14159265358979 * k / 60.0);  // eases in and out
-    ASSERT_TRUE(world.tether(0).addVehicleSample(0.1 * k, above + s * (Position(0.5, 8.0, 0.3) - above)).ok);
-  }
   ASSERT_TRUE(world.advanceTo(9.0).ok);
   int total = 0, lying = 0;
   for (int k = 1; k <= 400; ++k)
@@ -709,13 +713,7 @@ TEST(MeshObstacle, ACableLaidOutThroughAMeshComesOutWithoutBeingThrown)
   m.friction = 0.0;
   std::vector<std::unique_ptr<Obstacle>> obstacles;
   obstacles.push_back(std::make_unique<MeshObstacle>(m, flatMesh(40, 1.0)));  // 40 m x 40 m at z = 0
-  TetherParams params;
-  params.segment_length = 0.1;
-  params.cable_length = 20.0;
-  params.initial_deployed_length = 20.0;
-  params.weight_in_water = 1.0;
-  params.noise = 0.0;
-  params.winch_mode = WinchMode::kLocked;
+  const TetherParams params = heavyCable(20.0, 0.1);
   const Position spool(0.0, -8.0, 4.0), vehicle(0.5, 8.0, 0.3);
   World world;
   world.setContactBetweenTethers(false);

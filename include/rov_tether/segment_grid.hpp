@@ -73,6 +73,36 @@ class HashedCells
 };
 
 /**
+ * Counting sort: `items` into `out` by their `keys` (each below `count`), each key's in their order, with
+ * key k's in out[start[k], start[k + 1]). Allocates only to grow the vectors.
+ */
+template <typename T>
+void sortByKey(const std::vector<std::uint32_t>& keys, const std::vector<T>& items, std::size_t count,
+               std::vector<std::uint32_t>& start, std::vector<T>& out)
+{
+  start.assign(count + 1, 0u);
+  for (const std::uint32_t key : keys)
+  {
+    ++start[key + 1];
+  }
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    start[k + 1] += start[k];
+  }
+  out.resize(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    out[start[keys[i]]++] = items[i];
+  }
+  // start[k] now holds the end of key k's items: shift back so it holds their start again.
+  for (std::size_t k = count; k > 0; --k)
+  {
+    start[k] = start[k - 1];
+  }
+  start[0] = 0;
+}
+
+/**
  * The broad phase between cable segments: a uniform grid hashed into a fixed table, filled by counting
  * sort, so rebuilding it allocates nothing once it has seen the largest scene. A segment is filed in every
  * cell its bounds (inflated by a margin) touch; a query returns every segment filed in the cells a box

@@ -65,27 +65,8 @@ void SegmentGrid::build(const std::vector<const Cable*>& cables, double cell, do
       }
     }
   }
-  start_.assign(table + 1, 0u);
-  for (const std::uint32_t b : staged_bucket_)
-  {
-    ++start_[b + 1];
-  }
-  for (std::size_t b = 0; b < table; ++b)
-  {
-    start_[b + 1] += start_[b];
-  }
-  entries_.resize(staged_.size());
   // Each bucket keeps staging order, so the grid (and the contact order) is deterministic.
-  for (std::size_t k = 0; k < staged_.size(); ++k)
-  {
-    entries_[start_[staged_bucket_[k]]++] = staged_[k];
-  }
-  // start_[b] now holds the end of bucket b: shift back so it holds its start again.
-  for (std::size_t b = table; b > 0; --b)
-  {
-    start_[b] = start_[b - 1];
-  }
-  start_[0] = 0;
+  sortByKey(staged_bucket_, staged_, table, start_, entries_);
   listPairs(gap);
 }
 
@@ -126,25 +107,7 @@ void SegmentGrid::listPairs(const std::vector<std::size_t>& gap)
     }
   }
   const std::size_t segments = filed_.size();
-  pair_start_.assign(segments + 1, 0u);
-  for (const std::uint32_t owner : staged_owner_)
-  {
-    ++pair_start_[owner + 1];
-  }
-  for (std::size_t i = 0; i < segments; ++i)
-  {
-    pair_start_[i + 1] += pair_start_[i];
-  }
-  pairs_.resize(staged_pair_.size());
-  for (std::size_t k = 0; k < staged_pair_.size(); ++k)
-  {
-    pairs_[pair_start_[staged_owner_[k]]++] = staged_pair_[k];
-  }
-  for (std::size_t i = segments; i > 0; --i)
-  {
-    pair_start_[i] = pair_start_[i - 1];
-  }
-  pair_start_[0] = 0;
+  sortByKey(staged_owner_, staged_pair_, segments, pair_start_, pairs_);
   // Each segment's list by cable and segment (the order contacts are resolved in: deterministic), once each.
   auto before = [](const Entry& x, const Entry& y)
   { return x.cable < y.cable || (x.cable == y.cable && x.segment < y.segment); };

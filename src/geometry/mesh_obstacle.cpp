@@ -335,21 +335,7 @@ void MeshObstacle::fileTriangles()
                       triangle_of.push_back(static_cast<std::uint32_t>(k));
                     });
   }
-  start_.assign(cells_.buckets() + 1, 0u);
-  for (const std::uint32_t b : bucket_of)
-  {
-    ++start_[b + 1];
-  }
-  for (std::size_t b = 0; b < cells_.buckets(); ++b)
-  {
-    start_[b + 1] += start_[b];
-  }
-  filed_.resize(triangle_of.size());
-  std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
-  for (std::size_t k = 0; k < triangle_of.size(); ++k)
-  {
-    filed_[next[bucket_of[k]]++] = triangle_of[k];
-  }
+  sortByKey(bucket_of, triangle_of, cells_.buckets(), start_, filed_);
 }
 
 MeshObstacle::~MeshObstacle() = default;
