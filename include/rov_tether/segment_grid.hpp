@@ -120,6 +120,8 @@ class SegmentGrid
   {
     std::uint32_t cable;
     std::uint32_t segment;
+    /// By cable, then segment: the order contacts are resolved in.
+    bool operator<(const Entry& o) const { return cable < o.cable || (cable == o.cable && segment < o.segment); }
   };
 
   /// Files the deployed segments of every cable, each inflated by `margin` [m], in cells of `cell` [m], and

@@ -109,17 +109,15 @@ void SegmentGrid::listPairs(const std::vector<std::size_t>& gap)
   const std::size_t segments = filed_.size();
   sortByKey(staged_owner_, staged_pair_, segments, pair_start_, pairs_);
   // Each segment's list by cable and segment (the order contacts are resolved in: deterministic), once each.
-  auto before = [](const Entry& x, const Entry& y)
-  { return x.cable < y.cable || (x.cable == y.cable && x.segment < y.segment); };
   std::uint32_t write = 0;
   for (std::size_t i = 0; i < segments; ++i)
   {
     const std::uint32_t begin = pair_start_[i], end = pair_start_[i + 1];
-    std::sort(pairs_.begin() + begin, pairs_.begin() + end, before);
+    std::sort(pairs_.begin() + begin, pairs_.begin() + end);
     pair_start_[i] = write;
     for (std::uint32_t k = begin; k < end; ++k)
     {
-      if (k == begin || before(pairs_[k - 1], pairs_[k]))
+      if (k == begin || pairs_[k - 1] < pairs_[k])
       {
         pairs_[write++] = pairs_[k];
       }

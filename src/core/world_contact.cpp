@@ -147,13 +147,18 @@ void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end
   {
     return;
   }
-  // A change of velocity v, taken within this sub-step, moves the particle by v h by its end.
+  // A change of velocity v, taken within this sub-step, moves the particle by v h by its end. No faster
+  // than kMaxRebound, as this tether's own pushes (limitRebound): the other tether's push out of an overlap
+  // it did not make in its step (two tethers laid out through each other) would throw this one too. Then
+  // momentum is not conserved: that overlap's is not physical either.
   std::vector<Position>& mine = scene_.reaction[self_];
   for (std::size_t i = begin; i < std::min(end, mine.size()); ++i)
   {
     if (cable.inv_mass[i] > 0.0 && mine[i].allFinite())
     {
-      cable.x[i] += h * mine[i].x(), cable.y[i] += h * mine[i].y(), cable.z[i] += h * mine[i].z();
+      const double speed = mine[i].norm();
+      const Position v = speed > kMaxRebound ? Position(mine[i] * (kMaxRebound / speed)) : mine[i];
+      cable.x[i] += h * v.x(), cable.y[i] += h * v.y(), cable.z[i] += h * v.z();
     }
   }
   std::fill(mine.begin(), mine.end(), Position::Zero());
@@ -393,6 +398,9 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   {
     now.inflate(r + widest);
     scene_.grid.query(now, near_);
+    // In the pairs' order (by cable and segment), so the contacts are resolved in one order whichever way
+    // they were found, and the result does not depend on when the grid was last filed.
+    std::sort(near_.begin(), near_.end());
     first = near_.data(), last = near_.data() + near_.size();
   }
   for (const SegmentGrid::Entry* pair = first; pair != last; ++pair)
@@ -500,11 +508,12 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
   const bool others = scene_.between_tethers && !scene_.grid.empty();
   const std::size_t gap = scene_.self_gap[self_];
   // Gauss-Seidel over the contacts: the step's first sweep visits every segment, the next ones only those
-  // that touched something in it (a push can press a segment into another contact: a second layer of cable
-  // wound on a pillar presses the first into it), until no segment moved more than kSettled of the radius.
-  // The friction passes that solve the step again move the cable by no more than friction holds back (a
-  // fraction of what the contacts pushed): they revisit the same segments, and a segment that comes to
-  // touch only then is found by the next step's first sweep.
+  // that overlapped by more than kSettled of the radius in the last sweep and their neighbours (a push can
+  // press a segment into another contact: a second layer of cable wound on a pillar presses the first into
+  // it), until no segment overlapped by more than that. The friction passes that solve the step again move
+  // the cable by no more than friction holds back (a fraction of what the contacts pushed): their first
+  // sweep revisits the segments that touched in the step's first, and a segment that comes to touch only
+  // then is found by the next step's first sweep.
   if (first_pass)
   {
     touching_.clear();
