@@ -266,29 +266,35 @@ TEST(Spool, ElasticCableLaidOutAtRestDoesNotSpringOpen)
 // its chord: 20 m laid between a spool 1 m over the seabed and a vehicle on it 12 m away would hang 6-7 m
 // below them. Laid through it, the seabed put the sag on itself in one step; with bending stiffness the
 // folded rod's solve failed, and the recovery laid it out the same way again, every other step (1600
-// recoveries in 8 s). For both a cable and a rod: laid out, and every step of 10 s after, no particle is
-// below the seabed (its contact puts a particle back on it each step) and nothing needs a recovery.
+// recoveries in 8 s). For both a cable and a rod, 20 and 40 m: laid out, and every step of 10 s after, no
+// particle is below the seabed (its contact puts a particle back on it each step) and nothing needs a
+// recovery.
 TEST(Spool, ASlackLayoutThatWouldHangThroughTheSeabedBowsSideways)
 {
-  for (const double ei : {0.0, 0.2})
+  // 20 m, and 40 m, whose rod's arc is more than half a circle and reaches past the vehicle's end.
+  for (const double length : {20.0, 40.0})
   {
-    TetherParams params;
-    params.noise = 0.0;
-    params.cable_length = 20.0;
-    params.initial_deployed_length = 20.0;
-    params.winch_mode = WinchMode::kLocked;
-    params.weight_in_water = 1.0;
-    params.bending_stiffness = ei;
-    params.seabed_z = -5.0;
-    Tether sim(params, Position(0.0, 0.0, -4.0), Position(12.0, 0.0, -4.99));
-    for (int k = 0; k <= 2000; ++k)
+    for (const double ei : {0.0, 0.2})
     {
-      for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
+      TetherParams params;
+      params.noise = 0.0;
+      params.cable_length = length;
+      params.initial_deployed_length = length;
+      params.winch_mode = WinchMode::kLocked;
+      params.weight_in_water = 1.0;
+      params.bending_stiffness = ei;
+      params.seabed_z = -5.0;
+      Tether sim(params, Position(0.0, 0.0, -4.0), Position(12.0, 0.0, -4.99));
+      for (int k = 0; k <= 2000; ++k)
       {
-        ASSERT_GE(sim.particle(i).z(), params.seabed_z) << "EI " << ei << ", step " << k << ", particle " << i;
+        for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
+        {
+          ASSERT_GE(sim.particle(i).z(), params.seabed_z)
+              << length << " m, EI " << ei << ", step " << k << ", particle " << i;
+        }
+        ASSERT_EQ(sim.recoveryCount(), 0u) << length << " m, EI " << ei << ": " << sim.lastFailure();
+        sim.step();
       }
-      ASSERT_EQ(sim.recoveryCount(), 0u) << "EI " << ei << ": " << sim.lastFailure();
-      sim.step();
     }
   }
 }

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -251,58 +252,43 @@ void Tether::layOut(double deployed_length)
   // cable that resists bending by EI, along a circular arc through the same three points' plane: a V's
   // kink would spring open in the first steps (a 2 m cable at EI 0.2 N m^2 pushed its vehicle with 1 N).
   const double length = deployedLength();
-  Position apex;
   Position end;
-  Position side = Position::Zero();
+  Position middle;
+  Position direction = Position::UnitX();
   double distance = 0.0;
+  double offset = 0.0;  // how far the slack's V reaches off the chord
   if (track_.attached())
   {
     end = track_.position();
     const Position chord = end - spool;
     distance = chord.norm();
-    apex = spool + 0.5 * chord;  // taut or stretched: a straight line
-    if (distance < length)
-    {
-      // Slack: a V hanging below the chord (sideways when the chord is vertical).
-      const Position direction = distance > 1e-9 ? Position(chord / distance) : Position::UnitX();
-      side = -Position::UnitZ() + direction * direction.z();
-      if (side.norm() < 0.1)
-      {
-        side = Position::UnitX() - direction * direction.x();
-      }
-      side.normalize();
-      const double offset = std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0));
-      if (std::isfinite(params_.seabed_z) && (apex + offset * side).z() < params_.seabed_z)
-      {
-        // It would hang through the flat seabed: bowed sideways instead, level across the chord, from where
-        // it sinks onto the seabed. (Laid through it, the seabed's projection flattened metres of sag in
-        // one step; a rod folded, its solve failed, and the recovery laid it out the same way again.)
-        const Position level = direction.cross(Position::UnitZ());
-        side = level.norm() > 1e-6 ? Position(level.normalized()) : Position(Position::UnitX());
-      }
-      apex += offset * side;
-    }
+    middle = spool + 0.5 * chord;  // taut or stretched: a straight line
+    direction = distance > 1e-9 ? Position(chord / distance) : Position::UnitX();
+    offset = distance < length ? std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0)) : 0.0;
   }
   else
   {
     // A free end hangs (or floats, when lighter than water) straight from the spool.
     end = spool + (params_.weight_in_water < 0.0 ? 1.0 : -1.0) * length * Position::UnitZ();
-    apex = 0.5 * (spool + end);
+    middle = 0.5 * (spool + end);
   }
   const bool elastic = params_.bending && params_.bending_stiffness > 0.0 &&
                        (params_.solver == SolverType::kDirect || params_.solver == SolverType::kXpbd);
-  if (elastic && side.squaredNorm() > 0.0 && n > f + 1)
+  // The particles along two straight legs spool -> apex -> end, or along the arc bowed towards `side`.
+  auto lay = [&](const Position& side)
   {
-    const InscribedArc shape(spool, end, side, &cable_.rest[f], n - 1 - f, distance);
-    double theta = shape.start();
-    for (std::size_t i = f; i < n; ++i)
+    const Position apex = middle + offset * side;
+    if (elastic && offset > 0.0 && n > f + 1)
     {
-      cable_.place(i, shape.at(theta));
-      theta += i + 1 < n ? shape.angleOf(cable_.rest[i]) : 0.0;
+      const InscribedArc shape(spool, end, side, &cable_.rest[f], n - 1 - f, distance);
+      double theta = shape.start();
+      for (std::size_t i = f; i < n; ++i)
+      {
+        cable_.place(i, shape.at(theta));
+        theta += i + 1 < n ? shape.angleOf(cable_.rest[i]) : 0.0;
+      }
+      return;
     }
-  }
-  else
-  {
     double arc = 0.0;
     for (std::size_t i = f; i < n; ++i)
     {
@@ -313,6 +299,36 @@ void Tether::layOut(double deployed_length)
       {
         arc += cable_.rest[i];
       }
+    }
+  };
+  auto lowest = [&]()
+  {
+    double z = std::numeric_limits<double>::infinity();
+    for (std::size_t i = f + 1; i < n; ++i)
+    {
+      z = std::min(z, cable_.z[i]);
+    }
+    return z;
+  };
+  // Slack hangs below the chord (sideways when the chord is vertical).
+  Position down = -Position::UnitZ() + direction * direction.z();
+  if (down.norm() < 0.1)
+  {
+    down = Position::UnitX() - direction * direction.x();
+  }
+  lay(down.normalized());
+  if (std::isfinite(params_.seabed_z) && offset > 0.0 && lowest() < params_.seabed_z)
+  {
+    // It would hang through the flat seabed: bowed sideways instead, level across the chord, from where it
+    // sinks onto the seabed. (Laid through it, the seabed's projection flattened metres of sag in one step;
+    // a rod folded, its solve failed, and the recovery laid it out the same way again.) An arc of more than
+    // half a circle still reaches past its lower end along a sloping chord: what of it is below the seabed
+    // (centimetres) is put on it.
+    const Position level = direction.cross(Position::UnitZ());
+    lay(level.norm() > 1e-6 ? Position(level.normalized()) : Position(Position::UnitX()));
+    for (std::size_t i = f + 1; i < n; ++i)
+    {
+      cable_.z[i] = cable_.pz[i] = std::max(cable_.z[i], params_.seabed_z);
     }
   }
   if (track_.attached())
