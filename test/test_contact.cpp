@@ -103,17 +103,16 @@ double poleOverlap(const Tether& tether, double pole)
   return worst;
 }
 
-// The grid's pair lists stand in for a query (SegmentGrid): World files every segment with a margin F of
-// twice the widest radius w plus twice the last step's motion m, and a segment then touches only its pairs
-// as long as it has moved at most `moved` = w + 2m and the others at most 2m since: two capsules that touch
-// have boxes within r_a + r_b <= 2w of each other, so their filed boxes were within 2w + (w + 2m) + 2m,
-// less than 2F apart. Three tangled cables (random walks of 0.1 m steps in a 1 m cube, so they cross each
-// other and themselves), moved at random within those bounds: every touching pair (exact capsule test, not
-// neighbours along a cable) is listed whenever pairsOf answers, and pairsOf answers for every segment that
-// moved no more than `moved`.
+// The grid's pair lists stand in for a query (SegmentGrid): World files every segment with a margin of the
+// widest radius w plus a skin, and while every segment stays within the skin of where it was filed, a
+// segment touches only its pairs: two capsules that touch have boxes within r_a + r_b <= 2w of each other,
+// so their filed boxes were within 2w + 2 skin, twice the margin (no slack). Three tangled cables (random
+// walks of 0.1 m steps in a 1 m cube, so they cross each other and themselves), every particle moved by the
+// skin along each axis, each way at random: every touching pair (exact capsule test, not neighbours along
+// a cable) is listed, and pairsOf answers for every segment (none moved further than the skin).
 TEST(SegmentGrid, ListsEveryPairOfCapsulesThatCanTouchAfterTheyMove)
 {
-  const double w = 0.02, m = 0.01, moved = w + 2.0 * m;
+  const double w = 0.02, skin = 0.01;  // World's: skin = max(2 x last motion, kSkin w)
   const std::vector<std::size_t> gap = {2, 2, 2};
   std::uint64_t state = 7;
   auto uniform = [&state]()
@@ -137,71 +136,77 @@ TEST(SegmentGrid, ListsEveryPairOfCapsulesThatCanTouchAfterTheyMove)
   }
   std::vector<const Cable*> filed = {&cables[0], &cables[1], &cables[2]};
   SegmentGrid grid;
-  grid.build(filed, 3.0 * std::max(0.1, 2.0 * moved) + 2.0 * w, moved + w, gap, moved);
-  int touching = 0, answered = 0;
+  grid.build(filed, 3.0 * std::max(0.1, 2.0 * skin) + 2.0 * w, w + skin, gap, skin);  // as World::refreshContact
+  int touching = 0;
   for (int round = 0; round < 20; ++round)
   {
-    // Each particle moves by up to 2m per axis, but for one cable's (the stepping tether's), which move by
-    // up to `moved` (a segment's box moves no further than its ends).
     std::vector<Cable> now = cables;
-    const std::size_t stepping = static_cast<std::size_t>(round) % 3;
     for (std::size_t c = 0; c < 3; ++c)
     {
       for (std::size_t i = 0; i < now[c].size(); ++i)
       {
-        now[c].place(i, cables[c].position(i) + jitter(c == stepping ? moved : 2.0 * m));
+        // To a corner of its skin's cube: as far as the skin lets it (the margin has no slack for it).
+        const Position corner(uniform() < 0.5 ? -skin : skin, uniform() < 0.5 ? -skin : skin,
+                              uniform() < 0.5 ? -skin : skin);
+        now[c].place(i, cables[c].position(i) + corner);
       }
+      ASSERT_TRUE(grid.holds(c, now[c])) << c;  // every particle within the skin of its segments' boxes
     }
-    for (std::size_t j = 0; j + 1 < now[stepping].size(); ++j)
+    for (std::size_t a = 0; a < 3; ++a)
     {
-      Aabb box;
-      box.grow(now[stepping].position(j)), box.grow(now[stepping].position(j + 1));
-      const SegmentGrid::Entry* first = nullptr;
-      const SegmentGrid::Entry* last = nullptr;
-      ASSERT_TRUE(grid.pairsOf(stepping, j, box, &first, &last)) << j;  // moved no more than `moved`
-      ++answered;
-      for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t j = 0; j + 1 < now[a].size(); ++j)
       {
-        for (std::size_t s = 0; s + 1 < now[c].size(); ++s)
+        Aabb box;
+        box.grow(now[a].position(j)), box.grow(now[a].position(j + 1));
+        const SegmentGrid::Entry* first = nullptr;
+        const SegmentGrid::Entry* last = nullptr;
+        ASSERT_TRUE(grid.pairsOf(a, j, box, &first, &last)) << a << ", " << j;
+        for (std::size_t c = 0; c < 3; ++c)
         {
-          Push push;
-          if ((c == stepping && (s > j ? s - j : j - s) <= gap[c]) ||
-              !pushCapsule(now[stepping].position(j), now[stepping].position(j + 1), w, now[c].position(s),
-                           now[c].position(s + 1), w, &push))
+          for (std::size_t s = 0; s + 1 < now[c].size(); ++s)
           {
-            continue;
+            Push push;
+            if ((c == a && (s > j ? s - j : j - s) <= gap[c]) ||
+                !pushCapsule(now[a].position(j), now[a].position(j + 1), w, now[c].position(s), now[c].position(s + 1),
+                             w, &push))
+            {
+              continue;
+            }
+            ++touching;
+            const bool listed =
+                std::any_of(first, last, [&](const SegmentGrid::Entry& e) { return e.cable == c && e.segment == s; });
+            EXPECT_TRUE(listed) << "round " << round << ": segment " << j << " of cable " << a << " touches segment "
+                                << s << " of cable " << c;
           }
-          ++touching;
-          const bool listed =
-              std::any_of(first, last, [&](const SegmentGrid::Entry& e) { return e.cable == c && e.segment == s; });
-          EXPECT_TRUE(listed) << "round " << round << ": segment " << j << " of cable " << stepping
-                              << " touches segment " << s << " of cable " << c;
         }
       }
     }
   }
   EXPECT_GT(touching, 100);  // coverage: the tangle touches often
-  // A cable holds its filing while each particle stays within `moved` of its segments' filed boxes; moved
-  // further, or paid out (another spool outlet: a segment never filed), it does not.
-  for (std::size_t c = 0; c < 3; ++c)
+  // The skin's edge: a particle higher than both its neighbours tops both its segments' boxes. Raised by
+  // 0.99 of the skin its cable still holds; by 1.01 it does not, and its segments query instead of taking
+  // their pairs. A paid-out cable (another spool outlet: a segment never filed) does not hold either.
+  std::size_t top = 1;
+  while (top + 1 < cables[1].size() &&
+         !(cables[1].z[top] >= cables[1].z[top - 1] && cables[1].z[top] >= cables[1].z[top + 1]))
   {
-    EXPECT_TRUE(grid.holds(c, cables[c])) << c;
+    ++top;
   }
-  Cable shifted = cables[1];
-  shifted.place(30, cables[1].position(30) + Position(0.0, 0.0, 0.5 * moved));
-  EXPECT_TRUE(grid.holds(1, shifted));
-  shifted.place(30, cables[1].position(30) + Position(0.0, 0.0, 1.01 * moved + 0.1));
-  EXPECT_FALSE(grid.holds(1, shifted));
+  ASSERT_LT(top + 1, cables[1].size());
+  for (const double raised : {0.99, 1.01})
+  {
+    Cable moved = cables[1];
+    moved.place(top, cables[1].position(top) + Position(0.0, 0.0, raised * skin));
+    Aabb box;
+    box.grow(moved.position(top)), box.grow(moved.position(top + 1));
+    const SegmentGrid::Entry* first = nullptr;
+    const SegmentGrid::Entry* last = nullptr;
+    EXPECT_EQ(grid.holds(1, moved), raised < 1.0) << raised;
+    EXPECT_EQ(grid.pairsOf(1, top, box, &first, &last), raised < 1.0) << raised;
+  }
   Cable paid_out = cables[2];
   paid_out.first = 1;
   EXPECT_FALSE(grid.holds(2, paid_out));
-  // A segment moved further than `moved` queries instead.
-  Aabb away;
-  away.grow(cables[0].position(0) + Position(2.0 * moved, 0.0, 0.0));
-  away.grow(cables[0].position(1) + Position(2.0 * moved, 0.0, 0.0));
-  const SegmentGrid::Entry* first = nullptr;
-  const SegmentGrid::Entry* last = nullptr;
-  EXPECT_FALSE(grid.pairsOf(0, 0, away, &first, &last));
 }
 
 // A vehicle circling a pillar: the tether, closed by the chord from the vehicle back to the spool, winds
