@@ -684,8 +684,10 @@ namespace
 // 0.1 m segments: bent over the triangles' edges and held by friction, its segments carry a little
 // compression, whose (negative) geometric stiffness the Newton step's Hessian needs. At rest the step
 // starts within the contact's tolerance (5% of the radius) of its answer, and Newton with the exact
-// Hessian converges quadratically from there: 2 iterations a step to the 1e-8 tolerance. Without it in
-// compression the convergence is linear: 3.8 a step. Bound: half way between 2 and 3.
+// Hessian converges quadratically from there: 2 iterations a step to the 1e-8 tolerance (an error of 1e-4
+// of a segment squares to 1e-8). Without it in compression the convergence is linear, at the rate of the
+// term left out (h^2 |T| w / L, about 1e-2 here), so the same start needs at least 3 (1e-4, 1e-6, 1e-8):
+// 3.8 a step. Bound: half way between 2 and 3.
 TEST(MeshObstacle, ATetherLyingOnSwellsTakesTwoNewtonIterationsAStep)
 {
   TriangleMesh swells = flatMesh(160, 0.25);  // 40 m x 40 m
