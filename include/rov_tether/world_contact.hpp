@@ -14,7 +14,8 @@
  * of the others, so none passes through another, and each push sends the other tether the opposite momentum,
  * which it takes at its next sub-step (ContactScene::reaction): the one lying on another weighs on it, the
  * one dragged across another drags it along. Their capsules and this one's own
- * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World files once a round of steps.
+ * non-adjacent capsules are found through a uniform grid (SegmentGrid) that World files again when a segment
+ * leaves its skin, and the pairs of segments it lists when filed.
  *
  * What was touched in the last step is kept per segment (record()), for the topology report (contact angle,
  * capstan ratio) and the contact markers. Nothing here allocates after construction.
@@ -57,7 +58,7 @@ struct ContactScene
   std::vector<double> radius;          ///< Every tether's capsule radius [m].
   std::vector<double> cable_friction;  ///< Every tether's Coulomb coefficient against a cable [-].
   std::vector<std::size_t> self_gap;   ///< Segments this close along one cable never collide.
-  SegmentGrid grid;                    ///< Every tether's segments, filed once a round of steps.
+  SegmentGrid grid;                    ///< Every tether's segments and their pairs (World::refreshContact).
   bool between_tethers = false;        ///< Contact between tethers and of a tether with itself.
   /// Per tether, per particle: the change of velocity the other tethers' contacts gave it since its last
   /// sub-step (the reaction of each push, Newton's third law), which it takes at its next one [m/s].
