@@ -141,6 +141,8 @@ class SegmentGrid
   bool empty() const { return entries_.empty(); }
 
  private:
+  /// Whether bounds `now` of filed segment i (offset_ order) lie within `moved` of its filed bounds.
+  bool within(std::size_t i, const Aabb& now) const;
   /// Lists the pairs (after build has filed every segment).
   void listPairs(const std::vector<std::size_t>& gap);
   HashedCells cells_;

@@ -140,15 +140,20 @@ bool SegmentGrid::pairsOf(std::size_t cable, std::size_t segment, const Aabb& no
   {
     return false;
   }
-  // Within `moved` of where it was filed (a segment filed nowhere has empty bounds: never within).
-  const Aabb& filed = filed_[i];
-  if (!((now.lo.array() >= filed.lo.array() - moved_).all() && (now.hi.array() <= filed.hi.array() + moved_).all()))
+  if (!within(i, now))
   {
     return false;
   }
   *begin = pairs_.data() + pair_start_[i];
   *end = pairs_.data() + pair_start_[i + 1];
   return true;
+}
+
+bool SegmentGrid::within(std::size_t i, const Aabb& now) const
+{
+  // A segment filed nowhere has empty bounds: never within.
+  const Aabb& filed = filed_[i];
+  return (now.lo.array() >= filed.lo.array() - moved_).all() && (now.hi.array() <= filed.hi.array() + moved_).all();
 }
 
 bool SegmentGrid::holds(std::size_t cable, const Cable& now) const
@@ -160,14 +165,11 @@ bool SegmentGrid::holds(std::size_t cable, const Cable& now) const
   }
   for (std::size_t j = now.first; j + 1 < now.size(); ++j)
   {
-    const Aabb& filed = filed_[offset_[cable] + j];
-    for (const std::size_t i : {j, j + 1})
+    Aabb box;
+    box.grow(now.position(j)), box.grow(now.position(j + 1));
+    if (!within(offset_[cable] + j, box))
     {
-      const Position p = now.position(i);
-      if (!((p.array() >= filed.lo.array() - moved_).all() && (p.array() <= filed.hi.array() + moved_).all()))
-      {
-        return false;
-      }
+      return false;
     }
   }
   return true;
