@@ -90,18 +90,11 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   XmlRpc::XmlRpcValue top;
   private_nh_.getParam(private_nh_.getNamespace(), top);
   WorldOptions world_options;
-  const std::string world_error = loadWorldOptions(top, &world_options);
+  const std::string world_error =
+      loadWorldOptions(top, &world_options, names.empty() ? std::vector<std::string>{"tether"} : names);
   if (!world_error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);
-  }
-  for (const ObstacleSpec& spec : world_options.obstacles)
-  {
-    const bool taken = names.empty() ? spec.name == "tether" : std::count(names.begin(), names.end(), spec.name) > 0;
-    if (taken)
-    {
-      throw std::runtime_error("obstacle '" + spec.name + "' name: taken by a tether");
-    }
   }
   std::vector<std::unique_ptr<Obstacle>> obstacles = makeObstacles(world_options);
   const NodeOptions& clock = setups.front().options;

@@ -13,11 +13,16 @@
 #include <utility>
 
 #include "rov_tether/make_obstacle.hpp"
+#include "rov_tether/spec/obstacle_reader.hpp"
+#include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether
 {
 namespace
 {
+
+using spec::readNumber;
+using spec::readVector;
 
 /// Largest number of output rows a scenario may ask for (both files together stay manageable).
 constexpr double kMaxOutputTimes = 1.0e6;
@@ -58,37 +63,6 @@ ParamValue scalarValue(const YAML::Node& node)
     }
   }
   return text;
-}
-
-/// Reads a finite number; returns "" or a message naming `field`.
-std::string readNumber(const YAML::Node& node, const std::string& field, double* value)
-{
-  if (!node.IsScalar() || !YAML::convert<double>::decode(node, *value))
-  {
-    return field + ": expected a number";
-  }
-  if (!std::isfinite(*value))
-  {
-    return field + ": must be finite";
-  }
-  return "";
-}
-
-std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size, double* values)
-{
-  if (!node.IsSequence() || node.size() != size)
-  {
-    return field + ": expected a list of " + std::to_string(size) + " numbers";
-  }
-  for (std::size_t i = 0; i < size; ++i)
-  {
-    const std::string error = readNumber(node[i], field + "[" + std::to_string(i) + "]", &values[i]);
-    if (!error.empty())
-    {
-      return error;
-    }
-  }
-  return "";
 }
 
 /// Applies every key of a YAML map to params; collects all problems (type and range).
@@ -399,134 +373,43 @@ std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tet
   return "";
 }
 
-/// The fields of an `obstacles` entry, as the node's (ros/obstacle_config.cpp) less `frame`.
-const char* const kObstacleFields[] = {"name",   "type", "position", "orientation", "radius",
-                                       "length", "size", "file",     "scale",       "friction"};
-
-/// Reads one entry of `obstacles` (ObstacleSpec) with the node's field names and wording; a relative mesh
-/// `file` is taken from `base_dir`. "" or a message naming the entry and the field.
-std::string readObstacle(const YAML::Node& node, std::size_t index, const std::string& base_dir, ObstacleSpec* spec)
-{
-  const std::string entry_name = "obstacles[" + std::to_string(index) + "]";
-  if (!node.IsMap())
-  {
-    return entry_name + ": expected a map (name, type, position, ...)";
-  }
-  ObstacleSpec candidate;
-  if (!node["name"] || !node["name"].IsScalar() || node["name"].Scalar().empty())
-  {
-    return entry_name + " name: expected a non-empty string";
-  }
-  candidate.name = node["name"].Scalar();
-  const std::string who = entry_name + " '" + candidate.name + "'";
-  for (const auto& entry : node)
-  {
-    const std::string key = entry.first.as<std::string>();
-    if (key == "frame")
-    {
-      return who +
-             " frame: node only (the tf frame an obstacle moves with); a scenario's obstacles stay "
-             "where `position` and `orientation` put them";
-    }
-    if (std::find(std::begin(kObstacleFields), std::end(kObstacleFields), key) == std::end(kObstacleFields))
-    {
-      return who + ": unknown field '" + key +
-             "' (expected name, type, position, orientation, radius, length, size, file, scale, friction)";
-    }
-  }
-  if (!node["type"] || !node["type"].IsScalar() || !parseShapeType(node["type"].Scalar(), &candidate.type))
-  {
-    return who + " type: expected sphere, box, cylinder, capsule, plane or mesh";
-  }
-  for (const auto& [field, out, unit] : {std::tuple{"position", &candidate.position, "[x, y, z] in m"},
-                                         std::tuple{"orientation", &candidate.orientation, "[roll, pitch, yaw] in rad"},
-                                         std::tuple{"size", &candidate.size, "[x, y, z] in m"}})
-  {
-    if (node[field] && !readVector(node[field], field, 3, out->data()).empty())
-    {
-      return who + " " + field + ": expected " + unit;
-    }
-  }
-  for (const auto& [field, out] : {std::pair{"radius", &candidate.radius}, std::pair{"length", &candidate.length},
-                                   std::pair{"scale", &candidate.scale}, std::pair{"friction", &candidate.friction}})
-  {
-    if (node[field] && !readNumber(node[field], field, out).empty())
-    {
-      return who + " " + field + ": expected a number";
-    }
-  }
-  if (node["file"])
-  {
-    if (!node["file"].IsScalar() || node["file"].Scalar().empty())
-    {
-      return who + " file: expected a string";
-    }
-    const std::string file = node["file"].Scalar();
-    if (file.find("://") != std::string::npos)
-    {
-      return who + " file: expected a path (absolute, or relative to the scenario file's directory); '" + file +
-             "' is a URI, which only the node resolves";
-    }
-    const std::filesystem::path path(file);
-    candidate.file = path.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / path).string();
-  }
-  const Status status = validate(candidate);  // the core's checks: each names the obstacle and the field
-  if (!status.ok)
-  {
-    return entry_name + ": " + status.message;
-  }
-  // Bounds the node leaves to its operator: a scenario's (fuzzed) numbers stay within the coordinates a
-  // tether may have.
-  if (candidate.position.cwiseAbs().maxCoeff() > Tether::kMaxCoordinate ||
-      std::max({candidate.radius, candidate.length, candidate.size.maxCoeff(), candidate.scale}) >
-          Tether::kMaxCoordinate)
-  {
-    return who + ": position, radius, length, size and scale must be within 1e6 (m)";
-  }
-  *spec = candidate;
-  return "";
-}
-
+/// The scenario's `obstacles` (spec::readObstacles): no tf frames; a mesh `file` is a path, relative ones
+/// taken from `base_dir`; every mesh must load (what the runner will build).
 std::string readObstacles(const YAML::Node& node, const std::string& base_dir, const Scenario& scenario,
                           std::vector<ObstacleSpec>* obstacles)
 {
-  if (!node.IsSequence())
+  spec::ObstacleReading reading;
+  reading.file = [&base_dir](const std::string& file, std::string* error) -> std::string
   {
-    return "obstacles: expected a list of maps (name, type, position, ...)";
-  }
-  const std::vector<ScenarioTether> tethers = scenario.tetherList();
-  for (std::size_t k = 0; k < node.size(); ++k)
+    if (file.find("://") != std::string::npos)
+    {
+      *error = "expected a path (absolute, or relative to the scenario file's directory); '" + file +
+               "' is a URI, which only the node resolves";
+      return "";
+    }
+    const std::filesystem::path path(file);
+    return path.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / path).string();
+  };
+  for (const auto& tether : scenario.tetherList())
   {
-    ObstacleSpec spec;
-    const std::string error = readObstacle(node[k], k, base_dir, &spec);
-    if (!error.empty())
-    {
-      return error;
-    }
-    const std::string who = "obstacles[" + std::to_string(k) + "] '" + spec.name + "'";
-    for (const auto& other : *obstacles)
-    {
-      if (other.name == spec.name)
-      {
-        return who + " name: taken by an earlier obstacle";
-      }
-    }
-    for (const auto& tether : tethers)
-    {
-      if (tether.name == spec.name)
-      {
-        return who + " name: taken by a tether" +
-               (scenario.tethers.empty() ? " (a single-tether scenario's tether is called 'tether')" : "");
-      }
-    }
-    Status status;  // what the runner will build: a mesh must load
-    if (!makeObstacle(spec, &status))
-    {
-      return "obstacles[" + std::to_string(k) + "]: " + status.message;
-    }
-    obstacles->push_back(spec);
+    reading.tether_names.push_back(tether.name);
   }
-  return "";
+  reading.tether_hint = scenario.tethers.empty() ? " (a single-tether scenario's tether is called 'tether')" : "";
+  std::vector<ObstacleSpec> read;
+  std::string error = spec::readObstacles(node, reading, &read);
+  for (std::size_t k = 0; error.empty() && k < read.size(); ++k)
+  {
+    Status status;
+    if (!makeObstacle(read[k], &status))
+    {
+      error = "obstacles[" + std::to_string(k) + "]: " + status.message;
+    }
+  }
+  if (error.empty())
+  {
+    *obstacles = std::move(read);
+  }
+  return error;
 }
 
 std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)

@@ -16,6 +16,8 @@
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
 #include "rov_tether/ros/world_report.hpp"
+#include "rov_tether/ros/xmlrpc_yaml.hpp"
+#include "rov_tether/scenario_yaml.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -707,6 +709,57 @@ TEST(Obstacles, BadEntriesAreRefusedNamingTheEntryAndTheField)
   const std::string both = loadObstacles("{obstacles: [{name: a, type: cone}, {name: b, type: sphere}]}");
   EXPECT_NE(both.find("obstacles[0] 'a' type"), std::string::npos) << both;
   EXPECT_NE(both.find("obstacles[1]: obstacle 'b' (sphere): radius must be > 0 m"), std::string::npos) << both;
+}
+
+// One reader of obstacles (spec::readObstacles) for the node and the runner: the same entry, through the
+// parameter server (XmlRpc, converted to YAML) or in a scenario file, is refused with the same message,
+// whatever check it fails. The bounds on coordinates, once only the runner's, and the tether's name, once
+// checked apart by the node, hold for both. Only what a scenario cannot have differs (a tf frame, a URI).
+TEST(Obstacles, TheNodeAndTheRunnerReadObstaclesWithOneReader)
+{
+  const std::string entries[] = {
+      "3",
+      "{type: sphere, radius: 1}",
+      "{name: a, type: cone, radius: 1}",
+      "{name: a, type: sphere, radius: 1, colour: red}",
+      "{name: a, type: sphere, radius: 1, position: [1, 2]}",
+      "{name: a, type: sphere, radius: one}",
+      "{name: a, type: sphere, radius: '1'}",
+      "{name: p, type: cylinder, radius: 0.5}",
+      "{name: b, type: box, size: [1, 0, 1]}",
+      "{name: w, type: mesh}",
+      "{name: a, type: sphere, radius: 1, friction: 11}",
+      "{name: a, type: sphere, radius: 1, position: [2e6, 0, 0]}",
+      "{name: a, type: sphere, radius: 2e6}",
+      "{name: tether, type: sphere, radius: 1}",
+  };
+  for (const std::string& entry : entries)
+  {
+    WorldOptions options;
+    const std::string node =
+        loadWorldOptions(rov_tether::test::toXmlRpc(YAML::Load("{obstacles: [" + entry + "]}")), &options, {"tether"});
+    Scenario scenario;
+    const std::string runner =
+        parseScenario("spool: [0, 0, 0]\nvehicle: [[0, 1, 0, 0]]\nduration: 1\nobstacles: [" + entry + "]", &scenario);
+    EXPECT_FALSE(node.empty()) << entry;
+    EXPECT_EQ(node.substr(0, node.find(" (")), runner.substr(0, runner.find(" ("))) << entry;
+  }
+  // A string is never a number, as the parameter server types it.
+  WorldOptions options;
+  XmlRpc::XmlRpcValue quoted = rov_tether::test::toXmlRpc(YAML::Load("{obstacles: [{name: a, type: sphere}]}"));
+  quoted["obstacles"][0]["radius"] = std::string("1");
+  EXPECT_NE(loadWorldOptions(quoted, &options).find("obstacles[0] 'a' radius: expected a number"), std::string::npos);
+  // The conversion keeps numbers exactly, and types.
+  XmlRpc::XmlRpcValue value;
+  value["x"] = 0.1;
+  value["n"] = 3;
+  value["on"] = true;
+  value["s"] = std::string("0.5");
+  const YAML::Node yaml = toYaml(value);
+  EXPECT_EQ(yaml["x"].as<double>(), 0.1);
+  EXPECT_EQ(yaml["n"].as<int>(), 3);
+  EXPECT_TRUE(yaml["on"].as<bool>());
+  EXPECT_EQ(yaml["s"].Tag(), "!");
 }
 
 TEST(Obstacles, WarningThresholdsAreCheckedNodeOptions)

@@ -17,16 +17,12 @@ struct WorldOptions
   bool tether_contact = false;          ///< World::setContactBetweenTethers: tethers touch each other and themselves.
 };
 
-/// Reads one entry of `obstacles` (a map with ObstacleSpec's fields: name, type, position, orientation,
-/// radius, length, size, file, scale, friction, frame) and validates it (rov_tether::validate). Returns ""
-/// or the first problem, naming the entry (its index and name) and the field. `file` is taken as given
-/// (resolveMeshFile makes it a path).
-std::string loadObstacleSpec(const XmlRpc::XmlRpcValue& entry, int index, ObstacleSpec* spec);
-
-/// Reads `obstacles` and `tether_contact` from `dict` (the private namespace as a map) on top of `options`.
-/// Returns "" or every problem, each naming its entry and field; `options` is changed only on success.
-/// Names must be unique.
-std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options);
+/// Reads `obstacles` (spec::readObstacles: names unique, none one of `tether_names`; tf frames allowed; a
+/// mesh `file` kept as written) and `tether_contact` from `dict` (the private namespace as a map) on top of
+/// `options`. Returns "" or every problem, each naming its entry and field; `options` is changed only on
+/// success.
+std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options,
+                             const std::vector<std::string>& tether_names = {});
 
 /// A mesh file as a path for the loader: `package://pkg/rest` becomes pkg's directory + /rest,
 /// `file:///path` /path; a plain absolute path stays. Returns "" for what cannot be resolved (an unknown
