@@ -15,6 +15,7 @@
 #include "../test_helpers.hpp"
 #include "rov_tether/ros/load_governor.hpp"
 #include "rov_tether/ros/pose_input.hpp"
+#include "rov_tether/ros/render_budget.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/world.hpp"
@@ -271,6 +272,45 @@ TEST(Scheduler, ClockJumpsResetAndFallingBehindSkips)
   EXPECT_EQ(t.scheduler.schedule(0).last_skip_time, ros::Time(48.0));
   EXPECT_NEAR(t.world.tether(0).time(), 47.9, 1e-9);
   EXPECT_EQ(t.hooks->before, t.hooks->after);
+}
+
+// Item 12 of issue 26: an 8000 x 8000 camera image took the node 7.58 s to render, and the next tick took
+// the ROS time that had passed meanwhile for a clock jump: "time jumped forwards by 7.58 s: resetting the
+// tether". ROS time that passed with the wall clock is the node's own stall: the physics skips ahead
+// (max_lag) with the cable held, no reset. A clock that leaps while the wall clock does not is a jump.
+TEST(Scheduler, TheNodesOwnStallIsNoClockJump)
+{
+  OneTether t;
+  t.wall = ros::WallTime(1000.0);
+  t.scheduler.tick(ros::Time(50.0));
+  t.wall += ros::WallDuration(0.005);
+  t.scheduler.tick(ros::Time(50.005));
+  t.wall += ros::WallDuration(7.58);  // the node rendered for 7.58 s; ROS time went on with the wall
+  t.scheduler.tick(ros::Time(57.585));
+  EXPECT_EQ(t.scheduler.schedule(0).resets, 0u) << "a stall is no clock jump";
+  EXPECT_EQ(t.scheduler.schedule(0).skips, 1u) << "7.58 s behind, more than max_lag: skipped ahead, counted";
+  EXPECT_NEAR(t.world.tether(0).time(), 57.485, 0.005 + 1e-9);  // on the 5 ms step grid
+  t.wall += ros::WallDuration(0.005);
+  t.scheduler.tick(ros::Time(117.59));  // ROS time leaps 60 s in 5 ms of wall time: a jump
+  EXPECT_EQ(t.scheduler.schedule(0).resets, 1u);
+}
+
+// Item 12 of issue 26, the camera's part: the 8000 x 8000 frame took 7.58 s, at the rate of about
+// 0.12 us a pixel. Once a camera has measured its cost, a frame predicted beyond the budget (max_lag,
+// 1 s) is skipped with a reason that names its size; a 320 x 240 frame (9 ms at that rate) is drawn.
+TEST(RenderBudget, AFrameTooBigForItsBudgetIsSkippedAndSaid)
+{
+  RenderBudget budget(1.0);
+  EXPECT_TRUE(budget.allows(8000.0 * 8000.0)) << "the first frame measures the cost";
+  budget.measured(8000.0 * 8000.0, 7.58);
+  EXPECT_FALSE(budget.allows(8000.0 * 8000.0));
+  const std::string why = budget.why(8000, 8000);
+  EXPECT_NE(why.find("8000x8000"), std::string::npos) << why;
+  EXPECT_NE(why.find("7.58 s"), std::string::npos) << why;
+  EXPECT_NE(why.find("skipped"), std::string::npos) << why;
+  EXPECT_TRUE(budget.allows(320.0 * 240.0));
+  budget.measured(320.0 * 240.0, 0.004);  // the small frame measures the cost again
+  EXPECT_TRUE(budget.allows(1000.0 * 1000.0)) << "52 ms at 52 ns a pixel";
 }
 
 TEST(Scheduler, EachTetherOfAWorldKeepsItsStateGridAndMovesAsAlone)
