@@ -275,7 +275,6 @@ void PoseInput::onFilterFailure(const geometry_msgs::PoseStamped::ConstPtr& msg,
 
 void PoseInput::expireWaiting(const ros::Time& now)
 {
-  std::string late;
   std::vector<HandOver> passed_poses;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -298,7 +297,7 @@ void PoseInput::expireWaiting(const ros::Time& now)
   {
     return;
   }
-  // Nobody places world_frame: it is taken as the poses' frame, and the poses that waited are taken.
+  // Nobody else uses world_frame: it is taken as the poses' frame, and the poses that waited are taken.
   if (adoptFrame(passed_poses.front().msg->header.frame_id))
   {
     for (const HandOver& pose : passed_poses)
@@ -308,7 +307,7 @@ void PoseInput::expireWaiting(const ros::Time& now)
     return;
   }
   rejected_ += passed_poses.size();
-  late = passed_poses.front().msg->header.frame_id;
+  const std::string& late = passed_poses.front().msg->header.frame_id;
   ROS_WARN_THROTTLE(1.0,
                     "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it "
                     "(the physics runs interpolation_delay behind ROS time: that is tf's slack); %s",

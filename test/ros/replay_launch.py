@@ -10,6 +10,8 @@
    through `rosrun rov_tether replay.sh`: exit code 0, the vehicle attached (issue 26, items 1 and 3).
 4. The same bag with `world_frame_from_pose: false`: every pose refused; replay.sh exits 1 and says that
    no pose was taken and how many were refused (it used to exit 0 with 428 states, none attached).
+5. A bag of nav_msgs/Odometry (robot_localization) replays: exit code 0, the vehicle attached (item 4).
+   This Python has no nav_msgs module: the class is generated from the installed .msg files.
 """
 import os
 import shutil
@@ -17,6 +19,9 @@ import subprocess
 import tempfile
 import unittest
 
+import genmsg
+import genmsg.msg_loader
+import genpy.dynamic
 import rosbag
 import rospkg
 import rospy
@@ -48,6 +53,16 @@ class ReplayLaunch(unittest.TestCase):
         done = subprocess.run(list(command) + list(args), cwd=self.cwd, env=env,
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT)
         return done.returncode, done.stdout
+
+    @staticmethod
+    def odometry_class():
+        """nav_msgs/Odometry generated from the installed message definitions (same md5 as the C++ one)."""
+        search = {package: ["/usr/share/%s/msg" % package] for package in ("nav_msgs", "geometry_msgs", "std_msgs")}
+        context = genmsg.MsgContext.create_default()
+        spec = genmsg.msg_loader.load_msg_by_type(context, "nav_msgs/Odometry", search)
+        genmsg.msg_loader.load_depends(context, spec, search)
+        text = genmsg.compute_full_text(context, spec)
+        return genpy.dynamic.generate_dynamic("nav_msgs/Odometry", text)["nav_msgs/Odometry"]
 
     def write_mavros_bag(self):
         """10 s of mavros local position at 20 Hz: PoseStamped in `map`, out from 1.5 to 4.5 m along x."""
@@ -125,6 +140,25 @@ class ReplayLaunch(unittest.TestCase):
         self.assertEqual(code, 1, output)
         self.assertIn("no pose was taken: 201 poses of /mavros/local_position/pose played", output)
         self.assertIn("set world_frame to 'map'", output)  # the node's warning says what to do
+
+    def test_5_an_odometry_bag_replays(self):
+        odometry = self.odometry_class()
+        with rosbag.Bag(os.path.join(self.cwd, "ekf_dive.bag"), "w") as bag:
+            for k in range(201):
+                msg = odometry()
+                msg.header.stamp = rospy.Time.from_sec(1000.0 + 0.05 * k)
+                msg.header.frame_id = "world"
+                msg.child_frame_id = "base_link"
+                msg.pose.pose.position.x, msg.pose.pose.position.z = 1.5 + 0.015 * k, -1.0
+                msg.pose.pose.orientation.w = 1.0
+                bag.write("/odometry/filtered", msg, msg.header.stamp)
+        code, output = self.roslaunch("bag:=ekf_dive.bag", "pose_topic:=/odometry/filtered", "rate:=%g" % RATE,
+                                      "output:=out.bag", command=("rosrun", "rov_tether", "replay.sh"))
+        self.assertEqual(code, 0, output)
+        with rosbag.Bag(os.path.join(self.cwd, "out.bag")) as bag:
+            attached = [m.vehicle_attached for _, m, _ in bag.read_messages(["/tether_node/state"])]
+        print("[ measured ] Odometry: %d states, %d with the vehicle attached" % (len(attached), sum(attached)))
+        self.assertGreater(sum(attached), 0.5 * len(attached), "the vehicle is attached for most of the dive")
 
 
 if __name__ == "__main__":
