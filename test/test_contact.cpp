@@ -372,6 +372,57 @@ TEST(Contact, TethersPulledAcrossEachOtherDoNotPassThrough)
   }
 }
 
+// Two vehicles that meet (pose streams pass through each other: they cannot feel each other) press each
+// cable's end segment into the other one's. A contact next to a pinned end (the vehicle) can only be
+// resolved by the segment's free end; moving it far enough to clear the contact point took d / (1 - t),
+// without bound as the contact nears the pinned end: the cables were thrown 180 m and read 1e11 N. A
+// particle of a cable fixed at its spool cannot be further from the spool than the cable's length along
+// it, stretched by its tension: 4 m of cable (EA 1e5 N) reaching further than 4.2 m would be 5% strain,
+// 5 kN. Nor may the solve fail (re-laying the cable).
+TEST(Contact, TwoVehiclesThatMeetDoNotThrowTheirCables)
+{
+  World world;
+  world.setContactBetweenTethers(true);
+  std::vector<Path> paths;
+  for (const double side : {-1.0, 1.0})
+  {
+    TetherParams p;
+    p.noise = 0.0;
+    p.segment_length = 0.1;
+    p.cable_length = 4.0;
+    p.initial_deployed_length = 4.0;
+    p.weight_in_water = 1.0;
+    p.winch_mode = WinchMode::kLocked;
+    const Position spool(side, -1.2, -0.5), start(side, 2.2, -0.5);
+    // Mirror images in x, so both vehicles are at (0.15, 1.7, -1.05) at t = 2 s, crossing there at 1 m/s.
+    paths.push_back([side, start](double t)
+                    {
+                      const double s = std::min(1.0, t / 4.0);
+                      return Position(start + s * Position(-2.0 * side + 0.3 * std::sin(0.8 * t), -1.0, -1.1));
+                    });
+    ASSERT_TRUE(world.add(side < 0.0 ? "a" : "b", std::make_unique<Tether>(p, spool, start)).ok);
+  }
+  ASSERT_GT(world.tether(0).params().axial_stiffness, 0.99e5);
+  double furthest = 0.0;
+  drive(world, paths, 0.0, 3.0,
+        [&]
+        {
+          for (std::size_t k = 0; k < world.size(); ++k)
+          {
+            const Tether& tether = world.tether(k);
+            for (std::size_t i = 0; i < tether.deployedParticleCount(); ++i)
+            {
+              furthest = std::max(furthest, (tether.particle(i) - tether.particle(0)).norm());
+            }
+          }
+        });
+  EXPECT_LT(furthest, 4.2) << "from the spool, on 4 m of cable";
+  for (std::size_t k = 0; k < world.size(); ++k)
+  {
+    EXPECT_EQ(world.tether(k).recoveryCount(), 0u) << world.tether(k).lastFailure();
+  }
+}
+
 // The grid between tethers is filed once a round of steps, and what a contact keeps (holds, reactions,
 // sizes) belongs to the cable as laid out. A clock that goes back (every tether reset to an earlier time,
 // as the node does when a bag loops) and a cable rebuilt must leave contact as right as in a fresh run:

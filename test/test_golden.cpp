@@ -1,6 +1,6 @@
 // Golden outputs of the scenario runner: every shipped scenario, as shipped and under variants that reach
 // each method, drag model, winch mode and input path, must write byte-identical state.csv and shape.csv
-// (the scenarios of a world, with obstacles or several tethers, aside: see the test).
+// (the scenarios of a world, with obstacles or several tethers, as shipped: every file they write).
 // The hashes live in test/golden/runner.txt (see golden.hpp for how to regenerate them on purpose).
 #include <unistd.h>
 
@@ -58,9 +58,8 @@ TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
     ASSERT_EQ(loadScenario(file.string(), &shipped), "") << file;
     if (shipped.usesWorld())
     {
-      // Obstacles or several tethers (pillar_wrap, two_rovs): outputs the contact model moves, pinned by what
-      // they must show (Runner.*), not by hashes; the variants' --set would apply to the top-level params,
-      // which a `tethers` list does not use.
+      // Obstacles or several tethers (pillar_wrap, two_rovs): as shipped only, in the test below (the
+      // variants' --set would apply to the top-level params, which a `tethers` list does not use).
       ++worlds;
       continue;
     }
@@ -90,6 +89,56 @@ TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
   // Every scenario takes every variant today: a variant that stops applying is a change to look at.
   EXPECT_EQ(cases, (files.size() - worlds) * variants().size());
   EXPECT_EQ(worlds, 2u);  // pillar_wrap.yaml and two_rovs.yaml; a plain scenario that became a world's would show
+}
+
+// The shipped scenarios of a world (obstacles, several tethers, contact between them): as shipped, every
+// file the runner writes (each tether's state.csv and shape.csv, and topology.csv) is byte-identical.
+TEST(Golden, RunnerOutputsOfTheShippedWorlds)
+{
+  namespace fs = std::filesystem;
+  GoldenFile golden("runner_worlds.txt");
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
+  {
+    if (entry.path().extension() == ".yaml")
+    {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  const fs::path out = fs::temp_directory_path() / ("rov_tether_golden_worlds_" + std::to_string(::getpid()));
+  std::size_t worlds = 0;
+  for (const auto& file : files)
+  {
+    Scenario scenario;
+    ASSERT_EQ(loadScenario(file.string(), &scenario), "") << file;
+    if (!scenario.usesWorld())
+    {
+      continue;
+    }
+    fs::remove_all(out);
+    RunSummary summary;
+    ASSERT_EQ(runScenario(scenario, out.string(), &summary), "") << file;
+    std::vector<fs::path> written;
+    for (const auto& entry : fs::recursive_directory_iterator(out))
+    {
+      if (entry.is_regular_file())
+      {
+        written.push_back(fs::relative(entry.path(), out));
+      }
+    }
+    std::sort(written.begin(), written.end());
+    EXPECT_GE(written.size(), 3u) << file << ": a tether's state and shape, and the topology";
+    for (const auto& relative : written)
+    {
+      golden.check(file.stem().string() + "/" + relative.generic_string(),
+                   fnv1a(readFile((out / relative).string())));
+    }
+    ++worlds;
+  }
+  fs::remove_all(out);
+  golden.expectAllChecked();
+  EXPECT_EQ(worlds, 2u);  // pillar_wrap.yaml and two_rovs.yaml
 }
 
 }  // namespace

@@ -175,8 +175,13 @@ double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, doub
     return 0.0;  // both ends pinned (the spool outlet and the vehicle): nothing here can move
   }
   double momentum = 0.0;
-  // Moving a by ca wa d / D and b by cb wb d / D along n moves the point at t by exactly d.
-  const double moves[2] = {ca * wa / denominator * push.depth, cb * wb / denominator * push.depth};
+  // Moving a by ca wa d / D and b by cb wb d / D along n moves the point at t by exactly d. No end moves
+  // further than the overlap d itself: with equal masses neither does anyway (ca / (ca^2 + cb^2) <= 1), but
+  // with one end pinned (the vehicle, the spool outlet) and the contact next to it, the free end would
+  // move d / ca, without bound as ca -> 0 (two vehicles that meet threw their cables hundreds of metres).
+  // There, what the pinned end holds in the overlap stays, as where both ends are pinned.
+  const double moves[2] = {std::min(ca * wa / denominator, 1.0) * push.depth,
+                           std::min(cb * wb / denominator, 1.0) * push.depth};
   const std::size_t ends[2] = {j, k};
   for (int e = 0; e < 2; ++e)
   {

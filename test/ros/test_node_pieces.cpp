@@ -313,6 +313,32 @@ TEST(RenderBudget, AFrameTooBigForItsBudgetIsSkippedAndSaid)
   EXPECT_TRUE(budget.allows(1000.0 * 1000.0)) << "52 ms at 52 ns a pixel";
 }
 
+// A node whose physics cannot hold real time falls more than max_lag behind on every tick (here each
+// tick comes 0.2371 s after the last, max_lag 0.1 s): it must keep publishing, at least one ~state a
+// skip (the README's "degrades visibly and keeps publishing"; overload.test). Resumed on the old state
+// grid, a skip left the next state point past the tick's target, and nothing was published unless a skip
+// happened to land on the grid: 0-2 states in overload.test's 120 s under the sanitizers.
+TEST(Scheduler, FallingBehindOnEveryTickStillPublishesAtEachSkip)
+{
+  NodeOptions options;
+  options.max_lag = 0.1;
+  OneTether t(options);
+  double now = 100.0033;
+  t.scheduler.tick(ros::Time(now));
+  const std::size_t published = t.hooks->state_times.size();
+  const int ticks = 40;
+  for (int k = 0; k < ticks; ++k)
+  {
+    now += 0.2371;
+    t.scheduler.tick(ros::Time(now));
+    ASSERT_EQ(t.scheduler.schedule(0).skips, static_cast<std::uint64_t>(k + 1));
+    // The state published last is the held cable at the skip: the tether's time now.
+    ASSERT_FALSE(t.hooks->state_times.empty());
+    EXPECT_DOUBLE_EQ(t.hooks->state_times.back(), t.world.tether(0).time());
+  }
+  EXPECT_GE(t.hooks->state_times.size() - published, static_cast<std::size_t>(ticks));
+}
+
 TEST(Scheduler, EachTetherOfAWorldKeepsItsStateGridAndMovesAsAlone)
 {
   // Two tethers with different time steps and state rates in one world, against each alone.

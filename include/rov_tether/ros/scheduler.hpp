@@ -82,7 +82,9 @@ struct TetherSchedule
  * time_step grid. Each tether has its own ~state grid
  * (multiples of 1 / its state_rate in physics time, so a replay gives the same series): the world
  * advances from one due point to the next and the tethers due there publish. A tether more than its
- * max_lag behind skips ahead with its cable held (error, counted). After the physics, the wall time it
+ * max_lag behind skips ahead with its cable held (error, counted), publishes that held state at once and
+ * restarts its ~state grid there, so a node that cannot hold real time still publishes at least once a
+ * skip. After the physics, the wall time it
  * took is shared among the tethers by their work (steps x particles x iterations x substeps; exact for
  * one tether) and fed to each tether's LoadGovernor. Needs no ROS master: the wall clock is injected.
  */
