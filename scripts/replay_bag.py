@@ -7,13 +7,18 @@ launch/replay.launch (see README, "Replaying your own dives").
    ~caller_cwd, the launch's $PWD, is used). A missing bag is a clear error.
 2. With ~record, starts `rosbag record -O OUTPUT` on ~topics. OUTPUT is ~output resolved the same way, or,
    when empty, $ROS_HOME/replay/<bag name>.tether.bag (ROS_HOME defaults to ~/.ros), never the source tree.
-3. Waits until the recorder and ~tether_node subscribe, then runs `rosbag play --clock -d 1 -r ~rate BAG`
-   (quiet: no progress line).
+3. Checks that the bag holds ~pose_topic as geometry_msgs/PoseStamped or nav_msgs/Odometry (the node takes
+   either), naming the bag's topics when not. Waits until the recorder and ~tether_node subscribe, then
+   runs `rosbag play --clock -d 1 -r ~rate BAG` (quiet: no progress line).
 4. When the bag has played and the node has gone quiet, stops the recorder (the bag is closed) and asks
    ~tether_node to shut down (SIGINT), so every process of the launch ends and roslaunch exits by itself.
 
-Exits 1, after stopping the rest, when the bag is missing, the node or a rosbag process fails. roslaunch
-itself exits 0 whatever its nodes do; the last lines of its output say what happened.
+5. A replay in which the node took no pose (every ~state without a vehicle attached) is a failure: the
+   node's count of refused poses is read from /diagnostics and said, with where the reasons are.
+
+Exits 1, after stopping the rest, when the bag is missing or holds no poses, no pose was taken, the node
+or a rosbag process fails. roslaunch itself exits 0 whatever its nodes do: `rosrun rov_tether replay.sh
+ARGS` runs replay.launch and exits with this script's code, which it writes into ~result_file.
 """
 import os
 import signal
@@ -24,7 +29,9 @@ import xmlrpc.client
 
 import rosgraph
 import rospkg
+import rosbag
 import rospy
+from diagnostic_msgs.msg import DiagnosticArray
 from rov_tether.msg import TetherState
 
 STARTUP_TIMEOUT = 60.0  # [s] for the recorder and the node to subscribe (a few seconds on a busy machine)
@@ -32,6 +39,7 @@ QUIET = 0.5  # [s] without a new ~state after the bag ends: the node has publish
 QUIET_TIMEOUT = 10.0  # [s] the longest wait for that quiet
 STOP_TIMEOUT = 30.0  # [s] for rosbag record to close its bag after SIGINT
 INTERRUPT_GRACE = 2.0  # [s] between roslaunch stopping the node and this process on Ctrl-C (well under 1 s)
+POSE_TYPES = ("geometry_msgs/PoseStamped", "nav_msgs/Odometry")  # what tether_node takes on its pose topic
 
 
 class Interrupted(Exception):
@@ -76,12 +84,16 @@ class Replay:
         self.rate = float(rospy.get_param("~rate", 1.0))
         self.record = bool(rospy.get_param("~record", True))
         self.output_arg = rospy.get_param("~output", "")
+        self.result_file = rospy.get_param("~result_file", "")  # the exit code goes here too (replay.sh)
         self.node = rospy.resolve_name(rospy.get_param("~tether_node", "/tether_node"))
         self.pose_topic = rospy.resolve_name(rospy.get_param("~pose_topic", "/rov_pose"))
         self.topics = [self.pose_topic, self.node + "/state", self.node + "/wrench"]
         self.master = rosgraph.Master(rospy.get_name())
         self.recorder_name = rospy.get_name() + "_recorder"  # in the namespace of this node, as rosbag is
         self.last_state = time.monotonic()
+        self.states = 0
+        self.attached_states = 0
+        self.diagnostics = {}  # the node's last /diagnostics values, by key
         self.children = []
 
     def subscribed(self, node, topics):
@@ -106,8 +118,41 @@ class Replay:
                 raise RuntimeError("%s did not happen within %.0f s" % (what, timeout))
             time.sleep(0.05)
 
-    def on_state(self, _):
+    def on_state(self, state):
         self.last_state = time.monotonic()
+        self.states += 1
+        self.attached_states += 1 if state.vehicle_attached else 0
+
+    def on_diagnostics(self, array):
+        node = self.node.rsplit("/", 1)[-1]
+        for status in array.status:
+            if node in status.name:
+                self.diagnostics.update({value.key: value.value for value in status.values})
+
+    def check_bag(self, bag):
+        """The number of poses the bag holds on ~pose_topic; an error naming what it holds instead."""
+        with rosbag.Bag(bag) as recorded:
+            topics = recorded.get_type_and_topic_info().topics
+        if self.pose_topic not in topics:
+            raise RuntimeError("%s holds no %s; its topics: %s (set pose_topic:=...)" % (
+                bag, self.pose_topic, ", ".join("%s (%s)" % (name, info.msg_type)
+                                                 for name, info in sorted(topics.items())) or "none"))
+        info = topics[self.pose_topic]
+        if info.msg_type not in POSE_TYPES:
+            raise RuntimeError("%s in %s is %s: tether_node takes %s" % (self.pose_topic, bag, info.msg_type,
+                                                                        " or ".join(POSE_TYPES)))
+        return info.message_count
+
+    def check_poses_taken(self, poses):
+        """Raises when the node took none of the `poses` played."""
+        if self.attached_states > 0:
+            return
+        raise RuntimeError(
+            "no pose was taken: %d poses of %s played, the node refused %s (poses taken: %s); %d states, none "
+            "with the vehicle attached. tether_node's warnings above say why (frame: set world_frame:=<the "
+            "poses' frame>; stamps; numbers)" % (
+                poses, self.pose_topic, self.diagnostics.get("rejected poses", "an unknown number"),
+                self.diagnostics.get("poses taken", "unknown"), self.states))
 
     def run(self):
         bag = resolve(self.bag_arg, self.caller_cwd)
@@ -117,7 +162,9 @@ class Replay:
         output = resolve(self.output_arg, self.caller_cwd) if self.output_arg else default_output(bag)
         if output == bag:
             raise RuntimeError("output:=%s would overwrite the bag being played" % self.output_arg)
-        rospy.Subscriber(self.node + "/state", TetherState, self.on_state, queue_size=10)
+        poses = self.check_bag(bag)
+        rospy.Subscriber(self.node + "/state", TetherState, self.on_state, queue_size=100)
+        rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diagnostics, queue_size=10)
         if self.record:
             os.makedirs(os.path.dirname(output), exist_ok=True)
             recorder = subprocess.Popen(["rosbag", "record", "-O", output,
@@ -155,6 +202,8 @@ class Replay:
             self.stop(recorder)
             if recorder.returncode not in (0, -signal.SIGINT):
                 raise RuntimeError("rosbag record exited with code %d" % recorder.returncode)
+        self.check_poses_taken(poses)
+        if self.record:
             rospy.loginfo("replay: done, recorded %s", output)
         else:
             rospy.loginfo("replay: done")
@@ -202,6 +251,9 @@ def main():
         code = 1
     finally:
         replay.finish()
+    if replay.result_file:
+        with open(replay.result_file, "w") as f:
+            f.write("%d\n" % code)
     sys.exit(code)
 
 

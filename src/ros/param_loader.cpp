@@ -19,7 +19,8 @@ const std::vector<std::string>& nodeOptionNames()
       "spool_position",     "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
       "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
       "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
-      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio"};
+      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",
+      "world_frame_from_pose", "max_pose_future"};
   return names;
 }
 
@@ -57,6 +58,21 @@ class OptionReader
       return;
     }
     *out = static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value));
+  }
+
+  void flag(const std::string& name, bool* out)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    const auto& value = dict_[name];
+    if (value.getType() != XmlRpc::XmlRpcValue::TypeBoolean)
+    {
+      errors_.push_back(name + ": expected true or false");
+      return;
+    }
+    *out = static_cast<bool>(const_cast<XmlRpc::XmlRpcValue&>(value));
   }
 
   void number(const std::string& name, double* out, double min, double max)
@@ -223,6 +239,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   NodeOptions candidate = *options;
   OptionReader read(dict);
   read.text("world_frame", &candidate.world_frame);
+  read.flag("world_frame_from_pose", &candidate.world_frame_from_pose);
   read.text("pose_source", &candidate.pose_source);
   read.text("rov_frame", &candidate.rov_frame);
   read.vector3("attachment_offset", &candidate.attachment_offset);
@@ -238,6 +255,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.number("stripe_segments", &stripes, 1.0, 1000.0);
   candidate.stripe_segments = static_cast<int>(stripes);
   read.number("stale_pose_timeout", &candidate.stale_pose_timeout, 0.01, 3600.0);
+  read.number("max_pose_future", &candidate.max_pose_future, 0.0, 3600.0);
   read.number("max_tension_warning", &candidate.max_tension_warning, 0.0, 1e9);
   read.text("pose_topic", &candidate.pose_topic);
   read.text("overload_policy", &candidate.overload_policy);

@@ -39,7 +39,11 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose)
 
 PoseInput::PoseInput(const NodeOptions& options, tf2_ros::Buffer& tf, Tether& tether, const std::string& label,
                      ros::CallbackQueueInterface* input_queue)
-    : options_(options), tf_(tf), tether_(tether), label_(label.empty() ? "" : " " + label)
+    : options_(options),
+      tf_(tf),
+      tether_(tether),
+      label_(label.empty() ? "" : " " + label),
+      topic_(options.pose_topic)
 {
   hand_over_.reserve(kMaxHandOver);
   taking_.reserve(kMaxHandOver);
@@ -60,16 +64,130 @@ void PoseInput::subscribe(ros::NodeHandle& nh)
   {
     return;
   }
-  // The callback only checks and hands over, on the input's own thread: a deep queue never fills.
-  subscriber_ = nh.subscribe<geometry_msgs::PoseStamped>(options_.pose_topic, kMaxHandOver,
-                                                         [this](const geometry_msgs::PoseStamped::ConstPtr& msg)
-                                                         { receive(msg, ros::Time::now()); });
+  // The callback only checks and hands over, on the input's own thread: a deep queue never fills. Any type
+  // is subscribed (PoseStamped or Odometry, told apart by the publisher's type).
+  subscriber_ = nh.subscribe<topic_tools::ShapeShifter>(
+      options_.pose_topic, kMaxHandOver,
+      [this](const topic_tools::ShapeShifter::ConstPtr& msg) { receiveAny(msg, ros::Time::now()); });
+  topic_ = subscriber_.getTopic();
+  static_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+}
+
+std::string PoseInput::noTransformAdvice(const std::string& frame) const
+{
+  return "poses on " + topic_ + " are in '" + frame + "': publish the transform " + options_.world_frame + " -> " +
+         frame + ", or set world_frame to '" + frame + "' (tether.launch world_frame:=" + frame + ")";
+}
+
+bool PoseInput::worldFrameInUse() const
+{
+  std::string parent;
+  if (tf_._getParent(options_.world_frame, ros::Time(0), parent))
+  {
+    return true;  // someone places it
+  }
+  // Children of world_frame other than the node's own frames (the spool outlet and the cable end, of any
+  // tether: "name/tether_spool") mean someone else works in it.
+  const auto own = [this](const std::string& child)
+  {
+    for (const std::string* suffix : {&options_.spool_outlet_frame, &options_.cable_end_frame})
+    {
+      if (!suffix->empty() && child.size() >= suffix->size() &&
+          child.compare(child.size() - suffix->size(), suffix->size(), *suffix) == 0)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::vector<std::string> frames;
+  tf_._getFrameStrings(frames);
+  for (const std::string& child : frames)
+  {
+    if (tf_._getParent(child, ros::Time(0), parent) && parent == options_.world_frame && !own(child))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool PoseInput::adoptFrame(const std::string& frame)
+{
+  if (!options_.world_frame_from_pose || !adopted_frame_.empty() || frame.empty())
+  {
+    return false;
+  }
+  if (worldFrameInUse() || tf_.canTransform(options_.world_frame, frame, ros::Time(0)))
+  {
+    return false;  // someone else uses world_frame in tf (or it is already joined to the frame): wait for tf
+  }
+  geometry_msgs::TransformStamped identity;
+  identity.header.frame_id = frame;  // stamp 0: a static transform holds at every time
+  identity.child_frame_id = options_.world_frame;
+  identity.transform.rotation.w = 1.0;
+  if (!tf_.setTransform(identity, "tether_node", true))
+  {
+    return false;
+  }
+  if (static_broadcaster_)
+  {
+    static_broadcaster_->sendTransform(identity);
+  }
+  adopted_frame_ = frame;
+  ROS_INFO(
+      "tether_node%s: poses on %s are in '%s', which tf cannot join to world_frame '%s' (nobody else uses it): "
+      "taking %s as %s (the identity %s -> %s, published on /tf_static). To use another world, set "
+      "world_frame or publish %s -> %s; world_frame_from_pose: false turns this off",
+      label_.c_str(), topic_.c_str(), frame.c_str(), options_.world_frame.c_str(), options_.world_frame.c_str(),
+      frame.c_str(), frame.c_str(), options_.world_frame.c_str(), options_.world_frame.c_str(), frame.c_str());
+  return true;
 }
 
 void PoseInput::refuse(const std::string& why)
 {
   ++rejected_;
   ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %s", label_.c_str(), why.c_str());
+}
+
+void PoseInput::receiveAny(const topic_tools::ShapeShifter::ConstPtr& msg, const ros::Time& now)
+{
+  const std::string& type = msg->getDataType();
+  try
+  {
+    if (type == ros::message_traits::datatype<geometry_msgs::PoseStamped>())
+    {
+      receive(msg->instantiate<geometry_msgs::PoseStamped>(), now);
+      return;
+    }
+    if (type == ros::message_traits::datatype<nav_msgs::Odometry>())
+    {
+      const auto odometry = msg->instantiate<nav_msgs::Odometry>();
+      auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
+      pose->header = odometry->header;  // the pose is in header.frame_id; child_frame_id is the vehicle's
+      pose->pose = odometry->pose.pose;
+      receive(pose, now);
+      return;
+    }
+  }
+  catch (const std::exception& e)  // a message that does not deserialise as its type says
+  {
+    refuse("a " + type + " on " + topic_ + " could not be read: " + e.what());
+    return;
+  }
+  refuse("a " + type + " on " + topic_ +
+         ": expected geometry_msgs/PoseStamped or nav_msgs/Odometry (remap pose_topic to the vehicle's pose)");
+}
+
+void PoseInput::refuseFuture(double ahead)
+{
+  ++future_;
+  char text[200];
+  std::snprintf(text, sizeof(text),
+                "stamped %.3f s ahead of ROS time, beyond max_pose_future %.3f s (is the publisher's clock ahead, "
+                "or use_sim_time set without a /clock?)",
+                ahead, options_.max_pose_future);
+  refuse(text);
 }
 
 void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& now)
@@ -86,6 +204,12 @@ void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const r
     auto stamped = boost::make_shared<geometry_msgs::PoseStamped>(*msg);
     stamped->header.stamp = now;  // a zero stamp means "now"
     pose = stamped;
+  }
+  const double ahead = (pose->header.stamp - now).toSec();
+  if (ahead > options_.max_pose_future)
+  {
+    refuseFuture(ahead);
+    return;
   }
   const std::string& frame = pose->header.frame_id;
   if (frame.empty() || frame == options_.world_frame || !filter_)
@@ -145,26 +269,22 @@ void PoseInput::onFilterFailure(const geometry_msgs::PoseStamped::ConstPtr& msg,
   }
   refuse("no transform " + options_.world_frame + " -> " + msg->header.frame_id + " at " +
          std::to_string(msg->header.stamp.toSec()) + " s (" +
-         (reason == tf2_ros::filter_failure_reasons::OutTheBack ? "older than the tf buffer" : "dropped by tf") + ")");
+         (reason == tf2_ros::filter_failure_reasons::OutTheBack ? "older than the tf buffer" : "dropped by tf") +
+         "); " + noTransformAdvice(msg->header.frame_id));
 }
 
-void PoseInput::expireWaiting()
+void PoseInput::expireWaiting(const ros::Time& now)
 {
-  std::string late;
+  std::vector<HandOver> passed_poses;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const double physics = tether_.time();
     const auto passed = [physics](const HandOver& w) { return w.msg->header.stamp.toSec() < physics; };
-    const auto first = std::find_if(waiting_for_tf_.begin(), waiting_for_tf_.end(), passed);
-    if (first != waiting_for_tf_.end())
-    {
-      late = first->msg->header.frame_id;
-    }
     for (auto it = waiting_for_tf_.begin(); it != waiting_for_tf_.end();)
     {
       if (passed(*it))
       {
-        ++rejected_;
+        passed_poses.push_back(*it);
         it = waiting_for_tf_.erase(it);
       }
       else
@@ -173,13 +293,25 @@ void PoseInput::expireWaiting()
       }
     }
   }
-  if (!late.empty())
+  if (passed_poses.empty())
   {
-    ROS_WARN_THROTTLE(1.0,
-                      "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it "
-                      "(the physics runs interpolation_delay behind ROS time: that is tf's slack)",
-                      label_.c_str(), options_.world_frame.c_str(), late.c_str());
+    return;
   }
+  // Nobody else uses world_frame: it is taken as the poses' frame, and the poses that waited are taken.
+  if (adoptFrame(passed_poses.front().msg->header.frame_id))
+  {
+    for (const HandOver& pose : passed_poses)
+    {
+      take(pose, now);
+    }
+    return;
+  }
+  rejected_ += passed_poses.size();
+  const std::string& late = passed_poses.front().msg->header.frame_id;
+  ROS_WARN_THROTTLE(1.0,
+                    "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it "
+                    "(the physics runs interpolation_delay behind ROS time: that is tf's slack); %s",
+                    label_.c_str(), options_.world_frame.c_str(), late.c_str(), noTransformAdvice(late).c_str());
 }
 
 void PoseInput::poll(const ros::Time& now)
@@ -196,7 +328,7 @@ void PoseInput::poll(const ros::Time& now)
     take(pose, now);
   }
   taking_.clear();
-  expireWaiting();
+  expireWaiting(now);
 
   Eigen::Isometry3d pose;
   if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))
@@ -211,7 +343,11 @@ void PoseInput::poll(const ros::Time& now)
     {
       stamp = now;
     }
-    if (stamp > last_pose_stamp_)
+    if (stamp > last_pose_stamp_ && (stamp - now).toSec() > options_.max_pose_future)
+    {
+      refuseFuture((stamp - now).toSec());
+    }
+    else if (stamp > last_pose_stamp_)
     {
       addVehicle(pose, stamp, now);
     }

@@ -77,6 +77,11 @@ void Scheduler::tick(const ros::Time& now)
   {
     return;  // simulated time has not started
   }
+  const ros::WallTime wall_now = wall_clock_();
+  // The wall time since the last tick: ROS time that passed with it is the node's own stall (a render too
+  // big, a slow machine), not a clock that leapt.
+  const double wall_gap = last_wall_.isZero() ? 0.0 : std::max(0.0, (wall_now - last_wall_).toSec());
+  last_wall_ = wall_now;
   if (!started_)
   {
     started_ = true;
@@ -99,9 +104,17 @@ void Scheduler::tick(const ros::Time& now)
     }
     resetAll(at, "time jumped backwards by " + std::to_string((last_time_ - at).toSec()) + " s");
   }
+  else if ((now - last_time_).toSec() - wall_gap > kMaxForwardJump)
+  {
+    resetAll(now, "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s in " +
+                      std::to_string(wall_gap) + " s of wall time");
+  }
   else if ((now - last_time_).toSec() > kMaxForwardJump)
   {
-    resetAll(now, "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s");
+    ROS_WARN(
+        "tether_node: the node itself stalled for %.2f s of wall time (ROS time went on with it: no clock jump); "
+        "the physics catches up, or skips ahead beyond max_lag",
+        wall_gap);
   }
   for (auto& tether : tethers_)
   {
@@ -117,7 +130,7 @@ void Scheduler::tick(const ros::Time& now)
   {
     steps_before[i] = world_.tether(i).stepCount();
   }
-  const ros::WallTime wall_start = wall_clock_();
+  const ros::WallTime wall_start = wall_now;  // the tick's work from its start: poses taken, skips, steps
   advance(target);
   const ros::WallTime wall_end = wall_clock_();
   account((wall_end - wall_start).toSec(), wall_end, steps_before);

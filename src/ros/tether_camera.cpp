@@ -5,14 +5,22 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace rov_tether::ros_layer
 {
 
 TetherCamera::TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
-                           const tf2_ros::Buffer& tf, const std::string& world_frame)
-    : config_(config), nh_(nh), tf_(tf), world_frame_(world_frame), transport_(private_nh)
+                           const tf2_ros::Buffer& tf, const std::string& world_frame, double max_future,
+                           double render_budget)
+    : config_(config),
+      nh_(nh),
+      tf_(tf),
+      world_frame_(world_frame),
+      max_future_(max_future),
+      budget_(render_budget),
+      transport_(private_nh)
 {
   if (config_.info_topic.empty())
   {
@@ -85,27 +93,54 @@ void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
   if (!error.empty())
   {
     model_.reset();
-    ROS_WARN_THROTTLE(5.0, "tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(),
-                      info_sub_.getTopic().c_str(), error.c_str());
+    if (warningDue("info"))
+    {
+      ROS_WARN("tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(),
+               info_sub_.getTopic().c_str(), error.c_str());
+    }
   }
   info_error_ = error;
 }
 
 void TetherCamera::onImage(const sensor_msgs::ImageConstPtr& image)
 {
+  const double ahead = (image->header.stamp - ros::Time::now()).toSec();
+  if (ahead > max_future_)
+  {
+    char why[160];
+    std::snprintf(why, sizeof(why), "image stamped %.3f s ahead of ROS time, beyond max_pose_future %.3f s", ahead,
+                  max_future_);
+    drop("future", why);
+    return;
+  }
   if (queue_.size() >= kMaxQueued)
   {
     queue_.pop_front();
-    drop("more than 30 images wait for the physics (is the clock or the physics stalled?)");
+    drop("queue", "more than 30 images wait for the physics (is the clock or the physics stalled?)");
   }
   queue_.push_back(image);
 }
 
-void TetherCamera::drop(const std::string& why)
+bool TetherCamera::warningDue(const std::string& reason)
+{
+  const ros::WallTime now = ros::WallTime::now();
+  const auto last = last_warning_.find(reason);
+  if (last != last_warning_.end() && (now - last->second).toSec() < 5.0)
+  {
+    return false;
+  }
+  last_warning_[reason] = now;
+  return true;
+}
+
+void TetherCamera::drop(const std::string& reason, const std::string& why)
 {
   ++dropped_;
-  ROS_WARN_THROTTLE(5.0, "tether_node: camera %s: frame not drawn (%llu so far): %s", config_.name.c_str(),
-                    static_cast<unsigned long long>(dropped_), why.c_str());
+  if (warningDue(reason))
+  {
+    ROS_WARN("tether_node: camera %s: frame not drawn (%llu so far): %s", config_.name.c_str(),
+             static_cast<unsigned long long>(dropped_), why.c_str());
+  }
 }
 
 void TetherCamera::process(camera::CameraScene& scene)
@@ -128,11 +163,19 @@ void TetherCamera::process(camera::CameraScene& scene)
     }
     return;
   }
-  while (!queue_.empty() && queue_.front()->header.stamp.toSec() <= scene.newest() + 1e-9)
+  // Each image waits for its own stamp only: one stamped ahead never holds up those behind it.
+  for (auto it = queue_.begin(); it != queue_.end();)
   {
-    const sensor_msgs::ImageConstPtr image = queue_.front();
-    queue_.pop_front();
-    renderAt(image->header.stamp, scene, image);
+    if ((*it)->header.stamp.toSec() <= scene.newest() + 1e-9)
+    {
+      const sensor_msgs::ImageConstPtr image = *it;
+      it = queue_.erase(it);
+      renderAt(image->header.stamp, scene, image);
+    }
+    else
+    {
+      ++it;
+    }
   }
 }
 
@@ -140,20 +183,20 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
 {
   if (!model_)
   {
-    drop(info_error_.empty() ? "no CameraInfo yet on " + nh_.resolveName(config_.info_topic)
+    drop("info", info_error_.empty() ? "no CameraInfo yet on " + nh_.resolveName(config_.info_topic)
                              : "the last CameraInfo was refused: " + info_error_);
     return false;
   }
   if (image &&
       (static_cast<int>(image->width) != model_->width() || static_cast<int>(image->height) != model_->height()))
   {
-    drop("image " + std::to_string(image->width) + "x" + std::to_string(image->height) + " but intrinsics for " +
+    drop("size", "image " + std::to_string(image->width) + "x" + std::to_string(image->height) + " but intrinsics for " +
          std::to_string(model_->width()) + "x" + std::to_string(model_->height()));
     return false;
   }
   if (!scene.tubesAt(stamp.toSec(), tubes_))
   {
-    drop("stamp " + std::to_string(stamp.toSec()) + " s is older than the tether shapes kept (from " +
+    drop("past", "stamp " + std::to_string(stamp.toSec()) + " s is older than the tether shapes kept (from " +
          std::to_string(scene.oldest()) + " s)");
     return false;
   }
@@ -164,9 +207,16 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   }
   catch (const tf2::TransformException& e)
   {
-    drop(std::string("no transform ") + world_frame_ + " -> " + config_.frame + ": " + e.what());
+    drop("tf", std::string("no transform ") + world_frame_ + " -> " + config_.frame + ": " + e.what());
     return false;
   }
+  const double pixels = static_cast<double>(model_->width()) * model_->height();
+  if (!budget_.allows(pixels))
+  {
+    drop("budget", budget_.why(model_->width(), model_->height()));
+    return false;
+  }
+  const ros::WallTime start = ros::WallTime::now();
   const camera::RenderStats stats = renderer_.render(*model_, pose, tubes_, scene.occluders());
   std_msgs::Header header;
   header.stamp = stamp;
@@ -199,14 +249,23 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
     }
     catch (const cv_bridge::Exception& e)
     {
-      drop("overlay: cannot convert the image's encoding '" + image->encoding + "' to bgr8: " + e.what());
+      drop("encoding", "overlay: cannot convert the image's encoding '" + image->encoding + "' to bgr8: " + e.what());
     }
+  }
+  const double took = (ros::WallTime::now() - start).toSec();
+  budget_.measured(pixels, took);
+  if (took > budget_.budget() && warningDue("slow"))
+  {
+    ROS_WARN("tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
+             "frames as large are skipped from now on",
+             config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget());
   }
   return true;
 }
 
 CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
-                     const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame)
+                     const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame,
+                     double max_future, double render_budget)
     : scene_(world)
 {
   std::vector<std::string> reserved;
@@ -224,7 +283,8 @@ CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ro
   {
     try
     {
-      cameras_.push_back(std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame));
+      cameras_.push_back(std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame, max_future,
+                                                      render_budget));
     }
     catch (const std::invalid_argument& e)
     {

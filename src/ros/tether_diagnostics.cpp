@@ -77,6 +77,7 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("residual stretch", summary.mean_strain);
   status.add("poses taken", pose_input_.accepted());
   status.add("rejected poses", pose_input_.rejected());
+  status.add("rejected poses stamped in the future", pose_input_.future());
   status.add("dropped poses", pose_input_.dropped());
   status.add("physics delay [s]", scheduler_.delay());
   status.add("resets", schedule.resets);

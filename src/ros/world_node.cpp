@@ -127,7 +127,8 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   if (private_nh_.getParam("cameras", cameras))
   {
     cameras_ =
-        std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame);
+        std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
+                                    setups.front().options.max_pose_future, setups.front().options.max_lag);
   }
   input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);
   input_spinner_->start();

@@ -7,12 +7,16 @@ overrides file leaves its keys. The test puts exactly those on the master (what 
 `roslaunch rov_tether tether.launch` against the same master. With clear_params="true" the node must
 simulate one tether (publishing ~state, not ~t0/state), with default.yaml's cable, and report no typo.
 
+An overrides file wins over the launch's own frame arguments (`world_frame` included), as its name says.
+
 A second launch checks that tether_node's start-up INFO line reaches a piped stdout while the node runs
 (stdout is line-buffered), not only at exit.
 """
 import os
+import shutil
 import signal
 import subprocess
+import tempfile
 import threading
 import time
 import unittest
@@ -111,6 +115,30 @@ class LaunchParams(unittest.TestCase):
     def test_2_startup_line_reaches_a_piped_stdout_while_the_node_runs(self):
         _, _, _, started, output = self.run_tether_launch()
         self.assertTrue(started, "start-up INFO line on the piped stdout while the node runs:\n" + output)
+
+    def test_3_an_overrides_file_sets_the_frames(self):
+        # Item 2 of issue 26: tether.launch set world_frame from its argument after loading the overrides,
+        # so the file's world_frame was silently replaced by "world".
+        scratch = tempfile.mkdtemp(prefix="launch_params_")
+        try:
+            overrides = os.path.join(scratch, "mine.yaml")
+            with open(overrides, "w") as f:
+                f.write("world_frame: map\nrov_frame: base_link\ncable_length: 30.0\n")
+            dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch",
+                                     "overrides:=" + overrides], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                    text=True, timeout=TIMEOUT)
+            self.assertEqual(dumped.returncode, 0, dumped.stderr)
+            parameters = yaml.safe_load(dumped.stdout)
+            self.assertEqual(parameters[NODE + "/world_frame"], "map")
+            self.assertEqual(parameters[NODE + "/rov_frame"], "base_link")
+            self.assertEqual(parameters[NODE + "/cable_length"], 30.0)
+            # Without an overrides file, the arguments set the frames.
+            dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch", "world_frame:=odom"],
+                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
+            self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/world_frame"], "odom", dumped.stderr)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+
 
 if __name__ == "__main__":
     rostest.rosrun("rov_tether", "launch_params", LaunchParams)

@@ -6,6 +6,12 @@
    has died"), and the default output is $ROS_HOME/replay/straight_excursion.tether.bag, not next to the
    bag in the source tree. The recorded bag holds every pose of the dive and ~state up to its end.
 2. A bag that does not exist: the launch ends by itself, naming the resolved path.
+3. A mavros bag (PoseStamped in `map` on /mavros/local_position/pose, no tf) replays with the defaults
+   through `rosrun rov_tether replay.sh`: exit code 0, the vehicle attached (issue 26, items 1 and 3).
+4. The same bag with `world_frame_from_pose: false`: every pose refused; replay.sh exits 1 and says that
+   no pose was taken and how many were refused (it used to exit 0 with 428 states, none attached).
+5. A bag of nav_msgs/Odometry (robot_localization) replays: exit code 0, the vehicle attached (item 4).
+   This Python has no nav_msgs module: the class is generated from the installed .msg files.
 """
 import os
 import shutil
@@ -13,10 +19,15 @@ import subprocess
 import tempfile
 import unittest
 
+import genmsg
+import genmsg.msg_loader
+import genpy.dynamic
 import rosbag
 import rospkg
+import rospy
 import rostest
 import yaml
+from geometry_msgs.msg import PoseStamped
 
 PACKAGE = rospkg.RosPack().get_path("rov_tether")
 DATA = os.path.join(PACKAGE, "test", "data")
@@ -36,12 +47,35 @@ class ReplayLaunch(unittest.TestCase):
     def tearDown(self):
         shutil.rmtree(self.scratch, ignore_errors=True)
 
-    def roslaunch(self, *args):
+    def roslaunch(self, *args, command=("roslaunch", "rov_tether", "replay.launch")):
         """roslaunch rov_tether replay.launch ARGS from self.cwd, as a shell would start it."""
         env = dict(os.environ, ROS_HOME=self.ros_home, PWD=self.cwd)
-        done = subprocess.run(["roslaunch", "rov_tether", "replay.launch"] + list(args), cwd=self.cwd, env=env,
+        done = subprocess.run(list(command) + list(args), cwd=self.cwd, env=env,
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT)
         return done.returncode, done.stdout
+
+    @staticmethod
+    def odometry_class():
+        """nav_msgs/Odometry generated from the installed message definitions (same md5 as the C++ one)."""
+        search = {package: ["/usr/share/%s/msg" % package] for package in ("nav_msgs", "geometry_msgs", "std_msgs")}
+        context = genmsg.MsgContext.create_default()
+        spec = genmsg.msg_loader.load_msg_by_type(context, "nav_msgs/Odometry", search)
+        genmsg.msg_loader.load_depends(context, spec, search)
+        text = genmsg.compute_full_text(context, spec)
+        return genpy.dynamic.generate_dynamic("nav_msgs/Odometry", text)["nav_msgs/Odometry"]
+
+    def write_mavros_bag(self):
+        """10 s of mavros local position at 20 Hz: PoseStamped in `map`, out from 1.5 to 4.5 m along x."""
+        path = os.path.join(self.cwd, "mavros_dive.bag")
+        with rosbag.Bag(path, "w") as bag:
+            for k in range(201):
+                msg = PoseStamped()
+                msg.header.stamp = rospy.Time.from_sec(1000.0 + 0.05 * k)
+                msg.header.frame_id = "map"
+                msg.pose.position.x, msg.pose.position.z = 1.5 + 0.015 * k, -1.0
+                msg.pose.orientation.w = 1.0
+                bag.write("/mavros/local_position/pose", msg, msg.header.stamp)
+        return path
 
     def test_1_relative_bag_replays_records_outside_the_source_tree_and_ends_cleanly(self):
         data_before = sorted(os.listdir(DATA))
@@ -81,6 +115,50 @@ class ReplayLaunch(unittest.TestCase):
         self.assertIn("no bag at %s" % os.path.join(self.cwd, "no_such_dive.bag"), output)
         self.assertIn("all processes on machine have died, roslaunch will exit", output)
         self.assertFalse(os.path.exists(os.path.join(self.ros_home, "replay")), "nothing recorded")
+
+
+    def test_3_a_mavros_bag_in_map_replays(self):
+        self.write_mavros_bag()
+        code, output = self.roslaunch("bag:=mavros_dive.bag", "pose_topic:=/mavros/local_position/pose",
+                                      "rate:=%g" % RATE, "output:=out.bag",
+                                      command=("rosrun", "rov_tether", "replay.sh"))
+        self.assertEqual(code, 0, output)
+        self.assertIn("taking world as map", output)
+        with rosbag.Bag(os.path.join(self.cwd, "out.bag")) as bag:
+            attached = [m.vehicle_attached for _, m, _ in bag.read_messages(["/tether_node/state"])]
+        print("[ measured ] %d states, %d with the vehicle attached" % (len(attached), sum(attached)))
+        self.assertGreater(sum(attached), 0.5 * len(attached), "the vehicle is attached for most of the dive")
+
+    def test_4_a_replay_that_takes_no_pose_fails_and_says_why(self):
+        self.write_mavros_bag()
+        overrides = os.path.join(self.cwd, "strict.yaml")
+        with open(overrides, "w") as f:
+            f.write("world_frame_from_pose: false\n")
+        code, output = self.roslaunch("bag:=mavros_dive.bag", "pose_topic:=/mavros/local_position/pose",
+                                      "rate:=%g" % RATE, "overrides:=" + overrides,
+                                      command=("rosrun", "rov_tether", "replay.sh"))
+        self.assertEqual(code, 1, output)
+        self.assertIn("no pose was taken: 201 poses of /mavros/local_position/pose played", output)
+        self.assertIn("set world_frame to 'map'", output)  # the node's warning says what to do
+
+    def test_5_an_odometry_bag_replays(self):
+        odometry = self.odometry_class()
+        with rosbag.Bag(os.path.join(self.cwd, "ekf_dive.bag"), "w") as bag:
+            for k in range(201):
+                msg = odometry()
+                msg.header.stamp = rospy.Time.from_sec(1000.0 + 0.05 * k)
+                msg.header.frame_id = "world"
+                msg.child_frame_id = "base_link"
+                msg.pose.pose.position.x, msg.pose.pose.position.z = 1.5 + 0.015 * k, -1.0
+                msg.pose.pose.orientation.w = 1.0
+                bag.write("/odometry/filtered", msg, msg.header.stamp)
+        code, output = self.roslaunch("bag:=ekf_dive.bag", "pose_topic:=/odometry/filtered", "rate:=%g" % RATE,
+                                      "output:=out.bag", command=("rosrun", "rov_tether", "replay.sh"))
+        self.assertEqual(code, 0, output)
+        with rosbag.Bag(os.path.join(self.cwd, "out.bag")) as bag:
+            attached = [m.vehicle_attached for _, m, _ in bag.read_messages(["/tether_node/state"])]
+        print("[ measured ] Odometry: %d states, %d with the vehicle attached" % (len(attached), sum(attached)))
+        self.assertGreater(sum(attached), 0.5 * len(attached), "the vehicle is attached for most of the dive")
 
 
 if __name__ == "__main__":

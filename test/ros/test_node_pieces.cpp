@@ -1,7 +1,10 @@
 // tether_node's pieces without a master: PoseInput (checks, frames, attachment, counting), Scheduler
 // (clock policy, state grids, skips, a World of several tethers), LoadGovernor and StateBuilder.
+#include <geometry_msgs/TwistStamped.h>
 #include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
 #include <tf2_ros/buffer.h>
+#include <topic_tools/shape_shifter.h>
 
 #include <cmath>
 #include <cstdio>
@@ -12,6 +15,7 @@
 #include "../test_helpers.hpp"
 #include "rov_tether/ros/load_governor.hpp"
 #include "rov_tether/ros/pose_input.hpp"
+#include "rov_tether/ros/render_budget.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/world.hpp"
@@ -268,6 +272,45 @@ TEST(Scheduler, ClockJumpsResetAndFallingBehindSkips)
   EXPECT_EQ(t.scheduler.schedule(0).last_skip_time, ros::Time(48.0));
   EXPECT_NEAR(t.world.tether(0).time(), 47.9, 1e-9);
   EXPECT_EQ(t.hooks->before, t.hooks->after);
+}
+
+// Item 12 of issue 26: an 8000 x 8000 camera image took the node 7.58 s to render, and the next tick took
+// the ROS time that had passed meanwhile for a clock jump: "time jumped forwards by 7.58 s: resetting the
+// tether". ROS time that passed with the wall clock is the node's own stall: the physics skips ahead
+// (max_lag) with the cable held, no reset. A clock that leaps while the wall clock does not is a jump.
+TEST(Scheduler, TheNodesOwnStallIsNoClockJump)
+{
+  OneTether t;
+  t.wall = ros::WallTime(1000.0);
+  t.scheduler.tick(ros::Time(50.0));
+  t.wall += ros::WallDuration(0.005);
+  t.scheduler.tick(ros::Time(50.005));
+  t.wall += ros::WallDuration(7.58);  // the node rendered for 7.58 s; ROS time went on with the wall
+  t.scheduler.tick(ros::Time(57.585));
+  EXPECT_EQ(t.scheduler.schedule(0).resets, 0u) << "a stall is no clock jump";
+  EXPECT_EQ(t.scheduler.schedule(0).skips, 1u) << "7.58 s behind, more than max_lag: skipped ahead, counted";
+  EXPECT_NEAR(t.world.tether(0).time(), 57.485, 0.005 + 1e-9);  // on the 5 ms step grid
+  t.wall += ros::WallDuration(0.005);
+  t.scheduler.tick(ros::Time(117.59));  // ROS time leaps 60 s in 5 ms of wall time: a jump
+  EXPECT_EQ(t.scheduler.schedule(0).resets, 1u);
+}
+
+// Item 12 of issue 26, the camera's part: the 8000 x 8000 frame took 7.58 s, at the rate of about
+// 0.12 us a pixel. Once a camera has measured its cost, a frame predicted beyond the budget (max_lag,
+// 1 s) is skipped with a reason that names its size; a 320 x 240 frame (9 ms at that rate) is drawn.
+TEST(RenderBudget, AFrameTooBigForItsBudgetIsSkippedAndSaid)
+{
+  RenderBudget budget(1.0);
+  EXPECT_TRUE(budget.allows(8000.0 * 8000.0)) << "the first frame measures the cost";
+  budget.measured(8000.0 * 8000.0, 7.58);
+  EXPECT_FALSE(budget.allows(8000.0 * 8000.0));
+  const std::string why = budget.why(8000, 8000);
+  EXPECT_NE(why.find("8000x8000"), std::string::npos) << why;
+  EXPECT_NE(why.find("7.58 s"), std::string::npos) << why;
+  EXPECT_NE(why.find("skipped"), std::string::npos) << why;
+  EXPECT_TRUE(budget.allows(320.0 * 240.0));
+  budget.measured(320.0 * 240.0, 0.004);  // the small frame measures the cost again
+  EXPECT_TRUE(budget.allows(1000.0 * 1000.0)) << "52 ms at 52 ns a pixel";
 }
 
 // A node whose physics cannot hold real time falls more than max_lag behind on every tick (here each
@@ -554,6 +597,167 @@ TEST(PoseInput, PosesInOdomWaitForATransformPublishedAt10Hz)
   // The poses wait up to a transform period (+ its 10 ms): the delay grows to cover it.
   EXPECT_LE(rig.scheduler.delay(), 0.1 + 0.02 + 0.01 + 0.005 + 1e-9);
   EXPECT_LT((end - vehicle(tether.time())).norm(), 1e-9) << "the end is where the vehicle was, in the world";
+}
+
+// Item 1 of issue 26: mavros publishes the vehicle in `map`, and nobody publishes `world` (the node's own
+// world -> tether_spool gives it children, never a parent). Every pose was refused ("no transform world ->
+// map") and the tether never moved. Now world is taken as map: each pose is taken where it says.
+void feedPosesIn(NodeRig& rig, const std::string& frame, double seconds)
+{
+  const auto vehicle = [](double t) { return Position(2.0 + 0.5 * (t - 100.0), 1.0, -1.0); };
+  int next_pose = 0;
+  for (int tick = 0; tick <= seconds * 200; ++tick)
+  {
+    const double now = 100.0 + tick * 0.005;
+    ASSERT_TRUE(rig.tf.setTransform(transform("world", "tether_spool", now, Eigen::Isometry3d::Identity()), "node"));
+    for (; 100.0 + 0.05 * next_pose <= now + 1e-9; ++next_pose)
+    {
+      const double stamp = 100.0 + 0.05 * next_pose;
+      const Position p = vehicle(stamp);
+      rig.input->receive(shared(poseMsg(p.x(), p.y(), p.z(), stamp, frame)), ros::Time(stamp));
+    }
+    rig.scheduler.tick(ros::Time(now));
+  }
+}
+
+TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
+{
+  NodeRig rig(quietParams());
+  feedPosesIn(rig, "map", 3.0);
+  const Tether& tether = rig.world.tether(0);
+  EXPECT_EQ(rig.input->adoptedFrame(), "map");
+  EXPECT_EQ(rig.input->rejected(), 0u);
+  // 3 s at 20 Hz: 61 poses, all but those the physics (a pose period + interpolation_delay behind) has
+  // not reached yet.
+  EXPECT_GE(rig.input->accepted(), 61u - 4u);
+  ASSERT_TRUE(tether.vehicleAttached());
+  const Position end = tether.particle(tether.deployedParticleCount() - 1);
+  EXPECT_LT((end - Position(2.0 + 0.5 * (tether.time() - 100.0), 1.0, -1.0)).norm(), 1e-9)
+      << "the end is where the pose in map says, map being the world";
+  std::string parent;
+  ASSERT_TRUE(rig.tf._getParent("world", ros::Time(0), parent));
+  EXPECT_EQ(parent, "map") << "the identity map -> world is in tf, for every other lookup";
+
+  // Someone places world (earth -> world): the node waits for world -> map, and refuses poses without it.
+  NodeRig placed(quietParams());
+  ASSERT_TRUE(placed.tf.setTransform(transform("earth", "world", 0.0, Eigen::Isometry3d::Identity()), "test", true));
+  feedPosesIn(placed, "map", 1.0);
+  EXPECT_EQ(placed.input->adoptedFrame(), "");
+  EXPECT_GT(placed.input->rejected(), 0u);
+  EXPECT_EQ(placed.input->accepted(), 0u);
+
+  // Someone works in world (world -> cam_optical, a camera's mount): the same.
+  NodeRig used(quietParams());
+  ASSERT_TRUE(used.tf.setTransform(transform("world", "cam_optical", 0.0, Eigen::Isometry3d::Identity()), "test", true));
+  feedPosesIn(used, "map", 1.0);
+  EXPECT_EQ(used.input->adoptedFrame(), "");
+  EXPECT_EQ(used.input->accepted(), 0u);
+
+  // world_frame_from_pose: false keeps world_frame as it is.
+  NodeOptions strict;
+  strict.world_frame_from_pose = false;
+  NodeRig kept(quietParams(), strict);
+  feedPosesIn(kept, "map", 1.0);
+  EXPECT_EQ(kept.input->adoptedFrame(), "");
+  EXPECT_EQ(kept.input->accepted(), 0u);
+}
+
+// Item 5 of issue 26: one pose stamped an hour ahead (a publisher with a wrong clock) was taken; every real
+// pose after it was then refused as "older than the last sample" and the vehicle end stayed frozen for the
+// hour. A stamp further ahead of ROS time than max_pose_future (1 s) is refused and counted instead.
+TEST(PoseInput, APoseStampedAnHourAheadIsRefusedAndTheRealPosesGoOn)
+{
+  NodeRig rig(quietParams());
+  const auto vehicle = [](double t) { return Position(2.0 + 0.5 * (t - 100.0), 1.0, -1.0); };
+  int next_pose = 0;
+  for (int tick = 0; tick <= 3 * 200; ++tick)
+  {
+    const double now = 100.0 + tick * 0.005;
+    for (; 100.0 + 0.05 * next_pose <= now + 1e-9; ++next_pose)
+    {
+      const double stamp = 100.0 + 0.05 * next_pose;
+      const Position p = vehicle(stamp);
+      rig.input->receive(shared(poseMsg(p.x(), p.y(), p.z(), stamp)), ros::Time(stamp));
+      if (next_pose == 20)  // at 101 s, a pose stamped 3701 s
+      {
+        rig.input->receive(shared(poseMsg(50.0, 0.0, -1.0, stamp + 3600.0)), ros::Time(stamp));
+      }
+    }
+    rig.scheduler.tick(ros::Time(now));
+  }
+  const Tether& tether = rig.world.tether(0);
+  EXPECT_EQ(rig.input->future(), 1u);
+  EXPECT_EQ(rig.input->rejected(), 1u) << "only the pose from the future";
+  EXPECT_GE(rig.input->accepted(), 61u - 4u);  // 3 s at 20 Hz, but those the physics has not reached
+  const Position end = tether.particle(tether.deployedParticleCount() - 1);
+  EXPECT_LT((end - vehicle(tether.time())).norm(), 1e-9) << "the end follows the real poses to the last";
+  // Within the bound (a clock 0.5 s ahead) a pose is taken: the bound refuses only what a clock skew is not.
+  rig.input->receive(shared(poseMsg(3.6, 1.0, -1.0, 103.5)), ros::Time(103.0));
+  EXPECT_EQ(rig.input->rejected(), 1u);
+}
+
+/// `msg` as the subscriber of pose_topic receives it: serialised, with its publisher's type.
+template <class Message>
+topic_tools::ShapeShifter::ConstPtr asReceived(const Message& msg)
+{
+  auto shifter = boost::make_shared<topic_tools::ShapeShifter>();
+  shifter->morph(ros::message_traits::md5sum(msg), ros::message_traits::datatype(msg),
+                 ros::message_traits::definition(msg), "");
+  std::vector<std::uint8_t> buffer(ros::serialization::serializationLength(msg));
+  ros::serialization::OStream out(buffer.data(), static_cast<std::uint32_t>(buffer.size()));
+  ros::serialization::serialize(out, msg);
+  ros::serialization::IStream in(buffer.data(), static_cast<std::uint32_t>(buffer.size()));
+  shifter->read(in);
+  return shifter;
+}
+
+// Item 4 of issue 26: robot_localization-style stacks publish nav_msgs/Odometry, not PoseStamped. The
+// subscription takes either (by the publisher's type); Odometry's pose goes through the same checks and
+// frames as a PoseStamped; any other type is refused, counted and named.
+TEST(PoseInput, OdometryIsTakenAsAPoseAndOtherTypesAreRefused)
+{
+  NodeOptions options;
+  options.attachment_offset = Eigen::Vector3d(-0.5, 0.0, 0.0);
+  TetherParams params = quietParams();
+  params.winch_mode = WinchMode::kStrain;
+  Tether tether(params, Position::Zero(), 9.9);
+  tf2_ros::Buffer tf;
+  ASSERT_TRUE(tf.setTransform(transform("world", "odom", 0.0, Eigen::Isometry3d(Eigen::Translation3d(1.0, 0.0, 0.0))),
+                              "test", true));
+  PoseInput input(options, tf, tether);
+
+  nav_msgs::Odometry odometry;
+  odometry.header.stamp = ros::Time(10.0);
+  odometry.header.frame_id = "odom";
+  odometry.child_frame_id = "base_link";
+  odometry.pose.pose = poseMsg(2.0, 0.0, -1.0, 10.0).pose;
+  odometry.twist.twist.linear.x = 7.0;  // not used: the pose says where the vehicle is
+  input.receiveAny(asReceived(odometry), ros::Time(10.0));
+  input.poll(ros::Time(10.0));
+  ASSERT_EQ(input.accepted(), 1u);
+  EXPECT_EQ(input.rejected(), 0u);
+  // (2, 0, -1) in odom, which is 1 m along x in the world; the attachment 0.5 m behind the vehicle.
+  EXPECT_TRUE(input.lastVehicle().translation().isApprox(Eigen::Vector3d(3.0, 0.0, -1.0), 1e-12));
+  tether.advanceTo(10.0 + params.time_step);
+  const Position end = tether.particle(tether.deployedParticleCount() - 1);
+  EXPECT_TRUE(end.isApprox(Position(2.5, 0.0, -1.0), 1e-6)) << end.transpose();
+
+  // A PoseStamped on the same subscription is taken as before.
+  input.receiveAny(asReceived(poseMsg(2.5, 0.0, -1.0, 10.1)), ros::Time(10.1));
+  input.poll(ros::Time(10.1));
+  EXPECT_EQ(input.accepted(), 2u);
+  // Odometry with bad numbers meets the same checks.
+  odometry.header.stamp = ros::Time(10.2);
+  odometry.pose.pose.orientation.w = 2.0;
+  input.receiveAny(asReceived(odometry), ros::Time(10.2));
+  EXPECT_EQ(input.rejected(), 1u);
+  // A type that is no pose: refused, counted.
+  geometry_msgs::TwistStamped twist;
+  twist.header.stamp = ros::Time(10.3);
+  input.receiveAny(asReceived(twist), ros::Time(10.3));
+  input.poll(ros::Time(10.3));
+  EXPECT_EQ(input.rejected(), 2u);
+  EXPECT_EQ(input.accepted(), 2u);
 }
 
 TEST(LoadGovernor, GivesUpOneNotchPerSecondAndUndoesItWhenTheLoadFalls)

@@ -1,12 +1,15 @@
 #pragma once
 
 #include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/callback_queue_interface.h>
 #include <ros/node_handle.h>
 #include <ros/subscriber.h>
 #include <ros/time.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/message_filter.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <topic_tools/shape_shifter.h>
 
 #include <Eigen/Geometry>
 #include <array>
@@ -44,6 +47,12 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose);
  * refused: the physics' delay behind ROS time is the slack tf has. Every refused pose is counted and
  * logged (throttled) with the reason; more than kMaxHandOver poses waiting for the physics are dropped
  * and counted. Needs no ROS master except for subscribe().
+ *
+ * With world_frame_from_pose, a pose whose frame tf cannot connect to world_frame by the time the physics
+ * reaches it, while nobody else uses world_frame in tf (no parent, no children but the node's own
+ * spool_outlet_frame and cable_end_frame), makes world_frame
+ * the pose's frame: the identity pose frame -> world_frame goes into the buffer (and /tf_static once
+ * subscribed), INFO, and the pose is taken. A pose in map or odom (mavros) thus works out of the box.
  */
 class PoseInput
 {
@@ -60,14 +69,21 @@ class PoseInput
             ros::CallbackQueueInterface* input_queue = nullptr);
 
   /// Subscribes to pose_topic (relative to `nh`, whose callback queue should be the input queue) when
-  /// pose_source is "topic"; messages go to receive() at ros::Time::now().
+  /// pose_source is "topic", whatever its type; messages go to receiveAny() at ros::Time::now().
   void subscribe(ros::NodeHandle& nh);
-  /// The subscribed topic's resolved name, "" without a subscription.
-  std::string topic() const { return subscriber_.getTopic(); }
+  /// The subscribed topic's resolved name; pose_topic before subscribe().
+  const std::string& topic() const { return topic_; }
+  /// The frame world_frame was taken as (world_frame_from_pose); "" while it is its own.
+  const std::string& adoptedFrame() const { return adopted_frame_; }
 
-  /// Any thread: a pose message that arrived at `now`. Refused (counted) when its numbers are bad; else
+  /// Any thread: a pose message that arrived at `now`. Refused (counted) when its numbers are bad or its
+  /// stamp is more than max_pose_future ahead of `now`; else
   /// handed to the physics thread, in another frame once tf can transform it (a zero stamp means `now`).
   void receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const ros::Time& now);
+  /// Any thread: a message of any type on pose_topic that arrived at `now`: a geometry_msgs/PoseStamped,
+  /// or a nav_msgs/Odometry (robot_localization, mavros odom: its header and pose.pose; the twist and the
+  /// covariances are not used), goes to receive(); any other type is refused, counted, and named.
+  void receiveAny(const topic_tools::ShapeShifter::ConstPtr& msg, const ros::Time& now);
   /// Physics thread, once per tick at `now` (after the tick's clock policy, so a pose of a clock that
   /// went back meets a tether already reset): takes every pose handed over, refuses the poses still
   /// waiting for tf whose stamp the physics has passed, and polls tf for the spool (spool_frame) and,
@@ -80,6 +96,8 @@ class PoseInput
 
   /// Poses refused (bad numbers, frames tf cannot transform in time, refused by the core).
   std::uint64_t rejected() const { return rejected_; }
+  /// Of rejected(): poses stamped further ahead of ROS time than max_pose_future.
+  std::uint64_t future() const { return future_; }
   /// Poses dropped because more than kMaxHandOver waited for the physics.
   std::uint64_t dropped() const { return dropped_; }
   /// Poses taken into the tether.
@@ -120,8 +138,9 @@ class PoseInput
   /// Removes `msg` from the poses waiting for tf; returns its arrival time, or zero when it was not there
   /// (already refused as too late).
   ros::Time stopWaiting(const geometry_msgs::PoseStamped* msg);
-  /// Physics side: refuses the poses waiting for tf whose stamp the physics has passed.
-  void expireWaiting();
+  /// Physics side: refuses the poses waiting for tf whose stamp the physics has passed (or, when it takes
+  /// world_frame as their frame, takes them at `now`).
+  void expireWaiting(const ros::Time& now);
   /// Physics side: one handed-over pose into the tether.
   void take(const HandOver& pose, const ros::Time& now);
   /// world_frame -> frame at `time` (0: latest) with the transform's stamp; false and a throttled
@@ -130,12 +149,24 @@ class PoseInput
   /// The vehicle at `vehicle` (world frame) at `stamp` into the tether; counts and logs a refusal.
   bool addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now);
   void refuse(const std::string& why);
+  /// Refuses (counts) a pose stamped `ahead` [s] of ROS time, beyond max_pose_future.
+  void refuseFuture(double ahead);
+  /// What to do about a pose in `frame` that tf cannot bring into world_frame (for the warnings).
+  std::string noTransformAdvice(const std::string& frame) const;
+  /// Physics side: when world_frame_from_pose allows it, takes world_frame as `frame` (see the class
+  /// comment); true when it did.
+  bool adoptFrame(const std::string& frame);
+  /// Whether tf holds world_frame with a parent, or with children other than the node's own frames.
+  bool worldFrameInUse() const;
 
   NodeOptions options_;
   tf2_ros::Buffer& tf_;
   Tether& tether_;
   std::string label_;  ///< " name" for log messages, "" alone.
+  std::string topic_;  ///< The pose topic as resolved (for the warnings).
+  std::string adopted_frame_;  ///< The pose frame world_frame was taken as; "" none.
   ros::Subscriber subscriber_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;  ///< Made by subscribe().
   std::unique_ptr<Filter> filter_;  ///< Poses in other frames wait here for their transform.
 
   mutable std::mutex mutex_;              ///< Guards the two lists below (input and physics threads).
@@ -145,6 +176,7 @@ class PoseInput
 
   std::atomic<std::uint64_t> rejected_{0};
   std::atomic<std::uint64_t> dropped_{0};
+  std::atomic<std::uint64_t> future_{0};
   std::uint64_t accepted_ = 0;
   ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.

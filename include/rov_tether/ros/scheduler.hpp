@@ -71,7 +71,9 @@ struct TetherSchedule
 /**
  * Runs the physics of a World on ROS time, one tick at a time (the node's one timer), for every tether in
  * lockstep. Clock policy: the first tick starts the tethers at the current time; a clock that goes
- * backwards, or leaps more than 5 s forwards, resets them (warning). The physics runs behind ROS time so
+ * backwards, or leaps more than 5 s forwards beyond the wall time since the last tick, resets them
+ * (warning). ROS time that passed with the wall clock is the node's own stall (a huge camera render):
+ * never a clock jump; the physics catches up, or skips ahead beyond max_lag. The physics runs behind ROS time so
  * that the vehicle poses bracket it: interpolation_delay, or more when poses come further apart (the
  * largest needed delay of any tether, up to the hold limit; it grows at once and shrinks at
  * kDelayShrinkRate, so the physics never jumps), and it never passes the latest pose of any tether
@@ -91,7 +93,7 @@ class Scheduler
  public:
   using WallClock = std::function<ros::WallTime()>;
 
-  /// Forward clock jumps larger than this reset the tethers instead of being integrated [s].
+  /// Forward clock jumps larger than this (beyond the wall time that passed) reset the tethers [s].
   static constexpr double kMaxForwardJump = 5.0;
   /// The delay behind ROS time shrinks at most this fast when poses come closer together: the physics
   /// then runs at most 1.5x real time to catch up, never skipping [s/s].
@@ -143,6 +145,7 @@ class Scheduler
   std::vector<TetherSchedule> tethers_;
   bool started_ = false;
   ros::Time last_time_;  ///< ROS time of the last tick (or reset).
+  ros::WallTime last_wall_;  ///< Wall time of the last tick's start; zero before the first.
 };
 
 }  // namespace rov_tether::ros_layer

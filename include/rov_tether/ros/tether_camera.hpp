@@ -7,6 +7,7 @@
 #include <tf2_ros/buffer.h>
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include "rov_tether/camera/camera_scene.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
+#include "rov_tether/ros/render_budget.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -27,14 +29,20 @@ namespace rov_tether::ros_layer
  * camera's frame. The tether is drawn as it was at the stamp (CameraScene's shapes, interpolated) and
  * the camera where tf puts its frame at the stamp. Frames wait until the physics has passed their stamp
  * (it runs interpolation_delay behind ROS time). Nothing is subscribed or computed while nobody
- * subscribes to an output. Every frame that cannot be drawn is counted and warned about (throttled).
+ * subscribes to an output. Every frame that cannot be drawn is counted and warned about, throttled per
+ * camera and per reason (one camera's warnings never hide another's). An image stamped further ahead of
+ * ROS time than `max_future` is dropped as it arrives; an image waits only for its own stamp, so a bad
+ * stamp never holds up the good images behind it. A frame predicted to take longer to draw than
+ * `render_budget` (RenderBudget) is skipped and said, so the node never stalls on one camera.
  */
 class TetherCamera
 {
  public:
   /// Advertises under private_nh/<name>/; topics are resolved in `nh`. `tf` must outlive this.
+  /// `max_future` [s]: images stamped further ahead of ROS time are dropped (the node's max_pose_future);
+  /// `render_budget` [s]: the longest a frame may take to draw (the node's max_lag).
   TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh, const tf2_ros::Buffer& tf,
-               const std::string& world_frame);
+               const std::string& world_frame, double max_future, double render_budget);
 
   /// Someone subscribes to one of its outputs.
   bool active() const;
@@ -53,12 +61,18 @@ class TetherCamera
   void onImage(const sensor_msgs::ImageConstPtr& image);
   /// Renders at `stamp` and publishes; `image` (may be null) gets the overlay. False when it cannot.
   bool renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image);
-  void drop(const std::string& why);
+  /// Counts a frame not drawn and warns, at most every 5 s for this camera and this `reason` (a short key).
+  void drop(const std::string& reason, const std::string& why);
+  /// True when this camera's warning about `reason` is due (none in the last 5 s of wall time).
+  bool warningDue(const std::string& reason);
 
   CameraConfig config_;
   ros::NodeHandle nh_;
   const tf2_ros::Buffer& tf_;
   std::string world_frame_;
+  double max_future_;  ///< [s]
+  RenderBudget budget_;
+  std::map<std::string, ros::WallTime> last_warning_;  ///< This camera's last warning per reason.
   image_transport::ImageTransport transport_;
   image_transport::Publisher mask_pub_, depth_pub_, overlay_pub_;
   ros::Publisher coverage_pub_;
@@ -87,7 +101,8 @@ class CameraSet
  public:
   /// Throws std::runtime_error naming a bad entry of `cameras`. `world` and `tf` must outlive this.
   CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
-            const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame);
+            const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
+            double render_budget);
   void afterTick();
   std::size_t size() const { return cameras_.size(); }
 
