@@ -10,7 +10,9 @@ scripts/test.sh; JUnit XML with --gtest_output=xml:FILE):
 - the summary line (scripts/tether_summary.py) before /diagnostics has measured the real-time factor says so
   instead of printing "physics nanx real time";
 - demo.sh describes the cable's colours as the README and tensionColor do (light blue, lighter stripes),
-  with the demo's own full scale.
+  with the demo's own full scale;
+- the shipped rviz configs show the colour legend (~legend) and draw tf frames without their names, which
+  covered the spool and the cable's label (issue 26, item 16).
 """
 import importlib.util
 import math
@@ -20,6 +22,8 @@ import re
 import subprocess
 import types
 import unittest
+
+import yaml
 
 import rosunit
 
@@ -106,6 +110,17 @@ class DemoOutput(unittest.TestCase):
         self.assertIn("lighter stripes", script)
         self.assertNotIn("darker", script)
         self.assertIn("tension_full_scale", script)  # red at the demo's own full scale, not a fixed 50 N
+
+    def test_rviz_configs_show_the_legend_and_no_tf_names(self):
+        configs = sorted((ROOT / "config").glob("*.rviz"))
+        self.assertTrue(configs)
+        for config in configs:
+            displays = yaml.safe_load(config.read_text())["Visualization Manager"]["Displays"]
+            legends = [d for d in displays if d["Class"] == "rviz/Image" and d["Image Topic"] == "/tether_node/legend"]
+            self.assertEqual(len(legends), 1, "%s: no Image display of /tether_node/legend" % config.name)
+            self.assertTrue(legends[0]["Enabled"], config.name)
+            for tf in (d for d in displays if d["Class"] == "rviz/TF"):
+                self.assertFalse(tf["Show Names"], "%s: tf names cover the spool and the label" % config.name)
 
 
 if __name__ == "__main__":
