@@ -10,6 +10,7 @@ process [...] has died!", "process has died [pid ..., exit code ...]", its log f
 nodes (INFO, WARN, ERROR, the summary lines) stay.
 Usage: roslaunch ... 2>&1 | launch_filter.py [quiet_node]
 """
+import os
 import re
 import signal
 import sys
@@ -73,4 +74,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except BrokenPipeError:  # the reader left (demo.sh | head): stop quietly, as cat would
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)

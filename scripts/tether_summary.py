@@ -25,9 +25,10 @@ def on_diagnostics(msg):
 
 def summary_line(elapsed, state, rtf, diag):
     """One line of the summary: `elapsed` [s] since the first state, a TetherState (or anything with its
-    fields), the physics real-time factor (NaN or inf until /diagnostics has measured one: the node's first
-    report comes after its first second) and the diagnostics' message."""
-    physics = ("physics %6.0fx real time" % rtf if math.isfinite(rtf)
+    fields), the physics real-time factor (NaN until /diagnostics has reported one, and 0 while the physics
+    has simulated nothing, before the first vehicle pose: neither is a measured factor) and the diagnostics'
+    message."""
+    physics = ("physics %6.0fx real time" % rtf if math.isfinite(rtf) and rtf > 0.0
                else "physics  not yet measured")  # as wide as the measured form, so the columns stay put
     return ("t %6.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
             " | %s | %s" % (elapsed, state.deployed_length, state.cable_length, state.tension_vehicle,

@@ -8,7 +8,7 @@ scripts/test.sh; JUnit XML with --gtest_output=xml:FILE):
   roslaunch's SUMMARY block (CLEAR PARAMETERS, PARAMETERS, NODES and their lists) and no start-up or
   shut-down chatter get through; every line of the nodes does, and so does the end of a node that crashes;
 - the summary line (scripts/tether_summary.py) before /diagnostics has measured the real-time factor says so
-  instead of printing "physics nanx real time";
+  instead of printing "physics nanx real time" (the pillar demo's first line) or "0x" (the demo's);
 - demo.sh describes the cable's colours as the README and tensionColor do (light blue, lighter stripes),
   with the demo's own full scale;
 - the shipped rviz configs show the colour legend (~legend) and draw tf frames without their names, which
@@ -92,11 +92,12 @@ class DemoOutput(unittest.TestCase):
         summary = load_summary()
         state = types.SimpleNamespace(deployed_length=2.0, cable_length=20.0, tension_vehicle=-0.09,
                                       max_tension=0.44, winch_mode="brake", winch_speed=0.0)
-        for rtf in [float("nan"), math.inf]:
+        for rtf in [float("nan"), math.inf, 0.0]:  # 0: the demo's first line, before the first pose
             line = summary.summary_line(0.0, state, rtf, "")
             self.assertNotIn("nan", line.lower())
             self.assertNotIn("inf", line.lower())
             self.assertIn("physics  not yet measured |", line)
+            self.assertNotIn(" 0x", line)
         measured = summary.summary_line(1.0, state, 419.4, "tether simulated")
         self.assertIn("| physics    419x real time | tether simulated", measured)
         # The columns stay where they were: the fields after it start at the same place.
