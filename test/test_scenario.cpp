@@ -451,8 +451,8 @@ TEST(Runner, TopologyCsvHoldsTheFiveKindsAtTheOutputTimes)
     }
     fs::remove_all(dir);
   }
-  EXPECT_EQ(kinds, (std::set<std::string>{"wrap_turns", "wrap_angle", "contact_angle", "linking_number",
-                                          "capstan_ratio"}));
+  EXPECT_EQ(kinds,
+            (std::set<std::string>{"wrap_turns", "wrap_angle", "contact_angle", "linking_number", "capstan_ratio"}));
 }
 
 /// The value of the last row of `kind` for (tether, object) in topology.csv; NaN without one.

@@ -77,9 +77,10 @@ class World
   const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }
 
   /// The topology now, into `out` (cleared first): for each tether, its wrap turns around every obstacle with
-  /// an axis, each followed by its wrap angle (topology::windingAngle: the turn building up, unclosed); for each object it touches (obstacle or tether), the contact angle and the capstan ratio with
-  /// that object's friction; for each pair of tethers (once, the lower index first), the linking number.
-  /// Pairs whose bounds, chords included, do not overlap cannot be linked and read 0 without the O(n m) sum.
+  /// an axis, each followed by its wrap angle (topology::windingAngle: the turn building up, unclosed); for each object
+  /// it touches (obstacle or tether), the contact angle and the capstan ratio with that object's friction; for each
+  /// pair of tethers (once, the lower index first), the linking number. Pairs whose bounds, chords included, do not
+  /// overlap cannot be linked and read 0 without the O(n m) sum.
   void topology(std::vector<TopologyEntry>& out) const;
 
  private:

@@ -183,9 +183,7 @@ void toLegendImage(const MarkerOptions& options, sensor_msgs::Image* image)
   cv::Mat legend(kLegendHeight, kLegendWidth, CV_8UC3, cv::Scalar(64, 38, 12));  // config/tether.rviz's background
   const cv::Scalar white(255, 255, 255);
   const auto text = [&](int row, const char* words)
-  {
-    cv::putText(legend, words, cv::Point(62, 24 + 22 * row), cv::FONT_HERSHEY_SIMPLEX, 0.45, white, 1, cv::LINE_AA);
-  };
+  { cv::putText(legend, words, cv::Point(62, 24 + 22 * row), cv::FONT_HERSHEY_SIMPLEX, 0.45, white, 1, cv::LINE_AA); };
   // A swatch of the colour the cable gets, then what it means.
   const auto swatch = [&](int row, const cv::Scalar& colour)
   { cv::rectangle(legend, cv::Rect(12, 13 + 22 * row, kLegendSwatch, 12), colour, cv::FILLED); };

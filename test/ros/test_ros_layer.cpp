@@ -219,7 +219,7 @@ TEST(Converters, LegendImageShowsEveryColourOfTheScaleTheGreyAndTheStripes)
     // 0 N's colour is also the plain half of the stripe swatch.
     EXPECT_EQ(pixels(tensionColor(tension, 40.0, false)), tension == 0.0 ? swatch + swatch / 2 : swatch) << tension;
   }
-  EXPECT_EQ(pixels(tensionColor(-1.0, 40.0, false)), swatch);  // the compression grey
+  EXPECT_EQ(pixels(tensionColor(-1.0, 40.0, false)), swatch);    // the compression grey
   EXPECT_EQ(pixels(tensionColor(0.0, 40.0, true)), swatch / 2);  // the lighter stripe
   EXPECT_EQ(image.data[0], 64);  // blue, green, red of config/tether.rviz's background (12, 38, 64)
   EXPECT_EQ(image.data[1], 38);

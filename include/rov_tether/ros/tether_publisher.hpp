@@ -87,7 +87,7 @@ class TetherPublisher
   ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
   tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
-  ros::Publisher legend_pub_;  ///< ~legend: the colour legend image, latched.
+  ros::Publisher legend_pub_;   ///< ~legend: the colour legend image, latched.
   ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
   std::vector<double> tensions_;
   visualization_msgs::MarkerArray markers_;
