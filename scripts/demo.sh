@@ -17,10 +17,16 @@ if [ "$RVIZ" = true ] && ! command -v rviz >/dev/null 2>&1; then
 fi
 
 use_ros_environment
+# The colour scale as the demo's node draws it: config/demo.yaml over config/node.yaml.
+setting() { sed -n "s/^$1: *\([0-9.]*\).*/\1/p" "$ROOT/config/demo.yaml" "$ROOT/config/node.yaml" | head -1; }
+FULL_SCALE="$(setting tension_full_scale)"
+STRIPES="$(setting stripe_segments)"
 echo "== tether_node demo: rviz $RVIZ, ${DURATION}s (DURATION=0 runs until Ctrl-C)"
 if [ "$RVIZ" = true ]; then
   echo "   rviz: fixed frame 'world'; the cable is the MarkerArray /tether_node/markers, coloured by tension"
-  echo "   (blue 0 N -> red 50 N), with darker stripes every 5 segments that travel as cable pays out."
+  echo "   (light blue 0 N, cyan, green, yellow, red at ${FULL_SCALE} N and above; grey where it is compressed),"
+  echo "   with lighter stripes every ${STRIPES} segments that travel as cable pays out; the legend above the"
+  echo "   spool says the same."
 else
   echo "   headless (no display). To see it: run on a desktop, or RVIZ=true bash scripts/demo.sh, and in rviz"
   echo "   add a MarkerArray on /tether_node/markers with fixed frame 'world' (or use config/tether.rviz)."
@@ -28,12 +34,12 @@ fi
 echo "   Other outputs: rostopic echo /tether_node/state, /tether_node/wrench, /diagnostics;"
 echo "   rosservice call /tether_node/get_tension \"{arc_length_from_vehicle: 0.0, segment: -1}\""
 # roslaunch joins the master of ROS_MASTER_URI, or starts one there when none runs.
-# The summary node is "required" when DURATION > 0: its end stops the demo; roslaunch's shutdown chatter
-# about it is filtered out.
+# The summary node is "required" when DURATION > 0: its end stops the demo. scripts/launch_filter.py keeps
+# what the nodes say and drops roslaunch's own chatter (escapes, the SUMMARY block, start and shut-down
+# lines, the summary node's end); a node that crashes still shows.
 set +e
 roslaunch rov_tether demo.launch rviz:="$RVIZ" summary_duration:="$DURATION" 2>&1 |
-  sed -u 's/\x1b\[[0-9;]*m//g' |
-  grep --line-buffered -vE "^(\s*\*|SUMMARY|=+|PARAMETERS|NODES|  /|auto-starting|setting /|process\[|started roslaunch|ROS_MASTER_URI|started core service|core service|\]2;|logging to|Checking log|Press Ctrl-C|$)|REQUIRED process|has died|finished cleanly|log file:|Initiating shutdown|killing on exit|shutting down processing monitor|^done$"
+  /usr/bin/python3 "$ROOT/scripts/launch_filter.py" tether_summary
 launch_status=${PIPESTATUS[0]}
 set -e
 echo "== demo finished (${DURATION}s, roslaunch exit code $launch_status); DURATION=0 keeps it running, RVIZ=true shows rviz"

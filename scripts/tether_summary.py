@@ -2,10 +2,10 @@
 """Prints a live one-line summary of tether_node: deployed length, tension at the vehicle, winch, and the
 physics real-time factor from /diagnostics. ~state_topic (/tether_node/state), ~period [s] (1.0),
 ~duration [s] (0 = until shut down)."""
+import math
+
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
-
-from rov_tether.msg import TetherState
 
 latest = {"state": None, "rtf": float("nan"), "diag": ""}
 
@@ -23,7 +23,23 @@ def on_diagnostics(msg):
                     latest["rtf"] = float(kv.value)
 
 
+def summary_line(elapsed, state, rtf, diag):
+    """One line of the summary: `elapsed` [s] since the first state, a TetherState (or anything with its
+    fields), the physics real-time factor (NaN until /diagnostics has reported one, and 0 while the physics
+    has simulated nothing, before the first vehicle pose: neither is a measured factor) and the diagnostics'
+    message."""
+    physics = ("physics %6.0fx real time" % rtf if math.isfinite(rtf) and rtf > 0.0
+               else "physics  not yet measured")  # as wide as the measured form, so the columns stay put
+    return ("t %6.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
+            " | %s | %s" % (elapsed, state.deployed_length, state.cable_length, state.tension_vehicle,
+                            state.max_tension, state.winch_mode, state.winch_speed, physics,
+                            diag or "no diagnostics yet"))
+
+
 def main():
+    # Imported here, so summary_line can be checked without a build (test/check_demo_output.py).
+    from rov_tether.msg import TetherState
+
     rospy.init_node("tether_summary", anonymous=True)
     topic = rospy.get_param("~state_topic", "/tether_node/state")
     period = float(rospy.get_param("~period", 1.0))
@@ -40,10 +56,7 @@ def main():
             continue
         if first_stamp is None or s.header.stamp < first_stamp:
             first_stamp = s.header.stamp
-        print("t %6.1f s | deployed %6.2f m of %.0f | tension vehicle %7.2f N, max %7.2f N | winch %-7s %+5.2f m/s"
-              " | physics %6.0fx real time | %s" % ((s.header.stamp - first_stamp).to_sec(), s.deployed_length, s.cable_length,
-                                                    s.tension_vehicle, s.max_tension, s.winch_mode, s.winch_speed,
-                                                    latest["rtf"], latest["diag"]), flush=True)
+        print(summary_line((s.header.stamp - first_stamp).to_sec(), s, latest["rtf"], latest["diag"]), flush=True)
         if duration > 0 and (rospy.Time.now() - start).to_sec() >= duration:
             break
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <random>
 #include <sstream>
 
@@ -460,6 +461,51 @@ TEST(Dataset, TheVehicleTurnsAtItsYawRateLimit)
   EXPECT_NEAR(heading.yawAt(25.0), M_PI / 2, 1e-12);  // held after the path ends
 }
 
+/// WCAG 2.1 contrast ratio of a BGR colour against black (docs/references.md, "Seeing the cable in rviz").
+double contrastWithBlack(const cv::Vec3b& bgr)
+{
+  const auto linear = [](int v)
+  {
+    const double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  const double luminance = 0.2126 * linear(bgr[2]) + 0.7152 * linear(bgr[1]) + 0.0722 * linear(bgr[0]);
+  return (luminance + 0.05) / 0.05;
+}
+
+// The depth preview is for a person: in a 16-bit PNG a tether 1 to 20 m away reads 1000 to 20000 of 65535,
+// which an ordinary viewer shows black to dark grey. The preview is black exactly where there is no depth;
+// every tether pixel stands out from that black as the rviz colours must (contrast ratio 3, the WCAG
+// minimum for graphics, docs/references.md), nearer is lighter, and depths at or beyond the scale's far end
+// (the farthest a tether point can be) share its colour.
+TEST(Dataset, DepthPreviewIsBlackWithoutTetherAndLighterNearer)
+{
+  const std::uint16_t depths[] = {0, 300, 1000, 5000, 12000, 20000, 60000};
+  cv::Mat depth_mm(1, static_cast<int>(std::size(depths)), CV_16UC1);
+  for (int i = 0; i < depth_mm.cols; ++i)
+  {
+    depth_mm.at<std::uint16_t>(i) = depths[i];
+  }
+  cv::Mat preview;
+  depthPreview(depth_mm, 20.0, preview);
+  ASSERT_EQ(preview.type(), CV_8UC3);
+  ASSERT_EQ(preview.size(), depth_mm.size());
+  EXPECT_EQ(preview.at<cv::Vec3b>(0), cv::Vec3b(0, 0, 0));
+  double worst = 1e9;
+  for (int i = 1; i < depth_mm.cols; ++i)
+  {
+    worst = std::min(worst, contrastWithBlack(preview.at<cv::Vec3b>(i)));
+    if (i + 1 < depth_mm.cols && depths[i + 1] <= 20000)
+    {
+      EXPECT_GT(contrastWithBlack(preview.at<cv::Vec3b>(i)), contrastWithBlack(preview.at<cv::Vec3b>(i + 1)))
+          << depths[i] << " mm against " << depths[i + 1] << " mm";
+    }
+  }
+  EXPECT_GE(worst, 3.0);
+  EXPECT_EQ(preview.at<cv::Vec3b>(6), preview.at<cv::Vec3b>(5));  // 60 m beyond the 20 m scale: its far end
+  std::printf("[ measured ] depth preview: lowest contrast ratio with black %.2f (minimum 3)\n", worst);
+}
+
 TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
 {
   Scenario scenario;
@@ -502,8 +548,15 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
     std::snprintf(name, sizeof(name), "%06zu.png", frame);
     const cv::Mat mask = cv::imread(dir + "/cameras/forward/mask_" + name, cv::IMREAD_UNCHANGED);
     const cv::Mat depth = cv::imread(dir + "/cameras/forward/depth_" + name, cv::IMREAD_UNCHANGED);
+    const cv::Mat preview = cv::imread(dir + "/cameras/forward/depth_preview_" + name, cv::IMREAD_UNCHANGED);
     ASSERT_EQ(mask.type(), CV_8UC1);
     ASSERT_EQ(depth.type(), CV_16UC1);
+    ASSERT_EQ(preview.type(), CV_8UC3) << name;
+    ASSERT_EQ(preview.size(), depth.size());
+    // The preview shows the tether where the depth has it, and black elsewhere.
+    cv::Mat lit;
+    cv::cvtColor(preview, lit, cv::COLOR_BGR2GRAY);
+    EXPECT_EQ(cv::countNonZero((lit > 0) != (depth > 0)), 0) << name;
     ASSERT_EQ(mask.cols, 640);
     ASSERT_EQ(depth.rows, 480);
     // Depth where and only where the mask is set (every tether point here is under 65 m away).

@@ -241,9 +241,21 @@ TEST(Contact, WrapTurnsCountTheTimesTheVehicleCircledThePillar)
     double worst = -1e9;
     drive(world, {path}, 0.0, 2.0 * lap + 1.0, [&] { worst = std::max(worst, poleOverlap(world.tether(0), 0.3)); });
     EXPECT_NEAR(entry(world, TopologyEntry::Kind::WrapTurns, 0, 0), 2.0 * sense, 0.1) << "sense " << sense;
+    // The unclosed wrap angle follows the vehicle: it has come 1 s (1/lap of a turn) back from two turns, and
+    // the cable runs from the spool's side (west, where the vehicle started) round to it. 0.05 rad: the
+    // vehicle end sits one step (0.67 rad/s x time_step) behind the last sample.
+    const double dt = world.tether(0).params().time_step;
+    std::printf(
+        "[ measured ] sense %+.0f, 1 s short of two turns: wrap_turns %.3f, wrap_angle %.4f rad (expected %.4f)\n",
+        sense, entry(world, TopologyEntry::Kind::WrapTurns, 0, 0), entry(world, TopologyEntry::Kind::WrapAngle, 0, 0),
+        sense * 2.0 * kPi * (2.0 - (1.0 - dt) / lap));
+    EXPECT_NEAR(entry(world, TopologyEntry::Kind::WrapAngle, 0, 0), sense * 2.0 * kPi * (2.0 - (1.0 - dt) / lap), 0.05)
+        << "sense " << sense;
     drive(world, {path}, 2.0 * lap + 1.0, 4.0 * lap + 1.0,
           [&] { worst = std::max(worst, poleOverlap(world.tether(0), 0.3)); });
     EXPECT_NEAR(entry(world, TopologyEntry::Kind::WrapTurns, 0, 0), 0.0, 0.1) << "sense " << sense;
+    EXPECT_NEAR(entry(world, TopologyEntry::Kind::WrapAngle, 0, 0), -sense * 2.0 * kPi * (1.0 - dt) / lap, 0.05)
+        << "sense " << sense;
     // The bound on penetration: below 10% of the cable's diameter.
     EXPECT_LT(worst, 0.1 * world.tether(0).params().diameter);
   }

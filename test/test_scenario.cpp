@@ -390,11 +390,11 @@ TEST(Runner, TethersWriteTheirOwnDirectoriesAndTheWorldItsTopology)
   fs::remove(scenario_path);
 }
 
-// topology.csv: its header; every row at an output time (k / output_rate), of one of the four kinds, naming a
+// topology.csv: its header; every row at an output time (k / output_rate), of one of the five kinds, naming a
 // tether and an object of the scenario; each pair's linking number once per output time, lower index first.
-// The two shipped world scenarios together show all four kinds: pillar_wrap the wraps, the contact angle and
-// the capstan ratio (its tether lies on the pillar), two_rovs the linking number.
-TEST(Runner, TopologyCsvHoldsTheFourKindsAtTheOutputTimes)
+// The two shipped world scenarios together show all five kinds: pillar_wrap the wraps (turns and angle), the
+// contact angle and the capstan ratio (its tether lies on the pillar), two_rovs the linking number.
+TEST(Runner, TopologyCsvHoldsTheFiveKindsAtTheOutputTimes)
 {
   std::set<std::string> kinds;
   for (const char* name : {"pillar_wrap", "two_rovs"})
@@ -430,8 +430,8 @@ TEST(Runner, TopologyCsvHoldsTheFourKindsAtTheOutputTimes)
       times.insert(row[0]);
       EXPECT_EQ(names.count(row[1]), 1u) << row[1];
       EXPECT_EQ(objects.count(row[2]), 1u) << row[2];
-      EXPECT_TRUE(row[3] == "wrap_turns" || row[3] == "contact_angle" || row[3] == "linking_number" ||
-                  row[3] == "capstan_ratio")
+      EXPECT_TRUE(row[3] == "wrap_turns" || row[3] == "wrap_angle" || row[3] == "contact_angle" ||
+                  row[3] == "linking_number" || row[3] == "capstan_ratio")
           << row[3];
       kinds.insert(row[3]);
       if (row[3] == "linking_number")
@@ -439,7 +439,7 @@ TEST(Runner, TopologyCsvHoldsTheFourKindsAtTheOutputTimes)
         ++links[row[0] + "," + row[1] + "," + row[2]];
         EXPECT_EQ(row[1] + row[2], "ab");  // once per pair, the lower index first
       }
-      if (row[3] == "wrap_turns")
+      if (row[3] == "wrap_turns" || row[3] == "wrap_angle")
       {
         EXPECT_EQ(row[2], "pillar");  // wraps are counted round obstacles with an axis only
       }
@@ -451,7 +451,8 @@ TEST(Runner, TopologyCsvHoldsTheFourKindsAtTheOutputTimes)
     }
     fs::remove_all(dir);
   }
-  EXPECT_EQ(kinds, (std::set<std::string>{"wrap_turns", "contact_angle", "linking_number", "capstan_ratio"}));
+  EXPECT_EQ(kinds,
+            (std::set<std::string>{"wrap_turns", "wrap_angle", "contact_angle", "linking_number", "capstan_ratio"}));
 }
 
 /// The value of the last row of `kind` for (tether, object) in topology.csv; NaN without one.

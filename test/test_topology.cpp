@@ -18,6 +18,7 @@ namespace
 
 using topology::linkingNumber;
 using topology::Polyline;
+using topology::windingAngle;
 using topology::windingTurns;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -107,6 +108,45 @@ TEST(Topology, TetherWoundAroundAPillarReadsItsTurns)
   // where the count is not defined (NaN, not a guess).
   const Curve half = helix(0.5, 1.5, 0.4, 64, pillar.x(), pillar.y());
   EXPECT_TRUE(std::isnan(windingTurns(half.view(), pillar, Position(0.0, 0.0, 1.0))));
+}
+
+// A cable wound a known angle round a pillar reads that angle [rad], not closed by a chord: a helix whose
+// points all lie on a circle round the axis sweeps exactly its parameter's range (each straight segment
+// between two points of the circle sweeps their angle apart, seen from its centre), so the expectations are
+// exact up to rounding. Half a turn reads pi where windingTurns has no value (its chord crosses the axis),
+// three quarters 1.5 pi where windingTurns reads a whole turn (the chord closes it one way): the angle is what
+// shows the wrap building up. The sign follows the sense of winding and the axis' direction, as the turns'.
+TEST(Topology, CableWoundAKnownAngleAroundAPillarReadsThatAngle)
+{
+  const Position pillar(3.0, -2.0, 0.0);
+  const Position up(0.0, 0.0, 1.0);
+  for (const double angle : {0.3, kPi / 2.0, 3.0, kPi, 1.5 * kPi, 2.0 * kPi, 2.5 * kPi, 6.0 * kPi + 1.0})
+  {
+    const Curve c = helix(angle / (2.0 * kPi), 1.5, 0.4, 64, pillar.x(), pillar.y());
+    EXPECT_NEAR(windingAngle(c.view(), pillar, up), angle, kExact) << angle;
+    EXPECT_NEAR(windingAngle(c.view(), pillar, -3.0 * up), -angle, kExact) << angle;
+    EXPECT_NEAR(windingAngle(c.reversed().view(), pillar, up), -angle, kExact) << angle;
+  }
+  EXPECT_TRUE(std::isnan(windingTurns(helix(0.5, 1.5, 0.4, 64, pillar.x(), pillar.y()).view(), pillar, up)));
+  EXPECT_NEAR(windingTurns(helix(0.75, 1.5, 0.4, 64, pillar.x(), pillar.y()).view(), pillar, up), 1.0, kExact);
+  // Once round and back the same way sweeps nothing; a loop beside the pillar sweeps nothing.
+  Curve there_and_back = helix(1.0, 2.0, 0.0, 64);
+  const Curve back = helix(1.0, 2.5, 0.0, 64).reversed();
+  for (std::size_t i = 0; i < back.x.size(); ++i)
+  {
+    there_and_back.add(Position(back.x[i], back.y[i], 1.0));
+  }
+  EXPECT_NEAR(windingAngle(there_and_back.view(), Position::Zero(), up), 0.0, kExact);
+  EXPECT_NEAR(windingAngle(helix(1.0, 2.0, 0.3, 64, 10.0, 0.0).view(), Position::Zero(), up), 0.0, kExact);
+  // A cable through the axis has no angle; the chord does not count (a half turn's chord crosses it).
+  Curve through;
+  through.add(Position(-1.0, 0.0, 0.0));
+  through.add(Position(1.0, 0.0, 0.0));
+  EXPECT_TRUE(std::isnan(windingAngle(through.view(), Position::Zero(), up)));
+  EXPECT_FALSE(std::isnan(windingAngle(helix(0.5, 1.5, 0.4, 64).view(), Position::Zero(), up)));
+  Curve point;
+  point.add(Position(1.0, 0.0, 0.0));
+  EXPECT_TRUE(std::isnan(windingAngle(point.view(), Position::Zero(), up)));
 }
 
 // Around the pillar and back the same way: 0. Around and held on the far side: the chord closes it

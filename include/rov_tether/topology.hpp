@@ -39,6 +39,13 @@ Polyline deployed(const Cable& cable);
 /// where the count is not defined.
 double windingTurns(const Polyline& curve, const Position& point, const Position& axis, double clearance = 1e-9);
 
+/// The signed angle [rad] the open polyline, from its first point to its last (no closing chord), sweeps
+/// around the same line; positive counter-clockwise seen from the tip of `axis`. It grows continuously as a
+/// tether is wound: pi half way round a pillar, 2 pi once round, 1.5 pi for three quarters, where
+/// windingTurns already reads 0 or 1 (its chord closes the curve one way or the other). NaN when a point of
+/// the curve (not of the chord) lies within `clearance` [m] of the line, or for fewer than two points.
+double windingAngle(const Polyline& curve, const Position& point, const Position& axis, double clearance = 1e-9);
+
 /// The Gauss linking number of two polylines, each closed by its own chord: the sum over every pair of
 /// segments of the signed solid angle one subtends from the other, over 4 pi (exact for polygons). An
 /// integer, up to rounding, when neither closed curve passes through the other; 0 for curves that can be

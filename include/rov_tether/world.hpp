@@ -30,7 +30,8 @@ struct TopologyEntry
     WrapTurns,      ///< Signed turns around an obstacle's axis, closed by the chord [-]; NaN on the axis.
     ContactAngle,   ///< Angle the tether turns through where it touches the object [rad].
     LinkingNumber,  ///< Gauss linking number with another tether, both closed by their chords [-].
-    CapstanRatio    ///< e^(mu contact angle): how much the contact can multiply a tension [-].
+    CapstanRatio,   ///< e^(mu contact angle): how much the contact can multiply a tension [-].
+    WrapAngle       ///< Signed angle swept around an obstacle's axis, spool to vehicle, no chord [rad]; NaN on it.
   };
   std::size_t tether = 0;
   bool object_is_tether = false;  ///< object indexes World::obstacle, or (true) World::tether.
@@ -76,9 +77,10 @@ class World
   const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }
 
   /// The topology now, into `out` (cleared first): for each tether, its wrap turns around every obstacle with
-  /// an axis; for each object it touches (obstacle or tether), the contact angle and the capstan ratio with
-  /// that object's friction; for each pair of tethers (once, the lower index first), the linking number.
-  /// Pairs whose bounds, chords included, do not overlap cannot be linked and read 0 without the O(n m) sum.
+  /// an axis, each followed by its wrap angle (topology::windingAngle: the turn building up, unclosed); for each object
+  /// it touches (obstacle or tether), the contact angle and the capstan ratio with that object's friction; for each
+  /// pair of tethers (once, the lower index first), the linking number. Pairs whose bounds, chords included, do not
+  /// overlap cannot be linked and read 0 without the O(n m) sum.
   void topology(std::vector<TopologyEntry>& out) const;
 
  private:

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace rov_tether::camera
 {
@@ -14,7 +15,39 @@ constexpr double kHeadingStep = 0.01;  ///< [s]
 
 double wrap(double angle) { return std::atan2(std::sin(angle), std::cos(angle)); }
 
+/// The lowest viridis index a tether pixel of the preview gets: below it the colours contrast with black
+/// by less than 3 (index 80: 3.3; docs/references.md).
+constexpr int kPreviewDarkest = 80;
+
 }  // namespace
+
+void depthPreview(const cv::Mat& depth_mm, double far_m, cv::Mat& preview)
+{
+  // viridis from kPreviewDarkest to 255, once: the colour of each index.
+  static const cv::Mat palette = []
+  {
+    cv::Mat ramp(1, 256, CV_8UC1), colours;
+    for (int i = 0; i < 256; ++i)
+    {
+      ramp.at<std::uint8_t>(i) = static_cast<std::uint8_t>(i);
+    }
+    cv::applyColorMap(ramp, colours, cv::COLORMAP_VIRIDIS);
+    return colours;
+  }();
+  preview.create(depth_mm.rows, depth_mm.cols, CV_8UC3);
+  const double span = 255.0 - kPreviewDarkest;
+  for (int r = 0; r < depth_mm.rows; ++r)
+  {
+    const auto* mm = depth_mm.ptr<std::uint16_t>(r);
+    auto* out = preview.ptr<cv::Vec3b>(r);
+    for (int c = 0; c < depth_mm.cols; ++c)
+    {
+      const double nearness = 1.0 - std::min(1e-3 * mm[c] / far_m, 1.0);
+      out[c] = mm[c] == 0 ? cv::Vec3b(0, 0, 0)
+                          : palette.at<cv::Vec3b>(static_cast<int>(std::lround(kPreviewDarkest + span * nearness)));
+    }
+  }
+}
 
 VehicleHeading::VehicleHeading(const Scenario& scenario) : scenario_(scenario)
 {
@@ -185,9 +218,14 @@ std::string DatasetWriter::writeFrame(Camera& camera, CameraSummary& summary, co
   std::snprintf(name, sizeof(name), "%06zu.png", camera.next_frame);
   const std::string mask_path = camera.dir + "/mask_" + name;
   const std::string depth_path = camera.dir + "/depth_" + name;
-  if (!cv::imwrite(mask_path, renderer_.mask()) || !cv::imwrite(depth_path, depth_mm_))
+  const std::string preview_path = camera.dir + "/depth_preview_" + name;
+  // Every tether point is within the deployed length of the attachment (the path point), and the camera
+  // within |position| of it: the farthest a tether point can be in this frame.
+  depthPreview(depth_mm_, sim.deployedLength() + camera.spec->position.norm(), preview_);
+  if (!cv::imwrite(mask_path, renderer_.mask()) || !cv::imwrite(depth_path, depth_mm_) ||
+      !cv::imwrite(preview_path, preview_))
   {
-    return "cannot write '" + mask_path + "' or '" + depth_path + "'";
+    return "cannot write '" + mask_path + "', '" + depth_path + "' or '" + preview_path + "'";
   }
   std::fprintf(camera.index, "%zu,%.6f,%.6g\n", camera.next_frame, sim.time(), stats.coverage);
   ++camera.next_frame;

@@ -48,16 +48,9 @@ double pairLinking(const Position& p1, const Position& p2, const Position& p3, c
   return orientation > 0.0 ? omega / (4.0 * kPi) : orientation < 0.0 ? -omega / (4.0 * kPi) : 0.0;
 }
 
-}  // namespace
-
-Polyline deployed(const Cable& cable)
-{
-  const std::size_t f = cable.first;
-  const std::size_t n = cable.size();
-  return {cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, n > f ? n - f : 0};
-}
-
-double windingTurns(const Polyline& curve, const Position& point, const Position& axis, double clearance)
+/// The signed angle [rad] the polyline sweeps around the line through `point` along `axis`, closed by its
+/// chord back to the first point when `closed`; NaN where windingTurns and windingAngle say.
+double sweptAngle(const Polyline& curve, const Position& point, const Position& axis, double clearance, bool closed)
 {
   const double length = axis.norm();
   if (curve.count < 2 || !(length > 0.0))
@@ -77,12 +70,13 @@ double windingTurns(const Polyline& curve, const Position& point, const Position
   const double clearance2 = clearance * clearance;
   double angle = 0.0;
   Eigen::Vector2d previous = project(curve.at(0));
-  for (std::size_t i = 1; i <= curve.count; ++i)
+  const std::size_t last = closed ? curve.count : curve.count - 1;
+  for (std::size_t i = 1; i <= last; ++i)
   {
     const Eigen::Vector2d next = project(closedAt(curve, i));
     if (segmentDistanceSquared(Eigen::Vector2d::Zero(), previous, next) <= clearance2)
     {
-      return std::numeric_limits<double>::quiet_NaN();  // the curve meets the axis: no count
+      return std::numeric_limits<double>::quiet_NaN();  // the curve meets the axis: no angle
     }
     // The angle swept from `previous` to `next` as seen from the axis, in (-pi, pi): a straight segment
     // that keeps off the axis never sweeps pi or more.
@@ -90,7 +84,26 @@ double windingTurns(const Polyline& curve, const Position& point, const Position
     angle += std::atan2(cross, previous.dot(next));
     previous = next;
   }
-  return angle / (2.0 * kPi);
+  return angle;
+}
+
+}  // namespace
+
+Polyline deployed(const Cable& cable)
+{
+  const std::size_t f = cable.first;
+  const std::size_t n = cable.size();
+  return {cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, n > f ? n - f : 0};
+}
+
+double windingTurns(const Polyline& curve, const Position& point, const Position& axis, double clearance)
+{
+  return sweptAngle(curve, point, axis, clearance, true) / (2.0 * kPi);
+}
+
+double windingAngle(const Polyline& curve, const Position& point, const Position& axis, double clearance)
+{
+  return sweptAngle(curve, point, axis, clearance, false);
 }
 
 double linkingNumber(const Polyline& a, const Polyline& b)

@@ -121,6 +121,8 @@ const char* topologyKindName(TopologyEntry::Kind kind)
       return "linking_number";
     case TopologyEntry::Kind::CapstanRatio:
       return "capstan_ratio";
+    case TopologyEntry::Kind::WrapAngle:
+      return "wrap_angle";
   }
   return "?";
 }
@@ -297,6 +299,8 @@ void World::topology(std::vector<TopologyEntry>& out) const
       {
         out.push_back({t, false, o, TopologyEntry::Kind::WrapTurns,
                        topology::windingTurns(curve, obstacle.axisPoint(), obstacle.axisDirection())});
+        out.push_back({t, false, o, TopologyEntry::Kind::WrapAngle,
+                       topology::windingAngle(curve, obstacle.axisPoint(), obstacle.axisDirection())});
       }
     }
     // The contact angle: the turn of the tangent at every joint one of whose segments touches the object.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <opencv2/imgproc.hpp>
 
 #include "rov_tether/ros/obstacle_config.hpp"
 
@@ -161,6 +162,51 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   std::snprintf(text, sizeof(text), "%.2f m out, %.2f N", sim.deployedLength(),
                 tensions.empty() ? 0.0 : tensions.back());
   label.text = text;
+}
+
+void toLegendImage(const MarkerOptions& options, sensor_msgs::Image* image)
+{
+  const double full = options.tension_full_scale;
+  char value[5][48];
+  for (int k = 0; k < 4; ++k)
+  {
+    std::snprintf(value[k], sizeof(value[k]), "%.3g N", 0.25 * k * full);
+  }
+  std::snprintf(value[4], sizeof(value[4]), "%.3g N and more", full);
+  char stripes[64];
+  std::snprintf(stripes, sizeof(stripes), "lighter: stripes of %d segments", options.stripe_segments);
+  const auto bgr = [](const std_msgs::ColorRGBA& c)
+  {
+    const auto byte = [](float v) { return std::lround(255.0 * std::clamp(static_cast<double>(v), 0.0, 1.0)); };
+    return cv::Scalar(byte(c.b), byte(c.g), byte(c.r));
+  };
+  cv::Mat legend(kLegendHeight, kLegendWidth, CV_8UC3, cv::Scalar(64, 38, 12));  // config/tether.rviz's background
+  const cv::Scalar white(255, 255, 255);
+  const auto text = [&](int row, const char* words)
+  { cv::putText(legend, words, cv::Point(62, 24 + 22 * row), cv::FONT_HERSHEY_SIMPLEX, 0.45, white, 1, cv::LINE_AA); };
+  // A swatch of the colour the cable gets, then what it means.
+  const auto swatch = [&](int row, const cv::Scalar& colour)
+  { cv::rectangle(legend, cv::Rect(12, 13 + 22 * row, kLegendSwatch, 12), colour, cv::FILLED); };
+  cv::putText(legend, "cable tension", cv::Point(12, 24), cv::FONT_HERSHEY_SIMPLEX, 0.5, white, 1, cv::LINE_AA);
+  for (int k = 0; k < 5; ++k)
+  {
+    swatch(1 + k, bgr(tensionColor(0.25 * k * full, full, false)));
+    text(1 + k, value[k]);
+  }
+  swatch(6, bgr(tensionColor(-1.0, full, false)));
+  text(6, "grey: compression (pushed)");
+  swatch(7, bgr(tensionColor(0.0, full, false)));
+  cv::rectangle(legend, cv::Rect(12 + kLegendSwatch / 2, 13 + 22 * 7, kLegendSwatch / 2, 12),
+                bgr(tensionColor(0.0, full, true)), cv::FILLED);
+  text(7, stripes);
+
+  image->header.frame_id.clear();
+  image->height = static_cast<std::uint32_t>(legend.rows);
+  image->width = static_cast<std::uint32_t>(legend.cols);
+  image->encoding = "bgr8";
+  image->is_bigendian = 0;
+  image->step = static_cast<std::uint32_t>(legend.cols * 3);
+  image->data.assign(legend.data, legend.data + legend.total() * legend.elemSize());
 }
 
 namespace

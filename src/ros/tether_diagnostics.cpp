@@ -178,6 +178,9 @@ void TetherDiagnostics::diagnoseTopology(diagnostic_updater::DiagnosticStatusWra
                                other.c_str());
         }
         break;
+      case TopologyEntry::Kind::WrapAngle:
+        status.add("wrap angle around " + other + " [rad]", value);  // the turn building up: never warns
+        break;
       case TopologyEntry::Kind::LinkingNumber:
         status.add("linking number with " + other, value);
         if (std::abs(value) >= 0.5)  // an integer up to rounding: any non-zero one

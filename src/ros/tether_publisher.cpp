@@ -53,6 +53,15 @@ TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions&
     tf_pub_ = private_nh.advertise<tf2_msgs::TFMessage>("/tf", 10);
   }
   marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  // The colour legend: latched, drawn once (its scale is a node option, fixed while the node runs).
+  legend_pub_ = private_nh.advertise<sensor_msgs::Image>("legend", 1, true);
+  MarkerOptions legend_options;
+  legend_options.tension_full_scale = options.tension_full_scale;
+  legend_options.stripe_segments = options.stripe_segments;
+  sensor_msgs::Image legend;
+  toLegendImage(legend_options, &legend);
+  legend.header.stamp = ros::Time::now();
+  legend_pub_.publish(legend);
 }
 
 void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle)

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -185,6 +186,51 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
   toMarkers(free_end, none, ros::Time(4.0), options, &markers);
   EXPECT_EQ(markers.markers[0].points.size(), 40u);
   EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::DELETE);
+}
+
+// The legend a user reads the cable's colours by (issue 26, item 16), an image rviz shows beside its 3D view:
+// every colour of the scale as a swatch in exactly the colour the cable gets at that tension (tensionColor,
+// at 8 bits), the compression grey, and a stripe half plain, half lighter; on config/tether.rviz's background.
+// Each swatch is kLegendSwatch x 12 px of its colour; the text is antialiased white, so a colour of the
+// scale appears nowhere else in such a block.
+TEST(Converters, LegendImageShowsEveryColourOfTheScaleTheGreyAndTheStripes)
+{
+  MarkerOptions options;
+  options.tension_full_scale = 40.0;
+  options.stripe_segments = 7;
+  sensor_msgs::Image image;
+  toLegendImage(options, &image);
+  ASSERT_EQ(image.encoding, "bgr8");
+  ASSERT_EQ(image.width, static_cast<std::uint32_t>(kLegendWidth));
+  ASSERT_EQ(image.height, static_cast<std::uint32_t>(kLegendHeight));
+  ASSERT_EQ(image.step, image.width * 3);
+  ASSERT_EQ(image.data.size(), image.step * image.height);
+  const auto pixels = [&](const std_msgs::ColorRGBA& c)
+  {
+    const auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(255.0 * v)); };
+    std::size_t n = 0;
+    for (std::size_t p = 0; p + 2 < image.data.size(); p += 3)
+    {
+      n += image.data[p] == byte(c.b) && image.data[p + 1] == byte(c.g) && image.data[p + 2] == byte(c.r);
+    }
+    return n;
+  };
+  const std::size_t swatch = kLegendSwatch * 12;
+  for (const double tension : {0.0, 10.0, 20.0, 30.0, 40.0})
+  {
+    // 0 N's colour is also the plain half of the stripe swatch.
+    EXPECT_EQ(pixels(tensionColor(tension, 40.0, false)), tension == 0.0 ? swatch + swatch / 2 : swatch) << tension;
+  }
+  EXPECT_EQ(pixels(tensionColor(-1.0, 40.0, false)), swatch);    // the compression grey
+  EXPECT_EQ(pixels(tensionColor(0.0, 40.0, true)), swatch / 2);  // the lighter stripe
+  EXPECT_EQ(image.data[0], 64);  // blue, green, red of config/tether.rviz's background (12, 38, 64)
+  EXPECT_EQ(image.data[1], 38);
+  EXPECT_EQ(image.data[2], 12);
+  // Reused storage: a second legend of another scale has the same size and that scale's red.
+  options.tension_full_scale = 10.0;
+  toLegendImage(options, &image);
+  EXPECT_EQ(image.data.size(), image.step * image.height);
+  EXPECT_EQ(pixels(tensionColor(10.0, 10.0, false)), swatch);
 }
 
 TEST(Converters, WrenchIsThePullOnTheVehicle)

@@ -42,9 +42,20 @@ class VehicleHeading
 Eigen::Isometry3d cameraPose(const ScenarioCamera& camera, const Position& vehicle, double yaw);
 
 /**
+ * A depth image an ordinary viewer shows (a 16-bit depth in mm of a tether a few metres away uses 1/10 of
+ * its range and looks black): `depth_mm` (CV_16UC1, 0 = none) into `preview` (CV_8UC3, BGR), black where
+ * the depth is 0, elsewhere viridis from yellow at 0 m to dark blue-violet at `far_m` [m] and beyond
+ * (index 255 down to 80, so every tether pixel stands out from black with a contrast ratio of 3 or more,
+ * docs/references.md; brighter is nearer). Reuses `preview`'s storage.
+ */
+void depthPreview(const cv::Mat& depth_mm, double far_m, cv::Mat& preview);
+
+/**
  * Writes, for each of the scenario's cameras, DIR/cameras/<name>/mask_NNNNNN.png (8 bit, 255 where the
  * tether is visible), depth_NNNNNN.png (16 bit, depth along the optical axis in mm, 0 where there is no
- * tether or beyond 65.535 m) and index.csv (frame,t,coverage), frame k at the last physics step at or
+ * tether or beyond 65.535 m), depth_preview_NNNNNN.png (depthPreview of it, for a person: from 0 m to the
+ * deployed length plus the camera's distance from the path point, the farthest a tether point can be then)
+ * and index.csv (frame,t,coverage), frame k at the last physics step at or
  * before k / rate (t is that step's time). The seabed hides what lies below it.
  */
 class DatasetWriter : public RunObserver
@@ -94,6 +105,7 @@ class DatasetWriter : public RunObserver
   std::vector<Position> shape_;
   std::vector<Tube> tubes_;
   cv::Mat depth_mm_;
+  cv::Mat preview_;
 };
 
 }  // namespace rov_tether::camera

@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
+#include <sensor_msgs/Image.h>
 #include <std_msgs/ColorRGBA.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -48,6 +49,20 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
  */
 void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
+
+/// Size of the colour legend image (toLegendImage) and the width of its swatches [px].
+constexpr int kLegendWidth = 300;
+constexpr int kLegendHeight = 190;
+constexpr int kLegendSwatch = 40;
+
+/**
+ * The cable's colour legend as an image (bgr8, kLegendWidth x kLegendHeight, on config/tether.rviz's
+ * background), for rviz's Image display, which keeps it beside the 3D view whatever the view: "cable
+ * tension", a swatch of the colour tensionColor gives at 0, 1/4, 1/2, 3/4 and all of `tension_full_scale`
+ * with its value, the compression grey ("grey: compression (pushed)"), and a swatch half plain, half
+ * lighter for the stripes of `stripe_segments`. Reuses `image`'s storage.
+ */
+void toLegendImage(const MarkerOptions& options, sensor_msgs::Image* image);
 
 /// Side of the square that draws a plane obstacle, and its thickness (a plane is unbounded; rviz gets a
 /// thin square slab just below its surface) [m].

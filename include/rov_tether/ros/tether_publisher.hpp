@@ -58,7 +58,8 @@ class StateBuilder
 /**
  * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
  * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
- * (with ~state), ~markers at a rate (only while someone subscribes), contact points included.
+ * (with ~state), ~markers at a rate (only while someone subscribes), contact points included, and the
+ * colour legend ~legend (latched, once).
  */
 class TetherPublisher
 {
@@ -86,6 +87,7 @@ class TetherPublisher
   ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
   tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
+  ros::Publisher legend_pub_;   ///< ~legend: the colour legend image, latched.
   ros::Time next_marker_time_;  ///< When ~markers are due next (with subscribers).
   std::vector<double> tensions_;
   visualization_msgs::MarkerArray markers_;
