@@ -40,7 +40,7 @@ fi
 OUT="$ROOT/catkin_build/fuzz"
 mkdir -p "$OUT/artifacts"
 # The scenario code builds obstacles through makeObstacle (src/geometry, rov_tether_geometry).
-CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/geometry/*.cpp "$ROOT"/src/scenario/*.cpp)
+CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/geometry/*.cpp "$ROOT"/src/spec/*.cpp "$ROOT"/src/scenario/*.cpp)
 status=0
 cases=""
 for target in "${TARGETS[@]}"; do
