@@ -74,6 +74,11 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"params: {segment_length: automatic}\nspool: [0, 0, 0]\nduration: 1", "'segment_length': wrong type"},
       {"params: 3\nspool: [0, 0, 0]\nduration: 1", "params.: expected a map"},
       {"spool: [0, 0, 0\nduration: 1", "YAML error"},
+      // A repeated key: yaml-cpp keeps both and a lookup takes the first (issue 26, item 13).
+      {"spool: [0, 0, 0]\nduration: 1\nduration: 50", "duplicate key 'duration' (lines 2 and 3)"},
+      {"params: {iterations: 3, iterations: 700}\nspool: [0, 0, 0]\nduration: 1", "duplicate key 'params.iterations'"},
+      {"spool: [0, 0, 0]\nduration: 1\ntethers:\n  - {name: a, spool: [0, 0, 0], name: b}",
+       "duplicate key 'tethers[0].name'"},
   };
   for (const auto& c : cases)
   {
@@ -219,6 +224,17 @@ TEST(Runner, WritesStateAndShapeCsv)
   fs::remove(scenario_path);
 }
 
+// A parameter file (config/*.yaml, --params) that gives a key twice is refused whole, naming the key: either
+// value could be the one meant (issue 26, item 13).
+TEST(ConfigFiles, ARepeatedKeyIsRefusedNamingIt)
+{
+  TetherParams params;
+  const std::string error = parseParams("iterations: 3\ndrag: 0.9\niterations: 700\n", &params);
+  EXPECT_NE(error.find("duplicate key 'iterations' (lines 1 and 3)"), std::string::npos) << error;
+  EXPECT_EQ(params.iterations, TetherParams{}.iterations);  // nothing applied
+  EXPECT_EQ(params.drag, TetherParams{}.drag);
+}
+
 TEST(Runner, BadScenarioFailsAndWritesNothing)
 {
   const std::string dir = temporaryDirectory("bad");
@@ -232,6 +248,9 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
   EXPECT_EQ(
       runRunner(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/catenary.yaml --out " + dir + " --set iterations=-3"),
       2);
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
+  std::ofstream(scenario_path) << "spool: [0, 0, 0]\nduration: 1\nduration: 50\n";  // a repeated key
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir), 2);
   EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
   fs::remove(scenario_path);
 }
