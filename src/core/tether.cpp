@@ -639,7 +639,12 @@ bool Tether::runWinch(double dt)
   {
     return true;  // the solver decides the pay-out (payOut after it)
   }
-  payOut(winch.lengthChange(input), dt);
+  double change = winch.lengthChange(input);
+  if (change < 0.0 && spool_tension >= params_.winchPull())
+  {
+    change = 0.0;  // no reel-in pulls harder than the motor's stall pull: it stops there
+  }
+  payOut(change, dt);
   return false;
 }
 

@@ -75,6 +75,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"winch_speed", &TetherParams::winch_speed},
       {"max_winch_speed", &TetherParams::max_winch_speed},
       {"max_winch_acceleration", &TetherParams::max_winch_acceleration},
+      {"max_winch_pull", &TetherParams::max_winch_pull},
       {"payout_threshold", &TetherParams::payout_threshold},
       {"reel_in_slack", &TetherParams::reel_in_slack},
       {"min_deployed_length", &TetherParams::min_deployed_length},
@@ -239,6 +240,12 @@ double TetherParams::criticalStep() const
 {
   // The axial waves are the fastest, and added mass acts across the cable only: the cable's own mass.
   return segment_length / std::sqrt(axial_stiffness / mass_per_length);
+}
+
+double TetherParams::winchPull() const
+{
+  return max_winch_pull > 0.0 ? max_winch_pull
+                              : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
 TetherParams TetherParams::resolved() const
