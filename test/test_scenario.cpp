@@ -255,6 +255,55 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
   fs::remove(scenario_path);
 }
 
+// The runner warns as the node does (issue 26, item 14): a ROV diving 30 m straight away from a spool on a
+// 10 m cable, strain rule, pbd: the cable ends fully deployed and strained far beyond anything real (the
+// issue's run read 2.4e6 N at strain 24 without a word). Over-tension above the node's default
+// max_tension_warning (500 N) is named with its time; an outrun winch too. A quiet run gives no warning.
+TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
+{
+  const std::string dir = temporaryDirectory("warn");
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::ofstream(scenario_path) << "params: {cable_length: 10.0, initial_deployed_length: 2.0, winch_mode: brake, "
+                                  "brake_tension: 5.0, max_winch_speed: 0.5, noise: 0.0}\n"
+                                  "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [10, 31.5, 0, 0]]\n"
+                                  "duration: 10\noutput_rate: 10\n";
+  const std::string err = dir + "_stderr.txt";
+  const auto runKeepingStderr = [&](const std::string& arguments)
+  {
+    const int status =
+        std::system((std::string(ROV_TETHER_RUNNER) + " " + arguments + " >/dev/null 2> " + err).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir), 0);
+  std::string text;
+  for (const std::string& line : readLines(err))
+  {
+    text += line + "\n";
+  }
+  EXPECT_NE(text.find("rov_tether_run: warning: over-tension: "), std::string::npos) << text;
+  EXPECT_NE(text.find("above max_tension_warning = 500 N"), std::string::npos) << text;
+  EXPECT_NE(text.find("the vehicle outruns the winch"), std::string::npos) << text;
+  // The same figures through the library: the warnings name what the summary holds.
+  Scenario scenario;
+  ASSERT_EQ(loadScenario(scenario_path.string(), &scenario), "");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir + "_lib", &summary), "");
+  EXPECT_GT(summary.max_tension, 500.0);
+  EXPECT_GT(summary.outrun_rows, 0u);
+  EXPECT_EQ(runWarnings(scenario, summary, 1e12).size(), 1u);  // above every tension: only the outrun
+  // A brake winch and a ROV that moves 1 m at 0.5 m/s is quiet.
+  std::ofstream(scenario_path) << "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [2, 2.5, 0, 0]]\nduration: 3\n";
+  EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir + "_quiet"), 0);
+  EXPECT_TRUE(readLines(err).empty()) << readLines(err).front();
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir + "_quiet --max-tension-warning x"), 2);
+  for (const std::string& d : {dir, dir + "_lib", dir + "_quiet"})
+  {
+    fs::remove_all(d);
+  }
+  fs::remove(scenario_path);
+  fs::remove(err);
+}
+
 // A world's scenario: two tethers and two obstacles, contact between tethers on.
 const std::string kWorld = R"(
 duration: 1
