@@ -396,6 +396,64 @@ TEST(Winch, ASwitchFromSpeedToConstantTensionMakesNoSpike)
   EXPECT_LT(settled_high, 1.1 * (p.target_tension + p.tension_deadband));
 }
 
+// "The vehicle outruns the winch" is a vehicle faster than the winch can pay out (issue 26, item 9). The
+// pillar demo's brake winch (2 N, max_winch_speed 1 m/s) was flagged from t = 0 while it turned at 0-0.59
+// m/s: a jerk of the cable (a pose that steps, a cable coming taut or slipping off a contact) drives the drum
+// to its limit for a few steps. Here the ROV pulls the cable taut at 0.1 m/s, then its pose steps 3 cm in one
+// sample (well within the jump rule) and holds: the drum pays the 3 cm out at its limit over some 6 steps of
+// 5 ms (printed), 30 ms, far short of kOutrunTime (0.2 s), and the winch is never outrun.
+TEST(Winch, AJerkToTheSpeedLimitIsNotAnOutrun)
+{
+  for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
+  {
+    TetherParams p;
+    p.noise = 0.0;
+    p.solver = solver;
+    p.cable_length = 30.0;
+    p.initial_deployed_length = 2.0;
+    p.brake_tension = 2.0;
+    p.max_winch_speed = 1.0;
+    Tether sim(p, Position::Zero(), Position(1.9, 0.0, 0.0));
+    auto x = [](double t) { return t < 3.0 ? 1.9 + 0.1 * t : 2.23; };  // taut at 0.1 m/s, then a 3 cm step
+    int at_limit = 0, outrun = 0;
+    drive(sim, 0.0, 5.0, x,
+          [&]
+          {
+            at_limit += sim.winchSpeed() >= p.max_winch_speed * (1.0 - 1e-9) &&
+                        sim.summary().tension_spool > p.brake_tension;
+            outrun += sim.winchOutrun();
+          });
+    std::printf("[ measured ] %s: %d steps at the speed limit above the brake, %d flagged as outrun\n",
+                toString(solver).c_str(), at_limit, outrun);
+    EXPECT_GT(at_limit, 0) << "the premise: the step drives the drum to its limit";
+    EXPECT_LT(at_limit * p.time_step, Tether::kOutrunTime);
+    EXPECT_EQ(outrun, 0) << toString(solver);
+  }
+}
+
+// In strain mode the winch is outrun too: the ROV pulls away at 3 m/s against a 1 m/s winch; the strain
+// rule wants to pay out and cannot, the cable stretches to kilonewtons (21 kN in the issue), and it is said.
+TEST(Winch, TheStrainRuleIsOutrunLikeTheOthers)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.winch_mode = WinchMode::kStrain;
+  p.cable_length = 30.0;
+  p.initial_deployed_length = 2.0;
+  p.max_winch_speed = 1.0;
+  Tether sim(p, Position::Zero(), Position(1.9, 0.0, 0.0));
+  auto x = [](double t) { return 1.9 + 3.0 * t; };
+  double first = -1.0;
+  drive(sim, 0.0, 3.0, x, [&] { first = first < 0.0 && sim.winchOutrun() ? sim.time() : first; });
+  const TetherSummary s = sim.summary();
+  std::printf("[ measured ] strain rule outrun from t = %.3f s; at 3 s %.0f N, winch %.2f m/s\n", first,
+              s.tension_spool, sim.winchSpeed());
+  EXPECT_GT(s.tension_spool, p.payout_threshold * p.axial_stiffness);  // the premise: strained past the rule
+  EXPECT_DOUBLE_EQ(sim.winchSpeed(), p.max_winch_speed);
+  EXPECT_TRUE(sim.winchOutrun());
+  EXPECT_GE(first, 0.0);
+}
+
 // `passive` is still accepted, as `strain`, and the loaders are told it is deprecated.
 TEST(Winch, PassiveIsTheStrainRuleAndDeprecated)
 {

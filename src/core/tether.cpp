@@ -588,6 +588,7 @@ void Tether::subStep(double h, double t)
   {
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
+  outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
   max_solver_iterations_ = std::max(max_solver_iterations_, solver_->lastIterations());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
@@ -688,6 +689,7 @@ Status Tether::reset(double time)
   track_.detach();
   winches_.reset();
   winch_speed_ = 0.0;
+  outrun_time_ = 0.0;
   noise_.reseed(params_.seed);
   max_solver_iterations_ = -1;
   time_ = target_time_ = base_time_ = time;
@@ -698,17 +700,20 @@ Status Tether::reset(double time)
 
 double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
 
-bool Tether::winchOutrun() const
+bool Tether::winchAtItsLimit(double h) const
 {
-  if (last_step_ <= 0.0 || deployedParticleCount() < 2)
+  if (deployedParticleCount() < 2 || !(winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9)))
   {
     return false;
   }
+  // The tension at which the mode gives way: the brake, the auto-tension target, the strain rule's threshold
+  // as a tension (its stretch payout_threshold x L under EA).
   const double gives_way = params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
                            : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
-                                                                               : -1.0;
-  const double tension = solver_->multipliers().stretch[cable_.first] / (last_step_ * last_step_);
-  return gives_way >= 0.0 && tension > gives_way && winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9);
+                           : params_.winch_mode == WinchMode::kStrain ? params_.payout_threshold * params_.axial_stiffness
+                                                                      : -1.0;
+  const double tension = solver_->multipliers().stretch[cable_.first] / (h * h);
+  return gives_way >= 0.0 && tension > gives_way;
 }
 
 void Tether::copyPositions(std::vector<Position>& out) const
