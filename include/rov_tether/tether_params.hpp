@@ -46,6 +46,8 @@ enum class WinchMode
 /// 0.02 s is the step of the paper's 2D notebook and the default sub-step of the Unreal Engine cable
 /// component the paper modified.
 constexpr double kReferenceStep = 0.02;
+/// The largest random displacement of a sub-step, as a fraction of segment_length (TetherParams::validate).
+constexpr double kMaxNoisePerSegment = 0.1;
 
 /**
  * All model parameters, in SI units, with their defaults.

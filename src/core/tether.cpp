@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -614,7 +615,9 @@ void Tether::fail(const std::string& why)
 {
   ++recoveries_;
   std::ostringstream message;
-  message << "t = " << time_ << " s: " << why << "; the cable was re-laid at rest";
+  // Fixed point: a ROS time of 1.8e9 s would otherwise print as 1.79565e+09, hiding the seconds.
+  message << "t = " << std::fixed << std::setprecision(3) << time_ << " s: " << why
+          << "; the cable was re-laid at rest";
   last_failure_ = message.str();
   const double deployed = deployedLength();
   layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
