@@ -83,8 +83,8 @@ TEST(ParamTable, DefaultYamlHoldsEveryDefault)
   }
 }
 
-// cfg/Tether.cfg: exactly the live parameters, each with the table's default and range (so the server's
-// clamping never changes a valid value), and the choices of each string parameter.
+// cfg/Tether.cfg: exactly the live parameters, each with the table's default and no range (the node checks
+// every request itself), and the choices of each string parameter.
 TEST(ParamTable, DynamicReconfigureAgreesWithTheTable)
 {
   const std::string cfg = sourceFile("cfg/Tether.cfg");
@@ -111,8 +111,10 @@ TEST(ParamTable, DynamicReconfigureAgreesWithTheTable)
       const double number =
           value.index() == 1 ? static_cast<double>(std::get<std::int64_t>(value)) : std::get<double>(value);
       EXPECT_DOUBLE_EQ(std::stod(shown), number) << name << " default";
-      EXPECT_DOUBLE_EQ(std::stod((*it)[4]), row->min) << name << " min";
-      EXPECT_DOUBLE_EQ(std::stod((*it)[5]), row->max) << name << " max";
+      // No range: dynamic_reconfigure's server clamps to the .cfg's range before the node sees a request,
+      // so iterations 0 would run as 1 without a word. The node checks the request against the table and
+      // publishes the table's ranges itself (configBounds, test Converters.ConfigBoundsAreTheTableRanges).
+      EXPECT_FALSE((*it)[4].matched) << name << ": Tether.cfg gives a range; the server would clamp to it";
     }
     else if (type == "bool_t")
     {

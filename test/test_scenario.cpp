@@ -74,6 +74,11 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"params: {segment_length: automatic}\nspool: [0, 0, 0]\nduration: 1", "'segment_length': wrong type"},
       {"params: 3\nspool: [0, 0, 0]\nduration: 1", "params.: expected a map"},
       {"spool: [0, 0, 0\nduration: 1", "YAML error"},
+      // A repeated key: yaml-cpp keeps both and a lookup takes the first (issue 26, item 13).
+      {"spool: [0, 0, 0]\nduration: 1\nduration: 50", "duplicate key 'duration' (lines 2 and 3)"},
+      {"params: {iterations: 3, iterations: 700}\nspool: [0, 0, 0]\nduration: 1", "duplicate key 'params.iterations'"},
+      {"spool: [0, 0, 0]\nduration: 1\ntethers:\n  - {name: a, spool: [0, 0, 0], name: b}",
+       "duplicate key 'tethers[0].name'"},
   };
   for (const auto& c : cases)
   {
@@ -219,6 +224,17 @@ TEST(Runner, WritesStateAndShapeCsv)
   fs::remove(scenario_path);
 }
 
+// A parameter file (config/*.yaml, --params) that gives a key twice is refused whole, naming the key: either
+// value could be the one meant (issue 26, item 13).
+TEST(ConfigFiles, ARepeatedKeyIsRefusedNamingIt)
+{
+  TetherParams params;
+  const std::string error = parseParams("iterations: 3\ndrag: 0.9\niterations: 700\n", &params);
+  EXPECT_NE(error.find("duplicate key 'iterations' (lines 1 and 3)"), std::string::npos) << error;
+  EXPECT_EQ(params.iterations, TetherParams{}.iterations);  // nothing applied
+  EXPECT_EQ(params.drag, TetherParams{}.drag);
+}
+
 TEST(Runner, BadScenarioFailsAndWritesNothing)
 {
   const std::string dir = temporaryDirectory("bad");
@@ -233,7 +249,96 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
       runRunner(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/catenary.yaml --out " + dir + " --set iterations=-3"),
       2);
   EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
+  std::ofstream(scenario_path) << "spool: [0, 0, 0]\nduration: 1\nduration: 50\n";  // a repeated key
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir), 2);
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
   fs::remove(scenario_path);
+}
+
+// The runner warns as the node does (issue 26, item 14): a ROV diving 30 m straight away from a spool on a
+// 10 m cable, strain rule, pbd: the cable ends fully deployed and strained far beyond anything real (the
+// issue's run read 2.4e6 N at strain 24 without a word). Over-tension above the node's default
+// max_tension_warning (500 N) is named with its time; an outrun winch too. A quiet run gives no warning.
+TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
+{
+  const std::string dir = temporaryDirectory("warn");
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::ofstream(scenario_path) << "params: {cable_length: 10.0, initial_deployed_length: 2.0, winch_mode: brake, "
+                                  "brake_tension: 5.0, max_winch_speed: 0.5, noise: 0.0}\n"
+                                  "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [10, 31.5, 0, 0]]\n"
+                                  "duration: 10\noutput_rate: 10\n";
+  const std::string err = dir + "_stderr.txt";
+  const auto runKeepingStderr = [&](const std::string& arguments)
+  {
+    const int status =
+        std::system((std::string(ROV_TETHER_RUNNER) + " " + arguments + " >/dev/null 2> " + err).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir), 0);
+  std::string text;
+  for (const std::string& line : readLines(err))
+  {
+    text += line + "\n";
+  }
+  EXPECT_NE(text.find("rov_tether_run: warning: over-tension: "), std::string::npos) << text;
+  EXPECT_NE(text.find("above max_tension_warning = 500 N"), std::string::npos) << text;
+  EXPECT_NE(text.find("the vehicle outruns the winch"), std::string::npos) << text;
+  // The same figures through the library: the warnings name what the summary holds.
+  Scenario scenario;
+  ASSERT_EQ(loadScenario(scenario_path.string(), &scenario), "");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir + "_lib", &summary), "");
+  EXPECT_GT(summary.max_tension, 500.0);
+  EXPECT_GT(summary.outrun_rows, 0u);
+  EXPECT_EQ(runWarnings(scenario, summary, 1e12).size(), 1u);  // above every tension: only the outrun
+  // A brake winch and a ROV that moves 1 m at 0.5 m/s is quiet.
+  std::ofstream(scenario_path) << "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [2, 2.5, 0, 0]]\nduration: 3\n";
+  EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir + "_quiet"), 0);
+  EXPECT_TRUE(readLines(err).empty()) << readLines(err).front();
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir + "_quiet --max-tension-warning x"), 2);
+  for (const std::string& d : {dir, dir + "_lib", dir + "_quiet"})
+  {
+    fs::remove_all(d);
+  }
+  fs::remove(scenario_path);
+  fs::remove(err);
+}
+
+// Every shipped scenario (scenarios/ and scenarios/datasets/, worlds included) loads without a deprecation
+// warning and runs without a simulation failure, over-tension (the node's default 500 N) or an outrun winch
+// (issue 26, item 15: forward_camera_dive used the deprecated `passive` and read 9.6 kN at 9.6% strain).
+// Cameras are left out: looking changes nothing in the run (Dataset.RunnerWritesMasksDepthAndAnIndex...).
+TEST(ShippedFiles, EveryScenarioRunsWithoutFailuresOrWarnings)
+{
+  int runs = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
+  {
+    if (!entry.is_regular_file() || entry.path().extension() != ".yaml")
+    {
+      continue;
+    }
+    Scenario scenario;
+    testing::internal::CaptureStderr();
+    const std::string error = loadScenario(entry.path().string(), &scenario);
+    const std::string warnings = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(error, "") << entry.path();
+    EXPECT_EQ(warnings, "") << entry.path();
+    scenario.cameras.clear();
+    const std::string dir = temporaryDirectory("shipped_" + entry.path().stem().string());
+    RunSummary summary;
+    ASSERT_EQ(runScenario(scenario, dir, &summary), "") << entry.path();
+    std::string said;
+    for (const std::string& warning : runWarnings(scenario, summary, kDefaultMaxTensionWarning))
+    {
+      said += warning + "\n";
+    }
+    EXPECT_EQ(said, "") << entry.path();
+    std::printf("[ measured ] %s: max tension %.4g N, max strain %.4g\n", entry.path().filename().c_str(),
+                summary.max_tension, summary.max_strain);
+    fs::remove_all(dir);
+    ++runs;
+  }
+  EXPECT_GE(runs, 9);
 }
 
 // A world's scenario: two tethers and two obstacles, contact between tethers on.

@@ -143,6 +143,7 @@ TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
   params.max_winch_acceleration = 1000.0;
+  params.max_winch_pull = 1e7;  // a motor that reels in to the limit against the taut cable (the stall: test_winch)
   params.cable_length = 5.0;
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   sim.advance(2.0);
@@ -164,6 +165,7 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   params.winch_mode = WinchMode::kSpeed;
   params.winch_speed = 0.5;
   params.max_winch_acceleration = 1000.0;
+  params.max_winch_pull = 1e7;  // no stall: the reel-in's speed and target are what is checked
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   ASSERT_TRUE(sim.setTargetLength(3.2).ok);
   sim.advance(2.0);

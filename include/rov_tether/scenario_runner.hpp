@@ -27,6 +27,11 @@ struct RunSummary
   double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle at any output time [N].
   double max_strain = 0.0;           ///< Largest geometric strain at any output time [-].
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
+  double max_tension_time = 0.0;     ///< Output time of max_tension [s].
+  std::uint64_t recoveries = 0;      ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
+  std::string last_failure;          ///< Tether::lastFailure() ("" for none).
+  std::size_t outrun_rows = 0;       ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
+  double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
   std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
   std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
 };
@@ -51,6 +56,14 @@ class RunObserver
 /// otherwise the error (an obstacle that cannot be built: naming it).
 std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers = {});
+
+/// The node's default `max_tension_warning` [N]: the runner warns above the same tension.
+constexpr double kDefaultMaxTensionWarning = 500.0;
+
+/// What the node warns of, for a run (each tether's, named when there are several): simulation failures,
+/// a tension above `max_tension_warning` [N] (over-tension) and the vehicle outrunning the winch. Empty when
+/// the run gave none.
+std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
 
 /// The CSV headers, part of the documented format.
 extern const char* const kStateCsvHeader;

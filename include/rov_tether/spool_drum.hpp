@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 namespace rov_tether
 {
@@ -19,7 +20,10 @@ namespace rov_tether
  *   both);
  * - with an equivalent mass m at its radius (a brake only): m (s - coast) = lambda - brake while it turns,
  *   coast being its pay-out at the last speed, so a moving drum slows down when the pull drops below the
- *   brake, and stops.
+ *   brake, and stops;
+ * - the motor's stall pull `stall`: there the motor gives way, however the acceleration limit stood: the
+ *   drum stops reeling in and, pulled harder, is back-driven, paying out up to `slip` (the speed limit), so
+ *   the segment's force does not pass the stall pull while the drum can still turn.
  * The segment stretches elastically by alpha lambda (alpha its compliance), so c = s(lambda) + alpha lambda
  * for lambda > 0, and lambda = 0 while c <= s(0) (the segment slack). This is a continuous, monotone,
  * piecewise linear law lambda = force(c): a convex energy for the primal path, a linear row for the dual one
@@ -34,6 +38,10 @@ class SpoolDrum
   double coast = 0.0;       ///< Pay-out over the step at the drum's last speed [m].
   double min_payout = 0.0;  ///< Least pay-out in the step [m] (negative: the most reel-in).
   double max_payout = 0.0;  ///< Most pay-out in the step [m].
+  /// Force at or above which the drum does not reel in, times h^2 [kg m]: the motor's stall pull; infinity:
+  /// none.
+  double stall = std::numeric_limits<double>::infinity();
+  double slip = 0.0;  ///< Most pay-out in the step once pulled past `stall` [m] (max_winch_speed, cable left).
   double payout = 0.0;      ///< The solver's answer: paid out over the step [m].
 
   /// Builds the law for the spool segment's compliance alpha [1/kg]; call after setting the fields.
@@ -72,7 +80,7 @@ class SpoolDrum
   {
     double c0, lambda0, slope;
   };
-  std::array<Piece, 8> pieces_{};
+  std::array<Piece, 10> pieces_{};
   std::size_t count_ = 0;
   double alpha_ = 0.0;
   double slack_payout_ = 0.0;  ///< s(0).

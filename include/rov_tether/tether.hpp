@@ -79,9 +79,13 @@ class Tether
   double targetLength() const { return target_length_; }
   /// The winch's pay-out speed over the last (sub-)step [m/s], negative reeling in.
   double winchSpeed() const { return winch_speed_; }
-  /// True when the winch paid out at max_winch_speed in the last (sub-)step while the spool segment pulled
-  /// harder than the winch gives way at (brake_tension, target_tension): the vehicle outruns the winch.
-  bool winchOutrun() const;
+  /// True when the winch has paid out at max_winch_speed, the spool segment pulling harder than the winch
+  /// gives way at (brake_tension, target_tension, strain: payout_threshold x EA), for every sub-step of the
+  /// last kOutrunTime: the vehicle outruns the winch. One step at the limit (the jerk of a cable coming taut
+  /// or slipping off a contact) is not an outrun.
+  bool winchOutrun() const { return outrun_time_ >= kOutrunTime; }
+  /// How long the winch must stay at its limit to be outrun [s].
+  static constexpr double kOutrunTime = 0.2;
   /// Detaches the vehicle: the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }
@@ -177,6 +181,9 @@ class Tether
   static constexpr int kMaxContactSubsteps = 64;
   static constexpr int kDepthSubsteps = 4;
   void fail(const std::string& why);
+  /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
+  /// segment pulled harder than its mode gives way at.
+  bool winchAtItsLimit(double h) const;
   /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
   /// a solver that takes it into the step (then returns true, and payOut follows the solve).
   bool runWinch(double dt);
@@ -204,6 +211,7 @@ class Tether
   std::size_t step_start_first_ = 0;                                 ///< The spool outlet at the step's start.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
+  double outrun_time_ = 0.0;  ///< How long the winch has been at its limit, pulled past giving way [s].
   SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].

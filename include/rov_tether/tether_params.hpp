@@ -46,6 +46,8 @@ enum class WinchMode
 /// 0.02 s is the step of the paper's 2D notebook and the default sub-step of the Unreal Engine cable
 /// component the paper modified.
 constexpr double kReferenceStep = 0.02;
+/// The largest random displacement of a sub-step, as a fraction of segment_length (TetherParams::validate).
+constexpr double kMaxNoisePerSegment = 0.1;
 
 /**
  * All model parameters, in SI units, with their defaults.
@@ -151,6 +153,9 @@ struct TetherParams
   double max_winch_speed = 1.0;
   /// Largest winch acceleration of `speed` and `constant_tension` [m/s^2].
   double max_winch_acceleration = 1.0;
+  /// The winch motor's stall pull [N] (`speed`, `constant_tension`): no reel-in pulls harder; there the drum
+  /// stops reeling in and, pulled harder, pays out. 0 = derived, winchPull().
+  double max_winch_pull = 0.0;
   /// `strain`: strain of the first free segment beyond which the paper's winch pays out [-].
   double payout_threshold = 0.1;
   /// `strain`: the paper's winch reels in while the deployed length exceeds (1 + reel_in_slack) times the
@@ -182,6 +187,9 @@ struct TetherParams
   LineMass lineMass() const { return {mass_per_length, effectiveMassPerLength()}; }
   /// Sub-step length time_step / substeps [s].
   double subStep() const { return time_step / substeps; }
+  /// The winch motor's stall pull [N]: max_winch_pull, or when 0, 1.25 x the larger of target_tension +
+  /// tension_deadband and brake_tension (a motor a quarter stronger than the tension it is set to hold).
+  double winchPull() const;
   /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s].
   double criticalStep() const;
   /// A copy with `auto` segment_length and iterations replaced by the chosen values (flags cleared).

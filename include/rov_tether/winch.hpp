@@ -65,6 +65,8 @@ class BrakeWinch : public Winch
  * that edge, within max_winch_speed and max_winch_acceleration; in between it stands. With direct this is
  * met within the step (spool_drum.hpp). The other methods read the last step's tension and move at a speed
  * that grows with the excess over the deadband, reaching max_winch_speed at an excess of the target itself.
+ * At the motor's stall pull (winchPull()) the drum gives way, whatever the acceleration limit: a reel-in
+ * stops, and pulled harder it pays out, so a reel-in never pulls harder than the motor.
  */
 class ConstantTensionWinch : public Winch
 {
@@ -74,11 +76,14 @@ class ConstantTensionWinch : public Winch
 };
 
 /// `speed`: pays out (positive) or reels in at winch_speed, or towards the target length, where it stops
-/// without overshoot; its speed changes by at most max_winch_acceleration.
+/// without overshoot; its speed changes by at most max_winch_acceleration. A reel-in stops (the motor gives
+/// way) when the spool tension reaches the motor's stall pull (TetherParams::winchPull()); with direct
+/// within the step (a SpoolDrum of that law), otherwise from the last step's tension.
 class SpeedWinch : public Winch
 {
  public:
   double lengthChange(const WinchInput& in) override;
+  bool drum(const WinchInput& in, SpoolDrum* drum) override;
 };
 
 /// `locked`: the deployed length never changes.

@@ -1,9 +1,71 @@
 #include "rov_tether/spool_drum.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rov_tether
 {
+
+namespace
+{
+
+/// The characteristic `points` (n of them, the last continued at s = high) with the motor's stall pull: at
+/// `stall` the motor gives way, so the drum stops reeling in whatever the acceleration limit would have had
+/// it do, and pulled harder it is back-driven, paying out up to `top` (>= 0). Returns the new count.
+std::size_t applyStall(std::array<std::pair<double, double>, 8>& points, std::size_t n, double high, double stall,
+                       double top)
+{
+  if (!std::isfinite(stall))
+  {
+    return n;
+  }
+  std::array<std::pair<double, double>, 8> out;
+  std::size_t m = 0;
+  bool stalled = false;
+  auto stallAt = [&](double s)  // the drum turns at s up to the stall pull, then gives way up to `top`
+  {
+    if (s < top)
+    {
+      out[m++] = {stall, s};
+    }
+    out[m++] = {stall, std::max(s, top)};
+    stalled = true;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto [lambda, s] = points[i];
+    if (!stalled && lambda >= stall)
+    {
+      double at = s;  // s where the force reaches the stall pull
+      if (i > 0 && lambda > points[i - 1].first)
+      {
+        const auto [l0, s0] = points[i - 1];
+        at = s0 + (s - s0) * (stall - l0) / (lambda - l0);
+      }
+      else if (i > 0)
+      {
+        at = points[i - 1].second;  // a drum turning at this force: it stalls at its start
+      }
+      stallAt(at);
+    }
+    if (stalled)
+    {
+      out[m++] = {lambda, std::max(s, top)};
+    }
+    else
+    {
+      out[m++] = {lambda, s};
+    }
+  }
+  if (!stalled)
+  {
+    stallAt(high);  // the last point's ray (s = high) reaches the stall pull
+  }
+  points = out;
+  return m;
+}
+
+}  // namespace
 
 void SpoolDrum::prepare(double alpha)
 {
@@ -13,7 +75,7 @@ void SpoolDrum::prepare(double alpha)
   const double rest = std::clamp(0.0, low, high);  // the drum standing, as far as the limits let it
   // The characteristic s(lambda) for lambda >= 0 as points (lambda, s) joined by straight lines, the last
   // one continued at s = high; points with the same lambda are a drum turning at a fixed force.
-  std::array<std::pair<double, double>, 6> points;
+  std::array<std::pair<double, double>, 8> points;
   std::size_t n = 0;
   if (inertia > 0.0)
   {
@@ -50,6 +112,8 @@ void SpoolDrum::prepare(double alpha)
     }
     points[n++] = {pays, high};
   }
+  const double top = std::max({slip, high, 0.0});
+  n = applyStall(points, n, high, std::max(stall, 0.0), top);
   // The law lambda(c), c = s + alpha lambda: the slack piece first, then one piece between each two points,
   // then the last point's ray (s = high: the segment stretches again).
   slack_payout_ = points[0].second;
@@ -137,7 +201,9 @@ double SpoolDrum::payoutAt(double c) const
   {
     return slack_payout_;  // a slack segment does not hold the drum: it coasts, stands or reels in
   }
-  return std::clamp(c - alpha_ * force(c), std::min(min_payout, max_payout), max_payout);
+  // A drum pulled past its stall pull gives way: up to `slip` whatever the limits would have had it do.
+  const double high = std::isfinite(stall) ? std::max({max_payout, slip, 0.0}) : max_payout;
+  return std::clamp(c - alpha_ * force(c), std::min(min_payout, max_payout), high);
 }
 
 }  // namespace rov_tether

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -588,6 +589,7 @@ void Tether::subStep(double h, double t)
   {
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
+  outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
   max_solver_iterations_ = std::max(max_solver_iterations_, solver_->lastIterations());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
@@ -613,7 +615,9 @@ void Tether::fail(const std::string& why)
 {
   ++recoveries_;
   std::ostringstream message;
-  message << "t = " << time_ << " s: " << why << "; the cable was re-laid at rest";
+  // Fixed point: a ROS time of 1.8e9 s would otherwise print as 1.79565e+09, hiding the seconds.
+  message << "t = " << std::fixed << std::setprecision(3) << time_ << " s: " << why
+          << "; the cable was re-laid at rest";
   last_failure_ = message.str();
   const double deployed = deployedLength();
   layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
@@ -639,7 +643,12 @@ bool Tether::runWinch(double dt)
   {
     return true;  // the solver decides the pay-out (payOut after it)
   }
-  payOut(winch.lengthChange(input), dt);
+  double change = winch.lengthChange(input);
+  if (change < 0.0 && spool_tension >= params_.winchPull())
+  {
+    change = 0.0;  // no reel-in pulls harder than the motor's stall pull: it stops there
+  }
+  payOut(change, dt);
   return false;
 }
 
@@ -683,6 +692,7 @@ Status Tether::reset(double time)
   track_.detach();
   winches_.reset();
   winch_speed_ = 0.0;
+  outrun_time_ = 0.0;
   noise_.reseed(params_.seed);
   max_solver_iterations_ = -1;
   time_ = target_time_ = base_time_ = time;
@@ -693,17 +703,20 @@ Status Tether::reset(double time)
 
 double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
 
-bool Tether::winchOutrun() const
+bool Tether::winchAtItsLimit(double h) const
 {
-  if (last_step_ <= 0.0 || deployedParticleCount() < 2)
+  if (deployedParticleCount() < 2 || !(winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9)))
   {
     return false;
   }
+  // The tension at which the mode gives way: the brake, the auto-tension target, the strain rule's threshold
+  // as a tension (its stretch payout_threshold x L under EA).
   const double gives_way = params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
                            : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
-                                                                               : -1.0;
-  const double tension = solver_->multipliers().stretch[cable_.first] / (last_step_ * last_step_);
-  return gives_way >= 0.0 && tension > gives_way && winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9);
+                           : params_.winch_mode == WinchMode::kStrain ? params_.payout_threshold * params_.axial_stiffness
+                                                                      : -1.0;
+  const double tension = solver_->multipliers().stretch[cable_.first] / (h * h);
+  return gives_way >= 0.0 && tension > gives_way;
 }
 
 void Tether::copyPositions(std::vector<Position>& out) const

@@ -75,6 +75,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"winch_speed", &TetherParams::winch_speed},
       {"max_winch_speed", &TetherParams::max_winch_speed},
       {"max_winch_acceleration", &TetherParams::max_winch_acceleration},
+      {"max_winch_pull", &TetherParams::max_winch_pull},
       {"payout_threshold", &TetherParams::payout_threshold},
       {"reel_in_slack", &TetherParams::reel_in_slack},
       {"min_deployed_length", &TetherParams::min_deployed_length},
@@ -217,6 +218,16 @@ std::vector<std::string> TetherParams::validate() const
              ": must be in [min_deployed_length = " + formatValue(min_deployed_length) +
              ", cable_length = " + formatValue(cable_length) + "]");
   }
+  // The direct solver (and the others) converge while a sub-step's random displacement stays well below a
+  // segment (Noise.TheLargestAllowedNoiseNeverFailsTheDefaultSolver); a tenth of one is the bound.
+  if (noiseAmplitude(subStep()) > kMaxNoisePerSegment * segment_length)
+  {
+    relation("noise = " + formatValue(noise) + ": a sub-step's random displacement noise x (h / 0.02 s)^1.5 = " +
+             formatValue(noiseAmplitude(subStep())) + " m must not exceed segment_length / 10 = " +
+             formatValue(kMaxNoisePerSegment * segment_length) + " m (noise up to " +
+             formatValue(kMaxNoisePerSegment * segment_length / std::pow(subStep() / kReferenceStep, 1.5)) +
+             " m here): larger ones fold the chain faster than the solver unfolds it");
+  }
   if (std::abs(winch_speed) > max_winch_speed)
   {
     relation("winch_speed = " + formatValue(winch_speed) + ": must be in [-max_winch_speed, max_winch_speed] = [" +
@@ -239,6 +250,12 @@ double TetherParams::criticalStep() const
 {
   // The axial waves are the fastest, and added mass acts across the cable only: the cable's own mass.
   return segment_length / std::sqrt(axial_stiffness / mass_per_length);
+}
+
+double TetherParams::winchPull() const
+{
+  return max_winch_pull > 0.0 ? max_winch_pull
+                              : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
 TetherParams TetherParams::resolved() const

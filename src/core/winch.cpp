@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rov_tether
 {
@@ -37,6 +38,7 @@ bool BrakeWinch::drum(const WinchInput& in, SpoolDrum* drum)
   drum->coast = std::max(in.speed, 0.0) * in.dt;
   drum->min_payout = 0.0;
   drum->max_payout = std::max(0.0, std::min(p.max_winch_speed * in.dt, p.cable_length - in.deployed));
+  drum->stall = std::numeric_limits<double>::infinity();  // it never reels in
   drum->payout = 0.0;
   return true;
 }
@@ -58,6 +60,34 @@ bool ConstantTensionWinch::drum(const WinchInput& in, SpoolDrum* drum)
   const double fastest_in = std::max(-p.max_winch_speed, in.speed - change) * in.dt;
   drum->max_payout = std::min(fastest_out, p.cable_length - in.deployed);
   drum->min_payout = std::min(std::max(fastest_in, p.min_deployed_length - in.deployed), drum->max_payout);
+  drum->stall = p.winchPull() * h2;  // the motor gives way at its pull, whatever the acceleration limit
+  drum->slip = std::max(0.0, std::min(p.max_winch_speed * in.dt, p.cable_length - in.deployed));
+  drum->payout = 0.0;
+  return true;
+}
+
+bool SpeedWinch::drum(const WinchInput& in, SpoolDrum* drum)
+{
+  if (!in.drum_in_solver)
+  {
+    return false;
+  }
+  const double change = lengthChange(in);
+  if (!(change < 0.0))
+  {
+    return false;  // paying out or standing: no force stops it, the change is made before the solve
+  }
+  // Reeling in: at the commanded speed while the spool tension stays below the motor's stall pull; there the
+  // motor gives way (the drum stops, pulled harder it pays out), met within the step so no lag lets the pull
+  // overshoot.
+  drum->brake = 0.0;
+  drum->floor = -1.0;
+  drum->inertia = 0.0;
+  drum->coast = 0.0;
+  drum->min_payout = change;
+  drum->max_payout = change;
+  drum->stall = in.params.winchPull() * in.dt * in.dt;
+  drum->slip = std::max(0.0, std::min(in.params.max_winch_speed * in.dt, in.params.cable_length - in.deployed));
   drum->payout = 0.0;
   return true;
 }

@@ -480,6 +480,71 @@ TetherConfig paramsToConfig(const TetherParams& params)
   return config;
 }
 
+TetherConfig configBounds(bool upper)
+{
+  TetherConfig config = TetherConfig::__getDefault__();
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    const ParameterInfo* row = nullptr;
+    for (const ParameterInfo& candidate : parameterInfo())
+    {
+      row = candidate.name == description->name ? &candidate : row;
+    }
+    if (row == nullptr || std::isnan(row->min))
+    {
+      continue;
+    }
+    const double bound = upper ? row->max : row->min;
+    const auto* base = description.get();
+    if (const auto* d = dynamic_cast<const TetherConfig::ParamDescription<double>*>(base))
+    {
+      config.*(d->field) = bound;
+    }
+    else if (const auto* i = dynamic_cast<const TetherConfig::ParamDescription<int>*>(base))
+    {
+      config.*(i->field) = static_cast<int>(bound);
+    }
+  }
+  return config;
+}
+
+namespace
+{
+std::string configValue(const TetherConfig& config, const TetherConfig::AbstractParamDescription& description)
+{
+  boost::any value;
+  description.getValue(config, value);
+  if (const auto* d = boost::any_cast<double>(&value))
+  {
+    return formatParamValue(*d);
+  }
+  if (const auto* i = boost::any_cast<int>(&value))
+  {
+    return std::to_string(*i);
+  }
+  if (const auto* b = boost::any_cast<bool>(&value))
+  {
+    return *b ? "true" : "false";
+  }
+  return boost::any_cast<std::string>(value);
+}
+}  // namespace
+
+std::string configDifferences(const TetherConfig& asked, const TetherConfig& used)
+{
+  std::string differences;
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    const std::string a = configValue(asked, *description);
+    const std::string u = configValue(used, *description);
+    if (a != u)
+    {
+      differences += (differences.empty() ? "" : "; ") + description->name + ": asked " + a + ", used " + u;
+    }
+  }
+  return differences;
+}
+
 void answerGetTension(const Tether& sim, const std::vector<double>& tensions, const GetTension::Request& request,
                       GetTension::Response* response)
 {

@@ -81,6 +81,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   set_winch_srv_ = private_nh_.advertiseService("set_winch", &TetherNode::onSetWinch, this);
   reset_srv_ = private_nh_.advertiseService("reset", &TetherNode::onReset, this);
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<TetherConfig>>(reconfigure_mutex_, private_nh_);
+  reconfigure_server_->setConfigMin(configBounds(false));  // the table's ranges, for rqt_reconfigure
+  reconfigure_server_->setConfigMax(configBounds(true));
   reconfigure_server_->updateConfig(paramsToConfig(setup.params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
   ros::NodeHandle pose_nh(input_nh);
@@ -261,8 +263,11 @@ void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
   }
   if (!error.empty())
   {
-    ROS_ERROR("tether_node: dynamic_reconfigure change refused, old values kept: %s", error.c_str());
-    config = paramsToConfig(current);
+    // The .cfg gives no ranges, so `config` is what was asked, unclamped: name it and what still runs.
+    const TetherConfig used = paramsToConfig(current);
+    ROS_WARN("tether_node: dynamic_reconfigure change refused whole, old values kept (%s): %s",
+             configDifferences(config, used).c_str(), error.c_str());
+    config = used;
     return;
   }
   std::lock_guard<std::mutex> lock(pending_mutex_);

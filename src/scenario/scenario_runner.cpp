@@ -110,7 +110,16 @@ void writeTether(const Tether& sim, double t_out, std::FILE* state_file, std::FI
   ++result->state_rows;
   result->shape_rows += positions.size();
   result->deployed_max = std::max(result->deployed_max, s.deployed_length);
-  result->max_tension = std::max(result->max_tension, s.max_tension);
+  if (s.max_tension > result->max_tension)
+  {
+    result->max_tension = s.max_tension;
+    result->max_tension_time = t_out;
+  }
+  if (sim.winchOutrun())
+  {
+    result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
+    ++result->outrun_rows;
+  }
   result->max_tension_vehicle = std::max(result->max_tension_vehicle, s.tension_vehicle);
   result->max_strain = std::max(result->max_strain, s.max_strain);
 }
@@ -279,6 +288,8 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
     each[i].steps = world.tether(i).stepCount();
     each[i].deployed_end = world.tether(i).deployedLength();
     each[i].jumps = world.tether(i).jumpCount();
+    each[i].recoveries = world.tether(i).recoveryCount();
+    each[i].last_failure = world.tether(i).lastFailure();
     result.steps += each[i].steps;
   }
   const std::uint64_t steps = result.steps;
@@ -293,6 +304,39 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
     *summary = result;
   }
   return "";
+}
+
+std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning)
+{
+  std::vector<std::string> warnings;
+  const std::vector<ScenarioTether> tethers = scenario.tetherList();
+  const std::vector<RunSummary>& each = summary.tethers.empty() ? std::vector<RunSummary>{summary} : summary.tethers;
+  for (std::size_t i = 0; i < each.size() && i < tethers.size(); ++i)
+  {
+    const RunSummary& s = each[i];
+    const TetherParams& p = tethers[i].params;
+    const std::string who = scenario.tethers.empty() ? "" : "tether " + s.name + ": ";
+    char line[512];
+    if (s.recoveries > 0)
+    {
+      warnings.push_back(who + "simulation failure (" + std::to_string(s.recoveries) + "), the last: " + s.last_failure);
+    }
+    if (s.max_tension > max_tension_warning)
+    {
+      std::snprintf(line, sizeof line, "over-tension: %.4g N at t = %.2f s, above max_tension_warning = %.4g N (max strain %.3g)",
+                    s.max_tension, s.max_tension_time, max_tension_warning, s.max_strain);
+      warnings.push_back(who + line);
+    }
+    if (s.outrun_rows > 0)
+    {
+      std::snprintf(line, sizeof line,
+                    "the vehicle outruns the winch at %zu output times from t = %.2f s: it pays out at "
+                    "max_winch_speed = %.3g m/s and the cable stretches",
+                    s.outrun_rows, s.first_outrun_time, p.max_winch_speed);
+      warnings.push_back(who + line);
+    }
+  }
+  return warnings;
 }
 
 }  // namespace rov_tether

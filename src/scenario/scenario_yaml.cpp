@@ -11,6 +11,7 @@
 #include <sstream>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "rov_tether/make_obstacle.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
@@ -553,6 +554,56 @@ std::string parseFile(const std::string& path, Parse parse)
   return parse_error.empty() ? "" : path + ": " + parse_error;
 }
 
+/// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
+/// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)".
+std::string findDuplicateKey(const YAML::Node& node, const std::string& path)
+{
+  if (node.IsSequence())
+  {
+    for (std::size_t i = 0; i < node.size(); ++i)
+    {
+      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]");
+      if (!error.empty())
+      {
+        return error;
+      }
+    }
+  }
+  if (!node.IsMap())
+  {
+    return "";
+  }
+  std::vector<std::pair<std::string, int>> seen;  // key and its line (1-based)
+  for (const auto& entry : node)
+  {
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : YAML::Dump(entry.first);
+    const std::string name = path.empty() ? key : path + "." + key;
+    const int line = entry.first.Mark().line + 1;
+    for (const auto& [other, other_line] : seen)
+    {
+      if (other == key)
+      {
+        return "duplicate key '" + name + "' (lines " + std::to_string(other_line) + " and " + std::to_string(line) +
+               "): give each key once";
+      }
+    }
+    seen.emplace_back(key, line);
+    const std::string error = findDuplicateKey(entry.second, name);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return "";
+}
+
+/// Parses YAML text and refuses a repeated key. Returns "" or the message.
+std::string loadYaml(const std::string& text, YAML::Node* root)
+{
+  *root = YAML::Load(text);
+  return findDuplicateKey(*root, "");
+}
+
 template <typename Parse>
 std::string guardYaml(Parse parse)
 {
@@ -570,14 +621,29 @@ std::string guardYaml(Parse parse)
 
 std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
 {
-  return guardYaml([&] { return parseScenarioNode(YAML::Load(yaml_text), "", scenario); });
+  return guardYaml(
+      [&]
+      {
+        YAML::Node root;
+        const std::string error = loadYaml(yaml_text, &root);
+        return error.empty() ? parseScenarioNode(root, "", scenario) : error;
+      });
 }
 
 std::string loadScenario(const std::string& path, Scenario* scenario)
 {
   const std::string base_dir = std::filesystem::path(path).parent_path().string();
-  return parseFile(path, [&](const std::string& text)
-                   { return guardYaml([&] { return parseScenarioNode(YAML::Load(text), base_dir, scenario); }); });
+  return parseFile(path,
+                   [&](const std::string& text)
+                   {
+                     return guardYaml(
+                         [&]
+                         {
+                           YAML::Node root;
+                           const std::string error = loadYaml(text, &root);
+                           return error.empty() ? parseScenarioNode(root, base_dir, scenario) : error;
+                         });
+                   });
 }
 
 std::string parseParams(const std::string& yaml_text, TetherParams* params)
@@ -585,8 +651,14 @@ std::string parseParams(const std::string& yaml_text, TetherParams* params)
   return guardYaml(
       [&]
       {
+        YAML::Node root;
+        const std::string duplicate = loadYaml(yaml_text, &root);
+        if (!duplicate.empty())
+        {
+          return duplicate;
+        }
         TetherParams candidate = *params;
-        const std::string error = applyParamMap(YAML::Load(yaml_text), "", &candidate);
+        const std::string error = applyParamMap(root, "", &candidate);
         if (error.empty())
         {
           *params = candidate;

@@ -24,6 +24,8 @@ void usage(std::FILE* out)
                "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
                "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv.\n"
                "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
+               "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's).\n"
+               "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
 
@@ -34,6 +36,7 @@ int main(int argc, char** argv)
   std::string scenario_path;
   std::string out_dir;
   std::vector<std::string> assignments;
+  double max_tension_warning = rov_tether::kDefaultMaxTensionWarning;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -47,7 +50,17 @@ int main(int argc, char** argv)
       std::fputs(rov_tether::parameterTableMarkdown().c_str(), stdout);
       return 0;
     }
-    if ((arg == "--out" || arg == "--set") && i + 1 < argc)
+    if (arg == "--max-tension-warning" && i + 1 < argc)
+    {
+      char* end = nullptr;
+      max_tension_warning = std::strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0' || !(max_tension_warning >= 0.0))
+      {
+        std::fprintf(stderr, "rov_tether_run: --max-tension-warning '%s': expected a number >= 0 [N]\n", argv[i]);
+        return 2;
+      }
+    }
+    else if ((arg == "--out" || arg == "--set") && i + 1 < argc)
     {
       (arg == "--out" ? out_dir : assignments.emplace_back()) = argv[++i];
     }
@@ -163,6 +176,10 @@ int main(int argc, char** argv)
     std::printf("camera %-8s %s/cameras/%s/: %zu frames, tether in %zu, coverage mean %.4f, max %.4f\n",
                 camera.name.c_str(), out_dir.c_str(), camera.name.c_str(), camera.frames, camera.frames_with_tether,
                 camera.mean_coverage, camera.max_coverage);
+  }
+  for (const std::string& warning : rov_tether::runWarnings(scenario, s, max_tension_warning))
+  {
+    std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
   }
   return 0;
 }

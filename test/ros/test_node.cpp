@@ -261,6 +261,18 @@ double configDouble(const dynamic_reconfigure::Config& config, const std::string
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+int configInt(const dynamic_reconfigure::Config& config, const std::string& name)
+{
+  for (const auto& p : config.ints)
+  {
+    if (p.name == name)
+    {
+      return p.value;
+    }
+  }
+  return std::numeric_limits<int>::min();
+}
+
 void Harness::startFresh()
 {
   if (!started_)
@@ -427,6 +439,31 @@ TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradicti
   EXPECT_EQ(configDouble(bad.response.config, "winch_speed"), 0.0);
   ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.iterations, 3u);
+
+  // Values outside the table's ranges (issue 26, item 6): the server used to clamp them to the .cfg's
+  // range before the node saw them, so iterations 0 ran as 1 and drag 7 as 1, silently. Each is refused
+  // whole and the old values run on (the README's Bad input row).
+  struct OutOfRange
+  {
+    std::vector<std::pair<std::string, double>> doubles;
+    std::vector<std::pair<std::string, int>> ints;
+  };
+  for (const OutOfRange& c : std::vector<OutOfRange>{{{}, {{"iterations", 0}}},
+                                                      {{}, {{"iterations", 5000}}},
+                                                      {{{"noise", 5.0}}, {}},
+                                                      {{{"drag", 7.0}}, {}},
+                                                      {{{"target_tension", -3.0}}, {}}})
+  {
+    auto refused = reconfigure(c.doubles, c.ints);
+    ASSERT_TRUE(client.call(refused));
+    EXPECT_EQ(configInt(refused.response.config, "iterations"), 3);
+    EXPECT_DOUBLE_EQ(configDouble(refused.response.config, "drag"), 0.5);
+    EXPECT_DOUBLE_EQ(configDouble(refused.response.config, "noise"), 0.0005);  // the default (config/default.yaml)
+    EXPECT_DOUBLE_EQ(configDouble(refused.response.config, "target_tension"), 5.0);  // the default
+  }
+  ASSERT_TRUE(h.drive(0.2, home));
+  EXPECT_EQ(h.state_.iterations, 3u);
+  EXPECT_DOUBLE_EQ(h.state_.drag, 0.5);
 }
 
 // A live change of solver with a vehicle attached keeps the deployed length and the cable's shape (it

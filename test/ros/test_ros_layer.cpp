@@ -102,6 +102,29 @@ TEST(Colours, EveryColourStandsOutOnRvizBackgrounds)
 
 // With pose_source topic nothing else may put world_frame into tf, and rviz then warns that its fixed
 // frame does not exist; the node publishes the spool outlet and the cable's vehicle end under it.
+// The ranges the node publishes for rqt_reconfigure are the table's, and a refused change's WARN names each
+// field asked with the value that runs instead (issue 26, item 6).
+TEST(Converters, ConfigBoundsAreTheTableRangesAndDifferencesNameAskedAndUsed)
+{
+  const TetherConfig low = configBounds(false);
+  const TetherConfig high = configBounds(true);
+  EXPECT_EQ(low.iterations, 1);
+  EXPECT_EQ(high.iterations, 1000);
+  EXPECT_EQ(high.noise, 1.0);
+  EXPECT_EQ(low.drag, 0.0);
+  const TetherConfig used = paramsToConfig(TetherParams{});
+  TetherConfig asked = used;
+  asked.iterations = 0;
+  asked.drag = 7.0;
+  EXPECT_EQ(configDifferences(asked, used), "drag: asked 7.0, used 0.9; iterations: asked 0, used 10");
+  EXPECT_EQ(configDifferences(used, used), "");
+  // The server clamps a request before the node's callback sees it: to the .cfg's (open) ranges, so what
+  // was asked arrives as asked and the node can refuse it by name.
+  asked.__clamp__();
+  EXPECT_EQ(asked.iterations, 0);
+  EXPECT_EQ(asked.drag, 7.0);
+}
+
 TEST(Converters, TransformsPlaceTheSpoolOutletAndTheCableEnd)
 {
   const Tether sim = heavyTether();
@@ -426,8 +449,9 @@ TEST(Reconfigure, AutoValuesShowAsWhatTheyChose)
   EXPECT_GE(config.iterations, 1);
 }
 
-// The dynamic_reconfigure server clamps the whole set on every request: its ranges are the table's (and
-// validate()'s), so no valid value is changed by a request that did not touch it. Every live numeric
+// The dynamic_reconfigure server clamps the whole set on every request to the .cfg's ranges, which are
+// open (the node checks against the table itself), so no valid value is changed by a request that did not
+// touch it. Every live numeric
 // parameter at each end of its range (just inside an open end) survives a round trip through the config
 // and its clamping while the user changes something else.
 TEST(Reconfigure, ClampingNeverChangesAValidValue)
@@ -445,6 +469,8 @@ TEST(Reconfigure, ClampingNeverChangesAValidValue)
     {
       TetherParams params;
       params.max_winch_speed = 20.0;  // so winch_speed may span its whole range [-20, 20]
+      params.segment_length = 2.0;    // so noise may span its whole range (a sub-step's share <= segment / 10)
+      params.min_deployed_length = 2.0;
       ASSERT_EQ(
           setParameter(params, row.name, integer ? ParamValue(static_cast<std::int64_t>(bound)) : ParamValue(bound)),
           "");

@@ -122,6 +122,15 @@ std::string configToParams(const TetherConfig& config, TetherParams* params);
 /// The dynamic_reconfigure view of `params` (every field of the .cfg, read by name).
 TetherConfig paramsToConfig(const TetherParams& params);
 
+/// Every numeric field of the .cfg at the table's lower (`upper` false) or upper bound, for the server's
+/// setConfigMin/Max: rqt_reconfigure shows these ranges, while the .cfg itself gives none, so the server
+/// never clamps a request before the node has checked it.
+TetherConfig configBounds(bool upper);
+
+/// The fields in which `asked` differs from `used`, as "name: asked A, used U" joined by "; " ("" if none):
+/// the WARN of a refused dynamic_reconfigure change names what was asked and what runs.
+std::string configDifferences(const TetherConfig& asked, const TetherConfig& used);
+
 /// Answers a GetTension request from the simulation and its segment tensions.
 void answerGetTension(const Tether& sim, const std::vector<double>& tensions, const GetTension::Request& request,
                       GetTension::Response* response);
