@@ -35,12 +35,11 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& variants()
   return list;
 }
 
-TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
+/// The shipped scenarios/*.yaml, sorted.
+std::vector<std::filesystem::path> shippedScenarioFiles()
 {
-  namespace fs = std::filesystem;
-  GoldenFile golden("runner.txt");
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
   {
     if (entry.path().extension() == ".yaml")
     {
@@ -48,6 +47,14 @@ TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
     }
   }
   std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(Golden, RunnerOutputsOfEveryShippedScenarioAndVariant)
+{
+  namespace fs = std::filesystem;
+  GoldenFile golden("runner.txt");
+  const std::vector<fs::path> files = shippedScenarioFiles();
   ASSERT_GE(files.size(), 5u);
   const fs::path out = fs::temp_directory_path() / ("rov_tether_golden_" + std::to_string(::getpid()));
   std::size_t cases = 0;
@@ -97,15 +104,7 @@ TEST(Golden, RunnerOutputsOfTheShippedWorlds)
 {
   namespace fs = std::filesystem;
   GoldenFile golden("runner_worlds.txt");
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios"))
-  {
-    if (entry.path().extension() == ".yaml")
-    {
-      files.push_back(entry.path());
-    }
-  }
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = shippedScenarioFiles();
   const fs::path out = fs::temp_directory_path() / ("rov_tether_golden_worlds_" + std::to_string(::getpid()));
   std::size_t worlds = 0;
   for (const auto& file : files)

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/mesh_obstacle.hpp"
 #include "rov_tether/scenario_runner.hpp"
 #include "rov_tether/scenario_yaml.hpp"
 #include "rov_tether/tether.hpp"
@@ -76,6 +77,29 @@ inline Tether runTo(const Scenario& scenario, double t)
   Tether sim = driver.makeSimulation();
   driver.advanceTo(sim, t);
   return sim;
+}
+
+/// A flat square of n x n cells of `cell` metres in the mesh's xy plane, front (counter-clockwise) up.
+inline TriangleMesh flatMesh(int n, double cell)
+{
+  TriangleMesh mesh;
+  for (int i = 0; i <= n; ++i)
+  {
+    for (int j = 0; j <= n; ++j)
+    {
+      mesh.vertices.emplace_back((i - 0.5 * n) * cell, (j - 0.5 * n) * cell, 0.0);
+    }
+  }
+  auto at = [n](int i, int j) { return i * (n + 1) + j; };
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  return mesh;
 }
 
 }  // namespace rov_tether::test

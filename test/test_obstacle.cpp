@@ -22,6 +22,7 @@
 #include "rov_tether/make_obstacle.hpp"
 #include "rov_tether/mesh_obstacle.hpp"
 #include "rov_tether/world.hpp"
+#include "test_helpers.hpp"
 
 namespace rov_tether::test
 {
@@ -283,29 +284,6 @@ TEST(MeshObstacle, ShippedMeshesLoadScaledAndPlaced)
   EXPECT_NEAR(hull.lo.x(), 10.0 - 6.0, 1e-5);
   EXPECT_NEAR(hull.hi.x(), 10.0 + 6.0, 1e-5);
   EXPECT_NEAR(hull.hi.y() - hull.lo.y(), 2.0 * 2.0, 1e-5);
-}
-
-/// A flat square of n x n cells of `cell` metres in the mesh's xy plane, front (counter-clockwise) up.
-TriangleMesh flatMesh(int n, double cell)
-{
-  TriangleMesh mesh;
-  for (int i = 0; i <= n; ++i)
-  {
-    for (int j = 0; j <= n; ++j)
-    {
-      mesh.vertices.emplace_back((i - 0.5 * n) * cell, (j - 0.5 * n) * cell, 0.0);
-    }
-  }
-  auto at = [n](int i, int j) { return i * (n + 1) + j; };
-  for (int i = 0; i < n; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
-  }
-  return mesh;
 }
 
 /// The distance from x to triangle (a, b, c) in the plane z = 0, written out the plain way (and not as the

@@ -229,6 +229,33 @@ TEST(Solver, InPlacePathMatchesTheBlockedPath)
   }
 }
 
+/// A thousand steps of a tether with pay-out (`params`' winch), then tension and shape reads: counts what
+/// they allocate (0 expected), and checks they ran clean with particles released.
+void expectStepsAllocateNothing(const TetherParams& params, const std::string& label)
+{
+  Tether sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
+  sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
+  std::vector<double> tensions;
+  std::vector<Position> shape;
+  sim.step();
+  sim.computeSegmentTensions(tensions);
+  tensions.reserve(params.segmentCount());
+  shape.reserve(params.segmentCount() + 1);
+  const std::size_t first_before = sim.state().first;
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k)
+  {
+    sim.step();
+  }
+  sim.computeSegmentTensions(tensions);
+  sim.copyPositions(shape);
+  const TetherSummary summary = sim.summary();
+  EXPECT_EQ(g_allocations.load() - before, 0) << label;
+  EXPECT_EQ(sim.recoveryCount(), 0u) << label;
+  EXPECT_LT(sim.state().first, first_before) << label << ": particles were released meanwhile";
+  EXPECT_GT(summary.deployed_length, 5.0) << label;
+}
+
 // "Hot loops allocate nothing": a thousand steps with pay-out, releases, noise and tension reads.
 TEST(Allocation, StepsAllocateNothing)
 {
@@ -246,28 +273,7 @@ TEST(Allocation, StepsAllocateNothing)
     params.current_variation = water ? 0.05 : 0.0;
     params.seabed_z = -1.5;
     params.substeps = solver == SolverType::kLumpedMass ? 60 : 1;  // below the critical step
-    Tether sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
-    sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
-    std::vector<double> tensions;
-    std::vector<Position> shape;
-    sim.step();
-    sim.computeSegmentTensions(tensions);
-    tensions.reserve(params.segmentCount());
-    shape.reserve(params.segmentCount() + 1);
-    const std::size_t first_before = sim.state().first;
-    const long before = g_allocations.load();
-    for (int k = 0; k < 1000; ++k)
-    {
-      sim.step();
-    }
-    sim.computeSegmentTensions(tensions);
-    sim.copyPositions(shape);
-    const TetherSummary summary = sim.summary();
-    const long allocations = g_allocations.load() - before;
-    EXPECT_EQ(allocations, 0) << toString(solver);
-    EXPECT_EQ(sim.recoveryCount(), 0u) << toString(solver);
-    EXPECT_LT(sim.state().first, first_before);  // particles were released meanwhile
-    EXPECT_GT(summary.deployed_length, 5.0);
+    expectStepsAllocateNothing(params, toString(solver));
   }
 }
 
@@ -296,52 +302,17 @@ TEST(Allocation, DirectStepsAllocateNothing)
     params.current = {0.1, 0.0, 0.0};
     params.current_variation = 0.05;
     params.seabed_z = -1.5;
-    Tether sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
-    sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
-    std::vector<double> tensions;
-    std::vector<Position> shape;
-    sim.step();
-    sim.computeSegmentTensions(tensions);
-    tensions.reserve(params.segmentCount());
-    shape.reserve(params.segmentCount() + 1);
-    const std::size_t first_before = sim.state().first;
-    const long before = g_allocations.load();
-    for (int k = 0; k < 1000; ++k)
-    {
-      sim.step();
-    }
-    sim.computeSegmentTensions(tensions);
-    sim.copyPositions(shape);
-    const TetherSummary summary = sim.summary();
-    EXPECT_EQ(g_allocations.load() - before, 0) << c.name;
-    EXPECT_EQ(sim.recoveryCount(), 0u) << c.name;
-    EXPECT_LT(sim.state().first, first_before) << c.name << ": particles were released meanwhile";
-    EXPECT_GT(summary.deployed_length, 5.0) << c.name;
+    expectStepsAllocateNothing(params, c.name);
   }
 }
 
 /// A 3 x 3 m patch of seabed at z = -2 m in 8 x 8 cells, rolling by 5 cm: 128 triangles, front up.
 TriangleMesh seabedPatch()
 {
-  TriangleMesh mesh;
-  const int n = 8;
-  const double cell = 3.0 / n;
-  for (int i = 0; i <= n; ++i)
+  TriangleMesh mesh = flatMesh(8, 3.0 / 8.0);
+  for (Eigen::Vector3d& v : mesh.vertices)
   {
-    for (int j = 0; j <= n; ++j)
-    {
-      const double x = -1.5 + i * cell, y = -1.5 + j * cell;
-      mesh.vertices.emplace_back(x, y, -2.0 + 0.05 * std::sin(2.0 * x) * std::cos(2.0 * y));
-    }
-  }
-  auto at = [n](int i, int j) { return i * (n + 1) + j; };
-  for (int i = 0; i < n; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
+    v.z() = -2.0 + 0.05 * std::sin(2.0 * v.x()) * std::cos(2.0 * v.y());
   }
   return mesh;
 }
