@@ -176,12 +176,14 @@ double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, doub
   }
   double momentum = 0.0;
   // Moving a by ca wa d / D and b by cb wb d / D along n moves the point at t by exactly d. No end moves
-  // further than the overlap d itself: with equal masses neither does anyway (ca / (ca^2 + cb^2) <= 1), but
-  // with one end pinned (the vehicle, the spool outlet) and the contact next to it, the free end would
-  // move d / ca, without bound as ca -> 0 (two vehicles that meet threw their cables hundreds of metres).
-  // There, what the pinned end holds in the overlap stays, as where both ends are pinned.
-  const double moves[2] = {std::min(ca * wa / denominator, 1.0) * push.depth,
-                           std::min(cb * wb / denominator, 1.0) * push.depth};
+  // further than kMaxEndMove d: with one end pinned (the vehicle, the spool outlet) the free end must move
+  // d / ca, without bound as the contact nears the pinned end (two vehicles that meet threw their cables
+  // hundreds of metres); up to half way from it (ca >= 1/2) that is at most 2 d and stays exact. With
+  // equal masses an end moves at most ca / (ca^2 + cb^2) <= 1.21 d, so free segments are always exact.
+  // Beyond, what the pinned end holds in the overlap stays, as where both ends are pinned.
+  constexpr double kMaxEndMove = 2.0;
+  const double moves[2] = {std::min(ca * wa / denominator, kMaxEndMove) * push.depth,
+                           std::min(cb * wb / denominator, kMaxEndMove) * push.depth};
   const std::size_t ends[2] = {j, k};
   for (int e = 0; e < 2; ++e)
   {
