@@ -411,11 +411,12 @@ TEST(Contact, TwoVehiclesThatMeetDoNotThrowTheirCables)
     p.winch_mode = WinchMode::kLocked;
     const Position spool(side, -1.2, -0.5), start(side, 2.2, -0.5);
     // Mirror images in x, so both vehicles are at (0.15, 1.7, -1.05) at t = 2 s, crossing there at 1 m/s.
-    paths.push_back([side, start](double t)
-                    {
-                      const double s = std::min(1.0, t / 4.0);
-                      return Position(start + s * Position(-2.0 * side + 0.3 * std::sin(0.8 * t), -1.0, -1.1));
-                    });
+    paths.push_back(
+        [side, start](double t)
+        {
+          const double s = std::min(1.0, t / 4.0);
+          return Position(start + s * Position(-2.0 * side + 0.3 * std::sin(0.8 * t), -1.0, -1.1));
+        });
     ASSERT_TRUE(world.add(side < 0.0 ? "a" : "b", std::make_unique<Tether>(p, spool, start)).ok);
   }
   ASSERT_GT(world.tether(0).params().axial_stiffness, 0.99e5);

@@ -130,8 +130,7 @@ TEST(Golden, RunnerOutputsOfTheShippedWorlds)
     EXPECT_GE(written.size(), 3u) << file << ": a tether's state and shape, and the topology";
     for (const auto& relative : written)
     {
-      golden.check(file.stem().string() + "/" + relative.generic_string(),
-                   fnv1a(readFile((out / relative).string())));
+      golden.check(file.stem().string() + "/" + relative.generic_string(), fnv1a(readFile((out / relative).string())));
     }
     ++worlds;
   }

@@ -326,7 +326,9 @@ TEST(Winch, AReelInNeverPullsHarderThanTheMotorsStallPull)
     const double pull = p.winchPull();
     ASSERT_DOUBLE_EQ(pull, 7.5);
     Tether sim(p, Position::Zero(), Position(19.0, 0.0, 0.0));
-    auto x = [](double t) { return t < 2.0 ? 19.0 : t < 4.0 ? 19.0 - 4.5 * (t - 2.0) : t < 6.0 ? 10.0 - 3.0 * (t - 4.0) : 4.0; };
+    auto x = [](double t) {
+      return t < 2.0 ? 19.0 : t < 4.0 ? 19.0 - 4.5 * (t - 2.0) : t < 6.0 ? 10.0 - 3.0 * (t - 4.0) : 4.0;
+    };
     double spool = 0.0, after_stop = 0.0, strain = 0.0, fastest = 0.0;
     drive(sim, 0.0, 25.0, x,
           [&]
@@ -337,9 +339,10 @@ TEST(Winch, AReelInNeverPullsHarderThanTheMotorsStallPull)
             strain = std::max(strain, s.max_strain);
             fastest = std::min(fastest, sim.winchSpeed());
           });
-    std::printf("[ measured ] %s: reel-in up to %.2f m/s; spool tension at most %.3f N, the cable after the stop "
-                "%.3f N (stall pull %.1f N), strain %.2g; deployed %.3f m for 4 m\n",
-                toString(solver).c_str(), -fastest, spool, after_stop, pull, strain, sim.deployedLength());
+    std::printf(
+        "[ measured ] %s: reel-in up to %.2f m/s; spool tension at most %.3f N, the cable after the stop "
+        "%.3f N (stall pull %.1f N), strain %.2g; deployed %.3f m for 4 m\n",
+        toString(solver).c_str(), -fastest, spool, after_stop, pull, strain, sim.deployedLength());
     EXPECT_LT(fastest, -1.2) << "the premise: the winch reels in fast when the cable comes taut";
     EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
     if (solver == SolverType::kDirect)
@@ -387,9 +390,10 @@ TEST(Winch, ASwitchFromSpeedToConstantTensionMakesNoSpike)
             settled_low = std::min(settled_low, tension), settled_high = std::max(settled_high, tension);
           }
         });
-  std::printf("[ measured ] speed -> constant_tension 20 N: before %.3f N, after at most %.3f N, from 5 s after in "
-              "[%.3f, %.3f] N\n",
-              before, after, settled_low, settled_high);
+  std::printf(
+      "[ measured ] speed -> constant_tension 20 N: before %.3f N, after at most %.3f N, from 5 s after in "
+      "[%.3f, %.3f] N\n",
+      before, after, settled_low, settled_high);
   EXPECT_LT(after, 1.5 * p.target_tension);
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
   EXPECT_GT(settled_low, 0.9 * (p.target_tension - p.tension_deadband));
@@ -419,8 +423,8 @@ TEST(Winch, AJerkToTheSpeedLimitIsNotAnOutrun)
     drive(sim, 0.0, 5.0, x,
           [&]
           {
-            at_limit += sim.winchSpeed() >= p.max_winch_speed * (1.0 - 1e-9) &&
-                        sim.summary().tension_spool > p.brake_tension;
+            at_limit +=
+                sim.winchSpeed() >= p.max_winch_speed * (1.0 - 1e-9) && sim.summary().tension_spool > p.brake_tension;
             outrun += sim.winchOutrun();
           });
     std::printf("[ measured ] %s: %d steps at the speed limit above the brake, %d flagged as outrun\n",

@@ -41,8 +41,8 @@ class SpoolDrum
   /// Force at or above which the drum does not reel in, times h^2 [kg m]: the motor's stall pull; infinity:
   /// none.
   double stall = std::numeric_limits<double>::infinity();
-  double slip = 0.0;  ///< Most pay-out in the step once pulled past `stall` [m] (max_winch_speed, cable left).
-  double payout = 0.0;      ///< The solver's answer: paid out over the step [m].
+  double slip = 0.0;    ///< Most pay-out in the step once pulled past `stall` [m] (max_winch_speed, cable left).
+  double payout = 0.0;  ///< The solver's answer: paid out over the step [m].
 
   /// Builds the law for the spool segment's compliance alpha [1/kg]; call after setting the fields.
   void prepare(double alpha);

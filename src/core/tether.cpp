@@ -713,8 +713,9 @@ bool Tether::winchAtItsLimit(double h) const
   // as a tension (its stretch payout_threshold x L under EA).
   const double gives_way = params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
                            : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
-                           : params_.winch_mode == WinchMode::kStrain ? params_.payout_threshold * params_.axial_stiffness
-                                                                      : -1.0;
+                           : params_.winch_mode == WinchMode::kStrain
+                               ? params_.payout_threshold * params_.axial_stiffness
+                               : -1.0;
   const double tension = solver_->multipliers().stretch[cable_.first] / (h * h);
   return gives_way >= 0.0 && tension > gives_way;
 }

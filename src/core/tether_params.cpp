@@ -222,9 +222,10 @@ std::vector<std::string> TetherParams::validate() const
   // segment (Noise.TheLargestAllowedNoiseNeverFailsTheDefaultSolver); a tenth of one is the bound.
   if (noiseAmplitude(subStep()) > kMaxNoisePerSegment * segment_length)
   {
-    relation("noise = " + formatValue(noise) + ": a sub-step's random displacement noise x (h / 0.02 s)^1.5 = " +
-             formatValue(noiseAmplitude(subStep())) + " m must not exceed segment_length / 10 = " +
-             formatValue(kMaxNoisePerSegment * segment_length) + " m (noise up to " +
+    relation("noise = " + formatValue(noise) +
+             ": a sub-step's random displacement noise x (h / 0.02 s)^1.5 = " + formatValue(noiseAmplitude(subStep())) +
+             " m must not exceed segment_length / 10 = " + formatValue(kMaxNoisePerSegment * segment_length) +
+             " m (noise up to " +
              formatValue(kMaxNoisePerSegment * segment_length / std::pow(subStep() / kReferenceStep, 1.5)) +
              " m here): larger ones fold the chain faster than the solver unfolds it");
   }
@@ -254,8 +255,7 @@ double TetherParams::criticalStep() const
 
 double TetherParams::winchPull() const
 {
-  return max_winch_pull > 0.0 ? max_winch_pull
-                              : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
+  return max_winch_pull > 0.0 ? max_winch_pull : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
 TetherParams TetherParams::resolved() const

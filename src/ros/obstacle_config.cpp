@@ -37,9 +37,8 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
     spec::ObstacleReading reading;
     reading.frames = true;
     reading.tether_names = tether_names;
-    reading.tether_hint = tether_names.size() == 1 && tether_names.front() == "tether"
-                              ? " (a node's one tether is called 'tether')"
-                              : "";
+    reading.tether_hint =
+        tether_names.size() == 1 && tether_names.front() == "tether" ? " (a node's one tether is called 'tether')" : "";
     const std::string error = spec::readObstacles(toYaml(map["obstacles"]), reading, &candidate.obstacles);
     if (!error.empty())
     {

@@ -19,8 +19,8 @@ const std::vector<std::string>& nodeOptionNames()
       "spool_position",     "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
       "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
       "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
-      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",
-      "world_frame_from_pose", "max_pose_future"};
+      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",         "world_frame_from_pose",
+      "max_pose_future"};
   return names;
 }
 

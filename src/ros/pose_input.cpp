@@ -39,11 +39,7 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose)
 
 PoseInput::PoseInput(const NodeOptions& options, tf2_ros::Buffer& tf, Tether& tether, const std::string& label,
                      ros::CallbackQueueInterface* input_queue)
-    : options_(options),
-      tf_(tf),
-      tether_(tether),
-      label_(label.empty() ? "" : " " + label),
-      topic_(options.pose_topic)
+    : options_(options), tf_(tf), tether_(tether), label_(label.empty() ? "" : " " + label), topic_(options.pose_topic)
 {
   hand_over_.reserve(kMaxHandOver);
   taking_.reserve(kMaxHandOver);
@@ -66,9 +62,9 @@ void PoseInput::subscribe(ros::NodeHandle& nh)
   }
   // The callback only checks and hands over, on the input's own thread: a deep queue never fills. Any type
   // is subscribed (PoseStamped or Odometry, told apart by the publisher's type).
-  subscriber_ = nh.subscribe<topic_tools::ShapeShifter>(
-      options_.pose_topic, kMaxHandOver,
-      [this](const topic_tools::ShapeShifter::ConstPtr& msg) { receiveAny(msg, ros::Time::now()); });
+  subscriber_ = nh.subscribe<topic_tools::ShapeShifter>(options_.pose_topic, kMaxHandOver,
+                                                        [this](const topic_tools::ShapeShifter::ConstPtr& msg)
+                                                        { receiveAny(msg, ros::Time::now()); });
   topic_ = subscriber_.getTopic();
   static_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
 }

@@ -184,20 +184,20 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   if (!model_)
   {
     drop("info", info_error_.empty() ? "no CameraInfo yet on " + nh_.resolveName(config_.info_topic)
-                             : "the last CameraInfo was refused: " + info_error_);
+                                     : "the last CameraInfo was refused: " + info_error_);
     return false;
   }
   if (image &&
       (static_cast<int>(image->width) != model_->width() || static_cast<int>(image->height) != model_->height()))
   {
-    drop("size", "image " + std::to_string(image->width) + "x" + std::to_string(image->height) + " but intrinsics for " +
-         std::to_string(model_->width()) + "x" + std::to_string(model_->height()));
+    drop("size", "image " + std::to_string(image->width) + "x" + std::to_string(image->height) +
+                     " but intrinsics for " + std::to_string(model_->width()) + "x" + std::to_string(model_->height()));
     return false;
   }
   if (!scene.tubesAt(stamp.toSec(), tubes_))
   {
     drop("past", "stamp " + std::to_string(stamp.toSec()) + " s is older than the tether shapes kept (from " +
-         std::to_string(scene.oldest()) + " s)");
+                     std::to_string(scene.oldest()) + " s)");
     return false;
   }
   Eigen::Isometry3d pose;
@@ -256,16 +256,17 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   budget_.measured(pixels, took);
   if (took > budget_.budget() && warningDue("slow"))
   {
-    ROS_WARN("tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
-             "frames as large are skipped from now on",
-             config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget());
+    ROS_WARN(
+        "tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
+        "frames as large are skipped from now on",
+        config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget());
   }
   return true;
 }
 
 CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
-                     const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame,
-                     double max_future, double render_budget)
+                     const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
+                     double render_budget)
     : scene_(world)
 {
   std::vector<std::string> reserved;
@@ -283,8 +284,8 @@ CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ro
   {
     try
     {
-      cameras_.push_back(std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame, max_future,
-                                                      render_budget));
+      cameras_.push_back(
+          std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame, max_future, render_budget));
     }
     catch (const std::invalid_argument& e)
     {

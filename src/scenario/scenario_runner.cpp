@@ -319,11 +319,13 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
     char line[512];
     if (s.recoveries > 0)
     {
-      warnings.push_back(who + "simulation failure (" + std::to_string(s.recoveries) + "), the last: " + s.last_failure);
+      warnings.push_back(who + "simulation failure (" + std::to_string(s.recoveries) +
+                         "), the last: " + s.last_failure);
     }
     if (s.max_tension > max_tension_warning)
     {
-      std::snprintf(line, sizeof line, "over-tension: %.4g N at t = %.2f s, above max_tension_warning = %.4g N (max strain %.3g)",
+      std::snprintf(line, sizeof line,
+                    "over-tension: %.4g N at t = %.2f s, above max_tension_warning = %.4g N (max strain %.3g)",
                     s.max_tension, s.max_tension_time, max_tension_warning, s.max_strain);
       warnings.push_back(who + line);
     }

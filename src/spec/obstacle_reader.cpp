@@ -94,8 +94,7 @@ std::string readFields(const YAML::Node& node, const std::string& who, const Obs
 
 }  // namespace
 
-std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading,
-                         ObstacleSpec* spec)
+std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading, ObstacleSpec* spec)
 {
   const std::string entry_name = "obstacles[" + std::to_string(index) + "]";
   if (!node.IsMap())

@@ -39,8 +39,7 @@ std::string readText(const YAML::Node& node, const std::string& field, std::stri
 {
   // A plain scalar that reads as a number is a number (as the parameter server types it); quote it for text.
   double number = 0.0;
-  if (!node.IsScalar() || node.Scalar().empty() ||
-      (node.Tag() != "!" && YAML::convert<double>::decode(node, number)))
+  if (!node.IsScalar() || node.Scalar().empty() || (node.Tag() != "!" && YAML::convert<double>::decode(node, number)))
   {
     return field + ": expected a string";
   }

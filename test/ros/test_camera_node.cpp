@@ -239,11 +239,12 @@ TEST_F(CameraNode, BadImageStampsAreWarnedAboutAndNeverBlockTheGoodOnes)
 {
   std::set<double> mask_stamps;
   std::vector<std::string> warnings;
-  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>(
-      "/tether_node/front/mask", 50, [&](const sensor_msgs::Image::ConstPtr& msg)
-      { mask_stamps.insert(msg->header.stamp.toSec()); });
+  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 50,
+                                                               [&](const sensor_msgs::Image::ConstPtr& msg)
+                                                               { mask_stamps.insert(msg->header.stamp.toSec()); });
   ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
-      "/rosout", 100, [&](const rosgraph_msgs::Log::ConstPtr& msg)
+      "/rosout", 100,
+      [&](const rosgraph_msgs::Log::ConstPtr& msg)
       {
         if (msg->level == rosgraph_msgs::Log::WARN && msg->msg.find("camera front:") != std::string::npos)
         {

@@ -449,10 +449,10 @@ TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradicti
     std::vector<std::pair<std::string, int>> ints;
   };
   for (const OutOfRange& c : std::vector<OutOfRange>{{{}, {{"iterations", 0}}},
-                                                      {{}, {{"iterations", 5000}}},
-                                                      {{{"noise", 5.0}}, {}},
-                                                      {{{"drag", 7.0}}, {}},
-                                                      {{{"target_tension", -3.0}}, {}}})
+                                                     {{}, {{"iterations", 5000}}},
+                                                     {{{"noise", 5.0}}, {}},
+                                                     {{{"drag", 7.0}}, {}},
+                                                     {{{"target_tension", -3.0}}, {}}})
   {
     auto refused = reconfigure(c.doubles, c.ints);
     ASSERT_TRUE(client.call(refused));

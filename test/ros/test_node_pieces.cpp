@@ -648,7 +648,8 @@ TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
 
   // Someone works in world (world -> cam_optical, a camera's mount): the same.
   NodeRig used(quietParams());
-  ASSERT_TRUE(used.tf.setTransform(transform("world", "cam_optical", 0.0, Eigen::Isometry3d::Identity()), "test", true));
+  ASSERT_TRUE(
+      used.tf.setTransform(transform("world", "cam_optical", 0.0, Eigen::Isometry3d::Identity()), "test", true));
   feedPosesIn(used, "map", 1.0);
   EXPECT_EQ(used.input->adoptedFrame(), "");
   EXPECT_EQ(used.input->accepted(), 0u);

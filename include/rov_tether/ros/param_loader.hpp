@@ -15,8 +15,9 @@ struct NodeOptions
 {
   std::string world_frame = "world";  ///< Frame of the spool, the cable and all outputs.
   /// When poses come in a frame tf cannot connect to world_frame and nobody else uses world_frame in tf
-  /// (no parent, no children but the node's own frames), world_frame is taken as the poses' frame: the identity pose_frame -> world_frame
-  /// is set in tf and published on /tf_static, with an INFO (a pose in map or odom works out of the box).
+  /// (no parent, no children but the node's own frames), world_frame is taken as the poses' frame: the identity
+  /// pose_frame -> world_frame is set in tf and published on /tf_static, with an INFO (a pose in map or odom works out
+  /// of the box).
   bool world_frame_from_pose = true;
   std::string pose_source = "topic";  ///< "topic" (rov_pose, PoseStamped) or "tf" (world_frame -> rov_frame).
   std::string rov_frame = "rov";      ///< Vehicle frame: looked up when pose_source is "tf"; frame of ~wrench_vehicle.
@@ -27,16 +28,16 @@ struct NodeOptions
   /// The physics runs this far behind ROS time so that vehicle poses, which arrive late, bracket it and
   /// the vehicle end is interpolated smoothly instead of held and jerked [s].
   double interpolation_delay = 0.1;
-  double state_rate = 30.0;            ///< ~state and ~wrench rate [Hz].
-  double marker_rate = 30.0;           ///< ~markers rate when subscribed [Hz].
-  double marker_line_width = 0.03;     ///< Cable width in rviz [m].
-  double tension_full_scale = 50.0;    ///< Tension drawn red [N].
-  int stripe_segments = 5;             ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
-  double stale_pose_timeout = 2.0;     ///< No pose for this long: a warning, and the physics stops waiting for one [s].
+  double state_rate = 30.0;          ///< ~state and ~wrench rate [Hz].
+  double marker_rate = 30.0;         ///< ~markers rate when subscribed [Hz].
+  double marker_line_width = 0.03;   ///< Cable width in rviz [m].
+  double tension_full_scale = 50.0;  ///< Tension drawn red [N].
+  int stripe_segments = 5;           ///< Segments per colour stripe (shows pay-out, paper Fig. 7).
+  double stale_pose_timeout = 2.0;   ///< No pose for this long: a warning, and the physics stops waiting for one [s].
   /// A pose stamped further ahead of ROS time than this is refused and counted: taken, it would have every
   /// later pose refused as older than it until ROS time caught up (a clock an hour ahead froze the tether) [s].
   double max_pose_future = 1.0;
-  double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
+  double max_tension_warning = 500.0;   ///< Tension above this is a diagnostics warning [N].
   std::string pose_topic = "rov_pose";  ///< Vehicle pose topic (pose_source topic), relative to the node's namespace.
   /// What to give up when the physics cannot hold real time: "reduce_iterations" (down to
   /// min_iterations), "reduce_markers" (halve the marker rate, down to 1 Hz) or "none". Always reported.

@@ -162,8 +162,8 @@ class PoseInput
   NodeOptions options_;
   tf2_ros::Buffer& tf_;
   Tether& tether_;
-  std::string label_;  ///< " name" for log messages, "" alone.
-  std::string topic_;  ///< The pose topic as resolved (for the warnings).
+  std::string label_;          ///< " name" for log messages, "" alone.
+  std::string topic_;          ///< The pose topic as resolved (for the warnings).
   std::string adopted_frame_;  ///< The pose frame world_frame was taken as; "" none.
   ros::Subscriber subscriber_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;  ///< Made by subscribe().

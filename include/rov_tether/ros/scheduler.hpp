@@ -144,7 +144,7 @@ class Scheduler
   WallClock wall_clock_;
   std::vector<TetherSchedule> tethers_;
   bool started_ = false;
-  ros::Time last_time_;  ///< ROS time of the last tick (or reset).
+  ros::Time last_time_;      ///< ROS time of the last tick (or reset).
   ros::WallTime last_wall_;  ///< Wall time of the last tick's start; zero before the first.
 };
 

@@ -31,8 +31,7 @@ struct ObstacleReading
 /// radius, length, size, file, scale, friction, and frame where `reading.frames`) and validates it
 /// (rov_tether::validate, and every coordinate and size within Tether::kMaxCoordinate). Returns "" or the
 /// first problem, naming the entry (its index and name) and the field.
-std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading,
-                         ObstacleSpec* spec);
+std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading, ObstacleSpec* spec);
 
 /// Reads the list `obstacles`: each entry as readObstacle, names unique and none a tether's. Returns "" or
 /// every problem found, separated by "; "; `obstacles` is set only on success.
