@@ -440,6 +440,51 @@ TEST(Contact, TwoVehiclesThatMeetDoNotThrowTheirCables)
   }
 }
 
+// A cable laid out afresh is at rest, not in motion: with contact on (here a lone tether, which contacts itself),
+// a constant-tension winch (10 N, deadband 1 N) whose vehicle attaches 10 m away, and again after a reset, holds
+// the cable taut along the 10 m chord like a tether without contact. The winch does not move while the spool
+// tension is within the deadband of the target, so at rest that is where it reads; and a taut weightless cable
+// lies on its chord, so it is deployed to the chord's 10 m plus its stretch (10 N / EA) and one step's pay-out.
+// Before the re-lay was taken as the start of the step's motion, its 8 m jump read as motion: the next step took
+// 64 contact sub-steps, the spool read 0 N, and the winch paid out at full speed for ever (17 m by 3 s, the
+// cable winding onto itself; a reset beside another tether read kilonewtons).
+TEST(Contact, ACableLaidOutAfreshIsNotMotion)
+{
+  TetherParams p = tautParams(10.0);
+  // The winch's own stall pull (1.25 x (target + deadband)): the free cable hangs slack before the vehicle
+  // attaches, so the winch is reeling in when it does, and a motor that never gives way would take half a
+  // second (max_winch_acceleration) to stop, stretching the cable to a kilonewton.
+  p.max_winch_pull = 0.0;
+  World world;
+  world.setContactBetweenTethers(true);
+  ASSERT_TRUE(world.add("a", std::make_unique<Tether>(p, Position(-5.0, 0.0, 0.0))).ok);
+  const Position vehicle(5.0, 0.0, 0.0);
+  const double chord = 10.0, dt = p.time_step;
+  const auto settled = [&](double from, double to)
+  {
+    for (double t = from + dt; t <= to + 1e-9; t += dt)
+    {
+      if (t > from + 0.2)
+      {
+        ASSERT_TRUE(world.tether(0).addVehicleSample(t, vehicle).ok);
+      }
+      ASSERT_TRUE(world.advanceTo(t - dt).ok);
+      const Tether& a = world.tether(0);
+      if (t > from + 1.5)
+      {
+        const TetherSummary s = a.summary();
+        ASSERT_NEAR(s.tension_spool, p.target_tension, p.tension_deadband + 1e-6) << "t " << t;
+        ASSERT_LT(a.deployedLength(), chord * (1.0 + p.target_tension / p.axial_stiffness) + p.max_winch_speed * dt)
+            << "t " << t;
+        ASSERT_EQ(a.lastSubsteps(), p.substeps) << "t " << t;
+      }
+    }
+  };
+  settled(0.0, 4.0);
+  ASSERT_TRUE(world.tether(0).reset(4.0).ok);
+  settled(4.0, 8.0);
+}
+
 // The grid between tethers is filed once a round of steps, and what a contact keeps (holds, reactions,
 // sizes) belongs to the cable as laid out. A clock that goes back (every tether reset to an earlier time,
 // as the node does when a bag loops) and a cable rebuilt must leave contact as right as in a fresh run:

@@ -178,6 +178,8 @@ class Tether
   void subStep(double h, double t);
   /// Sub-steps the next step needs for contact, from the step just taken (see setWorldContact).
   int contactSubsteps();
+  /// Takes the cable's positions now as where the step's motion is measured from (contactSubsteps).
+  void markMotionStart();
   static constexpr int kMaxContactSubsteps = 64;
   static constexpr int kDepthSubsteps = 4;
   void fail(const std::string& why);

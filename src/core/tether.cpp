@@ -339,6 +339,24 @@ void Tether::layOut(double deployed_length)
   solver_->multipliers().clear();
   solver_->forget();
   refreshDerived(f, n - 1);
+  if (world_contact_ != nullptr)
+  {
+    // A cable laid out afresh (a vehicle attaching or jumping, a reset, a recovery) did not move there.
+    // Measured from where the step began, the re-lay read as metres of motion, and the next step took the
+    // most contact sub-steps (64) at once, stepping back down one a step. Over those steps a cable laid
+    // taut at rest read 0 N at the spool and hundreds of newtons at the vehicle; the constant-tension winch
+    // paid out at full speed from then on, and the cable it piled up wound onto itself (kilonewtons: issue
+    // 26, a reset beside another tether; test Contact.ACableLaidOutAfreshIsNotMotion).
+    markMotionStart();
+  }
+}
+
+void Tether::markMotionStart()
+{
+  step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
+  step_start_y_.assign(cable_.y.begin(), cable_.y.end());
+  step_start_z_.assign(cable_.z.begin(), cable_.z.end());
+  step_start_first_ = cable_.first;
 }
 
 void Tether::refreshDerived(std::size_t lo, std::size_t hi)
@@ -482,10 +500,7 @@ void Tether::step()
   const std::uint64_t failures = recoveries_;
   if (world_contact_ != nullptr)
   {
-    step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
-    step_start_y_.assign(cable_.y.begin(), cable_.y.end());
-    step_start_z_.assign(cable_.z.begin(), cable_.z.end());
-    step_start_first_ = cable_.first;
+    markMotionStart();
   }
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
