@@ -1,5 +1,5 @@
-// Speed of the camera renderer (Google Benchmark): the mask and depth image of a tether. See README
-// "Benchmarks". The goal: 640 x 480, 100 segments, in at most 1 ms.
+// Speed of the camera renderer (Google Benchmark): the mask and depth image of a tether. See docs/benchmarks.md
+// ("The camera renderer"). The goal: 640 x 480, 100 segments, in at most 1 ms.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

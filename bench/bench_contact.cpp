@@ -11,7 +11,7 @@
 //                              or push's own walk of FCL's tree (F = 2), with the operator new calls per query
 //                              (allocs_per_query);
 //   BM_ContactPrimitive*       one capsule query by hand (obstacle.cpp's closed forms) and through FCL 0.7.
-// See README "Benchmarks".
+// See docs/benchmarks.md.
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -103,7 +103,7 @@ Position spoolOf(int k) { return Position(-7.0 + 2.0 * k, -8.0, kSeabedZ + 4.0);
 Position restOf(int k) { return Position(-6.5 + 2.0 * k, 8.0, kSeabedZ + 0.3); }
 
 /// A tether of 200 segments of 0.1 m, 1 N/m in water, laid out straight up from its spool (laid out slack
-/// between spool and vehicle, it would hang 2.8 m through the seabed: README "Known limitations").
+/// between spool and vehicle, it would hang 2.8 m through the seabed: docs/limitations.md).
 /// lowerVehicle brings the vehicle down to the seabed, so most of the cable sinks onto it.
 std::unique_ptr<Tether> tether(int k)
 {
@@ -152,7 +152,7 @@ bool clearOfTethers(const Obstacle& obstacle, const std::vector<std::unique_ptr<
 
 /// `count` primitives (spheres, boxes, cylinders in turn) on the seabed at random over a square of `side`
 /// metres around the origin, none through the tethers as they start (a cable laid out through an obstacle
-/// is thrown out of it in one step: README "Known limitations"), so the cables fall onto them (seeded: the
+/// is thrown out of it in one step: docs/limitations.md), so the cables fall onto them (seeded: the
 /// same scene every run).
 std::vector<std::unique_ptr<Obstacle>> primitives(int count, double side,
                                                   const std::vector<std::unique_ptr<Tether>>& tethers)

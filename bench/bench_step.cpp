@@ -1,4 +1,4 @@
-// Speed of one simulation step (Google Benchmark). See README "Benchmarks".
+// Speed of one simulation step (Google Benchmark). See docs/benchmarks.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -171,7 +171,7 @@ void BM_BandedSolve(benchmark::State& state)
   }
 }
 
-/// What a scene skips (README "Model no more than the scene needs"): 100 segments, pbd, each variant
+/// What a scene skips (docs/model.md, "Model no more than the scene needs"): 100 segments, pbd, each variant
 /// adds one piece of physics the baseline scene does not need.
 void BM_Scene(benchmark::State& state)
 {

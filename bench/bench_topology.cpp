@@ -1,5 +1,5 @@
 // Speed of the topology measures (Google Benchmark, in rov_tether_bench): the linking number of two
-// tethers and the turns of one around an axis. See README "Benchmarks".
+// tethers and the turns of one around an axis. See docs/benchmarks.md.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the README's figures from rov_tether_run output (state.csv / shape.csv).
+"""Draws the figures of the README and docs/runner.md from rov_tether_run output (state.csv / shape.csv).
 
 usage: figures.py OUT_DIR DOCS_DIR
 OUT_DIR holds one sub-folder per run, as written by scripts/figures.sh.

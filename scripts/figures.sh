@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's figures in docs/ from the shipped scenarios (needs python3-matplotlib,
+# Regenerates the figures of the README (spool_payout.png) and docs/runner.md (paper_2d_damping.png,
+# paper_fig11_noise.png, spool_payout_shapes.png) in docs/ from the shipped scenarios (needs python3-matplotlib,
 # installed from Debian when missing).
 set -euo pipefail
 PACKAGES_EXTRA=python3-matplotlib

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Load and soak runs of tether_node (README "Load and soak"). Each run starts its own ROS master and
+# Load and soak runs of tether_node (docs/reliability.md, "Load and soak"). Each run starts its own ROS master and
 # node, drives it with rov_tether_load and prints what the node reports in /diagnostics (physics
 # real-time factor, step time, physics load, iterations) and its resident memory.
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Plays a recorded dive into tether_node and records the tether's state next to the poses; started by
-launch/replay.launch (see README, "Replaying your own dives").
+launch/replay.launch (see README, "Replaying your own dives", and docs/node.md).
 
 1. Resolves ~bag: `~` is the home directory, a relative path is relative to the directory roslaunch was
    started in (roslaunch runs its nodes in ROS_HOME; its own working directory is read from /proc, else

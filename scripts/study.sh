@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The speed-against-accuracy study and the stability map (README "Speed against accuracy"): runs every
+# The speed-against-accuracy study and the stability map (docs/accuracy.md, "Speed against accuracy"): runs every
 # reference case of docs/references.md for pbd, xpbd and lumped_mass at several resolutions and efforts,
 # writes docs/study.csv and docs/stability.csv and draws docs/speed_vs_accuracy.png and
 # docs/stability.png (python3-matplotlib, installed from Debian when missing). About 40 s on 2 cores.

@@ -385,7 +385,7 @@ std::pair<double, double> swayedCable(SolverType solver, double h, double bendin
 // With it the peak vehicle-end tension changes by less than 1% from h = 4e-4 s to 1e-4 s. Without it (the
 // paper's limp chain) direct still never pushes: no segment tension is negative, where xpbd's bilateral
 // constraints carry compression. (The limp chain's peaks do not converge: a slack end segment snapping taut
-// is an impulse, m v over one step; see README, Known limitations.)
+// is an impulse, m v over one step; see docs/limitations.md.)
 TEST(Direct, PeakTensionConvergesAsTheStepShrinks)
 {
   const auto [coarse, coarse_lowest] = swayedCable(SolverType::kDirect, 4e-4, 0.2);

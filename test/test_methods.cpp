@@ -243,7 +243,7 @@ TEST(OverRelaxation, ConvergesFasterThanThePapersProjection)
 
 // Where over-relaxation fails: constraints that cannot all hold (a locked cable pulled past its length)
 // make the over-relaxed corrections overshoot, and the cable stretches far more than with the paper's
-// projection. This is why over_relaxation stays 1 by default (README, Known limitations).
+// projection. This is why over_relaxation stays 1 by default (docs/limitations.md).
 TEST(OverRelaxation, OvershootsWhenTheCableCannotReach)
 {
   auto pull = [](double relax)

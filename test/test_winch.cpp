@@ -111,7 +111,7 @@ TEST(Winch, BrakePullOutCarriesTheBrakePlusTheAxialDrag)
 // The ROV stops (after pulling out at 1 m/s): the drum stops when the pull falls below the brake. The cable
 // still moving out carries the momentum mu l V = 2.3 N s, which the 5 N brake takes from it within
 // 0.5 s, so less than 0.5 m more pays out. Every solver: direct takes the drum into its step, the others
-// act on the last step's spool tension (README, winch modes).
+// act on the last step's spool tension (docs/model.md, winch modes).
 TEST(Winch, BrakeStopsPayingOutWhenTheVehicleStops)
 {
   for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd, SolverType::kPbd, SolverType::kLumpedMass})
@@ -208,7 +208,7 @@ TEST(Winch, VehicleOutrunningTheWinchStretchesTheCable)
 // on a 1 N/m tether; the winch pays out and reels in to hold the spool tension at 30 N. With direct (the
 // drum in the step) within +-10% at every step: the 1 N deadband (3%) plus the lag of a drum limited to
 // 1 m/s^2. xpbd's winch acts on the last step's tension, so only its mean over the minute is held within
-// 10%; its range is printed (README, winch modes).
+// 10%; its range is printed (docs/model.md, winch modes).
 TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
 {
   for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
@@ -265,7 +265,7 @@ TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
 // descending to 40 m in 60 s off a 150 N brake. The deployed length follows the dive without stalls (it grows
 // over every 2 s while the ROV goes down), the largest tension is at most 1.5 times the final steady spool
 // tension (the mean of the last 5 s), and the largest strain is below 1% (the paper's strain rule with pbd: 16%,
-// README).
+// docs/model.md).
 TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
 {
   const Scenario scenario = shippedScenario("heavy_dive");

@@ -23,7 +23,7 @@
  * kept to measure the choice) does allocate, even with its result kept and reused and the independent GJK
  * solver: 2 operator new calls per query for the capsule's bounding volume (Capsule::getBoundVertices, the
  * RSS fit) and about one more per triangle touched (EPA::initialize); and it runs GJK on every triangle.
- * bench_contact, BM_ContactMeshPush, counts both (allocs_per_query) and times both: README "Benchmarks".
+ * bench_contact, BM_ContactMeshPush, counts both (allocs_per_query) and times both: docs/benchmarks.md.
  * Both use scratch kept in the obstacle (the stack; FCL's result), so one thread queries an obstacle at a
  * time (World steps its tethers in turn).
  */

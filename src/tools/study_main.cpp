@@ -1,4 +1,4 @@
-// rov_tether_study: the speed-against-accuracy study and the stability map (README "Speed against
+// rov_tether_study: the speed-against-accuracy study and the stability map (docs/accuracy.md, "Speed against
 // accuracy"). Runs every reference case for each method x resolution x effort and writes
 // OUT/study.csv and OUT/stability.csv for scripts/figures.py.
 #include <cmath>

@@ -33,7 +33,7 @@ def tension_bound(p, poses, longest):
     and acceleration (sample to sample, from rest at the start and after a jump of more than 1 m, where the
     node re-lays the cable at rest; NaN poses excluded, the node refuses them). The cable is shorter than an
     axial wave travels in one sample (sqrt(EA / mu) 0.05 s = 50 m), so all of it takes each jerk. The damping
-    rate is the paper's drag as a rate, -ln(drag) / 0.02 s (README, the model)."""
+    rate is the paper's drag as a rate, -ln(drag) / 0.02 s (docs/model.md)."""
     if p["solver"] != "direct" or p["winch_mode"] != "brake":
         raise AssertionError("the bounds are derived for direct with the brake winch; redo them for solver %s, "
                              "winch_mode %s (see tension_bound())" % (p["solver"], p["winch_mode"]))

@@ -442,7 +442,7 @@ TEST(TetherNode, DynamicReconfigureChangesIterationsAndDragAndRefusesContradicti
 
   // Values outside the table's ranges (issue 26, item 6): the server used to clamp them to the .cfg's
   // range before the node saw them, so iterations 0 ran as 1 and drag 7 as 1, silently. Each is refused
-  // whole and the old values run on (the README's Bad input row).
+  // whole and the old values run on (the Bad input row of docs/reliability.md).
   struct OutOfRange
   {
     std::vector<std::pair<std::string, double>> doubles;

@@ -315,7 +315,7 @@ TEST(RenderBudget, AFrameTooBigForItsBudgetIsSkippedAndSaid)
 
 // A node whose physics cannot hold real time falls more than max_lag behind on every tick (here each
 // tick comes 0.2371 s after the last, max_lag 0.1 s): it must keep publishing, at least one ~state a
-// skip (the README's "degrades visibly and keeps publishing"; overload.test). Resumed on the old state
+// skip (docs/node.md, "when the physics cannot keep up"; overload.test). Resumed on the old state
 // grid, a skip left the next state point past the tick's target, and nothing was published unless a skip
 // happened to land on the grid: 0-2 states in overload.test's 120 s under the sanitizers.
 TEST(Scheduler, FallingBehindOnEveryTickStillPublishesAtEachSkip)
