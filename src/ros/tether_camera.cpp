@@ -211,7 +211,7 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
     return false;
   }
   const double pixels = static_cast<double>(model_->width()) * model_->height();
-  if (!budget_.allows(pixels))
+  if (!budget_.allows(pixels, ros::WallTime::now().toSec()))
   {
     drop("budget", budget_.why(model_->width(), model_->height()));
     return false;
@@ -258,8 +258,8 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   {
     ROS_WARN(
         "tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
-        "frames as large are skipped from now on",
-        config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget());
+        "frames as large are skipped, and one is drawn to measure again after %.0f s of skipping",
+        config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget(), budget_.retry());
   }
   return true;
 }

@@ -301,16 +301,46 @@ TEST(Scheduler, TheNodesOwnStallIsNoClockJump)
 TEST(RenderBudget, AFrameTooBigForItsBudgetIsSkippedAndSaid)
 {
   RenderBudget budget(1.0);
-  EXPECT_TRUE(budget.allows(8000.0 * 8000.0)) << "the first frame measures the cost";
+  EXPECT_TRUE(budget.allows(8000.0 * 8000.0, 0.0)) << "the first frame measures the cost";
   budget.measured(8000.0 * 8000.0, 7.58);
-  EXPECT_FALSE(budget.allows(8000.0 * 8000.0));
+  EXPECT_FALSE(budget.allows(8000.0 * 8000.0, 0.1));
   const std::string why = budget.why(8000, 8000);
   EXPECT_NE(why.find("8000x8000"), std::string::npos) << why;
   EXPECT_NE(why.find("7.58 s"), std::string::npos) << why;
   EXPECT_NE(why.find("skipped"), std::string::npos) << why;
-  EXPECT_TRUE(budget.allows(320.0 * 240.0));
+  EXPECT_TRUE(budget.allows(320.0 * 240.0, 0.2));
   budget.measured(320.0 * 240.0, 0.004);  // the small frame measures the cost again
-  EXPECT_TRUE(budget.allows(1000.0 * 1000.0)) << "52 ms at 52 ns a pixel";
+  EXPECT_TRUE(budget.allows(1000.0 * 1000.0, 0.3)) << "52 ms at 52 ns a pixel";
+}
+
+// A cost measured while the machine was busy does not skip a camera for good (a review of issue 26's item 12:
+// nothing drawn, nothing measured again). A camera of fixed size whose one frame took 7.58 s skips its
+// frames for RenderBudget::kFirstRetry, then draws one to measure again; still too slow, it waits twice as
+// long before the next try (so a frame that is really too big stalls the node ever more rarely, at most once
+// in kLastRetry); once a frame measures within the budget (the machine is idle again), every frame is drawn.
+TEST(RenderBudget, ACameraSkippingFramesMeasuresAgainEverOnceInAWhile)
+{
+  const double pixels = 8000.0 * 8000.0, first = RenderBudget::kFirstRetry;
+  RenderBudget budget(1.0);
+  ASSERT_TRUE(budget.allows(pixels, 0.0));
+  budget.measured(pixels, 7.58);  // a busy machine
+  EXPECT_FALSE(budget.allows(pixels, 8.0));
+  EXPECT_FALSE(budget.allows(pixels, 8.0 + 0.99 * first));
+  EXPECT_TRUE(budget.allows(pixels, 8.0 + first)) << "drawn again to measure, after kFirstRetry of skipping";
+  budget.measured(pixels, 7.58);  // still too slow: the next try comes after twice as long
+  EXPECT_FALSE(budget.allows(pixels, 30.0));
+  EXPECT_FALSE(budget.allows(pixels, 30.0 + 1.99 * first));
+  EXPECT_TRUE(budget.allows(pixels, 30.0 + 2.0 * first));
+  budget.measured(pixels, 0.5);  // the machine is idle again: within the budget
+  EXPECT_TRUE(budget.allows(pixels, 60.0));
+  EXPECT_TRUE(budget.allows(pixels, 60.1));
+  // The wait never grows beyond kLastRetry.
+  for (int k = 0; k < 20; ++k)
+  {
+    budget.measured(pixels, 7.58);
+    budget.allows(pixels, 1e4 * (k + 1));  // the first skip of a run of skips
+  }
+  EXPECT_EQ(budget.retry(), RenderBudget::kLastRetry);
 }
 
 // A node whose physics cannot hold real time falls more than max_lag behind on every tick (here each
