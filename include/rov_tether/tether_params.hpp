@@ -206,8 +206,8 @@ using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::ve
 /**
  * One row of the parameter table, the single source of every parameter's name, type, unit, default, range
  * and meaning. validate() takes each field's range from it; `cfg/Tether.cfg` (dynamic_reconfigure),
- * `config/default.yaml` and the README's parameter table must agree with it, and
- * `ParamTable.*` tests fail when any of them differs.
+ * `config/default.yaml` and the README's parameter table are generated from it
+ * (scripts/generate_parameters.py), and `ParamTable.*` tests fail when a committed one differs.
  */
 struct ParameterInfo
 {
@@ -226,9 +226,28 @@ struct ParameterInfo
 /// The parameter table, in documentation order.
 const std::vector<ParameterInfo>& parameterInfo();
 
+/// One choice of a string parameter and what it means.
+struct ParameterChoice
+{
+  std::string value;
+  std::string meaning;
+};
+
+/// The choices of a string parameter (solver, drag_model, winch_mode) in documentation order; empty for
+/// any other parameter. The README's range column and the .cfg's enums are made from them.
+const std::vector<ParameterChoice>& parameterChoices(const std::string& name);
+
 /// The README's parameter table (header and one row per parameter), generated from parameterInfo() and
 /// the defaults of TetherParams.
 std::string parameterTableMarkdown();
+
+/// config/default.yaml as generated from parameterInfo() and the defaults: every parameter at its default,
+/// each line commented with its unit and meaning (parameter_files.cpp).
+std::string defaultYaml();
+
+/// cfg/Tether.cfg as generated from parameterInfo(), parameterChoices() and the defaults: the live
+/// parameters, without ranges (parameter_files.cpp).
+std::string dynamicReconfigureCfg();
 
 /// A value as the README and default.yaml write it (numbers in %g, lists in brackets, NaN as .nan).
 std::string formatParamValue(const ParamValue& value);

@@ -5,7 +5,7 @@
 
 #include "rov_tether/tether_params.hpp"
 
-// The parameter table: every parameter's type, unit, range and meaning, and the README table made from it.
+// The parameter table: every parameter's type, unit, range, choices and meaning, and the README table made from it.
 namespace rov_tether
 {
 namespace
@@ -55,6 +55,15 @@ std::string formatRange(const ParameterInfo& info)
   {
     return info.range;
   }
+  std::string choices;
+  for (const ParameterChoice& choice : parameterChoices(info.name))
+  {
+    choices += (choices.empty() ? "`" : ", `") + choice.value + "`";
+  }
+  if (!choices.empty())
+  {
+    return choices;
+  }
   if (std::isnan(info.min))
   {
     return "";
@@ -66,6 +75,36 @@ std::string formatRange(const ParameterInfo& info)
 
 }  // namespace
 
+const std::vector<ParameterChoice>& parameterChoices(const std::string& name)
+{
+  // The choices of each string parameter, in documentation order (the README's range column, the .cfg's enums).
+  static const std::vector<std::pair<std::string, std::vector<ParameterChoice>>> choices = {
+      {"solver",
+       {{"pbd", "red-black PBD (vectorised)"},
+        {"pbd_sequential", "sequential order of the paper"},
+        {"xpbd", "XPBD: stiffness EA, tension independent of iterations"},
+        {"lumped_mass", "explicit springs; needs h < critical step"},
+        {"direct", "Newton with an exact banded solve: exact length and tension"}}},
+      {"drag_model",
+       {{"damping", "velocity damping of the paper (drag)"}, {"morison", "quadratic Morison drag with added mass"}}},
+      {"winch_mode",
+       {{"brake", "a drum held by a brake that slips at brake_tension"},
+        {"constant_tension", "pay out above, reel in below target_tension"},
+        {"speed", "pay out / reel in at winch_speed"},
+        {"locked", "deployed length fixed"},
+        {"strain", "the rule of the paper: pay out past payout_threshold strain"}}},
+  };
+  static const std::vector<ParameterChoice> none;
+  for (const auto& [parameter, list] : choices)
+  {
+    if (parameter == name)
+    {
+      return list;
+    }
+  }
+  return none;
+}
+
 const std::vector<ParameterInfo>& parameterInfo()
 {
   // name, type, unit, min, max, min open, max open, range as the README states it (when not [min, max]),
@@ -75,17 +114,18 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"segment_length", "double or `auto`", "m", 1e-3, 100.0, kClosed, kClosed, "", "rest length of one segment",
        kAtStart},
       {"shape_tolerance", "double", "m", 0.0, 100.0, kOpen, kClosed, "",
-       "`segment_length: auto`: chord error per segment", kAtStart},
+       "`segment_length: auto`: chord error dL^2 / (8 R) per segment", kAtStart},
       {"min_bend_radius", "double", "m", 0.0, 1e6, kOpen, kClosed, "",
-       "`segment_length: auto`: the scene's tightest radius", kAtStart},
+       "`segment_length: auto`: the scene's tightest radius (a catenary: H / w)", kAtStart},
       {"initial_deployed_length", "double", "m", 0.0, 1e5, kOpen, kClosed, "[min_deployed_length, cable_length]",
        "deployed at start and after a reset", kAtStart},
       {"time_step", "double", "s", 1e-5, 0.1, kClosed, kClosed, "", "internal fixed step", kLive},
-      {"solver", "string", "-", kNone, kNone, kClosed, kClosed,
-       "`pbd`, `pbd_sequential`, `xpbd`, `lumped_mass`, `direct`", "method (see The model)", kLive},
+      {"solver", "string", "-", kNone, kNone, kClosed, kClosed, "", "method (see The model)", kLive},
       {"substeps", "int", "-", 1, 10000, kClosed, kClosed, "", "sub-steps per `time_step`", kLive},
       {"iterations", "int or `auto`", "-", 1, 1000, kClosed, kClosed, "",
-       "constraint sweeps per sub-step (`direct`: the most Newton iterations; `auto`: 10)", kLive},
+       "constraint sweeps per sub-step (`direct`: the most Newton iterations); `auto`: from `stretch_tolerance` "
+       "(`direct`: 10; `lumped_mass`: chooses substeps)",
+       kLive},
       {"over_relaxation", "double", "-", 0.5, 1.95, kClosed, kClosed, "",
        "`pbd`: each correction times this; 1 = the paper's", kLive},
       {"solver_tolerance", "double", "-", 1e-14, 0.1, kClosed, kClosed, "",
@@ -106,8 +146,7 @@ const std::vector<ParameterInfo>& parameterInfo()
        "EA: `xpbd`, `lumped_mass`, `direct` stiffness; `pbd`: only the scale of T/EA", kLive},
       {"bending_stiffness", "double", "N m^2", 0.0, 1e9, kClosed, kClosed, "",
        "EI of `xpbd`'s and `direct`'s bending; 0 = none", kLive},
-      {"drag_model", "string", "-", kNone, kNone, kClosed, kClosed, "`damping`, `morison`",
-       "the paper's damping or Morison drag", kLive},
+      {"drag_model", "string", "-", kNone, kNone, kClosed, kClosed, "", "the paper's damping or Morison drag", kLive},
       {"diameter", "double", "m", 0.0, 10.0, kOpen, kClosed, "", "outer diameter (Morison, added mass)", kAtStart},
       {"water_density", "double", "kg/m^3", 0.0, 1e5, kClosed, kClosed, "", "density of the water", kAtStart},
       {"normal_drag_coefficient", "double", "-", 0.0, 100.0, kClosed, kClosed, "", "Morison, flow across the cable",
@@ -125,8 +164,7 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"seabed_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "", "Coulomb friction on the seabed", kLive},
       {"cable_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "",
        "Coulomb friction on another tether or itself (obstacles: their own `friction`)", kLive},
-      {"winch_mode", "string", "-", kNone, kNone, kClosed, kClosed,
-       "`brake`, `constant_tension`, `speed`, `locked`, `strain`", "winch behaviour (see The model)", kLive},
+      {"winch_mode", "string", "-", kNone, kNone, kClosed, kClosed, "", "winch behaviour (see The model)", kLive},
       {"brake_tension", "double", "N", 0.0, 1e7, kClosed, kClosed, "", "`brake`: the spool tension at which it slips",
        kLive},
       {"winch_inertia", "double", "kg", 0.0, 1e6, kClosed, kClosed, "",

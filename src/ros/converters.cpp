@@ -418,35 +418,86 @@ geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Iso
   return wrenchMessage(force, attachment_offset.cross(force), stamp, vehicle_frame);
 }
 
+namespace
+{
+/// One field of a config as the core's parameter value.
+ParamValue configField(const TetherConfig& config, const TetherConfig::AbstractParamDescription& description)
+{
+  boost::any value;
+  description.getValue(config, value);
+  if (const auto* d = boost::any_cast<double>(&value))
+  {
+    return *d;
+  }
+  if (const auto* i = boost::any_cast<int>(&value))
+  {
+    return static_cast<std::int64_t>(*i);
+  }
+  if (const auto* b = boost::any_cast<bool>(&value))
+  {
+    return *b;
+  }
+  return boost::any_cast<std::string>(value);
+}
+}  // namespace
+
 std::string configToParams(const TetherConfig& config, TetherParams* params)
 {
   std::string errors;
   for (const auto& description : TetherConfig::__getParamDescriptions__())
   {
-    boost::any value;
-    description->getValue(config, value);
-    ParamValue param;
-    if (const auto* d = boost::any_cast<double>(&value))
-    {
-      param = *d;
-    }
-    else if (const auto* i = boost::any_cast<int>(&value))
-    {
-      param = static_cast<std::int64_t>(*i);
-    }
-    else if (const auto* b = boost::any_cast<bool>(&value))
-    {
-      param = *b;
-    }
-    else
-    {
-      param = boost::any_cast<std::string>(value);
-    }
-    const std::string error = setParameter(*params, description->name, param);
+    const std::string error = setParameter(*params, description->name, configField(config, *description));
     if (!error.empty())
     {
       errors += (errors.empty() ? "" : "; ") + error;
     }
+  }
+  return errors;
+}
+
+std::string applyConfigChanges(const TetherConfig& asked, TetherParams* requested)
+{
+  const TetherConfig shown = paramsToConfig(*requested);
+  TetherParams candidate = *requested;
+  std::vector<std::string> changed;
+  std::string errors;
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    const ParamValue value = configField(asked, *description);
+    if (value == configField(shown, *description))
+    {
+      continue;  // as shown: what the user asked for it stands (`auto` stays auto)
+    }
+    changed.push_back(description->name);
+    const std::string error = setParameter(candidate, description->name, value);
+    errors += error.empty() ? "" : (errors.empty() ? "" : "; ") + error;
+  }
+  for (const std::string& e : errors.empty() ? candidate.validate() : std::vector<std::string>{})
+  {
+    errors += (errors.empty() ? "" : "; ") + e;
+  }
+  if (!errors.empty())
+  {
+    return errors;
+  }
+  // A change that `auto` would override at once (substeps under lumped_mass with `iterations: auto`) is
+  // refused rather than dropped.
+  const TetherConfig now = paramsToConfig(candidate);
+  for (const auto& description : TetherConfig::__getParamDescriptions__())
+  {
+    const bool was_changed = std::find(changed.begin(), changed.end(), description->name) != changed.end();
+    const ParamValue value = configField(asked, *description);
+    const ParamValue runs = configField(now, *description);
+    if (was_changed && value != runs)
+    {
+      errors += (errors.empty() ? "" : "; ") + description->name + " = " + formatParamValue(value) +
+                ": `iterations: auto` chooses " + formatParamValue(runs) +
+                " here; set iterations to a number to choose it";
+    }
+  }
+  if (errors.empty())
+  {
+    *requested = candidate;
   }
   return errors;
 }

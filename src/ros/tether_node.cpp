@@ -74,7 +74,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       index_(scheduler.add(setup.options, *this, name)),
       pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
       publisher_(private_nh_, withTetherFrames(setup.options, name)),
-      diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_, topology)
+      diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_, topology),
+      requested_params_(setup.params)
 {
   warnAboutStability();
   get_tension_srv_ = private_nh_.advertiseService("get_tension", &TetherNode::onGetTension, this);
@@ -222,7 +223,17 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
     return true;
   }
   tether_.setTargetLength(target);
-  reconfigure_server_->updateConfig(paramsToConfig(params));
+  TetherConfig shown;
+  {
+    // What the user asked changes in the winch's fields only (`iterations: auto` stays auto).
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    requested_params_.winch_mode = params.winch_mode;
+    requested_params_.winch_speed = params.winch_speed;
+    requested_params_.brake_tension = params.brake_tension;
+    requested_params_.target_tension = params.target_tension;
+    shown = paramsToConfig(requested_params_);
+  }
+  reconfigure_server_->updateConfig(shown);
   response.success = true;
   response.message = "winch " + toString(params.winch_mode);
   if (params.winch_mode == WinchMode::kBrake)
@@ -250,17 +261,14 @@ bool TetherNode::onReset(std_srvs::Trigger::Request& /*request*/, std_srvs::Trig
 
 void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
 {
+  // Start from what the user asked (`iterations: auto` kept), not from the resolved values the tether runs.
   TetherParams params;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
-    params = pending_params_ ? *pending_params_ : tether_.params();
+    params = requested_params_;
   }
   const TetherParams current = params;
-  std::string error = configToParams(config, &params);
-  for (const auto& e : params.validate())
-  {
-    error += (error.empty() ? "" : "; ") + e;
-  }
+  const std::string error = applyConfigChanges(config, &params);
   if (!error.empty())
   {
     // The .cfg gives no ranges, so `config` is what was asked, unclamped: name it and what still runs.
@@ -270,7 +278,9 @@ void TetherNode::onReconfigure(TetherConfig& config, uint32_t /*level*/)
     config = used;
     return;
   }
+  config = paramsToConfig(params);  // shows what `auto` resolves to with the new values
   std::lock_guard<std::mutex> lock(pending_mutex_);
+  requested_params_ = params;
   pending_params_ = params;
 }
 

@@ -18,7 +18,8 @@ void usage(std::FILE* out)
 {
   std::fprintf(out,
                "usage: rov_tether_run SCENARIO.yaml --out DIR [--set name=value]...\n"
-               "       rov_tether_run --parameters   (prints the parameter table, as in the README)\n"
+               "       rov_tether_run --parameters[=markdown|yaml|cfg]   (prints the README's parameter table,\n"
+               "         config/default.yaml or cfg/Tether.cfg as the parameter table generates them)\n"
                "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
                "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
                "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
@@ -45,9 +46,20 @@ int main(int argc, char** argv)
       usage(stdout);
       return 0;
     }
-    if (arg == "--parameters")
+    if (arg == "--parameters" || arg.rfind("--parameters=", 0) == 0)
     {
-      std::fputs(rov_tether::parameterTableMarkdown().c_str(), stdout);
+      // The files generated from the parameter table (scripts/generate_parameters.py writes them).
+      const std::string format = arg == "--parameters" ? "markdown" : arg.substr(std::strlen("--parameters="));
+      if (format != "markdown" && format != "yaml" && format != "cfg")
+      {
+        std::fprintf(stderr, "rov_tether_run: --parameters=%s: expected markdown, yaml or cfg\n", format.c_str());
+        return 2;
+      }
+      std::fputs((format == "markdown" ? rov_tether::parameterTableMarkdown()
+                  : format == "yaml"   ? rov_tether::defaultYaml()
+                                       : rov_tether::dynamicReconfigureCfg())
+                     .c_str(),
+                 stdout);
       return 0;
     }
     if (arg == "--max-tension-warning" && i + 1 < argc)

@@ -116,7 +116,8 @@ TEST(Converters, ConfigBoundsAreTheTableRangesAndDifferencesNameAskedAndUsed)
   TetherConfig asked = used;
   asked.iterations = 0;
   asked.drag = 7.0;
-  EXPECT_EQ(configDifferences(asked, used), "drag: asked 7.0, used 0.9; iterations: asked 0, used 10");
+  // In the table's order (the .cfg is generated from it).
+  EXPECT_EQ(configDifferences(asked, used), "iterations: asked 0, used 10; drag: asked 7.0, used 0.9");
   EXPECT_EQ(configDifferences(used, used), "");
   // The server clamps a request before the node's callback sees it: to the .cfg's (open) ranges, so what
   // was asked arrives as asked and the node can refuse it by name.
@@ -447,6 +448,77 @@ TEST(Reconfigure, AutoValuesShowAsWhatTheyChose)
   ASSERT_NO_THROW(config = paramsToConfig(params));
   EXPECT_EQ(config.iterations, params.resolved().iterations);
   EXPECT_GE(config.iterations, 1);
+}
+
+// A live change keeps what the user asked apart from what it resolved to: the request starts from the asked
+// parameters, and only the fields that differ from what the server shows are set. Before, the node started
+// from the resolved values, so the first live change of anything froze `iterations: auto` to its number.
+// pbd's auto count is ceil(L a h^2 / (2 tol dL^2)), a = weight_in_water / mass_per_length (resolved()): with the
+// defaults (L 10 m, h 0.005 s, dL 0.1 m, tol 0.01) 12.5 -> 13 at 1 N/m and 62.5 -> 63 at 5 N/m.
+TEST(Reconfigure, AutoIterationsStayAutoThroughALiveChange)
+{
+  TetherParams asked;
+  asked.solver = SolverType::kPbd;
+  asked.weight_in_water = 1.0;
+  asked.iterations_auto = true;
+  ASSERT_EQ(asked.resolved().iterations, 13);
+  TetherConfig config = paramsToConfig(asked);
+  config.weight_in_water = 5.0;  // the one change: a heavier cable needs more sweeps
+  ASSERT_EQ(applyConfigChanges(config, &asked), "");
+  EXPECT_TRUE(asked.iterations_auto);
+  EXPECT_EQ(asked.weight_in_water, 5.0);
+  EXPECT_EQ(asked.resolved().iterations, 63);  // resolved again, not frozen at 13
+
+  // A change of solver keeps auto too: direct's auto is its Newton limit.
+  config = paramsToConfig(asked);
+  config.solver = "direct";
+  ASSERT_EQ(applyConfigChanges(config, &asked), "");
+  EXPECT_TRUE(asked.iterations_auto);
+  EXPECT_EQ(asked.resolved().iterations, kDirectIterations);
+
+  // A number for iterations ends auto; the next change keeps that number.
+  config = paramsToConfig(asked);
+  config.iterations = 40;
+  ASSERT_EQ(applyConfigChanges(config, &asked), "");
+  EXPECT_FALSE(asked.iterations_auto);
+  EXPECT_EQ(asked.iterations, 40);
+  config = paramsToConfig(asked);
+  config.solver = "pbd";
+  ASSERT_EQ(applyConfigChanges(config, &asked), "");
+  EXPECT_EQ(asked.resolved().iterations, 40);
+}
+
+// `iterations: auto` chooses lumped_mass's substeps (half its critical step): a live substeps would be
+// overridden at once, so it is refused with the reason, and nothing changes. `segment_length: auto` is not
+// live (it rebuilds the cable), so no request can reach it.
+TEST(Reconfigure, ALiveChangeAutoWouldOverrideIsRefused)
+{
+  TetherParams asked;
+  asked.solver = SolverType::kLumpedMass;
+  asked.iterations_auto = true;
+  const int chosen = asked.resolved().substeps;
+  ASSERT_GT(chosen, 1);
+  const TetherParams before = asked;
+  TetherConfig config = paramsToConfig(asked);
+  EXPECT_EQ(config.substeps, chosen);
+  config.substeps = chosen + 5;
+  const std::string error = applyConfigChanges(config, &asked);
+  EXPECT_NE(error.find("substeps = " + std::to_string(chosen + 5)), std::string::npos) << error;
+  EXPECT_NE(error.find("iterations: auto"), std::string::npos) << error;
+  for (const std::string& name : parameterNames())
+  {
+    EXPECT_TRUE(test::sameParamValue(getParameter(asked, name), getParameter(before, name))) << name;
+  }
+  // With a number for iterations in the same request, substeps is the user's.
+  config.iterations = 20;  // not the 10 shown (auto leaves lumped_mass's iterations as they were)
+  ASSERT_EQ(applyConfigChanges(config, &asked), "");
+  EXPECT_FALSE(asked.iterations_auto);
+  EXPECT_EQ(asked.resolved().substeps, chosen + 5);
+  // A bad field is named, and nothing changes.
+  config = paramsToConfig(asked);
+  config.drag = 7.0;
+  EXPECT_NE(applyConfigChanges(config, &asked).find("drag"), std::string::npos);
+  EXPECT_EQ(asked.drag, before.drag);
 }
 
 // The dynamic_reconfigure server clamps the whole set on every request to the .cfg's ranges, which are

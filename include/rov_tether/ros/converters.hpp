@@ -119,8 +119,18 @@ geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Iso
 /// validate relations between fields (TetherParams::validate() does).
 std::string configToParams(const TetherConfig& config, TetherParams* params);
 
-/// The dynamic_reconfigure view of `params` (every field of the .cfg, read by name).
+/// The dynamic_reconfigure view of `params` (every field of the .cfg, read by name); `auto` values show as
+/// what they resolve to.
 TetherConfig paramsToConfig(const TetherParams& params);
+
+/// A dynamic_reconfigure request applied to `requested`, the parameters as the user asked for them (`auto`
+/// kept apart from what it resolves to). Only the fields of `asked` that differ from what the server shows,
+/// paramsToConfig(*requested), are set: a field left as shown keeps what was asked, so `iterations: auto`
+/// stays auto and is resolved again from the new values, while a new number for iterations ends auto.
+/// Returns "" or every problem, each naming its parameter (the field's own, then validate()'s, then a change
+/// `auto` would override at once: substeps under lumped_mass with `iterations: auto`); `requested` is
+/// changed only when there is none.
+std::string applyConfigChanges(const TetherConfig& asked, TetherParams* requested);
 
 /// Every numeric field of the .cfg at the table's lower (`upper` false) or upper bound, for the server's
 /// setConfigMin/Max: rqt_reconfigure shows these ranges, while the .cfg itself gives none, so the server

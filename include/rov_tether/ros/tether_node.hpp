@@ -93,6 +93,9 @@ class TetherNode : public TetherHooks
   std::unique_ptr<dynamic_reconfigure::Server<TetherConfig>> reconfigure_server_;
   std::mutex pending_mutex_;
   std::optional<TetherParams> pending_params_;  ///< Written by dynamic_reconfigure, applied between steps.
+  /// The parameters as the user asked for them (`iterations: auto` kept; the tether runs them resolved), the
+  /// start of every dynamic_reconfigure and set_winch change. Guarded by pending_mutex_.
+  TetherParams requested_params_;
   std::vector<double> tensions_;
 };
 
