@@ -16,6 +16,7 @@
 #include "rov_tether/make_obstacle.hpp"
 #include "rov_tether/spec/camera_reader.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
+#include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether
@@ -42,90 +43,17 @@ std::string readFile(const std::string& path, std::string* text)
   return "";
 }
 
-/// Converts a YAML scalar to the most specific ParamValue: bool, integer, number, then string.
-ParamValue scalarValue(const YAML::Node& node)
-{
-  const std::string& text = node.Scalar();
-  if (node.Tag() != "!")  // unquoted: may be a bool or a number
-  {
-    bool b;
-    std::int64_t i;
-    double d;
-    if (YAML::convert<bool>::decode(node, b) && text.find_first_of("0123456789") == std::string::npos)
-    {
-      return b;
-    }
-    if (YAML::convert<std::int64_t>::decode(node, i))
-    {
-      return i;
-    }
-    if (YAML::convert<double>::decode(node, d))
-    {
-      return d;
-    }
-  }
-  return text;
-}
-
-/// Applies every key of a YAML map to params; collects all problems (type and range).
+/// Applies every key of a YAML map to params (spec::readTetherParams, the node's reader too); collects
+/// all problems (type and range) and prints the warnings.
 std::string applyParamMap(const YAML::Node& map, const std::string& prefix, TetherParams* params)
 {
-  if (!map.IsMap())
+  std::vector<std::string> warnings;
+  const std::string error = spec::readTetherParams(map, prefix, spec::ParamKeys::kEvery, params, &warnings);
+  for (const auto& warning : warnings)
   {
-    return prefix.empty() ? "parameters: expected a map of name: value" : prefix + ": expected a map of name: value";
+    std::fprintf(stderr, "rov_tether: warning: %s\n", warning.c_str());
   }
-  std::vector<std::string> errors;
-  std::vector<std::pair<std::string, ParamValue>> values;
-  for (const auto& entry : map)
-  {
-    const std::string name = entry.first.as<std::string>();
-    ParamValue value;
-    if (entry.second.IsSequence())
-    {
-      std::vector<double> list;
-      for (const auto& item : entry.second)
-      {
-        double number = 0.0;
-        if (!item.IsScalar() || !YAML::convert<double>::decode(item, number))
-        {
-          list.clear();
-          break;
-        }
-        list.push_back(number);
-      }
-      if (list.size() != entry.second.size())
-      {
-        errors.push_back(prefix + name + ": expected a list of numbers");
-        continue;
-      }
-      value = list;
-    }
-    else if (entry.second.IsScalar())
-    {
-      value = scalarValue(entry.second);
-    }
-    else
-    {
-      errors.push_back(prefix + name + ": expected a single value or a list of numbers");
-      continue;
-    }
-    values.emplace_back(name, value);
-  }
-  // The one loader of parameter values, shared with the parameter server (ros/param_loader.cpp).
-  for (const auto& error : applyParameters(values, params))
-  {
-    errors.push_back(prefix + error);
-  }
-  for (const auto& warning : parameterWarnings(values))
-  {
-    std::fprintf(stderr, "rov_tether: warning: %s%s\n", prefix.c_str(), warning.c_str());
-  }
-  std::string joined;
-  for (const auto& error : errors)
-  {
-    joined += (joined.empty() ? "" : "; ") + error;
-  }
-  return joined;
+  return error;
 }
 
 /// The scenario's `cameras` (spec::readCameras, as the node's): each rides on the vehicle; at most 1e6
@@ -157,25 +85,6 @@ bool isDirectoryName(const std::string& name)
   return !name.empty() && name.size() <= 64 &&
          name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
              std::string::npos;
-}
-
-/// Reads a spool position; "" or a message naming `field`.
-std::string readSpool(const YAML::Node& node, const std::string& field, Position* spool)
-{
-  if (!node)
-  {
-    return field + ": missing (expected [x, y, z] in m)";
-  }
-  const std::string error = readVector(node, field, 3, spool->data());
-  if (!error.empty())
-  {
-    return error;
-  }
-  if (spool->cwiseAbs().maxCoeff() > Tether::kMaxCoordinate)
-  {
-    return field + ": each coordinate must be within +-1e6 m";
-  }
-  return "";
 }
 
 /// Reads a vehicle path of [t, x, y, z] waypoints; "" or a message naming `field`.
@@ -244,7 +153,7 @@ std::string readTether(const YAML::Node& node, const std::string& field, Scenari
       return error;
     }
   }
-  const std::string error = readSpool(node["spool"], field + ".spool", &tether->spool);
+  const std::string error = spec::readPosition(node["spool"], field + ".spool", &tether->spool);
   if (!error.empty())
   {
     return error;
@@ -369,7 +278,7 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
         return error;
       }
     }
-    error = readSpool(root["spool"], "spool", &result.spool);
+    error = spec::readPosition(root["spool"], "spool", &result.spool);
     if (!error.empty())
     {
       return error;

@@ -526,8 +526,7 @@ TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
   EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': wrong type (a list)"), std::string::npos);
   list[0] = std::string("x");
   bad["drag"] = list;
-  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': expected a single value or a list of numbers"),
-            std::string::npos);
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("drag: expected a list of numbers"), std::string::npos);
   // A list parameter: the current [m/s].
   XmlRpc::XmlRpcValue good;
   XmlRpc::XmlRpcValue current;
@@ -542,6 +541,45 @@ TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
   short_list[0] = 0.5, short_list[1] = 0.0;
   good["current"] = short_list;
   EXPECT_NE(loadTetherParams(good, &unchanged).find("expected a list of 3 numbers"), std::string::npos);
+}
+
+// One reader of model parameters (spec::readTetherParams) for the node and the runner: the same values on
+// the parameter server (XmlRpc, converted to YAML) and in a scenario's `params:` give the same parameters,
+// whatever their type (integer, number, bool, string, list, NaN); a bad value is refused with the same
+// message by both.
+TEST(ParameterServer, TheNodeAndTheRunnerReadParametersWithOneReader)
+{
+  const std::string good =
+      "{iterations: 4, drag: 0.8, bending: false, winch_mode: locked, solver: direct, "
+      "current: [0.5, 0, -0.1], seabed_z: -12.5, payout_threshold: 1}";
+  TetherParams node;
+  ASSERT_EQ(loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(good)), &node), "");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + good, &scenario), "");
+  for (const auto& name : parameterNames())
+  {
+    EXPECT_EQ(getParameter(node, name), getParameter(scenario.params, name)) << name;
+  }
+  EXPECT_EQ(node.iterations, 4);
+  EXPECT_EQ(node.current[0], 0.5);
+  EXPECT_EQ(node.seabed_z, -12.5);
+  // NaN (no seabed) from the parameter server, as config/default.yaml's `.nan` loads.
+  XmlRpc::XmlRpcValue nan;
+  nan["seabed_z"] = std::nan("");
+  node.seabed_z = 0.0;
+  ASSERT_EQ(loadTetherParams(nan, &node), "");
+  EXPECT_TRUE(std::isnan(node.seabed_z));
+  const std::string bad[] = {"{iterations: 0}",   "{drag: lots}",   "{drag: [1]}", "{current: [1, a, 2]}",
+                             "{current: [1, 2]}", "{solver: fast}", "{bending: 3}"};
+  for (const auto& entry : bad)
+  {
+    TetherParams unchanged;
+    const std::string from_node = loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(entry)), &unchanged);
+    const std::string from_runner = parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + entry, &scenario);
+    EXPECT_FALSE(from_node.empty()) << entry;
+    EXPECT_EQ("params." + from_node, from_runner) << entry;
+    EXPECT_EQ(unchanged.iterations, TetherParams{}.iterations) << entry;  // nothing applied on error
+  }
 }
 
 TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
