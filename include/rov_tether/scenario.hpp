@@ -22,7 +22,7 @@ struct Waypoint
 /// DIR/cameras/<name>/; see the camera library's DatasetWriter).
 struct ScenarioCamera
 {
-  std::string name;                                    ///< Directory name: letters, digits, '_' and '-'.
+  std::string name;  ///< 1-64 letters, digits or '_', not a digit first (spec::readCameras: the node's rule too).
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< In the vehicle frame (x forward, z up) [m].
   /// Roll, pitch, yaw of the camera in the vehicle frame [deg], of a frame whose x axis looks along the
   /// view and z is up (pitch > 0 looks down); the image's optical frame (z forward, x right, y down)

@@ -7,6 +7,9 @@
 #include <sstream>
 #include <vector>
 
+#include "rov_tether/ros/xmlrpc_yaml.hpp"
+#include "rov_tether/spec/tether_reader.hpp"
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -155,83 +158,21 @@ class OptionReader
 
 }  // namespace
 
-bool toParamValue(const XmlRpc::XmlRpcValue& value, ParamValue* out)
-{
-  auto& v = const_cast<XmlRpc::XmlRpcValue&>(value);
-  switch (value.getType())
-  {
-    case XmlRpc::XmlRpcValue::TypeBoolean:
-      *out = static_cast<bool>(v);
-      return true;
-    case XmlRpc::XmlRpcValue::TypeInt:
-      *out = static_cast<std::int64_t>(static_cast<int>(v));
-      return true;
-    case XmlRpc::XmlRpcValue::TypeDouble:
-      *out = static_cast<double>(v);
-      return true;
-    case XmlRpc::XmlRpcValue::TypeString:
-      *out = static_cast<std::string>(v);
-      return true;
-    case XmlRpc::XmlRpcValue::TypeArray:
-    {
-      std::vector<double> list;
-      for (int i = 0; i < v.size(); ++i)
-      {
-        double number = 0.0;
-        if (!readNumber(v[i], &number))
-        {
-          return false;
-        }
-        list.push_back(number);
-      }
-      *out = list;
-      return true;
-    }
-    default:
-      return false;
-  }
-}
-
 std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* params)
 {
   if (dict.getType() != XmlRpc::XmlRpcValue::TypeStruct)
   {
     return "parameters: expected a map of name: value";
   }
-  std::vector<std::string> errors;
-  std::vector<std::pair<std::string, ParamValue>> values;
-  for (const auto& name : parameterNames())
-  {
-    if (!dict.hasMember(name))
-    {
-      continue;
-    }
-    ParamValue value;
-    if (!toParamValue(dict[name], &value))
-    {
-      errors.push_back("parameter '" + name + "': expected a single value or a list of numbers");
-      continue;
-    }
-    values.emplace_back(name, value);
-  }
-  if (errors.empty())
-  {
-    errors = applyParameters(values, params);  // the core's one loader, as for scenario files
-  }
-  for (const auto& warning : parameterWarnings(values))
+  // The one reader of model parameters (spec::readTetherParams, as the scenario runner's); the namespace's
+  // other keys are node options and the world's (loadNodeOptions, unknownParameters).
+  std::vector<std::string> warnings;
+  const std::string error = spec::readTetherParams(toYaml(dict), "", spec::ParamKeys::kModelOnly, params, &warnings);
+  for (const auto& warning : warnings)
   {
     ROS_WARN("tether_node: %s", warning.c_str());
   }
-  if (!errors.empty())
-  {
-    std::string joined;
-    for (const auto& e : errors)
-    {
-      joined += (joined.empty() ? "" : "; ") + e;
-    }
-    return joined;
-  }
-  return "";
+  return error;
 }
 
 std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options)

@@ -1,5 +1,6 @@
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -35,8 +36,13 @@ YAML::Node toYaml(const XmlRpc::XmlRpcValue& value)
       return YAML::Node(std::to_string(static_cast<int>(v)));
     case XmlRpc::XmlRpcValue::TypeDouble:
     {
+      const double number = static_cast<double>(v);
+      if (!std::isfinite(number))  // YAML's spelling (.nan, .inf, -.inf), which yaml-cpp reads back
+      {
+        return YAML::Node(std::isnan(number) ? ".nan" : number > 0.0 ? ".inf" : "-.inf");
+      }
       char text[32];
-      std::snprintf(text, sizeof text, "%.17g", static_cast<double>(v));
+      std::snprintf(text, sizeof text, "%.17g", number);
       return YAML::Node(std::string(text));
     }
     case XmlRpc::XmlRpcValue::TypeString:

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "rov_tether/make_obstacle.hpp"
+#include "rov_tether/spec/camera_reader.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
+#include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether
@@ -41,207 +43,38 @@ std::string readFile(const std::string& path, std::string* text)
   return "";
 }
 
-/// Converts a YAML scalar to the most specific ParamValue: bool, integer, number, then string.
-ParamValue scalarValue(const YAML::Node& node)
-{
-  const std::string& text = node.Scalar();
-  if (node.Tag() != "!")  // unquoted: may be a bool or a number
-  {
-    bool b;
-    std::int64_t i;
-    double d;
-    if (YAML::convert<bool>::decode(node, b) && text.find_first_of("0123456789") == std::string::npos)
-    {
-      return b;
-    }
-    if (YAML::convert<std::int64_t>::decode(node, i))
-    {
-      return i;
-    }
-    if (YAML::convert<double>::decode(node, d))
-    {
-      return d;
-    }
-  }
-  return text;
-}
-
-/// Applies every key of a YAML map to params; collects all problems (type and range).
+/// Applies every key of a YAML map to params (spec::readTetherParams, the node's reader too); collects
+/// all problems (type and range) and prints the warnings.
 std::string applyParamMap(const YAML::Node& map, const std::string& prefix, TetherParams* params)
 {
-  if (!map.IsMap())
+  std::vector<std::string> warnings;
+  const std::string error = spec::readTetherParams(map, prefix, spec::ParamKeys::kEvery, params, &warnings);
+  for (const auto& warning : warnings)
   {
-    return prefix.empty() ? "parameters: expected a map of name: value" : prefix + ": expected a map of name: value";
+    std::fprintf(stderr, "rov_tether: warning: %s\n", warning.c_str());
   }
-  std::vector<std::string> errors;
-  std::vector<std::pair<std::string, ParamValue>> values;
-  for (const auto& entry : map)
-  {
-    const std::string name = entry.first.as<std::string>();
-    ParamValue value;
-    if (entry.second.IsSequence())
-    {
-      std::vector<double> list;
-      for (const auto& item : entry.second)
-      {
-        double number = 0.0;
-        if (!item.IsScalar() || !YAML::convert<double>::decode(item, number))
-        {
-          list.clear();
-          break;
-        }
-        list.push_back(number);
-      }
-      if (list.size() != entry.second.size())
-      {
-        errors.push_back(prefix + name + ": expected a list of numbers");
-        continue;
-      }
-      value = list;
-    }
-    else if (entry.second.IsScalar())
-    {
-      value = scalarValue(entry.second);
-    }
-    else
-    {
-      errors.push_back(prefix + name + ": expected a single value or a list of numbers");
-      continue;
-    }
-    values.emplace_back(name, value);
-  }
-  // The one loader of parameter values, shared with the parameter server (ros/param_loader.cpp).
-  for (const auto& error : applyParameters(values, params))
-  {
-    errors.push_back(prefix + error);
-  }
-  for (const auto& warning : parameterWarnings(values))
-  {
-    std::fprintf(stderr, "rov_tether: warning: %s%s\n", prefix.c_str(), warning.c_str());
-  }
-  std::string joined;
-  for (const auto& error : errors)
-  {
-    joined += (joined.empty() ? "" : "; ") + error;
-  }
-  return joined;
+  return error;
 }
 
-/// Reads one entry of `cameras` (see ScenarioCamera); "" or a message naming the field.
-std::string readCamera(const YAML::Node& node, const std::string& field, double duration, ScenarioCamera* camera)
-{
-  if (!node.IsMap())
-  {
-    return field + ": expected a map with name, position, orientation, rate, width, height, K, D";
-  }
-  for (const auto& entry : node)
-  {
-    const std::string key = entry.first.as<std::string>();
-    if (key != "name" && key != "position" && key != "orientation" && key != "rate" && key != "width" &&
-        key != "height" && key != "K" && key != "D")
-    {
-      return field + ": unknown field '" + key + "' (expected name, position, orientation, rate, width, height, K, D)";
-    }
-  }
-  for (const char* required : {"name", "width", "height", "K"})
-  {
-    if (!node[required])
-    {
-      return field + "." + required + ": missing";
-    }
-  }
-  camera->name = node["name"].Scalar();
-  if (camera->name.empty() || camera->name.size() > 64 ||
-      camera->name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-          std::string::npos)
-  {
-    return field + ".name = '" + camera->name + "': expected 1-64 letters, digits, '_' or '-' (a directory name)";
-  }
-  std::string error;
-  if (node["position"] &&
-      !(error = readVector(node["position"], field + ".position", 3, camera->position.data())).empty())
-  {
-    return error;
-  }
-  if (node["orientation"] &&
-      !(error = readVector(node["orientation"], field + ".orientation", 3, camera->orientation.data())).empty())
-  {
-    return error;
-  }
-  if (camera->position.cwiseAbs().maxCoeff() > 100.0 || camera->orientation.cwiseAbs().maxCoeff() > 360.0)
-  {
-    return field + ": position must be within +-100 m of the vehicle and orientation within +-360 deg";
-  }
-  if (node["rate"] && !(error = readNumber(node["rate"], field + ".rate", &camera->rate)).empty())
-  {
-    return error;
-  }
-  if (!(camera->rate > 0.0 && camera->rate <= 1000.0))
-  {
-    return field + ".rate = " + std::to_string(camera->rate) + ": must be in (0, 1000] Hz";
-  }
-  if (duration * camera->rate > kMaxOutputTimes)
-  {
-    return field + ".rate: duration x rate = " + std::to_string(duration * camera->rate) + ": more than 1e6 frames";
-  }
-  double size[2];
-  for (int i = 0; i < 2; ++i)
-  {
-    const std::string name = i == 0 ? "width" : "height";
-    if (!(error = readNumber(node[name], field + "." + name, &size[i])).empty())
-    {
-      return error;
-    }
-    if (size[i] != std::floor(size[i]) || size[i] < 1 || size[i] > camera::CameraIntrinsics::kMaxSide)
-    {
-      return field + "." + name + " = " + std::to_string(size[i]) + ": must be a whole number in [1, 16384] px";
-    }
-  }
-  camera->intrinsics.width = static_cast<int>(size[0]);
-  camera->intrinsics.height = static_cast<int>(size[1]);
-  if (!(error = readVector(node["K"], field + ".K", 9, camera->intrinsics.K.data())).empty())
-  {
-    return error;
-  }
-  if (node["D"])
-  {
-    const YAML::Node d = node["D"];
-    if (!d.IsSequence() || (d.size() != 0 && d.size() != 4 && d.size() != 5))
-    {
-      return field + ".D: expected a list of 5 plumb_bob coefficients (k1, k2, p1, p2, k3), or 4, or none";
-    }
-    camera->intrinsics.D.resize(d.size());
-    if (d.size() > 0 && !(error = readVector(d, field + ".D", d.size(), camera->intrinsics.D.data())).empty())
-    {
-      return error;
-    }
-  }
-  const auto errors = camera->intrinsics.validate(field + ".");
-  return errors.empty() ? "" : errors.front();
-}
-
+/// The scenario's `cameras` (spec::readCameras, as the node's): each rides on the vehicle; at most 1e6
+/// frames each over the run.
 std::string readCameras(const YAML::Node& node, double duration, std::vector<ScenarioCamera>* cameras)
 {
-  if (!node.IsSequence())
+  std::vector<spec::CameraSpec> read;
+  const std::string error = spec::readCameras(node, spec::CameraMount::kVehicle, {}, &read);
+  if (!error.empty())
   {
-    return "cameras: expected a list of cameras";
+    return error;
   }
-  for (std::size_t k = 0; k < node.size(); ++k)
+  for (std::size_t k = 0; k < read.size(); ++k)
   {
-    ScenarioCamera camera;
-    const std::string error = readCamera(node[k], "cameras[" + std::to_string(k) + "]", duration, &camera);
-    if (!error.empty())
+    const spec::CameraSpec& camera = read[k];
+    if (duration * camera.rate > kMaxOutputTimes)
     {
-      return error;
+      return "cameras[" + std::to_string(k) + "].rate: duration x rate = " + std::to_string(duration * camera.rate) +
+             ": more than 1e6 frames";
     }
-    for (const auto& other : *cameras)
-    {
-      if (other.name == camera.name)
-      {
-        return "cameras[" + std::to_string(k) + "].name = '" + camera.name + "': used twice";
-      }
-    }
-    cameras->push_back(camera);
+    cameras->push_back({camera.name, camera.position, camera.orientation, camera.rate, camera.intrinsics});
   }
   return "";
 }
@@ -252,25 +85,6 @@ bool isDirectoryName(const std::string& name)
   return !name.empty() && name.size() <= 64 &&
          name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
              std::string::npos;
-}
-
-/// Reads a spool position; "" or a message naming `field`.
-std::string readSpool(const YAML::Node& node, const std::string& field, Position* spool)
-{
-  if (!node)
-  {
-    return field + ": missing (expected [x, y, z] in m)";
-  }
-  const std::string error = readVector(node, field, 3, spool->data());
-  if (!error.empty())
-  {
-    return error;
-  }
-  if (spool->cwiseAbs().maxCoeff() > Tether::kMaxCoordinate)
-  {
-    return field + ": each coordinate must be within +-1e6 m";
-  }
-  return "";
 }
 
 /// Reads a vehicle path of [t, x, y, z] waypoints; "" or a message naming `field`.
@@ -339,7 +153,7 @@ std::string readTether(const YAML::Node& node, const std::string& field, Scenari
       return error;
     }
   }
-  const std::string error = readSpool(node["spool"], field + ".spool", &tether->spool);
+  const std::string error = spec::readPosition(node["spool"], field + ".spool", &tether->spool);
   if (!error.empty())
   {
     return error;
@@ -464,7 +278,7 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
         return error;
       }
     }
-    error = readSpool(root["spool"], "spool", &result.spool);
+    error = spec::readPosition(root["spool"], "spool", &result.spool);
     if (!error.empty())
     {
       return error;

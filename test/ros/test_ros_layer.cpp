@@ -598,8 +598,7 @@ TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
   EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': wrong type (a list)"), std::string::npos);
   list[0] = std::string("x");
   bad["drag"] = list;
-  EXPECT_NE(loadTetherParams(bad, &unchanged).find("'drag': expected a single value or a list of numbers"),
-            std::string::npos);
+  EXPECT_NE(loadTetherParams(bad, &unchanged).find("drag: expected a list of numbers"), std::string::npos);
   // A list parameter: the current [m/s].
   XmlRpc::XmlRpcValue good;
   XmlRpc::XmlRpcValue current;
@@ -614,6 +613,45 @@ TEST(ParameterServer, ModelParametersLoadThroughTheCoreLoader)
   short_list[0] = 0.5, short_list[1] = 0.0;
   good["current"] = short_list;
   EXPECT_NE(loadTetherParams(good, &unchanged).find("expected a list of 3 numbers"), std::string::npos);
+}
+
+// One reader of model parameters (spec::readTetherParams) for the node and the runner: the same values on
+// the parameter server (XmlRpc, converted to YAML) and in a scenario's `params:` give the same parameters,
+// whatever their type (integer, number, bool, string, list, NaN); a bad value is refused with the same
+// message by both.
+TEST(ParameterServer, TheNodeAndTheRunnerReadParametersWithOneReader)
+{
+  const std::string good =
+      "{iterations: 4, drag: 0.8, bending: false, winch_mode: locked, solver: direct, "
+      "current: [0.5, 0, -0.1], seabed_z: -12.5, payout_threshold: 1}";
+  TetherParams node;
+  ASSERT_EQ(loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(good)), &node), "");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + good, &scenario), "");
+  for (const auto& name : parameterNames())
+  {
+    EXPECT_EQ(getParameter(node, name), getParameter(scenario.params, name)) << name;
+  }
+  EXPECT_EQ(node.iterations, 4);
+  EXPECT_EQ(node.current[0], 0.5);
+  EXPECT_EQ(node.seabed_z, -12.5);
+  // NaN (no seabed) from the parameter server, as config/default.yaml's `.nan` loads.
+  XmlRpc::XmlRpcValue nan;
+  nan["seabed_z"] = std::nan("");
+  node.seabed_z = 0.0;
+  ASSERT_EQ(loadTetherParams(nan, &node), "");
+  EXPECT_TRUE(std::isnan(node.seabed_z));
+  const std::string bad[] = {"{iterations: 0}",   "{drag: lots}",   "{drag: [1]}", "{current: [1, a, 2]}",
+                             "{current: [1, 2]}", "{solver: fast}", "{bending: 3}"};
+  for (const auto& entry : bad)
+  {
+    TetherParams unchanged;
+    const std::string from_node = loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(entry)), &unchanged);
+    const std::string from_runner = parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + entry, &scenario);
+    EXPECT_FALSE(from_node.empty()) << entry;
+    EXPECT_EQ("params." + from_node, from_runner) << entry;
+    EXPECT_EQ(unchanged.iterations, TetherParams{}.iterations) << entry;  // nothing applied on error
+  }
 }
 
 TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
@@ -721,11 +759,11 @@ TEST(CameraConfig, BadEntriesAndCameraInfosAreNamed)
       {"[{name: a, frame: f}]", "cameras[0]: give either info_topic or the fixed intrinsics"},
       {"[{name: a, frame: f, info_topic: i, " + fixed + "}]", "give either info_topic or the fixed"},
       {"[{name: a, frame: f, info_topic: i, image_topic: c, rate: 5}]", "cameras[0]: give either image_topic or rate"},
-      {"[{name: a, frame: f, info_topic: i, rate: 0}]", "cameras[0].rate: must be a number in (0, 1000]"},
+      {"[{name: a, frame: f, info_topic: i, rate: 0}]", "cameras[0].rate = 0: must be in (0, 1000] Hz"},
       {"[{name: a, frame: f, width: 64, height: 48, K: [50, 0, 31.5]}]", "cameras[0].K: expected a list of 9"},
-      {"[{name: a, frame: f, " + fixed + ", D: [1, 2]}]", "cameras[0].D: expected a list of 0 or 4 or 5"},
+      {"[{name: a, frame: f, " + fixed + ", D: [1, 2]}]", "cameras[0].D: expected a list of 5"},
       {"[{name: 2a, frame: f, info_topic: i}]", "cameras[0].name = '2a'"},
-      {"[{name: t0, frame: f, info_topic: i}]", "cameras[0].name = 't0': already used"},
+      {"[{name: t0, frame: f, info_topic: i}]", "cameras[0].name = 't0': already used by a tether"},
       {"[{name: a, frame: f, info_topic: i, fov: 3}]", "cameras[0]: unknown field 'fov'"},
   };
   for (const auto& [yaml, expected] : cases)
@@ -751,6 +789,73 @@ TEST(CameraConfig, BadEntriesAndCameraInfosAreNamed)
   info.binning_x = 0;
   info.K[0] = 0.0;
   EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("fx"), std::string::npos);
+}
+
+// One reader of cameras (spec::readCameras) for the node and the runner: the same camera described on
+// the parameter server (XmlRpc, converted to YAML) and in a scenario file reads the same (name, rate,
+// intrinsics); only how it is placed differs (a tf frame on the node, a pose on the vehicle in a scenario).
+TEST(CameraConfig, TheNodeAndTheRunnerReadTheSameCamera)
+{
+  const std::string camera =
+      "name: fwd_1, rate: 12.5, width: 640, height: 480, "
+      "K: [400.0, 0.0, 319.5, 0.0, 401.0, 239.5, 0.0, 0.0, 1.0], D: [-0.05, 0.01, 0.0, 0.0, 0.0]";
+  std::vector<CameraConfig> node;
+  ASSERT_EQ(
+      loadCameraConfigs(rov_tether::test::toXmlRpc(YAML::Load("[{frame: f, " + camera + "}]")), {"tether"}, &node), "");
+  Scenario scenario;
+  ASSERT_EQ(
+      parseScenario("spool: [0, 0, 0]\nvehicle: [[0, 1, 0, 0]]\nduration: 1\ncameras: [{position: [0.3, 0, 0.1], " +
+                        camera + "}]",
+                    &scenario),
+      "");
+  ASSERT_EQ(node.size(), 1u);
+  ASSERT_EQ(scenario.cameras.size(), 1u);
+  const ScenarioCamera& runner = scenario.cameras[0];
+  EXPECT_EQ(node[0].name, "fwd_1");
+  EXPECT_EQ(node[0].name, runner.name);
+  EXPECT_EQ(node[0].rate, 12.5);
+  EXPECT_EQ(node[0].rate, runner.rate);
+  EXPECT_EQ(node[0].intrinsics.width, 640);
+  EXPECT_EQ(node[0].intrinsics.fy(), 401.0);
+  EXPECT_EQ(node[0].intrinsics.D, runner.intrinsics.D);  // as written, not padded to 5
+  EXPECT_EQ(node[0].intrinsics, runner.intrinsics);
+  EXPECT_EQ(runner.position, Eigen::Vector3d(0.3, 0.0, 0.1));
+}
+
+// A bad field of a camera is refused by the node and the runner with the same message, naming the entry,
+// the field, the value and what is allowed; one naming rule (a ROS name and a directory name) for both.
+TEST(CameraConfig, TheNodeAndTheRunnerRefuseABadCameraAlike)
+{
+  const std::string intrinsics = "width: 64, height: 48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]";
+  const std::pair<std::string, std::string> cases[] = {
+      {"name: 2a, " + intrinsics, "cameras[0].name = '2a': expected 1-64 letters, digits or '_', not a digit first"},
+      {"name: a-b, " + intrinsics, "cameras[0].name = 'a-b'"},
+      {"name: " + std::string(65, 'a') + ", " + intrinsics, "expected 1-64 letters"},
+      {"name: a, rate: 0, " + intrinsics, "cameras[0].rate = 0: must be in (0, 1000] Hz"},
+      {"name: a, rate: 1001, " + intrinsics, "cameras[0].rate = 1001: must be in (0, 1000] Hz"},
+      {"name: a, width: 64.5, height: 48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]",
+       "cameras[0].width = 64.5: must be a whole number in [1, 16384] px"},
+      {"name: a, width: 64, height: 0, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]",
+       "cameras[0].height = 0: must be a whole number in [1, 16384] px"},
+      {"name: a, width: 64, height: 48", "cameras[0].K: missing"},
+      {"name: a, width: 64, height: 48, K: [50, 0, 31.5]", "cameras[0].K: expected a list of 9 numbers"},
+      {"name: a, width: 64, height: 48, K: [-50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]", "cameras[0].K: fx = K[0] = -50"},
+      {"name: a, D: [1, 2], " + intrinsics, "cameras[0].D: expected a list of 5 plumb_bob coefficients"},
+      {"name: a, D: [2000, 0, 0, 0], " + intrinsics, "cameras[0].D[0] = 2000"},
+      {"name: a, fov: 3, " + intrinsics, "cameras[0]: unknown field 'fov'"},
+  };
+  for (const auto& [entry, expected] : cases)
+  {
+    std::vector<CameraConfig> cameras;
+    const std::string node =
+        loadCameraConfigs(rov_tether::test::toXmlRpc(YAML::Load("[{frame: f, " + entry + "}]")), {}, &cameras);
+    Scenario scenario;
+    const std::string runner =
+        parseScenario("spool: [0, 0, 0]\nvehicle: [[0, 1, 0, 0]]\nduration: 1\ncameras: [{" + entry + "}]", &scenario);
+    EXPECT_NE(node.find(expected), std::string::npos) << entry << " gave: " << node;
+    // The same message up to the list of fields an unknown one is told (each path has its own).
+    EXPECT_EQ(node.substr(0, node.find(" (expected")), runner.substr(0, runner.find(" (expected"))) << entry;
+  }
 }
 
 // The mask and depth messages are updated at the pixels that changed only; they must equal full copies.

@@ -57,9 +57,6 @@ struct NodeOptions
   double snag_ratio = 3.0;
 };
 
-/// Converts one parameter-server value to a ParamValue; returns false for lists and maps.
-bool toParamValue(const XmlRpc::XmlRpcValue& value, ParamValue* out);
-
 /// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of
 /// `params` through the core's setParameter, then validates. Returns "" on success, otherwise every
 /// problem, each naming its parameter. `params` is changed only on success.
