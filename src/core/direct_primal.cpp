@@ -192,7 +192,7 @@ void PrimalNewton::assemble(const Cable& cable)
   }
 }
 
-void PrimalNewton::assembleMass(const Cable& cable)
+[[gnu::always_inline]] inline void PrimalNewton::assembleMass(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const double* w = cable.inv_mass.data() + f;
@@ -228,7 +228,7 @@ void PrimalNewton::assembleMass(const Cable& cable)
   }
 }
 
-void PrimalNewton::assembleSegments(const Cable& cable)
+[[gnu::always_inline]] inline void PrimalNewton::assembleSegments(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const double* w = cable.inv_mass.data() + f;
@@ -294,7 +294,7 @@ void PrimalNewton::assembleSegments(const Cable& cable)
   }
 }
 
-void PrimalNewton::assembleBending(const Cable& cable)
+[[gnu::always_inline]] inline void PrimalNewton::assembleBending(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const double* w = cable.inv_mass.data() + f;
@@ -406,14 +406,14 @@ bool PrimalNewton::drumStep(bool second)
   return true;
 }
 
-double PrimalNewton::linearStretch(std::size_t k) const
+[[gnu::always_inline]] inline double PrimalNewton::linearStretch(std::size_t k) const
 {
   const double* a = &step_[3 * k];
   const double* b = &step_[3 * (k + 1)];
   return ws_.c[k] + ws_.nx[k] * (b[0] - a[0]) + ws_.ny[k] * (b[1] - a[1]) + ws_.nz[k] * (b[2] - a[2]);
 }
 
-double PrimalNewton::alongSegment(std::size_t k) const
+[[gnu::always_inline]] inline double PrimalNewton::alongSegment(std::size_t k) const
 {
   const double* a = &step_[3 * k];
   const double* b = &step_[3 * (k + 1)];

@@ -382,7 +382,7 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   return std::max(deepest, contactCables(cable, j, r, widest, gap, &push));
 }
 
-double WorldContact::contactObstacles(Cable& cable, std::size_t j, double r, Push* push)
+[[gnu::always_inline]] inline double WorldContact::contactObstacles(Cable& cable, std::size_t j, double r, Push* push)
 {
   double deepest = 0.0;
   Aabb box;
@@ -404,7 +404,7 @@ double WorldContact::contactObstacles(Cable& cable, std::size_t j, double r, Pus
   return deepest;
 }
 
-double WorldContact::contactCables(Cable& cable, std::size_t j, double r, double widest, std::size_t gap, Push* out)
+[[gnu::always_inline]] inline double WorldContact::contactCables(Cable& cable, std::size_t j, double r, double widest, std::size_t gap, Push* out)
 {
   double deepest = 0.0;
   Push& push = *out;
