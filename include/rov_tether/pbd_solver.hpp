@@ -40,6 +40,13 @@ class PbdSolver : public ConstraintSolver
  private:
   void solveDirect(Cable& cable, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
                    double inv_ei_h2, double relax);
+  /// Where particle l of the deployed cable sits in the blocked arrays.
+  std::size_t slot(std::size_t l) const { return (l & 3) * block_ + (l >> 2); }
+  /// Copies the m deployed particles into the blocked arrays: their masses, rest lengths and weights where
+  /// the cable marks them dirty (all when the layout shifted), their positions always; zeroes the multipliers.
+  void copyIn(Cable& cable, std::size_t m);
+  /// Copies the positions and the multipliers (the bending ones with `bending`) back to the cable.
+  void copyOut(Cable& cable, Multipliers& lambda, std::size_t m, bool bending) const;
 
   bool compliant_;
   std::size_t direct_particles_;

@@ -55,7 +55,7 @@ class Tether
   /// for none. Not owned. While it is set, each step is cut into enough sub-steps (at least `substeps`)
   /// that no particle moves more than the cable's radius in one, judged from the last step's motion, so a
   /// capsule cannot pass through another or through an obstacle between two sub-steps.
-  void setWorldContact(const Contact* contact);
+  void setWorldContact(Contact* contact);
   /// Sub-steps the last step took (`substeps`, or more for contact) [-].
   int lastSubsteps() const { return last_substeps_; }
   /// How far the fastest particle moved in the last step, while a World contact is set [m].
@@ -202,10 +202,10 @@ class Tether
   std::unique_ptr<Drag> drag_;
   CurrentField current_;
   MicroCurrentNoise noise_;
-  std::unique_ptr<SeabedContact> seabed_;   ///< None without seabed_z.
-  Contacts contacts_;                       ///< What the solver projects besides the chain's constraints.
-  const Contact* world_contact_ = nullptr;  ///< World's contact for this tether; not owned.
-  int contact_substeps_ = 1;                ///< Sub-steps the next step needs for contact (see setWorldContact).
+  std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
+  Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
+  Contact* world_contact_ = nullptr;       ///< World's contact for this tether; not owned.
+  int contact_substeps_ = 1;               ///< Sub-steps the next step needs for contact (see setWorldContact).
   int last_substeps_ = 1;
   double last_motion_ = 0.0;
   double max_contact_depth_ = 0.0;  ///< Largest Contact::lastPullIn() of the step's sub-steps [m].

@@ -61,24 +61,26 @@ struct ContactScene
   SegmentGrid grid;                    ///< Every tether's segments and their pairs (World::refreshContact).
   bool between_tethers = false;        ///< Contact between tethers and of a tether with itself.
   /// Per tether, per particle: the change of velocity the other tethers' contacts gave it since its last
-  /// sub-step (the reaction of each push, Newton's third law), which it takes at its next one [m/s].
-  mutable std::vector<std::vector<Position>> reaction;
+  /// sub-step (the reaction of each push, Newton's third law), which it takes at its next one [m/s]. The
+  /// one part of the scene the contacts write: each adds to the others' and takes its own.
+  std::vector<std::vector<Position>> reaction;
 };
 
 class WorldContact : public Contact
 {
  public:
-  WorldContact(const ContactScene& scene, std::size_t self) : scene_(scene), self_(self) {}
+  /// Contact of tether `self` with the scene, which it reads, and whose `reaction` it writes.
+  WorldContact(ContactScene& scene, std::size_t self) : scene_(scene), reaction_(scene.reaction), self_(self) {}
   void project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
-               bool first_pass) const override;
+               bool first_pass) override;
   bool holds() const override { return true; }
-  bool updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const override;
+  bool updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) override;
   void applyHold(Cable& cable) const override;
-  void warmStart(Cable& cable, double h) const override;
-  void takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) const override;
-  void sendReaction() const override;
-  void forget() const override;
-  void friction(Cable& cable, const std::vector<double>& stretch) const override;
+  void warmStart(Cable& cable, double h) override;
+  void takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) override;
+  void sendReaction() override;
+  void forget() override;
+  void friction(Cable& cable, const std::vector<double>& stretch) override;
   void limitRebound(Cable& cable, double h) const override;
   /// The fastest a contact sends a particle off its surface [m/s]: faster than the vehicles and moving
   /// obstacles of an ROV scene (a ship's hull at 10 knots moves 5.1 m/s), slower than what undoing an old
@@ -87,18 +89,80 @@ class WorldContact : public Contact
   /// Sizes the record and the candidate list for the scene as it now is (not in the hot loop).
   void resize();
   const ContactRecord& record() const { return record_; }
-  double lastPullIn() const override { return deepest_; }
+  double lastPullIn() const override { return state_.deepest; }
 
  private:
+  /// Per particle: the other tether's segment it last slid on in this step and where along it; tether -1
+  /// when it touched none, kNotATether when it also touched an obstacle or its own cable.
+  struct Partner
+  {
+    int tether = -1;
+    std::size_t segment = 0;
+    double u = 0.0;
+  };
+  static constexpr int kNotATether = -2;
+
+  /// What this contact keeps from one call to the next, within a step (its passes) and into the next step
+  /// (the holds that warm-start it): per particle unless said. Changed only by the non-const methods.
+  struct StepState
+  {
+    /// This step: the contact normal (summed), the normal corrections [m] (-1: untouched), the friction
+    /// coefficient and the displacement friction already took back [m].
+    std::vector<Position> normal;
+    std::vector<double> pushed, mu, held;
+    std::vector<double> hold;    ///< How far friction holds the particle back in the solve [m].
+    std::vector<Position> slip;  ///< The direction it holds against (the first solve's slip).
+    std::vector<Partner> partner;
+    std::vector<std::size_t> touched;  ///< The particles touched this step, in order.
+    /// The particles touched in the last step, whose holds (hold, slip, for a step of warm_h [s])
+    /// warm-start this one.
+    std::vector<std::size_t> warm;
+    double warm_h = 0.0;
+    double h = 1.0;        ///< This sub-step's length [s] (takeReaction).
+    double deepest = 0.0;  ///< lastPullIn() [m].
+    /// Per segment: what a mesh keeps between its queries (Obstacle::pushNear).
+    std::vector<Obstacle::Near> near_obstacle;
+    std::vector<std::size_t> touching;  ///< Segments that touched something in the step's first sweep.
+  };
+  /// The reactions this pass of the contacts owes the other tethers, per tether and particle [m/s], with the
+  /// (tether, particle) pairs noted (each once: mark); sendReaction() hands over the last pass's.
+  struct Owed
+  {
+    std::vector<std::vector<Position>> sent;
+    std::vector<std::vector<std::uint8_t>> mark;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> list;
+  };
+  /// Scratch of one projection, meaningless between calls.
+  struct Scratch
+  {
+    std::vector<int> candidates;           ///< Obstacles that overlap this cable's bounds this step.
+    std::vector<SegmentGrid::Entry> near;  ///< Grid query result.
+    std::vector<std::size_t> deep;         ///< Segments the next sweep revisits (deep in the last one).
+    std::vector<std::size_t> next_deep;
+  };
+
   /// Moves segment j's particles so the point at t clears by depth along n, and notes for each the normal,
   /// the correction and the friction coefficient; returns the momentum given along n, m dx [kg m].
-  double resolve(Cable& cable, std::size_t j, const Push& push, double mu) const;
-  /// Forgets the reactions noted in this pass (sent_, sent_mark_, sent_list_).
-  void clearSent() const;
+  double resolve(Cable& cable, std::size_t j, const Push& push, double mu);
+  /// Forgets the reactions noted in this pass.
+  void clearSent();
   /// Notes the reaction to a push of this tether of `momentum` along n off tether k's segment s at u.
-  void react(std::size_t k, std::size_t s, const Push& push, double momentum) const;
+  void react(std::size_t k, std::size_t s, const Push& push, double momentum);
   /// Resolves segment j against the obstacles and (when `others`) the cables; returns its deepest overlap.
-  double contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap) const;
+  double contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap);
+  /// Resolves segment j against the candidate obstacles; returns its deepest overlap. `push`: the last
+  /// push found (contactCables starts from it).
+  double contactObstacles(Cable& cable, std::size_t j, double r, Push* push);
+  /// Resolves segment j against the segments of the cables near it (its own beyond `gap`); returns its
+  /// deepest overlap.
+  double contactCables(Cable& cable, std::size_t j, double r, double widest, std::size_t gap, Push* push);
+  /// The start of a pass: the first of a step begins the record and the holds' bookkeeping anew; a later
+  /// one keeps the particles touched so far.
+  void beginPass(bool first_pass);
+  /// The obstacles whose bounds overlap those of the particles [lo, hi] (scratch_.candidates).
+  void findCandidates(const Cable& cable, std::size_t lo, std::size_t hi, double r);
+  /// Gauss-Seidel sweeps over the segments [lo, hi).
+  void sweepSegments(Cable& cable, std::size_t lo, std::size_t hi, bool first_pass);
   static constexpr int kContactSweeps = 6;
   /// Sweeps stop when no overlap exceeded this x the radius: a quarter of the 10% of the diameter the
   /// issue allows a contact to overlap.
@@ -112,43 +176,12 @@ class WorldContact : public Contact
   static double pullInto(const Cable& cable, std::size_t i, const std::vector<double>& stretch, const Position& n);
 
   const ContactScene& scene_;
+  std::vector<std::vector<Position>>& reaction_;  ///< scene_.reaction, which this contact writes.
   std::size_t self_;
-  mutable ContactRecord record_;
-  mutable double deepest_ = 0.0;                  ///< lastPullIn() [m].
-  mutable std::vector<int> candidates_;           ///< Obstacles that overlap this cable's bounds this step.
-  mutable std::vector<SegmentGrid::Entry> near_;  ///< Grid query result.
-  /// Per particle, this step: the contact normal (summed), the normal corrections [m], the friction
-  /// coefficient and the displacement friction already took back [m]; and the particles touched, in order.
-  mutable std::vector<Position> normal_;
-  mutable std::vector<double> pushed_, mu_, held_;
-  mutable std::vector<double> hold_;    ///< How far friction holds the particle back in the solve [m].
-  mutable std::vector<Position> slip_;  ///< The direction it holds against (the first solve's slip).
-  /// The particles touched in the last step, whose holds (hold_, slip_, for a step of warm_h_) warm-start
-  /// this one.
-  mutable std::vector<std::size_t> warm_;
-  mutable double warm_h_ = 0.0;
-  /// The reactions this pass of the contacts owes the other tethers, per tether and particle [m/s], with the
-  /// (tether, particle) pairs noted (each once: sent_mark_); sendReaction() hands over the last pass's.
-  mutable std::vector<std::vector<Position>> sent_;
-  mutable std::vector<std::vector<std::uint8_t>> sent_mark_;
-  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> sent_list_;
-  mutable double h_ = 1.0;  ///< This sub-step's length [s] (takeReaction).
-  /// Per particle, this step: the other tether's segment it last slid on and where along it; tether -1 when
-  /// it touched none, kNotATether when it also touched an obstacle or its own cable.
-  struct Partner
-  {
-    int tether = -1;
-    std::size_t segment = 0;
-    double u = 0.0;
-  };
-  static constexpr int kNotATether = -2;
-  mutable std::vector<Partner> partner_;
-  /// Per segment: what a mesh keeps between its queries (Obstacle::pushNear).
-  mutable std::vector<Obstacle::Near> near_obstacle_;
-  mutable std::vector<std::size_t> touched_;
-  mutable std::vector<std::size_t> touching_;  ///< Segments that touched something in the first sweep.
-  mutable std::vector<std::size_t> deep_;      ///< Segments the next sweep revisits (deep in the last one).
-  mutable std::vector<std::size_t> next_deep_;
+  ContactRecord record_;
+  StepState state_;
+  Owed owed_;
+  Scratch scratch_;
 };
 
 }  // namespace rov_tether

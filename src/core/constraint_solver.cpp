@@ -25,7 +25,7 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
 {
   const std::size_t f = cable.first;
   bool passes = false;
-  for (const Contact* contact : contacts)
+  for (Contact* contact : contacts)
   {
     passes = passes || (contact->holds() && reprojects());
   }
@@ -35,19 +35,19 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
     predicted_x_.assign(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end());
     predicted_y_.assign(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end());
     predicted_z_.assign(cable.z.begin() + static_cast<std::ptrdiff_t>(f), cable.z.end());
-    for (const Contact* contact : contacts)
+    for (Contact* contact : contacts)
     {
       contact->warmStart(cable, settings.time_step);
     }
   }
   project(cable, multipliers_, settings);
-  for (const Contact* contact : contacts)
+  for (Contact* contact : contacts)
   {
     contact->project(cable, f + 1, free_end, multipliers_.stretch, true);
   }
   if (!passes)
   {
-    for (const Contact* contact : contacts)
+    for (Contact* contact : contacts)
     {
       contact->friction(cable, multipliers_.stretch);
     }
@@ -56,7 +56,7 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
   for (int pass = 1; pass <= kFrictionPasses; ++pass)
   {
     bool changed = false;
-    for (const Contact* contact : contacts)
+    for (Contact* contact : contacts)
     {
       changed = contact->updateHold(cable, multipliers_.stretch, pass == 1) || changed;
     }
@@ -67,12 +67,12 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
     std::copy(predicted_x_.begin(), predicted_x_.end(), cable.x.begin() + static_cast<std::ptrdiff_t>(f));
     std::copy(predicted_y_.begin(), predicted_y_.end(), cable.y.begin() + static_cast<std::ptrdiff_t>(f));
     std::copy(predicted_z_.begin(), predicted_z_.end(), cable.z.begin() + static_cast<std::ptrdiff_t>(f));
-    for (const Contact* contact : contacts)
+    for (Contact* contact : contacts)
     {
       contact->applyHold(cable);
     }
     project(cable, multipliers_, settings);
-    for (const Contact* contact : contacts)
+    for (Contact* contact : contacts)
     {
       contact->project(cable, f + 1, free_end, multipliers_.stretch, false);
     }

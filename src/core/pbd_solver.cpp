@@ -280,7 +280,32 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     return;
   }
   block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
-  auto slot = [this](std::size_t l) { return (l & 3) * block_ + (l >> 2); };
+  copyIn(state, m);
+  const Blocked blocked{x_.data(),
+                        y_.data(),
+                        z_.data(),
+                        inv_mass_.data(),
+                        rest_.data(),
+                        weight_.data(),
+                        lambda_.data(),
+                        bend_rest_.data(),
+                        bend_weight_.data(),
+                        bend_lambda_.data(),
+                        joint_x_.data(),
+                        joint_y_.data(),
+                        joint_z_.data(),
+                        block_,
+                        m,
+                        stretch_compliance,
+                        inv_ei_h2,
+                        relax};
+  solveBlocked(blocked, settings, bending);
+  copyOut(state, lambda, m, bending);
+}
+
+void PbdSolver::copyIn(Cable& state, std::size_t m)
+{
+  const std::size_t f = state.first;
   // Masses, rest lengths and weights change only near the spool (pay-out) or on a rebuild: copy them
   // again only for the particles the state marks dirty, or all when the layout shifted.
   std::size_t begin = 0;
@@ -319,27 +344,11 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     bend_lambda_[s] = 0.0;
     joint_x_[s] = joint_y_[s] = joint_z_[s] = 0.0;
   }
+}
 
-  const Blocked blocked{x_.data(),
-                        y_.data(),
-                        z_.data(),
-                        inv_mass_.data(),
-                        rest_.data(),
-                        weight_.data(),
-                        lambda_.data(),
-                        bend_rest_.data(),
-                        bend_weight_.data(),
-                        bend_lambda_.data(),
-                        joint_x_.data(),
-                        joint_y_.data(),
-                        joint_z_.data(),
-                        block_,
-                        m,
-                        stretch_compliance,
-                        inv_ei_h2,
-                        relax};
-  solveBlocked(blocked, settings, bending);
-
+void PbdSolver::copyOut(Cable& state, Multipliers& lambda, std::size_t m, bool bending) const
+{
+  const std::size_t f = state.first;
   for (std::size_t l = 0; l < m; ++l)
   {
     const std::size_t s = slot(l);

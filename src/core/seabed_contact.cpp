@@ -6,7 +6,7 @@ namespace rov_tether
 {
 
 void SeabedContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& /*stretch*/,
-                            bool /*first_pass*/) const
+                            bool /*first_pass*/)
 {
   const double bed = z_;
   const double mu = friction_;

@@ -166,7 +166,7 @@ void Tether::applyParams(const TetherParams& requested)
   }
 }
 
-void Tether::setWorldContact(const Contact* contact)
+void Tether::setWorldContact(Contact* contact)
 {
   world_contact_ = contact;
   contacts_.erase(

@@ -11,74 +11,74 @@ void WorldContact::resize()
 {
   const std::size_t n = scene_.cables[self_]->size();
   record_.obstacle.assign(n, -1);
-  normal_.assign(n, Position::Zero());
-  pushed_.assign(n, -1.0);
-  held_.assign(n, 0.0);
-  hold_.assign(n, 0.0);
-  slip_.assign(n, Position::Zero());
-  mu_.assign(n, 0.0);
-  touched_.clear();
-  touched_.reserve(n);
-  warm_.clear();
-  warm_.reserve(n);
-  warm_h_ = 0.0;
-  touching_.reserve(n);
-  deep_.reserve(n);
-  next_deep_.reserve(n);
+  state_.normal.assign(n, Position::Zero());
+  state_.pushed.assign(n, -1.0);
+  state_.held.assign(n, 0.0);
+  state_.hold.assign(n, 0.0);
+  state_.slip.assign(n, Position::Zero());
+  state_.mu.assign(n, 0.0);
+  state_.touched.clear();
+  state_.touched.reserve(n);
+  state_.warm.clear();
+  state_.warm.reserve(n);
+  state_.warm_h = 0.0;
+  state_.touching.reserve(n);
+  scratch_.deep.reserve(n);
+  scratch_.next_deep.reserve(n);
   record_.tether.assign(n, -1);
   record_.point.assign(n, Position::Zero());
-  candidates_.reserve(scene_.obstacles.size());
+  scratch_.candidates.reserve(scene_.obstacles.size());
   std::size_t segments = 0;
   for (const Cable* cable : scene_.cables)
   {
     segments += cable->size();
   }
-  near_.reserve(segments);
-  sent_.resize(scene_.cables.size());
-  sent_mark_.resize(scene_.cables.size());
+  scratch_.near.reserve(segments);
+  owed_.sent.resize(scene_.cables.size());
+  owed_.mark.resize(scene_.cables.size());
   for (std::size_t k = 0; k < scene_.cables.size(); ++k)
   {
-    sent_[k].assign(scene_.cables[k]->size(), Position::Zero());
-    sent_mark_[k].assign(scene_.cables[k]->size(), 0);
+    owed_.sent[k].assign(scene_.cables[k]->size(), Position::Zero());
+    owed_.mark[k].assign(scene_.cables[k]->size(), 0);
   }
-  sent_list_.clear();
-  sent_list_.reserve(segments);
-  partner_.assign(n, Partner{});
-  near_obstacle_.assign(n, Obstacle::Near{});
-  scene_.reaction.resize(scene_.cables.size());
-  scene_.reaction[self_].assign(n, Position::Zero());
+  owed_.list.clear();
+  owed_.list.reserve(segments);
+  state_.partner.assign(n, Partner{});
+  state_.near_obstacle.assign(n, Obstacle::Near{});
+  reaction_.resize(scene_.cables.size());
+  reaction_[self_].assign(n, Position::Zero());
 }
 
-void WorldContact::clearSent() const
+void WorldContact::clearSent()
 {
-  for (const auto& [k, p] : sent_list_)
+  for (const auto& [k, p] : owed_.list)
   {
-    sent_[k][p] = Position::Zero();
-    sent_mark_[k][p] = 0;
+    owed_.sent[k][p] = Position::Zero();
+    owed_.mark[k][p] = 0;
   }
-  sent_list_.clear();
+  owed_.list.clear();
 }
 
-void WorldContact::forget() const
+void WorldContact::forget()
 {
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
-    pushed_[i] = -1.0, held_[i] = 0.0, hold_[i] = 0.0;
+    state_.pushed[i] = -1.0, state_.held[i] = 0.0, state_.hold[i] = 0.0;
   }
-  touched_.clear();
-  warm_.clear();
-  warm_h_ = 0.0;
+  state_.touched.clear();
+  state_.warm.clear();
+  state_.warm_h = 0.0;
   clearSent();
-  if (self_ < scene_.reaction.size())
+  if (self_ < reaction_.size())
   {
-    std::fill(scene_.reaction[self_].begin(), scene_.reaction[self_].end(), Position::Zero());
+    std::fill(reaction_[self_].begin(), reaction_[self_].end(), Position::Zero());
   }
 }
 
-void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double momentum) const
+void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double momentum)
 {
   const Cable& other = *scene_.cables[k];
-  if (s + 1 >= other.size() || k >= sent_.size() || sent_[k].size() != other.size())
+  if (s + 1 >= other.size() || k >= owed_.sent.size() || owed_.sent[k].size() != other.size())
   {
     return;  // the other cable was rebuilt since this one was sized: World resizes before its next step
   }
@@ -89,33 +89,33 @@ void WorldContact::react(std::size_t k, std::size_t s, const Push& push, double 
   for (int e = 0; e < 2; ++e)
   {
     const std::size_t p = s + static_cast<std::size_t>(e);
-    const double move = -shares[e] * momentum / h_ * other.inv_mass[p];
+    const double move = -shares[e] * momentum / state_.h * other.inv_mass[p];
     if (!(move != 0.0) || !std::isfinite(move))
     {
       continue;  // nothing, or from a solve that diverged (its tether recovers; the other is not harmed)
     }
-    if (sent_mark_[k][p] == 0)
+    if (owed_.mark[k][p] == 0)
     {
-      sent_mark_[k][p] = 1;
-      sent_list_.emplace_back(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(p));
+      owed_.mark[k][p] = 1;
+      owed_.list.emplace_back(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(p));
     }
-    sent_[k][p] += move * push.normal;
+    owed_.sent[k][p] += move * push.normal;
   }
 }
 
-void WorldContact::sendReaction() const
+void WorldContact::sendReaction()
 {
   // Friction between tethers: what holds a particle back pushes the tether it slides on forwards (a
   // particle that also touched an obstacle or its own cable keeps its friction's reaction to itself).
   const Cable& cable = *scene_.cables[self_];
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
-    const Partner& partner = partner_[i];
-    if (partner.tether < 0 || !(hold_[i] > 0.0) || !(cable.inv_mass_along[i] > 0.0))
+    const Partner& partner = state_.partner[i];
+    if (partner.tether < 0 || !(state_.hold[i] > 0.0) || !(cable.inv_mass_along[i] > 0.0))
     {
       continue;
     }
-    std::vector<Position>& other = scene_.reaction[static_cast<std::size_t>(partner.tether)];
+    std::vector<Position>& other = reaction_[static_cast<std::size_t>(partner.tether)];
     const Cable& other_cable = *scene_.cables[static_cast<std::size_t>(partner.tether)];
     if (partner.segment + 1 >= other.size() || other.size() != other_cable.size())
     {
@@ -123,7 +123,7 @@ void WorldContact::sendReaction() const
     }
     // The hold moved the particle back by hold along -slip, along the cable (holdLimit sizes it with the
     // mass along it): momentum -hold slip / w_along over the sub-step.
-    const Position impulse = hold_[i] / (cable.inv_mass_along[i] * h_) * slip_[i];
+    const Position impulse = state_.hold[i] / (cable.inv_mass_along[i] * state_.h) * state_.slip[i];
     if (!impulse.allFinite())
     {
       continue;
@@ -131,19 +131,19 @@ void WorldContact::sendReaction() const
     other[partner.segment] += (1.0 - partner.u) * other_cable.inv_mass[partner.segment] * impulse;
     other[partner.segment + 1] += partner.u * other_cable.inv_mass[partner.segment + 1] * impulse;
   }
-  for (const auto& [k, p] : sent_list_)
+  for (const auto& [k, p] : owed_.list)
   {
-    if (p < scene_.reaction[k].size())
+    if (p < reaction_[k].size())
     {
-      scene_.reaction[k][p] += sent_[k][p];
+      reaction_[k][p] += owed_.sent[k][p];
     }
   }
 }
 
-void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) const
+void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h)
 {
-  h_ = h;
-  if (self_ >= scene_.reaction.size())
+  state_.h = h;
+  if (self_ >= reaction_.size())
   {
     return;
   }
@@ -151,7 +151,7 @@ void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end
   // than kMaxRebound, as this tether's own pushes (limitRebound): the other tether's push out of an overlap
   // it did not make in its step (two tethers laid out through each other) would throw this one too. Then
   // momentum is not conserved: that overlap's is not physical either.
-  std::vector<Position>& mine = scene_.reaction[self_];
+  std::vector<Position>& mine = reaction_[self_];
   for (std::size_t i = begin; i < std::min(end, mine.size()); ++i)
   {
     if (cable.inv_mass[i] > 0.0 && mine[i].allFinite())
@@ -164,7 +164,7 @@ void WorldContact::takeReaction(Cable& cable, std::size_t begin, std::size_t end
   std::fill(mine.begin(), mine.end(), Position::Zero());
 }
 
-double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double mu) const
+double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, double mu)
 {
   const std::size_t k = j + 1;
   const double wa = cable.inv_mass[j], wb = cable.inv_mass[k];
@@ -194,14 +194,14 @@ double WorldContact::resolve(Cable& cable, std::size_t j, const Push& push, doub
     }
     cable.x[i] += moves[e] * push.normal.x(), cable.y[i] += moves[e] * push.normal.y(),
         cable.z[i] += moves[e] * push.normal.z();
-    if (pushed_[i] < 0.0)
+    if (state_.pushed[i] < 0.0)
     {
-      pushed_[i] = 0.0, normal_[i] = Position::Zero(), mu_[i] = 0.0, partner_[i].tether = -1;
-      touched_.push_back(i);
+      state_.pushed[i] = 0.0, state_.normal[i] = Position::Zero(), state_.mu[i] = 0.0, state_.partner[i].tether = -1;
+      state_.touched.push_back(i);
     }
-    pushed_[i] += moves[e];
-    normal_[i] += push.normal;
-    mu_[i] = std::max(mu_[i], mu);
+    state_.pushed[i] += moves[e];
+    state_.normal[i] += push.normal;
+    state_.mu[i] = std::max(state_.mu[i], mu);
     momentum += moves[e] / cable.inv_mass[i];
   }
   return momentum;
@@ -225,29 +225,29 @@ double WorldContact::pullInto(const Cable& cable, std::size_t i, const std::vect
 double WorldContact::holdLimit(const Cable& cable, std::size_t i, const std::vector<double>& stretch, Position* normal,
                                double* pulled) const
 {
-  const double length = normal_[i].norm();
-  if (!(length > 0.0) || !(mu_[i] > 0.0))
+  const double length = state_.normal[i].norm();
+  if (!(length > 0.0) || !(state_.mu[i] > 0.0))
   {
     *normal = Position::Zero();
     *pulled = 0.0;
     return 0.0;
   }
-  *normal = normal_[i] / length;
+  *normal = state_.normal[i] / length;
   // A force F held over the step moves the particle by F h^2 w: w along the cable for the slip (which runs
   // along it where it slides; added mass acts across only), so the pull lambda counts as lambda w_along.
   const double along = cable.inv_mass[i] > 0.0 ? cable.inv_mass_along[i] / cable.inv_mass[i] : 1.0;
   const double into = pullInto(cable, i, stretch, *normal) * cable.inv_mass_along[i];
-  *pulled = mu_[i] * into;
-  return mu_[i] * std::max(pushed_[i] * along, into);
+  *pulled = state_.mu[i] * into;
+  return state_.mu[i] * std::max(state_.pushed[i] * along, into);
 }
 
-void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) const
+void WorldContact::friction(Cable& cable, const std::vector<double>& stretch)
 {
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
     Position n;
     double pulled = 0.0;
-    const double limit = holdLimit(cable, i, stretch, &n, &pulled) - held_[i];
+    const double limit = holdLimit(cable, i, stretch, &n, &pulled) - state_.held[i];
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     const double distance = slide.norm();
@@ -256,7 +256,7 @@ void WorldContact::friction(Cable& cable, const std::vector<double>& stretch) co
       const double take = std::min(distance, limit);
       const Position back = -(take / distance) * slide;
       cable.x[i] += back.x(), cable.y[i] += back.y(), cable.z[i] += back.z();
-      held_[i] += take;
+      state_.held[i] += take;
     }
   }
 }
@@ -268,14 +268,14 @@ void WorldContact::limitRebound(Cable& cable, double h) const
   // obstacle, a tether pressed in by another) would leave it the overlap over h. Beyond kMaxRebound, the
   // sub-step's start moves out with the particle: the position keeps the push, the velocity does not.
   const double most = kMaxRebound * h;
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
-    const double length = normal_[i].norm();
+    const double length = state_.normal[i].norm();
     if (!(length > 0.0) || !(cable.inv_mass[i] > 0.0))
     {
       continue;
     }
-    const Position n = normal_[i] / length;
+    const Position n = state_.normal[i] / length;
     const double off =
         n.x() * (cable.x[i] - cable.px[i]) + n.y() * (cable.y[i] - cable.py[i]) + n.z() * (cable.z[i] - cable.pz[i]);
     if (off > most)
@@ -286,23 +286,23 @@ void WorldContact::limitRebound(Cable& cable, double h) const
   }
 }
 
-void WorldContact::warmStart(Cable& cable, double h) const
+void WorldContact::warmStart(Cable& cable, double h)
 {
   // A hold is a force over the step times h^2 w: the same force over a step of another length.
-  const double scale = warm_h_ > 0.0 ? (h / warm_h_) * (h / warm_h_) : 0.0;
-  warm_h_ = h;
-  for (const std::size_t i : touched_)
+  const double scale = state_.warm_h > 0.0 ? (h / state_.warm_h) * (h / state_.warm_h) : 0.0;
+  state_.warm_h = h;
+  for (const std::size_t i : state_.touched)
   {
-    hold_[i] *= scale;
+    state_.hold[i] *= scale;
     if (i <= cable.first || i >= cable.size())
     {
-      hold_[i] = 0.0;  // reeled in onto the drum, or now the outlet
+      state_.hold[i] = 0.0;  // reeled in onto the drum, or now the outlet
     }
   }
   applyHold(cable);
 }
 
-bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& stretch, bool first) const
+bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& stretch, bool first)
 {
   // A change below this does not warrant another solve [m]: what is left is not lost, the next step's
   // first pass starts from it (warmStart). At 1e-3 r a cable resting on the bench's seabed took 3.9 solves
@@ -312,16 +312,16 @@ bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& str
   if (first)
   {
     // A particle held in the last step that touches nothing now lets go: solve again without its hold.
-    for (const std::size_t i : warm_)
+    for (const std::size_t i : state_.warm)
     {
-      if (pushed_[i] < 0.0)
+      if (state_.pushed[i] < 0.0)
       {
-        changed = changed || hold_[i] > settled;
-        hold_[i] = 0.0;
+        changed = changed || state_.hold[i] > settled;
+        state_.hold[i] = 0.0;
       }
     }
   }
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
     Position n;
     double pulled = 0.0;
@@ -329,17 +329,17 @@ bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& str
     const Position moved(cable.x[i] - cable.px[i], cable.y[i] - cable.py[i], cable.z[i] - cable.pz[i]);
     const Position slide = moved - moved.dot(n) * n;
     double hold = 0.0;
-    if (first && hold_[i] > 0.0)
+    if (first && state_.hold[i] > 0.0)
     {
       // Solved with the last step's hold: without it the particle would have slid by about the slide left
       // plus that hold. Friction takes that back whole while it can (sticking), else mu N against it.
-      const Position free = slide + hold_[i] * slip_[i];
+      const Position free = slide + state_.hold[i] * state_.slip[i];
       const double distance = free.norm();
-      const Position before = hold_[i] * slip_[i];
-      slip_[i] = distance > 0.0 ? Position(free / distance) : Position::Zero();
+      const Position before = state_.hold[i] * state_.slip[i];
+      state_.slip[i] = distance > 0.0 ? Position(free / distance) : Position::Zero();
       hold = std::min(distance, limit);
-      changed = changed || (hold * slip_[i] - before).norm() > settled;
-      hold_[i] = hold;
+      changed = changed || (hold * state_.slip[i] - before).norm() > settled;
+      state_.hold[i] = hold;
       continue;
     }
     if (first)
@@ -348,54 +348,66 @@ bool WorldContact::updateHold(const Cable& cable, const std::vector<double>& str
       // slip of the solve without it. A particle pressed in otherwise (landing, a load) is held by its slip
       // at first. Later passes correct either guess.
       const double distance = slide.norm();
-      slip_[i] = distance > 0.0 ? Position(slide / distance) : Position::Zero();
+      state_.slip[i] = distance > 0.0 ? Position(slide / distance) : Position::Zero();
       hold = distance > 0.0 ? std::min(limit, std::max(pulled, distance)) : 0.0;
     }
     else
     {
       // Still slipping forwards: hold more; moved backwards: the particle sticks, hold less.
-      hold = std::clamp(hold_[i] + slide.dot(slip_[i]), 0.0, limit);
+      hold = std::clamp(state_.hold[i] + slide.dot(state_.slip[i]), 0.0, limit);
     }
-    changed = changed || std::abs(hold - hold_[i]) > settled;
-    hold_[i] = hold;
+    changed = changed || std::abs(hold - state_.hold[i]) > settled;
+    state_.hold[i] = hold;
   }
   return changed;
 }
 
 void WorldContact::applyHold(Cable& cable) const
 {
-  for (const std::size_t i : touched_)
+  for (const std::size_t i : state_.touched)
   {
-    const Position back = -hold_[i] * slip_[i];
+    const Position back = -state_.hold[i] * state_.slip[i];
     cable.x[i] += back.x(), cable.y[i] += back.y(), cable.z[i] += back.z();
   }
 }
 
-double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others,
-                                    std::size_t gap) const
+double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, double widest, bool others, std::size_t gap)
 {
-  double deepest = 0.0;
   Push push;
-  Aabb box;
-  box.grow(cable.position(j)), box.grow(cable.position(j + 1));
-  box.inflate(r);
-  for (const int i : candidates_)
-  {
-    const Obstacle& obstacle = *scene_.obstacles[i];
-    if (scene_.bounds[i].overlaps(box) &&
-        obstacle.pushNear(cable.position(j), cable.position(j + 1), r, &push, &near_obstacle_[j]))
-    {
-      resolve(cable, j, push, obstacle.friction());
-      partner_[j].tether = partner_[j + 1].tether = kNotATether;
-      deepest = std::max(deepest, push.depth);
-      record_.obstacle[j] = i;
-      record_.point[j] = (1.0 - push.t) * cable.position(j) + push.t * cable.position(j + 1);
-    }
-  }
+  const double deepest = contactObstacles(cable, j, r, &push);
   if (!others)
   {
     return deepest;
   }
+  return std::max(deepest, contactCables(cable, j, r, widest, gap, &push));
+}
+
+[[gnu::always_inline]] inline double WorldContact::contactObstacles(Cable& cable, std::size_t j, double r, Push* push)
+{
+  double deepest = 0.0;
+  Aabb box;
+  box.grow(cable.position(j)), box.grow(cable.position(j + 1));
+  box.inflate(r);
+  for (const int i : scratch_.candidates)
+  {
+    const Obstacle& obstacle = *scene_.obstacles[i];
+    if (scene_.bounds[i].overlaps(box) &&
+        obstacle.pushNear(cable.position(j), cable.position(j + 1), r, push, &state_.near_obstacle[j]))
+    {
+      resolve(cable, j, *push, obstacle.friction());
+      state_.partner[j].tether = state_.partner[j + 1].tether = kNotATether;
+      deepest = std::max(deepest, push->depth);
+      record_.obstacle[j] = i;
+      record_.point[j] = (1.0 - push->t) * cable.position(j) + push->t * cable.position(j + 1);
+    }
+  }
+  return deepest;
+}
+
+[[gnu::always_inline]] inline double WorldContact::contactCables(Cable& cable, std::size_t j, double r, double widest, std::size_t gap, Push* out)
+{
+  double deepest = 0.0;
+  Push& push = *out;
   // Where the obstacles left it: its pairs in the grid, or (moved further since it was filed) a query.
   Aabb now;
   now.grow(cable.position(j)), now.grow(cable.position(j + 1));
@@ -404,11 +416,11 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   if (!scene_.grid.pairsOf(self_, j, now, &first, &last))
   {
     now.inflate(r + widest);
-    scene_.grid.query(now, near_);
+    scene_.grid.query(now, scratch_.near);
     // In the pairs' order (by cable and segment), so the contacts are resolved in one order whichever way
     // they were found, and the result does not depend on when the grid was last filed.
-    std::sort(near_.begin(), near_.end());
-    first = near_.data(), last = near_.data() + near_.size();
+    std::sort(scratch_.near.begin(), scratch_.near.end());
+    first = scratch_.near.data(), last = scratch_.near.data() + scratch_.near.size();
   }
   for (const SegmentGrid::Entry* pair = first; pair != last; ++pair)
   {
@@ -439,7 +451,8 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
       back.normal = -push.normal;
       resolve(cable, j, push, scene_.cable_friction[self_]);
       resolve(cable, s, back, scene_.cable_friction[self_]);
-      partner_[j].tether = partner_[j + 1].tether = partner_[s].tether = partner_[s + 1].tether = kNotATether;
+      state_.partner[j].tether = state_.partner[j + 1].tether = state_.partner[s].tether =
+          state_.partner[s + 1].tether = kNotATether;
       record_.tether[s] = static_cast<int>(self_);
     }
     else
@@ -447,9 +460,9 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
       react(e.cable, s, push, resolve(cable, j, push, scene_.cable_friction[self_]));
       for (const std::size_t i : {j, j + 1})
       {
-        if (partner_[i].tether != kNotATether)
+        if (state_.partner[i].tether != kNotATether)
         {
-          partner_[i] = {static_cast<int>(e.cable), s, push.u};
+          state_.partner[i] = {static_cast<int>(e.cable), s, push.u};
         }
       }
     }
@@ -459,54 +472,55 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   return deepest;
 }
 
-void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
-                           bool first_pass) const
+void WorldContact::beginPass(bool first_pass)
 {
   if (first_pass)
   {
     record_.clear();
-    deepest_ = 0.0;
+    state_.deepest = 0.0;
     // Last step's particles keep their holds (warmStart applied them) until updateHold sees whether they
     // still touch; no other particle holds anything.
-    for (const std::size_t i : touched_)
+    for (const std::size_t i : state_.touched)
     {
-      pushed_[i] = -1.0, held_[i] = 0.0;
+      state_.pushed[i] = -1.0, state_.held[i] = 0.0;
     }
-    warm_.swap(touched_);
-    touched_.clear();
-  }
-  else
-  {
-    // Another pass of the same step: the particles touched so far keep their holds; their normals and
-    // corrections are this pass's.
-    for (const std::size_t i : touched_)
-    {
-      pushed_[i] = 0.0, normal_[i] = Position::Zero();
-    }
-  }
-  // Each pass of the step's contacts owes its own reactions: the last pass's are sent (sendReaction).
-  clearSent();
-  const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
-  const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
-  if (lo >= hi)
-  {
+    state_.warm.swap(state_.touched);
+    state_.touched.clear();
     return;
   }
-  const double r = scene_.radius[self_];
+  // Another pass of the same step: the particles touched so far keep their holds; their normals and
+  // corrections are this pass's.
+  for (const std::size_t i : state_.touched)
+  {
+    state_.pushed[i] = 0.0, state_.normal[i] = Position::Zero();
+  }
+}
+
+void WorldContact::findCandidates(const Cable& cable, std::size_t lo, std::size_t hi, double r)
+{
   Aabb all;
   for (std::size_t i = lo; i <= hi; ++i)
   {
     all.grow(cable.position(i));
   }
   all.inflate(r);
-  candidates_.clear();
+  scratch_.candidates.clear();
   for (std::size_t i = 0; i < scene_.obstacles.size(); ++i)
   {
     if (scene_.bounds[i].overlaps(all))
     {
-      candidates_.push_back(static_cast<int>(i));
+      scratch_.candidates.push_back(static_cast<int>(i));
     }
   }
+}
+
+void WorldContact::sweepSegments(Cable& cable, std::size_t lo, std::size_t hi, bool first_pass)
+{
+  if (first_pass)
+  {
+    state_.touching.clear();
+  }
+  const double r = scene_.radius[self_];
   double widest = 0.0;
   for (const double other : scene_.radius)
   {
@@ -521,10 +535,6 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
   // the cable by no more than friction holds back (a fraction of what the contacts pushed): their first
   // sweep revisits the segments that touched in the step's first, and a segment that comes to touch only
   // then is found by the next step's first sweep.
-  if (first_pass)
-  {
-    touching_.clear();
-  }
   for (int sweep = 0; sweep < kContactSweeps; ++sweep)
   {
     double deepest = 0.0;
@@ -533,9 +543,9 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
     // shared particle their push moved): any other was left within kSettled of the radius by the last
     // sweep, and only a push of another segment of its own cable against it (self-contact) can have moved
     // it since; the next step's first sweep finds what that left.
-    const std::vector<std::size_t>& list = sweep == 0 ? touching_ : deep_;
+    const std::vector<std::size_t>& list = sweep == 0 ? state_.touching : scratch_.deep;
     const std::size_t count = every ? hi - lo : list.size();
-    next_deep_.clear();
+    scratch_.next_deep.clear();
     for (std::size_t n = 0; n < count; ++n)
     {
       const std::size_t j = every ? lo + n : list[n];
@@ -543,15 +553,15 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
       deepest = std::max(deepest, depth);
       if (every && depth > 0.0)
       {
-        touching_.push_back(j);
+        state_.touching.push_back(j);
       }
       if (depth > kSettled * r)
       {
         for (std::size_t k = j > lo ? j - 1 : j; k <= j + 1 && k < hi; ++k)
         {
-          if (next_deep_.empty() || next_deep_.back() < k)
+          if (scratch_.next_deep.empty() || scratch_.next_deep.back() < k)
           {
-            next_deep_.push_back(k);
+            scratch_.next_deep.push_back(k);
           }
         }
       }
@@ -560,19 +570,36 @@ void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, con
     {
       break;
     }
-    deep_.swap(next_deep_);
+    scratch_.deep.swap(scratch_.next_deep);
   }
+}
+
+void WorldContact::project(Cable& cable, std::size_t begin, std::size_t end, const std::vector<double>& stretch,
+                           bool first_pass)
+{
+  beginPass(first_pass);
+  // Each pass of the step's contacts owes its own reactions: the last pass's are sent (sendReaction).
+  clearSent();
+  const std::size_t lo = begin > cable.first ? begin - 1 : cable.first;
+  const std::size_t hi = std::min(end, cable.size() - 1);  // segments [lo, hi) touch a free particle
+  if (lo >= hi)
+  {
+    return;
+  }
+  findCandidates(cable, lo, hi, scene_.radius[self_]);
+  sweepSegments(cable, lo, hi, first_pass);
   if (first_pass)
   {
     // How far the solve's tension pulled a touching particle into its contact this sub-step: it grows as
     // h^2 (lambda w), and a pull beyond the clearance drags the cable through a thin obstacle within one
     // solve. Tether::step cuts the next step finer when it is large (an impact's overlap does not count).
-    for (const std::size_t i : touched_)
+    for (const std::size_t i : state_.touched)
     {
-      const double length = normal_[i].norm();
+      const double length = state_.normal[i].norm();
       if (length > 0.0)
       {
-        deepest_ = std::max(deepest_, pullInto(cable, i, stretch, normal_[i] / length) * cable.inv_mass[i]);
+        state_.deepest =
+            std::max(state_.deepest, pullInto(cable, i, stretch, state_.normal[i] / length) * cable.inv_mass[i]);
       }
     }
   }

@@ -1,0 +1,586 @@
+// The direct solver's primal path (direct_primal.hpp): Newton on the positions with the step energy's full
+// Hessian (geometric stiffness and EI bending included), a banded SPD solve and a backtracking line search.
+// See direct_solver.hpp.
+#include "direct_primal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rov_tether/banded.hpp"
+
+namespace rov_tether
+{
+namespace
+{
+
+/// Below this largest relative move a Newton step is taken whole: the quadratic model is good there.
+constexpr double kGlobalMove = 1e-3;
+/// Halvings of a step that does not lower the energy enough (Armijo, slope fraction kArmijo).
+constexpr int kMaxHalvings = 12;
+constexpr double kArmijo = 1e-4;
+/// Rounds of the model's active set in one Newton step.
+constexpr int kMaxModelRounds = 30;
+/// The most a compressed segment's geometric stiffness may take off either end's mass in the Hessian: an
+/// eighth, so a particle's two segments take at most 2 x 2 / 8 of it (a segment's block enters its two
+/// particles as [1 -1; -1 1], eigenvalue 2).
+constexpr double kCompressedShare = 0.125;
+
+/// Joint curvature C_b = a x_p - (a + b) x_p+1 + b x_p+2 at the joint after particle p (each axis; a and b
+/// the inverse rest lengths of its two segments), and its weights g = (a, -(a + b), b): linear in the
+/// positions. The energy, its gradient and Hessian, and the force residual all read it from here.
+struct JointCurvature
+{
+  double g[3];
+  double c[3];
+};
+
+JointCurvature jointCurvature(const Cable& cable, std::size_t p)
+{
+  const double a = 1.0 / cable.rest[p];
+  const double b = 1.0 / cable.rest[p + 1];
+  return {{a, -(a + b), b},
+          {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
+           a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
+           a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]}};
+}
+
+/// Adds v times the 3x3 block `b` (row-major) to `target`.
+inline void addTo(double* target, const double* b, double v = 1.0)
+{
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    target[i] += v * b[i];
+  }
+}
+
+}  // namespace
+
+void PrimalNewton::reserve(std::size_t n)
+{
+  if (lambda_.size() >= n)
+  {
+    return;
+  }
+  for (auto* v : {&lambda_, &lambda_step_})
+  {
+    v->assign(n, 0.0);
+  }
+  for (auto* v : {&hessian_diag_, &hessian_first_, &hessian_second_})
+  {
+    v->assign(9 * n, 0.0);
+  }
+  step_.assign(3 * n, 0.0);
+  grad_.assign(3 * n, 0.0);
+  grad_step_.assign(3 * n, 0.0);
+  work_.assign(36 * n, 0.0);
+  band_.assign(9 * 3 * n, 0.0);  // LAPACK's band, up to half-bandwidth 8
+}
+
+void PrimalNewton::warmStart(Cable& cable, double* lambda)
+{
+  const std::size_t f = ws_.first;
+  const std::size_t m = ws_.m;
+  const double* w = cable.inv_mass.data() + f;
+  std::copy(ws_.warm_lambda.begin() + static_cast<std::ptrdiff_t>(f),
+            ws_.warm_lambda.begin() + static_cast<std::ptrdiff_t>(f + m), lambda);
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    const double free = w[l] > 0.0 ? 1.0 : 0.0;
+    cable.x[f + l] += free * ws_.correction_x[f + l];
+    cable.y[f + l] += free * ws_.correction_y[f + l];
+    cable.z[f + l] += free * ws_.correction_z[f + l];
+  }
+  ws_.geometry(cable);
+}
+
+PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double tolerance, int max_iterations)
+{
+  const std::size_t m = ws_.m;
+  std::copy(lambda, lambda + m, lambda_.begin());
+  Result result;
+  result.residual = std::numeric_limits<double>::infinity();
+  while (result.residual > tolerance && result.iterations < max_iterations)
+  {
+    if (!std::isfinite(step(cable, &result.rounds)))
+    {
+      break;  // the system was not definite: leave the step as it is (reported through the residual)
+    }
+    ++result.iterations;
+    result.residual = residual(cable);
+  }
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    lambda[k] = ws_.unilateral ? std::max(lambda_[k], 0.0) : lambda_[k];
+  }
+  return result;
+}
+
+double PrimalNewton::energy(const Cable& cable) const
+{
+  const std::size_t f = ws_.first;
+  double kinetic = 0.0;
+  for (std::size_t l = 0; l <= ws_.m; ++l)
+  {
+    const double w = cable.inv_mass[f + l];
+    if (w > 0.0)
+    {
+      const double dx = cable.x[f + l] - ws_.xt[l];
+      const double dy = cable.y[f + l] - ws_.yt[l];
+      const double dz = cable.z[f + l] - ws_.zt[l];
+      kinetic += (dx * dx + dy * dy + dz * dz) / w;
+      if (cable.anisotropic)
+      {
+        // M = m_across I + (m_along - m_across) t t^T.
+        const double along = dx * cable.tx[f + l] + dy * cable.ty[f + l] + dz * cable.tz[f + l];
+        kinetic += (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * along * along;
+      }
+    }
+  }
+  double elastic = 0.0;
+  double drum = 0.0;
+  for (std::size_t k = 0; k < ws_.m; ++k)
+  {
+    if (k == 0 && ws_.drum != nullptr)
+    {
+      drum = ws_.drum->energy(ws_.c[0]);  // the spool segment and the drum in series
+      continue;
+    }
+    const double c = ws_.unilateral ? std::max(ws_.c[k], 0.0) : ws_.c[k];
+    elastic += c * c / ws_.alpha[k];
+  }
+  for (std::size_t j = 0; ws_.bending && j + 1 < ws_.m; ++j)
+  {
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* cb = joint.c;
+    elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) / ws_.gamma[j];
+  }
+  return 0.5 * (kinetic + elastic) + drum;
+}
+
+double PrimalNewton::segmentForce(std::size_t k, double c) const
+{
+  if (k == 0 && ws_.drum != nullptr)
+  {
+    return ws_.drum->force(c);
+  }
+  return (ws_.unilateral ? std::max(c, 0.0) : c) / ws_.alpha[k];
+}
+
+void PrimalNewton::assemble(const Cable& cable)
+{
+  // The Hessian by 3x3 blocks of particles: diagonal (l, l), first below (l + 1, l), second below (l + 2, l,
+  // with bending). A pinned particle's row is the identity, and nothing couples to it.
+  const std::size_t blocks = ws_.m + 1;
+  std::fill(hessian_diag_.begin(), hessian_diag_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(hessian_first_.begin(), hessian_first_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(hessian_second_.begin(), hessian_second_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
+  std::fill(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(3 * blocks), 0.0);
+  assembleMass(cable);
+  assembleSegments(cable);
+  if (ws_.bending)
+  {
+    assembleBending(cable);
+  }
+  const double* w = cable.inv_mass.data() + ws_.first;
+  for (std::size_t l = 0; l < blocks; ++l)
+  {
+    if (w[l] == 0.0)
+    {
+      grad_[3 * l] = grad_[3 * l + 1] = grad_[3 * l + 2] = 0.0;
+    }
+  }
+}
+
+[[gnu::always_inline]] inline void PrimalNewton::assembleMass(const Cable& cable)
+{
+  const std::size_t f = ws_.first;
+  const double* w = cable.inv_mass.data() + f;
+  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (std::size_t l = 0; l <= ws_.m; ++l)
+  {
+    if (w[l] == 0.0)
+    {
+      addTo(&hessian_diag_[9 * l], kIdentity);  // pinned
+      continue;
+    }
+    // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
+    const double mass = 1.0 / w[l];
+    double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
+    if (cable.anisotropic)
+    {
+      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+      const double less = 1.0 / cable.inv_mass_along[f + l] - mass;
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        for (std::size_t c = 0; c < 3; ++c)
+        {
+          block[3 * a + c] += less * t[a] * t[c];
+        }
+      }
+    }
+    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      grad_[3 * l + a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
+    }
+    addTo(&hessian_diag_[9 * l], block);
+  }
+}
+
+[[gnu::always_inline]] inline void PrimalNewton::assembleSegments(const Cable& cable)
+{
+  const std::size_t f = ws_.first;
+  const double* w = cable.inv_mass.data() + f;
+  auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
+  // A particle's largest inverse mass (along the cable, where added mass does not act).
+  auto mobility = [&](std::size_t l) { return cable.anisotropic ? std::max(w[l], cable.inv_mass_along[f + l]) : w[l]; };
+  const double* model = ws_.on();
+  for (std::size_t k = 0; k < ws_.m; ++k)
+  {
+    // The segments of the model: all of a rod's; of a cable's, those the step stretches (solveModel); the
+    // spool segment on the drum's piece.
+    double lam = ws_.c[k] / ws_.alpha[k];
+    double axial = 1.0 / ws_.alpha[k];
+    if (k == 0 && ws_.drum != nullptr)
+    {
+      // The spool segment's force is the drum's law, solved for in solveModel: here only its geometric
+      // stiffness.
+      lam = 0.0;
+      axial = 0.0;
+    }
+    else if (!(model[k] > 0.0))
+    {
+      continue;
+    }
+    const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
+    // dC/dx_k = -n, dC/dx_k+1 = +n: the gradient gets J^T lambda.
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      grad_[3 * k + a] -= lam * n[a];
+      grad_[3 * (k + 1) + a] += lam * n[a];
+    }
+    // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
+    // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
+    // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
+    // the mass of either end (then each particle's two segments take at most half its mass off the
+    // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
+    // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
+    double geometric = ws_.len[k] > 0.0 ? lambda_[k] / ws_.len[k] : 0.0;
+    if (geometric < 0.0 && !(-geometric * std::max(mobility(k), mobility(k + 1)) <= kCompressedShare))
+    {
+      geometric = 0.0;
+    }
+    double block[9];
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        block[3 * a + c] = (axial - geometric) * n[a] * n[c] + (a == c ? geometric : 0.0);
+      }
+    }
+    if (!pinned(k))
+    {
+      addTo(&hessian_diag_[9 * k], block);
+    }
+    if (!pinned(k + 1))
+    {
+      addTo(&hessian_diag_[9 * (k + 1)], block);
+    }
+    if (!pinned(k) && !pinned(k + 1))
+    {
+      addTo(&hessian_first_[9 * k], block, -1.0);
+    }
+  }
+}
+
+[[gnu::always_inline]] inline void PrimalNewton::assembleBending(const Cable& cable)
+{
+  const std::size_t f = ws_.first;
+  const double* w = cable.inv_mass.data() + f;
+  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (std::size_t j = 0; j + 1 < ws_.m; ++j)
+  {
+    // C_b is linear in the positions, so its Hessian is constant.
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* g = joint.g;
+    const double* cb = joint.c;
+    const double inv = 1.0 / ws_.gamma[j];
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      if (w[j + r] == 0.0)
+      {
+        continue;  // pinned
+      }
+      for (std::size_t axis = 0; axis < 3; ++axis)
+      {
+        grad_[3 * (j + r) + axis] += g[r] * cb[axis] * inv;
+      }
+      for (std::size_t s = 0; s <= r; ++s)
+      {
+        if (w[j + s] == 0.0)
+        {
+          continue;
+        }
+        std::vector<double>& target = r == s ? hessian_diag_ : r == s + 1 ? hessian_first_ : hessian_second_;
+        addTo(&target[9 * (j + s)], kIdentity, g[r] * g[s] * inv);
+      }
+    }
+  }
+}
+
+bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
+{
+  // The model: the step energy's second-order expansion in the positions, with each cable segment's
+  // energy (1 / 2 alpha) max(C, 0)^2 expanded in its linearised stretch C + n . (dx_k+1 - dx_k), so a
+  // segment is in the model when the step stretches it. That model is convex and piecewise quadratic; its
+  // minimiser is found by active sets (solve, take in the segments the step stretches, let go of those it
+  // does not, until the set holds), starting from the segments stretched now or taut at the end of the last
+  // step (the set changes little from step to step). A rod's segments (bending stiffness) are always in it.
+  const std::size_t m = ws_.m;
+  const std::size_t rows = 3 * (m + 1);
+  double* model = ws_.on();
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    model[k] = !ws_.unilateral || ws_.c[k] > 0.0 || ws_.taut[ws_.first + k] ? 1.0 : 0.0;
+  }
+  for (int round = 0;; ++round)
+  {
+    assemble(cable);
+    std::transform(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(rows), step_.begin(),
+                   [](double g) { return -g; });
+    const double* second = ws_.bending ? hessian_second_.data() : nullptr;
+    const bool ok = linear_ == DirectSolver::LinearSolve::kLapack
+                        ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second,
+                                                         step_.data(), m + 1, band_.data())
+                        : banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, step_.data(),
+                                                   m + 1, work_.data());
+    ++*rounds;
+    if (!ok)
+    {
+      return false;
+    }
+    if (ws_.drum != nullptr && cable.inv_mass[ws_.first + 1] > 0.0 && !drumStep(second != nullptr))
+    {
+      return false;
+    }
+    std::size_t changes = 0;
+    for (std::size_t k = ws_.drum != nullptr ? 1 : 0; ws_.unilateral && k < m; ++k)
+    {
+      const double now = linearStretch(k) > 0.0 ? 1.0 : 0.0;
+      changes += now != model[k] ? 1 : 0;
+      model[k] = now;
+    }
+    if (changes == 0 || round + 1 >= kMaxModelRounds)
+    {
+      return true;
+    }
+  }
+}
+
+bool PrimalNewton::drumStep(bool second)
+{
+  // The spool segment follows the drum's law: its force f pulls particle 1 along -n_0, so the step is
+  // dx = p + f q (p the solve without it, q the answer to a unit pull), particle 1 moves n_0 . dx along
+  // the segment, its stretch is a - b f, and f = drum.forceAgainst(a, b) meets the law exactly.
+  const std::size_t m = ws_.m;
+  const std::size_t rows = 3 * (m + 1);
+  std::copy(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), grad_step_.begin());
+  std::fill(step_.begin(), step_.begin() + static_cast<std::ptrdiff_t>(rows), 0.0);
+  step_[3] = -ws_.nx[0], step_[4] = -ws_.ny[0], step_[5] = -ws_.nz[0];
+  const bool again = linear_ == DirectSolver::LinearSolve::kLapack
+                         ? banded::solveBlockBandedLapackAgain(second, step_.data(), m + 1, band_.data())
+                         : (banded::solveBlockBandedAgain(second, step_.data(), m + 1, work_.data()), true);
+  if (!again)
+  {
+    return false;
+  }
+  const double a = ws_.c[0] + ws_.nx[0] * grad_step_[3] + ws_.ny[0] * grad_step_[4] + ws_.nz[0] * grad_step_[5];
+  const double b = -(ws_.nx[0] * step_[3] + ws_.ny[0] * step_[4] + ws_.nz[0] * step_[5]);
+  const double drum_force = ws_.drum->forceAgainst(a, std::max(b, 0.0));
+  for (std::size_t i = 0; i < rows; ++i)
+  {
+    step_[i] = grad_step_[i] + drum_force * step_[i];
+  }
+  lambda_step_[0] = drum_force - lambda_[0];
+  return true;
+}
+
+[[gnu::always_inline]] inline double PrimalNewton::linearStretch(std::size_t k) const
+{
+  const double* a = &step_[3 * k];
+  const double* b = &step_[3 * (k + 1)];
+  return ws_.c[k] + ws_.nx[k] * (b[0] - a[0]) + ws_.ny[k] * (b[1] - a[1]) + ws_.nz[k] * (b[2] - a[2]);
+}
+
+[[gnu::always_inline]] inline double PrimalNewton::alongSegment(std::size_t k) const
+{
+  const double* a = &step_[3 * k];
+  const double* b = &step_[3 * (k + 1)];
+  return ws_.nx[k] * (b[0] - a[0]) + ws_.ny[k] * (b[1] - a[1]) + ws_.nz[k] * (b[2] - a[2]);
+}
+
+void PrimalNewton::multiplierStep(const Cable& cable)
+{
+  // Each multiplier's Newton step: to the linearised force (C + n . (dx_k+1 - dx_k)) / alpha of a segment in
+  // the model, to 0 for one out of it (the drum's was set with its solve).
+  const double* model = ws_.on();
+  for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < ws_.m; ++k)
+  {
+    lambda_step_[k] = (model[k] > 0.0 ? linearStretch(k) / ws_.alpha[k] : 0.0) - lambda_[k];
+  }
+  if (ws_.drum != nullptr && !(cable.inv_mass[ws_.first + 1] > 0.0))
+  {
+    lambda_step_[0] = ws_.drum->force(ws_.c[0]) - lambda_[0];  // a segment nothing can move: the law alone
+  }
+}
+
+double PrimalNewton::slope(double* largest) const
+{
+  // The energy's slope along the step: the model's gradient, corrected where the model's force differs
+  // from the energy's (a segment not stretched yet, whose energy is flat at 0; the drum's piece).
+  const std::size_t rows = 3 * (ws_.m + 1);
+  const double* model = ws_.on();
+  double slope = 0.0;
+  *largest = 0.0;
+  for (std::size_t i = 0; i < rows; ++i)
+  {
+    slope += grad_[i] * step_[i];
+    *largest = std::max(*largest, std::abs(step_[i]));
+  }
+  for (std::size_t k = 0; k < ws_.m; ++k)
+  {
+    double model_force = 0.0;
+    if (k == 0 && ws_.drum != nullptr)
+    {
+      model_force = 0.0;  // the gradient left it out: add the law's force at the current stretch
+    }
+    else if (ws_.unilateral && model[k] > 0.0)
+    {
+      model_force = ws_.c[k] / ws_.alpha[k];
+    }
+    else
+    {
+      continue;  // not in the model (nothing given), or a rod's (the model's force is the energy's)
+    }
+    slope -= (model_force - segmentForce(k, ws_.c[k])) * alongSegment(k);
+  }
+  return slope;
+}
+
+double PrimalNewton::step(Cable& cable, int* rounds)
+{
+  if (!solveModel(cable, rounds))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  multiplierStep(cable);
+  double largest = 0.0;
+  const double along_step = slope(&largest);
+  const std::size_t f = ws_.first;
+  const double move = largest / ws_.nominal;
+  const double before = move > kGlobalMove ? energy(cable) : 0.0;
+  ws_.save(cable);
+  double t = 1.0;
+  for (int halving = 0;; ++halving)
+  {
+    for (std::size_t l = 0; l <= ws_.m; ++l)
+    {
+      cable.x[f + l] = ws_.sx[l] + t * step_[3 * l];
+      cable.y[f + l] = ws_.sy[l] + t * step_[3 * l + 1];
+      cable.z[f + l] = ws_.sz[l] + t * step_[3 * l + 2];
+    }
+    ws_.geometry(cable);
+    // Near the solution Newton's step is taken whole (quadratic convergence); far from it, the step is
+    // halved until the energy falls as the slope promises (Armijo).
+    if (move <= kGlobalMove || halving == kMaxHalvings || !(along_step < 0.0) ||
+        energy(cable) <= before + kArmijo * t * along_step)
+    {
+      for (std::size_t k = 0; k < ws_.m; ++k)
+      {
+        lambda_[k] += t * lambda_step_[k];
+      }
+      return t * move;
+    }
+    t *= 0.5;
+  }
+}
+
+double PrimalNewton::residual(const Cable& cable)
+{
+  const std::size_t f = ws_.first;
+  const std::size_t m = ws_.m;
+  const double* model = ws_.on();
+  // Each free particle's force balance M (x - x~) + J^T lambda + the bending terms, accumulated per axis in
+  // grad_step_ (free here: drumStep refills it before use).
+  double* force = grad_step_.data();
+  double worst = 0.0;
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    const double w = cable.inv_mass[f + l];
+    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      force[3 * l + a] = w > 0.0 ? d[a] / w : 0.0;
+    }
+    if (w > 0.0 && cable.anisotropic)
+    {
+      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+      const double along = (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]);
+      for (std::size_t a = 0; a < 3; ++a)
+      {
+        force[3 * l + a] += along * t[a];
+      }
+    }
+  }
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double lam = lambda_[k];
+    const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      force[3 * k + a] -= lam * n[a];
+      force[3 * (k + 1) + a] += lam * n[a];
+    }
+    double r = 0.0;
+    if (k == 0 && ws_.drum != nullptr)
+    {
+      r = std::abs(lam - ws_.drum->force(ws_.c[0])) * (cable.inv_mass[f] + cable.inv_mass[f + 1]);
+    }
+    else if (!ws_.unilateral || model[k] > 0.0)
+    {
+      r = std::abs(ws_.c[k] - ws_.alpha[k] * lam);
+    }
+    else
+    {
+      r = std::max(ws_.c[k], 0.0) + std::abs(lam) * (cable.inv_mass[f + k] + cable.inv_mass[f + k + 1]);
+    }
+    worst = std::max(worst, r * ws_.inv_rest[k]);
+  }
+  for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
+  {
+    const JointCurvature joint = jointCurvature(cable, f + j);
+    const double* g = joint.g;
+    const double* cb = joint.c;
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      for (std::size_t axis = 0; axis < 3; ++axis)
+      {
+        force[3 * (j + r) + axis] += g[r] * cb[axis] / ws_.gamma[j];
+      }
+    }
+  }
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    // As a displacement: times the largest inverse mass (along the cable, where added mass does not act).
+    const double w = std::max(cable.inv_mass[f + l], cable.anisotropic ? cable.inv_mass_along[f + l] : 0.0);
+    if (w > 0.0)
+    {
+      const double* r = &force[3 * l];
+      worst = std::max(worst, w * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) / ws_.nominal);
+    }
+  }
+  return worst;
+}
+
+}  // namespace rov_tether

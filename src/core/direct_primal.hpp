@@ -1,0 +1,81 @@
+#pragma once
+// The direct solver's primal path: Newton on the positions and the multipliers together, with the step
+// energy's full Hessian (geometric stiffness and EI bending included), a block-banded SPD solve, an
+// active-set model of the one-sided segments and an Armijo line search. See direct_solver.hpp.
+#include <cstddef>
+#include <vector>
+
+#include "direct_workspace.hpp"
+#include "rov_tether/direct_solver.hpp"
+
+namespace rov_tether
+{
+
+class PrimalNewton
+{
+ public:
+  PrimalNewton(DirectWorkspace& workspace, DirectSolver::LinearSolve linear) : ws_(workspace), linear_(linear) {}
+  /// Sizes its buffers for a cable of n particles (once: pay-out never allocates).
+  void reserve(std::size_t n);
+  /// The first iterate: lambda = the last step's multipliers, the positions x~ plus the last step's
+  /// correction x - x~ (the tension ratio makes W J^T lambda, each pull larger than a segment, too sensitive
+  /// to where J is taken). `lambda` points at segment first's multiplier.
+  void warmStart(Cable& cable, double* lambda);
+  struct Result
+  {
+    int iterations = 0;
+    int rounds = 0;  ///< Linear solves of the model's active-set rounds.
+    /// Largest relative residual where it stopped [-] (infinite when no iteration was made).
+    double residual = 0.0;
+  };
+  /// Newton iterations from the multipliers in `lambda` (the dual's, or the warm start's) until the residual
+  /// is below `tolerance` or `max_iterations` are spent, or a system is not definite; leaves the multipliers
+  /// in `lambda` (a cable's clamped at 0).
+  Result solve(Cable& cable, double* lambda, double tolerance, int max_iterations);
+
+ private:
+  /// The step's energy Phi(x) at the current positions.
+  double energy(const Cable& cable) const;
+  /// The force (multiplier) segment k carries at stretch c: its law (one-sided for a cable; the drum's for
+  /// the spool segment when there is one).
+  double segmentForce(std::size_t k, double c) const;
+  /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass
+  /// (assembleMass), the segments' axial and geometric stiffness (assembleSegments), the joints' bending.
+  void assemble(const Cable& cable);
+  void assembleMass(const Cable& cable);
+  void assembleSegments(const Cable& cable);
+  void assembleBending(const Cable& cable);
+  /// Solves for the model's Newton step into step_, the model's active set (the workspace's on()) with it,
+  /// counting the linear solves into `rounds`; false if a system is not definite.
+  bool solveModel(const Cable& cable, int* rounds);
+  /// With the drum: step_ (the solve without the spool segment's force) becomes the step that meets the
+  /// drum's law, and lambda_step_[0] its force's change; false if the second solve is not definite.
+  /// `second`: the Hessian has a second band (bending).
+  bool drumStep(bool second);
+  /// Segment k's stretch C_k + n_k . (dx_k+1 - dx_k) after step_, and the change n_k . (dx_k+1 - dx_k).
+  double linearStretch(std::size_t k) const;
+  double alongSegment(std::size_t k) const;
+  /// Each multiplier's Newton step into lambda_step_.
+  void multiplierStep(const Cable& cable);
+  /// The energy's slope along step_, and the largest component of step_ [m].
+  double slope(double* largest) const;
+  /// One Newton step with line search; returns the largest relative move |dx| / L taken (infinite when a
+  /// system was not definite).
+  double step(Cable& cable, int* rounds);
+  /// The largest residual of the step's equations at the current positions and multipliers, as a
+  /// displacement relative to the segment length: the force balance M (x - x~) + J^T lambda (+ bending)
+  /// of each free particle times its inverse mass, and C - alpha lambda of each segment (max(C, 0) of one
+  /// out of the model; lambda against the law for the drum's).
+  double residual(const Cable& cable);
+
+  DirectWorkspace& ws_;
+  DirectSolver::LinearSolve linear_;
+  /// The Hessian's 3x3 blocks (diagonal, first and second below), 9 a particle; the Newton step and the
+  /// gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
+  std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;
+  /// The multipliers as unknowns of their own (Newton on positions and multipliers together, the
+  /// multipliers eliminated from each linear solve), and their change over a Newton step.
+  std::vector<double> lambda_, lambda_step_;
+};
+
+}  // namespace rov_tether

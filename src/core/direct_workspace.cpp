@@ -1,0 +1,156 @@
+#include "direct_workspace.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rov_tether/simd.hpp"
+
+namespace rov_tether
+{
+namespace
+{
+
+/// Unit vector n_k, length |d_k| and C_k = |d_k| - L_k of each of m segments.
+ROV_TETHER_TARGET_CLONES void segmentGeometry(const double* __restrict x, const double* __restrict y,
+                                              const double* __restrict z, const double* __restrict rest,
+                                              double* __restrict nx, double* __restrict ny, double* __restrict nz,
+                                              double* __restrict len, double* __restrict c, std::size_t m)
+{
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double dx = x[k + 1] - x[k];
+    const double dy = y[k + 1] - y[k];
+    const double dz = z[k + 1] - z[k];
+    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double inv = 1.0 / (length + 1e-300);  // a zero-length segment has n = 0
+    nx[k] = dx * inv, ny[k] = dy * inv, nz[k] = dz * inv;
+    len[k] = length;
+    c[k] = length - rest[k];
+  }
+}
+
+}  // namespace
+
+void DirectWorkspace::reserve(std::size_t n)
+{
+  if (nx.size() >= n)
+  {
+    return;
+  }
+  for (auto* v : {&xt, &yt, &zt, &sx, &sy, &sz, &nx, &ny, &nz, &len, &c, &alpha, &gamma, &inv_rest, &warm_lambda,
+                  &correction_x, &correction_y, &correction_z})
+  {
+    v->assign(n, 0.0);
+  }
+  on_padded.assign(n + 2, 0.0);  // padded by one zero on each side
+  taut.assign(n, 0);
+}
+
+void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const SolverSettings& settings)
+{
+  const std::size_t f = cable.first;
+  const std::size_t n = cable.size();
+  first = f;
+  m = n - 1 - f;
+  std::copy(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), warm_lambda.begin() + f);
+  std::fill(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), 0.0);
+  std::fill(lambda.bend.begin() + static_cast<std::ptrdiff_t>(std::min(f, lambda.bend.size())), lambda.bend.end(), 0.0);
+  bending = settings.bending && settings.bending_stiffness > 0.0 && m >= 2;
+  unilateral = !bending;
+  nominal = cable.rest[n - 2];
+  const double h2 = settings.time_step * settings.time_step;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    alpha[k] = cable.rest[f + k] / (settings.axial_stiffness * h2);
+    inv_rest[k] = 1.0 / cable.rest[f + k];
+  }
+  for (std::size_t k = 0; bending && k + 1 < m; ++k)
+  {
+    gamma[k] = 0.5 * (cable.rest[f + k] + cable.rest[f + k + 1]) / (settings.bending_stiffness * h2);
+  }
+  std::copy(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end(), xt.begin());
+  std::copy(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end(), yt.begin());
+  std::copy(cable.z.begin() + static_cast<std::ptrdiff_t>(f), cable.z.end(), zt.begin());
+  geometry(cable);
+  drum = settings.drum;
+  if (drum != nullptr)
+  {
+    drum->prepare(alpha[0]);
+    if (bending)
+    {
+      // The spool segment lengthens by the drum's pay-out within the solve, which its rest length does not
+      // know: the joint's curvature a x_0 - (a + b) x_1 + b x_2 would read that as a kink and pull along the
+      // cable (2 N at 1 m/s with EI 0.2). The cable leaves the spool over a sheave: a hinge there.
+      gamma[0] = std::numeric_limits<double>::infinity();
+    }
+  }
+}
+
+void DirectWorkspace::end(const Cable& cable, double* lambda)
+{
+  const std::size_t f = first;
+  if (drum != nullptr)
+  {
+    if (cable.inv_mass[f] + cable.inv_mass[f + 1] == 0.0)
+    {
+      lambda[0] = drum->force(c[0]);  // a segment nothing can move: the law alone
+    }
+    drum->payout = drum->payoutAt(c[0]);
+  }
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    correction_x[f + l] = cable.x[f + l] - xt[l];
+    correction_y[f + l] = cable.y[f + l] - yt[l];
+    correction_z[f + l] = cable.z[f + l] - zt[l];
+  }
+  std::fill(taut.begin(), taut.end(), 0);
+  tension_ratio = 0.0;
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    // A slack cable segment carries nothing, exactly (its multiplier can end a rounding below 0).
+    lambda[k] = unilateral ? std::max(lambda[k], 0.0) : lambda[k];
+    taut[f + k] = lambda[k] > 0.0 ? 1 : 0;
+    const double weight = cable.stretch_weight[f + k];
+    if (weight > 0.0 && len[k] > 0.0)
+    {
+      tension_ratio = std::max(tension_ratio, lambda[k] / (weight * len[k]));
+    }
+  }
+}
+
+void DirectWorkspace::forget()
+{
+  std::fill(taut.begin(), taut.end(), 0);
+  for (auto* v : {&correction_x, &correction_y, &correction_z})
+  {
+    std::fill(v->begin(), v->end(), 0.0);
+  }
+  tension_ratio = 0.0;
+}
+
+void DirectWorkspace::geometry(const Cable& cable)
+{
+  const std::size_t f = first;
+  segmentGeometry(cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, cable.rest.data() + f, nx.data(),
+                  ny.data(), nz.data(), len.data(), c.data(), m);
+}
+
+void DirectWorkspace::save(const Cable& cable)
+{
+  const auto f = static_cast<std::ptrdiff_t>(first);
+  std::copy(cable.x.begin() + f, cable.x.end(), sx.begin());
+  std::copy(cable.y.begin() + f, cable.y.end(), sy.begin());
+  std::copy(cable.z.begin() + f, cable.z.end(), sz.begin());
+}
+
+void DirectWorkspace::restore(Cable& cable) const
+{
+  const auto f = static_cast<std::ptrdiff_t>(first);
+  const auto count = static_cast<std::ptrdiff_t>(m + 1);
+  std::copy(sx.begin(), sx.begin() + count, cable.x.begin() + f);
+  std::copy(sy.begin(), sy.begin() + count, cable.y.begin() + f);
+  std::copy(sz.begin(), sz.begin() + count, cable.z.begin() + f);
+}
+
+}  // namespace rov_tether

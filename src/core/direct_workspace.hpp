@@ -1,0 +1,61 @@
+#pragma once
+// What the direct solver's two Newton methods (direct_dual.hpp, direct_primal.hpp) share: the step being
+// solved, its segment geometry, the active set, and what the last step leaves the next. Not installed: only
+// DirectSolver's front (direct_solver.cpp) and the two methods see it. Sized once (reserve); a step never
+// allocates.
+#include <cstddef>
+#include <vector>
+
+#include "rov_tether/constraint_solver.hpp"
+
+namespace rov_tether
+{
+
+struct DirectWorkspace
+{
+  /// Sizes every buffer for a cable of n particles (once: pay-out never allocates).
+  void reserve(std::size_t n);
+  /// Sets up the step of the deployed particles [cable.first, n) (n >= first + 2): its compliances, the
+  /// predicted positions x~ (the cable's positions now), its geometry and the drum's piece; moves the
+  /// multipliers to warm_lambda and clears them.
+  void begin(const Cable& cable, Multipliers& lambda, const SolverSettings& settings);
+  /// Ends the step: the drum's pay-out, and what the next step starts from (the correction this step made,
+  /// the segments taut now, and how hard the chain is pulled). `lambda` points at segment first's multiplier.
+  void end(const Cable& cable, double* lambda);
+  /// Forgets what the last step left (a cable laid out anew).
+  void forget();
+  /// Segment geometry at the current positions: n_k, |d_k|, C_k.
+  void geometry(const Cable& cable);
+  /// Saves the deployed particles' positions (sx, sy, sz), and puts them back.
+  void save(const Cable& cable);
+  void restore(Cable& cable) const;
+
+  // The step being solved (deployed particles l = 0..m, segments k = 0..m-1, joints j = 0..m-2).
+  std::size_t first = 0;
+  std::size_t m = 0;
+  bool bending = false;
+  bool unilateral = true;
+  double nominal = 0.1;                 ///< Nominal segment length, the scale of the position tolerance [m].
+  SpoolDrum* drum = nullptr;            ///< The winch's drum in this step, or none.
+  std::vector<double> xt, yt, zt;       ///< Predicted positions x~ [m].
+  std::vector<double> sx, sy, sz;       ///< Saved positions (rejected steps, line search).
+  std::vector<double> nx, ny, nz, len;  ///< Unit vector and length of segment k.
+  std::vector<double> c;                ///< C_k = |d_k| - L_k [m].
+  std::vector<double> alpha;            ///< alpha_k = L_k / (EA h^2) [1/kg].
+  std::vector<double> inv_rest;         ///< 1 / L_k [1/m].
+  std::vector<double> gamma;            ///< Compliance of bending joint j [1/(kg m^2)].
+  /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and
+  /// after row m - 1 (on() points at row 0).
+  std::vector<double> on_padded;
+  double* on() { return on_padded.data() + 1; }
+  const double* on() const { return on_padded.data() + 1; }
+
+  // What the last step leaves the next, by particle index.
+  std::vector<double> warm_lambda;  ///< Its multipliers: the first estimate.
+  /// Its correction x - x~ of each particle [m]: the primal path's first guess.
+  std::vector<double> correction_x, correction_y, correction_z;
+  std::vector<unsigned char> taut;  ///< Its segments that ended taut: the first active set.
+  double tension_ratio = 0.0;       ///< Its largest h^2 T (w_a + w_b) / |d| [-].
+};
+
+}  // namespace rov_tether
