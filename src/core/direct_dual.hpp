@@ -22,12 +22,7 @@ class DualNewton
   void warmStart(Cable& cable, double* lambda);
   /// Newton iterations until every residual is below `tolerance` or `max_iterations` are spent, or until an
   /// iteration fails to lower the residual (that one is undone: the primal path takes over).
-  struct Result
-  {
-    int iterations = 0;
-    int rounds = 0;         ///< Linear solves of the active-set rounds.
-    double residual = 0.0;  ///< Largest relative residual where it stopped [-].
-  };
+  using Result = NewtonResult;
   Result solve(Cable& cable, double* lambda, double tolerance, int max_iterations);
 
  private:

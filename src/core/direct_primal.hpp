@@ -21,13 +21,7 @@ class PrimalNewton
   /// correction x - x~ (the tension ratio makes W J^T lambda, each pull larger than a segment, too sensitive
   /// to where J is taken). `lambda` points at segment first's multiplier.
   void warmStart(Cable& cable, double* lambda);
-  struct Result
-  {
-    int iterations = 0;
-    int rounds = 0;  ///< Linear solves of the model's active-set rounds.
-    /// Largest relative residual where it stopped [-] (infinite when no iteration was made).
-    double residual = 0.0;
-  };
+  using Result = NewtonResult;
   /// Newton iterations from the multipliers in `lambda` (the dual's, or the warm start's) until the residual
   /// is below `tolerance` or `max_iterations` are spent, or a system is not definite; leaves the multipliers
   /// in `lambda` (a cable's clamped at 0).

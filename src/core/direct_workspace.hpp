@@ -11,6 +11,15 @@
 namespace rov_tether
 {
 
+/// Where a Newton method (DualNewton, PrimalNewton) stopped.
+struct NewtonResult
+{
+  int iterations = 0;
+  int rounds = 0;  ///< Linear solves of the active-set rounds.
+  /// Largest relative residual where it stopped [-] (the primal's: infinite when no iteration was made).
+  double residual = 0.0;
+};
+
 struct DirectWorkspace
 {
   /// Sizes every buffer for a cable of n particles (once: pay-out never allocates).
