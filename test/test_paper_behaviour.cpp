@@ -134,7 +134,8 @@ TEST(PaperFig11, NoiseMakesTheShapeLoseItsMemory)
 
 // A known limitation (docs/limitations.md), pinned: the (i, i+2) bending constraints cannot all be met in a slack
 // cable, so Gauss-Seidel keeps moving it by centimetres per 8 s without any noise, while the same cable
-// without them freezes (1e-11 m, above). When this fails the limitation is gone: update docs/limitations.md and the README.
+// without them freezes (1e-11 m, above). When this fails the limitation is gone: update docs/limitations.md and the
+// README.
 TEST(PaperFig11, BendingConstraintsMakeASlackCableCreepWithoutNoise)
 {
   const double bending_creep = shapeChangeLate(0.0, true);

@@ -404,7 +404,8 @@ double WorldContact::contactSegment(Cable& cable, std::size_t j, double r, doubl
   return deepest;
 }
 
-[[gnu::always_inline]] inline double WorldContact::contactCables(Cable& cable, std::size_t j, double r, double widest, std::size_t gap, Push* out)
+[[gnu::always_inline]] inline double WorldContact::contactCables(Cable& cable, std::size_t j, double r, double widest,
+                                                                 std::size_t gap, Push* out)
 {
   double deepest = 0.0;
   Push& push = *out;
