@@ -1,5 +1,6 @@
 #include "rov_tether/ros/obstacle_config.hpp"
 
+#include <ros/names.h>
 #include <ros/package.h>
 
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
@@ -50,6 +51,46 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
     *options = candidate;
   }
   return errors;
+}
+
+std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups,
+                          const WorldOptions& options, WorldSpec* spec)
+{
+  WorldSpec result;
+  for (std::size_t i = 0; i < setups.size() && i < names.size(); ++i)
+  {
+    result.tethers.push_back({names[i], setups[i].params, setups[i].options.spool_position, {}});
+  }
+  result.tether_contact = options.tether_contact;
+  for (ObstacleSpec obstacle : options.obstacles)
+  {
+    if (obstacle.type == ShapeType::Mesh)
+    {
+      std::string error;
+      obstacle.file = resolveMeshFile(obstacle.file, &error);
+      if (obstacle.file.empty())
+      {
+        return "obstacle '" + obstacle.name + "' file: " + error;
+      }
+    }
+    result.obstacles.push_back(obstacle);
+  }
+  *spec = result;
+  return "";
+}
+
+std::string checkNodeTetherName(const std::string& name)
+{
+  if (!isTetherName(name))
+  {
+    return "'" + name + "': expected " + kTetherNameRule;
+  }
+  std::string error;
+  if (!ros::names::validate(name, error))
+  {
+    return "'" + name + "': not a ROS name (" + error + "): a letter first, then letters, digits or '_'";
+  }
+  return "";
 }
 
 std::string resolveMeshFile(const std::string& file, std::string* error)

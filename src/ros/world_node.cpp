@@ -24,9 +24,15 @@ std::vector<std::string> tetherNames(const ros::NodeHandle& private_nh)
   }
   for (int i = 0; i < names.size(); ++i)
   {
-    if (names[i].getType() != XmlRpc::XmlRpcValue::TypeString || static_cast<std::string>(names[i]).empty())
+    if (names[i].getType() != XmlRpc::XmlRpcValue::TypeString)
     {
       throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " is not a name");
+    }
+    // The runner's rule (isTetherName), checked before a namespace is made of it.
+    const std::string bad = checkNodeTetherName(static_cast<std::string>(names[i]));
+    if (!bad.empty())
+    {
+      throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " " + bad);
     }
     result.push_back(static_cast<std::string>(names[i]));
   }
@@ -89,21 +95,23 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
   XmlRpc::XmlRpcValue top;
   private_nh_.getParam(private_nh_.getNamespace(), top);
+  const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
   WorldOptions world_options;
-  const std::string world_error =
-      loadWorldOptions(top, &world_options, names.empty() ? std::vector<std::string>{"tether"} : names);
+  std::string world_error = loadWorldOptions(top, &world_options, world_names);
+  // The world from its one description, by the runner's builder: tethers, contact, obstacles (each mesh read once).
+  WorldSpec world_spec;
+  world_error = world_error.empty() ? nodeWorldSpec(world_names, setups, world_options, &world_spec) : world_error;
+  world_error = world_error.empty() ? buildWorld(world_spec, &world_) : world_error;
   if (!world_error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);
   }
-  std::vector<std::unique_ptr<Obstacle>> obstacles = makeObstacles(world_options);
   const NodeOptions& clock = setups.front().options;
   double state_rate = 0.0;
   for (const auto& setup : setups)
   {
     state_rate = std::max(state_rate, setup.options.state_rate);
   }
-  world_.setContactBetweenTethers(world_options.tether_contact);
   scheduler_ = std::make_unique<Scheduler>(world_, clock.interpolation_delay);
   topology_ = std::make_unique<TopologyReport>(private_nh_, world_, clock.world_frame, state_rate);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
@@ -116,10 +124,9 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, input_nh, setups[i], name, world_, *scheduler_,
                                                     tf_buffer_, *topology_));
   }
-  if (!obstacles.empty())
+  if (world_.obstacleCount() > 0)
   {
-    obstacles_ = std::make_unique<ObstacleScene>(private_nh_, std::move(obstacles), clock.world_frame,
-                                                 clock.marker_rate, world_, tf_buffer_);
+    obstacles_ = std::make_unique<ObstacleScene>(private_nh_, clock.world_frame, clock.marker_rate, world_, tf_buffer_);
     ROS_INFO("tether_node: %zu obstacles%s", world_.obstacleCount(),
              world_options.tether_contact ? ", contact between tethers on" : ", contact between tethers off");
   }

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "rov_tether/obstacle.hpp"
+#include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/world_spec.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -23,6 +25,18 @@ struct WorldOptions
 /// success.
 std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options,
                              const std::vector<std::string>& tether_names = {});
+
+/// The node's world as described, for buildWorld (the runner's builder too): each tether of `names` ("tether"
+/// for a node without a `tethers` list) with its parameters and spool position from `setups` (in the same
+/// order; no vehicle path: the vehicle end follows the pose input), `options`' obstacles with each mesh file
+/// resolved (resolveMeshFile) and tether_contact. Cameras are read by the CameraSet. Returns "" or the
+/// error (an obstacle whose file cannot be resolved, naming it); `spec` is set only on success.
+std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups,
+                          const WorldOptions& options, WorldSpec* spec);
+
+/// Whether `name` may name one of the node's tethers: isTetherName (the runner's rule too) and a ROS name (its
+/// parameters and topics are under ~<name>/: a letter first, no '-'). Returns "" or why not, naming it.
+std::string checkNodeTetherName(const std::string& name);
 
 /// A mesh file as a path for the loader: `package://pkg/rest` becomes pkg's directory + /rest,
 /// `file:///path` /path; a plain absolute path stays. Returns "" for what cannot be resolved (an unknown
