@@ -15,19 +15,7 @@ std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector
                               std::vector<CameraConfig>* cameras)
 {
   // The one reader of cameras (spec::readCameras, as the scenario runner's), for cameras on tf frames.
-  std::vector<spec::CameraSpec> read;
-  const std::string error = spec::readCameras(toYaml(list), spec::CameraMount::kTfFrame, reserved, &read);
-  if (!error.empty())
-  {
-    return error;
-  }
-  cameras->clear();
-  for (const auto& camera : read)
-  {
-    cameras->push_back(
-        {camera.name, camera.frame, camera.info_topic, camera.intrinsics, camera.image_topic, camera.rate});
-  }
-  return "";
+  return spec::readCameras(toYaml(list), spec::CameraMount::kTfFrame, reserved, cameras);
 }
 
 std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics)

@@ -4,6 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "rov_tether/ros/camera_config.hpp"
+#include "rov_tether/ros/obstacle_config.hpp"
+#include "rov_tether/world_spec.hpp"
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -98,9 +102,20 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
   WorldOptions world_options;
   std::string world_error = loadWorldOptions(top, &world_options, world_names);
-  // The world from its one description, by the runner's builder: tethers, contact, obstacles (each mesh read once).
+  // The world from its one description, by the runner's builder: tethers, contact, obstacles (each mesh read
+  // once); the cameras are read into it too, so their names are checked with the others' (validateWorldSpec).
   WorldSpec world_spec;
   world_error = world_error.empty() ? nodeWorldSpec(world_names, setups, world_options, &world_spec) : world_error;
+  XmlRpc::XmlRpcValue cameras;
+  const bool has_cameras = private_nh_.getParam("cameras", cameras);
+  if (world_error.empty() && has_cameras)
+  {
+    const std::string camera_error = loadCameraConfigs(cameras, world_names, &world_spec.cameras);
+    if (!camera_error.empty())
+    {
+      throw std::runtime_error("parameter " + camera_error);
+    }
+  }
   world_error = world_error.empty() ? buildWorld(world_spec, &world_) : world_error;
   if (!world_error.empty())
   {
@@ -130,11 +145,10 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     ROS_INFO("tether_node: %zu obstacles%s", world_.obstacleCount(),
              world_options.tether_contact ? ", contact between tethers on" : ", contact between tethers off");
   }
-  XmlRpc::XmlRpcValue cameras;
-  if (private_nh_.getParam("cameras", cameras))
+  if (has_cameras)
   {
     cameras_ =
-        std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
+        std::make_unique<CameraSet>(world_spec.cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
                                     setups.front().options.max_pose_future, setups.front().options.max_lag);
   }
   input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);

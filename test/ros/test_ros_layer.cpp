@@ -1268,5 +1268,24 @@ TEST(WorldSpec, NodeAndRunnerBuildTheSameWorld)
   sameTethers();
 }
 
+// Issue 21: one rule for a tether's name, the runner's (isTetherName); the node refuses a name outside it at
+// start (WorldNode, parameter `tethers`), and one ROS cannot take as a namespace (~<name>/), with the reason.
+TEST(WorldSpec, TheNodeRefusesABadTetherNameClearly)
+{
+  for (const std::string& good : std::vector<std::string>{"t0", "fast", "rov_1", "tether"})
+  {
+    EXPECT_EQ(checkNodeTetherName(good), "") << good;
+  }
+  EXPECT_EQ(checkNodeTetherName(""), "'': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName("a/b"), "'a/b': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName("rov 1"), "'rov 1': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName(std::string(65, 'a')).find("expected 1-64 letters"), std::string(65, 'a').size() + 4);
+  // Within the runner's rule, but no ROS name: said so, not left to roscpp's InvalidNameException.
+  for (const std::string& bad : std::vector<std::string>{"rov-1", "1rov"})
+  {
+    EXPECT_NE(checkNodeTetherName(bad).find("'" + bad + "': not a ROS name"), std::string::npos) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace rov_tether::ros_layer

@@ -29,7 +29,7 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
 /// The node's world as described, for buildWorld (the runner's builder too): each tether of `names` ("tether"
 /// for a node without a `tethers` list) with its parameters and spool position from `setups` (in the same
 /// order; no vehicle path: the vehicle end follows the pose input), `options`' obstacles with each mesh file
-/// resolved (resolveMeshFile) and tether_contact. Cameras are read by the CameraSet. Returns "" or the
+/// resolved (resolveMeshFile) and tether_contact (its cameras: loadCameraConfigs). Returns "" or the
 /// error (an obstacle whose file cannot be resolved, naming it); `spec` is set only on success.
 std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups,
                           const WorldOptions& options, WorldSpec* spec);
