@@ -17,6 +17,35 @@ bool isTetherName(const std::string& name)
              std::string::npos;
 }
 
+namespace
+{
+
+/// "" or "<list>[k] '<name>' name: taken by ..." for the first of `items` whose name an earlier one or a
+/// tether took.
+template <typename Item>
+std::string firstTakenName(const std::vector<Item>& items, const std::string& list, const std::string& kind,
+                           const std::vector<std::string>& tethers)
+{
+  std::vector<std::string> seen;
+  for (std::size_t k = 0; k < items.size(); ++k)
+  {
+    const std::string& name = items[k].name;
+    const std::string who = list + "[" + std::to_string(k) + "] '" + name + "' name: taken by ";
+    if (std::count(seen.begin(), seen.end(), name) > 0)
+    {
+      return who + "an earlier " + kind;
+    }
+    if (std::count(tethers.begin(), tethers.end(), name) > 0)
+    {
+      return who + "a tether";
+    }
+    seen.push_back(name);
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string validateWorldSpec(const WorldSpec& spec)
 {
   std::vector<std::string> tethers;
@@ -34,39 +63,8 @@ std::string validateWorldSpec(const WorldSpec& spec)
     }
     tethers.push_back(name);
   }
-  const auto taken = [&tethers](const std::string& name)
-  { return std::count(tethers.begin(), tethers.end(), name) > 0; };
-  std::vector<std::string> obstacles;
-  for (std::size_t k = 0; k < spec.obstacles.size(); ++k)
-  {
-    const std::string& name = spec.obstacles[k].name;
-    const std::string who = "obstacles[" + std::to_string(k) + "] '" + name + "' name: taken by ";
-    if (std::count(obstacles.begin(), obstacles.end(), name) > 0)
-    {
-      return who + "an earlier obstacle";
-    }
-    if (taken(name))
-    {
-      return who + "a tether";
-    }
-    obstacles.push_back(name);
-  }
-  std::vector<std::string> cameras;
-  for (std::size_t k = 0; k < spec.cameras.size(); ++k)
-  {
-    const std::string& name = spec.cameras[k].name;
-    const std::string who = "cameras[" + std::to_string(k) + "] '" + name + "' name: taken by ";
-    if (std::count(cameras.begin(), cameras.end(), name) > 0)
-    {
-      return who + "an earlier camera";
-    }
-    if (taken(name))
-    {
-      return who + "a tether";
-    }
-    cameras.push_back(name);
-  }
-  return "";
+  const std::string error = firstTakenName(spec.obstacles, "obstacles", "obstacle", tethers);
+  return error.empty() ? firstTakenName(spec.cameras, "cameras", "camera", tethers) : error;
 }
 
 WorldSpec worldSpecOf(const Scenario& scenario)
