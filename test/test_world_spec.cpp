@@ -64,10 +64,15 @@ TEST(WorldSpec, NamesAreCheckedAcrossTethersObstaclesAndCameras)
   EXPECT_EQ(error(bad), "obstacles[0] 'b' name: taken by a tether");
   bad = spec;
   bad.cameras.push_back(spec.cameras[0]);
-  EXPECT_EQ(error(bad), "cameras[1] 'front' name: taken by an earlier camera");
+  EXPECT_EQ(error(bad), "cameras[1].name = 'front': used twice");
   bad = spec;
   bad.cameras[0].name = "a";
-  EXPECT_EQ(error(bad), "cameras[0] 'a' name: taken by a tether");
+  EXPECT_EQ(error(bad), "cameras[0].name = 'a': already used by a tether");
+  bad = spec;
+  bad.tethers.resize(1);
+  bad.tethers[0].name = "tether";
+  bad.obstacles[0].name = "tether";
+  EXPECT_EQ(error(bad), "obstacles[0] 'tether' name: taken by a tether (a world's one tether is called 'tether')");
   // buildWorld checks the same before it builds anything.
   World world;
   bad = spec;

@@ -9,6 +9,19 @@
 namespace rov_tether::ros_layer
 {
 
+WorldSpec namesOnly(const std::vector<std::string>& tether_names, const std::vector<ObstacleSpec>& obstacles,
+                    const std::vector<spec::CameraSpec>& cameras)
+{
+  WorldSpec spec;
+  for (const std::string& name : tether_names)
+  {
+    spec.tethers.push_back({name, {}, Position::Zero(), {}});
+  }
+  spec.obstacles = obstacles;
+  spec.cameras = cameras;
+  return spec;
+}
+
 std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options,
                              const std::vector<std::string>& tether_names)
 {
@@ -37,10 +50,8 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
     // written (a path or a URI: resolveMeshFile when it is built, meshResourceUri for rviz).
     spec::ObstacleReading reading;
     reading.frames = true;
-    reading.tether_names = tether_names;
-    reading.tether_hint =
-        tether_names.size() == 1 && tether_names.front() == "tether" ? " (a node's one tether is called 'tether')" : "";
-    const std::string error = spec::readObstacles(toYaml(map["obstacles"]), reading, &candidate.obstacles);
+    std::string error = spec::readObstacles(toYaml(map["obstacles"]), reading, &candidate.obstacles);
+    error = error.empty() ? validateWorldSpec(namesOnly(tether_names, candidate.obstacles, {})) : error;
     if (!error.empty())
     {
       fail(error);

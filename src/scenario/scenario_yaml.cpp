@@ -61,7 +61,7 @@ std::string applyParamMap(const YAML::Node& map, const std::string& prefix, Teth
 std::string readCameras(const YAML::Node& node, double duration, std::vector<ScenarioCamera>* cameras)
 {
   std::vector<spec::CameraSpec> read;
-  const std::string error = spec::readCameras(node, spec::CameraMount::kVehicle, {}, &read);
+  const std::string error = spec::readCameras(node, spec::CameraMount::kVehicle, &read);
   if (!error.empty())
   {
     return error;
@@ -170,15 +170,12 @@ std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tet
     }
     tethers->push_back(tether);
   }
-  WorldSpec names;  // each name used once: validateWorldSpec, the check buildWorld makes too
-  names.tethers = *tethers;
-  return validateWorldSpec(names);
+  return "";
 }
 
 /// The scenario's `obstacles` (spec::readObstacles): no tf frames; a mesh `file` is a path, relative ones
 /// taken from `base_dir`. A mesh is read once, when the world is built (buildWorld), not here.
-std::string readObstacles(const YAML::Node& node, const std::string& base_dir, const Scenario& scenario,
-                          std::vector<ObstacleSpec>* obstacles)
+std::string readObstacles(const YAML::Node& node, const std::string& base_dir, std::vector<ObstacleSpec>* obstacles)
 {
   spec::ObstacleReading reading;
   reading.file = [&base_dir](const std::string& file, std::string* error) -> std::string
@@ -192,11 +189,6 @@ std::string readObstacles(const YAML::Node& node, const std::string& base_dir, c
     const std::filesystem::path path(file);
     return path.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / path).string();
   };
-  for (const auto& tether : scenario.tetherList())
-  {
-    reading.tether_names.push_back(tether.name);
-  }
-  reading.tether_hint = scenario.tethers.empty() ? " (a single-tether scenario's tether is called 'tether')" : "";
   return spec::readObstacles(node, reading, obstacles);
 }
 
@@ -317,11 +309,17 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
   }
   if (root["obstacles"])
   {
-    error = readObstacles(root["obstacles"], base_dir, result, &result.obstacles);
+    error = readObstacles(root["obstacles"], base_dir, &result.obstacles);
     if (!error.empty())
     {
       return error;
     }
+  }
+  // Names across tethers, obstacles and cameras: the world's one check (buildWorld makes it again).
+  error = validateWorldSpec(worldSpecOf(result));
+  if (!error.empty())
+  {
+    return error;
   }
   *scenario = result;
   return "";

@@ -20,24 +20,22 @@ bool isTetherName(const std::string& name)
 namespace
 {
 
-/// "" or "<list>[k] '<name>' name: taken by ..." for the first of `items` whose name an earlier one or a
+/// "" or `said(k, name, by_tether)` for the first of `items` whose name an earlier one (by_tether false) or a
 /// tether took.
-template <typename Item>
-std::string firstTakenName(const std::vector<Item>& items, const std::string& list, const std::string& kind,
-                           const std::vector<std::string>& tethers)
+template <typename Item, typename Say>
+std::string firstTakenName(const std::vector<Item>& items, const std::vector<std::string>& tethers, Say said)
 {
   std::vector<std::string> seen;
   for (std::size_t k = 0; k < items.size(); ++k)
   {
     const std::string& name = items[k].name;
-    const std::string who = list + "[" + std::to_string(k) + "] '" + name + "' name: taken by ";
-    if (std::count(seen.begin(), seen.end(), name) > 0)
-    {
-      return who + "an earlier " + kind;
-    }
     if (std::count(tethers.begin(), tethers.end(), name) > 0)
     {
-      return who + "a tether";
+      return said(k, name, true);
+    }
+    if (std::count(seen.begin(), seen.end(), name) > 0)
+    {
+      return said(k, name, false);
     }
     seen.push_back(name);
   }
@@ -63,8 +61,22 @@ std::string validateWorldSpec(const WorldSpec& spec)
     }
     tethers.push_back(name);
   }
-  const std::string error = firstTakenName(spec.obstacles, "obstacles", "obstacle", tethers);
-  return error.empty() ? firstTakenName(spec.cameras, "cameras", "camera", tethers) : error;
+  // The one tether of a world without a `tethers` list is called "tether" (a node's, a scenario's).
+  const std::string hint = tethers.size() == 1 && tethers.front() == "tether" ? " (a world's one tether is called 'tether')" : "";
+  const std::string error = firstTakenName(spec.obstacles, tethers,
+                                           [&hint](std::size_t k, const std::string& name, bool by_tether)
+                                           {
+                                             return "obstacles[" + std::to_string(k) + "] '" + name +
+                                                    "' name: taken by " +
+                                                    (by_tether ? "a tether" + hint : "an earlier obstacle");
+                                           });
+  return error.empty() ? firstTakenName(spec.cameras, tethers,
+                                        [](std::size_t k, const std::string& name, bool by_tether)
+                                        {
+                                          return "cameras[" + std::to_string(k) + "].name = '" + name + "': " +
+                                                 (by_tether ? "already used by a tether" : "used twice");
+                                        })
+                       : error;
 }
 
 WorldSpec worldSpecOf(const Scenario& scenario)

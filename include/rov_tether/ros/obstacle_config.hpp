@@ -19,9 +19,14 @@ struct WorldOptions
   bool tether_contact = false;          ///< World::setContactBetweenTethers: tethers touch each other and themselves.
 };
 
-/// Reads `obstacles` (spec::readObstacles: names unique, none one of `tether_names`; tf frames allowed; a
-/// mesh `file` kept as written) and `tether_contact` from `dict` (the private namespace as a map) on top of
-/// `options`. Returns "" or every problem, each naming its entry and field; `options` is changed only on
+/// A description with only names in it (the tethers', default otherwise), for validateWorldSpec while the
+/// node's parameters are read part by part.
+WorldSpec namesOnly(const std::vector<std::string>& tether_names, const std::vector<ObstacleSpec>& obstacles,
+                    const std::vector<spec::CameraSpec>& cameras);
+
+/// Reads `obstacles` (spec::readObstacles; tf frames allowed; a mesh `file` kept as written; names unique and
+/// none one of `tether_names`: validateWorldSpec) and `tether_contact` from `dict` (the private namespace as a
+/// map) on top of `options`. Returns "" or every problem, each naming its entry and field; `options` is changed only on
 /// success.
 std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options,
                              const std::vector<std::string>& tether_names = {});
