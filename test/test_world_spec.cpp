@@ -2,13 +2,12 @@
 // each mesh file read once from a scenario file to the end of its run. (The node's path to the same World:
 // test/ros/test_ros_layer.cpp, WorldSpec.NodeAndRunnerBuildTheSameWorld.)
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "rov_tether/mesh_obstacle.hpp"
 #include "rov_tether/scenario_runner.hpp"

@@ -62,7 +62,8 @@ std::string validateWorldSpec(const WorldSpec& spec)
     tethers.push_back(name);
   }
   // The one tether of a world without a `tethers` list is called "tether" (a node's, a scenario's).
-  const std::string hint = tethers.size() == 1 && tethers.front() == "tether" ? " (a world's one tether is called 'tether')" : "";
+  const std::string hint =
+      tethers.size() == 1 && tethers.front() == "tether" ? " (a world's one tether is called 'tether')" : "";
   const std::string error = firstTakenName(spec.obstacles, tethers,
                                            [&hint](std::size_t k, const std::string& name, bool by_tether)
                                            {
@@ -73,8 +74,8 @@ std::string validateWorldSpec(const WorldSpec& spec)
   return error.empty() ? firstTakenName(spec.cameras, tethers,
                                         [](std::size_t k, const std::string& name, bool by_tether)
                                         {
-                                          return "cameras[" + std::to_string(k) + "].name = '" + name + "': " +
-                                                 (by_tether ? "already used by a tether" : "used twice");
+                                          return "cameras[" + std::to_string(k) + "].name = '" + name +
+                                                 "': " + (by_tether ? "already used by a tether" : "used twice");
                                         })
                        : error;
 }
