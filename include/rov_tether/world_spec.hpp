@@ -35,7 +35,7 @@ struct WorldSpec
 
 /// The one rule for a tether's name, the node's and the runner's: 1-64 letters, digits, '_' or '-' (a
 /// directory of the runner's output; the node's parameters and topics of a tether among several are under
-/// ~<name>/).
+/// ~<name>/, so the node also wants a ROS name: ros_layer::checkNodeTetherName).
 bool isTetherName(const std::string& name);
 /// What isTetherName allows, as said in messages.
 extern const char* const kTetherNameRule;
@@ -55,7 +55,7 @@ Tether makeTether(const ScenarioTether& tether);
 
 /**
  * Builds `spec` into `world` (empty; an error leaves it half built, to be thrown away): validateWorldSpec,
- * then every tether (makeTether) in order, contact between tethers, and every obstacle, each built once
+ * contact between tethers, every tether (makeTether) in order, then every obstacle, each built once
  * (makeObstacle: a mesh file is read here and only here). What was built is in the World: its tethers
  * (World::tether) and obstacles (World::obstacle, with their specs and poses). Returns "" or the error,
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
