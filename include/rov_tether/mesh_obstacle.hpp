@@ -48,6 +48,9 @@ struct TriangleMesh
 /// lines and points dropped), scaled by `scale`. Fails with a message naming the file when it is missing,
 /// unreadable, not a mesh assimp knows, or holds no triangle.
 Status loadTriangleMesh(const std::string& file, double scale, TriangleMesh* mesh);
+/// How many times loadTriangleMesh has opened a file in this process, whether or not it held a mesh (the
+/// test that a world's description reads each mesh once).
+std::size_t meshFilesRead();
 
 class MeshObstacle : public Obstacle
 {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/camera/camera_intrinsics.hpp"
 #include "rov_tether/obstacle.hpp"
+#include "rov_tether/spec/camera_spec.hpp"
 #include "rov_tether/tether.hpp"
 #include "rov_tether/tether_params.hpp"
 
@@ -19,18 +19,10 @@ struct Waypoint
 };
 
 /// A camera carried by the vehicle, for the offline dataset of its tether masks (the runner writes
-/// DIR/cameras/<name>/; see the camera library's DatasetWriter).
-struct ScenarioCamera
-{
-  std::string name;  ///< 1-64 letters, digits or '_', not a digit first (spec::readCameras: the node's rule too).
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< In the vehicle frame (x forward, z up) [m].
-  /// Roll, pitch, yaw of the camera in the vehicle frame [deg], of a frame whose x axis looks along the
-  /// view and z is up (pitch > 0 looks down); the image's optical frame (z forward, x right, y down)
-  /// follows from it.
-  Eigen::Vector3d orientation = Eigen::Vector3d::Zero();
-  double rate = 10.0;  ///< Frames per simulated second [Hz].
-  camera::CameraIntrinsics intrinsics;
-};
+/// DIR/cameras/<name>/; see the camera library's DatasetWriter): the one description of a camera
+/// (spec::readCameras with CameraMount::kVehicle: name, position and orientation in the vehicle frame, rate,
+/// intrinsics; the node's cameras use its tf fields instead).
+using ScenarioCamera = spec::CameraSpec;
 
 /// Position on a piecewise-linear path at time t [s]: held before the first and after the last waypoint;
 /// at two waypoints with the same time the later one wins from that time on (a jump). Zero for no path.
@@ -39,7 +31,7 @@ Position pathAt(const std::vector<Waypoint>& path, double t);
 /// One tether of a scenario's `tethers:` list: its own parameters, spool and vehicle path.
 struct ScenarioTether
 {
-  std::string name;  ///< Directory name under the output directory: letters, digits, '_' and '-'.
+  std::string name;  ///< Directory name under the output directory (isTetherName: the node's rule too).
   TetherParams params;
   Position spool = Position::Zero();
   std::vector<Waypoint> vehicle;  ///< Empty: a free end.
@@ -101,7 +93,7 @@ class PathDriver
       : params_(tether.params), spool_(tether.spool), vehicle_(tether.vehicle)
   {
   }
-  /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position.
+  /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position (makeTether).
   Tether makeSimulation() const;
   /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s].
   void advanceTo(Tether& sim, double t);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rov_tether/scenario.hpp"
+#include "rov_tether/world.hpp"
 
 namespace rov_tether
 {
@@ -55,6 +56,10 @@ class RunObserver
 /// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
 /// otherwise the error (an obstacle that cannot be built: naming it).
 std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
+                        const std::vector<RunObserver*>& observers = {});
+/// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a
+/// caller can tell a world that cannot be built from a run that failed).
+std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers = {});
 
 /// The node's default `max_tension_warning` [N]: the runner warns above the same tension.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -198,8 +199,19 @@ struct MeshObstacle::Fcl
   std::vector<int> stack;        ///< push's traversal: the nodes still to visit, sized to the tree's depth.
 };
 
+namespace
+{
+
+/// Files loadTriangleMesh opened (meshFilesRead).
+std::atomic<std::size_t> mesh_files_read{0};
+
+}  // namespace
+
+std::size_t meshFilesRead() { return mesh_files_read.load(); }
+
 Status loadTriangleMesh(const std::string& file, double scale, TriangleMesh* mesh)
 {
+  ++mesh_files_read;
   const std::string who = "mesh file '" + file + "': ";
   if (!std::ifstream(file).good())
   {

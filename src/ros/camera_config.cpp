@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/spec/camera_reader.hpp"
 
@@ -15,19 +16,15 @@ std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector
                               std::vector<CameraConfig>* cameras)
 {
   // The one reader of cameras (spec::readCameras, as the scenario runner's), for cameras on tf frames.
+  // Their names with the tethers' (`reserved`): validateWorldSpec, the world's one check of names.
   std::vector<spec::CameraSpec> read;
-  const std::string error = spec::readCameras(toYaml(list), spec::CameraMount::kTfFrame, reserved, &read);
-  if (!error.empty())
+  std::string error = spec::readCameras(toYaml(list), spec::CameraMount::kTfFrame, &read);
+  error = error.empty() ? validateWorldSpec(namesOnly(reserved, {}, read)) : error;
+  if (error.empty())
   {
-    return error;
+    *cameras = std::move(read);
   }
-  cameras->clear();
-  for (const auto& camera : read)
-  {
-    cameras->push_back(
-        {camera.name, camera.frame, camera.info_topic, camera.intrinsics, camera.image_topic, camera.rate});
-  }
-  return "";
+  return error;
 }
 
 std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics)

@@ -1,5 +1,6 @@
 #include "rov_tether/ros/obstacle_config.hpp"
 
+#include <ros/names.h>
 #include <ros/package.h>
 
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
@@ -7,6 +8,19 @@
 
 namespace rov_tether::ros_layer
 {
+
+WorldSpec namesOnly(const std::vector<std::string>& tether_names, const std::vector<ObstacleSpec>& obstacles,
+                    const std::vector<spec::CameraSpec>& cameras)
+{
+  WorldSpec spec;
+  for (const std::string& name : tether_names)
+  {
+    spec.tethers.push_back({name, {}, Position::Zero(), {}});
+  }
+  spec.obstacles = obstacles;
+  spec.cameras = cameras;
+  return spec;
+}
 
 std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* options,
                              const std::vector<std::string>& tether_names)
@@ -36,10 +50,8 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
     // written (a path or a URI: resolveMeshFile when it is built, meshResourceUri for rviz).
     spec::ObstacleReading reading;
     reading.frames = true;
-    reading.tether_names = tether_names;
-    reading.tether_hint =
-        tether_names.size() == 1 && tether_names.front() == "tether" ? " (a node's one tether is called 'tether')" : "";
-    const std::string error = spec::readObstacles(toYaml(map["obstacles"]), reading, &candidate.obstacles);
+    std::string error = spec::readObstacles(toYaml(map["obstacles"]), reading, &candidate.obstacles);
+    error = error.empty() ? validateWorldSpec(namesOnly(tether_names, candidate.obstacles, {})) : error;
     if (!error.empty())
     {
       fail(error);
@@ -50,6 +62,46 @@ std::string loadWorldOptions(const XmlRpc::XmlRpcValue& dict, WorldOptions* opti
     *options = candidate;
   }
   return errors;
+}
+
+std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups,
+                          const WorldOptions& options, WorldSpec* spec)
+{
+  WorldSpec result;
+  for (std::size_t i = 0; i < setups.size() && i < names.size(); ++i)
+  {
+    result.tethers.push_back({names[i], setups[i].params, setups[i].options.spool_position, {}});
+  }
+  result.tether_contact = options.tether_contact;
+  for (ObstacleSpec obstacle : options.obstacles)
+  {
+    if (obstacle.type == ShapeType::Mesh)
+    {
+      std::string error;
+      obstacle.file = resolveMeshFile(obstacle.file, &error);
+      if (obstacle.file.empty())
+      {
+        return "obstacle '" + obstacle.name + "' file: " + error;
+      }
+    }
+    result.obstacles.push_back(obstacle);
+  }
+  *spec = result;
+  return "";
+}
+
+std::string checkNodeTetherName(const std::string& name)
+{
+  if (!isTetherName(name))
+  {
+    return "'" + name + "': expected " + kTetherNameRule;
+  }
+  std::string error;
+  if (!ros::names::validate(name, error))
+  {
+    return "'" + name + "': not a ROS name (" + error + "): a letter first, then letters, digits or '_'";
+  }
+  return "";
 }
 
 std::string resolveMeshFile(const std::string& file, std::string* error)

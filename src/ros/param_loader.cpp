@@ -272,4 +272,23 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
   return unknown;
 }
 
+std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::XmlRpcValue& own, TetherSetup* setup)
+{
+  TetherSetup candidate = *setup;
+  std::string error;
+  for (const XmlRpc::XmlRpcValue* source : {&shared, &own})  // shared first, this tether's own on top
+  {
+    if (error.empty() && source->valid())
+    {
+      error = loadTetherParams(*source, &candidate.params);
+      error = error.empty() ? loadNodeOptions(*source, &candidate.options) : error;
+    }
+  }
+  if (error.empty())
+  {
+    *setup = candidate;
+  }
+  return error;
+}
+
 }  // namespace rov_tether::ros_layer

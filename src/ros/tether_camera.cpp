@@ -264,23 +264,12 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   return true;
 }
 
-CameraSet::CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+CameraSet::CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
                      const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
                      double render_budget)
     : scene_(world)
 {
-  std::vector<std::string> reserved;
-  for (std::size_t i = 0; i < world.size(); ++i)
-  {
-    reserved.push_back(world.name(i));
-  }
-  std::vector<CameraConfig> configs;
-  const std::string error = loadCameraConfigs(cameras, reserved, &configs);
-  if (!error.empty())
-  {
-    throw std::runtime_error("parameter " + error);
-  }
-  for (const auto& config : configs)
+  for (const auto& config : cameras)
   {
     try
     {

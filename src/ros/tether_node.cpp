@@ -15,16 +15,7 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
     dict = XmlRpc::XmlRpcValue();
   }
   TetherSetup setup;
-  std::string error;
-  for (const XmlRpc::XmlRpcValue* source :
-       {&shared, static_cast<const XmlRpc::XmlRpcValue*>(&dict)})  // shared first, this tether's own on top
-  {
-    if (error.empty() && source->valid())
-    {
-      error = loadTetherParams(*source, &setup.params);
-      error = error.empty() ? loadNodeOptions(*source, &setup.options) : error;
-    }
-  }
+  const std::string error = loadTetherSetup(shared, dict, &setup);
   if (!error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh.getNamespace() + ": " + error);
@@ -50,15 +41,14 @@ NodeOptions TetherNode::withTetherFrames(NodeOptions options, const std::string&
   return options;
 }
 
-Tether& TetherNode::addTether(World& world, const std::string& name, const TetherSetup& setup)
+Tether& TetherNode::tetherIn(World& world, const std::string& name)
 {
-  const Status status =
-      world.add(name.empty() ? "tether" : name, std::make_unique<Tether>(setup.params, setup.options.spool_position));
-  if (!status.ok)
+  const std::size_t index = world.find(name.empty() ? "tether" : name);
+  if (index == World::npos)
   {
-    throw std::runtime_error(status.message);
+    throw std::runtime_error("tether_node: no tether '" + name + "' in the world built from the parameters");
   }
-  return world.tether(world.size() - 1);
+  return world.tether(index);
 }
 
 TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ros::NodeHandle& input_nh,
@@ -69,7 +59,7 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       options_(setup.options),
       name_(name),
       world_(world),
-      tether_(addTether(world, name, setup)),
+      tether_(tetherIn(world, name)),
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
       pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),

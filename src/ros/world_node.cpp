@@ -4,6 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "rov_tether/ros/camera_config.hpp"
+#include "rov_tether/ros/obstacle_config.hpp"
+#include "rov_tether/world_spec.hpp"
+
 namespace rov_tether::ros_layer
 {
 namespace
@@ -24,9 +28,15 @@ std::vector<std::string> tetherNames(const ros::NodeHandle& private_nh)
   }
   for (int i = 0; i < names.size(); ++i)
   {
-    if (names[i].getType() != XmlRpc::XmlRpcValue::TypeString || static_cast<std::string>(names[i]).empty())
+    if (names[i].getType() != XmlRpc::XmlRpcValue::TypeString)
     {
       throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " is not a name");
+    }
+    // The runner's rule (isTetherName), checked before a namespace is made of it.
+    const std::string bad = checkNodeTetherName(static_cast<std::string>(names[i]));
+    if (!bad.empty())
+    {
+      throw std::runtime_error("parameter 'tethers': entry " + std::to_string(i) + " " + bad);
     }
     result.push_back(static_cast<std::string>(names[i]));
   }
@@ -89,21 +99,34 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
   XmlRpc::XmlRpcValue top;
   private_nh_.getParam(private_nh_.getNamespace(), top);
+  const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
   WorldOptions world_options;
-  const std::string world_error =
-      loadWorldOptions(top, &world_options, names.empty() ? std::vector<std::string>{"tether"} : names);
+  std::string world_error = loadWorldOptions(top, &world_options, world_names);
+  // The world from its one description, by the runner's builder: tethers, contact, obstacles (each mesh read
+  // once); the cameras are read into it too, so their names are checked with the others' (validateWorldSpec).
+  WorldSpec world_spec;
+  world_error = world_error.empty() ? nodeWorldSpec(world_names, setups, world_options, &world_spec) : world_error;
+  XmlRpc::XmlRpcValue cameras;
+  const bool has_cameras = private_nh_.getParam("cameras", cameras);
+  if (world_error.empty() && has_cameras)
+  {
+    const std::string camera_error = loadCameraConfigs(cameras, world_names, &world_spec.cameras);
+    if (!camera_error.empty())
+    {
+      throw std::runtime_error("parameter " + camera_error);
+    }
+  }
+  world_error = world_error.empty() ? buildWorld(world_spec, &world_) : world_error;
   if (!world_error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);
   }
-  std::vector<std::unique_ptr<Obstacle>> obstacles = makeObstacles(world_options);
   const NodeOptions& clock = setups.front().options;
   double state_rate = 0.0;
   for (const auto& setup : setups)
   {
     state_rate = std::max(state_rate, setup.options.state_rate);
   }
-  world_.setContactBetweenTethers(world_options.tether_contact);
   scheduler_ = std::make_unique<Scheduler>(world_, clock.interpolation_delay);
   topology_ = std::make_unique<TopologyReport>(private_nh_, world_, clock.world_frame, state_rate);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
@@ -116,18 +139,16 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     tethers_.push_back(std::make_unique<TetherNode>(nh_, tether_nh, input_nh, setups[i], name, world_, *scheduler_,
                                                     tf_buffer_, *topology_));
   }
-  if (!obstacles.empty())
+  if (world_.obstacleCount() > 0)
   {
-    obstacles_ = std::make_unique<ObstacleScene>(private_nh_, std::move(obstacles), clock.world_frame,
-                                                 clock.marker_rate, world_, tf_buffer_);
+    obstacles_ = std::make_unique<ObstacleScene>(private_nh_, clock.world_frame, clock.marker_rate, world_, tf_buffer_);
     ROS_INFO("tether_node: %zu obstacles%s", world_.obstacleCount(),
              world_options.tether_contact ? ", contact between tethers on" : ", contact between tethers off");
   }
-  XmlRpc::XmlRpcValue cameras;
-  if (private_nh_.getParam("cameras", cameras))
+  if (has_cameras)
   {
     cameras_ =
-        std::make_unique<CameraSet>(cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
+        std::make_unique<CameraSet>(world_spec.cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
                                     setups.front().options.max_pose_future, setups.front().options.max_lag);
   }
   input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);

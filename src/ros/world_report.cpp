@@ -4,55 +4,24 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <cmath>
-#include <stdexcept>
 
-#include "rov_tether/make_obstacle.hpp"
 #include "rov_tether/ros/converters.hpp"
 
 namespace rov_tether::ros_layer
 {
 
-std::vector<std::unique_ptr<Obstacle>> makeObstacles(const WorldOptions& options)
-{
-  std::vector<std::unique_ptr<Obstacle>> obstacles;
-  for (ObstacleSpec spec : options.obstacles)
-  {
-    if (spec.type == ShapeType::Mesh)
-    {
-      std::string error;
-      spec.file = resolveMeshFile(spec.file, &error);
-      if (spec.file.empty())
-      {
-        throw std::runtime_error("obstacle '" + spec.name + "' file: " + error);
-      }
-    }
-    Status status;
-    std::unique_ptr<Obstacle> obstacle = makeObstacle(spec, &status);
-    if (!obstacle)
-    {
-      throw std::runtime_error("obstacle '" + spec.name + "': " + status.message);
-    }
-    obstacles.push_back(std::move(obstacle));
-  }
-  return obstacles;
-}
-
-ObstacleScene::ObstacleScene(ros::NodeHandle& private_nh, std::vector<std::unique_ptr<Obstacle>> obstacles,
-                             const std::string& world_frame, double marker_rate, World& world, tf2_ros::Buffer& tf)
+ObstacleScene::ObstacleScene(ros::NodeHandle& private_nh, const std::string& world_frame, double marker_rate,
+                             World& world, tf2_ros::Buffer& tf)
     : world_frame_(world_frame), marker_period_(1.0 / marker_rate), world_(world), tf_(tf)
 {
-  for (std::size_t i = 0; i < obstacles.size(); ++i)
+  for (std::size_t i = 0; i < world_.obstacleCount(); ++i)
   {
-    if (!obstacles[i]->spec().frame.empty() && obstacles[i]->spec().frame != world_frame)
+    const Obstacle& obstacle = world_.obstacle(i);
+    if (!obstacle.spec().frame.empty() && obstacle.spec().frame != world_frame)
     {
       framed_.push_back(i);
-      local_.push_back(obstacles[i]->pose());  // built from its position and orientation: in its frame
+      local_.push_back(obstacle.pose());  // built from its position and orientation: in its frame
     }
-  }
-  const Status status = world_.setObstacles(std::move(obstacles));
-  if (!status.ok)
-  {
-    throw std::runtime_error("obstacles: " + status.message);
   }
   marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("obstacles", 1, /*latch=*/true);
   publish(ros::Time::now());

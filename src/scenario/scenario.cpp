@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rov_tether/world_spec.hpp"
+
 namespace rov_tether
 {
 
@@ -43,14 +45,7 @@ std::vector<ScenarioTether> Scenario::tetherList() const
   return {ScenarioTether{"tether", params, spool, vehicle}};
 }
 
-Tether PathDriver::makeSimulation() const
-{
-  if (vehicle_.empty())
-  {
-    return Tether(params_, spool_, 0.0);
-  }
-  return Tether(params_, spool_, pathAt(vehicle_, 0.0), 0.0);
-}
+Tether PathDriver::makeSimulation() const { return makeTether(ScenarioTether{"", params_, spool_, vehicle_}); }
 
 bool PathDriver::fedUpTo(double t) const
 {

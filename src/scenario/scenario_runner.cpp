@@ -7,8 +7,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "rov_tether/make_obstacle.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/world_spec.hpp"
 
 namespace rov_tether
 {
@@ -143,34 +142,25 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
                         const std::vector<RunObserver*>& observers)
 {
   // The world: tethers in scenario order, then the obstacles (built before any file is opened).
-  const std::vector<ScenarioTether> tethers = scenario.tetherList();
   World world;
-  world.setContactBetweenTethers(scenario.tether_contact);
+  const std::string error = buildWorld(worldSpecOf(scenario), &world);
+  return error.empty() ? runScenario(scenario, world, out_dir, summary, observers) : error;
+}
+
+std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
+                        const std::vector<RunObserver*>& observers)
+{
+  const std::vector<ScenarioTether> tethers = scenario.tetherList();
   std::vector<PathDriver> drivers;
   drivers.reserve(tethers.size());
   for (const ScenarioTether& tether : tethers)
   {
     drivers.emplace_back(tether);
-    const Status added = world.add(tether.name, std::make_unique<Tether>(drivers.back().makeSimulation()));
-    if (!added.ok)
-    {
-      return "tethers: " + added.message;
-    }
   }
-  std::vector<std::unique_ptr<Obstacle>> obstacles;
-  for (std::size_t k = 0; k < scenario.obstacles.size(); ++k)
+  if (world.size() != tethers.size())
   {
-    Status status;
-    obstacles.push_back(makeObstacle(scenario.obstacles[k], &status));
-    if (!obstacles.back())
-    {
-      return "obstacles[" + std::to_string(k) + "]: " + status.message;
-    }
-  }
-  const Status placed = world.setObstacles(std::move(obstacles));
-  if (!placed.ok)
-  {
-    return "obstacles: " + placed.message;
+    return "tethers: the world holds " + std::to_string(world.size()) + ", the scenario " +
+           std::to_string(tethers.size());
   }
 
   // state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), then topology.csv.

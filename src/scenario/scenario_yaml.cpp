@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "rov_tether/make_obstacle.hpp"
 #include "rov_tether/spec/camera_reader.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
+#include "rov_tether/world_spec.hpp"
 
 namespace rov_tether
 {
@@ -61,7 +61,7 @@ std::string applyParamMap(const YAML::Node& map, const std::string& prefix, Teth
 std::string readCameras(const YAML::Node& node, double duration, std::vector<ScenarioCamera>* cameras)
 {
   std::vector<spec::CameraSpec> read;
-  const std::string error = spec::readCameras(node, spec::CameraMount::kVehicle, {}, &read);
+  const std::string error = spec::readCameras(node, spec::CameraMount::kVehicle, &read);
   if (!error.empty())
   {
     return error;
@@ -74,17 +74,9 @@ std::string readCameras(const YAML::Node& node, double duration, std::vector<Sce
       return "cameras[" + std::to_string(k) + "].rate: duration x rate = " + std::to_string(duration * camera.rate) +
              ": more than 1e6 frames";
     }
-    cameras->push_back({camera.name, camera.position, camera.orientation, camera.rate, camera.intrinsics});
+    cameras->push_back(camera);
   }
   return "";
-}
-
-/// Whether `name` can name a directory of the output: 1-64 letters, digits, '_' or '-'.
-bool isDirectoryName(const std::string& name)
-{
-  return !name.empty() && name.size() <= 64 &&
-         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
-             std::string::npos;
 }
 
 /// Reads a vehicle path of [t, x, y, z] waypoints; "" or a message naming `field`.
@@ -141,9 +133,9 @@ std::string readTether(const YAML::Node& node, const std::string& field, Scenari
     return field + ".name: missing";
   }
   tether->name = node["name"].IsScalar() ? node["name"].Scalar() : "";
-  if (!isDirectoryName(tether->name))
+  if (!isTetherName(tether->name))  // the one rule (world_spec.hpp), said here where the entry is read
   {
-    return field + ".name = '" + tether->name + "': expected 1-64 letters, digits, '_' or '-' (a directory name)";
+    return field + ".name = '" + tether->name + "': expected " + kTetherNameRule + " (a directory name)";
   }
   if (node["params"])
   {
@@ -176,22 +168,14 @@ std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tet
     {
       return error;
     }
-    for (const auto& other : *tethers)
-    {
-      if (other.name == tether.name)
-      {
-        return field + ".name = '" + tether.name + "': used twice";
-      }
-    }
     tethers->push_back(tether);
   }
   return "";
 }
 
 /// The scenario's `obstacles` (spec::readObstacles): no tf frames; a mesh `file` is a path, relative ones
-/// taken from `base_dir`; every mesh must load (what the runner will build).
-std::string readObstacles(const YAML::Node& node, const std::string& base_dir, const Scenario& scenario,
-                          std::vector<ObstacleSpec>* obstacles)
+/// taken from `base_dir`. A mesh is read once, when the world is built (buildWorld), not here.
+std::string readObstacles(const YAML::Node& node, const std::string& base_dir, std::vector<ObstacleSpec>* obstacles)
 {
   spec::ObstacleReading reading;
   reading.file = [&base_dir](const std::string& file, std::string* error) -> std::string
@@ -205,26 +189,7 @@ std::string readObstacles(const YAML::Node& node, const std::string& base_dir, c
     const std::filesystem::path path(file);
     return path.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / path).string();
   };
-  for (const auto& tether : scenario.tetherList())
-  {
-    reading.tether_names.push_back(tether.name);
-  }
-  reading.tether_hint = scenario.tethers.empty() ? " (a single-tether scenario's tether is called 'tether')" : "";
-  std::vector<ObstacleSpec> read;
-  std::string error = spec::readObstacles(node, reading, &read);
-  for (std::size_t k = 0; error.empty() && k < read.size(); ++k)
-  {
-    Status status;
-    if (!makeObstacle(read[k], &status))
-    {
-      error = "obstacles[" + std::to_string(k) + "]: " + status.message;
-    }
-  }
-  if (error.empty())
-  {
-    *obstacles = std::move(read);
-  }
-  return error;
+  return spec::readObstacles(node, reading, obstacles);
 }
 
 std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)
@@ -344,11 +309,17 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
   }
   if (root["obstacles"])
   {
-    error = readObstacles(root["obstacles"], base_dir, result, &result.obstacles);
+    error = readObstacles(root["obstacles"], base_dir, &result.obstacles);
     if (!error.empty())
     {
       return error;
     }
+  }
+  // Names across tethers, obstacles and cameras: the world's one check (buildWorld makes it again).
+  error = validateWorldSpec(worldSpecOf(result));
+  if (!error.empty())
+  {
+    return error;
   }
   *scenario = result;
   return "";

@@ -199,8 +199,7 @@ std::string readCamera(const YAML::Node& node, const std::string& field, CameraM
 
 }  // namespace
 
-std::string readCameras(const YAML::Node& node, CameraMount mount, const std::vector<std::string>& reserved,
-                        std::vector<CameraSpec>* cameras)
+std::string readCameras(const YAML::Node& node, CameraMount mount, std::vector<CameraSpec>* cameras)
 {
   if (!node.IsSequence())
   {
@@ -215,14 +214,6 @@ std::string readCameras(const YAML::Node& node, CameraMount mount, const std::ve
     if (!error.empty())
     {
       return error;
-    }
-    if (std::find(reserved.begin(), reserved.end(), camera.name) != reserved.end())
-    {
-      return field + ".name = '" + camera.name + "': already used by a tether";
-    }
-    if (std::any_of(read.begin(), read.end(), [&camera](const CameraSpec& other) { return other.name == camera.name; }))
-    {
-      return field + ".name = '" + camera.name + "': used twice";
     }
     read.push_back(camera);
   }

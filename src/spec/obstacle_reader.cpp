@@ -155,17 +155,6 @@ std::string readObstacles(const YAML::Node& node, const ObstacleReading& reading
       fail(error);
       continue;
     }
-    const std::string who = "obstacles[" + std::to_string(k) + "] '" + spec.name + "'";
-    if (std::any_of(read.begin(), read.end(), [&spec](const ObstacleSpec& other) { return other.name == spec.name; }))
-    {
-      fail(who + " name: taken by an earlier obstacle");
-      continue;
-    }
-    if (std::count(reading.tether_names.begin(), reading.tether_names.end(), spec.name) > 0)
-    {
-      fail(who + " name: taken by a tether" + reading.tether_hint);
-      continue;
-    }
     read.push_back(spec);
   }
   if (errors.empty())

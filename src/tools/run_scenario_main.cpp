@@ -10,6 +10,7 @@
 #include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/scenario_runner.hpp"
 #include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/world_spec.hpp"
 
 namespace
 {
@@ -112,6 +113,15 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 2;
   }
+  // The world, built once from the scenario's description (each mesh file read here): one that cannot be
+  // built is a bad scenario, as a field that cannot be read is.
+  rov_tether::World world;
+  error = rov_tether::buildWorld(rov_tether::worldSpecOf(scenario), &world);
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "rov_tether_run: %s: %s\n", scenario_path.c_str(), error.c_str());
+    return 2;
+  }
 
   std::unique_ptr<rov_tether::camera::DatasetWriter> dataset;
   std::vector<rov_tether::RunObserver*> observers;
@@ -130,7 +140,7 @@ int main(int argc, char** argv)
   }
   rov_tether::RunSummary s;
   error = dataset ? dataset->open() : "";
-  error = error.empty() ? rov_tether::runScenario(scenario, out_dir, &s, observers) : error;
+  error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers) : error;
   error = error.empty() && dataset ? dataset->close() : error;
   if (!error.empty())
   {

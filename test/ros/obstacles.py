@@ -279,6 +279,21 @@ class Obstacles(unittest.TestCase):
                       "length must be > 0 m" % name, output)
         self.assertIn("FATAL", output)
 
+    def test_5_a_bad_tether_name_stops_the_node_naming_it(self):
+        # One rule for a tether's name, the runner's (1-64 letters, digits, '_' or '-'), checked with the
+        # obstacles' names before the world is built; the node's tethers also live under ~<name>/, so the name
+        # must be a ROS name. Either is refused at start, naming the entry (issue 21).
+        for bad, reason in (("a/b", "expected 1-64 letters, digits, '_' or '-'"), ("rov-1", "not a ROS name")):
+            name = "bad_tether_name_node"
+            rospy.set_param("/%s/tethers" % name, ["t0", bad])
+            node = subprocess.run([sibling_node(), "__name:=" + name], capture_output=True, text=True,
+                                  timeout=TIMEOUT)
+            output = node.stdout + node.stderr
+            print("[ measured ] exit %d: %s" % (node.returncode, output.strip().splitlines()[-1:]), file=sys.stderr)
+            self.assertEqual(node.returncode, 1)
+            self.assertIn("tether_node: parameter 'tethers': entry 1 '%s': %s" % (bad, reason), output)
+            rospy.delete_param("/%s" % name)
+
 
 if __name__ == "__main__":
     rostest.rosrun("rov_tether", "obstacles", Obstacles)

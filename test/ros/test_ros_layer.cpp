@@ -19,6 +19,7 @@
 #include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/world_spec.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -1190,6 +1191,100 @@ TEST(Obstacles, TopologyMessageNamesTethersAndObjects)
   }
   EXPECT_EQ(wraps, 2);  // each tether around the pillar
   EXPECT_EQ(links, 1);  // the pair, once
+}
+
+// Issue 21, one builder: the node (its parameters, as WorldNode reads them: loadTetherSetup per tether on top of
+// the shared ones, loadWorldOptions, nodeWorldSpec) and the runner (a scenario file, worldSpecOf) describe the
+// same world in their own formats; buildWorld must make the same World of both: the same tethers with the same
+// parameters and cables laid the same, the same obstacles where they were put, and, stepped alike, the same
+// motion bit for bit (contact between tethers and a mesh included).
+TEST(WorldSpec, NodeAndRunnerBuildTheSameWorld)
+{
+  const std::string wreck = std::string(ROV_TETHER_SOURCE_DIR) + "/meshes/wreck.stl";
+  const std::string obstacles = "[{name: pillar, type: cylinder, radius: 0.5, length: 8, position: [2, 3, -4], "
+                                "friction: 0.3}, {name: wreck, type: mesh, file: '" + wreck +
+                                "', position: [4.5, 6, -3.5], orientation: [0, 0, 0.4]}]";
+  const YAML::Node node_yaml = YAML::Load(
+      "{tethers: [a, b], cable_length: 12, seabed_z: -20, tether_contact: true, obstacles: " + obstacles +
+      ", a: {spool_position: [0, 0, 0]}, b: {spool_position: [1, 0, 0], cable_length: 9, segment_length: 0.5}}");
+  const XmlRpc::XmlRpcValue top = rov_tether::test::toXmlRpc(node_yaml);
+  const std::vector<std::string> names = {"a", "b"};
+  std::vector<TetherSetup> setups(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    ASSERT_EQ(loadTetherSetup(top, rov_tether::test::toXmlRpc(node_yaml[names[i]]), &setups[i]), "");
+  }
+  WorldOptions options;
+  ASSERT_EQ(loadWorldOptions(top, &options, names), "");
+  WorldSpec node_spec;
+  ASSERT_EQ(nodeWorldSpec(names, setups, options, &node_spec), "");
+  World node_world;
+  ASSERT_EQ(buildWorld(node_spec, &node_world), "");
+
+  Scenario scenario;
+  ASSERT_EQ(parseScenario("duration: 1\ntether_contact: true\nobstacles: " + obstacles +
+                              "\ntethers:\n  - {name: a, params: {cable_length: 12, seabed_z: -20}, spool: [0, 0, 0]}\n"
+                              "  - {name: b, params: {cable_length: 9, segment_length: 0.5, seabed_z: -20}, "
+                              "spool: [1, 0, 0]}\n",
+                          &scenario),
+            "");
+  World runner_world;
+  ASSERT_EQ(buildWorld(worldSpecOf(scenario), &runner_world), "");
+
+  ASSERT_EQ(node_world.size(), 2u);
+  ASSERT_EQ(runner_world.size(), node_world.size());
+  std::vector<Position> node_positions, runner_positions;
+  const auto sameTethers = [&]
+  {
+    for (std::size_t i = 0; i < node_world.size(); ++i)
+    {
+      EXPECT_EQ(node_world.name(i), runner_world.name(i));
+      for (const auto& name : parameterNames())
+      {
+        EXPECT_EQ(getParameter(node_world.tether(i).params(), name), getParameter(runner_world.tether(i).params(), name))
+            << node_world.name(i) << " " << name;
+      }
+      node_world.tether(i).copyPositions(node_positions);
+      runner_world.tether(i).copyPositions(runner_positions);
+      EXPECT_EQ(node_positions, runner_positions) << node_world.name(i);
+    }
+  };
+  sameTethers();
+  ASSERT_EQ(node_world.obstacleCount(), 2u);
+  ASSERT_EQ(runner_world.obstacleCount(), node_world.obstacleCount());
+  for (std::size_t k = 0; k < node_world.obstacleCount(); ++k)
+  {
+    const Obstacle& node = node_world.obstacle(k);
+    const Obstacle& runner = runner_world.obstacle(k);
+    EXPECT_EQ(node.name(), runner.name());
+    EXPECT_EQ(node.spec().type, runner.spec().type);
+    EXPECT_EQ(node.spec().friction, runner.spec().friction) << node.name();
+    EXPECT_EQ(node.bounds().lo, runner.bounds().lo) << node.name();
+    EXPECT_EQ(node.bounds().hi, runner.bounds().hi) << node.name();
+  }
+  // Stepped alike (no vehicle sample: both free ends fall), they move alike.
+  ASSERT_TRUE(node_world.advanceTo(0.5).ok);
+  ASSERT_TRUE(runner_world.advanceTo(0.5).ok);
+  sameTethers();
+}
+
+// Issue 21: one rule for a tether's name, the runner's (isTetherName); the node refuses a name outside it at
+// start (WorldNode, parameter `tethers`), and one ROS cannot take as a namespace (~<name>/), with the reason.
+TEST(WorldSpec, TheNodeRefusesABadTetherNameClearly)
+{
+  for (const std::string& good : std::vector<std::string>{"t0", "fast", "rov_1", "tether"})
+  {
+    EXPECT_EQ(checkNodeTetherName(good), "") << good;
+  }
+  EXPECT_EQ(checkNodeTetherName(""), "'': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName("a/b"), "'a/b': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName("rov 1"), "'rov 1': expected 1-64 letters, digits, '_' or '-'");
+  EXPECT_EQ(checkNodeTetherName(std::string(65, 'a')).find("expected 1-64 letters"), std::string(65, 'a').size() + 4);
+  // Within the runner's rule, but no ROS name: said so, not left to roscpp's InvalidNameException.
+  for (const std::string& bad : std::vector<std::string>{"rov-1", "1rov"})
+  {
+    EXPECT_NE(checkNodeTetherName(bad).find("'" + bad + "': not a ROS name"), std::string::npos) << bad;
+  }
 }
 
 }  // namespace

@@ -10,20 +10,15 @@
 #include <vector>
 
 #include "rov_tether/camera/camera_intrinsics.hpp"
+#include "rov_tether/spec/camera_spec.hpp"
 
 namespace rov_tether::ros_layer
 {
 
-/// One entry of the private list parameter `cameras`.
-struct CameraConfig
-{
-  std::string name;                     ///< Outputs under ~<name>/.
-  std::string frame;                    ///< tf optical frame (z forward, x right, y down).
-  std::string info_topic;               ///< sensor_msgs/CameraInfo; "" uses the fixed intrinsics below.
-  camera::CameraIntrinsics intrinsics;  ///< Fixed width, height, K, D (without info_topic).
-  std::string image_topic;              ///< Render at each image's stamp and draw the overlay; "" renders at `rate`.
-  double rate = 10.0;                   ///< Frames per second without image_topic [Hz].
-};
+/// One entry of the private list parameter `cameras`: the one description of a camera (spec::CameraSpec, a
+/// WorldSpec's), with its tf fields (name: outputs under ~<name>/; frame; info_topic or the fixed intrinsics;
+/// image_topic or rate).
+using CameraConfig = spec::CameraSpec;
 
 /// Reads the `cameras` list (names, frames, topics, intrinsics, rate). Returns "" or every problem, each
 /// naming the entry and field. `reserved` names may not be used (the tethers' own namespaces).

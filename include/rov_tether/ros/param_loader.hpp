@@ -57,6 +57,13 @@ struct NodeOptions
   double snag_ratio = 3.0;
 };
 
+/// One tether's parameters as loaded: the model's and the node's.
+struct TetherSetup
+{
+  TetherParams params;
+  NodeOptions options;
+};
+
 /// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of
 /// `params` through the core's setParameter, then validates. Returns "" on success, otherwise every
 /// problem, each naming its parameter. `params` is changed only on success.
@@ -65,6 +72,11 @@ std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* para
 /// Reads the node options found in `dict` on top of `options` and checks them. Returns "" or every
 /// problem, each naming its parameter. `options` is changed only on success.
 std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* options);
+
+/// A tether's parameters and options: `shared` (the parameters common to several tethers; invalid: none),
+/// then `own` (its namespace as a map; invalid: none) on top. Returns "" or every problem, each naming its
+/// parameter; `setup` is changed only on success.
+std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::XmlRpcValue& own, TetherSetup* setup);
 
 /// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
 /// The keys `tethers`, `cameras`, `obstacles` and `tether_contact` and the maps `tethers` names (one tether each,

@@ -99,8 +99,9 @@ class TetherCamera
 class CameraSet
 {
  public:
-  /// Throws std::runtime_error naming a bad entry of `cameras`. `world` and `tf` must outlive this.
-  CameraSet(const XmlRpc::XmlRpcValue& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+  /// The cameras as read (loadCameraConfigs, into the WorldSpec). Throws std::runtime_error naming a camera
+  /// that cannot be set up. `world` and `tf` must outlive this.
+  CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
             const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
             double render_budget);
   void afterTick();

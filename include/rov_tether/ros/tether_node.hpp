@@ -26,13 +26,6 @@
 namespace rov_tether::ros_layer
 {
 
-/// One tether's parameters as loaded: the model's and the node's.
-struct TetherSetup
-{
-  TetherParams params;
-  NodeOptions options;
-};
-
 /// Loads a tether's parameters from `private_nh`'s namespace on top of `shared` (the parameters common
 /// to several tethers; invalid: none). Throws std::runtime_error naming a bad parameter; warns about
 /// unknown ones (typos).
@@ -47,7 +40,7 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
 class TetherNode : public TetherHooks
 {
  public:
-  /// Builds the tether from `setup`, adds it to `world` (as `name`, or "tether" alone) and to `scheduler`,
+  /// Takes the tether `world` holds as `name` (or "tether" alone; built by buildWorld), adds it to `scheduler`,
   /// then advertises under `private_nh` and subscribes to poses under `input_nh` (whose callback queue is
   /// the process's input queue, served by its own thread). `tf` is the process's one buffer; `topology` the
   /// world's topology report (for the diagnostics). `world`, `scheduler`, `tf` and `topology` must outlive this.
@@ -73,7 +66,7 @@ class TetherNode : public TetherHooks
   /// `options` with the tf frames this tether publishes prefixed "name/" among several tethers.
   static NodeOptions withTetherFrames(NodeOptions options, const std::string& name);
   /// Adds the tether to the world and returns it (throws when the world refuses the name).
-  static Tether& addTether(World& world, const std::string& name, const TetherSetup& setup);
+  static Tether& tetherIn(World& world, const std::string& name);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;

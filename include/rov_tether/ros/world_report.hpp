@@ -18,11 +18,6 @@
 namespace rov_tether::ros_layer
 {
 
-/// Builds the obstacles `options` lists (makeObstacle; mesh files resolved by resolveMeshFile), each at its
-/// `position` and `orientation` (in its `frame` until that frame is first seen). Throws std::runtime_error
-/// naming the obstacle for one that cannot be built (a mesh file that cannot be read or found).
-std::vector<std::unique_ptr<Obstacle>> makeObstacles(const WorldOptions& options);
-
 /**
  * tether_node's obstacles once they are in its World: those with a tf `frame` follow it (each tick, its
  * latest transform from world_frame, as the spool frame does; a frame tf does not know is a throttled
@@ -34,9 +29,10 @@ std::vector<std::unique_ptr<Obstacle>> makeObstacles(const WorldOptions& options
 class ObstacleScene
 {
  public:
-  /// `world`, with every tether added, takes the obstacles; `world` and `tf` must outlive this.
-  ObstacleScene(ros::NodeHandle& private_nh, std::vector<std::unique_ptr<Obstacle>> obstacles,
-                const std::string& world_frame, double marker_rate, World& world, tf2_ros::Buffer& tf);
+  /// The obstacles of `world` (buildWorld placed them, each at its `position` and `orientation`: in its
+  /// `frame` until that frame is first seen); `world` and `tf` must outlive this.
+  ObstacleScene(ros::NodeHandle& private_nh, const std::string& world_frame, double marker_rate, World& world,
+                tf2_ros::Buffer& tf);
 
   /// Before a physics tick at ROS time `now`: moves the obstacles with frames, republishes when due.
   void update(const ros::Time& now);

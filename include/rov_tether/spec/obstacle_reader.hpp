@@ -21,10 +21,6 @@ struct ObstacleReading
   /// A mesh `file` as written into what ObstacleSpec::file keeps; "" with the reason in *error when it is
   /// refused. Unset: kept as written.
   std::function<std::string(const std::string& file, std::string* error)> file;
-  /// The world's tethers: an obstacle may not take one's name.
-  std::vector<std::string> tether_names;
-  /// Said after "taken by a tether" (e.g. what a single tether is called).
-  std::string tether_hint;
 };
 
 /// Reads one entry of `obstacles` (a map with ObstacleSpec's fields: name, type, position, orientation,
@@ -33,8 +29,9 @@ struct ObstacleReading
 /// first problem, naming the entry (its index and name) and the field.
 std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading, ObstacleSpec* spec);
 
-/// Reads the list `obstacles`: each entry as readObstacle, names unique and none a tether's. Returns "" or
-/// every problem found, separated by "; "; `obstacles` is set only on success.
+/// Reads the list `obstacles`: each entry as readObstacle. Returns "" or every problem found, separated by
+/// "; "; `obstacles` is set only on success. Names (unique, none a tether's or a camera's) are the world's
+/// to check: validateWorldSpec (world_spec.hpp), with the other parts of the description.
 std::string readObstacles(const YAML::Node& node, const ObstacleReading& reading, std::vector<ObstacleSpec>* obstacles);
 
 }  // namespace rov_tether::spec

@@ -1,0 +1,132 @@
+#include "rov_tether/world_spec.hpp"
+
+#include <algorithm>
+#include <memory>
+
+#include "rov_tether/make_obstacle.hpp"
+
+namespace rov_tether
+{
+
+const char* const kTetherNameRule = "1-64 letters, digits, '_' or '-'";
+
+bool isTetherName(const std::string& name)
+{
+  return !name.empty() && name.size() <= 64 &&
+         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
+             std::string::npos;
+}
+
+namespace
+{
+
+/// "" or `said(k, name, by_tether)` for the first of `items` whose name an earlier one (by_tether false) or a
+/// tether took.
+template <typename Item, typename Say>
+std::string firstTakenName(const std::vector<Item>& items, const std::vector<std::string>& tethers, Say said)
+{
+  std::vector<std::string> seen;
+  for (std::size_t k = 0; k < items.size(); ++k)
+  {
+    const std::string& name = items[k].name;
+    if (std::count(tethers.begin(), tethers.end(), name) > 0)
+    {
+      return said(k, name, true);
+    }
+    if (std::count(seen.begin(), seen.end(), name) > 0)
+    {
+      return said(k, name, false);
+    }
+    seen.push_back(name);
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string validateWorldSpec(const WorldSpec& spec)
+{
+  std::vector<std::string> tethers;
+  for (std::size_t i = 0; i < spec.tethers.size(); ++i)
+  {
+    const std::string& name = spec.tethers[i].name;
+    const std::string who = "tethers[" + std::to_string(i) + "].name = '" + name + "'";
+    if (!isTetherName(name))
+    {
+      return who + ": expected " + kTetherNameRule;
+    }
+    if (std::count(tethers.begin(), tethers.end(), name) > 0)
+    {
+      return who + ": used twice";
+    }
+    tethers.push_back(name);
+  }
+  // The one tether of a world without a `tethers` list is called "tether" (a node's, a scenario's).
+  const std::string hint =
+      tethers.size() == 1 && tethers.front() == "tether" ? " (a world's one tether is called 'tether')" : "";
+  const std::string error = firstTakenName(spec.obstacles, tethers,
+                                           [&hint](std::size_t k, const std::string& name, bool by_tether)
+                                           {
+                                             return "obstacles[" + std::to_string(k) + "] '" + name +
+                                                    "' name: taken by " +
+                                                    (by_tether ? "a tether" + hint : "an earlier obstacle");
+                                           });
+  return error.empty() ? firstTakenName(spec.cameras, tethers,
+                                        [](std::size_t k, const std::string& name, bool by_tether)
+                                        {
+                                          return "cameras[" + std::to_string(k) + "].name = '" + name +
+                                                 "': " + (by_tether ? "already used by a tether" : "used twice");
+                                        })
+                       : error;
+}
+
+WorldSpec worldSpecOf(const Scenario& scenario)
+{
+  WorldSpec spec;
+  spec.tethers = scenario.tetherList();
+  spec.obstacles = scenario.obstacles;
+  spec.tether_contact = scenario.tether_contact;
+  spec.cameras = scenario.cameras;
+  return spec;
+}
+
+Tether makeTether(const ScenarioTether& tether)
+{
+  if (tether.vehicle.empty())
+  {
+    return Tether(tether.params, tether.spool, 0.0);
+  }
+  return Tether(tether.params, tether.spool, pathAt(tether.vehicle, 0.0), 0.0);
+}
+
+std::string buildWorld(const WorldSpec& spec, World* world)
+{
+  const std::string invalid = validateWorldSpec(spec);
+  if (!invalid.empty())
+  {
+    return invalid;
+  }
+  world->setContactBetweenTethers(spec.tether_contact);
+  for (const ScenarioTether& tether : spec.tethers)
+  {
+    const Status added = world->add(tether.name, std::make_unique<Tether>(makeTether(tether)));
+    if (!added.ok)
+    {
+      return "tethers: " + added.message;
+    }
+  }
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  for (std::size_t k = 0; k < spec.obstacles.size(); ++k)
+  {
+    Status status;
+    obstacles.push_back(makeObstacle(spec.obstacles[k], &status));
+    if (!obstacles.back())
+    {
+      return "obstacles[" + std::to_string(k) + "]: " + status.message;
+    }
+  }
+  const Status placed = world->setObstacles(std::move(obstacles));
+  return placed.ok ? "" : "obstacles: " + placed.message;
+}
+
+}  // namespace rov_tether
