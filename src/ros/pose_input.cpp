@@ -390,6 +390,13 @@ bool PoseInput::lookup(const std::string& frame, const ros::Time& time, Eigen::I
 
 bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now)
 {
+  if (stamp < reset_cut_)
+  {
+    ++rejected_;
+    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: a pose stamped %.3f s, %.3f s before the reset (it shows the vehicle "
+                      "before it)", label_.c_str(), stamp.toSec(), (reset_cut_ - stamp).toSec());
+    return false;
+  }
   const Position attachment = vehicle * options_.attachment_offset;
   const Status status = tether_.addVehicleSample(stamp.toSec(), attachment);
   if (!status.ok)

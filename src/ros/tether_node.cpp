@@ -243,7 +243,9 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
 
 bool TetherNode::onReset(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response)
 {
-  scheduler_.reset(index_, ros::Time::now(), "reset requested");
+  const ros::Time now = ros::Time::now();
+  scheduler_.reset(index_, now, "reset requested");
+  pose_input_.refuseStampedBefore(now);  // a pose of the vehicle before the reset, delivered late, lays out nothing
   response.success = true;
   response.message = "tether reset to " + std::to_string(tether_.deployedLength()) + " m";
   return true;

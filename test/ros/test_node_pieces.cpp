@@ -590,6 +590,38 @@ TEST(PoseInput, APoseLeftFromALoopedBagDoesNotStopTheNextLoop)
   EXPECT_EQ(steps_at_first_tick, 6u);
 }
 
+// ~reset while poses flow: a pose of the vehicle before the reset can reach the physics after it, still
+// queued or delivered late by a busy subscriber thread (it made node.test's startFresh read 5.52 m after a
+// reset in a sanitizer build). Taken, it lays the fresh cable out to where the vehicle was, 5.5 m out, and
+// the brake winch keeps that length when the vehicle shows up at home. Refused (counted), the first pose
+// stamped after the reset attaches the vehicle at home, 1.58 m from the spool: the cable is laid out at
+// initial_deployed_length (2 m), which the brake keeps while the vehicle pulls nothing.
+TEST(PoseInput, APoseFromBeforeARequestedResetDoesNotLayTheCableOut)
+{
+  NodeRig rig(quietParams());
+  double t = 1000.0;
+  for (; t < 1002.0; t += 0.05)  // the vehicle 5.5 m out, taken
+  {
+    rig.input->receive(shared(poseMsg(5.5, 0.0, -0.5, t)), ros::Time(t));
+    rig.scheduler.tick(ros::Time(t + 0.01));
+  }
+  ASSERT_GT(rig.tether().deployedLength(), 5.5);
+  const std::uint64_t rejected = rig.input->rejected();
+  rig.input->receive(shared(poseMsg(5.5, 0.0, -0.5, t)), ros::Time(t));  // queued: no tick takes it before
+  const ros::Time reset_at(t + 0.005);
+  rig.scheduler.reset(0, reset_at, "reset requested");  // what TetherNode::onReset does
+  rig.input->refuseStampedBefore(reset_at);
+  rig.input->receive(shared(poseMsg(5.5, 0.0, -0.5, t + 0.004)), ros::Time(t + 0.01));  // delivered late
+  for (t += 0.02; t < 1004.0; t += 0.05)  // home, stamped after the reset
+  {
+    rig.input->receive(shared(poseMsg(1.5, 0.0, -0.5, t)), ros::Time(t));
+    rig.scheduler.tick(ros::Time(t + 0.01));
+  }
+  ASSERT_TRUE(rig.tether().vehicleAttached());
+  EXPECT_NEAR(rig.tether().deployedLength(), quietParams().initial_deployed_length, 1e-9);
+  EXPECT_EQ(rig.input->rejected() - rejected, 2u) << "the queued pose and the late one, refused and counted";
+}
+
 // Item 2 of issue 13: poses stamped in odom, whose world -> odom transform (a drifting localisation)
 // comes at 10 Hz, 10 ms late. Looked up at their stamp without waiting, every pose newer than the last
 // transform was refused (most of them); now each waits for the transform after it and is taken.

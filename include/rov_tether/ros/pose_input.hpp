@@ -93,6 +93,10 @@ class PoseInput
   /// pose is taken, and refuses (counts) the poses still waiting that arrived after `now`: they came on a
   /// clock that has since gone back (a bag that loops), and would stop every pose of the new time line.
   void reset(const ros::Time& now);
+  /// After a reset someone asked for at ROS time `cut` (~reset), not one a clock jump forced: refuses
+  /// (counts, warns) every pose stamped before `cut`, taken later or not, so a pose of the vehicle before
+  /// the reset (still queued, or delivered late) does not lay the fresh cable out to where it was.
+  void refuseStampedBefore(const ros::Time& cut) { reset_cut_ = cut; }
 
   /// Poses refused (bad numbers, frames tf cannot transform in time, refused by the core).
   std::uint64_t rejected() const { return rejected_; }
@@ -180,6 +184,7 @@ class PoseInput
   std::uint64_t accepted_ = 0;
   ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
+  ros::Time reset_cut_;        ///< Poses stamped before it are from before a requested reset (zero: none).
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
   VehicleHistory history_;
   std::array<double, kGaps> gaps_{};  ///< Ring of the last gaps (see neededDelay) [s].
