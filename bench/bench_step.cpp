@@ -4,8 +4,8 @@
 #include <cmath>
 #include <functional>
 
-#include "rov_tether/banded.hpp"
-#include "rov_tether/tether.hpp"
+#include "banded.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace
 {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rov_tether/topology.hpp"
+#include "rov_tether/core/topology.hpp"
 
 namespace
 {

@@ -3,7 +3,7 @@
 #include <utility>
 #include <vector>
 
-#include "rov_tether/camera/camera_intrinsics.hpp"
+#include "rov_tether/spec/camera_intrinsics.hpp"
 
 namespace rov_tether::camera::test
 {

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "rov_tether/banded.hpp"
+#include "banded.hpp"
 
 namespace rov_tether::test
 {

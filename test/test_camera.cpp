@@ -15,7 +15,7 @@
 #include "rov_tether/camera/dataset_writer.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
-#include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 
 namespace rov_tether::camera
 {

@@ -7,10 +7,10 @@
 #include <functional>
 #include <memory>
 
-#include "rov_tether/obstacle.hpp"
-#include "rov_tether/segment_grid.hpp"
-#include "rov_tether/topology.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/core/segment_grid.hpp"
+#include "rov_tether/core/topology.hpp"
+#include "rov_tether/core/world.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rov_tether/direct_solver.hpp"
-#include "rov_tether/pbd_solver.hpp"
-#include "rov_tether/study.hpp"
+#include "rov_tether/core/direct_solver.hpp"
+#include "rov_tether/core/pbd_solver.hpp"
+#include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "golden.hpp"
-#include "rov_tether/scenario_runner.hpp"
-#include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 
 namespace rov_tether::test
 {

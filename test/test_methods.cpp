@@ -3,7 +3,7 @@
 // the cases where methods fail (a teleport, a 10 m/s pull).
 #include <cstdio>
 
-#include "rov_tether/study.hpp"
+#include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

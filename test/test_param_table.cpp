@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "rov_tether/scenario_runner.hpp"
-#include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

@@ -624,7 +624,7 @@ namespace
 TEST(Layers, CoreIncludesNoRosHeader)
 {
   int files = 0;
-  for (const std::string folder : {"/src/core", "/include/rov_tether"})
+  for (const std::string folder : {"/src/core", "/include/rov_tether/core"})
   {
     for (const auto& entry : fs::directory_iterator(std::string(ROV_TETHER_SOURCE_DIR) + folder))
     {
@@ -650,12 +650,63 @@ TEST(Layers, CoreIncludesNoRosHeader)
   EXPECT_GE(files, 8);
 }
 
+// The layers of docs/architecture.md: a header or source of one layer includes the package's headers of
+// its own layer and of the layers below it only (core <- geometry, spec <- scenario <- camera, study; camera
+// <- ros; the headers generated from msg/, srv/ and cfg/ in ros only),
+// and no header of the package sits outside a layer's folder. A layer above would tie two libraries both
+// ways (CMake links them one way); a flat header would hide which layer it belongs to.
+TEST(Layers, NoFileIncludesALayerAboveIt)
+{
+  const std::map<std::string, std::set<std::string>> allowed = {
+      {"core", {"core"}},
+      {"geometry", {"core", "geometry"}},
+      {"spec", {"core", "spec"}},
+      {"scenario", {"core", "geometry", "spec", "scenario"}},
+      {"camera", {"core", "geometry", "spec", "scenario", "camera"}},
+      {"study", {"core", "geometry", "spec", "scenario", "study"}},
+      {"ros", {"core", "geometry", "spec", "scenario", "camera", "ros", "generated"}},
+  };
+  const std::string root(ROV_TETHER_SOURCE_DIR);
+  for (const auto& entry : fs::directory_iterator(root + "/include/rov_tether"))
+  {
+    EXPECT_TRUE(entry.is_directory()) << entry.path() << " sits in no layer's folder";
+    EXPECT_EQ(allowed.count(entry.path().filename().string()), 1u) << entry.path() << " is no layer";
+  }
+  int includes = 0;
+  for (const auto& [layer, below] : allowed)
+  {
+    for (const std::string& folder : {root + "/include/rov_tether/" + layer, root + "/src/" + layer})
+    {
+      ASSERT_TRUE(fs::is_directory(folder)) << folder;
+      for (const auto& entry : fs::directory_iterator(folder))
+      {
+        std::ifstream in(entry.path());
+        for (std::string line; std::getline(in, line);)
+        {
+          const std::string tag = "#include \"rov_tether/";
+          if (line.rfind(tag, 0) != 0)
+          {
+            continue;
+          }
+          const std::string rest = line.substr(tag.size());
+          // "rov_tether/X.h" with no folder: a header generated from msg/, srv/ or cfg/ (ROS only).
+          const std::string included = rest.find('/') == std::string::npos ? "generated" : rest.substr(0, rest.find('/'));
+          EXPECT_EQ(below.count(included), 1u) << entry.path() << " (" << layer << ") includes " << line;
+          ++includes;
+        }
+      }
+    }
+  }
+  EXPECT_GE(includes, 100);  // the scan found the package's includes (some 300 today), not an empty tree
+}
+
 // The scenario model, the CSV runner and the study need no YAML: only the reader (scenario_yaml) does.
 TEST(Layers, OnlyTheScenarioReaderUsesYaml)
 {
   for (const char* file :
        {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/study/study.cpp",
-        "/include/rov_tether/scenario.hpp", "/include/rov_tether/scenario_runner.hpp", "/include/rov_tether/study.hpp"})
+        "/include/rov_tether/scenario/scenario.hpp", "/include/rov_tether/scenario/scenario_runner.hpp",
+        "/include/rov_tether/study/study.hpp"})
   {
     std::ifstream in(std::string(ROV_TETHER_SOURCE_DIR) + file);
     ASSERT_TRUE(in) << file;

@@ -1,7 +1,7 @@
 // Statics against the catenary rows of docs/references.md ("Statics: the catenary").
 #include <cstdio>
 
-#include "rov_tether/study.hpp"
+#include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

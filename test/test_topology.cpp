@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/topology.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/topology.hpp"
 
 namespace rov_tether::test
 {

@@ -2,7 +2,7 @@
 // chain's period in water), the current and its slow variation, the seabed, and what a scene skips.
 #include <cstdio>
 
-#include "rov_tether/study.hpp"
+#include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

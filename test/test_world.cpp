@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/mesh_obstacle.hpp"
-#include "rov_tether/scenario_runner.hpp"
-#include "rov_tether/scenario_yaml.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/geometry/mesh_obstacle.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether::test
 {

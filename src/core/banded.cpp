@@ -1,4 +1,4 @@
-#include "rov_tether/banded.hpp"
+#include "banded.hpp"
 
 #include <lapacke.h>
 
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "rov_tether/simd.hpp"
+#include "simd.hpp"
 
 namespace rov_tether::banded
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/cable.hpp"
+#include "rov_tether/core/cable.hpp"
 
 namespace rov_tether
 {

@@ -1,8 +1,8 @@
-#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
-#include "rov_tether/direct_solver.hpp"
-#include "rov_tether/lumped_mass_solver.hpp"
-#include "rov_tether/pbd_solver.hpp"
+#include "rov_tether/core/direct_solver.hpp"
+#include "rov_tether/core/lumped_mass_solver.hpp"
+#include "rov_tether/core/pbd_solver.hpp"
 
 namespace rov_tether
 {

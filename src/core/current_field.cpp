@@ -1,8 +1,8 @@
-#include "rov_tether/current_field.hpp"
+#include "rov_tether/core/current_field.hpp"
 
 #include <cmath>
 
-#include "rov_tether/random.hpp"
+#include "rov_tether/core/random.hpp"
 
 namespace rov_tether
 {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "rov_tether/banded.hpp"
-#include "rov_tether/simd.hpp"
+#include "banded.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "direct_workspace.hpp"
-#include "rov_tether/direct_solver.hpp"
+#include "rov_tether/core/direct_solver.hpp"
 
 namespace rov_tether
 {

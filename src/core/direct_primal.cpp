@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "rov_tether/banded.hpp"
+#include "banded.hpp"
 
 namespace rov_tether
 {

@@ -1,6 +1,6 @@
 // DirectSolver: the front over the two Newton methods (direct_dual.hpp, direct_primal.hpp) and the
 // workspace they share (direct_workspace.hpp). It sets the step up, picks the path and ends the step.
-#include "rov_tether/direct_solver.hpp"
+#include "rov_tether/core/direct_solver.hpp"
 
 #include <algorithm>
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "rov_tether/simd.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/lumped_mass_solver.hpp"
+#include "rov_tether/core/lumped_mass_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

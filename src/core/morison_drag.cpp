@@ -1,6 +1,6 @@
 #include <algorithm>
 
-#include "rov_tether/water.hpp"
+#include "rov_tether/core/water.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rov_tether/water.hpp"
+#include "rov_tether/core/water.hpp"
 
 namespace rov_tether
 {

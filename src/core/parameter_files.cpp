@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

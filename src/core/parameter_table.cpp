@@ -3,7 +3,7 @@
 #include <limits>
 #include <string>
 
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 // The parameter table: every parameter's type, unit, range, choices and meaning, and the README table made from it.
 namespace rov_tether

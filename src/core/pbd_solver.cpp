@@ -1,10 +1,10 @@
-#include "rov_tether/pbd_solver.hpp"
+#include "rov_tether/core/pbd_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "rov_tether/joint_bending.hpp"
-#include "rov_tether/simd.hpp"
+#include "joint_bending.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {

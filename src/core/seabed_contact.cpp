@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "rov_tether/contact.hpp"
+#include "rov_tether/core/contact.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/segment_grid.hpp"
+#include "rov_tether/core/segment_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rov_tether/spool.hpp"
+#include "rov_tether/core/spool.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rov_tether/spool_drum.hpp"
+#include "rov_tether/core/spool_drum.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rov_tether/tension.hpp"
+#include "rov_tether/core/tension.hpp"
 
 #include <algorithm>
 #include <cmath>

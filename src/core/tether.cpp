@@ -1,4 +1,4 @@
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

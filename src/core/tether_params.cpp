@@ -1,4 +1,4 @@
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "rov_tether/topology.hpp"
+#include "rov_tether/core/topology.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

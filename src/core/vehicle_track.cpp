@@ -1,4 +1,4 @@
-#include "rov_tether/vehicle_track.hpp"
+#include "rov_tether/core/vehicle_track.hpp"
 
 #include <sstream>
 

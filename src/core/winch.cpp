@@ -1,4 +1,4 @@
-#include "rov_tether/winch.hpp"
+#include "rov_tether/core/winch.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "rov_tether/topology.hpp"
+#include "rov_tether/core/topology.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/world_contact.hpp"
+#include "rov_tether/core/world_contact.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "rov_tether/make_obstacle.hpp"
+#include "rov_tether/geometry/make_obstacle.hpp"
 
-#include "rov_tether/mesh_obstacle.hpp"
+#include "rov_tether/geometry/mesh_obstacle.hpp"
 
 namespace rov_tether
 {

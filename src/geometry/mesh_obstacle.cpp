@@ -1,4 +1,4 @@
-#include "rov_tether/mesh_obstacle.hpp"
+#include "rov_tether/geometry/mesh_obstacle.hpp"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>

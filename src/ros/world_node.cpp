@@ -6,7 +6,7 @@
 
 #include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/obstacle_config.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether::ros_layer
 {

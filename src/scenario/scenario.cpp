@@ -1,8 +1,8 @@
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 
 #include <algorithm>
 
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether
 {

@@ -1,4 +1,4 @@
-#include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -17,7 +17,7 @@
 #include "rov_tether/spec/obstacle_reader.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether
 {

@@ -1,9 +1,9 @@
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 #include <algorithm>
 #include <memory>
 
-#include "rov_tether/make_obstacle.hpp"
+#include "rov_tether/geometry/make_obstacle.hpp"
 
 namespace rov_tether
 {

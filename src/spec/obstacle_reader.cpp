@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "rov_tether/spec/yaml_read.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::spec
 {

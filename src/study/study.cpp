@@ -1,4 +1,4 @@
-#include "rov_tether/study.hpp"
+#include "rov_tether/study/study.hpp"
 
 #include <time.h>
 
@@ -7,8 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rov_tether/scenario.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/scenario/scenario.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::study
 {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "rov_tether/camera/dataset_writer.hpp"
-#include "rov_tether/scenario_runner.hpp"
-#include "rov_tether/scenario_yaml.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace
 {

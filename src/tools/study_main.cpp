@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/study.hpp"
+#include "rov_tether/study/study.hpp"
 
 namespace
 {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "fuzz_input.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 using namespace rov_tether;
 

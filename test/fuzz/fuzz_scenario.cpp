@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "rov_tether/scenario_runner.hpp"
-#include "rov_tether/scenario_yaml.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 
 using namespace rov_tether;
 

@@ -20,8 +20,8 @@
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
-#include "rov_tether/scenario_yaml.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
+#include "rov_tether/core/world.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::test

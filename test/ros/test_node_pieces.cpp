@@ -18,7 +18,7 @@
 #include "rov_tether/ros/render_budget.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

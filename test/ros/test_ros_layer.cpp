@@ -18,8 +18,8 @@
 #include "rov_tether/ros/vehicle_history.hpp"
 #include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
-#include "rov_tether/scenario_yaml.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer

@@ -6,7 +6,7 @@
 #include "rov_tether/camera/occluder.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::camera
 {

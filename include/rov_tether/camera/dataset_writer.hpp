@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rov_tether/camera/tether_renderer.hpp"
-#include "rov_tether/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
 
 namespace rov_tether::camera
 {

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::camera
 {

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
+#include "rov_tether/core/cable.hpp"
 #include "rov_tether/camera/camera_model.hpp"
 #include "rov_tether/camera/occluder.hpp"
 

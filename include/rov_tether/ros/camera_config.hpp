@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/camera/camera_intrinsics.hpp"
+#include "rov_tether/spec/camera_intrinsics.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
 
 namespace rov_tether::ros_layer

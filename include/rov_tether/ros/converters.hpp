@@ -15,8 +15,8 @@
 #include "rov_tether/TetherConfig.h"
 #include "rov_tether/TetherState.h"
 #include "rov_tether/Topology.h"
-#include "rov_tether/tether.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

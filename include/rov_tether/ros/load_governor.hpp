@@ -5,7 +5,7 @@
 #include <string>
 
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

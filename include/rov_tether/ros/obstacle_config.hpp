@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/world_spec.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether::ros_layer
 {

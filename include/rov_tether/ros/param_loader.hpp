@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether::ros_layer
 {

@@ -22,7 +22,7 @@
 
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

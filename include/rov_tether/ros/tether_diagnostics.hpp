@@ -12,7 +12,7 @@
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/world_report.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

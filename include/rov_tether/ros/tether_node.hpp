@@ -20,8 +20,8 @@
 #include "rov_tether/ros/tether_diagnostics.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/ros/world_report.hpp"
-#include "rov_tether/tether.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

@@ -14,7 +14,7 @@
 #include "rov_tether/TetherState.h"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/tether.hpp"
+#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

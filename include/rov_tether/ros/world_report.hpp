@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "rov_tether/Topology.h"
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 #include "rov_tether/ros/obstacle_config.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

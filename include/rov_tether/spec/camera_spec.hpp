@@ -6,7 +6,7 @@
 #include <string>
 
 // Plain data and checks only (header-only, no OpenCV): the spec library does not link the camera library.
-#include "rov_tether/camera/camera_intrinsics.hpp"
+#include "rov_tether/spec/camera_intrinsics.hpp"
 
 namespace rov_tether::spec
 {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 
 namespace rov_tether::spec
 {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/tether.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether::spec
 {

@@ -27,9 +27,9 @@
 #include <utility>
 #include <vector>
 
-#include "rov_tether/contact.hpp"
-#include "rov_tether/obstacle.hpp"
-#include "rov_tether/segment_grid.hpp"
+#include "rov_tether/core/contact.hpp"
+#include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/core/segment_grid.hpp"
 
 namespace rov_tether
 {

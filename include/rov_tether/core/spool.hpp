@@ -1,7 +1,7 @@
 #pragma once
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {

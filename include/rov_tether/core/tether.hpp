@@ -6,18 +6,18 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/constraint_solver.hpp"
-#include "rov_tether/contact.hpp"
-#include "rov_tether/current_field.hpp"
-#include "rov_tether/noise.hpp"
-#include "rov_tether/spool.hpp"
-#include "rov_tether/status.hpp"
-#include "rov_tether/tension.hpp"
-#include "rov_tether/tether_params.hpp"
-#include "rov_tether/vehicle_track.hpp"
-#include "rov_tether/water.hpp"
-#include "rov_tether/winch.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
+#include "rov_tether/core/contact.hpp"
+#include "rov_tether/core/current_field.hpp"
+#include "rov_tether/core/noise.hpp"
+#include "rov_tether/core/spool.hpp"
+#include "rov_tether/core/status.hpp"
+#include "rov_tether/core/tension.hpp"
+#include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/core/vehicle_track.hpp"
+#include "rov_tether/core/water.hpp"
+#include "rov_tether/core/winch.hpp"
 
 namespace rov_tether
 {

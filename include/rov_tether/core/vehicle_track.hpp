@@ -2,8 +2,8 @@
 
 #include <deque>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/status.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/status.hpp"
 
 namespace rov_tether
 {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/obstacle.hpp"
 
 namespace rov_tether
 {

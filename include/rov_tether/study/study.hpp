@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether::study
 {

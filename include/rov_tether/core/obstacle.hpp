@@ -14,8 +14,8 @@
 #include <memory>
 #include <string>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/status.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/status.hpp"
 
 namespace rov_tether
 {

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether
 {

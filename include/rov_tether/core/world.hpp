@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
-#include "rov_tether/status.hpp"
-#include "rov_tether/tether.hpp"
-#include "rov_tether/world_contact.hpp"
+#include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/core/status.hpp"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/world_contact.hpp"
 
 namespace rov_tether
 {

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
+#include "rov_tether/core/cable.hpp"
 
 namespace rov_tether
 {

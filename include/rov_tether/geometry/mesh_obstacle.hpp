@@ -31,8 +31,8 @@
 #include <memory>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
-#include "rov_tether/segment_grid.hpp"
+#include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/core/segment_grid.hpp"
 
 namespace rov_tether
 {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/scenario.hpp"
-#include "rov_tether/world.hpp"
+#include "rov_tether/scenario/scenario.hpp"
+#include "rov_tether/core/world.hpp"
 
 namespace rov_tether
 {

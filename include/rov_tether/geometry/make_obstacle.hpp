@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 
 namespace rov_tether
 {

@@ -1,6 +1,7 @@
 #pragma once
 // A pinhole camera's intrinsics as sensor_msgs/CameraInfo holds them. Plain data and checks only (no
-// OpenCV, no ROS): the scenario model, the scenario reader and the node's parameter loader share it.
+// OpenCV, no ROS): the description of a camera (spec), the camera library and the node share it, so it
+// sits with the descriptions, below both scenario and camera.
 
 #include <array>
 #include <cmath>

@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/random.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/random.hpp"
 
 namespace rov_tether
 {

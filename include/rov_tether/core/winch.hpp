@@ -3,9 +3,9 @@
 #include <array>
 #include <memory>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/spool_drum.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/spool_drum.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

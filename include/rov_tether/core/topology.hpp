@@ -12,7 +12,7 @@
 
 #include <cstddef>
 
-#include "rov_tether/cable.hpp"
+#include "rov_tether/core/cable.hpp"
 
 namespace rov_tether::topology
 {

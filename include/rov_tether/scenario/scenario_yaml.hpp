@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "rov_tether/scenario.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 
 namespace rov_tether
 {

@@ -2,9 +2,9 @@
 
 #include <memory>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/current_field.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/current_field.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

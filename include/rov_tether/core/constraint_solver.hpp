@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/contact.hpp"
-#include "rov_tether/spool_drum.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/contact.hpp"
+#include "rov_tether/core/spool_drum.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

@@ -7,7 +7,7 @@
 #include <variant>
 #include <vector>
 
-#include "rov_tether/line_mass.hpp"
+#include "rov_tether/core/line_mass.hpp"
 
 namespace rov_tether
 {

@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/constraint_solver.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {

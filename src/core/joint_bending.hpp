@@ -3,8 +3,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "rov_tether/cable.hpp"
-#include "rov_tether/simd.hpp"
+#include "rov_tether/core/cable.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {
