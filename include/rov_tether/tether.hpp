@@ -166,6 +166,8 @@ class Tether
   void applyParams(const TetherParams& params);
   /// Sizes the cable for the parameters and lays it out at `deployed_length` [m].
   void build(double deployed_length);
+  /// Gives the spool `deployed_length` [m] and lays the cable out at rest (CableLayout, src/core/cable_layout.hpp)
+  /// from the spool to the vehicle; multipliers, masses and contact start afresh.
   void layOut(double deployed_length);
   /// Recomputes masses and weights of deployed particles [lo, hi] (Cable::updateMasses).
   void refreshDerived(std::size_t lo, std::size_t hi);
