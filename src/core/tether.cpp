@@ -101,7 +101,7 @@ void Tether::setWorldContact(Contact* contact)
   {
     contacts_.push_back(contact);
   }
-  contact_substeps_ = 1;
+  substep_policy_.restart();
 }
 
 Position Tether::currentAt(const Position& point, double t) const { return current_.at(point, t); }
@@ -180,16 +180,8 @@ void Tether::layOut(double deployed_length)
     // taut at rest read 0 N at the spool and hundreds of newtons at the vehicle; the constant-tension winch
     // paid out at full speed from then on, and the cable it piled up wound onto itself (kilonewtons: issue
     // 26, a reset beside another tether; test Contact.ACableLaidOutAfreshIsNotMotion).
-    markMotionStart();
+    step_motion_.start(cable_);
   }
-}
-
-void Tether::markMotionStart()
-{
-  step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
-  step_start_y_.assign(cable_.y.begin(), cable_.y.end());
-  step_start_z_.assign(cable_.z.begin(), cable_.z.end());
-  step_start_first_ = cable_.first;
 }
 
 void Tether::refreshDerived(std::size_t lo, std::size_t hi)
@@ -328,23 +320,22 @@ void Tether::step()
 {
   const double dt = params_.time_step;
   const double next_time = nextStepTime();
-  const int substeps = world_contact_ != nullptr ? std::max(params_.substeps, contact_substeps_) : params_.substeps;
+  const int substeps = world_contact_ != nullptr ? substep_policy_.substeps(params_.substeps) : params_.substeps;
   const double h = dt / substeps;
   const std::uint64_t failures = recoveries_;
   if (world_contact_ != nullptr)
   {
-    markMotionStart();
+    step_motion_.start(cable_);
   }
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
     subStep(h, k == substeps ? next_time : next_time - dt + k * h);
   }
   last_step_ = h;
-  last_substeps_ = substeps;
+  substep_policy_.tookStep(substeps);
   if (world_contact_ != nullptr)
   {
-    contact_substeps_ = contactSubsteps();
-    max_contact_depth_ = 0.0;
+    substep_policy_.plan(step_motion_.fastest(cable_), params_.diameter, params_.substeps);
   }
   ++steps_;
   time_ = next_time;
@@ -352,50 +343,6 @@ void Tether::step()
   {
     fail("non-finite particle position");
   }
-}
-
-int Tether::contactSubsteps()
-{
-  // How far the fastest particle moved in the step just taken (the noise's random walk and a pay-out's new
-  // particle included: both are motion a contact must see); the next step is cut so that it moves at most
-  // 0.8 of the cable's radius in each sub-step, and no finer than kMaxContactSubsteps.
-  double fastest2 = 0.0;
-  const std::size_t n = std::min(cable_.size(), step_start_x_.size());
-  // Particles paid out during the step were on the drum at its start, and the outlet (pinned) jumps along
-  // the cable when one is reeled in: neither is motion.
-  for (std::size_t i = std::max(cable_.first, step_start_first_) + 1; i < n; ++i)
-  {
-    const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i],
-                 dz = cable_.z[i] - step_start_z_[i];
-    fastest2 = std::max(fastest2, dx * dx + dy * dy + dz * dz);
-  }
-  const double per_step = std::sqrt(fastest2);
-  last_motion_ = std::isfinite(per_step) ? per_step : 0.0;
-  const double allowed = 0.8 * 0.5 * params_.diameter;
-  if (!(per_step < allowed * kMaxContactSubsteps))
-  {
-    return std::isfinite(per_step) ? kMaxContactSubsteps : 1;
-  }
-  const int for_motion = std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
-  // What a solve's tension pulls a particle into a contact within a sub-step (Contact::lastPullIn), which
-  // the contact then undoes, grows as h^2 (lambda w): at n sub-steps instead of the `taken` it is
-  // (taken / n)^2 as deep. Aim at half the issue's bound on penetration (10% of the diameter).
-  const double aimed = 0.05 * params_.diameter;
-  // More sub-steps at once when needed; one fewer only when the pull predicted for it stays below the aim,
-  // so the count does not swing between two values (each swing changes h, and the tension's transient).
-  const double ratio = std::sqrt(max_contact_depth_ / aimed);
-  int for_depth = static_cast<int>(std::min<double>(kMaxContactSubsteps, std::ceil(last_substeps_ * ratio)));
-  if (for_depth < last_substeps_)
-  {
-    const int fewer = last_substeps_ - 1;
-    const double predicted = max_contact_depth_ * (static_cast<double>(last_substeps_) / std::max(fewer, 1)) *
-                             (static_cast<double>(last_substeps_) / std::max(fewer, 1));
-    for_depth = predicted < aimed ? fewer : last_substeps_;
-  }
-  // At most kDepthSubsteps times what the motion and `substeps` ask: a tension the vehicle keeps raising
-  // (a capstan of kilonewtons) would otherwise ask without end.
-  const int floor = std::max(for_motion, params_.substeps);
-  return std::min({kMaxContactSubsteps, kDepthSubsteps * floor, std::max(floor, for_depth)});
 }
 
 void Tether::subStep(double h, double t)
@@ -431,7 +378,7 @@ void Tether::subStep(double h, double t)
   {
     world_contact_->sendReaction();
     world_contact_->limitRebound(cable_, h);
-    max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastPullIn());
+    substep_policy_.sawPullIn(world_contact_->lastPullIn());
   }
   if (settings.drum != nullptr)
   {
