@@ -1,6 +1,5 @@
 #include "rov_tether/core/tether.hpp"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -8,84 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cable_layout.hpp"
+
 namespace rov_tether
 {
-namespace
-{
-
-/// A polygon inscribed in a circular arc from `from` to `to` (`distance` apart), bulging towards the unit
-/// vector `side` (normal to the chord), whose chords are the segments' rest lengths, so the cable starts
-/// with no stretch and no kink. A chord l subtends 2 asin(l / 2R) of the circle; the radius R is found by
-/// bisection so that the polygon's ends are `distance` apart, 2 R sin(theta / 2) = distance with theta the
-/// sum of the chords' angles, below a full turn (the ends close in monotonically as R shrinks to there).
-class InscribedArc
-{
- public:
-  InscribedArc(const Position& from, const Position& to, const Position& side, const double* rest, std::size_t count,
-               double distance)
-      : side_(side), rest_(rest), count_(count)
-  {
-    direction_ = distance > 1e-9 ? Position((to - from) / distance) : Position::UnitX();
-    double longest = 0.0, length = 0.0;
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      longest = std::max(longest, rest[k]);
-      length += rest[k];
-    }
-    // R from a full turn (the ends meet) to a nearly straight polygon.
-    double lo = 0.5 * longest, hi = 1e6 * std::max(length, 1e-9);
-    for (int k = 0; k < 200 && total(lo) > 2.0 * kPi; ++k)
-    {
-      lo *= 1.01;
-    }
-    for (int k = 0; k < 200; ++k)
-    {
-      const double r = std::sqrt(lo * hi);  // bisection on log R: R spans many decades
-      (reach(r) > distance ? hi : lo) = r;
-    }
-    radius_ = std::sqrt(lo * hi);
-    const double half = 0.5 * total(radius_);
-    start_ = -half;
-    centre_ = 0.5 * (from + to) - side * (radius_ * std::cos(half));
-  }
-
-  /// The angle of the first vertex, and that of each chord: vertex k is at start() plus the first k angles.
-  double start() const { return start_; }
-  double angleOf(double chord) const { return chordAngle(chord, radius_); }
-  /// The point of the circle at angle theta.
-  Position at(double theta) const
-  {
-    return centre_ + radius_ * (std::sin(theta) * direction_ + std::cos(theta) * side_);
-  }
-
- private:
-  static constexpr double kPi = 3.14159265358979323846;
-  static double chordAngle(double chord, double radius)
-  {
-    return 2.0 * std::asin(std::min(chord / (2.0 * radius), 1.0));
-  }
-  double total(double radius) const
-  {
-    double sum = 0.0;
-    for (std::size_t k = 0; k < count_; ++k)
-    {
-      sum += chordAngle(rest_[k], radius);
-    }
-    return sum;
-  }
-  double reach(double radius) const { return 2.0 * radius * std::sin(0.5 * std::min(total(radius), 2.0 * kPi)); }
-
-  Position side_;
-  const double* rest_;
-  std::size_t count_;
-  Position direction_ = Position::UnitX();
-  Position centre_ = Position::Zero();
-  double radius_ = 1.0;
-  double start_ = 0.0;
-};
-
-}  // namespace
-
 namespace
 {
 
@@ -176,7 +101,7 @@ void Tether::setWorldContact(Contact* contact)
   {
     contacts_.push_back(contact);
   }
-  contact_substeps_ = 1;
+  substep_policy_.restart();
 }
 
 Position Tether::currentAt(const Position& point, double t) const { return current_.at(point, t); }
@@ -242,103 +167,11 @@ void Tether::layOut(double deployed_length)
     world_contact_->forget();
   }
   spool_.setDeployedLength(cable_, deployed_length);
-  const std::size_t n = cable_.size();
-  const std::size_t f = cable_.first;
-  const Position& spool = spool_.outlet();
-  for (std::size_t i = 0; i <= f; ++i)
-  {
-    cable_.place(i, spool);
-  }
-  // The deployed cable is laid at rest by arc length along two straight legs spool -> apex -> end, or, for a
-  // cable that resists bending by EI, along a circular arc through the same three points' plane: a V's
-  // kink would spring open in the first steps (a 2 m cable at EI 0.2 N m^2 pushed its vehicle with 1 N).
-  const double length = deployedLength();
-  Position end;
-  Position middle;
-  Position direction = Position::UnitX();
-  double distance = 0.0;
-  double offset = 0.0;  // how far the slack's V reaches off the chord
-  if (track_.attached())
-  {
-    end = track_.position();
-    const Position chord = end - spool;
-    distance = chord.norm();
-    middle = spool + 0.5 * chord;  // taut or stretched: a straight line
-    direction = distance > 1e-9 ? Position(chord / distance) : Position::UnitX();
-    offset = distance < length ? std::sqrt(std::max(0.25 * (length * length - distance * distance), 0.0)) : 0.0;
-  }
-  else
-  {
-    // A free end hangs (or floats, when lighter than water) straight from the spool.
-    end = spool + (params_.weight_in_water < 0.0 ? 1.0 : -1.0) * length * Position::UnitZ();
-    middle = 0.5 * (spool + end);
-  }
-  const bool elastic = params_.bending && params_.bending_stiffness > 0.0 &&
-                       (params_.solver == SolverType::kDirect || params_.solver == SolverType::kXpbd);
-  // The particles along two straight legs spool -> apex -> end, or along the arc bowed towards `side`.
-  auto lay = [&](const Position& side)
-  {
-    const Position apex = middle + offset * side;
-    if (elastic && offset > 0.0 && n > f + 1)
-    {
-      const InscribedArc shape(spool, end, side, &cable_.rest[f], n - 1 - f, distance);
-      double theta = shape.start();
-      for (std::size_t i = f; i < n; ++i)
-      {
-        cable_.place(i, shape.at(theta));
-        theta += i + 1 < n ? shape.angleOf(cable_.rest[i]) : 0.0;
-      }
-      return;
-    }
-    double arc = 0.0;
-    for (std::size_t i = f; i < n; ++i)
-    {
-      const double fraction = length > 0.0 ? std::min(arc / length, 1.0) : 0.0;
-      cable_.place(i, fraction <= 0.5 ? Position(spool + 2.0 * fraction * (apex - spool))
-                                      : Position(apex + (2.0 * fraction - 1.0) * (end - apex)));
-      if (i + 1 < n)
-      {
-        arc += cable_.rest[i];
-      }
-    }
-  };
-  auto lowest = [&]()
-  {
-    double z = std::numeric_limits<double>::infinity();
-    for (std::size_t i = f + 1; i < n; ++i)
-    {
-      z = std::min(z, cable_.z[i]);
-    }
-    return z;
-  };
-  // Slack hangs below the chord (sideways when the chord is vertical).
-  Position down = -Position::UnitZ() + direction * direction.z();
-  if (down.norm() < 0.1)
-  {
-    down = Position::UnitX() - direction * direction.x();
-  }
-  lay(down.normalized());
-  if (std::isfinite(params_.seabed_z) && offset > 0.0 && lowest() < params_.seabed_z)
-  {
-    // It would hang through the flat seabed: bowed sideways instead, level across the chord, from where it
-    // sinks onto the seabed. (Laid through it, the seabed's projection flattened metres of sag in one step;
-    // a rod folded, its solve failed, and the recovery laid it out the same way again.) An arc of more than
-    // half a circle still reaches past its lower end along a sloping chord: what of it is below the seabed
-    // (centimetres) is put on it.
-    const Position level = direction.cross(Position::UnitZ());
-    lay(level.norm() > 1e-6 ? Position(level.normalized()) : Position(Position::UnitX()));
-    for (std::size_t i = f + 1; i < n; ++i)
-    {
-      cable_.z[i] = cable_.pz[i] = std::max(cable_.z[i], params_.seabed_z);
-    }
-  }
-  if (track_.attached())
-  {
-    cable_.place(n - 1, track_.position());
-  }
+  CableLayout(params_).layOut(cable_, spool_.outlet(), track_.attached() ? &track_.position() : nullptr,
+                              deployedLength());
   solver_->multipliers().clear();
   solver_->forget();
-  refreshDerived(f, n - 1);
+  refreshDerived(cable_.first, cable_.size() - 1);
   if (world_contact_ != nullptr)
   {
     // A cable laid out afresh (a vehicle attaching or jumping, a reset, a recovery) did not move there.
@@ -347,16 +180,8 @@ void Tether::layOut(double deployed_length)
     // taut at rest read 0 N at the spool and hundreds of newtons at the vehicle; the constant-tension winch
     // paid out at full speed from then on, and the cable it piled up wound onto itself (kilonewtons: issue
     // 26, a reset beside another tether; test Contact.ACableLaidOutAfreshIsNotMotion).
-    markMotionStart();
+    step_motion_.start(cable_);
   }
-}
-
-void Tether::markMotionStart()
-{
-  step_start_x_.assign(cable_.x.begin(), cable_.x.end());  // same size every step: no allocation
-  step_start_y_.assign(cable_.y.begin(), cable_.y.end());
-  step_start_z_.assign(cable_.z.begin(), cable_.z.end());
-  step_start_first_ = cable_.first;
 }
 
 void Tether::refreshDerived(std::size_t lo, std::size_t hi)
@@ -495,23 +320,22 @@ void Tether::step()
 {
   const double dt = params_.time_step;
   const double next_time = nextStepTime();
-  const int substeps = world_contact_ != nullptr ? std::max(params_.substeps, contact_substeps_) : params_.substeps;
+  const int substeps = world_contact_ != nullptr ? substep_policy_.substeps(params_.substeps) : params_.substeps;
   const double h = dt / substeps;
   const std::uint64_t failures = recoveries_;
   if (world_contact_ != nullptr)
   {
-    markMotionStart();
+    step_motion_.start(cable_);
   }
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
     subStep(h, k == substeps ? next_time : next_time - dt + k * h);
   }
   last_step_ = h;
-  last_substeps_ = substeps;
+  substep_policy_.tookStep(substeps);
   if (world_contact_ != nullptr)
   {
-    contact_substeps_ = contactSubsteps();
-    max_contact_depth_ = 0.0;
+    substep_policy_.plan(step_motion_.fastest(cable_), params_.diameter, params_.substeps);
   }
   ++steps_;
   time_ = next_time;
@@ -519,50 +343,6 @@ void Tether::step()
   {
     fail("non-finite particle position");
   }
-}
-
-int Tether::contactSubsteps()
-{
-  // How far the fastest particle moved in the step just taken (the noise's random walk and a pay-out's new
-  // particle included: both are motion a contact must see); the next step is cut so that it moves at most
-  // 0.8 of the cable's radius in each sub-step, and no finer than kMaxContactSubsteps.
-  double fastest2 = 0.0;
-  const std::size_t n = std::min(cable_.size(), step_start_x_.size());
-  // Particles paid out during the step were on the drum at its start, and the outlet (pinned) jumps along
-  // the cable when one is reeled in: neither is motion.
-  for (std::size_t i = std::max(cable_.first, step_start_first_) + 1; i < n; ++i)
-  {
-    const double dx = cable_.x[i] - step_start_x_[i], dy = cable_.y[i] - step_start_y_[i],
-                 dz = cable_.z[i] - step_start_z_[i];
-    fastest2 = std::max(fastest2, dx * dx + dy * dy + dz * dz);
-  }
-  const double per_step = std::sqrt(fastest2);
-  last_motion_ = std::isfinite(per_step) ? per_step : 0.0;
-  const double allowed = 0.8 * 0.5 * params_.diameter;
-  if (!(per_step < allowed * kMaxContactSubsteps))
-  {
-    return std::isfinite(per_step) ? kMaxContactSubsteps : 1;
-  }
-  const int for_motion = std::max(1, static_cast<int>(std::ceil(per_step / allowed)));
-  // What a solve's tension pulls a particle into a contact within a sub-step (Contact::lastPullIn), which
-  // the contact then undoes, grows as h^2 (lambda w): at n sub-steps instead of the `taken` it is
-  // (taken / n)^2 as deep. Aim at half the issue's bound on penetration (10% of the diameter).
-  const double aimed = 0.05 * params_.diameter;
-  // More sub-steps at once when needed; one fewer only when the pull predicted for it stays below the aim,
-  // so the count does not swing between two values (each swing changes h, and the tension's transient).
-  const double ratio = std::sqrt(max_contact_depth_ / aimed);
-  int for_depth = static_cast<int>(std::min<double>(kMaxContactSubsteps, std::ceil(last_substeps_ * ratio)));
-  if (for_depth < last_substeps_)
-  {
-    const int fewer = last_substeps_ - 1;
-    const double predicted = max_contact_depth_ * (static_cast<double>(last_substeps_) / std::max(fewer, 1)) *
-                             (static_cast<double>(last_substeps_) / std::max(fewer, 1));
-    for_depth = predicted < aimed ? fewer : last_substeps_;
-  }
-  // At most kDepthSubsteps times what the motion and `substeps` ask: a tension the vehicle keeps raising
-  // (a capstan of kilonewtons) would otherwise ask without end.
-  const int floor = std::max(for_motion, params_.substeps);
-  return std::min({kMaxContactSubsteps, kDepthSubsteps * floor, std::max(floor, for_depth)});
 }
 
 void Tether::subStep(double h, double t)
@@ -598,7 +378,7 @@ void Tether::subStep(double h, double t)
   {
     world_contact_->sendReaction();
     world_contact_->limitRebound(cable_, h);
-    max_contact_depth_ = std::max(max_contact_depth_, world_contact_->lastPullIn());
+    substep_policy_.sawPullIn(world_contact_->lastPullIn());
   }
   if (settings.drum != nullptr)
   {

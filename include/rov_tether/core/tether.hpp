@@ -9,6 +9,7 @@
 #include "rov_tether/core/cable.hpp"
 #include "rov_tether/core/constraint_solver.hpp"
 #include "rov_tether/core/contact.hpp"
+#include "rov_tether/core/contact_substeps.hpp"
 #include "rov_tether/core/current_field.hpp"
 #include "rov_tether/core/noise.hpp"
 #include "rov_tether/core/spool.hpp"
@@ -54,12 +55,13 @@ class Tether
   /// Contact with what a World holds (obstacles, other tethers, itself), projected after the seabed; null
   /// for none. Not owned. While it is set, each step is cut into enough sub-steps (at least `substeps`)
   /// that no particle moves more than the cable's radius in one, judged from the last step's motion, so a
-  /// capsule cannot pass through another or through an obstacle between two sub-steps.
+  /// capsule cannot pass through another or through an obstacle between two sub-steps, and more when a
+  /// solve pulled the cable deep into a contact (ContactSubstepPolicy).
   void setWorldContact(Contact* contact);
   /// Sub-steps the last step took (`substeps`, or more for contact) [-].
-  int lastSubsteps() const { return last_substeps_; }
+  int lastSubsteps() const { return substep_policy_.lastSubsteps(); }
   /// How far the fastest particle moved in the last step, while a World contact is set [m].
-  double lastMotion() const { return last_motion_; }
+  double lastMotion() const { return substep_policy_.lastMotion(); }
 
   /// Moves the spool outlet [m]. Refuses non-finite positions.
   Status setSpoolPosition(const Position& spool);
@@ -166,6 +168,8 @@ class Tether
   void applyParams(const TetherParams& params);
   /// Sizes the cable for the parameters and lays it out at `deployed_length` [m].
   void build(double deployed_length);
+  /// Gives the spool `deployed_length` [m] and lays the cable out at rest (CableLayout, src/core/cable_layout.hpp)
+  /// from the spool to the vehicle; multipliers, masses and contact start afresh.
   void layOut(double deployed_length);
   /// Recomputes masses and weights of deployed particles [lo, hi] (Cable::updateMasses).
   void refreshDerived(std::size_t lo, std::size_t hi);
@@ -176,12 +180,6 @@ class Tether
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
   void subStep(double h, double t);
-  /// Sub-steps the next step needs for contact, from the step just taken (see setWorldContact).
-  int contactSubsteps();
-  /// Takes the cable's positions now as where the step's motion is measured from (contactSubsteps).
-  void markMotionStart();
-  static constexpr int kMaxContactSubsteps = 64;
-  static constexpr int kDepthSubsteps = 4;
   void fail(const std::string& why);
   /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
   /// segment pulled harder than its mode gives way at.
@@ -205,12 +203,8 @@ class Tether
   std::unique_ptr<SeabedContact> seabed_;  ///< None without seabed_z.
   Contacts contacts_;                      ///< What the solver projects besides the chain's constraints.
   Contact* world_contact_ = nullptr;       ///< World's contact for this tether; not owned.
-  int contact_substeps_ = 1;               ///< Sub-steps the next step needs for contact (see setWorldContact).
-  int last_substeps_ = 1;
-  double last_motion_ = 0.0;
-  double max_contact_depth_ = 0.0;  ///< Largest Contact::lastPullIn() of the step's sub-steps [m].
-  std::vector<double> step_start_x_, step_start_y_, step_start_z_;   ///< Positions at the step's start [m].
-  std::size_t step_start_first_ = 0;                                 ///< The spool outlet at the step's start.
+  ContactSubstepPolicy substep_policy_;    ///< How many sub-steps a step with contact takes.
+  StepMotion step_motion_;                 ///< Where the step's motion is measured from, with contact.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
   double outrun_time_ = 0.0;  ///< How long the winch has been at its limit, pulled past giving way [s].

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/obstacle.hpp"
+#include "rov_tether/core/obstacle.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
-#include "rov_tether/tether.hpp"
-#include "rov_tether/tether_params.hpp"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/tether_params.hpp"
 
 namespace rov_tether
 {

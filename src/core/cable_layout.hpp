@@ -1,0 +1,71 @@
+#pragma once
+
+#include "rov_tether/core/cable.hpp"
+#include "rov_tether/core/tether_params.hpp"
+
+namespace rov_tether
+{
+
+/**
+ * How a cable is laid out at rest between its spool outlet and its vehicle, or hanging from the spool with a
+ * free end: when it is built, when a vehicle attaches or jumps, after a reset or a failure. Only the
+ * particles' places (positions equal to previous positions: no velocity); masses, multipliers and contact
+ * are the caller's (Tether::layOut).
+ *
+ * The deployed particles are put by arc length along the rest lengths the spool gave them, so that no
+ * segment starts stretched:
+ * - taut (the deployed length at most the spool-vehicle distance): a straight line from the spool;
+ * - slack: two straight legs spool -> apex -> vehicle as long as the cable, the apex below the chord's middle
+ *   (sideways when the chord is vertical); for a cable that resists bending (`bending` on,
+ *   `bending_stiffness` > 0, a solver that bends: direct or xpbd) a circular arc in the same plane whose
+ *   chords are the rest lengths instead, as a V's kink would spring open in the first steps (a 2 m cable at
+ *   EI 0.2 N m^2 pushed its vehicle with 1 N);
+ * - slack that would hang through a flat seabed (`seabed_z`): bowed sideways, level across the chord, and
+ *   what of it is still below the seabed put on it;
+ * - no vehicle: straight down from the spool, or up when lighter than water (`weight_in_water` < 0).
+ * Particles still on the spool sit at the outlet; the vehicle particle sits on the vehicle. Allocates
+ * nothing.
+ */
+class CableLayout
+{
+ public:
+  /// Takes what the layout depends on from `params` (bending, solver, seabed_z, weight_in_water).
+  explicit CableLayout(const TetherParams& params);
+
+  /// Places every particle of `cable` at rest. The rest lengths (and `cable.first`) are as the spool set
+  /// them, `length` is the deployed length they add up to [m]; `vehicle` is the vehicle attachment [m], or
+  /// null for a free end.
+  void layOut(Cable& cable, const Position& spool, const Position* vehicle, double length) const;
+
+ private:
+  /// The line the deployed cable is laid along: its two ends, the chord's middle and direction, and how far
+  /// a slack cable's V reaches off the chord (0 when taut or free).
+  struct Chord
+  {
+    Position spool;
+    Position end;
+    Position middle;
+    Position direction = Position::UnitX();
+    double distance = 0.0;  ///< |end - spool| with a vehicle, else 0 [m].
+    double offset = 0.0;    ///< How far the V's apex is off the chord [m].
+    double length = 0.0;    ///< Deployed length [m].
+  };
+
+  Chord chordOf(const Position& spool, const Position* vehicle, double length) const;
+  /// The unit vector slack hangs towards: down, normal to the chord (sideways for a vertical chord).
+  static Position slackSide(const Position& direction);
+  /// Lays the deployed particles along the arc or the two legs bowed towards the unit vector `side`.
+  void lay(Cable& cable, const Chord& chord, const Position& side) const;
+  static void layOnArc(Cable& cable, const Chord& chord, const Position& side);
+  static void layOnLegs(Cable& cable, const Chord& chord, const Position& apex);
+  /// Lowest z of the free deployed particles (those after the outlet) [m].
+  static double lowest(const Cable& cable);
+  /// The slack bowed sideways, level across the chord, and what is still below seabed_z put on it.
+  void bowAboveSeabed(Cable& cable, const Chord& chord) const;
+
+  bool elastic_;     ///< Slack is laid on an arc: the cable resists bending.
+  bool floats_;      ///< A free end rises: lighter than water.
+  double seabed_z_;  ///< The flat seabed's height, NaN for none [m].
+};
+
+}  // namespace rov_tether
