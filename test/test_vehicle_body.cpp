@@ -220,7 +220,7 @@ TEST(VehicleBody, ConstantYawMomentGivesTheDampingBalanceRate)
 TEST(VehicleBody, EnergyNeverIncreasesWithoutThrust)
 {
   VehicleParams p = neutral();
-  p.center_of_gravity = Eigen::Vector3d(0.02, -0.01, -0.02);  // off the origin: M_RB couples (eq. 3.44)
+  p.center_of_gravity = Eigen::Vector3d(0.02, -0.01, -0.02);  // off the origin: M_RB couples
   p.center_of_buoyancy = Eigen::Vector3d(0.02, -0.01, 0.0);
   VehicleBody body = bodyWith(p);
   const Eigen::Quaterniond start = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
@@ -304,7 +304,7 @@ TEST(VehicleBody, FreeBodyKeepsItsImpulse)
   EXPECT_NEAR(drift[0] / drift[1], 4.0, 0.8) << "drift " << drift[0] << " at h, " << drift[1] << " at h/2";
 }
 
-// The rigid body about an origin off its centre of gravity (Fossen 2011, eq. 3.44): a couple N on a free
+// The rigid body about an origin off its centre of gravity (Fossen 2011, ch. 3): a couple N on a free
 // body at rest (no added mass, no damping, no restoring wrench) turns it about its centre of gravity with its
 // inertia there: after one step h, dw = h I_G^-1 N and the centre of gravity has not moved (dv + dw x r_G =
 // 0, the origin's velocity when the CG is still). Exact for the kick; the Coriolis step then acts on a

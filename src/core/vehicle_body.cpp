@@ -22,8 +22,8 @@ Matrix3 skew(const Vector3& a)
   return s;
 }
 
-// Fossen's skew-symmetric Coriolis-centripetal matrix of a symmetric mass matrix M at nu (2011, eq. 3.46
-// and 6.43): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu, so C(nu) nu = [w x p1; v x p1 + w x p2].
+// Fossen's skew-symmetric Coriolis-centripetal matrix of a symmetric mass matrix M at nu (Fossen 2011,
+// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu, so C(nu) nu = [w x p1; v x p1 + w x p2].
 Matrix6 coriolis(const Matrix6& mass, const Twist& nu)
 {
   const Vector6 momentum = mass * nu;
@@ -66,7 +66,7 @@ void VehicleBody::prepare()
   const double m = params_.mass;
   const Vector3& r_g = params_.center_of_gravity;
   const Matrix3 s_g = skew(r_g);
-  // Rigid body about the origin (Fossen 2011, eq. 3.44): [m I, -m S(r_G); m S(r_G), I_G - m S(r_G)^2].
+  // Rigid body about the origin (Fossen 2011, ch. 3): [m I, -m S(r_G); m S(r_G), I_G - m S(r_G)^2].
   Matrix6 rigid;
   rigid.topLeftCorner<3, 3>() = m * Matrix3::Identity();
   rigid.topRightCorner<3, 3>() = -m * s_g;

@@ -27,7 +27,8 @@ struct ThrustUsed
 };
 
 /**
- * A vehicle's rigid body (Fossen 2011, eq. 8.1 with an irrotational, constant current, sec. 10.3):
+ * A vehicle's rigid body (Fossen 2011: rigid-body kinetics ch. 3, hydrostatics ch. 4, added mass and damping
+ * ch. 6-7, an irrotational constant current ch. 8):
  *
  *   M nu_r' + C(nu_r) nu_r + D(nu_r) nu_r + g(eta) = tau_thrust + tau_external,
  *

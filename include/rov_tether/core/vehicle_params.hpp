@@ -19,7 +19,7 @@ using Wrench = Vector6;
 
 /**
  * A vehicle's rigid-body and hydrodynamic parameters (Fossen, Handbook of Marine Craft Hydrodynamics and
- * Motion Control, 2011, ch. 3, 6, 8) in the body frame x forward, y left, z up, with its origin at the
+ * Motion Control, 2011, ch. 3-8) in the body frame x forward, y left, z up, with its origin at the
  * vehicle's reference point (the centre the pose names).
  *
  * Published figures are usually identified in Fossen's NED body frame (x forward, y starboard, z down). It is
