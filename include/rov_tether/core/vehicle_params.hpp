@@ -37,7 +37,7 @@ struct VehicleParams
   double mass = 13.5;
   /// Displaced volume V [m^3]: buoyancy rho g V.
   double displaced_volume = 0.0134;
-  /// Density of the water rho [kg/m^3] (the paper's tank: fresh water).
+  /// Density of the water rho [kg/m^3] (fresh water, as re-implementations of the paper take it).
   double water_density = 1000.0;
   /// Gravity g [m/s^2].
   double gravity = 9.81;
