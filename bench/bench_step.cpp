@@ -6,6 +6,7 @@
 
 #include "banded.hpp"
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/vehicle_body.hpp"
 
 namespace
 {
@@ -215,6 +216,29 @@ void BM_Scene(benchmark::State& state)
   run(state, sim, 0.0);
 }
 
+/// One step of a vehicle's rigid body (VehicleBody, the BlueROV2 Heavy) at 100 Hz: tumbling in a current
+/// under a thrust command and an external wrench, so every part of the step works (issue 25 adds it to
+/// BM_StepDirect's step when the vehicle is dynamic).
+void BM_VehicleBodyStep(benchmark::State& state)
+{
+  rov_tether::VehicleBody body;
+  rov_tether::Twist velocity;
+  velocity << 0.3, -0.1, 0.05, 0.2, -0.1, 0.4;
+  body.setState(Position::Zero(), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), velocity);
+  body.setCurrent(Position(0.2, 0.1, 0.0));
+  rov_tether::Wrench thrust;
+  thrust << 40.0, 10.0, -5.0, 1.0, 0.5, 2.0;
+  rov_tether::Wrench external;
+  external << -20.0, 3.0, 1.0, 0.1, -0.2, 0.3;
+  rov_tether::ThrustUsed used;
+  for (auto _ : state)
+  {
+    const rov_tether::Status status = body.step(0.01, thrust, external, &used);
+    benchmark::DoNotOptimize(status.ok);
+    benchmark::DoNotOptimize(body.velocity().data());
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_StepPbd)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
@@ -227,5 +251,6 @@ BENCHMARK(BM_StepDirectBending)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark
 BENCHMARK(BM_TridiagonalSolve)->ArgsProduct({{100, 1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BandedSolve)->ArgsProduct({{303, 3003}, {0, 1}, {5, 8}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scene)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_VehicleBodyStep)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -1,0 +1,218 @@
+#include "rov_tether/core/vehicle_body.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace rov_tether
+{
+namespace
+{
+
+using Matrix3 = Eigen::Matrix3d;
+using Vector3 = Eigen::Vector3d;
+
+// S(a) b = a x b.
+Matrix3 skew(const Vector3& a)
+{
+  Matrix3 s;
+  s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+  return s;
+}
+
+// Fossen's skew-symmetric Coriolis-centripetal matrix of a symmetric mass matrix M at nu (Fossen 2011,
+// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu, so C(nu) nu = [w x p1; v x p1 + w x p2].
+Matrix6 coriolis(const Matrix6& mass, const Twist& nu)
+{
+  const Vector6 momentum = mass * nu;
+  const Matrix3 s1 = skew(momentum.head<3>());
+  Matrix6 c;
+  c.topLeftCorner<3, 3>().setZero();
+  c.topRightCorner<3, 3>() = -s1;
+  c.bottomLeftCorner<3, 3>() = -s1;
+  c.bottomRightCorner<3, 3>() = -skew(momentum.tail<3>());
+  return c;
+}
+
+bool finite(const Vector6& values) { return values.allFinite(); }
+
+std::string number(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+VehicleBody::VehicleBody() { prepare(); }
+
+Status VehicleBody::setParams(const VehicleParams& params)
+{
+  const Status valid = params.validate();
+  if (!valid)
+  {
+    return valid;
+  }
+  params_ = params;
+  prepare();
+  return Status::success();
+}
+
+void VehicleBody::prepare()
+{
+  const double m = params_.mass;
+  const Vector3& r_g = params_.center_of_gravity;
+  const Matrix3 s_g = skew(r_g);
+  // Rigid body about the origin (Fossen 2011, ch. 3): [m I, -m S(r_G); m S(r_G), I_G - m S(r_G)^2].
+  Matrix6 rigid;
+  rigid.topLeftCorner<3, 3>() = m * Matrix3::Identity();
+  rigid.topRightCorner<3, 3>() = -m * s_g;
+  rigid.bottomLeftCorner<3, 3>() = m * s_g;
+  rigid.bottomRightCorner<3, 3>() = Matrix3(params_.inertia.asDiagonal()) - m * s_g * s_g;
+  mass_matrix_ = rigid;
+  mass_matrix_.diagonal() += params_.added_mass;
+  mass_factor_.compute(mass_matrix_);
+
+  // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
+  // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
+  // effective rotational inertia I' (translation free: the inverse of M^-1's rotational block) at
+  // omega_n = sqrt(k / I'); semi-implicit Euler on a spring is stable for h omega_n < 2.
+  const double k = (params_.buoyancy() * params_.center_of_buoyancy - params_.weight() * r_g).norm();
+  const Matrix6 inverse = mass_factor_.solve(Matrix6::Identity());
+  const Matrix3 compliance = 0.5 * (inverse.bottomRightCorner<3, 3>() + inverse.bottomRightCorner<3, 3>().transpose());
+  const double largest_compliance = Eigen::SelfAdjointEigenSolver<Matrix3>(compliance).eigenvalues().maxCoeff();
+  stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
+}
+
+Status VehicleBody::setState(const Eigen::Vector3d& position, const Eigen::Quaterniond& attitude, const Twist& velocity)
+{
+  if (!position.allFinite() || !attitude.coeffs().allFinite() || !finite(velocity))
+  {
+    return Status::error("vehicle state: position, attitude and velocity must be finite");
+  }
+  if (attitude.norm() < 1e-9)
+  {
+    return Status::error("vehicle state: the attitude quaternion must not be zero");
+  }
+  position_ = position;
+  attitude_ = attitude.normalized();
+  velocity_ = velocity;
+  return Status::success();
+}
+
+Status VehicleBody::setCurrent(const Eigen::Vector3d& current)
+{
+  if (!current.allFinite())
+  {
+    return Status::error("vehicle current: must be finite");
+  }
+  current_ = current;
+  return Status::success();
+}
+
+Twist VehicleBody::relativeVelocity() const
+{
+  Twist relative = velocity_;
+  relative.head<3>() -= attitude_.conjugate() * current_;
+  return relative;
+}
+
+Wrench VehicleBody::restoringWrench() const
+{
+  const Vector3 up = attitude_.conjugate() * Vector3::UnitZ();  // world z in the body frame
+  const Vector3 weight = -params_.weight() * up;
+  const Vector3 buoyancy = params_.buoyancy() * up;
+  Wrench wrench;
+  wrench.head<3>() = weight + buoyancy;
+  wrench.tail<3>() = params_.center_of_gravity.cross(weight) + params_.center_of_buoyancy.cross(buoyancy);
+  return wrench;
+}
+
+double VehicleBody::kineticEnergy() const
+{
+  const Twist relative = relativeVelocity();
+  return 0.5 * relative.dot(mass_matrix_ * relative);
+}
+
+double VehicleBody::potentialEnergy() const
+{
+  const double z_g = position_.z() + (attitude_ * params_.center_of_gravity).z();
+  const double z_b = position_.z() + (attitude_ * params_.center_of_buoyancy).z();
+  return params_.weight() * z_g - params_.buoyancy() * z_b;
+}
+
+Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+{
+  if (!(dt > 0.0) || !(dt <= stable_step_))
+  {
+    return Status::error("vehicle step: dt must be in (0, " + number(stable_step_) +
+                         "] s, the restoring moment's stability limit (got " + number(dt) + ")");
+  }
+  if (!finite(thrust) || !finite(external))
+  {
+    return Status::error("vehicle step: thrust and external wrench must be finite");
+  }
+  // Thrust held within its limit per axis, and reported.
+  ThrustUsed applied;
+  for (int i = 0; i < 6; ++i)
+  {
+    const double limit = params_.thrust_limit[i];
+    applied.applied[i] = thrust[i] > limit ? limit : (thrust[i] < -limit ? -limit : thrust[i]);
+    if (applied.applied[i] != thrust[i])
+    {
+      applied.saturated_axes |= static_cast<std::uint8_t>(1u << i);
+    }
+  }
+
+  const Vector3 current_in_body = attitude_.conjugate() * current_;
+  Twist relative = velocity_;
+  relative.head<3>() -= current_in_body;
+  const Twist speed = relative.cwiseAbs();  // |nu_r| at the step's start, for the damping
+
+  // 1. Kick: thrust, external wrench and the restoring wrench at this attitude.
+  relative += dt * mass_factor_.solve(applied.applied + external + restoringWrench());
+
+  // 2. Damping, implicit per axis with |nu_r| from the step's start (exact at a steady state).
+  Matrix6 damped = mass_matrix_;
+  damped.diagonal() += dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(speed));
+  relative = damped.ldlt().solve(mass_matrix_ * relative);
+
+  // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
+  // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
+  // the two ends (one pass of the implicit midpoint rule): frozen at the start alone, the body's momentum
+  // would turn with a first-order error in its length.
+  const Twist before = relative;
+  Twist turned = before;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    const Matrix6 c = coriolis(mass_matrix_, 0.5 * (before + turned));
+    turned = (mass_matrix_ + 0.5 * dt * c).partialPivLu().solve((mass_matrix_ - 0.5 * dt * c) * before);
+  }
+  relative = turned;
+
+  // 4. Drift with the velocity the Coriolis step turned (the mean of its two ends, the rate at which it
+  // turned the momentum): position by R v_r + V_c, attitude by the body rate's exponential.
+  const Twist mean = 0.5 * (before + relative);
+  const Vector3 turn = dt * mean.tail<3>();
+  const double angle = turn.norm();
+  const Eigen::Quaterniond half_way =
+      angle > 0.0 ? attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle)) : attitude_;
+  position_ += dt * (half_way * mean.head<3>() + current_);
+  if (angle > 0.0)
+  {
+    attitude_ = (attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle))).normalized();
+  }
+  velocity_ = relative;
+  velocity_.head<3>() += attitude_.conjugate() * current_;
+
+  if (used != nullptr)
+  {
+    *used = applied;
+  }
+  return Status::success();
+}
+
+}  // namespace rov_tether
