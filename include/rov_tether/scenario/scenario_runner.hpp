@@ -55,11 +55,11 @@ class RunObserver
 /// out_dir/topology.csv; all created together at the end, so a failed run leaves no partial file. Each
 /// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
 /// otherwise the error (an obstacle that cannot be built: naming it).
-std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
+[[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers = {});
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a
 /// caller can tell a world that cannot be built from a run that failed).
-std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
+[[nodiscard]] std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers = {});
 
 /// The node's default `max_tension_warning` [N]: the runner warns above the same tension.

@@ -10,16 +10,16 @@ namespace rov_tether
 
 /// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field. A mesh
 /// obstacle's relative `file` stays relative (to the working directory).
-std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
+[[nodiscard]] std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
 /// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field. A mesh
 /// obstacle's relative `file` is taken from the scenario file's directory.
-std::string loadScenario(const std::string& path, Scenario* scenario);
+[[nodiscard]] std::string loadScenario(const std::string& path, Scenario* scenario);
 /// Applies a flat YAML map of parameters (as in config/default.yaml) on top of `params` and validates
 /// the result. Returns "" on success, otherwise every problem found.
-std::string parseParams(const std::string& yaml_text, TetherParams* params);
+[[nodiscard]] std::string parseParams(const std::string& yaml_text, TetherParams* params);
 /// Reads a parameter file such as config/default.yaml; as parseParams.
-std::string loadParamsFile(const std::string& path, TetherParams* params);
+[[nodiscard]] std::string loadParamsFile(const std::string& path, TetherParams* params);
 /// Applies "name=value" (value in YAML syntax) to `params`. Returns "" on success.
-std::string applyAssignment(const std::string& assignment, TetherParams* params);
+[[nodiscard]] std::string applyAssignment(const std::string& assignment, TetherParams* params);
 
 }  // namespace rov_tether

@@ -43,7 +43,7 @@ extern const char* const kTetherNameRule;
 /// Checks what the description's parts cannot check alone: each tether's name (isTetherName) and that it is
 /// used once, and that no obstacle or camera takes a tether's name or another's of its kind. Returns "" or
 /// the first problem, naming the entry ("tethers[1].name = 'a': used twice").
-std::string validateWorldSpec(const WorldSpec& spec);
+[[nodiscard]] std::string validateWorldSpec(const WorldSpec& spec);
 
 /// A scenario's world: its tetherList() (the one tether of params, spool and vehicle is called "tether"),
 /// obstacles, tether_contact and cameras.
@@ -60,6 +60,6 @@ Tether makeTether(const ScenarioTether& tether);
  * (World::tether) and obstacles (World::obstacle, with their specs and poses). Returns "" or the error,
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
  */
-std::string buildWorld(const WorldSpec& spec, World* world);
+[[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world);
 
 }  // namespace rov_tether

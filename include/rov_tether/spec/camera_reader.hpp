@@ -31,6 +31,6 @@ constexpr double kMaxCameraAngle = 360.0;
 /// Reads the list `cameras`: each entry's fields for `mount` and its name (see CameraSpec::name). Returns ""
 /// or the first problem, naming the entry, the field, the value and what is allowed; `cameras` is set only
 /// on success. Names (unique, none a tether's) are the world's to check: validateWorldSpec (world_spec.hpp).
-std::string readCameras(const YAML::Node& node, CameraMount mount, std::vector<CameraSpec>* cameras);
+[[nodiscard]] std::string readCameras(const YAML::Node& node, CameraMount mount, std::vector<CameraSpec>* cameras);
 
 }  // namespace rov_tether::spec

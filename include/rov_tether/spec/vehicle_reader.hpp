@@ -16,10 +16,10 @@ namespace rov_tether::spec
 /// finite number and a set VehicleParams::validate() refuses (a negative mass, ...) are each an error.
 /// Returns "" or every problem, each "<prefix>: <field>: ..." (the prefix names the file), separated by
 /// "; "; `params` is set only on success.
-std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, VehicleParams* params);
+[[nodiscard]] std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, VehicleParams* params);
 
 /// Reads a vehicle file with readVehicleParams, prefixed with its path; a file that cannot be read or
 /// parsed is "<path>: ..." too.
-std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params);
+[[nodiscard]] std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params);
 
 }  // namespace rov_tether::spec

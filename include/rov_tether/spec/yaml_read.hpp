@@ -12,13 +12,13 @@ namespace rov_tether::spec
 
 /// Reads a finite number from a plain (unquoted) scalar; returns "" or "<field>: expected a number" /
 /// "<field>: must be finite". A quoted scalar (tag "!", a string on the parameter server) is no number.
-std::string readNumber(const YAML::Node& node, const std::string& field, double* value);
+[[nodiscard]] std::string readNumber(const YAML::Node& node, const std::string& field, double* value);
 
 /// Reads a list of exactly `size` numbers into `values`; returns "" or a message naming the field.
-std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size, double* values);
+[[nodiscard]] std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size, double* values);
 
 /// Reads a non-empty string; returns "" or "<field>: expected a string". A plain scalar that reads as a number
 /// is a number, not a string (as the parameter server types it): `name: 3` is refused, `name: '3'` taken.
-std::string readText(const YAML::Node& node, const std::string& field, std::string* value);
+[[nodiscard]] std::string readText(const YAML::Node& node, const std::string& field, std::string* value);
 
 }  // namespace rov_tether::spec
