@@ -25,9 +25,9 @@
 #include <new>
 #include <vector>
 
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/geometry/make_obstacle.hpp"
 #include "rov_tether/geometry/mesh_obstacle.hpp"
-#include "rov_tether/core/world.hpp"
 
 // Every operator new of the binary is counted (then served by malloc), so a benchmark can report the
 // allocations its loop makes.

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/tether.hpp"
 #include "rov_tether/geometry/mesh_obstacle.hpp"
 #include "rov_tether/scenario/scenario_runner.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
-#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::test
 {

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/geometry/make_obstacle.hpp"
 #include "rov_tether/geometry/mesh_obstacle.hpp"
-#include "rov_tether/core/world.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test

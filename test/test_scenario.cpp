@@ -690,7 +690,8 @@ TEST(Layers, NoFileIncludesALayerAboveIt)
           }
           const std::string rest = line.substr(tag.size());
           // "rov_tether/X.h" with no folder: a header generated from msg/, srv/ or cfg/ (ROS only).
-          const std::string included = rest.find('/') == std::string::npos ? "generated" : rest.substr(0, rest.find('/'));
+          const std::string included =
+              rest.find('/') == std::string::npos ? "generated" : rest.substr(0, rest.find('/'));
           EXPECT_EQ(below.count(included), 1u) << entry.path() << " (" << layer << ") includes " << line;
           ++includes;
         }
@@ -703,10 +704,9 @@ TEST(Layers, NoFileIncludesALayerAboveIt)
 // The scenario model, the CSV runner and the study need no YAML: only the reader (scenario_yaml) does.
 TEST(Layers, OnlyTheScenarioReaderUsesYaml)
 {
-  for (const char* file :
-       {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/study/study.cpp",
-        "/include/rov_tether/scenario/scenario.hpp", "/include/rov_tether/scenario/scenario_runner.hpp",
-        "/include/rov_tether/study/study.hpp"})
+  for (const char* file : {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/study/study.cpp",
+                           "/include/rov_tether/scenario/scenario.hpp",
+                           "/include/rov_tether/scenario/scenario_runner.hpp", "/include/rov_tether/study/study.hpp"})
   {
     std::ifstream in(std::string(ROV_TETHER_SOURCE_DIR) + file);
     ASSERT_TRUE(in) << file;

@@ -3,10 +3,10 @@
 #include <cstdlib>
 #include <new>
 
-#include "rov_tether/geometry/make_obstacle.hpp"
-#include "rov_tether/geometry/mesh_obstacle.hpp"
 #include "rov_tether/core/pbd_solver.hpp"
 #include "rov_tether/core/world.hpp"
+#include "rov_tether/geometry/make_obstacle.hpp"
+#include "rov_tether/geometry/mesh_obstacle.hpp"
 #include "test_helpers.hpp"
 
 namespace

@@ -393,8 +393,10 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   if (stamp < reset_cut_)
   {
     ++rejected_;
-    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: a pose stamped %.3f s, %.3f s before the reset (it shows the vehicle "
-                      "before it)", label_.c_str(), stamp.toSec(), (reset_cut_ - stamp).toSec());
+    ROS_WARN_THROTTLE(1.0,
+                      "rov_pose rejected%s: a pose stamped %.3f s, %.3f s before the reset (it shows the vehicle "
+                      "before it)",
+                      label_.c_str(), stamp.toSec(), (reset_cut_ - stamp).toSec());
     return false;
   }
   const Position attachment = vehicle * options_.attachment_offset;

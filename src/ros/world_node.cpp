@@ -147,9 +147,9 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   }
   if (has_cameras)
   {
-    cameras_ =
-        std::make_unique<CameraSet>(world_spec.cameras, nh_, private_nh_, tf_buffer_, world_, setups.front().options.world_frame,
-                                    setups.front().options.max_pose_future, setups.front().options.max_lag);
+    cameras_ = std::make_unique<CameraSet>(world_spec.cameras, nh_, private_nh_, tf_buffer_, world_,
+                                           setups.front().options.world_frame, setups.front().options.max_pose_future,
+                                           setups.front().options.max_lag);
   }
   input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);
   input_spinner_->start();

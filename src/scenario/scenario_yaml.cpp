@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
+#include "rov_tether/scenario/world_spec.hpp"
 #include "rov_tether/spec/camera_reader.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
-#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether
 {

@@ -5,8 +5,8 @@
 #include <tuple>
 #include <utility>
 
-#include "rov_tether/spec/yaml_read.hpp"
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::spec
 {

@@ -7,8 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rov_tether/scenario/scenario.hpp"
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 
 namespace rov_tether::study
 {

@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "../golden.hpp"
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
-#include "rov_tether/core/world.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::test

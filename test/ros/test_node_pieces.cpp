@@ -13,12 +13,12 @@
 #include <vector>
 
 #include "../test_helpers.hpp"
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/load_governor.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/render_budget.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
-#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -612,7 +612,7 @@ TEST(PoseInput, APoseFromBeforeARequestedResetDoesNotLayTheCableOut)
   rig.scheduler.reset(0, reset_at, "reset requested");  // what TetherNode::onReset does
   rig.input->refuseStampedBefore(reset_at);
   rig.input->receive(shared(poseMsg(5.5, 0.0, -0.5, t + 0.004)), ros::Time(t + 0.01));  // delivered late
-  for (t += 0.02; t < 1004.0; t += 0.05)  // home, stamped after the reset
+  for (t += 0.02; t < 1004.0; t += 0.05)                                                // home, stamped after the reset
   {
     rig.input->receive(shared(poseMsg(1.5, 0.0, -0.5, t)), ros::Time(t));
     rig.scheduler.tick(ros::Time(t + 0.01));

@@ -1201,9 +1201,10 @@ TEST(Obstacles, TopologyMessageNamesTethersAndObjects)
 TEST(WorldSpec, NodeAndRunnerBuildTheSameWorld)
 {
   const std::string wreck = std::string(ROV_TETHER_SOURCE_DIR) + "/meshes/wreck.stl";
-  const std::string obstacles = "[{name: pillar, type: cylinder, radius: 0.5, length: 8, position: [2, 3, -4], "
-                                "friction: 0.3}, {name: wreck, type: mesh, file: '" + wreck +
-                                "', position: [4.5, 6, -3.5], orientation: [0, 0, 0.4]}]";
+  const std::string obstacles =
+      "[{name: pillar, type: cylinder, radius: 0.5, length: 8, position: [2, 3, -4], "
+      "friction: 0.3}, {name: wreck, type: mesh, file: '" +
+      wreck + "', position: [4.5, 6, -3.5], orientation: [0, 0, 0.4]}]";
   const YAML::Node node_yaml = YAML::Load(
       "{tethers: [a, b], cable_length: 12, seabed_z: -20, tether_contact: true, obstacles: " + obstacles +
       ", a: {spool_position: [0, 0, 0]}, b: {spool_position: [1, 0, 0], cable_length: 9, segment_length: 0.5}}");
@@ -1241,7 +1242,8 @@ TEST(WorldSpec, NodeAndRunnerBuildTheSameWorld)
       EXPECT_EQ(node_world.name(i), runner_world.name(i));
       for (const auto& name : parameterNames())
       {
-        EXPECT_EQ(getParameter(node_world.tether(i).params(), name), getParameter(runner_world.tether(i).params(), name))
+        EXPECT_EQ(getParameter(node_world.tether(i).params(), name),
+                  getParameter(runner_world.tether(i).params(), name))
             << node_world.name(i) << " " << name;
       }
       node_world.tether(i).copyPositions(node_positions);

@@ -5,9 +5,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "rov_tether/core/cable.hpp"
 #include "rov_tether/camera/camera_model.hpp"
 #include "rov_tether/camera/occluder.hpp"
+#include "rov_tether/core/cable.hpp"
 
 namespace rov_tether::camera
 {

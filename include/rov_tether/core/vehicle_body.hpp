@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
-#include "rov_tether/core/vehicle_params.hpp"
 #include "rov_tether/core/status.hpp"
+#include "rov_tether/core/vehicle_params.hpp"
 
 namespace rov_tether
 {

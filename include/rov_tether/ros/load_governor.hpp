@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/ros/param_loader.hpp"
 
 namespace rov_tether::ros_layer
 {

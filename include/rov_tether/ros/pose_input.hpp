@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
-#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

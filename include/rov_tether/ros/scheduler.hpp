@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/load_governor.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
+#include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/world_report.hpp"
-#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

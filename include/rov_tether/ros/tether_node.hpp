@@ -14,14 +14,14 @@
 #include "rov_tether/GetTension.h"
 #include "rov_tether/SetWinch.h"
 #include "rov_tether/TetherConfig.h"
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_diagnostics.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/ros/world_report.hpp"
-#include "rov_tether/core/tether.hpp"
-#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "rov_tether/TetherState.h"
+#include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/param_loader.hpp"
-#include "rov_tether/core/tether.hpp"
 
 namespace rov_tether::ros_layer
 {

@@ -9,11 +9,11 @@
 #include <memory>
 #include <vector>
 
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_camera.hpp"
 #include "rov_tether/ros/tether_node.hpp"
 #include "rov_tether/ros/world_report.hpp"
-#include "rov_tether/core/world.hpp"
 
 namespace rov_tether::ros_layer
 {

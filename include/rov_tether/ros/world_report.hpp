@@ -12,8 +12,8 @@
 
 #include "rov_tether/Topology.h"
 #include "rov_tether/core/obstacle.hpp"
-#include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/core/world.hpp"
+#include "rov_tether/ros/obstacle_config.hpp"
 
 namespace rov_tether::ros_layer
 {

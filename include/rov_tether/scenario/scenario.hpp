@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "rov_tether/core/obstacle.hpp"
-#include "rov_tether/spec/camera_spec.hpp"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/spec/camera_spec.hpp"
 
 namespace rov_tether
 {

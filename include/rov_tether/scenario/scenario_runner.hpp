@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/scenario/scenario.hpp"
 #include "rov_tether/core/world.hpp"
+#include "rov_tether/scenario/scenario.hpp"
 
 namespace rov_tether
 {
@@ -56,11 +56,11 @@ class RunObserver
 /// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
 /// otherwise the error (an obstacle that cannot be built: naming it).
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
-                        const std::vector<RunObserver*>& observers = {});
+                                      const std::vector<RunObserver*>& observers = {});
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a
 /// caller can tell a world that cannot be built from a run that failed).
-[[nodiscard]] std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
-                        const std::vector<RunObserver*>& observers = {});
+[[nodiscard]] std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir,
+                                      RunSummary* summary, const std::vector<RunObserver*>& observers = {});
 
 /// The node's default `max_tension_warning` [N]: the runner warns above the same tension.
 constexpr double kDefaultMaxTensionWarning = 500.0;

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "rov_tether/core/obstacle.hpp"
+#include "rov_tether/core/world.hpp"
 #include "rov_tether/scenario/scenario.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
-#include "rov_tether/core/world.hpp"
 
 namespace rov_tether
 {

@@ -27,11 +27,13 @@ struct ObstacleReading
 /// radius, length, size, file, scale, friction, and frame where `reading.frames`) and validates it
 /// (rov_tether::validate, and every coordinate and size within Tether::kMaxCoordinate). Returns "" or the
 /// first problem, naming the entry (its index and name) and the field.
-[[nodiscard]] std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading, ObstacleSpec* spec);
+[[nodiscard]] std::string readObstacle(const YAML::Node& node, std::size_t index, const ObstacleReading& reading,
+                                       ObstacleSpec* spec);
 
 /// Reads the list `obstacles`: each entry as readObstacle. Returns "" or every problem found, separated by
 /// "; "; `obstacles` is set only on success. Names (unique, none a tether's or a camera's) are the world's
 /// to check: validateWorldSpec (world_spec.hpp), with the other parts of the description.
-[[nodiscard]] std::string readObstacles(const YAML::Node& node, const ObstacleReading& reading, std::vector<ObstacleSpec>* obstacles);
+[[nodiscard]] std::string readObstacles(const YAML::Node& node, const ObstacleReading& reading,
+                                        std::vector<ObstacleSpec>* obstacles);
 
 }  // namespace rov_tether::spec

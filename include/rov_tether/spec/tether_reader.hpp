@@ -24,13 +24,13 @@ enum class ParamKeys
 /// A parameter value as written: bool, integer, number, then string for a scalar (a quoted one is a
 /// string), a list of numbers for a list. Returns "" or "<prefix><name>: expected ...".
 [[nodiscard]] std::string readParamValue(const YAML::Node& node, const std::string& prefix, const std::string& name,
-                           ParamValue* value);
+                                         ParamValue* value);
 
 /// Applies the map's parameters on top of `params` (through applyParameters, which validates the
 /// result). Returns "" or every problem, each "<prefix>" and what it names, separated by "; ";
 /// `params` is changed only on success. Deprecation warnings go to `warnings` (prefixed).
-[[nodiscard]] std::string readTetherParams(const YAML::Node& map, const std::string& prefix, ParamKeys keys, TetherParams* params,
-                             std::vector<std::string>* warnings);
+[[nodiscard]] std::string readTetherParams(const YAML::Node& map, const std::string& prefix, ParamKeys keys,
+                                           TetherParams* params, std::vector<std::string>* warnings);
 
 /// A position [x, y, z] in m, each coordinate finite and within Tether::kMaxCoordinate; "" or a message
 /// naming `field`. A missing node is "<field>: missing (expected [x, y, z] in m)".

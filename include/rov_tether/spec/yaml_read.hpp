@@ -15,7 +15,8 @@ namespace rov_tether::spec
 [[nodiscard]] std::string readNumber(const YAML::Node& node, const std::string& field, double* value);
 
 /// Reads a list of exactly `size` numbers into `values`; returns "" or a message naming the field.
-[[nodiscard]] std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size, double* values);
+[[nodiscard]] std::string readVector(const YAML::Node& node, const std::string& field, std::size_t size,
+                                     double* values);
 
 /// Reads a non-empty string; returns "" or "<field>: expected a string". A plain scalar that reads as a number
 /// is a number, not a string (as the parameter server types it): `name: 3` is refused, `name: '3'` taken.
