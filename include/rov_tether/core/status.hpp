@@ -7,8 +7,7 @@ namespace rov_tether
 {
 
 /// Outcome of a call that can refuse its input; the message says why (or, on success, what was done).
-/// [[nodiscard]]: a caller that drops a refusal gets a compiler warning (docs/architecture.md, Errors).
-struct [[nodiscard]] Status
+struct Status
 {
   bool ok = true;
   std::string message;
