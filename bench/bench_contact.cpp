@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "rov_tether/core/world.hpp"
@@ -57,6 +58,7 @@ using rov_tether::ObstacleSpec;
 using rov_tether::Position;
 using rov_tether::Push;
 using rov_tether::ShapeType;
+using rov_tether::Status;
 using rov_tether::Tether;
 using rov_tether::TetherParams;
 using rov_tether::World;
@@ -122,14 +124,30 @@ constexpr double kDescent = 6.0;
 constexpr double kSettle = kDescent + 3.0;
 
 /// Tether k's vehicle, from straight over its spool down to the seabed over kDescent (easing in and out).
-void lowerVehicle(Tether& tether, int k)
+/// The first refused sample, if any.
+Status lowerVehicle(Tether& tether, int k)
 {
   const Position above = tether.particle(tether.deployedParticleCount() - 1);
   for (int i = 1; i <= 10 * kDescent; ++i)
   {
     const double s = 0.5 - 0.5 * std::cos(3.14159265358979 * i / (10.0 * kDescent));
-    tether.addVehicleSample(0.1 * i, above + s * (restOf(k) - above));
+    const Status status = tether.addVehicleSample(0.1 * i, above + s * (restOf(k) - above));
+    if (!status.ok)
+    {
+      return status;
+    }
   }
+  return Status::success();
+}
+
+/// Whether `status` is a refusal; if so the benchmark is skipped, naming `what` was refused.
+bool refused(benchmark::State& state, const Status& status, const std::string& what)
+{
+  if (!status.ok)
+  {
+    state.SkipWithError((what + ": " + status.message).c_str());
+  }
+  return !status.ok;
 }
 
 /// Whether `obstacle` stays 5 cm clear of every segment of the tethers as they are built.
@@ -195,20 +213,27 @@ std::vector<std::unique_ptr<Tether>> eightTethers()
   return made;
 }
 
-/// The tethers and `obstacles` in one World, settled for `settle` seconds.
-/// (A World is not moved: its tethers' contacts point into it.)
-std::unique_ptr<World> scene(std::vector<std::unique_ptr<Tether>> tethers,
+/// The tethers and `obstacles` in one World, settled for `settle` seconds; nullptr, with the benchmark skipped
+/// and the reason, when a step of this is refused. (A World is not moved: its tethers' contacts point into it.)
+std::unique_ptr<World> scene(benchmark::State& state, std::vector<std::unique_ptr<Tether>> tethers,
                              std::vector<std::unique_ptr<Obstacle>> obstacles, bool contact, double settle)
 {
   auto world = std::make_unique<World>();
   world->setContactBetweenTethers(contact);
   for (std::size_t k = 0; k < tethers.size(); ++k)
   {
-    lowerVehicle(*tethers[k], static_cast<int>(k));
-    world->add("tether" + std::to_string(k), std::move(tethers[k]));
+    const std::string name = "tether" + std::to_string(k);
+    if (refused(state, lowerVehicle(*tethers[k], static_cast<int>(k)), "lowering " + name) ||
+        refused(state, world->add(name, std::move(tethers[k])), "adding " + name))
+    {
+      return nullptr;
+    }
   }
-  world->setObstacles(std::move(obstacles));
-  world->advanceTo(settle);
+  if (refused(state, world->setObstacles(std::move(obstacles)), "placing the obstacles") ||
+      refused(state, world->advanceTo(settle), "settling the scene"))
+  {
+    return nullptr;
+  }
   return world;
 }
 
@@ -221,7 +246,12 @@ void runWorld(benchmark::State& state, World& world)
   for (auto _ : state)
   {
     t += step;
-    world.advanceTo(t);
+    const Status status = world.advanceTo(t);
+    if (!status.ok)
+    {
+      state.SkipWithError(("a step: " + status.message).c_str());
+      break;
+    }
   }
   state.counters["allocs_per_step"] =
       static_cast<double>(g_allocations.load() - before) / static_cast<double>(state.iterations());
@@ -257,15 +287,22 @@ void BM_ContactWorldStep(benchmark::State& state)
     std::vector<std::unique_ptr<Tether>> tethers = eightTethers();
     std::vector<std::unique_ptr<Obstacle>> obstacles = primitives(100, 20.0, tethers);
     obstacles.push_back(seabedMesh());
-    world = scene(std::move(tethers), std::move(obstacles), between_tethers, kSettle);
+    world = scene(state, std::move(tethers), std::move(obstacles), between_tethers, kSettle);
+    if (!world)
+    {
+      return;
+    }
   }
   runWorld(state, *world);
 }
 
 void BM_ContactOff(benchmark::State& state)
 {
-  const std::unique_ptr<World> world = scene(eightTethers(), {}, false, kSettle);
-  runWorld(state, *world);
+  const std::unique_ptr<World> world = scene(state, eightTethers(), {}, false, kSettle);
+  if (world)
+  {
+    runWorld(state, *world);
+  }
 }
 
 void BM_ContactAlone(benchmark::State& state)
@@ -274,8 +311,11 @@ void BM_ContactAlone(benchmark::State& state)
   for (int k = 0; k < 8; ++k)
   {
     alone.push_back(tether(k));
-    lowerVehicle(*alone.back(), k);
-    alone.back()->advance(kSettle);
+    if (refused(state, lowerVehicle(*alone.back(), k), "lowering tether " + std::to_string(k)) ||
+        refused(state, alone.back()->advance(kSettle), "settling tether " + std::to_string(k)))
+    {
+      return;
+    }
   }
   for (auto _ : state)
   {
@@ -297,8 +337,11 @@ void BM_ContactBroadPhase(benchmark::State& state)
   bed.type = ShapeType::Plane;
   bed.position = Position(0.0, 0.0, kSeabedZ);
   obstacles.push_back(makeObstacle(bed, nullptr));
-  const std::unique_ptr<World> world = scene(std::move(tethers), std::move(obstacles), true, kSettle);
-  runWorld(state, *world);
+  const std::unique_ptr<World> world = scene(state, std::move(tethers), std::move(obstacles), true, kSettle);
+  if (world)
+  {
+    runWorld(state, *world);
+  }
 }
 
 /// One query of a 0.1 m segment of a 1 cm cable on the 100,000-triangle seabed: first argument 0 touching

@@ -19,8 +19,8 @@ using rov_tether::TetherParams;
 
 /// The paper's cable scaled to `segments` segments of 0.1 m, fully deployed, slack between spool and
 /// vehicle (80% of its length apart), 10 iterations, bending on, noise on, neutrally buoyant; `change`
-/// then edits the parameters.
-Tether makeCable(int segments, const std::function<void(TetherParams&)>& change = {})
+/// then edits the parameters. A refused start skips the benchmark (`state`) with the reason.
+Tether makeCable(benchmark::State& state, int segments, const std::function<void(TetherParams&)>& change = {})
 {
   TetherParams params;
   params.segment_length = 0.1;
@@ -35,7 +35,11 @@ Tether makeCable(int segments, const std::function<void(TetherParams&)>& change 
   }
   const double deployed = params.initial_deployed_length;
   Tether sim(params, Position::Zero(), Position(0.8 * deployed, 0.0, 0.0));
-  sim.advance(1.0);  // let the laid-out shape start moving
+  const rov_tether::Status status = sim.advance(1.0);  // let the laid-out shape start moving
+  if (!status.ok)
+  {
+    state.SkipWithError(("setting up the cable: " + status.message).c_str());
+  }
   return sim;
 }
 
@@ -56,7 +60,7 @@ void run(benchmark::State& state, Tether& sim, double projections_per_step)
 
 void stepBenchmark(benchmark::State& state, SolverType solver, bool bending)
 {
-  Tether sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
                          [&](TetherParams& p)
                          {
                            p.solver = solver;
@@ -72,7 +76,7 @@ void BM_StepPbdNoBending(benchmark::State& state) { stepBenchmark(state, SolverT
 /// xpbd with the same effort (10 iterations) and a bending stiffness, so it projects as many constraints.
 void BM_StepXpbd(benchmark::State& state)
 {
-  Tether sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
                          [](TetherParams& p)
                          {
                            p.solver = SolverType::kXpbd;
@@ -85,7 +89,7 @@ void BM_StepXpbd(benchmark::State& state)
 /// 5 ms step needs ceil(5 / 0.09) = 56 sub-steps at 0.9 of the critical step.
 void BM_StepLumpedMass(benchmark::State& state)
 {
-  Tether sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
                          [](TetherParams& p)
                          {
                            p.solver = SolverType::kLumpedMass;
@@ -100,7 +104,7 @@ void BM_StepLumpedMass(benchmark::State& state)
 /// The counter is the Newton iterations of the last sub-step (it stops on solver_tolerance).
 void BM_StepDirect(benchmark::State& state)
 {
-  Tether sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
                          [](TetherParams& p)
                          {
                            p.solver = SolverType::kDirect;
@@ -113,7 +117,8 @@ void BM_StepDirect(benchmark::State& state)
 /// direct with EI bending at the default 0.2 N m^2 (a 2 cm tether): the primal path, a block-banded system.
 void BM_StepDirectBending(benchmark::State& state)
 {
-  Tether sim = makeCable(static_cast<int>(state.range(0)), [](TetherParams& p) { p.solver = SolverType::kDirect; });
+  Tether sim =
+      makeCable(state, static_cast<int>(state.range(0)), [](TetherParams& p) { p.solver = SolverType::kDirect; });
   run(state, sim, 0.0);
   state.counters["newton_iterations"] = sim.solverIterations();
 }
@@ -185,7 +190,7 @@ void BM_Scene(benchmark::State& state)
                           "drag_model morison",
                           "seabed 50 m below (contact loop)"};
   state.SetLabel(labels[variant]);
-  Tether sim = makeCable(100,
+  Tether sim = makeCable(state, 100,
                          [variant](TetherParams& p)
                          {
                            switch (variant)
@@ -224,8 +229,17 @@ void BM_VehicleBodyStep(benchmark::State& state)
   rov_tether::VehicleBody body;
   rov_tether::Twist velocity;
   velocity << 0.3, -0.1, 0.05, 0.2, -0.1, 0.4;
-  body.setState(Position::Zero(), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), velocity);
-  body.setCurrent(Position(0.2, 0.1, 0.0));
+  rov_tether::Status setup =
+      body.setState(Position::Zero(), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), velocity);
+  if (setup.ok)
+  {
+    setup = body.setCurrent(Position(0.2, 0.1, 0.0));
+  }
+  if (!setup.ok)
+  {
+    state.SkipWithError(("setting up the body: " + setup.message).c_str());
+    return;
+  }
   rov_tether::Wrench thrust;
   thrust << 40.0, 10.0, -5.0, 1.0, 0.5, 2.0;
   rov_tether::Wrench external;

@@ -388,7 +388,8 @@ TEST(Camera, ShapeHistoryInterpolatesToAStamp)
   std::vector<Position> before, after, middle;
   for (int k = 0; k < 400; ++k)  // 2 s of a vehicle moving at 1 m/s: pay-out releases particles
   {
-    tether.addVehicleSample(tether.time() + 0.005, Position(1.0 + tether.time() + 0.005, 0.0, 0.0));
+    const Status fed = tether.addVehicleSample(tether.time() + 0.005, Position(1.0 + tether.time() + 0.005, 0.0, 0.0));
+    ASSERT_TRUE(fed.ok) << fed.message;
     tether.step();
     history.record(tether);
   }
@@ -410,7 +411,8 @@ TEST(Camera, ShapeHistoryInterpolatesToAStamp)
   EXPECT_FALSE(history.shapeAt(0.5, middle));
   EXPECT_FALSE(history.shapeAt(2.1, middle));
   // Time going back (a reset) starts the history again.
-  tether.reset(0.0);
+  const Status reset = tether.reset(0.0);
+  ASSERT_TRUE(reset.ok) << reset.message;
   history.record(tether);
   EXPECT_EQ(history.oldest(), 0.0);
   EXPECT_EQ(history.newest(), 0.0);

@@ -15,6 +15,13 @@
 namespace rov_tether::test
 {
 
+/// A Status as a gtest assertion: ASSERT_TRUE(succeeded(sim.advance(1.0))) for a call the test needs to
+/// succeed, failing with the refusal's message.
+inline ::testing::AssertionResult succeeded(const Status& status)
+{
+  return status.ok ? ::testing::AssertionSuccess() : ::testing::AssertionFailure() << status.message;
+}
+
 /// Loads scenarios/NAME.yaml from the source tree (fails the test when it does not parse).
 inline Scenario shippedScenario(const std::string& name)
 {
@@ -75,7 +82,7 @@ inline Tether runTo(const Scenario& scenario, double t)
 {
   PathDriver driver(scenario);
   Tether sim = driver.makeSimulation();
-  driver.advanceTo(sim, t);
+  EXPECT_TRUE(succeeded(driver.advanceTo(sim, t)));
   return sim;
 }
 

@@ -255,6 +255,37 @@ TEST(Runner, BadScenarioFailsAndWritesNothing)
   fs::remove(scenario_path);
 }
 
+// A path that was not validated (built in code, not read from a file) whose vehicle sample the simulation
+// refuses: PathDriver stops there and says which sample, and the run returns that refusal and writes nothing,
+// not the rows it had up to then (issue 21: a refused Status is never dropped). The path goes non-finite
+// after t = 2 s (a NaN waypoint at 2.5 s: interpolated, every sample from 2.00 s on is NaN).
+TEST(Runner, ARefusedVehicleSampleStopsTheRunAndWritesNothing)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  scenario.vehicle.push_back({2.5, Position(std::nan(""), 0.0, -1.0)});
+
+  PathDriver driver(scenario);
+  Tether sim = driver.makeSimulation();
+  const Status status = driver.advanceTo(sim, 3.0);
+  EXPECT_FALSE(status.ok);
+  EXPECT_NE(status.message.find("vehicle path at t = 2.00"), std::string::npos) << status.message;
+  EXPECT_NE(status.message.find("finite"), std::string::npos) << status.message;
+  EXPECT_LT(sim.time(), 2.0);  // not advanced past the refused sample
+
+  const std::string dir = temporaryDirectory("refused_sample");
+  RunSummary summary;
+  const std::string error = runScenario(scenario, dir, &summary);
+  EXPECT_NE(error.find("vehicle path at t = 2.00"), std::string::npos) << error;
+  std::set<std::string> written;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+  {
+    written.insert(fs::relative(entry.path(), dir).string());
+  }
+  EXPECT_EQ(written, std::set<std::string>{});  // no state.csv, shape.csv, nor their partial files
+  fs::remove_all(dir);
+}
+
 // The runner warns as the node does (issue 26, item 14): a ROV diving 30 m straight away from a spool on a
 // 10 m cable, strain rule, pbd: the cable ends fully deployed and strained far beyond anything real (the
 // issue's run read 2.4e6 N at strain 24 without a word). Over-tension above the node's default

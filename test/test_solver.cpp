@@ -234,7 +234,7 @@ TEST(Solver, InPlacePathMatchesTheBlockedPath)
 void expectStepsAllocateNothing(const TetherParams& params, const std::string& label)
 {
   Tether sim(params, Position::Zero(), Position(1.0, 1.0, -1.0));
-  sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0));
+  ASSERT_TRUE(succeeded(sim.addVehicleSample(10.0, Position(5.0, 2.0, -2.0))));
   std::vector<double> tensions;
   std::vector<Position> shape;
   sim.step();
@@ -349,7 +349,8 @@ TEST(Allocation, AWorldWithObstaclesAMeshAndTetherContactStepsAllocateNothing)
       const double t = 0.1 * i;
       const double s = std::min(1.0, t / 4.0);
       const double sway = 0.3 * std::sin(0.8 * t);
-      tether->addVehicleSample(t, start + s * Position(-2.0 * side + sway, k == 0 ? -1.0 : -0.4, k == 0 ? -1.1 : -0.8));
+      ASSERT_TRUE(succeeded(tether->addVehicleSample(
+          t, start + s * Position(-2.0 * side + sway, k == 0 ? -1.0 : -0.4, k == 0 ? -1.1 : -0.8))));
     }
     ASSERT_TRUE(world.add("t" + std::to_string(k), std::move(tether)).ok);
   }

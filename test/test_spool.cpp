@@ -34,7 +34,7 @@ std::vector<StepRecord> recordPayoutRun(double duration)
   const double dt = scenario.params.time_step;
   for (int k = 1; k * dt <= duration + 1e-9; ++k)
   {
-    driver.advanceTo(sim, k * dt);
+    EXPECT_TRUE(succeeded(driver.advanceTo(sim, k * dt)));
     sim.computeSegmentTensions(tensions);
     const Position vehicle = sim.particle(sim.deployedParticleCount() - 1);
     records.push_back({sim.time(), sim.deployedLength(), (vehicle - scenario.spool).norm(), tensions.front(),
@@ -146,16 +146,16 @@ TEST(Spool, SpeedModePaysOutExactlyAndStopsAtTheLimits)
   params.max_winch_pull = 1e7;  // a motor that reels in to the limit against the taut cable (the stall: test_winch)
   params.cable_length = 5.0;
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
-  sim.advance(2.0);
+  ASSERT_TRUE(succeeded(sim.advance(2.0)));
   EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);
-  sim.advance(10.0);
+  ASSERT_TRUE(succeeded(sim.advance(10.0)));
   EXPECT_DOUBLE_EQ(sim.deployedLength(), 5.0);  // the whole cable, no more
 
   params.winch_speed = -1.0;
   ASSERT_TRUE(sim.setParams(params).ok);
-  sim.advance(1.0);
+  ASSERT_TRUE(succeeded(sim.advance(1.0)));
   EXPECT_NEAR(sim.deployedLength(), 4.0, 1e-9);
-  sim.advance(10.0);
+  ASSERT_TRUE(succeeded(sim.advance(10.0)));
   EXPECT_DOUBLE_EQ(sim.deployedLength(), params.min_deployed_length);
 }
 
@@ -168,20 +168,20 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   params.max_winch_pull = 1e7;  // no stall: the reel-in's speed and target are what is checked
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
   ASSERT_TRUE(sim.setTargetLength(3.2).ok);
-  sim.advance(2.0);
+  ASSERT_TRUE(succeeded(sim.advance(2.0)));
   EXPECT_NEAR(sim.deployedLength(), 3.0, 1e-9);  // still on its way at 0.5 m/s
-  sim.advance(2.0);
+  ASSERT_TRUE(succeeded(sim.advance(2.0)));
   EXPECT_DOUBLE_EQ(sim.deployedLength(), 3.2);  // arrived and holding
   ASSERT_TRUE(sim.setTargetLength(2.7).ok);     // reel in at the same |speed|
-  sim.advance(0.5);
+  ASSERT_TRUE(succeeded(sim.advance(0.5)));
   EXPECT_NEAR(sim.deployedLength(), 2.95, 1e-9);
-  sim.advance(2.0);
+  ASSERT_TRUE(succeeded(sim.advance(2.0)));
   EXPECT_DOUBLE_EQ(sim.deployedLength(), 2.7);
   EXPECT_FALSE(sim.setTargetLength(50.0).ok);  // beyond the cable
   EXPECT_FALSE(sim.setTargetLength(0.1).ok);   // below min_deployed_length
   EXPECT_EQ(sim.targetLength(), 2.7);
   ASSERT_TRUE(sim.setTargetLength(std::nan("")).ok);  // no target: plain speed again
-  sim.advance(1.0);
+  ASSERT_TRUE(succeeded(sim.advance(1.0)));
   EXPECT_NEAR(sim.deployedLength(), 3.2, 1e-9);
 }
 
@@ -195,7 +195,7 @@ TEST(Spool, SpeedRisesAtTheAccelerationLimit)
   params.winch_speed = 0.5;
   params.max_winch_acceleration = 1.0;
   Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
-  sim.advance(2.0);
+  ASSERT_TRUE(succeeded(sim.advance(2.0)));
   const double expected = params.initial_deployed_length + 0.5 * 2.0 - 0.5 * 0.5 / (2.0 * 1.0);
   std::printf("[ measured ] speed mode from rest: %.5f m paid out after 2 s (v T - v^2 / 2a = %.5f m)\n",
               sim.deployedLength() - params.initial_deployed_length, expected - params.initial_deployed_length);
@@ -254,7 +254,7 @@ TEST(Spool, ElasticCableLaidOutAtRestDoesNotSpringOpen)
   params.initial_deployed_length = 2.0;
   const double thrust = 4.0 * 1.681 * 1.681 * params.bending_stiffness / (2.0 * 2.0);
   Tether sim(params, Position::Zero(), Position(1.5, 0.0, 0.0));
-  sim.advance(4.0);
+  ASSERT_TRUE(succeeded(sim.advance(4.0)));
   const double end_force = sim.summary().tension_vehicle;
   std::printf(
       "[ measured ] elastic cable laid at rest: deployed %.5f m after 4 s, vehicle end %.3f N (thrust P %.3f N)\n",
@@ -309,7 +309,7 @@ TEST(Spool, LockedWinchNeverChangesLength)
   Tether sim = driver.makeSimulation();
   for (int k = 1; k <= 40; ++k)
   {
-    driver.advanceTo(sim, 0.5 * k);
+    ASSERT_TRUE(succeeded(driver.advanceTo(sim, 0.5 * k)));
     EXPECT_EQ(sim.deployedLength(), scenario.params.initial_deployed_length);
   }
 }
@@ -326,7 +326,7 @@ TEST(Spool, WinchSpeedLimitAndInvariantsHoldEveryStep)
   double fastest = 0.0;
   for (int k = 1; k * dt <= 50.0; ++k)
   {
-    driver.advanceTo(sim, k * dt);
+    ASSERT_TRUE(succeeded(driver.advanceTo(sim, k * dt)));
     const double deployed = sim.deployedLength();
     fastest = std::max(fastest, std::abs(deployed - previous) / dt);
     previous = deployed;
@@ -359,9 +359,9 @@ TEST(Spool, HangingCableCarriesItsWeightAtTheSpool)
   params.initial_deployed_length = 5.0;
   params.iterations = 20;
   Tether sim(params, Position::Zero(), Position(3.0, 0.0, -4.0));  // 5 m away: the cable is straight
-  sim.advance(0.5);
+  ASSERT_TRUE(succeeded(sim.advance(0.5)));
   sim.detachVehicle();
-  sim.advance(10.0);
+  ASSERT_TRUE(succeeded(sim.advance(10.0)));
   const TetherSummary s = sim.summary();
   const Position end = sim.particle(sim.deployedParticleCount() - 1);
   std::printf(
@@ -386,7 +386,7 @@ TEST(Spool, PassiveWinchPaysOutUnderWeightWithAFreeEnd)
   params.weight_in_water = 20.0;
   params.iterations = 2;  // a soft cable: its weight stretches it past the pay-out threshold
   Tether sim(params, Position::Zero());
-  sim.advance(5.0);
+  ASSERT_TRUE(succeeded(sim.advance(5.0)));
   EXPECT_GT(sim.deployedLength(), params.initial_deployed_length + 0.5);
 }
 

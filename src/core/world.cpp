@@ -85,7 +85,13 @@ Status World::advanceTo(double t, std::size_t* steps)
   }
   for (auto& entry : tethers_)
   {
-    entry.tether->advanceTo(t);  // no step left to take: records t as each tether's target time
+    // No step left to take: records t as each tether's target time. t passed the same check as
+    // Tether::advanceTo's above, so this cannot be refused; were it, the caller hears why.
+    const Status recorded = entry.tether->advanceTo(t);
+    if (!recorded.ok)
+    {
+      return recorded;
+    }
   }
   if (steps != nullptr)
   {

@@ -67,8 +67,18 @@ void LoadGovernor::degrade(Tether& tether)
   {
     TetherParams params = tether.params();
     params.iterations = std::max(options_.min_iterations, params.iterations * 3 / 4);
-    tether.setParams(params);
-    degraded_ = iterationsText(params.iterations, configured_iterations_);
+    const Status status = tether.setParams(params);
+    if (status.ok)
+    {
+      degraded_ = iterationsText(params.iterations, configured_iterations_);
+    }
+    else
+    {
+      // Only the iterations changed, to at least min_iterations, which is read within iterations' own
+      // range [1, 1000]: not refused in practice. Were it, the tether keeps its iterations and the log says why.
+      ROS_WARN_THROTTLE(5.0, "tether_node%s: reducing iterations to %d refused: %s", label_.c_str(), params.iterations,
+                        status.message.c_str());
+    }
   }
   else if (options_.overload_policy == "reduce_markers" && marker_rate_ > 1.0 && marker_load_ > 0.0)
   {
@@ -87,9 +97,18 @@ void LoadGovernor::recover(Tether& tether)
   {
     TetherParams params = tether.params();
     params.iterations = std::min(configured_iterations_, params.iterations * 4 / 3 + 1);
-    tether.setParams(params);
-    degraded_ =
-        params.iterations < configured_iterations_ ? iterationsText(params.iterations, configured_iterations_) : "";
+    const Status status = tether.setParams(params);
+    if (status.ok)
+    {
+      degraded_ =
+          params.iterations < configured_iterations_ ? iterationsText(params.iterations, configured_iterations_) : "";
+    }
+    else
+    {
+      // Between the current and the configured iterations, both accepted before: not refused in practice.
+      ROS_WARN_THROTTLE(5.0, "tether_node%s: restoring iterations to %d refused: %s", label_.c_str(), params.iterations,
+                        status.message.c_str());
+    }
   }
   else if (options_.overload_policy == "reduce_markers" && marker_rate_ < options_.marker_rate)
   {

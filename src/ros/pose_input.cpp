@@ -329,7 +329,13 @@ void PoseInput::poll(const ros::Time& now)
   Eigen::Isometry3d pose;
   if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))
   {
-    tether_.setSpoolPosition(pose.translation());
+    const Status status = tether_.setSpoolPosition(pose.translation());
+    if (!status.ok)
+    {
+      // The spool stays where it was; tf gave a position that is not finite or beyond +-1e6 m.
+      ROS_WARN_THROTTLE(1.0, "spool_frame %s%s: %s", options_.spool_frame.c_str(), label_.c_str(),
+                        status.message.c_str());
+    }
   }
   ros::Time stamp;
   if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose, &stamp))

@@ -48,7 +48,14 @@ double Scheduler::alignedPhysicsTime(std::size_t i, const ros::Time& now) const
 
 void Scheduler::restart(std::size_t i, const ros::Time& now)
 {
-  world_.tether(i).reset(alignedPhysicsTime(i, now));
+  // ROS time is finite and far below Tether::kMaxTime, so the reset is not refused; were it, the tether
+  // goes on as it is and the log says why.
+  const Status status = world_.tether(i).reset(alignedPhysicsTime(i, now));
+  if (!status.ok)
+  {
+    ROS_WARN_THROTTLE(1.0, "tether_node%s: restart refused: %s", tethers_[i].label.c_str(), status.message.c_str());
+    return;
+  }
   tethers_[i].next_state = 0.0;
   tethers_[i].hooks->restarted(now);
 }
@@ -180,7 +187,13 @@ void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)
     // Too far behind to catch up: jump ahead with the cable held at rest, and say so.
     const double behind = target - tether.time();
     const double dt = tether.params().time_step;
-    tether.skipTo(std::floor(target / dt) * dt);
+    const Status skipped = tether.skipTo(std::floor(target / dt) * dt);
+    if (!skipped.ok)
+    {
+      // Only a time before the tether's own can be refused (max_lag shorter than a step): it catches up instead.
+      ROS_WARN_THROTTLE(1.0, "tether_node%s: skip ahead refused: %s", s.label.c_str(), skipped.message.c_str());
+      return;
+    }
     // The held cable is published at once and the state grid restarts there. Resumed on the old grid,
     // the next state point usually lay past what the next tick could compute before it skipped again,
     // so a node far behind published almost nothing (overload.test under the sanitizers: 0-2 states in
@@ -209,7 +222,14 @@ void Scheduler::advance(double target)
       }
     }
     const bool state_due = next <= target;
-    world_.advanceTo(state_due ? next : target);
+    const Status status = world_.advanceTo(state_due ? next : target);
+    if (!status.ok)
+    {
+      // A target from ROS time is finite and far below Tether::kMaxTime; were one refused, nothing is
+      // published for a time the physics did not reach.
+      ROS_WARN_THROTTLE(1.0, "tether_node: physics advance refused: %s", status.message.c_str());
+      return;
+    }
     if (!state_due)
     {
       break;

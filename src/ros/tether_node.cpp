@@ -212,7 +212,14 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
     response.message = status.message;
     return true;
   }
-  tether_.setTargetLength(target);
+  // Checked against the same limits above, before anything changed, so this cannot be refused; were it, the
+  // answer says why (the new winch parameters are in force, without the target).
+  const Status target_status = tether_.setTargetLength(target);
+  if (!target_status.ok)
+  {
+    response.message = target_status.message;
+    return true;
+  }
   TetherConfig shown;
   {
     // What the user asked changes in the winch's fields only (`iterations: auto` stays auto).

@@ -1,6 +1,7 @@
 #include "rov_tether/scenario/scenario.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include "rov_tether/scenario/world_spec.hpp"
 
@@ -52,29 +53,44 @@ bool PathDriver::fedUpTo(double t) const
   return vehicle_.empty() || static_cast<double>(fed_samples_) * kSampleInterval >= t + kSampleInterval;
 }
 
-double PathDriver::feed(Tether& sim, double t)
+Status PathDriver::feed(Tether& sim, double t, double* reach)
 {
   if (fedUpTo(t))
   {
-    return t;
+    *reach = t;
+    return Status::success();
   }
   for (int k = 0; k < 100 && static_cast<double>(fed_samples_) * kSampleInterval < t + kSampleInterval; ++k)
   {
     const double sample_time = static_cast<double>(++fed_samples_) * kSampleInterval;
-    sim.addVehicleSample(sample_time, pathAt(vehicle_, sample_time));
+    const Status fed = sim.addVehicleSample(sample_time, pathAt(vehicle_, sample_time));
+    if (!fed.ok)
+    {
+      return Status::error("vehicle path at t = " + std::to_string(sample_time) + " s: " + fed.message);
+    }
   }
-  return std::min(t, static_cast<double>(fed_samples_ - 1) * kSampleInterval);
+  *reach = std::min(t, static_cast<double>(fed_samples_ - 1) * kSampleInterval);
+  return Status::success();
 }
 
-void PathDriver::advanceTo(Tether& sim, double t)
+Status PathDriver::advanceTo(Tether& sim, double t)
 {
   // Feed and advance in chunks of 100 samples, so a long interval never overfills the simulation's
   // sample buffer; the result is the same as feeding everything first.
   while (!fedUpTo(t))
   {
-    sim.advanceTo(feed(sim, t));
+    double reach = t;
+    Status status = feed(sim, t, &reach);
+    if (status.ok)
+    {
+      status = sim.advanceTo(reach);
+    }
+    if (!status.ok)
+    {
+      return status;
+    }
   }
-  sim.advanceTo(t);
+  return sim.advanceTo(t);
 }
 
 }  // namespace rov_tether

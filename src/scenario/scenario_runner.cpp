@@ -197,8 +197,12 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   }
 
   double cpu = 0.0;
+  // The first refused sample or advance (a path or time that was not validated): the run stops there and
+  // writes nothing more; its partial files are removed and the caller gets this message.
+  std::string run_error;
   // Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
   // (for one tether, the very same calls: a world of one tether without contact steps as that tether).
+  // False, with run_error set, when a sample or an advance is refused.
   const auto advance = [&](double t)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -211,23 +215,41 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
         if (!drivers[i].fedUpTo(t))
         {
           fed = false;
-          reach = std::min(reach, drivers[i].feed(world.tether(i), t));
+          double fed_to = t;
+          const Status status = drivers[i].feed(world.tether(i), t, &fed_to);
+          if (!status.ok)
+          {
+            run_error = (scenario.tethers.empty() ? "" : "tether " + tethers[i].name + ": ") + status.message;
+            return false;
+          }
+          reach = std::min(reach, fed_to);
         }
       }
       if (fed)
       {
         break;
       }
-      world.advanceTo(reach);
+      const Status status = world.advanceTo(reach);
+      if (!status.ok)
+      {
+        run_error = status.message;
+        return false;
+      }
     }
-    world.advanceTo(t);
+    const Status status = world.advanceTo(t);
+    if (!status.ok)
+    {
+      run_error = status.message;
+      return false;
+    }
     cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
   };
   std::string observer_error;
   // Lets the observers look at every time of theirs up to `until` [s], in time order.
   const auto observe = [&](double until)
   {
-    while (observer_error.empty())
+    while (observer_error.empty() && run_error.empty())
     {
       RunObserver* next = nullptr;
       for (RunObserver* observer : observers)
@@ -237,11 +259,10 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
           next = observer;
         }
       }
-      if (next == nullptr)
+      if (next == nullptr || !advance(next->nextTime()))
       {
         return;
       }
-      advance(next->nextTime());
       observer_error = next->observe(world.tether(0));
     }
   };
@@ -253,7 +274,10 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     const double t_out = static_cast<double>(k) / scenario.output_rate;
     observe(t_out);
-    advance(t_out);
+    if (!run_error.empty() || !advance(t_out))
+    {
+      break;
+    }
     for (std::size_t i = 0; i < tethers.size(); ++i)
     {
       writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
@@ -264,7 +288,11 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
     }
   }
   observe(scenario.duration);
-  const std::string close_error = closeAll(files, observer_error.empty(), out_dir);
+  const std::string close_error = closeAll(files, observer_error.empty() && run_error.empty(), out_dir);
+  if (!run_error.empty())
+  {
+    return run_error;
+  }
   if (!observer_error.empty())
   {
     return observer_error;

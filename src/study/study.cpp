@@ -28,6 +28,18 @@ double relativeError(double value, double reference)
   return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
 }
 
+/// Throws std::invalid_argument naming `where` when the simulation refused a call: the case cannot run as
+/// asked. The study's own intervals and times are finite and positive, and the parameters it sets differ from
+/// those the Tether was built with (and so validated) in drag only; what is left to refuse comes from the
+/// caller (parameters, a speed), reported as the Tether's constructor reports bad parameters.
+void require(const Status& status, const std::string& where)
+{
+  if (!status.ok)
+  {
+    throw std::invalid_argument(where + ": " + status.message);
+  }
+}
+
 Result describe(const std::string& scenario, const TetherParams& p)
 {
   Result r;
@@ -114,13 +126,13 @@ Result runCatenary(const std::string& name, TetherParams p, double span, double 
   reference.solve(span);
   const double start = cpuSeconds();
   Tether sim(p, Position::Zero(), Position(span, 0.0, 0.0));
-  sim.advance(settle_time - 1.0);
+  require(sim.advance(settle_time - 1.0), name);
   std::vector<Position> before(sim.deployedParticleCount());
   for (std::size_t k = 0; k < before.size(); ++k)
   {
     before[k] = sim.particle(k);
   }
-  sim.advance(1.0);
+  require(sim.advance(1.0), name);
   const double cpu = cpuSeconds() - start;
   double motion = 0.0;  // RMS motion over the last second [m]
   for (std::size_t k = 0; k < before.size(); ++k)
@@ -169,7 +181,7 @@ Result runAxialDrag(TetherParams p)
   const double settle = 20.0;
   const double start = cpuSeconds();
   Tether sim(p, Position::Zero());
-  sim.advance(settle);
+  require(sim.advance(settle), r.scenario);
   const double cpu = cpuSeconds() - start;
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
@@ -207,10 +219,10 @@ Result runTautString(TetherParams p)
   loaded.drag = 0.5;
   const double start = cpuSeconds();
   Tether sim(loaded, Position::Zero(), Position(span, 0.0, 0.0));
-  sim.advance(4.0);
+  require(sim.advance(4.0), r.scenario);
   TetherParams free = p;
   free.drag = 1.0;
-  sim.setParams(free);
+  require(sim.setParams(free), r.scenario);
   const std::size_t middle = sim.deployedParticleCount() / 2;
   CrossingCounter counter;
   double tension_sum = 0.0;
@@ -256,10 +268,10 @@ Result runHangingChain(TetherParams p)
   pushed.drag = 0.9;
   const double start = cpuSeconds();
   Tether sim(pushed, Position::Zero());
-  sim.advance(8.0);
+  require(sim.advance(8.0), r.scenario);
   TetherParams free = p;
   free.drag = 1.0;
-  sim.setParams(free);
+  require(sim.setParams(free), r.scenario);
   const std::size_t end = sim.deployedParticleCount() - 1;
   CrossingCounter counter;
   const double duration = 30.0;
@@ -315,7 +327,7 @@ Result runPaper(TetherParams p)
   PathDriver driver(s);
   const double start = cpuSeconds();
   Tether sim = driver.makeSimulation();
-  driver.advanceTo(sim, s.duration);
+  require(driver.advanceTo(sim, s.duration), r.scenario);
   const double cpu = cpuSeconds() - start;
   double geometric = 0.0;
   for (std::size_t k = 0; k + 1 < sim.deployedParticleCount(); ++k)
@@ -446,8 +458,8 @@ StabilityPoint stability(SolverType method, double time_step, double stiffness, 
   for (int k = 1; k <= 40; ++k)
   {
     const double t = 0.05 * k;
-    sim.addVehicleSample(t, Position(5.0 + speed * t, 0.0, -2.0));
-    sim.advanceTo(t);
+    require(sim.addVehicleSample(t, Position(5.0 + speed * t, 0.0, -2.0)), "stability");
+    require(sim.advanceTo(t), "stability");
     const double strain = sim.summary().max_strain;
     point.max_strain = std::max(point.max_strain, std::isfinite(strain) ? strain : 1e300);
     if (sim.recoveryCount() > 0)

@@ -84,7 +84,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 1:
       case 2:
         t += in.byte() & 1 ? in.number(0.5) : in.rawDouble();  // any time: backwards, NaN, huge
-        sim.addVehicleSample(t, Position(in.number(30.0), in.number(30.0), in.number(30.0)));
+        // Here and below, a refusal is an expected answer to fuzzed input (the Status is dropped on purpose):
+        // what is checked is that refused or not, the invariants hold after every operation (check).
+        static_cast<void>(sim.addVehicleSample(t, Position(in.number(30.0), in.number(30.0), in.number(30.0))));
         break;
       case 3:
       {
@@ -95,16 +97,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const double work = std::abs(dt) / p.time_step * p.substeps * static_cast<double>(sim.deployedParticleCount());
         if ((std::abs(dt) < 0.3 || !std::isfinite(dt)) && !(work > budget))
         {
-          sim.advance(dt);  // negative and non-finite are refused
+          static_cast<void>(sim.advance(dt));  // negative and non-finite are refused
           budget -= std::isfinite(work) ? work : 0.0;
         }
         break;
       }
       case 4:
-        sim.setSpoolPosition(Position(in.number(5.0), in.number(5.0), in.number(5.0)));
+        static_cast<void>(sim.setSpoolPosition(Position(in.number(5.0), in.number(5.0), in.number(5.0))));
         break;
       case 5:
-        sim.setTargetLength(in.number(25.0));
+        static_cast<void>(sim.setTargetLength(in.number(25.0)));
         break;
       case 6:
       {
@@ -113,13 +115,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         changed.iterations = 1 + in.byte() % 30;
         changed.time_step = std::abs(in.number(0.02));
         changed.winch_speed = in.number(2.0);
-        sim.setParams(changed);  // refused when invalid
+        static_cast<void>(sim.setParams(changed));  // refused when invalid
         break;
       }
       default:
         if (in.byte() % 8 == 0)
         {
-          sim.reset(std::isfinite(t) ? t : 0.0);
+          static_cast<void>(sim.reset(std::isfinite(t) ? t : 0.0));  // refused beyond Tether::kMaxTime
         }
     }
     check(sim, tensions);

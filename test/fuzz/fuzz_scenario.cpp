@@ -1,5 +1,5 @@
 // libFuzzer target: the scenario and parameter file parsers (YAML text from the fuzzer). A file that
-// parses must describe a valid model (validate() empty) and a short run of it must stay finite.
+// parses must describe a valid model (validate() empty) and a short run of it must be accepted and stay finite.
 #include <cstdint>
 #include <cstdlib>
 #include <string>
@@ -35,7 +35,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   PathDriver driver(scenario);
   Tether sim = driver.makeSimulation();
-  driver.advanceTo(sim, 0.2);
+  if (!driver.advanceTo(sim, 0.2).ok)
+  {
+    std::abort();  // a path that parsed was validated: the simulation must accept its samples
+  }
   for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
   {
     if (!sim.particle(k).allFinite())

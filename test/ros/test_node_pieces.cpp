@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -147,7 +148,7 @@ TEST(PoseInput, TransformsOtherFramesThroughTheSharedBufferAndAppliesTheAttachme
   input.poll(ros::Time(10.0));
   ASSERT_EQ(input.accepted(), 1u);
   EXPECT_TRUE(input.lastVehicle().translation().isApprox(Eigen::Vector3d(1.0, 2.0, -1.0), 1e-9));
-  tether.advanceTo(10.0 + params.time_step);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(10.0 + params.time_step)));
   ASSERT_TRUE(tether.vehicleAttached());
   const Position end = tether.particle(tether.deployedParticleCount() - 1);
   EXPECT_TRUE(end.isApprox(Position(1.0, 1.5, -1.0), 1e-6)) << end.transpose();
@@ -156,7 +157,7 @@ TEST(PoseInput, TransformsOtherFramesThroughTheSharedBufferAndAppliesTheAttachme
   input.receive(shared(poseMsg(2.0, 0.0, -1.0, 10.1, "nowhere")), ros::Time(10.1));
   input.poll(ros::Time(10.1));
   EXPECT_EQ(input.rejected(), 0u) << "still waiting: the physics is at " << tether.time() << " s";
-  tether.advanceTo(10.11);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(10.11)));
   input.poll(ros::Time(10.2));
   EXPECT_EQ(input.rejected(), 1u) << "an unknown frame is refused and counted";
   // A known frame, older than the tf buffer's 10 s: refused at once.
@@ -183,7 +184,7 @@ TEST(PoseInput, PollsTheVehicleAndTheSpoolFromTfStaticTransformsIncluded)
   input.poll(ros::Time(1.1));
   EXPECT_EQ(input.lastPoseTime(), ros::Time(1.1));
   EXPECT_TRUE(input.lastVehicle().translation().isApprox(Eigen::Vector3d(2.0, 0.0, -1.0)));
-  tether.advanceTo(1.0 + tether.params().time_step);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(1.0 + tether.params().time_step)));
   EXPECT_TRUE(tether.particle(0).isApprox(Position(0.0, 0.5, 0.0))) << "the spool follows spool_frame";
   input.poll(ros::Time(1.2));  // the same transform again: not a new pose
   EXPECT_EQ(input.lastPoseTime(), ros::Time(1.1));
@@ -198,7 +199,7 @@ TEST(PoseInput, PollsTheVehicleAndTheSpoolFromTfStaticTransformsIncluded)
   static_input.poll(ros::Time(5.005));
   EXPECT_EQ(static_input.accepted(), 2u);
   EXPECT_EQ(static_input.lastPoseTime(), ros::Time(5.005));
-  still.advanceTo(5.0 + still.params().time_step);
+  ASSERT_TRUE(test::succeeded(still.advanceTo(5.0 + still.params().time_step)));
   ASSERT_TRUE(still.vehicleAttached());
   EXPECT_TRUE(still.particle(still.deployedParticleCount() - 1).isApprox(Position(2.0, 0.0, -1.0)));
 }
@@ -224,7 +225,11 @@ struct OneTether
 {
   explicit OneTether(const NodeOptions& options = NodeOptions(), TetherParams params = quietParams())
   {
-    world.add("t", std::make_unique<Tether>(params, Position::Zero()));
+    const Status added = world.add("t", std::make_unique<Tether>(params, Position::Zero()));
+    if (!added.ok)
+    {
+      throw std::logic_error("world.add: " + added.message);  // a constructor cannot ASSERT; gtest reports it
+    }
     hooks = std::make_unique<RecordingHooks>(world.tether(0));
     scheduler.add(options, *hooks);
   }
@@ -380,8 +385,8 @@ TEST(Scheduler, EachTetherOfAWorldKeepsItsStateGridAndMovesAsAlone)
   OneTether alone_fast(fast, fine), alone_slow(slow, coarse);
 
   World world;
-  world.add("fast", std::make_unique<Tether>(fine, Position::Zero()));
-  world.add("slow", std::make_unique<Tether>(coarse, Position::Zero()));
+  ASSERT_TRUE(test::succeeded(world.add("fast", std::make_unique<Tether>(fine, Position::Zero()))));
+  ASSERT_TRUE(test::succeeded(world.add("slow", std::make_unique<Tether>(coarse, Position::Zero()))));
   Scheduler scheduler(world, fast.interpolation_delay, [] { return ros::WallTime(); });
   RecordingHooks hooks_fast(world.tether(0)), hooks_slow(world.tether(1));
   scheduler.add(fast, hooks_fast, "fast");
@@ -392,7 +397,7 @@ TEST(Scheduler, EachTetherOfAWorldKeepsItsStateGridAndMovesAsAlone)
     for (Tether* tether :
          {&world.tether(0), &world.tether(1), &alone_fast.world.tether(0), &alone_slow.world.tether(0)})
     {
-      tether->addVehicleSample(now, Position(x, 0.0, -1.0));
+      ASSERT_TRUE(test::succeeded(tether->addVehicleSample(now, Position(x, 0.0, -1.0))));
     }
     scheduler.tick(ros::Time(now));
     alone_fast.scheduler.tick(ros::Time(now));
@@ -413,8 +418,8 @@ TEST(Scheduler, SharesTheWallTimeByWorkAndOnlyTheOverloadedTetherDegrades)
   light.iterations = 2;
   heavy.iterations = 40;
   World world;
-  world.add("light", std::make_unique<Tether>(light, Position::Zero()));
-  world.add("heavy", std::make_unique<Tether>(heavy, Position::Zero()));
+  ASSERT_TRUE(test::succeeded(world.add("light", std::make_unique<Tether>(light, Position::Zero()))));
+  ASSERT_TRUE(test::succeeded(world.add("heavy", std::make_unique<Tether>(heavy, Position::Zero()))));
   // A wall clock that moves 4 ms on every reading: the physics takes half of the wall time.
   ros::WallTime wall(1000.0);
   Scheduler scheduler(world, options.interpolation_delay,
@@ -446,7 +451,11 @@ struct NodeRig : TetherHooks
   NodeRig(const TetherParams& params, const NodeOptions& node_options = NodeOptions())
       : options(node_options), scheduler(world, options.interpolation_delay, [] { return ros::WallTime(); })
   {
-    world.add("t", std::make_unique<Tether>(params, Position::Zero()));
+    const Status added = world.add("t", std::make_unique<Tether>(params, Position::Zero()));
+    if (!added.ok)
+    {
+      throw std::logic_error("world.add: " + added.message);  // a constructor cannot ASSERT; gtest reports it
+    }
     input = std::make_unique<PoseInput>(options, tf, world.tether(0));
     scheduler.add(options, *this);
   }
@@ -801,7 +810,7 @@ TEST(PoseInput, OdometryIsTakenAsAPoseAndOtherTypesAreRefused)
   EXPECT_EQ(input.rejected(), 0u);
   // (2, 0, -1) in odom, which is 1 m along x in the world; the attachment 0.5 m behind the vehicle.
   EXPECT_TRUE(input.lastVehicle().translation().isApprox(Eigen::Vector3d(3.0, 0.0, -1.0), 1e-12));
-  tether.advanceTo(10.0 + params.time_step);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(10.0 + params.time_step)));
   const Position end = tether.particle(tether.deployedParticleCount() - 1);
   EXPECT_TRUE(end.isApprox(Position(2.5, 0.0, -1.0), 1e-6)) << end.transpose();
 
@@ -928,9 +937,9 @@ TEST(StateBuilder, StampsThePhysicsTimeAndMeasuresTheWinchSpeedBetweenStates)
   params.winch_speed = 0.5;
   Tether tether(params, Position::Zero(), 5.0);
   StateBuilder builder("world");
-  tether.advanceTo(6.0);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(6.0)));
   EXPECT_EQ(builder.state(tether, 0).winch_speed, 0.0) << "no speed from a single state";
-  tether.advanceTo(7.0);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(7.0)));
   const TetherState& state = builder.state(tether, 2);
   EXPECT_NEAR(state.header.stamp.toSec(), tether.time(), 1e-6);
   EXPECT_NEAR(state.winch_speed, 0.5, 0.05);
@@ -938,7 +947,7 @@ TEST(StateBuilder, StampsThePhysicsTimeAndMeasuresTheWinchSpeedBetweenStates)
   const auto wrench = builder.wrench(tether, Eigen::Isometry3d::Identity());
   EXPECT_EQ(wrench.header.stamp, state.header.stamp);
   builder.restart(tether);
-  tether.advanceTo(8.0);
+  ASSERT_TRUE(test::succeeded(tether.advanceTo(8.0)));
   EXPECT_EQ(builder.state(tether, 3).winch_speed, 0.0) << "measured afresh after a reset";
 }
 

@@ -37,7 +37,7 @@ Tether heavyTether()
   params.winch_mode = WinchMode::kLocked;
   params.initial_deployed_length = 3.0;
   Tether sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
-  sim.advance(10.0);
+  EXPECT_TRUE(test::succeeded(sim.advance(10.0)));
   return sim;
 }
 
@@ -322,7 +322,8 @@ TEST(Converters, ACompressedEndSegmentPushesNothing)
   Tether sim(params, Position::Zero(), Position(3.0, 0.0, 0.0));  // straight and taut along x
   for (int k = 1; k <= 20; ++k)
   {
-    sim.addVehicleSample(0.01 * k, Position(3.0 - 0.05 * k, 0.0, 0.0));  // 5 m/s back along the cable
+    ASSERT_TRUE(test::succeeded(
+        sim.addVehicleSample(0.01 * k, Position(3.0 - 0.05 * k, 0.0, 0.0))));  // 5 m/s back along the cable
   }
   bool compressed = false;
   for (int k = 0; k < 20 && !compressed; ++k)
@@ -380,7 +381,7 @@ TEST(Converters, EmptyGetTensionRequestAnswersTheVehicleEnd)
   TetherParams params;
   params.weight_in_water = 1.0;
   Tether sim(params, Position::Zero(), Position(1.5, 0.0, -0.5));
-  sim.advance(1.0);
+  ASSERT_TRUE(test::succeeded(sim.advance(1.0)));
   std::vector<double> tensions;
   sim.computeSegmentTensions(tensions);
   GetTension::Request request;  // all zero

@@ -7,7 +7,8 @@ namespace rov_tether
 {
 
 /// Outcome of a call that can refuse its input; the message says why (or, on success, what was done).
-struct Status
+/// [[nodiscard]]: a caller that drops a refusal gets a compiler warning (docs/architecture.md, Errors).
+struct [[nodiscard]] Status
 {
   bool ok = true;
   std::string message;

@@ -95,14 +95,17 @@ class PathDriver
   }
   /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position (makeTether).
   Tether makeSimulation() const;
-  /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s].
-  void advanceTo(Tether& sim, double t);
+  /// Feeds the path up to t (plus one sample interval) and advances the simulation to t [s]. Refuses, and
+  /// stops where it was refused, when the simulation refuses a sample or the advance (see feed).
+  Status advanceTo(Tether& sim, double t);
   /// Whether every sample up to t (plus one sample interval) is fed (always, without a path).
   bool fedUpTo(double t) const;
   /// Feeds at most 100 further samples towards t (plus one sample interval), so the simulation's sample
-  /// buffer never overfills; returns the time the simulation may advance to with what it holds [s].
-  /// advanceTo is: while not fedUpTo(t), advance to feed(sim, t); then advance to t.
-  double feed(Tether& sim, double t);
+  /// buffer never overfills; `reach` gets the time the simulation may advance to with what it holds [s].
+  /// advanceTo is: while not fedUpTo(t), advance to reach; then advance to t. Refuses when the simulation
+  /// refuses a sample (a path that was not validated: beyond Tether::kMaxCoordinate, or a time beyond
+  /// Tether::kMaxTime); the message names the sample's time.
+  Status feed(Tether& sim, double t, double* reach);
   /// Interval between fed samples [s].
   static constexpr double kSampleInterval = 0.01;
 

@@ -54,7 +54,8 @@ class RunObserver
 /// out_dir/<name>/state.csv and shape.csv for each, and for a world's scenario (Scenario::usesWorld)
 /// out_dir/topology.csv; all created together at the end, so a failed run leaves no partial file. Each
 /// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
-/// otherwise the error (an obstacle that cannot be built: naming it).
+/// otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an advance the
+/// simulation refused, in a scenario that was not validated: the run stops there and writes nothing).
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                                       const std::vector<RunObserver*>& observers = {});
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a

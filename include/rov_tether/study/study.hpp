@@ -57,7 +57,8 @@ struct Case
 {
   std::string name;
   std::string reference;  ///< The row of docs/references.md.
-  /// Runs the case with `params` (the method, resolution and effort; the case sets the physics).
+  /// Runs the case with `params` (the method, resolution and effort; the case sets the physics). Throws
+  /// std::invalid_argument, naming the case, for parameters the Tether refuses.
   std::function<Result(TetherParams params)> run;
   /// Parameters of the case at resolution `segments` (the case's physics; method and effort default).
   std::function<TetherParams(int segments)> base;
@@ -70,7 +71,8 @@ const std::vector<Case>& cases();
 const Case& findCase(const std::string& name);
 
 /// One point of the stability map: a cable pulled by a vehicle at `speed` for 3 s with the given step and
-/// stiffness. Bounded = no failure reported, finite, strain below 1.
+/// stiffness. Bounded = no failure reported, finite, strain below 1. Throws std::invalid_argument for
+/// parameters or a speed the Tether refuses (a vehicle beyond Tether::kMaxCoordinate).
 struct StabilityPoint
 {
   std::string method;
