@@ -437,5 +437,65 @@ TEST(VehicleCoupling, OnlyDirectTakesADynamicVehicleAndBadInputIsRefused)
   EXPECT_EQ(tether.vehicleBody(), nullptr);
 }
 
+// What the header promises around the steps: attaching to a tether with a free end lays the cable out to the
+// attachment point (grown to reach it unless locked); a time step beyond the body's stable limit is refused,
+// at attach and as a live change; skipTo keeps the body as it is; reset() returns to a kinematic end.
+TEST(VehicleCoupling, AttachSkipResetAndLiveChangesKeepTheirPromises)
+{
+  TetherParams params = lockedTether(1e5);
+  params.winch_mode = WinchMode::kBrake;
+  params.cable_length = 20.0;
+  params.initial_deployed_length = 2.0;
+  Tether tether(params, Position::Zero());
+  ASSERT_FALSE(tether.vehicleAttached());
+  ASSERT_TRUE(tether.attachVehicleBody(bodyAt(blueRov(), 5.0, 0.2), Eigen::Vector3d(-0.2, 0.0, 0.0)).ok);
+  EXPECT_TRUE(tether.vehicleAttached());
+  EXPECT_NEAR(tether.deployedLength(), 5.0, 1e-9) << "grown to reach the vehicle";
+  EXPECT_NEAR((tether.particle(tether.deployedParticleCount() - 1) - Position(5.0, 0.0, 0.0)).norm(), 0.0, 1e-12);
+
+  // A body whose restoring moment limits its step below the tether's (VehicleBody::stableStepLimit).
+  VehicleParams stiff = blueRov();
+  stiff.center_of_buoyancy = Eigen::Vector3d(0.0, 0.0, 50.0);
+  stiff.inertia = Eigen::Vector3d(1e-3, 1e-3, 1e-3);
+  stiff.added_mass.tail<3>().setZero();
+  const VehicleBody stiff_body = bodyAt(stiff, 5.0, 0.2);
+  ASSERT_LT(stiff_body.stableStepLimit(), params.time_step);
+  Tether other(lockedTether(1e5), Position::Zero(), Position(kLength, 0.0, 0.0));
+  const Status refused = other.attachVehicleBody(stiff_body, Eigen::Vector3d::Zero());
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.message.find("stable"), std::string::npos) << refused.message;
+  TetherParams fine = lockedTether(1e5);
+  fine.time_step = 0.5 * stiff_body.stableStepLimit();
+  Tether fine_tether(fine, Position::Zero(), Position(kLength, 0.0, 0.0));
+  ASSERT_TRUE(fine_tether.attachVehicleBody(stiff_body, Eigen::Vector3d::Zero()).ok);
+  const Status live = fine_tether.setParams(lockedTether(1e5));  // back to the 5 ms step: beyond the limit
+  EXPECT_FALSE(live.ok);
+  EXPECT_NE(live.message.find("stable"), std::string::npos) << live.message;
+  EXPECT_EQ(fine_tether.params().time_step, fine.time_step);
+
+  ASSERT_TRUE(tether.setVehicleThrust(surge(kThrust)).ok);
+  for (int i = 0; i < 100; ++i)
+  {
+    tether.step();
+  }
+  const Position position = tether.vehicleBody()->position();
+  const Twist velocity = tether.vehicleBody()->velocity();
+  EXPECT_GT(velocity[0], 0.1) << "it thrusts away";
+  ASSERT_TRUE(tether.skipTo(tether.time() + 1.0).ok);
+  EXPECT_EQ(tether.vehicleBody()->position(), position) << "not stepped while time is skipped";
+  EXPECT_EQ(tether.vehicleBody()->velocity(), velocity);
+  const VehicleBody& skipped = *tether.vehicleBody();
+  EXPECT_NEAR((tether.particle(tether.deployedParticleCount() - 1) -
+               (skipped.position() + skipped.attitude() * Eigen::Vector3d(-0.2, 0.0, 0.0)))
+                  .norm(),
+              0.0, 1e-12)
+      << "the end stays at the attachment point";
+
+  ASSERT_TRUE(tether.reset(0.0).ok);
+  EXPECT_FALSE(tether.vehicleDynamic());
+  EXPECT_FALSE(tether.vehicleAttached());
+  EXPECT_TRUE(tether.addVehicleSample(0.0, Position(3.0, 0.0, 0.0)).ok) << "samples drive the end again";
+}
+
 }  // namespace
 }  // namespace rov_tether::test
