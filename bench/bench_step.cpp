@@ -123,6 +123,36 @@ void BM_StepDirectBending(benchmark::State& state)
   state.counters["newton_iterations"] = sim.solverIterations();
 }
 
+/// BM_StepDirect (Arg 0: no bending stiffness) and BM_StepDirectBending (Arg 1) with the vehicle end dynamic:
+/// the BlueROV2 Heavy at rest where the kinematic end was, no thrust (the same cable, at rest alike), so the
+/// difference is what the coupling costs a step (VehicleCoupling: two body steps and a 6 x 6 solve). Issue 25
+/// asks for at most 10% at 100 segments.
+void BM_StepDirectDynamicVehicle(benchmark::State& state)
+{
+  const bool bending = state.range(1) != 0;
+  Tether sim = makeCable(static_cast<int>(state.range(0)),
+                         [&](TetherParams& p)
+                         {
+                           p.solver = SolverType::kDirect;
+                           p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
+                         });
+  rov_tether::VehicleBody body;
+  const Position end = sim.particle(sim.deployedParticleCount() - 1);
+  if (!body.setState(end, Eigen::Quaterniond::Identity(), rov_tether::Twist::Zero()).ok ||
+      !sim.attachVehicleBody(body, Eigen::Vector3d::Zero()).ok)
+  {
+    state.SkipWithError("the dynamic vehicle was refused");
+    return;
+  }
+  if (!sim.advance(1.0).ok)
+  {
+    state.SkipWithError("the cable did not start moving");
+    return;
+  }
+  run(state, sim, 0.0);
+  state.counters["newton_iterations"] = sim.solverIterations();
+}
+
 /// The direct solver's linear solves alone: the LDL^T sweep written in banded.cpp (Arg 0) against
 /// LAPACK's dpttrf/dpttrs (Arg 1), on an SPD tridiagonal system of a chain's size.
 void BM_TridiagonalSolve(benchmark::State& state)
@@ -262,6 +292,7 @@ BENCHMARK(BM_StepXpbd)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepLumpedMass)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirect)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirectBending)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepDirectDynamicVehicle)->ArgsProduct({{100}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TridiagonalSolve)->ArgsProduct({{100, 1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BandedSolve)->ArgsProduct({{303, 3003}, {0, 1}, {5, 8}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scene)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);

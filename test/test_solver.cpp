@@ -306,6 +306,43 @@ TEST(Allocation, DirectStepsAllocateNothing)
   }
 }
 
+// A dynamic vehicle (VehicleCoupling: two body steps and a 6 x 6 solve per sub-step, fixed-size Eigen) on
+// `direct`, rod (EI 0.2, the primal path) and cable (EI 0, the dual path): the BlueROV2 Heavy thrusting 40 N
+// away from the spool on a locked 10 m tether, caught by it and held; its steps and the reads allocate nothing.
+TEST(Allocation, ADynamicVehicleStepsAllocateNothing)
+{
+  for (const double bending_stiffness : {0.2, 0.0})
+  {
+    TetherParams params;
+    params.solver = SolverType::kDirect;
+    params.winch_mode = WinchMode::kLocked;
+    params.cable_length = params.initial_deployed_length = 10.0;
+    params.bending_stiffness = bending_stiffness;
+    Tether sim(params, Position::Zero(), Position(10.0, 0.0, 0.0));
+    VehicleBody body;
+    ASSERT_TRUE(body.setState({10.2, 0.0, 0.0}, Eigen::Quaterniond::Identity(), Twist::Zero()).ok);
+    ASSERT_TRUE(sim.attachVehicleBody(body, Eigen::Vector3d(-0.2, 0.0, 0.0)).ok);
+    Wrench thrust = Wrench::Zero();
+    thrust[0] = 40.0;
+    ASSERT_TRUE(sim.setVehicleThrust(thrust).ok);
+    std::vector<double> tensions;
+    sim.step();
+    sim.computeSegmentTensions(tensions);
+    const long before = g_allocations.load();
+    for (int k = 0; k < 1000; ++k)
+    {
+      sim.step();
+    }
+    sim.computeSegmentTensions(tensions);
+    const TetherSummary summary = sim.summary();
+    const Force pull = sim.vehicleForce();
+    EXPECT_EQ(g_allocations.load() - before, 0) << "EI " << bending_stiffness;
+    EXPECT_EQ(sim.recoveryCount(), 0u);
+    EXPECT_GT(pull.norm(), 20.0) << "the tether holds the vehicle";
+    EXPECT_GT(summary.tension_spool, 20.0);
+  }
+}
+
 /// A 3 x 3 m patch of seabed at z = -2 m in 8 x 8 cells, rolling by 5 cm: 128 triangles, front up.
 TriangleMesh seabedPatch()
 {

@@ -68,6 +68,22 @@ void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_pe
   }
 }
 
+void Cable::setInverseMass(std::size_t i, double w)
+{
+  inv_mass[i] = inv_mass_along[i] = w;
+  auto inverse_sum = [](double a, double b) { return a + b > 0.0 ? 1.0 / (a + b) : 0.0; };
+  const std::size_t n = size();
+  for (std::size_t j = std::max(i, first + 1) - 1; j <= i && j + 1 < n; ++j)
+  {
+    stretch_weight[j] = inverse_sum(inv_mass[j], inv_mass[j + 1]);
+  }
+  for (std::size_t j = std::max(i, first + 2) - 2; j <= i && j + 2 < n; ++j)
+  {
+    bend_weight[j] = inverse_sum(inv_mass[j], inv_mass[j + 2]);
+  }
+  markDirty(std::max(i, first + 2) - 2, std::min(i + 1, n));
+}
+
 void Cable::updateTangents()
 {
   const std::size_t n = size();

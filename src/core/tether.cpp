@@ -30,6 +30,25 @@ std::string joinErrors(const std::vector<std::string>& errors)
 
 bool withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate; }
 
+/// Whether a dynamic vehicle `body` can be coupled into the steps `params` take.
+Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
+{
+  if (params.solver != SolverType::kDirect)
+  {
+    return Status::error("a dynamic vehicle is coupled into the step of solver 'direct' only; solver '" +
+                         toString(params.solver) +
+                         "' has no implicit step to couple it into (use a kinematic vehicle end, or solver direct)");
+  }
+  if (!(params.subStep() <= body.stableStepLimit()))
+  {
+    std::ostringstream out;
+    out << "a dynamic vehicle needs sub-steps within its body's stable limit " << body.stableStepLimit()
+        << " s; time_step / substeps is " << params.subStep() << " s";
+    return Status::error(out.str());
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 Tether::Tether(const TetherParams& params, const Position& spool, double start_time) : spool_(spool)
@@ -112,6 +131,14 @@ Status Tether::setParams(const TetherParams& params)
   if (!errors.empty())
   {
     return Status::error(joinErrors(errors));
+  }
+  if (vehicle_ != nullptr)
+  {
+    const Status coupled = dynamicVehicleFits(params.resolved(), vehicle_->body());
+    if (!coupled)
+    {
+      return coupled;
+    }
   }
   const bool rebuild = !sameStructure(params_, params.resolved());
   const bool new_solver = params.solver != params_.solver;
@@ -201,6 +228,12 @@ Status Tether::setSpoolPosition(const Position& spool)
 
 Status Tether::addVehicleSample(double t, const Position& vehicle)
 {
+  if (vehicle_ != nullptr)
+  {
+    return Status::error(
+        "vehicle sample rejected: the vehicle is dynamic (it moves by its own thrust and the tether's pull); "
+        "detach it to drive the end by samples again");
+  }
   if (!std::isfinite(t) || std::abs(t) > kMaxTime || !withinLimits(vehicle))
   {
     return Status::error(
@@ -225,6 +258,7 @@ Status Tether::setTargetLength(double length)
 
 void Tether::detachVehicle()
 {
+  vehicle_.reset();
   track_.detach();
   refreshDerived(cable_.size() - 3, cable_.size() - 1);
 }
@@ -303,7 +337,12 @@ Status Tether::skipTo(double t)
   {
     cable_.px[i] = cable_.x[i], cable_.py[i] = cable_.y[i], cable_.pz[i] = cable_.z[i];
   }
-  if (track_.active())
+  if (vehicle_ != nullptr)
+  {
+    // A dynamic vehicle is not stepped while time is skipped: it keeps its pose and velocity.
+    cable_.place(cable_.size() - 1, track_.position());
+  }
+  else if (track_.active())
   {
     track_.setPosition(vehicleAt(t));
     if (track_.attached())
@@ -349,7 +388,7 @@ void Tether::subStep(double h, double t)
 {
   const std::size_t n = cable_.size();
   cable_.place(cable_.first, spool_.outlet());
-  if (track_.active())
+  if (vehicle_ == nullptr && track_.active())
   {
     track_.setPosition(vehicleAt(t));
   }
@@ -363,7 +402,14 @@ void Tether::subStep(double h, double t)
   }
   // Every sub-step gets the noise of its own length, so the spread does not depend on `substeps`.
   noise_.apply(cable_, freeEnd(), params_.noiseAmplitude(h));
-  if (track_.attached())
+  if (vehicle_ != nullptr)
+  {
+    if (!predictVehicle(h, t))
+    {
+      return;
+    }
+  }
+  else if (track_.attached())
   {
     cable_.place(n - 1, track_.position());
   }
@@ -373,7 +419,16 @@ void Tether::subStep(double h, double t)
   }
   SolverSettings settings = SolverSettings::from(params_, h);
   settings.drum = runWinch(h) ? &drum_ : nullptr;
+  if (vehicle_ != nullptr)
+  {
+    // After the winch, which may re-weigh the particles near the spool (the whole chain when it is short).
+    cable_.setInverseMass(n - 1, vehicle_inv_mass_);
+  }
   solver_->solve(cable_, settings, contacts_, freeEnd());
+  if (vehicle_ != nullptr)
+  {
+    finishVehicle(h);
+  }
   if (world_contact_ != nullptr)
   {
     world_contact_->sendReaction();
@@ -404,6 +459,81 @@ void Tether::subStep(double h, double t)
         << solver_->lastIterations() << " iterations)";
     fail(why.str());
   }
+}
+
+bool Tether::predictVehicle(double h, double t)
+{
+  const std::size_t n = cable_.size();
+  const Position attachment = track_.position();
+  // The vehicle sits in the same water as the cable: the current at its attachment point.
+  vehicle_->setCurrent(current_.at(attachment, t));
+  const Status predicted = vehicle_->predict(h, &vehicle_predicted_);
+  if (!predicted)
+  {
+    fail("dynamic vehicle: " + predicted.message);
+    return false;
+  }
+  vehicle_inv_mass_ = vehicle_->inverseMass(cable_.position(n - 2), vehicle_predicted_, h);
+  // The prediction, moving from where the attachment was (x - x_prev: its motion over the sub-step).
+  cable_.place(n - 1, attachment);
+  cable_.x[n - 1] = vehicle_predicted_.x();
+  cable_.y[n - 1] = vehicle_predicted_.y();
+  cable_.z[n - 1] = vehicle_predicted_.z();
+  return true;
+}
+
+void Tether::finishVehicle(double h)
+{
+  const std::size_t n = cable_.size();
+  // The tether's pull is what moved the attachment particle off its prediction in the solve:
+  // M (x - x~) = h^2 F for the particle of mass 1 / w.
+  const Force pull = (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_);
+  cable_.setInverseMass(n - 1, 0.0);  // pinned again between sub-steps, as the kinematic end is
+  Position reached;
+  const Status stepped = vehicle_->finish(h, pull, &reached);
+  if (!stepped)
+  {
+    fail("dynamic vehicle: " + stepped.message);
+    return;
+  }
+  cable_.x[n - 1] = reached.x(), cable_.y[n - 1] = reached.y(), cable_.z[n - 1] = reached.z();
+  track_.setPosition(reached);
+}
+
+Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d& attachment_offset)
+{
+  const Status fits = dynamicVehicleFits(params_, body);
+  if (!fits)
+  {
+    return fits;
+  }
+  if (!attachment_offset.allFinite() || attachment_offset.norm() > VehicleParams::kMaxOffset)
+  {
+    std::ostringstream out;
+    out << "dynamic vehicle rejected: attachment_offset must be finite and within " << VehicleParams::kMaxOffset
+        << " m of the body origin";
+    return Status::error(out.str());
+  }
+  auto coupling = std::make_unique<VehicleCoupling>(body, attachment_offset);
+  const Position attachment = coupling->attachment();
+  if (!withinLimits(attachment))
+  {
+    return Status::error("dynamic vehicle rejected: its attachment point is not finite or beyond +-1e6 m");
+  }
+  vehicle_ = std::move(coupling);
+  track_.detach();
+  track_.attachAt(time_, attachment);
+  layOut(lengthToReach(attachment));  // as when a first sample attaches: the cable reaches the vehicle
+  return Status::success();
+}
+
+Status Tether::setVehicleThrust(const Wrench& thrust)
+{
+  if (vehicle_ == nullptr)
+  {
+    return Status::error("vehicle thrust rejected: the vehicle end is kinematic (attachVehicleBody first)");
+  }
+  return vehicle_->setThrust(thrust);
 }
 
 void Tether::fail(const std::string& why)
@@ -484,6 +614,7 @@ Status Tether::reset(double time)
     return Status::error(out.str());
   }
   // Detached until the next sample: a replay after a reset starts exactly as the first run did.
+  vehicle_.reset();
   track_.detach();
   winches_.reset();
   winch_speed_ = 0.0;
@@ -561,6 +692,10 @@ Force Tether::vehicleForce() const
   if (!track_.attached())
   {
     return Force::Zero();
+  }
+  if (vehicle_ != nullptr)
+  {
+    return vehicle_->pull();
   }
   return endForce(cable_, solver_->multipliers(), last_step_);
 }

@@ -75,6 +75,10 @@ struct Cable
   /// `mass` per metre; the spool outlet, and the last particle when `last_pinned`, get none) and the
   /// weights and bending rest lengths of the constraints they take part in; marks them dirty.
   void updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass, bool last_pinned);
+  /// Gives particle i the inverse mass w [1/kg] in every direction (0 pins it) and refreshes the weights of the
+  /// constraints it takes part in; marks them dirty. For a particle whose mass is not the cable's own (a
+  /// dynamic vehicle's attachment point, VehicleCoupling).
+  void setInverseMass(std::size_t i, double w);
   /// Sets the unit tangents of the deployed particles from their neighbours (one-sided at the ends).
   void updateTangents();
 };

@@ -16,6 +16,7 @@
 #include "rov_tether/core/status.hpp"
 #include "rov_tether/core/tension.hpp"
 #include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/core/vehicle_coupling.hpp"
 #include "rov_tether/core/vehicle_track.hpp"
 #include "rov_tether/core/water.hpp"
 #include "rov_tether/core/winch.hpp"
@@ -88,9 +89,27 @@ class Tether
   bool winchOutrun() const { return outrun_time_ >= kOutrunTime; }
   /// How long the winch must stay at its limit to be outrun [s].
   static constexpr double kOutrunTime = 0.2;
-  /// Detaches the vehicle: the last particle becomes a free end.
+  /// Detaches the vehicle (kinematic or dynamic): the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }
+
+  /// Attaches a dynamic vehicle, a copy of `body` as it is (pose, velocity, parameters), at the point
+  /// `attachment_offset` [m] of its body frame: from now on the vehicle end is not driven by samples but moves
+  /// as the body does under its thrust (setVehicleThrust), damping, restoring forces, the current at the
+  /// attachment point and the tether's pull, solved within the step (VehicleCoupling,
+  /// docs/model.md "A dynamic vehicle end"). The cable is laid out at rest to the attachment point as when a
+  /// first sample attaches; vehicle samples are refused while it is dynamic. Only `direct` couples a vehicle
+  /// into its step: with another solver, a sub-step beyond the body's stableStepLimit(), a non-finite or
+  /// too large offset (beyond VehicleParams::kMaxOffset) or an attachment point beyond kMaxCoordinate, it is
+  /// refused and the tether is unchanged. detachVehicle() and reset() end it (the end is kinematic again).
+  Status attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d& attachment_offset);
+  /// The body-frame thrust command of the dynamic vehicle [N, N m], held until changed (saturated per axis
+  /// at the body's thrust_limit). Refused without a dynamic vehicle or with non-finite values.
+  Status setVehicleThrust(const Wrench& thrust);
+  /// The dynamic vehicle's body (pose, velocity, parameters), or null while the vehicle end is kinematic.
+  const VehicleBody* vehicleBody() const { return vehicle_ ? &vehicle_->body() : nullptr; }
+  /// True while a dynamic vehicle is attached.
+  bool vehicleDynamic() const { return vehicle_ != nullptr; }
 
   /// Advances by dt [s] (any value >= 0) in fixed internal steps; returns the number of steps taken
   /// through `steps` when given. Refuses negative or non-finite dt.
@@ -138,7 +157,8 @@ class Tether
   bool segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const;
   /// Arc length from the vehicle end to the middle of deployed segment k (k = 0 at the spool) [m].
   double arcLengthFromVehicleToSegment(std::size_t k) const;
-  /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle.
+  /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle. With a dynamic vehicle,
+  /// the force the last sub-step's solve applied to it (VehicleCoupling).
   Force vehicleForce() const;
   /// Deployed length, end tensions, maximum tension and strain.
   TetherSummary summary() const;
@@ -180,6 +200,11 @@ class Tether
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
   void subStep(double h, double t);
+  /// The dynamic vehicle's part of a sub-step of h at time t before the solve: the body's own step puts the
+  /// attachment particle at its prediction, with the body's mobility as its inverse mass. False on failure.
+  bool predictVehicle(double h, double t);
+  /// After the solve: the body steps under the solved pull; the attachment particle goes where it lands.
+  void finishVehicle(double h);
   void fail(const std::string& why);
   /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
   /// segment pulled harder than its mode gives way at.
@@ -209,6 +234,11 @@ class Tether
   double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
   double outrun_time_ = 0.0;  ///< How long the winch has been at its limit, pulled past giving way [s].
   SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.
+
+  std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
+  Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].
+  double vehicle_inv_mass_ = 0.0;                  ///< Its inverse mass in this sub-step's solve [1/kg].
+
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].
   double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].

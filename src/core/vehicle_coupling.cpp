@@ -1,0 +1,84 @@
+#include "rov_tether/core/vehicle_coupling.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+namespace rov_tether
+{
+
+VehicleCoupling::VehicleCoupling(const VehicleBody& body, const Eigen::Vector3d& offset)
+    : body_(body), start_(body), offset_(offset)
+{
+}
+
+Status VehicleCoupling::setThrust(const Wrench& thrust)
+{
+  if (!thrust.allFinite())
+  {
+    return Status::error("vehicle thrust rejected: every component must be finite");
+  }
+  thrust_ = thrust;
+  return Status::success();
+}
+
+Status VehicleCoupling::predict(double h, Position* predicted)
+{
+  start_ = body_;
+  const Status stepped = body_.step(h, thrust_, Wrench::Zero(), nullptr);
+  if (stepped)
+  {
+    *predicted = attachment();
+  }
+  body_ = start_;
+  return stepped;
+}
+
+Eigen::Matrix3d VehicleCoupling::pointMobility(double h) const
+{
+  // The body's step answers a wrench tau held over it by h (M + h D)^-1 tau in velocity (the kick, then the
+  // implicit damping at the step's start speed), and by h^2 times that in pose. A force F at the offset r is
+  // the wrench G^T F = [F; r x F], and the point moves by G = [I, -S(r)] of the pose change.
+  const VehicleParams& p = body_.params();
+  Matrix6 resisted = body_.massMatrix();
+  resisted.diagonal() += h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
+  Eigen::Matrix<double, 6, 3> wrench_of_force;
+  wrench_of_force.topRows<3>().setIdentity();
+  wrench_of_force.bottomRows<3>() << 0.0, -offset_.z(), offset_.y(), offset_.z(), 0.0, -offset_.x(), -offset_.y(),
+      offset_.x(), 0.0;  // S(r): r x F
+  const Eigen::Matrix<double, 6, 3> motion = resisted.ldlt().solve(wrench_of_force);
+  return wrench_of_force.transpose() * motion;  // G^T = [I; S(r)], so G = [I, S(r)^T] = [I, -S(r)]
+}
+
+double VehicleCoupling::inverseMass(const Position& neighbour, const Position& predicted, double h) const
+{
+  const Eigen::Matrix3d mobility = pointMobility(h);
+  const Position along = predicted - neighbour;
+  const double length = along.norm();
+  if (!(length > 0.0))
+  {
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(mobility, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  }
+  const Eigen::Vector3d n = body_.attitude().conjugate() * (along / length);
+  return n.dot(mobility * n);
+}
+
+Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment_point)
+{
+  if (!pull.allFinite())
+  {
+    return Status::error("vehicle coupling: the tether's pull is not finite");
+  }
+  body_ = start_;
+  const Eigen::Vector3d force = body_.attitude().conjugate() * pull;
+  Wrench external;
+  external << force, offset_.cross(force);
+  const Status stepped = body_.step(h, thrust_, external, &used_);
+  if (stepped)
+  {
+    pull_ = pull;
+  }
+  *attachment_point = attachment();
+  return stepped;
+}
+
+}  // namespace rov_tether
