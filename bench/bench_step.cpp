@@ -130,7 +130,7 @@ void BM_StepDirectBending(benchmark::State& state)
 void BM_StepDirectDynamicVehicle(benchmark::State& state)
 {
   const bool bending = state.range(1) != 0;
-  Tether sim = makeCable(static_cast<int>(state.range(0)),
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
                          [&](TetherParams& p)
                          {
                            p.solver = SolverType::kDirect;
