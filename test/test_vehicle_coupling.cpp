@@ -98,6 +98,27 @@ Wrench surge(double force)
   return w;
 }
 
+/// The tension's swing (max - min) over the last window of a run and over the window before it: a taut stop
+/// settles when the last swing is small and no larger than the one before (no growing ringing).
+struct TensionSwings
+{
+  /// `from_end`: steps left after this one; `window`: steps per window.
+  void record(int from_end, int window, double tension)
+  {
+    if (from_end >= 2 * window)
+    {
+      return;
+    }
+    const int w = from_end < window ? 1 : 0;  // 0: the window before, 1: the last
+    lo[w] = std::min(lo[w], tension);
+    hi[w] = std::max(hi[w], tension);
+  }
+  double last() const { return hi[1] - lo[1]; }
+  double before() const { return hi[0] - lo[0]; }
+  double lo[2] = {1e300, 1e300};
+  double hi[2] = {-1e300, -1e300};
+};
+
 struct TautStopCase
 {
   double axial_stiffness;  // EA [N]
@@ -148,21 +169,15 @@ TEST_P(TautStop, ThrustOnALockedTetherComesToRestAtTheStretchedLength)
   const double dt = params.time_step;
   const auto steps = static_cast<int>(std::ceil((settle + 2.0 * window) / dt));
   const auto window_steps = static_cast<int>(std::lround(window / dt));
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  TensionSwings swings;
   for (int i = 0; i < steps; ++i)
   {
     tether.step();
     ASSERT_EQ(tether.recoveryCount(), 0u) << tether.lastFailure();
-    const int from_end = steps - 1 - i;
-    if (from_end < 2 * window_steps)
-    {
-      const int w = from_end < window_steps ? 1 : 0;  // 0: the window before, 1: the last
-      const double tension = tether.vehicleForce().norm();
-      lo[w] = std::min(lo[w], tension), hi[w] = std::max(hi[w], tension);
-    }
+    swings.record(steps - 1 - i, window_steps, tether.vehicleForce().norm());
   }
-  const double last_swing = hi[1] - lo[1];
-  const double swing_before = hi[0] - lo[0];
+  const double last_swing = swings.last();
+  const double swing_before = swings.before();
   EXPECT_LT(last_swing, 0.01 * kThrust) << c.name;
   EXPECT_LE(last_swing, swing_before + 1e-9 * kThrust) << c.name << ": the ringing grows";
 
@@ -222,21 +237,15 @@ TEST(VehicleCoupling, TautStopWithThePullAtAnAngleToTheBodyAxes)
     const double window = 2.0;
     const auto steps = static_cast<int>(std::lround(30.0 / params.time_step));
     const auto window_steps = static_cast<int>(std::lround(window / params.time_step));
-    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    TensionSwings swings;
     for (int i = 0; i < steps; ++i)
     {
       tether.step();
       ASSERT_EQ(tether.recoveryCount(), 0u) << tether.lastFailure();
-      const int from_end = steps - 1 - i;
-      if (from_end < 2 * window_steps)
-      {
-        const int w = from_end < window_steps ? 1 : 0;
-        const double tension = tether.vehicleForce().norm();
-        lo[w] = std::min(lo[w], tension), hi[w] = std::max(hi[w], tension);
-      }
+      swings.record(steps - 1 - i, window_steps, tether.vehicleForce().norm());
     }
-    EXPECT_LT(hi[1] - lo[1], 0.01 * kThrust);
-    EXPECT_LE(hi[1] - lo[1], hi[0] - lo[0] + 1e-9 * kThrust) << "the ringing grows";
+    EXPECT_LT(swings.last(), 0.01 * kThrust);
+    EXPECT_LE(swings.last(), swings.before() + 1e-9 * kThrust) << "the ringing grows";
     EXPECT_NEAR(tether.vehicleForce().norm(), kThrust, 0.01 * kThrust);
     const double stretch = kThrust * kLength / axial_stiffness;
     const double segments = static_cast<double>(tether.deployedParticleCount() - 1);
