@@ -135,8 +135,8 @@ bool parseOptions(int argc, char** argv, Options* options)
 }
 
 /// Publishes every vehicle's pose on its circle for each pose time up to `now`; counts them in `poses`.
-void publishPoses(const Options& o, std::vector<ros::Publisher>& pubs, double start_time, double now,
-                  double* next_pose, std::size_t* poses)
+void publishPoses(const Options& o, std::vector<ros::Publisher>& pubs, double start_time, double now, double* next_pose,
+                  std::size_t* poses)
 {
   while (*next_pose <= now)
   {

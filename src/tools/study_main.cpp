@@ -327,8 +327,8 @@ void printGoal(double stiffness, std::map<std::string, Result>& best)
         "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
         stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation,
         best["pbd"].time_step, best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
-        1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
-        best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
+        1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps, best["lumped_mass"].cost / best["pbd"].cost,
+        best["lumped_mass"].cost / best["xpbd"].cost);
     const Result& plain = best["pbd without over-relaxation"];
     std::printf(
         "      pbd with the paper's projection (over_relaxation 1): %.0f us/s (%d segments, %d iterations, "
