@@ -191,7 +191,7 @@ class Stepper
  public:
   Stepper(const Scenario& scenario, const std::vector<ScenarioTether>& tethers, World& world,
           std::vector<PathDriver> drivers)
-    : scenario_(scenario), tethers_(tethers), world_(world), drivers_(std::move(drivers))
+      : scenario_(scenario), tethers_(tethers), world_(world), drivers_(std::move(drivers))
   {
   }
 
