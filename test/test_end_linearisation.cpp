@@ -163,7 +163,9 @@ TEST(EndLinearisation, StiffnessIsTheFiniteDifferenceOfTheStep)
     ASSERT_TRUE(linearised.taut);
     const double bound = 1e5 * 1e-12 / delta + 1e-6 * linearised.stiffness.cwiseAbs().maxCoeff();
     EXPECT_LE((linearised.stiffness - difference).cwiseAbs().maxCoeff(), bound)
-        << "K\n" << linearised.stiffness << "\nfinite differences\n" << difference;
+        << "K\n"
+        << linearised.stiffness << "\nfinite differences\n"
+        << difference;
     // It is not trivially small: along the chord the chain is far stiffer than the bound.
     EXPECT_GT(linearised.stiffness.cwiseAbs().maxCoeff(), 1e3 * bound);
     EXPECT_EQ(linearised.damping, Eigen::Matrix3d::Zero());  // C = 0: the step has no term in the end's velocity
@@ -213,9 +215,10 @@ std::unique_ptr<Tether> straightChain(double axial_stiffness, double mass_per_le
 }
 
 // (2) A light chain: the particles' masses per step, 1e-4 kg / h^2 = 4 N/m, are tiny against the segments'
-// EA / l = 1e8 N/m and T / l = 1e6 N/m (EA 1e7 N stretched by 1%). Within a step the chain answers as its springs in series: along it EA / L_total, across it
-// T / L_total (a string under T turned about the spool). seriesBounds gives the exact band the masses leave:
-// [series, series + sum mu_i u_i^2], under 1e-3 of the series stiffness here (checked).
+// EA / l = 1e8 N/m and T / l = 1e6 N/m (EA 1e7 N stretched by 1%). Within a step the chain answers as its springs in
+// series: along it EA / L_total, across it T / L_total (a string under T turned about the spool). seriesBounds gives
+// the exact band the masses leave: [series, series + sum mu_i u_i^2], under 1e-3 of the series stiffness here
+// (checked).
 TEST(EndLinearisation, ALightChainAnswersWithItsWholeLength)
 {
   const double ea = 1e7;
@@ -306,8 +309,9 @@ TEST(EndLinearisation, ACableStiffnessIsSymmetricAndRestoring)
   const std::size_t n = sim->deployedParticleCount();
   const Position along = (sim->particle(n - 1) - sim->particle(n - 2)).normalized();
   const double tension = chain.tension.back();
-  const Eigen::Matrix3d last = sim->params().axial_stiffness / chain.rest.back() * along * along.transpose() +
-                               tension / chain.length.back() * (Eigen::Matrix3d::Identity() - along * along.transpose());
+  const Eigen::Matrix3d last =
+      sim->params().axial_stiffness / chain.rest.back() * along * along.transpose() +
+      tension / chain.length.back() * (Eigen::Matrix3d::Identity() - along * along.transpose());
   EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(last - restoring).eigenvalues().minCoeff(), -rounding);
   // F0 is the pull the tether reports, at the end's place and time.
   EXPECT_EQ(linearised.force, sim->vehicleForce());

@@ -129,8 +129,8 @@ bool PrimalNewton::solveHessian(const Cable& cable, const double* lambda, double
     bool ok = true;
     if (linear_ == DirectSolver::LinearSolve::kLapack)
     {
-      ok = column == 0 ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, b,
-                                                         m + 1, band_.data())
+      ok = column == 0 ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1,
+                                                        band_.data())
                        : banded::solveBlockBandedLapackAgain(second != nullptr, b, m + 1, band_.data());
     }
     else if (column == 0)

@@ -42,12 +42,12 @@ using Velocity = Eigen::Vector3d;
  */
 struct EndLinearisation
 {
-  double time = 0.0;  ///< The physics time of the last step [s].
+  double time = 0.0;                     ///< The physics time of the last step [s].
   Position position = Position::Zero();  ///< x0: the attachment point at that time, world [m].
   /// v0: its velocity over the last sub-step, (x_e(t) - x_e(t - h)) / h [m/s]; zero after an attach, a jump or
   /// a skip (the cable re-laid or held at rest).
   Velocity velocity = Velocity::Zero();
-  Force force = Force::Zero();  ///< F0: the pull on the vehicle (== vehicleForce()) [N].
+  Force force = Force::Zero();                          ///< F0: the pull on the vehicle (== vehicleForce()) [N].
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  ///< K = dF/dx [N/m], world frame.
   Eigen::Matrix3d damping = Eigen::Matrix3d::Zero();    ///< C = dF/dv [N s/m], world frame (zero: see above).
   bool taut = false;  ///< False: the end segment carries no tension; K and C are then zero.
