@@ -323,6 +323,54 @@ TEST(VehicleController, YawWrapsTheShortWay)
   EXPECT_NEAR(VehicleController::yawOf(body.attitude()), -170.0 * deg, 0.5 * deg);
 }
 
+// The optional level hold (ControllerDesign::level_bandwidth 4 rad/s: a critically damped PD on roll, I' =
+// 0.26 + 0.189 = 0.449 kg m^2, kp = I' 16 = 7.18 N m/rad, kd = I' 8 = 3.59 N m s/rad). A body rolled 0.3 rad at
+// rest: its roll decays as 0.3 (1 + omega t) e^-(omega t) (the restoring moment, 1.3 N m/rad, only stiffens it):
+// 9 e^-8 x 0.3 = 0.9 mrad after 2 s; bound 10 mrad for the spring's and the step's share. Without it (the
+// default), only the restoring moment rights the body, at sqrt(1.3 / 0.449) = 1.7 rad/s with the quadratic roll
+// damping alone: still swinging beyond 0.1 rad between 1.5 and 2.5 s. The roll thrust stays within its limit.
+// Seen failing with the level hold's sign reversed.
+TEST(VehicleController, LevelHoldRightsARolledVehicle)
+{
+  const VehicleParams vehicle = neutral();
+  for (const double level : {4.0, 0.0})
+  {
+    SCOPED_TRACE(level);
+    ControllerDesign design;
+    design.level_bandwidth = level;
+    ControllerGains gains;
+    ASSERT_TRUE(ControllerGains::design(vehicle, design, &gains).ok);
+    VehicleController controller;
+    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
+    VehicleBody body;
+    ASSERT_TRUE(body.setParams(vehicle).ok);
+    ASSERT_TRUE(
+        body.setState(Eigen::Vector3d::Zero(), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+                      Twist::Zero())
+            .ok);
+    double late_swing = 0.0;
+    for (int i = 1; i <= static_cast<int>(std::lround(2.5 / kStep)); ++i)
+    {
+      const ControllerOutput out = closedLoopStep(&controller, &body, VehicleSetpoint{});
+      ASSERT_LE(std::abs(out.thrust[3]), vehicle.thrust_limit[3]);
+      const Eigen::Vector3d up = body.attitude().conjugate() * Eigen::Vector3d::UnitZ();
+      const double roll = std::atan2(up.y(), up.z());
+      if (i * kStep >= 1.5)
+      {
+        late_swing = std::max(late_swing, std::abs(roll));
+      }
+      if (level > 0.0 && std::abs(i * kStep - 2.0) < 1e-9)
+      {
+        EXPECT_LT(std::abs(roll), 0.01);
+      }
+    }
+    if (level == 0.0)
+    {
+      EXPECT_GT(late_swing, 0.1);
+    }
+  }
+}
+
 // Bad gains, designs and updates are refused with a message naming the field, the axis and the value, and
 // change nothing. The unstable case: ki above (d + kd) kp / m' (Routh-Hurwitz), 10 times the default surge's
 // limit (d + kd) kp / m' = 43.69 x 27.80 / 19.86 = 61.2 N/(m s). Seen failing with configure() not checking the
@@ -435,7 +483,7 @@ TEST(VehicleControllerYaml, BadBlocksAreRefused)
   gains.proportional.setConstant(7.0);
   EXPECT_EQ(readBlock("{gain: 3}", vehicle, &gains),
             "vehicles/test.yaml: controller: gain: no controller setting of that name (bandwidth, damping_ratio, "
-            "integral_ratio, proportional, integral, derivative, integral_limit)");
+            "integral_ratio, level_bandwidth, proportional, integral, derivative, integral_limit)");
   EXPECT_EQ(readBlock("{damping_ratio: .nan}", vehicle, &gains),
             "vehicles/test.yaml: controller: damping_ratio: must be finite");
   EXPECT_EQ(readBlock("{integral: [1, 2, 3]}", vehicle, &gains),

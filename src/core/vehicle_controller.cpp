@@ -1,5 +1,6 @@
 #include "rov_tether/core/vehicle_controller.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -39,6 +40,20 @@ std::string checkEach(const char* field, const Vector4& values, const char* rule
   return "";
 }
 
+// "" or "<field>[roll|pitch]: must be >= 0 (got <value>)" / "must be finite".
+std::string checkLevel(const char* field, const Eigen::Vector2d& values)
+{
+  const char* names[2] = {"roll", "pitch"};
+  for (int j = 0; j < 2; ++j)
+  {
+    if (!std::isfinite(values[j]) || !(values[j] >= 0.0))
+    {
+      return std::string(field) + "[" + names[j] + "]: must be finite and >= 0 (got " + number(values[j]) + ")";
+    }
+  }
+  return "";
+}
+
 // Mass with added mass m' and linear damping d of the controlled axis i of `vehicle` (ControllerGains).
 double effectiveMass(const VehicleParams& vehicle, int i)
 {
@@ -61,6 +76,11 @@ Status ControllerDesign::validate() const
     return Status::error("controller design: damping_ratio: must be finite and > 0 (got " + number(damping_ratio) +
                          ")");
   }
+  if (!std::isfinite(level_bandwidth) || !(level_bandwidth >= 0.0))
+  {
+    return Status::error("controller design: level_bandwidth: must be finite and >= 0 (got " + number(level_bandwidth) +
+                         ")");
+  }
   if (!std::isfinite(integral_ratio) || !(integral_ratio >= 0.0))
   {
     return Status::error("controller design: integral_ratio: must be finite and >= 0 (got " + number(integral_ratio) +
@@ -78,6 +98,8 @@ Status ControllerGains::validate() const
       checkEach("integral", integral, ">= 0", nonNegative),
       checkEach("derivative", derivative, ">= 0", nonNegative),
       checkEach("integral_limit", integral_limit, ">= 0", nonNegative),
+      checkLevel("level_proportional", level_proportional),
+      checkLevel("level_derivative", level_derivative),
   };
   for (const auto& problem : problems)
   {
@@ -121,6 +143,14 @@ Status ControllerGains::design(const VehicleParams& vehicle, const ControllerDes
     designed.integral_limit[i] = vehicle.thrust_limit[kWrenchRow[i]];
   }
   designed.anti_windup = true;
+  for (int j = 0; j < 2; ++j)  // the level hold: roll (row 3), pitch (row 4)
+  {
+    const double w = design.level_bandwidth;
+    const double inertia = vehicle.inertia[j] + vehicle.added_mass[3 + j];
+    designed.level_proportional[j] = inertia * w * w;
+    designed.level_derivative[j] =
+        std::max(0.0, 2.0 * design.damping_ratio * w * inertia - vehicle.linear_damping[3 + j]);
+  }
   *gains = designed;
   return Status::success();
 }
@@ -160,6 +190,7 @@ Status VehicleController::configure(const VehicleParams& vehicle, const Controll
   {
     limit_[i] = vehicle.thrust_limit[kWrenchRow[i]];
   }
+  level_limit_ = vehicle.thrust_limit.segment<2>(3);
   integral_.setZero();
   return Status::success();
 }
@@ -217,6 +248,20 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
       integral_[i] = integral_[i] > cap ? cap : -cap;
       result.integral_held_axes |= bit;
     }
+  }
+  // The level hold: the torque that turns the body's z axis towards the world's, z_b x up = [-up_y, up_x, 0].
+  const Eigen::Vector3d up = to_body * Eigen::Vector3d::UnitZ();
+  const double tilt[2] = {-up.y(), up.x()};
+  for (int j = 0; j < 2; ++j)
+  {
+    const double wanted = gains_.level_proportional[j] * tilt[j] - gains_.level_derivative[j] * body.velocity()[3 + j];
+    const double limit = level_limit_[j];
+    const double held = wanted > limit ? limit : (wanted < -limit ? -limit : wanted);
+    if (held != wanted)
+    {
+      result.saturated_axes |= static_cast<std::uint8_t>(1u << (3 + j));
+    }
+    result.thrust[3 + j] = held;
   }
   if (output != nullptr)
   {

@@ -35,6 +35,33 @@ Position pathAt(const std::vector<Waypoint>& path, double t)
   return path.front().position;
 }
 
+Wrench wrenchAt(const std::vector<WrenchPoint>& schedule, double t)
+{
+  if (schedule.empty())
+  {
+    return Wrench::Zero();
+  }
+  if (t < schedule.front().time)
+  {
+    return schedule.front().wrench;
+  }
+  for (std::size_t k = schedule.size(); k-- > 0;)
+  {
+    if (schedule[k].time <= t)
+    {
+      if (k + 1 == schedule.size())
+      {
+        return schedule[k].wrench;
+      }
+      const WrenchPoint& a = schedule[k];
+      const WrenchPoint& b = schedule[k + 1];
+      const double alpha = (t - a.time) / (b.time - a.time);
+      return a.wrench + alpha * (b.wrench - a.wrench);
+    }
+  }
+  return schedule.front().wrench;
+}
+
 Position Scenario::vehicleAt(double t) const { return pathAt(vehicle, t); }
 
 std::vector<ScenarioTether> Scenario::tetherList() const
@@ -43,10 +70,16 @@ std::vector<ScenarioTether> Scenario::tetherList() const
   {
     return tethers;
   }
-  return {ScenarioTether{"tether", params, spool, vehicle}};
+  return {ScenarioTether{"tether", params, spool, vehicle, dynamic}};
 }
 
-Tether PathDriver::makeSimulation() const { return makeTether(ScenarioTether{"", params_, spool_, vehicle_}); }
+Tether PathDriver::makeSimulation() const { return makeTether(ScenarioTether{"", params_, spool_, vehicle_, {}}); }
+
+const std::vector<Waypoint>& PathDriver::noPath()
+{
+  static const std::vector<Waypoint> none;
+  return none;
+}
 
 bool PathDriver::fedUpTo(double t) const
 {

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <utility>
 
+#include "rov_tether/scenario/vehicle_driver.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether
@@ -148,7 +151,8 @@ std::vector<PathDriver> driversOf(const std::vector<ScenarioTether>& tethers)
   return drivers;
 }
 
-/// state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), then topology.csv.
+/// state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), vehicle.csv per dynamic
+/// vehicle (beside its tether's), then topology.csv.
 std::vector<OutputFile> outputFilesOf(const Scenario& scenario, const std::vector<ScenarioTether>& tethers,
                                       const std::string& out_dir)
 {
@@ -158,6 +162,14 @@ std::vector<OutputFile> outputFilesOf(const Scenario& scenario, const std::vecto
     const fs::path dir = scenario.tethers.empty() ? fs::path(out_dir) : fs::path(out_dir) / tether.name;
     files.push_back({dir / "state.csv", {}, nullptr});
     files.push_back({dir / "shape.csv", {}, nullptr});
+  }
+  for (const ScenarioTether& tether : tethers)
+  {
+    if (tether.dynamic)
+    {
+      const fs::path dir = scenario.tethers.empty() ? fs::path(out_dir) : fs::path(out_dir) / tether.name;
+      files.push_back({dir / "vehicle.csv", {}, nullptr});
+    }
   }
   if (scenario.usesWorld())
   {
@@ -178,6 +190,14 @@ std::vector<RunSummary> startOutputs(const std::vector<ScenarioTether>& tethers,
     std::fprintf(files[2 * i].file, "%s\n", kStateCsvHeader);
     std::fprintf(files[2 * i + 1].file, "%s\n", kShapeCsvHeader);
   }
+  std::size_t vehicle_file = 2 * tethers.size();
+  for (const ScenarioTether& tether : tethers)
+  {
+    if (tether.dynamic)
+    {
+      std::fprintf(files[vehicle_file++].file, "%s\n", kVehicleCsvHeader);
+    }
+  }
   if (topology_file != nullptr)
   {
     std::fprintf(topology_file, "%s\n", kTopologyCsvHeader);
@@ -193,7 +213,17 @@ class Stepper
           std::vector<PathDriver> drivers)
       : scenario_(scenario), tethers_(tethers), world_(world), drivers_(std::move(drivers))
   {
+    for (std::size_t i = 0; i < tethers.size(); ++i)
+    {
+      if (tethers[i].dynamic)
+      {
+        vehicles_.emplace_back(i, VehicleDriver(tethers[i]));
+      }
+    }
   }
+
+  /// The dynamic vehicles' drivers with their tethers' indices, in scenario order.
+  const std::vector<std::pair<std::size_t, VehicleDriver>>& vehicles() const { return vehicles_; }
 
   /// Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
   /// (for one tether, the very same calls: a world of one tether without contact steps as that tether).
@@ -201,6 +231,12 @@ class Stepper
   bool advance(double t)
   {
     const auto start = std::chrono::steady_clock::now();
+    if (!vehicles_.empty())
+    {
+      const bool advanced = advanceStepByStep(t);
+      cpu_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return advanced;
+    }
     for (;;)
     {
       bool fed = true;
@@ -267,6 +303,68 @@ class Stepper
   double cpuSeconds() const { return cpu_; }
 
  private:
+  /// With dynamic vehicles: one step at a time, as World::advanceTo orders them (the tether whose next step
+  /// comes first), each dynamic vehicle's thrust set before its tether steps (VehicleDriver::beforeStep) and
+  /// the kinematic paths fed up to it. False, with runError() set, when something is refused.
+  bool advanceStepByStep(double t)
+  {
+    for (;;)
+    {
+      double next = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < world_.size(); ++i)
+      {
+        if (world_.tether(i).stepFits(t))
+        {
+          next = std::min(next, world_.tether(i).nextStepTime());
+        }
+      }
+      if (!std::isfinite(next))
+      {
+        return advanceWorld(t);
+      }
+      if (!feedUpTo(next))
+      {
+        return false;
+      }
+      for (auto& [i, driver] : vehicles_)
+      {
+        Tether& sim = world_.tether(i);
+        if (sim.stepFits(next))
+        {
+          const Status set = driver.beforeStep(sim);
+          if (!set.ok)
+          {
+            run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + set.message;
+            return false;
+          }
+        }
+      }
+      if (!advanceWorld(next))
+      {
+        return false;
+      }
+    }
+  }
+
+  /// Feeds every kinematic path up to t; false, with runError() set, when a sample is refused.
+  bool feedUpTo(double t)
+  {
+    for (std::size_t i = 0; i < drivers_.size(); ++i)
+    {
+      while (!drivers_[i].fedUpTo(t))
+      {
+        double reach = t;
+        const Status status = drivers_[i].feed(world_.tether(i), t, &reach);
+        if (!status.ok)
+        {
+          run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + status.message;
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   /// World::advanceTo(t); false, with runError() set, when it is refused.
   bool advanceWorld(double t)
   {
@@ -283,6 +381,7 @@ class Stepper
   const std::vector<ScenarioTether>& tethers_;
   World& world_;
   std::vector<PathDriver> drivers_;
+  std::vector<std::pair<std::size_t, VehicleDriver>> vehicles_;
   double cpu_ = 0.0;
   std::string run_error_;
   std::string observer_error_;
@@ -309,6 +408,12 @@ std::size_t writeOutputs(const Scenario& scenario, const World& world, Stepper& 
     for (std::size_t i = 0; i < each.size(); ++i)
     {
       writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
+    }
+    for (std::size_t j = 0; j < stepper.vehicles().size(); ++j)
+    {
+      const auto& [i, driver] = stepper.vehicles()[j];
+      writeVehicleRow(files[2 * each.size() + j].file, t_out, world.tether(i), driver);
+      ++each[i].vehicle_rows;
     }
     if (topology_file != nullptr)
     {

@@ -18,6 +18,7 @@
 #include "rov_tether/spec/obstacle_reader.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
+#include "vehicle_yaml.hpp"
 
 namespace rov_tether
 {
@@ -79,42 +80,9 @@ std::string readCameras(const YAML::Node& node, double duration, std::vector<Sce
   return "";
 }
 
-/// Reads a vehicle path of [t, x, y, z] waypoints; "" or a message naming `field`.
-std::string readPath(const YAML::Node& path, const std::string& field, std::vector<Waypoint>* vehicle)
-{
-  if (!path.IsSequence() || path.size() == 0)
-  {
-    return field + ": expected a non-empty list of [t, x, y, z] waypoints (omit it for a free end)";
-  }
-  for (std::size_t k = 0; k < path.size(); ++k)
-  {
-    double values[4];
-    const std::string point = field + "[" + std::to_string(k) + "]";
-    const std::string error = readVector(path[k], point, 4, values);
-    if (!error.empty())
-    {
-      return error;
-    }
-    if (values[0] < 0.0)
-    {
-      return point + ": time " + std::to_string(values[0]) + " s must be >= 0";
-    }
-    if (!vehicle->empty() && values[0] < vehicle->back().time)
-    {
-      return point + ": time " + std::to_string(values[0]) + " s is before the previous waypoint's";
-    }
-    if (std::abs(values[1]) > Tether::kMaxCoordinate || std::abs(values[2]) > Tether::kMaxCoordinate ||
-        std::abs(values[3]) > Tether::kMaxCoordinate)
-    {
-      return point + ": each coordinate must be within +-1e6 m";
-    }
-    vehicle->push_back({values[0], Position(values[1], values[2], values[3])});
-  }
-  return "";
-}
-
 /// Reads one entry of `tethers` (see ScenarioTether); "" or a message naming the field.
-std::string readTether(const YAML::Node& node, const std::string& field, ScenarioTether* tether)
+std::string readTether(const YAML::Node& node, const std::string& field, const std::string& base_dir,
+                       ScenarioTether* tether)
 {
   if (!node.IsMap())
   {
@@ -150,10 +118,12 @@ std::string readTether(const YAML::Node& node, const std::string& field, Scenari
   {
     return error;
   }
-  return node["vehicle"] ? readPath(node["vehicle"], field + ".vehicle", &tether->vehicle) : "";
+  return node["vehicle"] ? scenario_yaml::readVehicle(node["vehicle"], field + ".vehicle", base_dir, &tether->vehicle,
+                                                      &tether->dynamic)
+                         : "";
 }
 
-std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tethers)
+std::string readTethers(const YAML::Node& node, const std::string& base_dir, std::vector<ScenarioTether>* tethers)
 {
   if (!node.IsSequence() || node.size() == 0)
   {
@@ -163,7 +133,7 @@ std::string readTethers(const YAML::Node& node, std::vector<ScenarioTether>* tet
   {
     ScenarioTether tether;
     const std::string field = "tethers[" + std::to_string(k) + "]";
-    const std::string error = readTether(node[k], field, &tether);
+    const std::string error = readTether(node[k], field, base_dir, &tether);
     if (!error.empty())
     {
       return error;
@@ -210,7 +180,7 @@ std::string checkScenarioKeys(const YAML::Node& root)
 }
 
 /// The tethers: either the `tethers` list or one tether at the top level (params, spool, vehicle).
-std::string readScenarioTethers(const YAML::Node& root, Scenario* result)
+std::string readScenarioTethers(const YAML::Node& root, const std::string& base_dir, Scenario* result)
 {
   if (root["tethers"])
   {
@@ -224,7 +194,7 @@ std::string readScenarioTethers(const YAML::Node& root, Scenario* result)
                (std::string(single) == "cameras" ? "; cameras ride only on a single tether's vehicle)" : ")");
       }
     }
-    return readTethers(root["tethers"], &result->tethers);
+    return readTethers(root["tethers"], base_dir, &result->tethers);
   }
   if (root["params"])
   {
@@ -239,7 +209,9 @@ std::string readScenarioTethers(const YAML::Node& root, Scenario* result)
   {
     return error;
   }
-  return root["vehicle"] ? readPath(root["vehicle"], "vehicle", &result->vehicle) : "";
+  return root["vehicle"]
+             ? scenario_yaml::readVehicle(root["vehicle"], "vehicle", base_dir, &result->vehicle, &result->dynamic)
+             : "";
 }
 
 /// `duration` (required) and `output_rate`, each in its range, with at most kMaxOutputTimes output times.
@@ -292,6 +264,10 @@ std::string readScenarioSurroundings(const YAML::Node& root, const std::string& 
     {
       return "cameras: a camera rides on the vehicle, and this scenario has no vehicle path";
     }
+    if (!result->cameras.empty() && result->dynamic)
+    {
+      return "cameras: not with a dynamic vehicle (a camera rides on the path's poses, not on the body's)";
+    }
   }
   if (root["tether_contact"])
   {
@@ -320,7 +296,7 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
   {
     result.description = root["description"].as<std::string>();
   }
-  error = readScenarioTethers(root, &result);
+  error = readScenarioTethers(root, base_dir, &result);
   if (error.empty())
   {
     error = readScenarioTimes(root, &result);

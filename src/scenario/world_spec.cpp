@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "rov_tether/geometry/make_obstacle.hpp"
+#include "rov_tether/scenario/vehicle_driver.hpp"
 
 namespace rov_tether
 {
@@ -92,6 +93,10 @@ WorldSpec worldSpecOf(const Scenario& scenario)
 
 Tether makeTether(const ScenarioTether& tether)
 {
+  if (tether.dynamic)
+  {
+    return Tether(tether.params, tether.spool, startAttachment(*tether.dynamic), 0.0);
+  }
   if (tether.vehicle.empty())
   {
     return Tether(tether.params, tether.spool, 0.0);
@@ -113,6 +118,11 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     if (!added.ok)
     {
       return "tethers: " + added.message;
+    }
+    const std::string attached = attachDynamicVehicle(tether, &world->tether(world->size() - 1));
+    if (!attached.empty())
+    {
+      return (spec.tethers.size() == 1 ? "" : "tethers: " + tether.name + ": ") + attached;
     }
   }
   std::vector<std::unique_ptr<Obstacle>> obstacles;

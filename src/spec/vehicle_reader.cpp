@@ -55,7 +55,7 @@ std::string readControllerGains(const YAML::Node& map, const std::string& prefix
   const std::string file = prefix.empty() ? "" : prefix + ": ";
   const std::string at = file + "controller: ";
   const char* const keys =
-      "bandwidth, damping_ratio, integral_ratio, proportional, integral, derivative, integral_limit";
+      "bandwidth, damping_ratio, integral_ratio, level_bandwidth, proportional, integral, derivative, integral_limit";
   if (!map.IsMap())
   {
     return at + "expected a map (" + keys + ")";
@@ -63,13 +63,11 @@ std::string readControllerGains(const YAML::Node& map, const std::string& prefix
   // The design keys, then the gain keys (read into `given`, copied over the design where given).
   ControllerDesign design;
   ControllerGains given;
-  const std::vector<Field> fields = {{"bandwidth", 4, design.bandwidth.data()},
-                                     {"damping_ratio", 1, &design.damping_ratio},
-                                     {"integral_ratio", 1, &design.integral_ratio},
-                                     {"proportional", 4, given.proportional.data()},
-                                     {"integral", 4, given.integral.data()},
-                                     {"derivative", 4, given.derivative.data()},
-                                     {"integral_limit", 4, given.integral_limit.data()}};
+  const std::vector<Field> fields = {
+      {"bandwidth", 4, design.bandwidth.data()},      {"damping_ratio", 1, &design.damping_ratio},
+      {"integral_ratio", 1, &design.integral_ratio},  {"level_bandwidth", 1, &design.level_bandwidth},
+      {"proportional", 4, given.proportional.data()}, {"integral", 4, given.integral.data()},
+      {"derivative", 4, given.derivative.data()},     {"integral_limit", 4, given.integral_limit.data()}};
   std::vector<std::string> problems;
   std::set<std::string> seen;
   for (const auto& entry : map)

@@ -24,7 +24,8 @@ void usage(std::FILE* out)
                "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
                "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
                "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
-               "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv.\n"
+               "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv; with a dynamic vehicle\n"
+               "  (`vehicle: {model: dynamic, ...}`), DIR/vehicle.csv.\n"
                "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
                "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's).\n"
                "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
@@ -174,6 +175,14 @@ void printWritten(const rov_tether::Scenario& scenario, const std::string& out_d
         "tether %-8s deployed end %.3f m, max tension %.4g N; wrote %s/%s/state.csv (%zu rows), shape.csv "
         "(%zu rows)\n",
         t.name.c_str(), t.deployed_end, t.max_tension, out_dir.c_str(), t.name.c_str(), t.state_rows, t.shape_rows);
+  }
+  for (const auto& t : s.tethers.empty() ? std::vector<rov_tether::RunSummary>{s} : s.tethers)
+  {
+    if (t.vehicle_rows > 0)
+    {
+      std::printf("wrote           %s%s/vehicle.csv (%zu rows): a dynamic vehicle\n", out_dir.c_str(),
+                  scenario.tethers.empty() ? "" : ("/" + t.name).c_str(), t.vehicle_rows);
+    }
   }
   if (scenario.usesWorld())
   {

@@ -109,6 +109,9 @@ class Tether
   Status setVehicleThrust(const Wrench& thrust);
   /// The dynamic vehicle's body (pose, velocity, parameters), or null while the vehicle end is kinematic.
   const VehicleBody* vehicleBody() const { return vehicle_ ? &vehicle_->body() : nullptr; }
+  /// What the dynamic vehicle's last sub-step applied of its thrust command (within the limits, the axes held),
+  /// or null while the vehicle end is kinematic.
+  const ThrustUsed* vehicleThrustUsed() const { return vehicle_ ? &vehicle_->thrustUsed() : nullptr; }
   /// True while a dynamic vehicle is attached.
   bool vehicleDynamic() const { return vehicle_ != nullptr; }
 

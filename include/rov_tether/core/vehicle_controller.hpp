@@ -28,8 +28,12 @@ struct ControllerDesign
   /// The integral's pole at -integral_ratio * omega: slow against the pair, so it removes a steady offset
   /// (a current, a tether's pull) in about 1 / (integral_ratio omega) = 5 s without changing the pair.
   double integral_ratio = 0.2;
+  /// Natural frequency of the optional level hold on roll and pitch [rad/s]: 0, none (the default: roll and
+  /// pitch left to the restoring moment). Else a PD per axis with kp = I' omega^2, kd = 2 zeta omega I' - d
+  /// (I' inertia with added inertia, d linear damping; kd held at 0 when negative: the vehicle damps more).
+  double level_bandwidth = 0.0;
 
-  /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio >= 0. Names the field and value.
+  /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio, level_bandwidth >= 0. Names the field and value.
   Status validate() const;
 };
 
@@ -64,8 +68,13 @@ struct ControllerGains
   Vector4 integral_limit{113.7, 113.7, 160.8, 30.4};
   /// Anti-windup by conditional integration (VehicleController). Off only to show what it prevents (tests).
   bool anti_windup = true;
+  /// Optional level hold, a PD on roll and pitch [N m/rad; N m s/rad] (roll, pitch) towards level: 0 by
+  /// default, the two axes left to the restoring moment. ControllerDesign::level_bandwidth places it.
+  Eigen::Vector2d level_proportional = Eigen::Vector2d::Zero();
+  Eigen::Vector2d level_derivative = Eigen::Vector2d::Zero();
 
-  /// Finite; proportional > 0; integral, derivative, integral_limit >= 0. Names the field, axis and value.
+  /// Finite; proportional > 0; integral, derivative, integral_limit, level gains >= 0. Names the field, axis
+  /// and value.
   Status validate() const;
 
   /// The pole-placement design above for `vehicle`, the integral limited at its thrust limits. kd is
@@ -78,10 +87,10 @@ struct ControllerGains
 struct ControllerOutput
 {
   /// Body-frame thrust [Fx, Fy, Fz, Mx, My, Mz] [N, N m], each axis within the vehicle's thrust_limit; roll
-  /// and pitch are always 0.
+  /// and pitch 0 without the level hold.
   Wrench thrust = Wrench::Zero();
-  /// Bit i set (ThrustUsed's numbering: 0 surge, 1 sway, 2 heave, 5 yaw): the PID asked for more than the
-  /// limit on that axis and was held at it.
+  /// Bit i set (ThrustUsed's numbering: 0 surge, 1 sway, 2 heave, 3 roll, 4 pitch, 5 yaw): the controller
+  /// asked for more than the limit on that axis and was held at it.
   std::uint8_t saturated_axes = 0;
   /// Bit i set (same numbering): the integral went beyond its integral_limit in this update and was held at it.
   std::uint8_t integral_held_axes = 0;
@@ -107,8 +116,13 @@ struct VehicleSetpoint
  *    e = R^T (p_ref - p); the derivative term acts on the measured body velocity, kd (R^T v_ff - v);
  *  - yaw: the heading error wrapped to [-pi, pi] (the short way round), the derivative on the body yaw rate r
  *    (the heading's rate while the vehicle is level);
- *  - roll and pitch are not controlled: their thrust is 0 and the restoring moment (the centre of buoyancy
- *    above the centre of gravity: 0.01 m on the BlueROV2 Heavy) rights the vehicle.
+ *  - roll and pitch are by default not controlled: their thrust is 0 and the restoring moment (the centre of
+ *    buoyancy above the centre of gravity: 0.01 m on the BlueROV2 Heavy) rights the vehicle. That is weak:
+ *    1.3 N m/rad on the BlueROV2 Heavy, against the added-mass (Munk) moment (Z_wdot - X_udot) u w = 12.3 u w
+ *    N m of a vehicle moving forward and down at once, which pitches it tens of degrees in a dive. The
+ *    optional level hold (level_proportional, level_derivative: a PD on the tilt, as an autopilot's
+ *    stabilised mode) keeps it level: torque kp (z_b x up) - kd [p, q] on roll and pitch, `up` the world's z
+ *    in the body frame, held at the roll and pitch thrust limits (reported in bits 3 and 4).
  * Each axis's output kp e + I + D is held within +-thrust_limit (reported, ControllerOutput).
  *
  * Anti-windup: conditional integration (clamping). The integral is advanced, I += ki e dt, only when the
@@ -148,6 +162,7 @@ class VehicleController
  private:
   ControllerGains gains_;
   Vector4 limit_{113.7, 113.7, 160.8, 30.4};  ///< Thrust limits of the controlled axes [N; N m].
+  Eigen::Vector2d level_limit_{35.1, 19.3};   ///< Roll and pitch thrust limits [N m].
   Vector4 integral_ = Vector4::Zero();
 };
 

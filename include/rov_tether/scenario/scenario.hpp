@@ -1,11 +1,14 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rov_tether/core/obstacle.hpp"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/core/vehicle_controller.hpp"
+#include "rov_tether/core/vehicle_params.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
 
 namespace rov_tether
@@ -28,13 +31,40 @@ using ScenarioCamera = spec::CameraSpec;
 /// at two waypoints with the same time the later one wins from that time on (a jump). Zero for no path.
 Position pathAt(const std::vector<Waypoint>& path, double t);
 
+/// A body-frame thrust command at a time: time [s], wrench [Fx, Fy, Fz, Mx, My, Mz] [N, N m].
+struct WrenchPoint
+{
+  double time;
+  Wrench wrench;
+};
+
+/// The thrust of a schedule at time t [s], as pathAt: piecewise-linear, held before the first and after the last
+/// point; at two points with the same time the later one wins from that time on. Zero for no schedule.
+Wrench wrenchAt(const std::vector<WrenchPoint>& schedule, double t);
+
+/// A dynamic vehicle at a tether's end (the runner's `vehicle: {model: dynamic, ...}`): a VehicleBody coupled
+/// into the `direct` solver's step (Tether::attachVehicleBody), driven by a thrust schedule or, following the
+/// tether's vehicle path as its setpoint, by the built-in controller.
+struct DynamicVehicle
+{
+  VehicleParams params;
+  ControllerGains controller;                                   ///< Used when `wrench` is empty.
+  Position start = Position::Zero();                            ///< The body origin at t = 0, world frame [m].
+  double start_yaw = 0.0;                                       ///< Heading at t = 0 [rad]; the controller holds it.
+  Eigen::Vector3d attachment_offset = Eigen::Vector3d::Zero();  ///< The tether's attachment, body frame [m].
+  std::vector<WrenchPoint> wrench;  ///< Non-empty: the thrust command, and no controller runs.
+};
+
 /// One tether of a scenario's `tethers:` list: its own parameters, spool and vehicle path.
 struct ScenarioTether
 {
   std::string name;  ///< Directory name under the output directory (isTetherName: the node's rule too).
   TetherParams params;
   Position spool = Position::Zero();
-  std::vector<Waypoint> vehicle;  ///< Empty: a free end.
+  /// Empty: a free end (or a dynamic vehicle under a thrust schedule). With `dynamic`, the controller's
+  /// setpoints; otherwise the kinematic vehicle's positions.
+  std::vector<Waypoint> vehicle;
+  std::optional<DynamicVehicle> dynamic = std::nullopt;  ///< A dynamic vehicle; none: the kinematic end of `vehicle`.
 };
 
 /**
@@ -45,6 +75,7 @@ struct ScenarioTether
  *   params: {iterations: 5, drag: 0.9}   # any model parameter; missing ones take defaults
  *   spool: [x, y, z]                    # [m]
  *   vehicle: [[t, x, y, z], ...]        # [s, m]; followed piecewise-linearly; omit for a free end
+ *   # or vehicle: {model: dynamic, params, start, attachment_offset, path | wrench, controller} (docs/runner.md)
  *   duration: 20.0                      # [s]
  *   output_rate: 10.0                   # rows per simulated second
  *   cameras: [{name, position, orientation, rate, width, height, K, D}]   # optional, see ScenarioCamera
@@ -57,7 +88,8 @@ struct Scenario
   std::string description;
   TetherParams params;
   Position spool = Position::Zero();
-  std::vector<Waypoint> vehicle;  ///< Empty: the tether hangs from its spool with a free end.
+  std::vector<Waypoint> vehicle;          ///< Empty: the tether hangs from its spool with a free end.
+  std::optional<DynamicVehicle> dynamic;  ///< `vehicle: {model: dynamic, ...}`: see ScenarioTether.
   double duration = 0.0;
   double output_rate = 10.0;
   std::vector<ScenarioCamera> cameras;  ///< On the vehicle; only with a vehicle path.
@@ -89,8 +121,9 @@ class PathDriver
       : params_(scenario.params), spool_(scenario.spool), vehicle_(scenario.vehicle)
   {
   }
+  /// A dynamic vehicle's path is its controller's setpoints (VehicleDriver), not samples: none are fed.
   explicit PathDriver(const ScenarioTether& tether)
-      : params_(tether.params), spool_(tether.spool), vehicle_(tether.vehicle)
+      : params_(tether.params), spool_(tether.spool), vehicle_(tether.dynamic ? noPath() : tether.vehicle)
   {
   }
   /// A simulation set up for the scenario: spool, parameters, vehicle at its t = 0 position (makeTether).
@@ -110,6 +143,8 @@ class PathDriver
   static constexpr double kSampleInterval = 0.01;
 
  private:
+  static const std::vector<Waypoint>& noPath();
+
   const TetherParams& params_;
   const Position& spool_;
   const std::vector<Waypoint>& vehicle_;

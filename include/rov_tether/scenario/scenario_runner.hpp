@@ -34,6 +34,7 @@ struct RunSummary
   std::size_t outrun_rows = 0;       ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
   double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
   std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
+  std::size_t vehicle_rows = 0;      ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
   std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
 };
 

@@ -50,12 +50,14 @@ extern const char* const kTetherNameRule;
 WorldSpec worldSpecOf(const Scenario& scenario);
 
 /// One tether of a description as a simulation: at its spool, the vehicle end at its path's t = 0
-/// position (or laid down from the spool without a path), at time 0.
+/// position (or laid down from the spool without a path; a dynamic vehicle's at its start attachment point,
+/// still kinematic: buildWorld attaches the body), at time 0.
 Tether makeTether(const ScenarioTether& tether);
 
 /**
  * Builds `spec` into `world` (empty; an error leaves it half built, to be thrown away): validateWorldSpec,
- * contact between tethers, every tether (makeTether) in order, then every obstacle, each built once
+ * contact between tethers, every tether (makeTether, and its dynamic vehicle attached: attachDynamicVehicle,
+ * which refuses a solver other than `direct`) in order, then every obstacle, each built once
  * (makeObstacle: a mesh file is read here and only here). What was built is in the World: its tethers
  * (World::tether) and obstacles (World::obstacle, with their specs and poses). Returns "" or the error,
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
