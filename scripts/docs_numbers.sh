@@ -5,7 +5,8 @@
 #   bash scripts/docs_numbers.sh spool_payout  one of them
 # Where the numbers are quoted: spool_payout in the README's quick start; the shipped scenarios' table
 # (pillar_wrap's tension and deployed length, the "try" variants) and the camera dataset example in
-# docs/runner.md; heavy_dive and its strain-rule variant in docs/model.md (How the tension winches work).
+# docs/runner.md; heavy_dive and its strain-rule variant in docs/model.md (How the tension winches work);
+# pillar_wrap and pillar_wrap_dynamic with a slow winch (the snag) in docs/runner.md, "A dynamic vehicle".
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh" >/dev/null
 RUN="$BUILD_DIR/devel/lib/rov_tether/rov_tether_run"
@@ -19,7 +20,9 @@ if ((${#names[@]} == 0)); then
   # The runs the docs quote besides the shipped scenarios as they are: "file [--set ...]" each.
   variants=("paper_fig4_iterations --set iterations=1"
             "heavy_dive --set winch_mode=strain --set solver=pbd"
-            "datasets/forward_camera_dive")
+            "datasets/forward_camera_dive"
+            "pillar_wrap --set max_winch_speed=0.3"
+            "pillar_wrap_dynamic --set max_winch_speed=0.3")
 fi
 run() {
   local name="$1" out="$2"
