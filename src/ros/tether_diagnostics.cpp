@@ -147,6 +147,10 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     status.mergeSummaryf(DiagnosticStatus::ERROR, "physics slower than real time (%.2fx)", schedule.real_time_factor);
   }
   diagnoseTopology(status);
+  if (extra_)
+  {
+    extra_(status);
+  }
 }
 
 void TetherDiagnostics::diagnoseTopology(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -76,6 +76,23 @@ void shareOneClock(const std::vector<std::string>& names, std::vector<TetherSetu
   }
 }
 
+/// Dynamic vehicles publish world_frame -> rov_frame on tf: two of them under one rov_frame would fight over it.
+void checkVehicleFrames(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups)
+{
+  for (std::size_t i = 0; i < setups.size(); ++i)
+  {
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      if (setups[i].options.vehicle_model == "dynamic" && setups[j].options.vehicle_model == "dynamic" &&
+          setups[i].options.rov_frame == setups[j].options.rov_frame)
+      {
+        throw std::runtime_error("tethers " + names[j] + " and " + names[i] + ": both dynamic vehicles publish tf " +
+                                 "frame '" + setups[i].options.rov_frame + "': give each its own rov_frame");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
@@ -95,6 +112,7 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
       setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh_, name), shared));
     }
     shareOneClock(names, &setups);
+    checkVehicleFrames(names, setups);
   }
   // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
   XmlRpc::XmlRpcValue top;
