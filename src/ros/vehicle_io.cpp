@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace rov_tether::ros_layer
 {
@@ -140,8 +141,24 @@ VehicleIo::VehicleIo(const TetherSetup& setup, Tether& tether, const std::string
       vehicle_params_(setup.vehicle),
       tether_(tether),
       label_(label),
-      command_(setup.options.cmd_wrench_timeout)
+      command_(setup.options.cmd_wrench_timeout),
+      last_control_time_(std::nan(""))
 {
+  // The gains were checked against this vehicle when the file was read (readControllerGains); the built-in
+  // defaults are the BlueROV2 Heavy's design. Refused, the node cannot follow setpoints: it says so at start.
+  const Status configured = controller_.configure(vehicle_params_, setup.gains);
+  if (!configured)
+  {
+    throw std::runtime_error("tether_node" + label + ": the vehicle controller refused its gains: " + configured.message);
+  }
+}
+
+void VehicleIo::restarted()
+{
+  start_due_ = true;
+  setpoints_.clear();
+  controller_.reset();
+  last_control_time_ = std::nan("");
 }
 
 void VehicleIo::advertise(const ros::NodeHandle& private_nh, ros::CallbackQueueInterface* input_queue)
@@ -186,18 +203,42 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
   return true;
 }
 
-Status VehicleIo::takePose(double /*t*/, const Eigen::Isometry3d& vehicle)
+Status VehicleIo::takePose(double t, const Eigen::Isometry3d& vehicle)
 {
   if (start_due_ && !options_.has_vehicle_start)
   {
     return start(vehicle) ? Status::success() : Status::error("the dynamic vehicle could not start at this pose");
   }
-  ++ignored_poses_;
-  ROS_WARN_THROTTLE(10.0,
-                    "tether_node%s: vehicle_model dynamic: poses on the pose input are ignored once the vehicle has "
-                    "started (%llu so far); drive it with ~cmd_wrench",
-                    label_.c_str(), static_cast<unsigned long long>(ignored_poses_));
+  if (tether_.vehicleDynamic())
+  {
+    setpoints_.add(t, vehicle);  // stamps only increase: PoseInput refuses older ones
+    ++setpoint_count_;
+  }
   return Status::success();
+}
+
+Wrench VehicleIo::controlledThrust()
+{
+  const double now = tether_.time();
+  const double dt = std::isnan(last_control_time_) ? tether_.params().time_step : now - last_control_time_;
+  if (!(dt > 0.0))
+  {
+    return thrust_;  // the physics did not move since the last update (a tick that took no step)
+  }
+  const Eigen::Isometry3d target = setpoints_.at(now);
+  VehicleSetpoint setpoint;
+  setpoint.position = target.translation();
+  setpoint.yaw = VehicleController::yawOf(Eigen::Quaterniond(target.rotation()));
+  ControllerOutput output;
+  const Status status = controller_.update(dt, setpoint, *tether_.vehicleBody(), &output);
+  if (!status)
+  {
+    ROS_WARN_THROTTLE(1.0, "tether_node%s: vehicle controller: %s (zero thrust)", label_.c_str(),
+                      status.message.c_str());
+    return Wrench::Zero();
+  }
+  last_control_time_ = now;
+  return output.thrust;
 }
 
 void VehicleIo::beforeAdvance(const ros::Time& now)
@@ -211,17 +252,41 @@ void VehicleIo::beforeAdvance(const ros::Time& now)
     return;
   }
   bool went_stale = false;
+  bool fresh = false;
   double age = 0.0;
+  Wrench commanded;
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
-    thrust_ = command_.thrustAt(now, &went_stale);
+    commanded = command_.thrustAt(now, &went_stale);
+    fresh = command_.fresh(now);
     age = command_.age(now);
   }
+  const bool controlled = !fresh && !setpoints_.empty();
   if (went_stale)
   {
-    ROS_WARN("tether_node%s: ~cmd_wrench is stale (the last came %.3f s ago, cmd_wrench_timeout %.3f s): zero thrust "
-             "until the next one",
-             label_.c_str(), age, options_.cmd_wrench_timeout);
+    ROS_WARN("tether_node%s: ~cmd_wrench is stale (the last came %.3f s ago, cmd_wrench_timeout %.3f s): %s",
+             label_.c_str(), age, options_.cmd_wrench_timeout,
+             controlled ? "the controller follows the poses again" : "zero thrust until the next one");
+  }
+  if (fresh)
+  {
+    thrust_ = commanded;  // a fresh command wins over the setpoints
+    last_control_time_ = std::nan("");
+    driver_ = "cmd_wrench";
+  }
+  else if (controlled)
+  {
+    if (std::isnan(last_control_time_))
+    {
+      controller_.reset();  // it takes over: its integrals start from zero
+    }
+    thrust_ = controlledThrust();
+    driver_ = "controller";
+  }
+  else
+  {
+    thrust_ = Wrench::Zero();
+    driver_ = "none";
   }
   const Status status = tether_.setVehicleThrust(thrust_);  // finite: refused on arrival otherwise
   if (!status)
@@ -274,7 +339,8 @@ void VehicleIo::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("cmd_wrench refused", refused);
   status.add("cmd_wrench stale periods", stale);
   status.add("cmd_wrench fresh", fresh ? "yes" : "no");
-  status.add("poses ignored (dynamic vehicle)", ignored_poses_);
+  status.add("setpoints taken (poses after the start)", setpoint_count_);
+  status.add("thrust from", driver_);
   if (const VehicleBody* body = tether_.vehicleBody())
   {
     status.addf("vehicle speed [m/s]", "%.4f", body->velocity().head<3>().norm());

@@ -222,5 +222,50 @@ TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
   EXPECT_GT(io.pose().translation().x(), 2.5);
 }
 
+// Poses after the start are setpoints for the built-in controller, but a fresh ~cmd_wrench wins: while zero
+// thrust is commanded the vehicle stays; once the commands stop, the controller brings it to the setpoint.
+TEST(VehicleIo, PosesAfterTheStartAreSetpointsUnlessAFreshCommandWins)
+{
+  TetherSetup setup = setupFrom("{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
+                                "initial_deployed_length: 8.0, winch_mode: locked}");
+  Tether tether(setup.params, Position::Zero(), 0.0);
+  VehicleIo io(setup, tether, "");
+  io.beforeAdvance(ros::Time(1.0));
+  ASSERT_TRUE(tether.vehicleDynamic());
+  const Eigen::Isometry3d setpoint = startPose(Eigen::Vector4d(3.0, 0.5, -1.0, 0.3));
+  geometry_msgs::WrenchStamped zero;  // a command of no thrust, fresh
+  int k = 0;
+  const auto tick = [&](bool command)
+  {
+    ++k;
+    if (command)
+    {
+      io.receive(zero, ros::Time(1.0 + 0.1 * k));
+    }
+    ASSERT_TRUE(test::succeeded(io.takePose(tether.time() + 0.1, setpoint)));
+    io.beforeAdvance(ros::Time(1.0 + 0.1 * k));
+    ASSERT_TRUE(test::succeeded(tether.advanceTo(0.1 * k)));
+  };
+  for (int i = 0; i < 50; ++i)  // 5 s of zero thrust commanded, the setpoint 1.1 m away
+  {
+    tick(true);
+  }
+  // Not towards x = 3: the controller would have pushed with kp 1.1 m = 31 N and covered most of the metre in
+  // 5 s (1 rad/s). What moves it is the slack cable settling from its laid-out shape and its 1 N of net weight
+  // (measured 2.4 cm in x).
+  EXPECT_NEAR(io.pose().translation().x(), 2.0, 0.05);
+  EXPECT_NEAR(io.pose().translation().y(), 0.0, 0.05);
+  for (int i = 0; i < 300; ++i)  // 30 s without commands: the controller (1 rad/s, integral in ~5 s) settles
+  {
+    tick(false);
+  }
+  const Eigen::Isometry3d reached = io.pose();
+  EXPECT_NEAR(reached.translation().x(), 3.0, 0.02);
+  EXPECT_NEAR(reached.translation().y(), 0.5, 0.02);
+  EXPECT_NEAR(reached.translation().z(), -1.0, 0.02);  // its weight held by the integral
+  EXPECT_NEAR(VehicleController::yawOf(Eigen::Quaterniond(reached.rotation())), 0.3, 0.01);
+  EXPECT_LT(tether.vehicleBody()->velocity().head<3>().norm(), 0.01);
+}
+
 }  // namespace
 }  // namespace rov_tether::ros_layer

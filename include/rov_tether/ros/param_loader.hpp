@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/core/vehicle_controller.hpp"
 #include "rov_tether/core/vehicle_params.hpp"
 
 namespace rov_tether::ros_layer
@@ -77,6 +78,9 @@ struct TetherSetup
   TetherParams params;
   NodeOptions options;
   VehicleParams vehicle;  ///< From options.vehicle_params (the defaults when "").
+  /// The dynamic vehicle's controller (the file's `controller:` block, or the design for its vehicle; the
+  /// defaults when vehicle_params is "").
+  ControllerGains gains;
 };
 
 /// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of

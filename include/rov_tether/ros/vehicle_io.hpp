@@ -21,7 +21,9 @@
 
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/core/vehicle_controller.hpp"
 #include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/vehicle_history.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -83,10 +85,12 @@ class WrenchCommand
 /**
  * One tether's dynamic vehicle on ROS (TetherNode owns it with vehicle_model: dynamic): starts the tether's
  * VehicleBody (Tether::attachVehicleBody) at vehicle_start, or without it at the first pose taken from the
- * pose input, at rest, and again after every reset; before each physics tick sets the thrust from
- * ~cmd_wrench (WrenchCommand: zero when stale, warned once per stale period); with each ~state publishes
- * ~odom (when subscribed) and tf world_frame -> rov_frame (always), stamped with the physics time. Poses
- * taken after the start are ignored, with a throttled warning (no controller to follow them yet).
+ * pose input, at rest, and again after every reset; before each physics tick sets the thrust: a fresh
+ * ~cmd_wrench wins (WrenchCommand); without one, when poses came after the start, the built-in
+ * VehicleController's thrust towards them (the poses are setpoints, interpolated at the physics time, as a
+ * kinematic vehicle's end is); else zero (a command gone stale is warned once per stale period). With each
+ * ~state it publishes ~odom (when subscribed) and tf world_frame -> rov_frame (always), stamped with the
+ * physics time.
  */
 class VehicleIo
 {
@@ -97,18 +101,19 @@ class VehicleIo
   /// Subscribes ~cmd_wrench under `private_nh` on `input_queue` (the input thread), advertises ~odom and /tf.
   void advertise(const ros::NodeHandle& private_nh, ros::CallbackQueueInterface* input_queue);
   /// Physics thread: a pose taken from the pose input at time t [s] (PoseInput's sink). Starts the vehicle
-  /// when it waits for its first pose; later poses are ignored (warned).
+  /// when it waits for its first pose; later poses are the controller's setpoints.
   Status takePose(double t, const Eigen::Isometry3d& vehicle);
   /// Physics thread, before the physics advances at ROS time `now`: starts the vehicle at vehicle_start
   /// when due, then sets its thrust.
   void beforeAdvance(const ros::Time& now);
   /// With each ~state: ~odom and tf at the tether's physics time.
   void publishState();
-  /// After the tether was reset (which ends the dynamic vehicle): it starts again (beforeAdvance, takePose).
-  void restarted() { start_due_ = true; }
+  /// After the tether was reset (which ends the dynamic vehicle): it starts again (beforeAdvance, takePose),
+  /// with no setpoint and the controller's integrals at zero.
+  void restarted();
   /// The body's pose in the world frame; identity before the start.
   Eigen::Isometry3d pose() const;
-  /// The /diagnostics values of the vehicle: commands taken, refused, stale periods, thrust.
+  /// The /diagnostics values of the vehicle: commands taken, refused, stale periods, setpoints, what drives it.
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   /// Any thread: a command message that arrived at `now` (the ~cmd_wrench callback).
@@ -117,6 +122,8 @@ class VehicleIo
  private:
   /// Attaches the body at `pose` at rest; logs why not.
   bool start(const Eigen::Isometry3d& pose);
+  /// The controller's thrust towards the setpoint at the tether's time (zero when refused, logged).
+  Wrench controlledThrust();
 
   NodeOptions options_;
   VehicleParams vehicle_params_;
@@ -126,7 +133,11 @@ class VehicleIo
   std::mutex command_mutex_;
   WrenchCommand command_;
   Wrench thrust_ = Wrench::Zero();  ///< The command applied on the last tick (before saturation) [N, N m].
-  std::uint64_t ignored_poses_ = 0;
+  VehicleController controller_;
+  VehicleHistory setpoints_;         ///< Poses taken after the start (world frame, vehicle origin).
+  std::uint64_t setpoint_count_ = 0;
+  double last_control_time_ = 0.0;   ///< Tether time of the controller's last update [s]; NaN: none since it took over.
+  const char* driver_ = "none";      ///< What set the last thrust: "cmd_wrench", "controller" or "none".
   ros::Subscriber command_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher tf_pub_;
