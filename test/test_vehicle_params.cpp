@@ -32,6 +32,7 @@ added_mass: [6.36, 7.12, 18.68, 0.189, 0.135, 0.222]
 linear_damping: [13.7, 0.0, 33.0, 0.0, 0.8, 0.0]
 quadratic_damping: [141.0, 217.0, 190.0, 1.19, 0.47, 1.5]
 thrust_limit: [113.7, 113.7, 160.8, 35.1, 19.3, 30.4]
+size: [0.457, 0.575, 0.254]
 )";
 
 /// The complete text with the line of `field` replaced by `line` ("" drops it).
@@ -67,6 +68,7 @@ TEST(VehicleParams, ShippedBlueRov2FileIsTheDefaults)
   EXPECT_EQ(read.linear_damping, defaults.linear_damping);
   EXPECT_EQ(read.quadratic_damping, defaults.quadratic_damping);
   EXPECT_EQ(read.thrust_limit, defaults.thrust_limit);
+  EXPECT_EQ(read.size, defaults.size);
   EXPECT_TRUE(defaults.validate().ok) << defaults.validate().message;
 }
 
@@ -114,8 +116,9 @@ TEST(VehicleParams, BadFilesAreRefusedNamingFileAndField)
        "vehicles/test.yaml: thrust_limit: expected a list of 6 numbers"},
       {withLine("center_of_buoyancy", "center_of_buoyancy: [0.0, 0.0, 1000.0]"),
        "vehicles/test.yaml: center_of_buoyancy[2]: must be within +-100 m (got 1000)"},
-      {std::string(kComplete) + "size: [0.46, 0.58, 0.25]\n",
-       "vehicles/test.yaml: size: no vehicle parameter of that name"},
+      {std::string(kComplete) + "length: 0.46\n", "vehicles/test.yaml: length: no vehicle parameter of that name"},
+      {withLine("size", ""), "vehicles/test.yaml: size: missing (expected a list of 3 numbers)"},
+      {withLine("size", "size: [0.457, 0.0, 0.254]"), "vehicles/test.yaml: size[1]: must be > 0 m (got 0)"},
       {std::string(kComplete) + "mass: 14.0\n", "vehicles/test.yaml: mass: given twice"},
       {"[1, 2]", "vehicles/test.yaml: expected a map"},
   };

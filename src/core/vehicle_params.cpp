@@ -61,6 +61,7 @@ Status VehicleParams::validate() const
       checkEach("linear_damping", linear_damping, ">= 0", nonNegative),
       checkEach("quadratic_damping", quadratic_damping, ">= 0", nonNegative),
       checkEach("thrust_limit", thrust_limit, ">= 0", nonNegative),
+      checkEach("size", size, "> 0 m", positive),
   };
   for (const auto& problem : problems)
   {

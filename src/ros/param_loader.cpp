@@ -7,8 +7,10 @@
 #include <sstream>
 #include <vector>
 
+#include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
+#include "rov_tether/spec/vehicle_reader.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -23,7 +25,7 @@ const std::vector<std::string>& nodeOptionNames()
       "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
       "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
       "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",         "world_frame_from_pose",
-      "max_pose_future"};
+      "max_pose_future",    "vehicle_model",      "vehicle_params",      "cmd_wrench_timeout", "vehicle_start"};
   return names;
 }
 
@@ -134,6 +136,29 @@ class OptionReader
     *out = v;
   }
 
+  /// [x, y, z, yaw]: four finite numbers [m, m, m, rad]; `given` says whether it was there.
+  void pose4(const std::string& name, Eigen::Vector4d* out, bool* given)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    const auto& value = dict_[name];
+    Eigen::Vector4d v;
+    bool ok = value.getType() == XmlRpc::XmlRpcValue::TypeArray && value.size() == 4;
+    for (int i = 0; ok && i < 4; ++i)
+    {
+      ok = readNumber(value[i], &v[i]) && std::isfinite(v[i]);
+    }
+    if (!ok)
+    {
+      errors_.push_back(name + ": expected [x, y, z, yaw] in m and rad (four finite numbers)");
+      return;
+    }
+    *out = v;
+    *given = true;
+  }
+
   void fail(const std::string& message) { errors_.push_back(message); }
 
   std::string result() const
@@ -209,6 +234,14 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.text("cable_end_frame", &candidate.cable_end_frame);
   read.numberAbove("wrap_warning_turns", &candidate.wrap_warning_turns, 0.0, 1e6);
   read.numberAbove("snag_ratio", &candidate.snag_ratio, 1.0, 1e9);  // a capstan ratio is at least 1
+  read.text("vehicle_model", &candidate.vehicle_model);
+  read.text("vehicle_params", &candidate.vehicle_params);
+  read.numberAbove("cmd_wrench_timeout", &candidate.cmd_wrench_timeout, 0.0, 3600.0);
+  read.pose4("vehicle_start", &candidate.vehicle_start, &candidate.has_vehicle_start);
+  if (candidate.vehicle_model != "kinematic" && candidate.vehicle_model != "dynamic")
+  {
+    read.fail("vehicle_model = '" + candidate.vehicle_model + "': expected kinematic or dynamic");
+  }
   if (candidate.overload_policy != "reduce_iterations" && candidate.overload_policy != "reduce_markers" &&
       candidate.overload_policy != "none")
   {
@@ -272,6 +305,26 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
   return unknown;
 }
 
+std::string checkVehicleModel(const TetherSetup& setup)
+{
+  if (setup.options.vehicle_model != "dynamic")
+  {
+    return "";
+  }
+  if (setup.params.solver != SolverType::kDirect)
+  {
+    return "vehicle_model dynamic: needs solver direct (solver is '" + toString(setup.params.solver) +
+           "'): only direct couples a vehicle into its step";
+  }
+  if (setup.options.pose_source != "topic")
+  {
+    return "vehicle_model dynamic: needs pose_source topic (pose_source is '" + setup.options.pose_source +
+           "'): the node publishes " + setup.options.world_frame + " -> " + setup.options.rov_frame +
+           " on tf itself and would read its own vehicle back as its input; give poses (setpoints) on pose_topic";
+  }
+  return "";
+}
+
 std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::XmlRpcValue& own, TetherSetup* setup)
 {
   TetherSetup candidate = *setup;
@@ -283,6 +336,14 @@ std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::Xml
       error = loadTetherParams(*source, &candidate.params);
       error = error.empty() ? loadNodeOptions(*source, &candidate.options) : error;
     }
+  }
+  error = error.empty() ? checkVehicleModel(candidate) : error;
+  if (error.empty() && !candidate.options.vehicle_params.empty())
+  {
+    std::string why;
+    const std::string path = resolveMeshFile(candidate.options.vehicle_params, &why);
+    const std::string read = path.empty() ? why : spec::loadVehicleParamsFile(path, &candidate.vehicle, &candidate.gains);
+    error = read.empty() ? "" : "vehicle_params: " + read;
   }
   if (error.empty())
   {

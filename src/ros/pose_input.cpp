@@ -406,7 +406,7 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
     return false;
   }
   const Position attachment = vehicle * options_.attachment_offset;
-  const Status status = tether_.addVehicleSample(stamp.toSec(), attachment);
+  const Status status = sink_ ? sink_(stamp.toSec(), vehicle) : tether_.addVehicleSample(stamp.toSec(), attachment);
   if (!status.ok)
   {
     refuse(status.message);

@@ -69,6 +69,10 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   addMeasures(summary, status);
   mergeAlarms(summary, status);
   diagnoseTopology(status);
+  if (extra_)
+  {
+    extra_(status);
+  }
 }
 
 void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -63,7 +63,10 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
       scheduler_(scheduler),
       index_(scheduler.add(setup.options, *this, name)),
       pose_input_(setup.options, tf, tether_, name, input_nh.getCallbackQueue()),
-      publisher_(private_nh_, withTetherFrames(setup.options, name)),
+      vehicle_io_(setup.options.vehicle_model == "dynamic"
+                      ? std::make_unique<VehicleIo>(setup, tether_, name.empty() ? "" : " " + name)
+                      : nullptr),
+      publisher_(private_nh_, withTetherFrames(setup.options, name), setup.vehicle.size),
       diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_, topology),
       requested_params_(setup.params)
 {
@@ -76,11 +79,20 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
   reconfigure_server_->setConfigMax(configBounds(true));
   reconfigure_server_->updateConfig(paramsToConfig(setup.params));
   reconfigure_server_->setCallback([this](TetherConfig& config, uint32_t level) { onReconfigure(config, level); });
+  if (vehicle_io_)
+  {
+    pose_input_.setVehicleSink([this](double t, const Eigen::Isometry3d& vehicle)
+                               { return vehicle_io_->takePose(t, vehicle); });
+    vehicle_io_->advertise(private_nh_, input_nh.getCallbackQueue());
+    diagnostics_.addExtra([this](diagnostic_updater::DiagnosticStatusWrapper& status)
+                          { vehicle_io_->diagnose(status); });
+  }
   ros::NodeHandle pose_nh(input_nh);
   pose_input_.subscribe(pose_nh);
   const TetherParams& p = tether_.params();
-  ROS_INFO("tether_node%s: %.1f m cable in %zu segments, %s solver, pose from %s, physics at %.0f Hz",
+  ROS_INFO("tether_node%s: %.1f m cable in %zu segments, %s solver, %s vehicle, pose from %s, physics at %.0f Hz",
            name_.empty() ? "" : (" " + name_).c_str(), p.cable_length, p.segmentCount(), toString(p.solver).c_str(),
+           options_.vehicle_model.c_str(),
            options_.pose_source == "topic" ? pose_input_.topic().c_str()
                                            : ("tf " + options_.world_frame + " -> " + options_.rov_frame).c_str(),
            options_.physics_rate);
@@ -90,19 +102,35 @@ void TetherNode::beforeAdvance(const ros::Time& now)
 {
   applyPendingParams();
   pose_input_.poll(now);
+  if (vehicle_io_)
+  {
+    vehicle_io_->beforeAdvance(now);  // after the poll: the first pose may start the vehicle
+  }
 }
 
 void TetherNode::publishState()
 {
-  // The force is of the physics' time, behind the latest pose: its lever arm and frame are the vehicle's then.
-  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, pose_input_.vehicleAt(tether_.time()));
+  // The force is of the physics' time, behind the latest pose: its lever arm and frame are the vehicle's then
+  // (a dynamic vehicle's own pose at that time).
+  vehicle_pose_ = vehicle_io_ ? vehicle_io_->pose() : pose_input_.vehicleAt(tether_.time());
+  publisher_.publishState(tether_, scheduler_.schedule(index_).resets, vehicle_pose_);
+  if (vehicle_io_)
+  {
+    vehicle_io_->publishState();
+  }
 }
 
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
-  const double marker_wall = publisher_.publishMarkers(tether_, world_.contacts(index_), now,
-                                                       scheduler_.schedule(index_).governor.markerRate());
+  // The vehicle's box where it is at the tether's time: a dynamic body's pose, or the poses interpolated.
+  if (tether_.vehicleAttached())
+  {
+    vehicle_pose_ = vehicle_io_ ? vehicle_io_->pose() : pose_input_.vehicleAt(tether_.time());
+  }
+  const double marker_wall =
+      publisher_.publishMarkers(tether_, world_.contacts(index_), now, scheduler_.schedule(index_).governor.markerRate(),
+                                tether_.vehicleAttached() ? &vehicle_pose_ : nullptr);
   scheduler_.governor(index_).addMarkerTime(marker_wall);
   diagnostics_.publish();
 }
@@ -111,10 +139,18 @@ void TetherNode::restarted(const ros::Time& now)
 {
   pose_input_.reset(now);
   publisher_.restart(tether_);
+  if (vehicle_io_)
+  {
+    vehicle_io_->restarted();
+  }
 }
 
 TetherHooks::PoseTiming TetherNode::poseTiming() const
 {
+  if (vehicle_io_)
+  {
+    return PoseTiming{};  // a dynamic vehicle moves by itself: the physics need not wait for poses
+  }
   return PoseTiming{pose_input_.latestStamp(), pose_input_.neededDelay()};
 }
 

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 
+#include "rov_tether/ros/vehicle_io.hpp"
+
 namespace rov_tether::ros_layer
 {
 namespace
 {
 
-/// Index of the contact points in ~markers, after toMarkers' four.
+/// Index of the contact points in ~markers, after toMarkers' four, and of the vehicle's box after them.
 constexpr std::size_t kContactMarker = 4;
+constexpr std::size_t kVehicleMarker = 5;
 
 }  // namespace
 
@@ -42,8 +45,9 @@ void StateBuilder::restart(const Tether& tether)
   last_deployed_ = tether.deployedLength();
 }
 
-TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options)
-    : options_(options), builder_(options.world_frame, options.rov_frame, options.attachment_offset)
+TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options,
+                                 const Eigen::Vector3d& vehicle_size)
+    : options_(options), vehicle_size_(vehicle_size), builder_(options.world_frame, options.rov_frame, options.attachment_offset)
 {
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
@@ -87,7 +91,7 @@ void TetherPublisher::restart(const Tether& tether)
 }
 
 double TetherPublisher::publishMarkers(const Tether& tether, const ContactRecord& contacts, const ros::Time& now,
-                                       double rate)
+                                       double rate, const Eigen::Isometry3d* vehicle)
 {
   const ros::Duration period(1.0 / rate);
   if (marker_pub_.getNumSubscribers() == 0)
@@ -111,8 +115,10 @@ double TetherPublisher::publishMarkers(const Tether& tether, const ContactRecord
   marker_options.stripe_segments = options_.stripe_segments;
   const ros::Time stamp(std::max(tether.time(), 0.0));
   toMarkers(tether, tensions_, stamp, marker_options, &markers_);
-  markers_.markers.resize(std::max<std::size_t>(markers_.markers.size(), kContactMarker + 1));
+  markers_.markers.resize(std::max<std::size_t>(markers_.markers.size(), kVehicleMarker + 1));
   toContactMarker(contacts, stamp, marker_options, &markers_.markers[kContactMarker]);
+  toVehicleMarker(vehicle != nullptr ? *vehicle : Eigen::Isometry3d::Identity(), vehicle_size_, vehicle != nullptr,
+                  stamp, options_.world_frame, &markers_.markers[kVehicleMarker]);
   marker_pub_.publish(markers_);  // serialised here for every remote subscriber: part of the cost
   return (ros::WallTime::now() - start).toSec();
 }

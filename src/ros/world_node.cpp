@@ -76,6 +76,23 @@ void shareOneClock(const std::vector<std::string>& names, std::vector<TetherSetu
   }
 }
 
+/// Dynamic vehicles publish world_frame -> rov_frame on tf: two of them under one rov_frame would fight over it.
+void checkVehicleFrames(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups)
+{
+  for (std::size_t i = 0; i < setups.size(); ++i)
+  {
+    for (std::size_t j = 0; j < i; ++j)
+    {
+      if (setups[i].options.vehicle_model == "dynamic" && setups[j].options.vehicle_model == "dynamic" &&
+          setups[i].options.rov_frame == setups[j].options.rov_frame)
+      {
+        throw std::runtime_error("tethers " + names[j] + " and " + names[i] + ": both dynamic vehicles publish tf " +
+                                 "frame '" + setups[i].options.rov_frame + "': give each its own rov_frame");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 namespace
@@ -96,6 +113,7 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
     setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh, name), shared));
   }
   shareOneClock(names, &setups);
+  checkVehicleFrames(names, setups);
   return setups;
 }
 

@@ -34,7 +34,8 @@ std::vector<Field> fieldsOf(VehicleParams* p)
           {"added_mass", 6, p->added_mass.data()},
           {"linear_damping", 6, p->linear_damping.data()},
           {"quadratic_damping", 6, p->quadratic_damping.data()},
-          {"thrust_limit", 6, p->thrust_limit.data()}};
+          {"thrust_limit", 6, p->thrust_limit.data()},
+          {"size", 3, p->size.data()}};
 }
 
 std::string joined(const std::vector<std::string>& problems)

@@ -43,7 +43,7 @@ std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vect
 /// parameters and topics are under ~<name>/: a letter first, no '-'). Returns "" or why not, naming it.
 std::string checkNodeTetherName(const std::string& name);
 
-/// A mesh file as a path for the loader: `package://pkg/rest` becomes pkg's directory + /rest,
+/// A mesh (or vehicle_params) file as a path for the loader: `package://pkg/rest` becomes pkg's directory + /rest,
 /// `file:///path` /path; a plain absolute path stays. Returns "" for what cannot be resolved (an unknown
 /// package, a relative path: relative to what?), with the reason in `error`.
 std::string resolveMeshFile(const std::string& file, std::string* error);

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "rov_tether/core/tether_params.hpp"
+#include "rov_tether/core/vehicle_controller.hpp"
+#include "rov_tether/core/vehicle_params.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -55,6 +57,19 @@ struct NodeOptions
   double wrap_warning_turns = 0.5;
   /// /diagnostics WARN ("snag") when a contact's capstan ratio e^(mu angle) exceeds this [-], > 1.
   double snag_ratio = 3.0;
+  /// "kinematic": the vehicle end follows the poses (pose_source); "dynamic": the vehicle is a VehicleBody coupled
+  /// into the step, driven by ~cmd_wrench (VehicleIo); needs solver direct and pose_source topic.
+  std::string vehicle_model = "kinematic";
+  /// The vehicle's parameter file (spec::loadVehicleParamsFile): an absolute path, file:///path or
+  /// package://package/path; "" is VehicleParams' defaults, the BlueROV2 Heavy of
+  /// config/vehicles/bluerov2_heavy.yaml. Its `size` is drawn in rviz in both models.
+  std::string vehicle_params;
+  /// A ~cmd_wrench older than this (ROS time since it arrived) is stale: zero thrust, warned [s].
+  double cmd_wrench_timeout = 0.5;
+  /// Dynamic vehicle: where it starts (and restarts after a reset), [x, y, z] [m] in world_frame and yaw
+  /// [rad], at rest. Without it (has_vehicle_start false) the vehicle starts at the first pose taken.
+  bool has_vehicle_start = false;
+  Eigen::Vector4d vehicle_start = Eigen::Vector4d::Zero();
 };
 
 /// One tether's parameters as loaded: the model's and the node's.
@@ -62,6 +77,10 @@ struct TetherSetup
 {
   TetherParams params;
   NodeOptions options;
+  VehicleParams vehicle;  ///< From options.vehicle_params (the defaults when "").
+  /// The dynamic vehicle's controller (the file's `controller:` block, or the design for its vehicle; the
+  /// defaults when vehicle_params is "").
+  ControllerGains gains;
 };
 
 /// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of
@@ -75,8 +94,14 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
 
 /// A tether's parameters and options: `shared` (the parameters common to several tethers; invalid: none),
 /// then `own` (its namespace as a map; invalid: none) on top. Returns "" or every problem, each naming its
-/// parameter; `setup` is changed only on success.
+/// parameter; `setup` is changed only on success. Reads the vehicle file (vehicle_params) and checks what a
+/// dynamic vehicle needs (checkVehicleModel).
 std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::XmlRpcValue& own, TetherSetup* setup);
+
+/// Why the setup cannot run its vehicle model ("" when it can): vehicle_model dynamic needs solver direct (the
+/// one that couples a vehicle into its step) and pose_source topic (it publishes world_frame -> rov_frame on
+/// tf itself, and would read its own output back as its input).
+std::string checkVehicleModel(const TetherSetup& setup);
 
 /// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
 /// The keys `tethers`, `cameras`, `obstacles` and `tether_contact` and the maps `tethers` names (one tether each,

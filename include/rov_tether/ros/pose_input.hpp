@@ -15,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -71,6 +72,11 @@ class PoseInput
   /// Subscribes to pose_topic (relative to `nh`, whose callback queue should be the input queue) when
   /// pose_source is "topic", whatever its type; messages go to receiveAny() at ros::Time::now().
   void subscribe(ros::NodeHandle& nh);
+  /// Where poses go instead of Tether::addVehicleSample (a dynamic vehicle: VehicleIo::takePose): the vehicle
+  /// origin's pose in world_frame at time t [s]; a refusal is counted and logged as the tether's would be.
+  using VehicleSink = std::function<Status(double t, const Eigen::Isometry3d& vehicle)>;
+  void setVehicleSink(VehicleSink sink) { sink_ = std::move(sink); }
+
   /// The subscribed topic's resolved name; pose_topic before subscribe().
   const std::string& topic() const { return topic_; }
   /// The frame world_frame was taken as (world_frame_from_pose); "" while it is its own.
@@ -172,6 +178,7 @@ class PoseInput
   ros::Subscriber subscriber_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;  ///< Made by subscribe().
   std::unique_ptr<Filter> filter_;  ///< Poses in other frames wait here for their transform.
+  VehicleSink sink_;                ///< Empty: poses go to the tether.
 
   mutable std::mutex mutex_;              ///< Guards the two lists below (input and physics threads).
   std::vector<HandOver> hand_over_;       ///< Received, for the physics thread (capacity kMaxHandOver).

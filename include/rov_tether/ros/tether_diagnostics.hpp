@@ -5,6 +5,7 @@
 #include <ros/time.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -37,6 +38,8 @@ class TetherDiagnostics
   void report(const ros::Time& now);
   /// Publishes /diagnostics when due.
   void publish() { updater_->update(); }
+  /// More values and warnings for the status (a dynamic vehicle's: VehicleIo::diagnose), filled after the rest.
+  void addExtra(std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> extra) { extra_ = std::move(extra); }
   /// Fills the status (the diagnostic_updater task).
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
@@ -62,6 +65,7 @@ class TetherDiagnostics
   ros::Time last_outrun_time_;           ///< When the vehicle last outran the winch; diagnostics WARN for a while.
   std::uint64_t reported_drops_ = 0;     ///< Dropped poses already seen.
   ros::Time last_drop_time_;             ///< When poses were last dropped; diagnostics show WARN for a while.
+  std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> extra_;  ///< addExtra's; empty: none.
 };
 
 }  // namespace rov_tether::ros_layer

@@ -21,6 +21,7 @@
 #include "rov_tether/ros/scheduler.hpp"
 #include "rov_tether/ros/tether_diagnostics.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
+#include "rov_tether/ros/vehicle_io.hpp"
 #include "rov_tether/ros/world_report.hpp"
 
 namespace rov_tether::ros_layer
@@ -34,7 +35,8 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
 /**
  * One tether's ROS interface in tether_node: its Tether (added to the process's World), its PoseInput,
  * TetherPublisher and TetherDiagnostics, its services ~get_tension, ~set_winch, ~reset and its
- * dynamic_reconfigure server, whose changes take effect between steps. The WorldNode's Scheduler steps
+ * dynamic_reconfigure server, whose changes take effect between steps; with vehicle_model dynamic its
+ * VehicleIo (~cmd_wrench, ~odom, tf), which takes the poses instead of the tether. The WorldNode's Scheduler steps
  * it through the TetherHooks.
  */
 class TetherNode : public TetherHooks
@@ -77,6 +79,7 @@ class TetherNode : public TetherHooks
   Scheduler& scheduler_;
   std::size_t index_;  ///< In the world and the scheduler.
   PoseInput pose_input_;
+  std::unique_ptr<VehicleIo> vehicle_io_;  ///< vehicle_model dynamic; null: kinematic.
   TetherPublisher publisher_;
   TetherDiagnostics diagnostics_;
   ros::ServiceServer get_tension_srv_;
@@ -90,6 +93,7 @@ class TetherNode : public TetherHooks
   /// start of every dynamic_reconfigure and set_winch change. Guarded by pending_mutex_.
   TetherParams requested_params_;
   std::vector<double> tensions_;
+  Eigen::Isometry3d vehicle_pose_ = Eigen::Isometry3d::Identity();  ///< At the last ~state (for ~markers).
 };
 
 }  // namespace rov_tether::ros_layer

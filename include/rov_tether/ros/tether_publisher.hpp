@@ -58,28 +58,32 @@ class StateBuilder
 /**
  * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
  * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
- * (with ~state), ~markers at a rate (only while someone subscribes), contact points included, and the
- * colour legend ~legend (latched, once).
+ * (with ~state), ~markers at a rate (only while someone subscribes), contact points and the vehicle's box
+ * included, and the colour legend ~legend (latched, once).
  */
 class TetherPublisher
 {
  public:
   /// Advertises under `private_nh` (and /tf). `options`' frame names are used as given (TetherNode prefixes
-  /// them with the tether's name among several).
-  TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options);
+  /// them with the tether's name among several). `vehicle_size`: the box drawn at the vehicle [m].
+  TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options,
+                  const Eigen::Vector3d& vehicle_size = VehicleParams().size);
 
   /// Publishes ~state, ~wrench and (with subscribers) ~wrench_vehicle for the tether's current physics time;
   /// `vehicle` is the vehicle's pose at that time.
   void publishState(const Tether& tether, std::uint32_t resets, const Eigen::Isometry3d& vehicle);
   /// Publishes ~markers when due at `rate` [Hz] and someone subscribes: the cable (toMarkers) and where it
-  /// touched something in its last step (`contacts`, toContactMarker). Returns the wall time it took [s]
-  /// (0 when it published nothing), which the load governor counts.
-  double publishMarkers(const Tether& tether, const ContactRecord& contacts, const ros::Time& now, double rate);
+  /// touched something in its last step (`contacts`, toContactMarker), and the vehicle as a box at `vehicle`,
+  /// its pose at the tether's time (toVehicleMarker; null: no vehicle, the box is deleted). Returns the wall
+  /// time it took [s] (0 when it published nothing), which the load governor counts.
+  double publishMarkers(const Tether& tether, const ContactRecord& contacts, const ros::Time& now, double rate,
+                        const Eigen::Isometry3d* vehicle = nullptr);
   /// After a reset of the tether.
   void restart(const Tether& tether);
 
  private:
   NodeOptions options_;
+  Eigen::Vector3d vehicle_size_;
   StateBuilder builder_;
   ros::Publisher state_pub_;
   ros::Publisher wrench_pub_;
