@@ -114,6 +114,33 @@ void BM_StepDirect(benchmark::State& state)
   state.counters["newton_iterations"] = sim.solverIterations();
 }
 
+/// The end's linearisation for an external simulator (Tether::vehicleEndLinearisation) alone, one call an
+/// iteration on BM_StepDirect's cable (no bending stiffness) made heavy in water (1 N/m), so that it hangs and
+/// its last segment pulls (a slack end would return K = 0 without a solve): an assembly of the step's Hessian,
+/// one block factorisation and three solves. Compare with BM_StepDirect at the same size.
+void BM_EndLinearisation(benchmark::State& state)
+{
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
+                         [](TetherParams& p)
+                         {
+                           p.solver = SolverType::kDirect;
+                           p.bending_stiffness = 0.0;
+                           p.weight_in_water = 1.0;
+                         });
+  rov_tether::EndLinearisation linearised;
+  if (!sim.vehicleEndLinearisation(&linearised).ok || !linearised.taut)
+  {
+    state.SkipWithError("the hanging cable's end is not taut");
+    return;
+  }
+  for (auto _ : state)
+  {
+    const rov_tether::Status status = sim.vehicleEndLinearisation(&linearised);
+    benchmark::DoNotOptimize(status.ok);
+    benchmark::DoNotOptimize(linearised.stiffness.data());
+  }
+}
+
 /// direct with EI bending at the default 0.2 N m^2 (a 2 cm tether): the primal path, a block-banded system.
 void BM_StepDirectBending(benchmark::State& state)
 {
@@ -291,6 +318,7 @@ BENCHMARK(BM_StepPbdNoBending)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepXpbd)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepLumpedMass)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirect)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_EndLinearisation)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirectBending)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirectDynamicVehicle)->ArgsProduct({{100}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TridiagonalSolve)->ArgsProduct({{100, 1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);

@@ -343,6 +343,37 @@ TEST(Allocation, ADynamicVehicleStepsAllocateNothing)
   }
 }
 
+// The end's linearisation for an external simulator (Tether::vehicleEndLinearisation) on a kinematic end,
+// rod (EI 0.2, primal path) and cable (EI 0, dual path), a tether falling from its laid-out V to hang from
+// the vehicle: after the first call sized its workspace, steps and calls allocate nothing. (No vehicle samples
+// are fed: VehicleTrack's queue allocates as it grows and shrinks.)
+TEST(Allocation, TheEndLinearisationAllocatesNothing)
+{
+  for (const double bending_stiffness : {0.2, 0.0})
+  {
+    TetherParams params;
+    params.solver = SolverType::kDirect;
+    params.winch_mode = WinchMode::kLocked;
+    params.cable_length = params.initial_deployed_length = 10.0;
+    params.weight_in_water = 0.5;
+    params.bending_stiffness = bending_stiffness;
+    Tether sim(params, Position::Zero(), Position(6.0, 0.0, -5.0));
+    EndLinearisation linearised;
+    sim.step();
+    ASSERT_TRUE(sim.vehicleEndLinearisation(&linearised).ok);
+    const long before = g_allocations.load();
+    int taut = 0;
+    for (int k = 0; k < 500; ++k)
+    {
+      sim.step();
+      ASSERT_TRUE(sim.vehicleEndLinearisation(&linearised).ok);
+      taut += linearised.taut ? 1 : 0;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << "EI " << bending_stiffness;
+    EXPECT_GT(taut, 400) << "the hanging tether pulls";
+  }
+}
+
 /// A 3 x 3 m patch of seabed at z = -2 m in 8 x 8 cells, rolling by 5 cm: 128 triangles, front up.
 TriangleMesh seabedPatch()
 {

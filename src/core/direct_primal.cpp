@@ -116,6 +116,39 @@ PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double to
   return result;
 }
 
+bool PrimalNewton::solveHessian(const Cable& cable, const double* lambda, double* columns, std::size_t count)
+{
+  const std::size_t m = ws_.m;
+  const std::size_t rows = 3 * (m + 1);
+  std::copy(lambda, lambda + m, lambda_.begin());
+  assemble(cable);
+  const double* second = ws_.bending ? hessian_second_.data() : nullptr;
+  for (std::size_t column = 0; column < count; ++column)
+  {
+    double* b = columns + column * rows;
+    bool ok = true;
+    if (linear_ == DirectSolver::LinearSolve::kLapack)
+    {
+      ok = column == 0 ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1,
+                                                        band_.data())
+                       : banded::solveBlockBandedLapackAgain(second != nullptr, b, m + 1, band_.data());
+    }
+    else if (column == 0)
+    {
+      ok = banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1, work_.data());
+    }
+    else
+    {
+      banded::solveBlockBandedAgain(second != nullptr, b, m + 1, work_.data());
+    }
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 double PrimalNewton::energy(const Cable& cable) const
 {
   const std::size_t f = ws_.first;

@@ -26,6 +26,12 @@ class PrimalNewton
   /// is below `tolerance` or `max_iterations` are spent, or a system is not definite; leaves the multipliers
   /// in `lambda` (a cable's clamped at 0).
   Result solve(Cable& cable, double* lambda, double tolerance, int max_iterations);
+  /// The step's Hessian at the current positions (the workspace's geometry) for the multipliers `lambda`
+  /// and the workspace's model (on()), as a Newton iteration assembles it, solved for `count` right-hand
+  /// sides stored one after the other in `columns` (3 (m + 1) values each, overwritten with the solutions):
+  /// one factorisation, then solves with it. False if the Hessian is not positive definite. For the end's
+  /// linearisation (direct_end_stiffness.hpp); allocation-free once reserved.
+  bool solveHessian(const Cable& cable, const double* lambda, double* columns, std::size_t count);
 
  private:
   /// The step's energy Phi(x) at the current positions.

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "direct_dual.hpp"
+#include "direct_end_stiffness.hpp"
 #include "direct_primal.hpp"
 #include "direct_workspace.hpp"
 
@@ -25,13 +26,14 @@ constexpr int kMaxDualIterations = 10;
 
 struct DirectSolver::Methods
 {
-  explicit Methods(LinearSolve linear) : dual(workspace, linear), primal(workspace, linear) {}
+  explicit Methods(LinearSolve linear) : dual(workspace, linear), primal(workspace, linear), end(linear) {}
   Methods(const Methods&) = delete;
   Methods& operator=(const Methods&) = delete;
 
   DirectWorkspace workspace;
   DualNewton dual;
   PrimalNewton primal;
+  EndStiffness end;  ///< The end's linearisation, on demand (its own workspace: empty until first used).
 };
 
 DirectSolver::DirectSolver(LinearSolve linear) : methods_(std::make_unique<Methods>(linear)) {}
@@ -85,5 +87,11 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
 }
 
 void DirectSolver::forget() { methods_->workspace.forget(); }
+
+bool DirectSolver::endStiffness(const Cable& cable, const SolverSettings& settings, Eigen::Matrix3d* stiffness,
+                                bool* taut)
+{
+  return methods_->end.compute(cable, multipliers(), settings, stiffness, taut);
+}
 
 }  // namespace rov_tether

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cable_layout.hpp"
+#include "rov_tether/core/direct_solver.hpp"
 
 namespace rov_tether
 {
@@ -350,6 +351,7 @@ Status Tether::skipTo(double t)
       cable_.place(cable_.size() - 1, track_.position());
     }
   }
+  end_velocity_ = Velocity::Zero();
   time_ = target_time_ = base_time_ = t;
   base_steps_ = steps_;
   return Status::success();
@@ -390,7 +392,11 @@ void Tether::subStep(double h, double t)
   cable_.place(cable_.first, spool_.outlet());
   if (vehicle_ == nullptr && track_.active())
   {
+    const bool was_attached = track_.attached();
+    const Position before = track_.position();
+    const std::uint64_t jumps = jumps_;
     track_.setPosition(vehicleAt(t));
+    end_velocity_ = was_attached && jumps == jumps_ ? Velocity((track_.position() - before) / h) : Velocity::Zero();
   }
   if (cable_.anisotropic)
   {
@@ -698,6 +704,36 @@ Force Tether::vehicleForce() const
     return vehicle_->pull();
   }
   return endForce(cable_, solver_->multipliers(), last_step_);
+}
+
+Status Tether::vehicleEndLinearisation(EndLinearisation* out)
+{
+  if (!track_.attached())
+  {
+    return Status::error("end linearisation refused: no vehicle is attached (the last particle is a free end)");
+  }
+  if (vehicle_ != nullptr)
+  {
+    return Status::error(
+        "end linearisation refused: the vehicle is dynamic, and VehicleCoupling already couples it inside the "
+        "step; the linearisation is for a kinematic end driven by an external simulator");
+  }
+  auto* direct = params_.solver == SolverType::kDirect ? dynamic_cast<DirectSolver*>(solver_.get()) : nullptr;
+  if (direct == nullptr)
+  {
+    return Status::error("end linearisation refused: solver '" + toString(params_.solver) +
+                         "' has no implicit step to linearise; use solver 'direct'");
+  }
+  out->time = time_;
+  out->position = track_.position();
+  out->velocity = end_velocity_;
+  out->force = vehicleForce();
+  out->damping.setZero();  // the step has no term in the end's velocity (end_linearisation.hpp)
+  if (!direct->endStiffness(cable_, SolverSettings::from(params_, last_step_), &out->stiffness, &out->taut))
+  {
+    return Status::error("end linearisation failed: the last step's system is not positive definite");
+  }
+  return Status::success();
 }
 
 TetherSummary Tether::summary() const

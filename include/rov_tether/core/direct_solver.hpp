@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 
 #include "rov_tether/core/constraint_solver.hpp"
@@ -69,6 +70,15 @@ class DirectSolver : public ConstraintSolver
   double lastResidual() const override { return residual_; }
   bool takesDrum() const override { return true; }
   void forget() override;
+
+  /// The last step's linearisation at a pinned last particle (a kinematic vehicle end): K = dF/dx [N/m] of
+  /// the pull F = -lambda n / h^2 of the last segment on it, with respect to where it was at the step's end,
+  /// the other particles answering through the step's Newton system (end_linearisation.hpp, docs/model.md
+  /// "A kinematic end's linearisation for external simulators"). `cable` and the multipliers are the step's
+  /// result; `settings` the step's (time_step the sub-step h). Zero and *taut false when the last segment
+  /// carries no tension; false when the system is not positive definite. The step's warm start is not
+  /// touched (a workspace of its own); allocation-free after the first call.
+  bool endStiffness(const Cable& cable, const SolverSettings& settings, Eigen::Matrix3d* stiffness, bool* taut);
 
  protected:
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;

@@ -11,6 +11,7 @@
 #include "rov_tether/core/contact.hpp"
 #include "rov_tether/core/contact_substeps.hpp"
 #include "rov_tether/core/current_field.hpp"
+#include "rov_tether/core/end_linearisation.hpp"
 #include "rov_tether/core/noise.hpp"
 #include "rov_tether/core/spool.hpp"
 #include "rov_tether/core/status.hpp"
@@ -160,6 +161,13 @@ class Tether
   /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle. With a dynamic vehicle,
   /// the force the last sub-step's solve applied to it (VehicleCoupling).
   Force vehicleForce() const;
+  /// The pull on a kinematic vehicle end linearised in the end's position and velocity, for an external
+  /// vehicle simulator (end_linearisation.hpp): F0 = vehicleForce(), K from the last `direct` step's own
+  /// Newton system (a factorisation and three solves, on demand), C = 0 (derived there). Refused without
+  /// a vehicle, with a dynamic one (VehicleCoupling couples it inside the step) and for solvers other than
+  /// `direct`; an error too if the step's system is not positive definite (`out` then holds F0, K = C = 0).
+  /// Allocation-free after the first call; the next step is the same whether it is called or not.
+  Status vehicleEndLinearisation(EndLinearisation* out);
   /// Deployed length, end tensions, maximum tension and strain.
   TetherSummary summary() const;
   /// The same from segment tensions the caller already computed (computeSegmentTensions).
@@ -238,6 +246,8 @@ class Tether
   std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
   Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].
   double vehicle_inv_mass_ = 0.0;                  ///< Its inverse mass in this sub-step's solve [1/kg].
+  /// The kinematic end's velocity over the last sub-step [m/s] (zero after an attach, a jump, a skip).
+  Velocity end_velocity_ = Velocity::Zero();
 
   double time_ = 0.0;
   double target_time_ = 0.0;  ///< Time requested by the caller; time_ lags it by less than a step [s].
