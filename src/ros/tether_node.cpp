@@ -101,6 +101,7 @@ void TetherNode::publishState()
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
+  publisher_.explainMissingCoupling(tether_);
   const double marker_wall = publisher_.publishMarkers(tether_, world_.contacts(index_), now,
                                                        scheduler_.schedule(index_).governor.markerRate());
   scheduler_.governor(index_).addMarkerTime(marker_wall);
