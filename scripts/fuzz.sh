@@ -41,12 +41,22 @@ OUT="$ROOT/catkin_build/fuzz"
 mkdir -p "$OUT/artifacts"
 # The scenario code builds obstacles through makeObstacle (src/geometry, rov_tether_geometry).
 CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/geometry/*.cpp "$ROOT"/src/spec/*.cpp "$ROOT"/src/scenario/*.cpp)
+FLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
+  -I"$ROOT/include" -I/usr/include/eigen3)
+# The libraries' sources are compiled once, one process per core, into objects every target links
+# (-fsanitize=fuzzer on an object without LLVMFuzzerTestOneInput only instruments it).
+OBJ="$OUT/obj"
+rm -rf "$OBJ" && mkdir -p "$OBJ"
+echo "== compiling ${#CORE[@]} library sources for the fuzz targets"
+export OBJ ROOT
+printf '%s\n' "${CORE[@]}" | xargs -P "$(nproc)" -I{} bash -c \
+  'src="{}"; rel="${src#$ROOT/src/}"; obj="$OBJ/${rel//\//_}.o"; clang++ "$@" -c "$src" -o "$obj"' _ "${FLAGS[@]}"
+OBJECTS=("$OBJ"/*.o)
 status=0
 cases=""
 for target in "${TARGETS[@]}"; do
   echo "== $target: building"
-  clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    -I"$ROOT/include" -I/usr/include/eigen3 "$ROOT/test/fuzz/$target.cpp" "${CORE[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp \
+  clang++ "${FLAGS[@]}" "$ROOT/test/fuzz/$target.cpp" "${OBJECTS[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp \
     -o "$OUT/$target"
   corpus="$ROOT/test/fuzz/corpus/$target"
   scratch="$OUT/corpus_$target"

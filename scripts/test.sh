@@ -28,10 +28,22 @@ run_suite() {
   echo "== building tests in $BUILD_DIR"
   build_target tests
   # test_* binaries need no ROS master; rostest_* ones are started by rostest below.
+  # Each binary runs as one gtest shard per core, the shards side by side (GTEST_TOTAL_SHARDS): every case
+  # runs once, in one shard, and each shard writes its own JUnit file (count_results.py sums them).
+  local shards
+  shards="$(nproc)"
   for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
     name="$(basename "$binary")"
-    echo "== $name"
-    "$binary" --gtest_output="xml:$results/$name.xml" --gtest_brief=1 || status=1
+    echo "== $name ($shards shards)"
+    local pids=()
+    for ((shard = 0; shard < shards; shard++)); do
+      GTEST_TOTAL_SHARDS="$shards" GTEST_SHARD_INDEX="$shard" \
+        "$binary" --gtest_output="xml:$results/$name.shard$shard.xml" --gtest_brief=1 &
+      pids+=("$!")
+    done
+    for pid in "${pids[@]}"; do
+      wait "$pid" || status=1
+    done
   done
   # The node with a ROS master: rostest starts its own roscore on a free port. A subshell, so each
   # build's workspace environment stays its own.
@@ -71,8 +83,9 @@ if [ "$SANITIZERS" != 0 ]; then
   BUILD_DIR="$ROOT/catkin_build_sanitize"
   mkdir -p "$BUILD_DIR"
   flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
+  # The benchmarks are not built here: they run no test, and sanitized timings mean nothing.
   build_package -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-    -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined"
+    -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DROV_TETHER_BENCHMARKS=OFF
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
   export ASAN_OPTIONS_NODES="detect_leaks=0:abort_on_error=1"

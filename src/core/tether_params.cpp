@@ -163,6 +163,124 @@ std::vector<double> numericValues(const TetherParams& params, const std::string&
       *member);
 }
 
+/// Sets a number field from a number or an integer; "" or the wrong-type message.
+std::string assignField(double& target, const ParamValue& value, const std::string& /*name*/,
+                        const std::string& wrong_type)
+{
+  if (const auto* d = std::get_if<double>(&value))
+  {
+    target = *d;
+    return "";
+  }
+  if (const auto* i = std::get_if<std::int64_t>(&value))
+  {
+    target = static_cast<double>(*i);
+    return "";
+  }
+  return wrong_type + "a number";
+}
+
+/// Sets an integer field from an integer or a whole number, within the field's range.
+template <typename Field>
+std::string assignInteger(Field& target, const ParamValue& value, const std::string& name,
+                          const std::string& wrong_type)
+{
+  std::int64_t integer = 0;
+  if (const auto* i = std::get_if<std::int64_t>(&value))
+  {
+    integer = *i;
+  }
+  else if (const auto* d = std::get_if<double>(&value);
+           d != nullptr && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9.0e15)
+  {
+    integer = static_cast<std::int64_t>(*d);
+  }
+  else
+  {
+    return wrong_type + "an integer";
+  }
+  if (integer < std::numeric_limits<Field>::min() || integer > std::numeric_limits<Field>::max())
+  {
+    return "parameter '" + name + "' = " + std::to_string(integer) + ": out of the integer range";
+  }
+  target = static_cast<Field>(integer);
+  return "";
+}
+
+/// Sets an int field (assignInteger).
+std::string assignField(int& target, const ParamValue& value, const std::string& name, const std::string& wrong_type)
+{
+  return assignInteger(target, value, name, wrong_type);
+}
+
+/// Sets a 64-bit integer field (assignInteger).
+std::string assignField(std::int64_t& target, const ParamValue& value, const std::string& name,
+                        const std::string& wrong_type)
+{
+  return assignInteger(target, value, name, wrong_type);
+}
+
+/// Sets a flag from true or false.
+std::string assignField(bool& target, const ParamValue& value, const std::string& /*name*/,
+                        const std::string& wrong_type)
+{
+  if (const auto* b = std::get_if<bool>(&value))
+  {
+    target = *b;
+    return "";
+  }
+  return wrong_type + "true or false";
+}
+
+/// Sets the solver from its name.
+std::string assignField(SolverType& target, const ParamValue& value, const std::string& /*name*/,
+                        const std::string& /*wrong_type*/)
+{
+  const auto* s = std::get_if<std::string>(&value);
+  if (s == nullptr || !parseSolver(*s, &target))
+  {
+    return "parameter 'solver': expected one of pbd, pbd_sequential, xpbd, lumped_mass, direct";
+  }
+  return "";
+}
+
+/// Sets the drag model from its name.
+std::string assignField(DragModel& target, const ParamValue& value, const std::string& /*name*/,
+                        const std::string& /*wrong_type*/)
+{
+  const auto* s = std::get_if<std::string>(&value);
+  if (s == nullptr || !parseDragModel(*s, &target))
+  {
+    return "parameter 'drag_model': expected one of damping, morison";
+  }
+  return "";
+}
+
+/// Sets a vector field from a list of three numbers.
+std::string assignField(Vector3& target, const ParamValue& value, const std::string& name,
+                        const std::string& /*wrong_type*/)
+{
+  const auto* v = std::get_if<std::vector<double>>(&value);
+  if (v == nullptr || v->size() != 3)
+  {
+    return "parameter '" + name + "': expected a list of 3 numbers [x, y, z]";
+  }
+  std::copy(v->begin(), v->end(), target.begin());
+  return "";
+}
+
+/// Sets the winch mode from its name.
+std::string assignField(WinchMode& target, const ParamValue& value, const std::string& /*name*/,
+                        const std::string& /*wrong_type*/)
+{
+  const auto* s = std::get_if<std::string>(&value);
+  if (s == nullptr || !parseWinchMode(*s, &target))
+  {
+    return "parameter 'winch_mode': expected one of brake, constant_tension, speed, locked, strain";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<std::string> TetherParams::validate() const
@@ -345,96 +463,7 @@ std::string setParameter(TetherParams& params, const std::string& name, const Pa
     }
   }
   const std::string wrong_type = "parameter '" + name + "': wrong type (" + typeName(value) + "), expected ";
-  return std::visit(
-      [&](auto field) -> std::string
-      {
-        using Field = std::remove_reference_t<decltype(params.*field)>;
-        Field& target = params.*field;
-        if constexpr (std::is_same_v<Field, double>)
-        {
-          if (const auto* d = std::get_if<double>(&value))
-          {
-            target = *d;
-            return "";
-          }
-          if (const auto* i = std::get_if<std::int64_t>(&value))
-          {
-            target = static_cast<double>(*i);
-            return "";
-          }
-          return wrong_type + "a number";
-        }
-        else if constexpr (std::is_same_v<Field, int> || std::is_same_v<Field, std::int64_t>)
-        {
-          std::int64_t integer = 0;
-          if (const auto* i = std::get_if<std::int64_t>(&value))
-          {
-            integer = *i;
-          }
-          else if (const auto* d = std::get_if<double>(&value);
-                   d != nullptr && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9.0e15)
-          {
-            integer = static_cast<std::int64_t>(*d);
-          }
-          else
-          {
-            return wrong_type + "an integer";
-          }
-          if (integer < std::numeric_limits<Field>::min() || integer > std::numeric_limits<Field>::max())
-          {
-            return "parameter '" + name + "' = " + std::to_string(integer) + ": out of the integer range";
-          }
-          target = static_cast<Field>(integer);
-          return "";
-        }
-        else if constexpr (std::is_same_v<Field, bool>)
-        {
-          if (const auto* b = std::get_if<bool>(&value))
-          {
-            target = *b;
-            return "";
-          }
-          return wrong_type + "true or false";
-        }
-        else if constexpr (std::is_same_v<Field, SolverType>)
-        {
-          const auto* s = std::get_if<std::string>(&value);
-          if (s == nullptr || !parseSolver(*s, &target))
-          {
-            return "parameter 'solver': expected one of pbd, pbd_sequential, xpbd, lumped_mass, direct";
-          }
-          return "";
-        }
-        else if constexpr (std::is_same_v<Field, DragModel>)
-        {
-          const auto* s = std::get_if<std::string>(&value);
-          if (s == nullptr || !parseDragModel(*s, &target))
-          {
-            return "parameter 'drag_model': expected one of damping, morison";
-          }
-          return "";
-        }
-        else if constexpr (std::is_same_v<Field, Vector3>)
-        {
-          const auto* v = std::get_if<std::vector<double>>(&value);
-          if (v == nullptr || v->size() != 3)
-          {
-            return "parameter '" + name + "': expected a list of 3 numbers [x, y, z]";
-          }
-          std::copy(v->begin(), v->end(), target.begin());
-          return "";
-        }
-        else
-        {
-          const auto* s = std::get_if<std::string>(&value);
-          if (s == nullptr || !parseWinchMode(*s, &target))
-          {
-            return "parameter 'winch_mode': expected one of brake, constant_tension, speed, locked, strain";
-          }
-          return "";
-        }
-      },
-      *member);
+  return std::visit([&](auto field) { return assignField(params.*field, value, name, wrong_type); }, *member);
 }
 
 std::vector<std::string> applyParameters(const std::vector<std::pair<std::string, ParamValue>>& values,

@@ -221,6 +221,22 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
   std_msgs::Header header;
   header.stamp = stamp;
   header.frame_id = config_.frame;
+  publishRendered(header, stats, image);
+  const double took = (ros::WallTime::now() - start).toSec();
+  budget_.measured(pixels, took);
+  if (took > budget_.budget() && warningDue("slow"))
+  {
+    ROS_WARN(
+        "tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
+        "frames as large are skipped, and one is drawn to measure again after %.0f s of skipping",
+        config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget(), budget_.retry());
+  }
+  return true;
+}
+
+void TetherCamera::publishRendered(const std_msgs::Header& header, const camera::RenderStats& stats,
+                                   const sensor_msgs::ImageConstPtr& image)
+{
   if (mask_pub_.getNumSubscribers() > 0)
   {
     updateImageMessage(renderer_.mask(), renderer_.pixels(), &mask_msg_pixels_, header, &mask_msg_);
@@ -252,16 +268,6 @@ bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, 
       drop("encoding", "overlay: cannot convert the image's encoding '" + image->encoding + "' to bgr8: " + e.what());
     }
   }
-  const double took = (ros::WallTime::now() - start).toSec();
-  budget_.measured(pixels, took);
-  if (took > budget_.budget() && warningDue("slow"))
-  {
-    ROS_WARN(
-        "tether_node: camera %s: a %dx%d frame took %.2f s to draw, more than its budget of %.2f s (max_lag): "
-        "frames as large are skipped, and one is drawn to measure again after %.0f s of skipping",
-        config_.name.c_str(), model_->width(), model_->height(), took, budget_.budget(), budget_.retry());
-  }
-  return true;
 }
 
 CameraSet::CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,

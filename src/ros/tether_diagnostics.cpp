@@ -64,11 +64,17 @@ void TetherDiagnostics::report(const ros::Time& now)
 
 void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  using diagnostic_msgs::DiagnosticStatus;
+  const TetherSummary summary = tether_.summary();
+  status.summary(diagnostic_msgs::DiagnosticStatus::OK, "tether simulated");
+  addMeasures(summary, status);
+  mergeAlarms(summary, status);
+  diagnoseTopology(status);
+}
+
+void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_updater::DiagnosticStatusWrapper& status)
+{
   const TetherSchedule& schedule = scheduler_.schedule(index_);
   const LoadGovernor& governor = schedule.governor;
-  const TetherSummary summary = tether_.summary();
-  status.summary(DiagnosticStatus::OK, "tether simulated");
   status.add("deployed length [m]", summary.deployed_length);
   status.add("tension at vehicle [N]", summary.tension_vehicle);
   status.add("max tension [N]", summary.max_tension);
@@ -94,6 +100,13 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   {
     status.add("last failure", tether_.lastFailure());
   }
+}
+
+void TetherDiagnostics::mergeAlarms(const TetherSummary& summary, diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const TetherSchedule& schedule = scheduler_.schedule(index_);
+  const LoadGovernor& governor = schedule.governor;
   const ros::Time now = ros::Time::now();
   const ros::Time& last_pose_time = pose_input_.lastPoseTime();
   if (!tether_.vehicleAttached())
@@ -146,7 +159,6 @@ void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   {
     status.mergeSummaryf(DiagnosticStatus::ERROR, "physics slower than real time (%.2fx)", schedule.real_time_factor);
   }
-  diagnoseTopology(status);
 }
 
 void TetherDiagnostics::diagnoseTopology(diagnostic_updater::DiagnosticStatusWrapper& status)

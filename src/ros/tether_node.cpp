@@ -164,47 +164,76 @@ bool TetherNode::onGetTension(GetTension::Request& request, GetTension::Response
   return true;  // refusals are answered with success = false and a message
 }
 
+namespace
+{
+/// The winch parameters and target length [m] a SetWinch request asks for, on top of `params`: "" when they
+/// are valid, else why not (nothing is changed then). `target` is NaN for none.
+std::string winchRequest(const SetWinch::Request& request, TetherParams* params, double* target)
+{
+  if (!request.mode.empty() && !parseWinchMode(request.mode, &params->winch_mode))
+  {
+    return "mode '" + request.mode + "': expected brake, constant_tension, speed, locked or strain";
+  }
+  params->winch_speed = request.speed;
+  for (const auto& [value, field, name] :
+       {std::tuple{request.brake_tension, &params->brake_tension, "brake_tension"},
+        std::tuple{request.target_tension, &params->target_tension, "target_tension"}})
+  {
+    if (!(value >= 0.0))
+    {
+      return std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
+    }
+    *field = value > 0.0 ? value : *field;
+  }
+  const auto errors = params->validate();
+  if (!errors.empty())
+  {
+    return errors.front();
+  }
+  if (request.target_length < 0.0 || !std::isfinite(request.target_length))
+  {
+    return "target_length must be > 0 m, or 0 for none";
+  }
+  // Check the target against the new limits before changing anything.
+  *target = request.target_length > 0.0 ? request.target_length : std::nan("");
+  if (!std::isnan(*target) && !(*target >= params->min_deployed_length && *target <= params->cable_length))
+  {
+    return "target_length = " + std::to_string(*target) + " m: must be in [min_deployed_length, " +
+           "cable_length] = [" + std::to_string(params->min_deployed_length) + ", " +
+           std::to_string(params->cable_length) + "] m";
+  }
+  return "";
+}
+
+/// The answer to an accepted SetWinch request: the mode in force, its force, and any parameter warning.
+std::string winchAnswer(const TetherParams& params, const std::string& requested_mode)
+{
+  std::string message = "winch " + toString(params.winch_mode);
+  if (params.winch_mode == WinchMode::kBrake)
+  {
+    message += ", brake_tension " + std::to_string(params.brake_tension) + " N";
+  }
+  else if (params.winch_mode == WinchMode::kConstantTension)
+  {
+    message += ", target_tension " + std::to_string(params.target_tension) + " N";
+  }
+  for (const std::string& warning : parameterWarnings({{"winch_mode", requested_mode}}))
+  {
+    message += " (" + warning + ")";
+  }
+  return message;
+}
+}  // namespace
+
 bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& response)
 {
   applyPendingParams();
   TetherParams params = tether_.params();
+  double target = std::nan("");
   response.success = false;
-  if (!request.mode.empty() && !parseWinchMode(request.mode, &params.winch_mode))
+  response.message = winchRequest(request, &params, &target);
+  if (!response.message.empty())
   {
-    response.message = "mode '" + request.mode + "': expected brake, constant_tension, speed, locked or strain";
-    return true;
-  }
-  params.winch_speed = request.speed;
-  for (const auto& [value, field, name] :
-       {std::tuple{request.brake_tension, &params.brake_tension, "brake_tension"},
-        std::tuple{request.target_tension, &params.target_tension, "target_tension"}})
-  {
-    if (!(value >= 0.0))
-    {
-      response.message =
-          std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
-      return true;
-    }
-    *field = value > 0.0 ? value : *field;
-  }
-  const auto errors = params.validate();
-  if (!errors.empty())
-  {
-    response.message = errors.front();
-    return true;
-  }
-  if (request.target_length < 0.0 || !std::isfinite(request.target_length))
-  {
-    response.message = "target_length must be > 0 m, or 0 for none";
-    return true;
-  }
-  // Check the target against the new limits before changing anything.
-  const double target = request.target_length > 0.0 ? request.target_length : std::nan("");
-  if (!std::isnan(target) && !(target >= params.min_deployed_length && target <= params.cable_length))
-  {
-    response.message = "target_length = " + std::to_string(target) + " m: must be in [min_deployed_length, " +
-                       "cable_length] = [" + std::to_string(params.min_deployed_length) + ", " +
-                       std::to_string(params.cable_length) + "] m";
     return true;
   }
   const Status status = tether_.setParams(params);
@@ -233,19 +262,7 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
   }
   reconfigure_server_->updateConfig(shown);
   response.success = true;
-  response.message = "winch " + toString(params.winch_mode);
-  if (params.winch_mode == WinchMode::kBrake)
-  {
-    response.message += ", brake_tension " + std::to_string(params.brake_tension) + " N";
-  }
-  else if (params.winch_mode == WinchMode::kConstantTension)
-  {
-    response.message += ", target_tension " + std::to_string(params.target_tension) + " N";
-  }
-  for (const std::string& warning : parameterWarnings({{"winch_mode", request.mode}}))
-  {
-    response.message += " (" + warning + ")";
-  }
+  response.message = winchAnswer(params, request.mode);
   return true;
 }
 

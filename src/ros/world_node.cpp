@@ -78,37 +78,41 @@ void shareOneClock(const std::vector<std::string>& names, std::vector<TetherSetu
 
 }  // namespace
 
-WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
+namespace
 {
-  const std::vector<std::string> names = tetherNames(private_nh_);
+/// Each tether's setup: the one in ~ alone, or one per name in `tethers` with ~'s values shared.
+std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std::vector<std::string>& names)
+{
   std::vector<TetherSetup> setups;
   if (names.empty())
   {
-    setups.push_back(loadTetherSetup(private_nh_, XmlRpc::XmlRpcValue()));
+    setups.push_back(loadTetherSetup(private_nh, XmlRpc::XmlRpcValue()));
+    return setups;
   }
-  else
+  XmlRpc::XmlRpcValue shared;
+  private_nh.getParam(private_nh.getNamespace(), shared);
+  for (const auto& name : names)
   {
-    XmlRpc::XmlRpcValue shared;
-    private_nh_.getParam(private_nh_.getNamespace(), shared);
-    for (const auto& name : names)
-    {
-      setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh_, name), shared));
-    }
-    shareOneClock(names, &setups);
+    setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh, name), shared));
   }
-  // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
+  shareOneClock(names, &setups);
+  return setups;
+}
+
+/// The world's description from ~ (obstacles, contact, cameras) and the tethers' setups, checked whole:
+/// throws std::runtime_error naming the parameter when it is invalid.
+WorldSpec describeWorld(const ros::NodeHandle& private_nh, const std::vector<std::string>& world_names,
+                        const std::vector<TetherSetup>& setups, WorldOptions* world_options)
+{
   XmlRpc::XmlRpcValue top;
-  private_nh_.getParam(private_nh_.getNamespace(), top);
-  const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
-  WorldOptions world_options;
-  std::string world_error = loadWorldOptions(top, &world_options, world_names);
+  private_nh.getParam(private_nh.getNamespace(), top);
+  std::string world_error = loadWorldOptions(top, world_options, world_names);
   // The world from its one description, by the runner's builder: tethers, contact, obstacles (each mesh read
   // once); the cameras are read into it too, so their names are checked with the others' (validateWorldSpec).
   WorldSpec world_spec;
-  world_error = world_error.empty() ? nodeWorldSpec(world_names, setups, world_options, &world_spec) : world_error;
+  world_error = world_error.empty() ? nodeWorldSpec(world_names, setups, *world_options, &world_spec) : world_error;
   XmlRpc::XmlRpcValue cameras;
-  const bool has_cameras = private_nh_.getParam("cameras", cameras);
-  if (world_error.empty() && has_cameras)
+  if (world_error.empty() && private_nh.getParam("cameras", cameras))
   {
     const std::string camera_error = loadCameraConfigs(cameras, world_names, &world_spec.cameras);
     if (!camera_error.empty())
@@ -116,7 +120,24 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
       throw std::runtime_error("parameter " + camera_error);
     }
   }
-  world_error = world_error.empty() ? buildWorld(world_spec, &world_) : world_error;
+  if (!world_error.empty())
+  {
+    throw std::runtime_error("invalid parameters in " + private_nh.getNamespace() + ": " + world_error);
+  }
+  return world_spec;
+}
+}  // namespace
+
+WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) : nh_(nh), private_nh_(private_nh)
+{
+  const std::vector<std::string> names = tetherNames(private_nh_);
+  std::vector<TetherSetup> setups = loadSetups(private_nh_, names);
+  // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
+  const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
+  WorldOptions world_options;
+  WorldSpec world_spec = describeWorld(private_nh_, world_names, setups, &world_options);
+  const bool has_cameras = private_nh_.hasParam("cameras");
+  const std::string world_error = buildWorld(world_spec, &world_);
   if (!world_error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);

@@ -136,6 +136,210 @@ std::size_t writeTopology(const World& world, double t_out, std::FILE* file, std
   return entries.size();
 }
 
+/// One path driver per tether, in scenario order.
+std::vector<PathDriver> driversOf(const std::vector<ScenarioTether>& tethers)
+{
+  std::vector<PathDriver> drivers;
+  drivers.reserve(tethers.size());
+  for (const ScenarioTether& tether : tethers)
+  {
+    drivers.emplace_back(tether);
+  }
+  return drivers;
+}
+
+/// state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), then topology.csv.
+std::vector<OutputFile> outputFilesOf(const Scenario& scenario, const std::vector<ScenarioTether>& tethers,
+                                      const std::string& out_dir)
+{
+  std::vector<OutputFile> files;
+  for (const ScenarioTether& tether : tethers)
+  {
+    const fs::path dir = scenario.tethers.empty() ? fs::path(out_dir) : fs::path(out_dir) / tether.name;
+    files.push_back({dir / "state.csv", {}, nullptr});
+    files.push_back({dir / "shape.csv", {}, nullptr});
+  }
+  if (scenario.usesWorld())
+  {
+    files.push_back({fs::path(out_dir) / "topology.csv", {}, nullptr});
+  }
+  return files;
+}
+
+/// Writes every file's CSV header; returns each tether's summary with its name and starting length.
+std::vector<RunSummary> startOutputs(const std::vector<ScenarioTether>& tethers, const World& world,
+                                     const std::vector<OutputFile>& files, std::FILE* topology_file)
+{
+  std::vector<RunSummary> each(tethers.size());
+  for (std::size_t i = 0; i < tethers.size(); ++i)
+  {
+    each[i].name = tethers[i].name;
+    each[i].deployed_start = world.tether(i).deployedLength();
+    std::fprintf(files[2 * i].file, "%s\n", kStateCsvHeader);
+    std::fprintf(files[2 * i + 1].file, "%s\n", kShapeCsvHeader);
+  }
+  if (topology_file != nullptr)
+  {
+    std::fprintf(topology_file, "%s\n", kTopologyCsvHeader);
+  }
+  return each;
+}
+
+/// Moves the world along the tethers' paths and lets the observers look; keeps the first error of each.
+class Stepper
+{
+ public:
+  Stepper(const Scenario& scenario, const std::vector<ScenarioTether>& tethers, World& world,
+          std::vector<PathDriver> drivers)
+      : scenario_(scenario), tethers_(tethers), world_(world), drivers_(std::move(drivers))
+  {
+  }
+
+  /// Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
+  /// (for one tether, the very same calls: a world of one tether without contact steps as that tether).
+  /// False, with runError() set, when a sample or an advance is refused.
+  bool advance(double t)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    for (;;)
+    {
+      bool fed = true;
+      double reach = t;
+      for (std::size_t i = 0; i < drivers_.size(); ++i)
+      {
+        if (!drivers_[i].fedUpTo(t))
+        {
+          fed = false;
+          double fed_to = t;
+          const Status status = drivers_[i].feed(world_.tether(i), t, &fed_to);
+          if (!status.ok)
+          {
+            run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + status.message;
+            return false;
+          }
+          reach = std::min(reach, fed_to);
+        }
+      }
+      if (fed)
+      {
+        break;
+      }
+      if (!advanceWorld(reach))
+      {
+        return false;
+      }
+    }
+    if (!advanceWorld(t))
+    {
+      return false;
+    }
+    cpu_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+  }
+
+  /// Lets the observers look at every time of theirs up to `until` [s], in time order.
+  void observe(const std::vector<RunObserver*>& observers, double until)
+  {
+    while (observer_error_.empty() && run_error_.empty())
+    {
+      RunObserver* next = nullptr;
+      for (RunObserver* observer : observers)
+      {
+        if (observer->nextTime() <= until + 1e-9 && (!next || observer->nextTime() < next->nextTime()))
+        {
+          next = observer;
+        }
+      }
+      if (next == nullptr || !advance(next->nextTime()))
+      {
+        return;
+      }
+      observer_error_ = next->observe(world_.tether(0));
+    }
+  }
+
+  /// The first refused sample or advance (a path or time that was not validated): the run stops there and
+  /// writes nothing more; its partial files are removed and the caller gets this message.
+  const std::string& runError() const { return run_error_; }
+  /// The first observer's error ("" while none).
+  const std::string& observerError() const { return observer_error_; }
+  /// Time spent advancing [s].
+  double cpuSeconds() const { return cpu_; }
+
+ private:
+  /// World::advanceTo(t); false, with runError() set, when it is refused.
+  bool advanceWorld(double t)
+  {
+    const Status status = world_.advanceTo(t);
+    if (!status.ok)
+    {
+      run_error_ = status.message;
+      return false;
+    }
+    return true;
+  }
+
+  const Scenario& scenario_;
+  const std::vector<ScenarioTether>& tethers_;
+  World& world_;
+  std::vector<PathDriver> drivers_;
+  double cpu_ = 0.0;
+  std::string run_error_;
+  std::string observer_error_;
+};
+
+/// Steps to every output time, writing each tether's rows (and the topology's); returns the topology rows.
+std::size_t writeOutputs(const Scenario& scenario, const World& world, Stepper& stepper,
+                         const std::vector<RunObserver*>& observers, const std::vector<OutputFile>& files,
+                         std::FILE* topology_file, std::vector<RunSummary>& each)
+{
+  std::size_t topology_rows = 0;
+  std::vector<double> tensions;
+  std::vector<Position> positions;
+  std::vector<TopologyEntry> entries;
+  const auto outputs = static_cast<std::size_t>(std::floor(scenario.duration * scenario.output_rate + 1e-9));
+  for (std::size_t k = 0; k <= outputs; ++k)
+  {
+    const double t_out = static_cast<double>(k) / scenario.output_rate;
+    stepper.observe(observers, t_out);
+    if (!stepper.runError().empty() || !stepper.advance(t_out))
+    {
+      break;
+    }
+    for (std::size_t i = 0; i < each.size(); ++i)
+    {
+      writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
+    }
+    if (topology_file != nullptr)
+    {
+      topology_rows += writeTopology(world, t_out, topology_file, entries);
+    }
+  }
+  stepper.observe(observers, scenario.duration);
+  return topology_rows;
+}
+
+/// The run's summary: the first tether's figures with the whole world's steps, CPU time and topology rows.
+RunSummary summaryOf(const World& world, std::vector<RunSummary> each, std::size_t topology_rows, double cpu)
+{
+  std::uint64_t steps = 0;
+  for (std::size_t i = 0; i < each.size(); ++i)
+  {
+    each[i].steps = world.tether(i).stepCount();
+    each[i].deployed_end = world.tether(i).deployedLength();
+    each[i].jumps = world.tether(i).jumpCount();
+    each[i].recoveries = world.tether(i).recoveryCount();
+    each[i].last_failure = world.tether(i).lastFailure();
+    steps += each[i].steps;
+  }
+  RunSummary result = each.front();
+  result.steps = steps;
+  result.cpu_seconds = cpu;
+  result.topology_rows = topology_rows;
+  result.tethers = std::move(each);
+  return result;
+}
+
 }  // namespace
 
 std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
@@ -151,172 +355,39 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
                         const std::vector<RunObserver*>& observers)
 {
   const std::vector<ScenarioTether> tethers = scenario.tetherList();
-  std::vector<PathDriver> drivers;
-  drivers.reserve(tethers.size());
-  for (const ScenarioTether& tether : tethers)
-  {
-    drivers.emplace_back(tether);
-  }
+  std::vector<PathDriver> drivers = driversOf(tethers);
   if (world.size() != tethers.size())
   {
     return "tethers: the world holds " + std::to_string(world.size()) + ", the scenario " +
            std::to_string(tethers.size());
   }
 
-  // state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), then topology.csv.
-  std::vector<OutputFile> files;
-  for (const ScenarioTether& tether : tethers)
-  {
-    const fs::path dir = scenario.tethers.empty() ? fs::path(out_dir) : fs::path(out_dir) / tether.name;
-    files.push_back({dir / "state.csv", {}, nullptr});
-    files.push_back({dir / "shape.csv", {}, nullptr});
-  }
-  if (scenario.usesWorld())
-  {
-    files.push_back({fs::path(out_dir) / "topology.csv", {}, nullptr});
-  }
+  std::vector<OutputFile> files = outputFilesOf(scenario, tethers, out_dir);
   const std::string open_error = openAll(files);
   if (!open_error.empty())
   {
     return open_error;
   }
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
+  std::vector<RunSummary> each = startOutputs(tethers, world, files, topology_file);
 
-  RunSummary result;
-  std::vector<RunSummary> each(tethers.size());
-  for (std::size_t i = 0; i < tethers.size(); ++i)
+  Stepper stepper(scenario, tethers, world, std::move(drivers));
+  const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
+  const bool ok = stepper.observerError().empty() && stepper.runError().empty();
+  const std::string close_error = closeAll(files, ok, out_dir);
+  if (!stepper.runError().empty())
   {
-    each[i].name = tethers[i].name;
-    each[i].deployed_start = world.tether(i).deployedLength();
-    std::fprintf(files[2 * i].file, "%s\n", kStateCsvHeader);
-    std::fprintf(files[2 * i + 1].file, "%s\n", kShapeCsvHeader);
+    return stepper.runError();
   }
-  if (topology_file != nullptr)
+  if (!stepper.observerError().empty())
   {
-    std::fprintf(topology_file, "%s\n", kTopologyCsvHeader);
-  }
-
-  double cpu = 0.0;
-  // The first refused sample or advance (a path or time that was not validated): the run stops there and
-  // writes nothing more; its partial files are removed and the caller gets this message.
-  std::string run_error;
-  // Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
-  // (for one tether, the very same calls: a world of one tether without contact steps as that tether).
-  // False, with run_error set, when a sample or an advance is refused.
-  const auto advance = [&](double t)
-  {
-    const auto start = std::chrono::steady_clock::now();
-    for (;;)
-    {
-      bool fed = true;
-      double reach = t;
-      for (std::size_t i = 0; i < drivers.size(); ++i)
-      {
-        if (!drivers[i].fedUpTo(t))
-        {
-          fed = false;
-          double fed_to = t;
-          const Status status = drivers[i].feed(world.tether(i), t, &fed_to);
-          if (!status.ok)
-          {
-            run_error = (scenario.tethers.empty() ? "" : "tether " + tethers[i].name + ": ") + status.message;
-            return false;
-          }
-          reach = std::min(reach, fed_to);
-        }
-      }
-      if (fed)
-      {
-        break;
-      }
-      const Status status = world.advanceTo(reach);
-      if (!status.ok)
-      {
-        run_error = status.message;
-        return false;
-      }
-    }
-    const Status status = world.advanceTo(t);
-    if (!status.ok)
-    {
-      run_error = status.message;
-      return false;
-    }
-    cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return true;
-  };
-  std::string observer_error;
-  // Lets the observers look at every time of theirs up to `until` [s], in time order.
-  const auto observe = [&](double until)
-  {
-    while (observer_error.empty() && run_error.empty())
-    {
-      RunObserver* next = nullptr;
-      for (RunObserver* observer : observers)
-      {
-        if (observer->nextTime() <= until + 1e-9 && (!next || observer->nextTime() < next->nextTime()))
-        {
-          next = observer;
-        }
-      }
-      if (next == nullptr || !advance(next->nextTime()))
-      {
-        return;
-      }
-      observer_error = next->observe(world.tether(0));
-    }
-  };
-  std::vector<double> tensions;
-  std::vector<Position> positions;
-  std::vector<TopologyEntry> entries;
-  const auto outputs = static_cast<std::size_t>(std::floor(scenario.duration * scenario.output_rate + 1e-9));
-  for (std::size_t k = 0; k <= outputs; ++k)
-  {
-    const double t_out = static_cast<double>(k) / scenario.output_rate;
-    observe(t_out);
-    if (!run_error.empty() || !advance(t_out))
-    {
-      break;
-    }
-    for (std::size_t i = 0; i < tethers.size(); ++i)
-    {
-      writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
-    }
-    if (topology_file != nullptr)
-    {
-      result.topology_rows += writeTopology(world, t_out, topology_file, entries);
-    }
-  }
-  observe(scenario.duration);
-  const std::string close_error = closeAll(files, observer_error.empty() && run_error.empty(), out_dir);
-  if (!run_error.empty())
-  {
-    return run_error;
-  }
-  if (!observer_error.empty())
-  {
-    return observer_error;
+    return stepper.observerError();
   }
   if (!close_error.empty())
   {
     return close_error;
   }
-  for (std::size_t i = 0; i < tethers.size(); ++i)
-  {
-    each[i].steps = world.tether(i).stepCount();
-    each[i].deployed_end = world.tether(i).deployedLength();
-    each[i].jumps = world.tether(i).jumpCount();
-    each[i].recoveries = world.tether(i).recoveryCount();
-    each[i].last_failure = world.tether(i).lastFailure();
-    result.steps += each[i].steps;
-  }
-  const std::uint64_t steps = result.steps;
-  const std::size_t topology_rows = result.topology_rows;
-  result = each.front();
-  result.steps = steps;
-  result.cpu_seconds = cpu;
-  result.topology_rows = topology_rows;
-  result.tethers = std::move(each);
+  const RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds());
   if (summary != nullptr)
   {
     *summary = result;

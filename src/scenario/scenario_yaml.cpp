@@ -192,12 +192,9 @@ std::string readObstacles(const YAML::Node& node, const std::string& base_dir, s
   return spec::readObstacles(node, reading, obstacles);
 }
 
-std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)
+/// "" when every top-level key of the scenario is known, else the message naming the first unknown one.
+std::string checkScenarioKeys(const YAML::Node& root)
 {
-  if (!root.IsMap())
-  {
-    return "scenario: expected a map with params, spool, vehicle, duration, output_rate";
-  }
   for (const auto& entry : root)
   {
     const std::string key = entry.first.as<std::string>();
@@ -209,12 +206,12 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
              "tether_contact)";
     }
   }
-  Scenario result;
-  if (root["description"])
-  {
-    result.description = root["description"].as<std::string>();
-  }
-  std::string error;
+  return "";
+}
+
+/// The tethers: either the `tethers` list or one tether at the top level (params, spool, vehicle).
+std::string readScenarioTethers(const YAML::Node& root, Scenario* result)
+{
   if (root["tethers"])
   {
     // Either one tether at the top level or a list of them, never both: a top-level field beside the list
@@ -227,74 +224,71 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
                (std::string(single) == "cameras" ? "; cameras ride only on a single tether's vehicle)" : ")");
       }
     }
-    error = readTethers(root["tethers"], &result.tethers);
+    return readTethers(root["tethers"], &result->tethers);
+  }
+  if (root["params"])
+  {
+    const std::string error = applyParamMap(root["params"], "params.", &result->params);
     if (!error.empty())
     {
       return error;
     }
   }
-  else
-  {
-    if (root["params"])
-    {
-      error = applyParamMap(root["params"], "params.", &result.params);
-      if (!error.empty())
-      {
-        return error;
-      }
-    }
-    error = spec::readPosition(root["spool"], "spool", &result.spool);
-    if (!error.empty())
-    {
-      return error;
-    }
-    if (root["vehicle"])
-    {
-      error = readPath(root["vehicle"], "vehicle", &result.vehicle);
-      if (!error.empty())
-      {
-        return error;
-      }
-    }
-  }
-  if (!root["duration"])
-  {
-    return "duration: missing (simulated time in s)";
-  }
-  error = readNumber(root["duration"], "duration", &result.duration);
+  const std::string error = spec::readPosition(root["spool"], "spool", &result->spool);
   if (!error.empty())
   {
     return error;
   }
-  if (result.duration <= 0.0 || result.duration > 1.0e6)
+  return root["vehicle"] ? readPath(root["vehicle"], "vehicle", &result->vehicle) : "";
+}
+
+/// `duration` (required) and `output_rate`, each in its range, with at most kMaxOutputTimes output times.
+std::string readScenarioTimes(const YAML::Node& root, Scenario* result)
+{
+  if (!root["duration"])
   {
-    return "duration = " + std::to_string(result.duration) + ": must be in (0, 1e6] s";
+    return "duration: missing (simulated time in s)";
+  }
+  std::string error = readNumber(root["duration"], "duration", &result->duration);
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (result->duration <= 0.0 || result->duration > 1.0e6)
+  {
+    return "duration = " + std::to_string(result->duration) + ": must be in (0, 1e6] s";
   }
   if (root["output_rate"])
   {
-    error = readNumber(root["output_rate"], "output_rate", &result.output_rate);
+    error = readNumber(root["output_rate"], "output_rate", &result->output_rate);
     if (!error.empty())
     {
       return error;
     }
   }
-  if (result.output_rate <= 0.0 || result.output_rate > 1.0e4)
+  if (result->output_rate <= 0.0 || result->output_rate > 1.0e4)
   {
-    return "output_rate = " + std::to_string(result.output_rate) + ": must be in (0, 1e4] rows per s";
+    return "output_rate = " + std::to_string(result->output_rate) + ": must be in (0, 1e4] rows per s";
   }
-  if (result.duration * result.output_rate > kMaxOutputTimes)
+  if (result->duration * result->output_rate > kMaxOutputTimes)
   {
-    return "duration x output_rate = " + std::to_string(result.duration * result.output_rate) +
+    return "duration x output_rate = " + std::to_string(result->duration * result->output_rate) +
            ": more than 1e6 output times";
   }
+  return "";
+}
+
+/// `cameras` (each rides on the vehicle, so a vehicle path is needed), `tether_contact` and `obstacles`.
+std::string readScenarioSurroundings(const YAML::Node& root, const std::string& base_dir, Scenario* result)
+{
   if (root["cameras"])
   {
-    error = readCameras(root["cameras"], result.duration, &result.cameras);
+    const std::string error = readCameras(root["cameras"], result->duration, &result->cameras);
     if (!error.empty())
     {
       return error;
     }
-    if (!result.cameras.empty() && result.vehicle.empty())
+    if (!result->cameras.empty() && result->vehicle.empty())
     {
       return "cameras: a camera rides on the vehicle, and this scenario has no vehicle path";
     }
@@ -302,21 +296,44 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
   if (root["tether_contact"])
   {
     const YAML::Node node = root["tether_contact"];
-    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<bool>::decode(node, result.tether_contact))
+    if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<bool>::decode(node, result->tether_contact))
     {
       return "tether_contact: expected true or false";
     }
   }
-  if (root["obstacles"])
+  return root["obstacles"] ? readObstacles(root["obstacles"], base_dir, &result->obstacles) : "";
+}
+
+std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)
+{
+  if (!root.IsMap())
   {
-    error = readObstacles(root["obstacles"], base_dir, &result.obstacles);
-    if (!error.empty())
-    {
-      return error;
-    }
+    return "scenario: expected a map with params, spool, vehicle, duration, output_rate";
   }
-  // Names across tethers, obstacles and cameras: the world's one check (buildWorld makes it again).
-  error = validateWorldSpec(worldSpecOf(result));
+  std::string error = checkScenarioKeys(root);
+  if (!error.empty())
+  {
+    return error;
+  }
+  Scenario result;
+  if (root["description"])
+  {
+    result.description = root["description"].as<std::string>();
+  }
+  error = readScenarioTethers(root, &result);
+  if (error.empty())
+  {
+    error = readScenarioTimes(root, &result);
+  }
+  if (error.empty())
+  {
+    error = readScenarioSurroundings(root, base_dir, &result);
+  }
+  if (error.empty())
+  {
+    // Names across tethers, obstacles and cameras: the world's one check (buildWorld makes it again).
+    error = validateWorldSpec(worldSpecOf(result));
+  }
   if (!error.empty())
   {
     return error;

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "rov_tether/spec/yaml_read.hpp"
@@ -48,7 +49,84 @@ std::string joined(const std::vector<std::string>& problems)
 
 }  // namespace
 
-std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, VehicleParams* params)
+std::string readControllerGains(const YAML::Node& map, const std::string& prefix, const VehicleParams& vehicle,
+                                ControllerGains* gains)
+{
+  const std::string file = prefix.empty() ? "" : prefix + ": ";
+  const std::string at = file + "controller: ";
+  const char* const keys =
+      "bandwidth, damping_ratio, integral_ratio, proportional, integral, derivative, integral_limit";
+  if (!map.IsMap())
+  {
+    return at + "expected a map (" + keys + ")";
+  }
+  // The design keys, then the gain keys (read into `given`, copied over the design where given).
+  ControllerDesign design;
+  ControllerGains given;
+  const std::vector<Field> fields = {{"bandwidth", 4, design.bandwidth.data()},
+                                     {"damping_ratio", 1, &design.damping_ratio},
+                                     {"integral_ratio", 1, &design.integral_ratio},
+                                     {"proportional", 4, given.proportional.data()},
+                                     {"integral", 4, given.integral.data()},
+                                     {"derivative", 4, given.derivative.data()},
+                                     {"integral_limit", 4, given.integral_limit.data()}};
+  std::vector<std::string> problems;
+  std::set<std::string> seen;
+  for (const auto& entry : map)
+  {
+    const std::string key = entry.first.Scalar();
+    if (!seen.insert(key).second)
+    {
+      problems.push_back(at + key + ": given twice");
+      continue;
+    }
+    const auto field = std::find_if(fields.begin(), fields.end(), [&](const Field& f) { return key == f.name; });
+    if (field == fields.end())
+    {
+      problems.push_back(at + key + ": no controller setting of that name (" + keys + ")");
+      continue;
+    }
+    const std::string error = field->size == 1 ? readNumber(entry.second, key, field->values)
+                                               : readVector(entry.second, key, field->size, field->values);
+    if (!error.empty())
+    {
+      problems.push_back(at + error);
+    }
+  }
+  if (!problems.empty())
+  {
+    return joined(problems);
+  }
+  ControllerGains candidate;
+  const Status designed = ControllerGains::design(vehicle, design, &candidate);
+  if (!designed)
+  {
+    return file + designed.message;  // "controller design: ..."
+  }
+  const std::pair<const char*, Vector4 ControllerGains::*> gain_keys[] = {
+      {"proportional", &ControllerGains::proportional},
+      {"integral", &ControllerGains::integral},
+      {"derivative", &ControllerGains::derivative},
+      {"integral_limit", &ControllerGains::integral_limit}};
+  for (const auto& [name, member] : gain_keys)
+  {
+    if (seen.count(name) != 0)
+    {
+      candidate.*member = given.*member;
+    }
+  }
+  VehicleController check;
+  const Status accepted = check.configure(vehicle, candidate);
+  if (!accepted)
+  {
+    return file + accepted.message;  // "controller: ..."
+  }
+  *gains = candidate;
+  return "";
+}
+
+std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, VehicleParams* params,
+                              ControllerGains* gains)
 {
   const std::string at = prefix.empty() ? "" : prefix + ": ";
   if (!map.IsMap())
@@ -59,12 +137,20 @@ std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, 
   const std::vector<Field> fields = fieldsOf(&candidate);
   std::vector<std::string> problems;
   std::set<std::string> seen;
+  YAML::Node controller;
+  bool has_controller = false;
   for (const auto& entry : map)
   {
     const std::string key = entry.first.Scalar();
     if (!seen.insert(key).second)
     {
       problems.push_back(at + key + ": given twice");
+      continue;
+    }
+    if (key == "controller")
+    {
+      controller = entry.second;
+      has_controller = true;
       continue;
     }
     const auto field = std::find_if(fields.begin(), fields.end(), [&](const Field& f) { return key == f.name; });
@@ -96,14 +182,36 @@ std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, 
       problems.push_back(at + valid.message);
     }
   }
+  // The controller: the block's gains, or without one the default design for this vehicle.
+  ControllerGains candidate_gains;
+  if (problems.empty() && has_controller)
+  {
+    const std::string error = readControllerGains(controller, prefix, candidate, &candidate_gains);
+    if (!error.empty())
+    {
+      problems.push_back(error);
+    }
+  }
+  else if (problems.empty())
+  {
+    const Status designed = ControllerGains::design(candidate, ControllerDesign{}, &candidate_gains);
+    if (!designed)
+    {
+      problems.push_back(at + designed.message);
+    }
+  }
   if (problems.empty())
   {
     *params = candidate;
+    if (gains != nullptr)
+    {
+      *gains = candidate_gains;
+    }
   }
   return joined(problems);
 }
 
-std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params)
+std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params, ControllerGains* gains)
 {
   std::ifstream file(path);
   if (!file)
@@ -114,7 +222,7 @@ std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params
   text << file.rdbuf();
   try
   {
-    return readVehicleParams(YAML::Load(text.str()), path, params);
+    return readVehicleParams(YAML::Load(text.str()), path, params, gains);
   }
   catch (const YAML::Exception& e)
   {

@@ -94,12 +94,10 @@ std::vector<std::string> split(const std::string& text)
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv)
+/// Reads the command line (`--key value` pairs); false (after printing the usage) on an unknown key.
+bool parseOptions(int argc, char** argv, Options* options)
 {
-  ros::init(argc, argv, "rov_tether_load", ros::init_options::AnonymousName);
-  Options o;
+  Options& o = *options;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string key = argv[i];
@@ -130,8 +128,104 @@ int main(int argc, char** argv)
       std::fprintf(stderr,
                    "usage: rov_tether_load [--topics a,b] [--rate Hz] [--duration s] [--clock-speed x] [--report s]\n"
                    "                       [--spacing m] [--start x,y,z] [--radius m] [--pid PID]\n");
-      return 2;
+      return false;
     }
+  }
+  return true;
+}
+
+/// Publishes every vehicle's pose on its circle for each pose time up to `now`; counts them in `poses`.
+void publishPoses(const Options& o, std::vector<ros::Publisher>& pubs, double start_time, double now, double* next_pose,
+                  std::size_t* poses)
+{
+  while (*next_pose <= now)
+  {
+    const double t = *next_pose - start_time;
+    const double angle = 2.0 * M_PI * t / o.period;
+    for (std::size_t k = 0; k < pubs.size(); ++k)
+    {
+      geometry_msgs::PoseStamped msg;
+      msg.header.stamp = o.clock_speed > 0.0 ? ros::Time(*next_pose) : ros::Time::now();
+      msg.header.frame_id = "world";
+      msg.pose.position.x = o.start[0] + o.spacing * static_cast<double>(k) + o.radius * std::cos(angle);
+      msg.pose.position.y = o.start[1] + o.radius * std::sin(angle);
+      msg.pose.position.z = o.start[2];
+      msg.pose.orientation.w = 1.0;
+      pubs[k].publish(msg);
+      ++*poses;
+    }
+    *next_pose += 1.0 / o.rate;
+  }
+}
+
+/// What the report lines saw, for the summary: the node's memory and each tether's step time and RTF.
+struct Totals
+{
+  double rss_first = NAN, rss_last = NAN, rss_max = 0.0;
+  std::map<std::string, double> step_first, step_last, rtf_min;
+};
+
+/// Prints one report line (ROS time since the start, the node's RSS, each tether's diagnostics).
+void reportLine(const Options& o, double elapsed, Totals& totals)
+{
+  const double rss = o.pid > 0 ? residentMegabytes(o.pid) : NAN;
+  if (std::isnan(totals.rss_first)) totals.rss_first = rss;
+  totals.rss_last = rss;
+  totals.rss_max = std::max(totals.rss_max, std::isnan(rss) ? 0.0 : rss);
+  std::printf("%8.0f %9.1f ", elapsed, rss);
+  for (const auto& [name, s] : seen)
+  {
+    std::printf(" | %s: %.1fx %.1f us %.1f%% it %.0f rejected %.0f%s", name.c_str(), s.rtf, s.step_us, s.load,
+                s.iterations, s.rejected, s.level ? (" [" + s.message + "]").c_str() : "");
+    if (!totals.step_first.count(name) && std::isfinite(s.step_us)) totals.step_first[name] = s.step_us;
+    totals.step_last[name] = s.step_us;
+    totals.rtf_min[name] = totals.rtf_min.count(name) ? std::min(totals.rtf_min[name], s.rtf) : s.rtf;
+  }
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+/// Prints the summary lines: poses sent, the node's memory, each tether's step time and lowest RTF.
+void printSummary(const Options& o, std::size_t poses, std::size_t topics, Totals& totals)
+{
+  std::printf("summary: %zu poses on %zu topic(s) over %.0f ROS s", poses, topics, o.duration);
+  if (o.pid > 0)
+  {
+    std::printf("; node RSS first %.1f MB, last %.1f MB, max %.1f MB", totals.rss_first, totals.rss_last,
+                totals.rss_max);
+  }
+  std::printf("\n");
+  for (const auto& [name, first] : totals.step_first)
+  {
+    std::printf("summary: %s: step time first %.1f us, last %.1f us; lowest physics real-time factor %.1fx\n",
+                name.c_str(), first, totals.step_last[name], totals.rtf_min[name]);
+  }
+}
+
+/// Sleeps until the next loop turn, `tick` wall seconds after the last; skips ahead when far behind.
+void waitForTick(double tick, ros::WallTime* wall_next)
+{
+  *wall_next += ros::WallDuration(tick);
+  const ros::WallTime wall_now = ros::WallTime::now();
+  if (*wall_next > wall_now)
+  {
+    (*wall_next - wall_now).sleep();
+  }
+  else if ((wall_now - *wall_next).toSec() > 0.1)
+  {
+    *wall_next = wall_now;  // fell behind (machine busy): do not burst
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "rov_tether_load", ros::init_options::AnonymousName);
+  Options o;
+  if (!parseOptions(argc, argv, &o))
+  {
+    return 2;
   }
   ros::NodeHandle nh;
   std::vector<ros::Publisher> pubs;
@@ -152,8 +246,7 @@ int main(int argc, char** argv)
   const double tick = 0.001;  // wall seconds between loop turns: up to 1 kHz of poses per topic
   const double start_time = o.clock_speed > 0.0 ? sim_time : ros::WallTime::now().toSec();
   double next_pose = start_time, next_report = start_time + o.report;
-  double rss_first = NAN, rss_last = NAN, rss_max = 0.0;
-  std::map<std::string, double> step_first, step_last, rtf_min;
+  Totals totals;
   std::size_t poses = 0;
   ros::WallTime wall_next = ros::WallTime::now();
   std::printf("%8s %9s  %s\n", "ROS t [s]", "RSS [MB]",
@@ -177,65 +270,15 @@ int main(int argc, char** argv)
     {
       break;
     }
-    while (next_pose <= now)
-    {
-      const double t = next_pose - start_time;
-      const double angle = 2.0 * M_PI * t / o.period;
-      for (std::size_t k = 0; k < pubs.size(); ++k)
-      {
-        geometry_msgs::PoseStamped msg;
-        msg.header.stamp = o.clock_speed > 0.0 ? ros::Time(next_pose) : ros::Time::now();
-        msg.header.frame_id = "world";
-        msg.pose.position.x = o.start[0] + o.spacing * static_cast<double>(k) + o.radius * std::cos(angle);
-        msg.pose.position.y = o.start[1] + o.radius * std::sin(angle);
-        msg.pose.position.z = o.start[2];
-        msg.pose.orientation.w = 1.0;
-        pubs[k].publish(msg);
-        ++poses;
-      }
-      next_pose += 1.0 / o.rate;
-    }
+    publishPoses(o, pubs, start_time, now, &next_pose, &poses);
     if (now >= next_report)
     {
       next_report += o.report;
-      const double rss = o.pid > 0 ? residentMegabytes(o.pid) : NAN;
-      if (std::isnan(rss_first)) rss_first = rss;
-      rss_last = rss;
-      rss_max = std::max(rss_max, std::isnan(rss) ? 0.0 : rss);
-      std::printf("%8.0f %9.1f ", now - start_time, rss);
-      for (const auto& [name, s] : seen)
-      {
-        std::printf(" | %s: %.1fx %.1f us %.1f%% it %.0f rejected %.0f%s", name.c_str(), s.rtf, s.step_us, s.load,
-                    s.iterations, s.rejected, s.level ? (" [" + s.message + "]").c_str() : "");
-        if (!step_first.count(name) && std::isfinite(s.step_us)) step_first[name] = s.step_us;
-        step_last[name] = s.step_us;
-        rtf_min[name] = rtf_min.count(name) ? std::min(rtf_min[name], s.rtf) : s.rtf;
-      }
-      std::printf("\n");
-      std::fflush(stdout);
+      reportLine(o, now - start_time, totals);
     }
     ros::spinOnce();
-    wall_next += ros::WallDuration(tick);
-    const ros::WallTime wall_now = ros::WallTime::now();
-    if (wall_next > wall_now)
-    {
-      (wall_next - wall_now).sleep();
-    }
-    else if ((wall_now - wall_next).toSec() > 0.1)
-    {
-      wall_next = wall_now;  // fell behind (machine busy): do not burst
-    }
+    waitForTick(tick, &wall_next);
   }
-  std::printf("summary: %zu poses on %zu topic(s) over %.0f ROS s", poses, pubs.size(), o.duration);
-  if (o.pid > 0)
-  {
-    std::printf("; node RSS first %.1f MB, last %.1f MB, max %.1f MB", rss_first, rss_last, rss_max);
-  }
-  std::printf("\n");
-  for (const auto& [name, first] : step_first)
-  {
-    std::printf("summary: %s: step time first %.1f us, last %.1f us; lowest physics real-time factor %.1fx\n",
-                name.c_str(), first, step_last[name], rtf_min[name]);
-  }
+  printSummary(o, poses, pubs.size(), totals);
   return 0;
 }

@@ -31,14 +31,36 @@ void usage(std::FILE* out)
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
 
-}  // namespace
-
-int main(int argc, char** argv)
+/// The command line's choices.
+struct Options
 {
   std::string scenario_path;
   std::string out_dir;
-  std::vector<std::string> assignments;
+  std::vector<std::string> assignments;  ///< the --set name=value, in order
   double max_tension_warning = rov_tether::kDefaultMaxTensionWarning;
+};
+
+/// Prints the generated parameter file asked for by `--parameters[=FORMAT]`; the exit code.
+int printParameters(const std::string& arg)
+{
+  // The files generated from the parameter table (scripts/generate_parameters.py writes them).
+  const std::string format = arg == "--parameters" ? "markdown" : arg.substr(std::strlen("--parameters="));
+  if (format != "markdown" && format != "yaml" && format != "cfg")
+  {
+    std::fprintf(stderr, "rov_tether_run: --parameters=%s: expected markdown, yaml or cfg\n", format.c_str());
+    return 2;
+  }
+  std::fputs((format == "markdown" ? rov_tether::parameterTableMarkdown()
+              : format == "yaml"   ? rov_tether::defaultYaml()
+                                   : rov_tether::dynamicReconfigureCfg())
+                 .c_str(),
+             stdout);
+  return 0;
+}
+
+/// Reads the command line into options; -1 to go on, else the exit code (help, --parameters or a bad argument).
+int parseArguments(int argc, char** argv, Options* options)
+{
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -49,25 +71,13 @@ int main(int argc, char** argv)
     }
     if (arg == "--parameters" || arg.rfind("--parameters=", 0) == 0)
     {
-      // The files generated from the parameter table (scripts/generate_parameters.py writes them).
-      const std::string format = arg == "--parameters" ? "markdown" : arg.substr(std::strlen("--parameters="));
-      if (format != "markdown" && format != "yaml" && format != "cfg")
-      {
-        std::fprintf(stderr, "rov_tether_run: --parameters=%s: expected markdown, yaml or cfg\n", format.c_str());
-        return 2;
-      }
-      std::fputs((format == "markdown" ? rov_tether::parameterTableMarkdown()
-                  : format == "yaml"   ? rov_tether::defaultYaml()
-                                       : rov_tether::dynamicReconfigureCfg())
-                     .c_str(),
-                 stdout);
-      return 0;
+      return printParameters(arg);
     }
     if (arg == "--max-tension-warning" && i + 1 < argc)
     {
       char* end = nullptr;
-      max_tension_warning = std::strtod(argv[++i], &end);
-      if (end == argv[i] || *end != '\0' || !(max_tension_warning >= 0.0))
+      options->max_tension_warning = std::strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0' || !(options->max_tension_warning >= 0.0))
       {
         std::fprintf(stderr, "rov_tether_run: --max-tension-warning '%s': expected a number >= 0 [N]\n", argv[i]);
         return 2;
@@ -75,11 +85,11 @@ int main(int argc, char** argv)
     }
     else if ((arg == "--out" || arg == "--set") && i + 1 < argc)
     {
-      (arg == "--out" ? out_dir : assignments.emplace_back()) = argv[++i];
+      (arg == "--out" ? options->out_dir : options->assignments.emplace_back()) = argv[++i];
     }
-    else if (!arg.empty() && arg[0] != '-' && scenario_path.empty())
+    else if (!arg.empty() && arg[0] != '-' && options->scenario_path.empty())
     {
-      scenario_path = arg;
+      options->scenario_path = arg;
     }
     else
     {
@@ -88,26 +98,111 @@ int main(int argc, char** argv)
       return 2;
     }
   }
-  if (scenario_path.empty() || out_dir.empty())
+  if (options->scenario_path.empty() || options->out_dir.empty())
   {
     usage(stderr);
     return 2;
   }
+  return -1;
+}
 
-  rov_tether::Scenario scenario;
-  std::string error = rov_tether::loadScenario(scenario_path, &scenario);
-  for (const auto& assignment : assignments)
+/// Loads the scenario and applies the --set assignments (to every tether); "" or the error.
+std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenario* scenario)
+{
+  std::string error = rov_tether::loadScenario(options.scenario_path, scenario);
+  for (const auto& assignment : options.assignments)
   {
     if (error.empty())
     {
-      error = rov_tether::applyAssignment(assignment, &scenario.params);
-      for (auto& tether : scenario.tethers)
+      error = rov_tether::applyAssignment(assignment, &scenario->params);
+      for (auto& tether : scenario->tethers)
       {
         error = error.empty() ? rov_tether::applyAssignment(assignment, &tether.params) : error;
       }
       error = error.empty() ? "" : "--set " + error;
     }
   }
+  return error;
+}
+
+/// Prints what ran: the scenario, its tethers, the model (the first tether's, `auto` resolved) and the figures.
+void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_path, const rov_tether::RunSummary& s)
+{
+  // What ran (`auto` replaced by its choice): the first tether's model, for a `tethers` list.
+  const rov_tether::TetherParams p =
+      (scenario.tethers.empty() ? scenario.params : scenario.tethers.front().params).resolved();
+  std::printf("scenario        %s%s%s\n", scenario_path.c_str(), scenario.description.empty() ? "" : ": ",
+              scenario.description.c_str());
+  if (!scenario.tethers.empty())
+  {
+    std::printf(
+        "tethers         %zu in one world, %zu obstacles, contact between tethers %s; the lines up to "
+        "max strain are tether '%s''s (steps: all tethers')\n",
+        scenario.tethers.size(), scenario.obstacles.size(), scenario.tether_contact ? "on" : "off",
+        scenario.tethers.front().name.c_str());
+  }
+  std::printf(
+      "model           solver %s, %d iterations, bending %s, drag %.3g, noise %.3g m, dt %.4g s, "
+      "segment %.3g m\n",
+      rov_tether::toString(p.solver).c_str(), p.iterations, p.bending ? "on" : "off", p.drag, p.noise, p.time_step,
+      p.segment_length);
+  std::printf("simulated       %.2f s in %llu steps, %.3f s CPU (%.0fx real time)\n", scenario.duration,
+              static_cast<unsigned long long>(s.steps), s.cpu_seconds,
+              s.cpu_seconds > 0 ? scenario.duration / s.cpu_seconds : 0.0);
+  std::printf("deployed length start %.3f m, end %.3f m, max %.3f m (cable %.3f m, winch %s)\n", s.deployed_start,
+              s.deployed_end, s.deployed_max, p.cable_length, rov_tether::toString(p.winch_mode).c_str());
+  std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension, s.max_tension_vehicle);
+  std::printf("max strain      %.4g%s\n", s.max_strain, s.jumps ? "" : "");
+  if (s.jumps > 0)
+  {
+    std::printf("vehicle jumps   %llu (cable re-laid)\n", static_cast<unsigned long long>(s.jumps));
+  }
+}
+
+/// Prints the files written: per tether, the topology and each camera's dataset.
+void printWritten(const rov_tether::Scenario& scenario, const std::string& out_dir, const rov_tether::RunSummary& s,
+                  const rov_tether::camera::DatasetWriter* dataset)
+{
+  if (scenario.tethers.empty())
+  {
+    std::printf("wrote           %s/state.csv (%zu rows), %s/shape.csv (%zu rows)\n", out_dir.c_str(), s.state_rows,
+                out_dir.c_str(), s.shape_rows);
+  }
+  for (const auto& t : scenario.tethers.empty() ? std::vector<rov_tether::RunSummary>{} : s.tethers)
+  {
+    std::printf(
+        "tether %-8s deployed end %.3f m, max tension %.4g N; wrote %s/%s/state.csv (%zu rows), shape.csv "
+        "(%zu rows)\n",
+        t.name.c_str(), t.deployed_end, t.max_tension, out_dir.c_str(), t.name.c_str(), t.state_rows, t.shape_rows);
+  }
+  if (scenario.usesWorld())
+  {
+    std::printf("wrote           %s/topology.csv (%zu rows)\n", out_dir.c_str(), s.topology_rows);
+  }
+  for (const auto& camera :
+       dataset ? dataset->summary() : std::vector<rov_tether::camera::DatasetWriter::CameraSummary>{})
+  {
+    std::printf("camera %-8s %s/cameras/%s/: %zu frames, tether in %zu, coverage mean %.4f, max %.4f\n",
+                camera.name.c_str(), out_dir.c_str(), camera.name.c_str(), camera.frames, camera.frames_with_tether,
+                camera.mean_coverage, camera.max_coverage);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  Options options;
+  const int exit_code = parseArguments(argc, argv, &options);
+  if (exit_code >= 0)
+  {
+    return exit_code;
+  }
+  const std::string& scenario_path = options.scenario_path;
+  const std::string& out_dir = options.out_dir;
+
+  rov_tether::Scenario scenario;
+  std::string error = loadScenarioWithOverrides(options, &scenario);
   if (!error.empty())
   {
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
@@ -147,59 +242,9 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 1;
   }
-  // What ran (`auto` replaced by its choice): the first tether's model, for a `tethers` list.
-  const rov_tether::TetherParams p =
-      (scenario.tethers.empty() ? scenario.params : scenario.tethers.front().params).resolved();
-  std::printf("scenario        %s%s%s\n", scenario_path.c_str(), scenario.description.empty() ? "" : ": ",
-              scenario.description.c_str());
-  if (!scenario.tethers.empty())
-  {
-    std::printf(
-        "tethers         %zu in one world, %zu obstacles, contact between tethers %s; the lines up to "
-        "max strain are tether '%s''s (steps: all tethers')\n",
-        scenario.tethers.size(), scenario.obstacles.size(), scenario.tether_contact ? "on" : "off",
-        scenario.tethers.front().name.c_str());
-  }
-  std::printf(
-      "model           solver %s, %d iterations, bending %s, drag %.3g, noise %.3g m, dt %.4g s, "
-      "segment %.3g m\n",
-      rov_tether::toString(p.solver).c_str(), p.iterations, p.bending ? "on" : "off", p.drag, p.noise, p.time_step,
-      p.segment_length);
-  std::printf("simulated       %.2f s in %llu steps, %.3f s CPU (%.0fx real time)\n", scenario.duration,
-              static_cast<unsigned long long>(s.steps), s.cpu_seconds,
-              s.cpu_seconds > 0 ? scenario.duration / s.cpu_seconds : 0.0);
-  std::printf("deployed length start %.3f m, end %.3f m, max %.3f m (cable %.3f m, winch %s)\n", s.deployed_start,
-              s.deployed_end, s.deployed_max, p.cable_length, rov_tether::toString(p.winch_mode).c_str());
-  std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension, s.max_tension_vehicle);
-  std::printf("max strain      %.4g%s\n", s.max_strain, s.jumps ? "" : "");
-  if (s.jumps > 0)
-  {
-    std::printf("vehicle jumps   %llu (cable re-laid)\n", static_cast<unsigned long long>(s.jumps));
-  }
-  if (scenario.tethers.empty())
-  {
-    std::printf("wrote           %s/state.csv (%zu rows), %s/shape.csv (%zu rows)\n", out_dir.c_str(), s.state_rows,
-                out_dir.c_str(), s.shape_rows);
-  }
-  for (const auto& t : scenario.tethers.empty() ? std::vector<rov_tether::RunSummary>{} : s.tethers)
-  {
-    std::printf(
-        "tether %-8s deployed end %.3f m, max tension %.4g N; wrote %s/%s/state.csv (%zu rows), shape.csv "
-        "(%zu rows)\n",
-        t.name.c_str(), t.deployed_end, t.max_tension, out_dir.c_str(), t.name.c_str(), t.state_rows, t.shape_rows);
-  }
-  if (scenario.usesWorld())
-  {
-    std::printf("wrote           %s/topology.csv (%zu rows)\n", out_dir.c_str(), s.topology_rows);
-  }
-  for (const auto& camera :
-       dataset ? dataset->summary() : std::vector<rov_tether::camera::DatasetWriter::CameraSummary>{})
-  {
-    std::printf("camera %-8s %s/cameras/%s/: %zu frames, tether in %zu, coverage mean %.4f, max %.4f\n",
-                camera.name.c_str(), out_dir.c_str(), camera.name.c_str(), camera.frames, camera.frames_with_tether,
-                camera.mean_coverage, camera.max_coverage);
-  }
-  for (const std::string& warning : rov_tether::runWarnings(scenario, s, max_tension_warning))
+  printRun(scenario, scenario_path, s);
+  printWritten(scenario, out_dir, s, dataset.get());
+  for (const std::string& warning : rov_tether::runWarnings(scenario, s, options.max_tension_warning))
   {
     std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
   }

@@ -115,52 +115,134 @@ void usage()
                "  resolutions and efforts; writes DIR/study.csv and DIR/stability.csv.\n");
 }
 
-}  // namespace
-
-int main(int argc, char** argv)
+/// The command line's choices.
+struct Options
 {
   std::string out_dir;
-  std::string only;
+  std::string only;  ///< one case's name, or "" for all
   bool quick = false;
   bool with_stability = true;
+};
+
+/// Reads the command line; false (after printing the usage) when it is wrong.
+bool parseOptions(int argc, char** argv, Options* options)
+{
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
     if (arg == "--out" && i + 1 < argc)
     {
-      out_dir = argv[++i];
+      options->out_dir = argv[++i];
     }
     else if (arg == "--case" && i + 1 < argc)
     {
-      only = argv[++i];
+      options->only = argv[++i];
     }
     else if (arg == "--quick")
     {
-      quick = true;
+      options->quick = true;
     }
     else if (arg == "--no-stability")
     {
-      with_stability = false;
+      options->with_stability = false;
     }
     else
     {
       usage();
-      return 2;
+      return false;
     }
   }
-  if (out_dir.empty())
+  if (options->out_dir.empty())
   {
     usage();
-    return 2;
+    return false;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  const std::string study_path = out_dir + "/study.csv";
+  return true;
+}
+
+/// Sets the effort's iterations, sub-steps, over-relaxation and (unless `keep_step`) time step on p.
+void applyEffort(const Effort& effort, bool keep_step, TetherParams& p)
+{
+  if (effort.time_step > 0.0 && !keep_step)
+  {
+    p.time_step = effort.time_step;
+  }
+  p.iterations = effort.iterations;
+  p.substeps = effort.substeps;
+  p.over_relaxation = effort.relax;
+  if (effort.critical_fraction > 0.0)
+  {
+    p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
+  }
+}
+
+/// Runs case c for every method x resolution x effort, writing each row; keeps the cheapest accurate run
+/// (shape 1%, tension 2%) per method in `best`.
+void sweepCase(const Case& c, bool quick, std::FILE* out, std::map<std::string, Result>& best)
+{
+  for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
+  {
+    for (int segments : resolutions(c.name, quick))
+    {
+      for (const Effort& effort : efforts(method, quick))
+      {
+        TetherParams p = c.base(segments);
+        p.solver = method;
+        // The paper's step is part of its case.
+        applyEffort(effort, c.name == "paper_experiment", p);
+        if (p.substeps > 10000)
+        {
+          continue;
+        }
+        const Result r = c.run(p);
+        writeResult(out, r);
+        const bool accurate = r.shape_error <= 0.01 && !(r.tension_error > 0.02);
+        if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
+        {
+          best[r.method] = r;
+        }
+      }
+    }
+  }
+}
+
+/// The automatic choice on case c (catenary_s8): resolution from a shape tolerance on the catenary's tightest
+/// radius a = H / w, effort from a stretch tolerance; writes and prints each run.
+void runAutomaticChoice(const Case& c, std::FILE* out)
+{
+  Catenary reference;
+  reference.stiffness = 1e5;
+  reference.solve(8.0);
+  for (double shape : {0.01, 0.001})
+  {
+    for (double stretch : {0.01, 0.001})
+    {
+      TetherParams p = c.base(10);
+      p.segment_length_auto = true;
+      p.shape_tolerance = shape;
+      p.min_bend_radius = reference.horizontal / reference.weight;
+      p.iterations_auto = true;
+      p.stretch_tolerance = stretch;
+      p = p.resolved();
+      p.min_deployed_length = p.segment_length;
+      Result r = c.run(p);
+      r.label = "auto";
+      writeResult(out, r);
+      std::printf(
+          "   auto (shape %g m, stretch %g): %d segments, %d iterations: sag %.3f%%, tension %.3f%%, %.0f us/s\n",
+          shape, stretch, r.segments, r.iterations, 100 * r.shape_error, 100 * r.tension_error, r.cost);
+    }
+  }
+}
+
+/// Writes OUT/study.csv: every case (or only `only`) swept, with the cheapest accurate run per method printed.
+bool writeStudy(const Options& options, const std::string& study_path)
+{
   std::FILE* out = std::fopen(study_path.c_str(), "w");
   if (out == nullptr)
   {
     std::fprintf(stderr, "cannot write %s\n", study_path.c_str());
-    return 1;
+    return false;
   }
   std::fprintf(
       out,
@@ -170,72 +252,15 @@ int main(int argc, char** argv)
   std::map<std::string, std::map<std::string, Result>> cheapest;
   for (const Case& c : cases())
   {
-    if (!only.empty() && c.name != only)
+    if (!options.only.empty() && c.name != options.only)
     {
       continue;
     }
     std::printf("== %s (%s)\n", c.name.c_str(), c.reference.c_str());
-    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
-    {
-      for (int segments : resolutions(c.name, quick))
-      {
-        for (const Effort& effort : efforts(method, quick))
-        {
-          TetherParams p = c.base(segments);
-          p.solver = method;
-          if (effort.time_step > 0.0 && c.name != "paper_experiment")  // the paper's step is part of its case
-          {
-            p.time_step = effort.time_step;
-          }
-          p.iterations = effort.iterations;
-          p.substeps = effort.substeps;
-          p.over_relaxation = effort.relax;
-          if (effort.critical_fraction > 0.0)
-          {
-            p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
-          }
-          if (p.substeps > 10000)
-          {
-            continue;
-          }
-          const Result r = c.run(p);
-          writeResult(out, r);
-          const bool accurate = r.shape_error <= 0.01 && !(r.tension_error > 0.02);
-          auto& best = cheapest[c.name];
-          if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
-          {
-            best[r.method] = r;
-          }
-        }
-      }
-    }
+    sweepCase(c, options.quick, out, cheapest[c.name]);
     if (c.name == "catenary_s8")
     {
-      // The automatic choice: resolution from a shape tolerance on the catenary's tightest radius
-      // a = H / w, effort from a stretch tolerance.
-      Catenary reference;
-      reference.stiffness = 1e5;
-      reference.solve(8.0);
-      for (double shape : {0.01, 0.001})
-      {
-        for (double stretch : {0.01, 0.001})
-        {
-          TetherParams p = c.base(10);
-          p.segment_length_auto = true;
-          p.shape_tolerance = shape;
-          p.min_bend_radius = reference.horizontal / reference.weight;
-          p.iterations_auto = true;
-          p.stretch_tolerance = stretch;
-          p = p.resolved();
-          p.min_deployed_length = p.segment_length;
-          Result r = c.run(p);
-          r.label = "auto";
-          writeResult(out, r);
-          std::printf(
-              "   auto (shape %g m, stretch %g): %d segments, %d iterations: sag %.3f%%, tension %.3f%%, %.0f us/s\n",
-              shape, stretch, r.segments, r.iterations, 100 * r.shape_error, 100 * r.tension_error, r.cost);
-        }
-      }
+      runAutomaticChoice(c, out);
     }
     for (const auto& [method, r] : cheapest[c.name])
     {
@@ -246,119 +271,146 @@ int main(int argc, char** argv)
     }
   }
   std::fclose(out);
+  return true;
+}
 
-  if (only.empty() || only == "catenary_s8")
+/// The cheapest accurate run (sag within 1%, end tension within 2%) per method on case c at axial stiffness
+/// EA, and the cheapest pbd without over-relaxation as "pbd without over-relaxation".
+std::map<std::string, Result> cheapestAtStiffness(const Case& c, double stiffness, bool quick)
+{
+  std::map<std::string, Result> best;
+  for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
+  {
+    for (int segments : {10, 20})
+    {
+      for (const Effort& effort : efforts(method, quick))
+      {
+        TetherParams p = c.base(segments);
+        p.axial_stiffness = stiffness;
+        p.solver = method;
+        applyEffort(effort, false, p);
+        const Result r = c.run(p);
+        const bool accurate = r.shape_error <= 0.01 && r.tension_error <= 0.02;
+        if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
+        {
+          best[r.method] = r;
+        }
+        const std::string plain = "pbd without over-relaxation";
+        if (accurate && r.method == "pbd" && r.over_relaxation == 1.0 &&
+            (best.count(plain) == 0 || r.cost < best[plain].cost))
+        {
+          best[plain] = r;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+/// Prints the goal's comparison lines for one stiffness from cheapestAtStiffness's runs.
+void printGoal(double stiffness, std::map<std::string, Result>& best)
+{
+  if (best.count("direct") && best.count("lumped_mass") && best.count("xpbd"))
+  {
+    std::printf(
+        "goal, catenary S = 8 at EA = %.0e N: cheapest direct %.0f us/s (%d segments, dt %g s): "
+        "lumped_mass / direct = %.1f, xpbd / direct = %.1f\n",
+        stiffness, best["direct"].cost, best["direct"].segments, best["direct"].time_step,
+        best["lumped_mass"].cost / best["direct"].cost, best["xpbd"].cost / best["direct"].cost);
+  }
+  if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
+  {
+    std::printf(
+        "goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
+        "(%d segments, %d iterations, over-relaxation %g, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d "
+        "segments, h %.3g ms): "
+        "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
+        stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation,
+        best["pbd"].time_step, best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
+        1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps, best["lumped_mass"].cost / best["pbd"].cost,
+        best["lumped_mass"].cost / best["xpbd"].cost);
+    const Result& plain = best["pbd without over-relaxation"];
+    std::printf(
+        "      pbd with the paper's projection (over_relaxation 1): %.0f us/s (%d segments, %d iterations, "
+        "dt %g s): lumped_mass / pbd = %.1f\n",
+        plain.cost, plain.segments, plain.iterations, plain.time_step, best["lumped_mass"].cost / plain.cost);
+  }
+}
+
+/// Writes OUT/stability.csv: each method's boundedness over step x stiffness and step x speed; prints the counts.
+void writeStabilityMap(const std::string& out_dir, bool quick)
+{
+  const std::string path = out_dir + "/stability.csv";
+  std::FILE* map = std::fopen(path.c_str(), "w");
+  std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
+  const std::vector<double> steps =
+      quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
+            : std::vector<double>{1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
+  const std::vector<double> stiffnesses =
+      quick ? std::vector<double>{1e3, 1e5} : std::vector<double>{1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  const std::vector<double> speeds =
+      quick ? std::vector<double>{1.0, 10.0} : std::vector<double>{0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
+  int bounded[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
+  int index = 0;
+  for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
+  {
+    for (double dt : steps)
+    {
+      // Step x stiffness at 1 m/s, then step x speed at EA = 1e5 N.
+      for (double ea : stiffnesses)
+      {
+        const StabilityPoint s = stability(method, dt, ea, 1.0);
+        std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, ea, 1.0, s.critical_step, s.bounded,
+                     s.max_strain);
+        bounded[index] += s.bounded, ++total[index];
+      }
+      for (double v : speeds)
+      {
+        const StabilityPoint s = stability(method, dt, 1e5, v);
+        std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, 1e5, v, s.critical_step, s.bounded,
+                     s.max_strain);
+        bounded[index] += s.bounded, ++total[index];
+      }
+    }
+    std::printf("stability: %-11s bounded in %d of %d runs\n", rov_tether::toString(method).c_str(), bounded[index],
+                total[index]);
+    ++index;
+  }
+  std::fclose(map);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  Options options;
+  if (!parseOptions(argc, argv, &options))
+  {
+    return 2;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  const std::string study_path = options.out_dir + "/study.csv";
+  if (!writeStudy(options, study_path))
+  {
+    return 1;
+  }
+  if (options.only.empty() || options.only == "catenary_s8")
   {
     // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
     // the cheapest lumped_mass run, on the S = 8 catenary, for a range of axial stiffness (lumped_mass's
     // critical step shrinks as 1 / sqrt(EA); pbd does not depend on EA).
     const Case& c = findCase("catenary_s8");
-    for (double stiffness : quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
+    for (double stiffness : options.quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
     {
-      std::map<std::string, Result> best;
-      for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
-      {
-        for (int segments : {10, 20})
-        {
-          for (const Effort& effort : efforts(method, quick))
-          {
-            TetherParams p = c.base(segments);
-            p.axial_stiffness = stiffness;
-            p.solver = method;
-            p.iterations = effort.iterations;
-            p.substeps = effort.substeps;
-            p.over_relaxation = effort.relax;
-            if (effort.time_step > 0.0)
-            {
-              p.time_step = effort.time_step;
-            }
-            if (effort.critical_fraction > 0.0)
-            {
-              p.substeps = static_cast<int>(std::ceil(p.time_step / (effort.critical_fraction * p.criticalStep())));
-            }
-            const Result r = c.run(p);
-            const bool accurate = r.shape_error <= 0.01 && r.tension_error <= 0.02;
-            if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
-            {
-              best[r.method] = r;
-            }
-            const std::string plain = "pbd without over-relaxation";
-            if (accurate && r.method == "pbd" && r.over_relaxation == 1.0 &&
-                (best.count(plain) == 0 || r.cost < best[plain].cost))
-            {
-              best[plain] = r;
-            }
-          }
-        }
-      }
-      if (best.count("direct") && best.count("lumped_mass") && best.count("xpbd"))
-      {
-        std::printf(
-            "goal, catenary S = 8 at EA = %.0e N: cheapest direct %.0f us/s (%d segments, dt %g s): "
-            "lumped_mass / direct = %.1f, xpbd / direct = %.1f\n",
-            stiffness, best["direct"].cost, best["direct"].segments, best["direct"].time_step,
-            best["lumped_mass"].cost / best["direct"].cost, best["xpbd"].cost / best["direct"].cost);
-      }
-      if (best.count("pbd") && best.count("lumped_mass") && best.count("xpbd"))
-      {
-        std::printf(
-            "goal, catenary S = 8 at EA = %.0e N (sag within 1%%, end tension within 2%%): cheapest pbd %.0f us/s "
-            "(%d segments, %d iterations, over-relaxation %g, dt %g s), xpbd %.0f us/s, lumped_mass %.0f us/s (%d "
-            "segments, h %.3g ms): "
-            "lumped_mass / pbd = %.1f, lumped_mass / xpbd = %.1f\n",
-            stiffness, best["pbd"].cost, best["pbd"].segments, best["pbd"].iterations, best["pbd"].over_relaxation,
-            best["pbd"].time_step, best["xpbd"].cost, best["lumped_mass"].cost, best["lumped_mass"].segments,
-            1e3 * best["lumped_mass"].time_step / best["lumped_mass"].substeps,
-            best["lumped_mass"].cost / best["pbd"].cost, best["lumped_mass"].cost / best["xpbd"].cost);
-        const Result& plain = best["pbd without over-relaxation"];
-        std::printf(
-            "      pbd with the paper's projection (over_relaxation 1): %.0f us/s (%d segments, %d iterations, "
-            "dt %g s): lumped_mass / pbd = %.1f\n",
-            plain.cost, plain.segments, plain.iterations, plain.time_step, best["lumped_mass"].cost / plain.cost);
-      }
+      std::map<std::string, Result> best = cheapestAtStiffness(c, stiffness, options.quick);
+      printGoal(stiffness, best);
     }
   }
-
-  if (with_stability)
+  if (options.with_stability)
   {
-    const std::string path = out_dir + "/stability.csv";
-    std::FILE* map = std::fopen(path.c_str(), "w");
-    std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
-    const std::vector<double> steps =
-        quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
-              : std::vector<double>{1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
-    const std::vector<double> stiffnesses =
-        quick ? std::vector<double>{1e3, 1e5} : std::vector<double>{1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
-    const std::vector<double> speeds =
-        quick ? std::vector<double>{1.0, 10.0} : std::vector<double>{0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
-    int bounded[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
-    int index = 0;
-    for (SolverType method : {SolverType::kPbd, SolverType::kXpbd, SolverType::kLumpedMass, SolverType::kDirect})
-    {
-      for (double dt : steps)
-      {
-        // Step x stiffness at 1 m/s, then step x speed at EA = 1e5 N.
-        for (double ea : stiffnesses)
-        {
-          const StabilityPoint s = stability(method, dt, ea, 1.0);
-          std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, ea, 1.0, s.critical_step, s.bounded,
-                       s.max_strain);
-          bounded[index] += s.bounded, ++total[index];
-        }
-        for (double v : speeds)
-        {
-          const StabilityPoint s = stability(method, dt, 1e5, v);
-          std::fprintf(map, "%s,%g,%g,%g,%g,%d,%g\n", s.method.c_str(), dt, 1e5, v, s.critical_step, s.bounded,
-                       s.max_strain);
-          bounded[index] += s.bounded, ++total[index];
-        }
-      }
-      std::printf("stability: %-11s bounded in %d of %d runs\n", rov_tether::toString(method).c_str(), bounded[index],
-                  total[index]);
-      ++index;
-    }
-    std::fclose(map);
+    writeStabilityMap(options.out_dir, options.quick);
   }
-  std::printf("wrote %s%s\n", study_path.c_str(), with_stability ? " and stability.csv" : "");
+  std::printf("wrote %s%s\n", study_path.c_str(), options.with_stability ? " and stability.csv" : "");
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <std_msgs/Header.h>
 #include <tf2_ros/buffer.h>
 
 #include <deque>
@@ -61,6 +62,10 @@ class TetherCamera
   void onImage(const sensor_msgs::ImageConstPtr& image);
   /// Renders at `stamp` and publishes; `image` (may be null) gets the overlay. False when it cannot.
   bool renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image);
+  /// Publishes what the last render drew to the topics someone listens to: mask, depth, coverage, and the
+  /// overlay on `image` when given.
+  void publishRendered(const std_msgs::Header& header, const camera::RenderStats& stats,
+                       const sensor_msgs::ImageConstPtr& image);
   /// Counts a frame not drawn and warns, at most every 5 s for this camera and this `reason` (a short key).
   void drop(const std::string& reason, const std::string& why);
   /// True when this camera's warning about `reason` is due (none in the last 5 s of wall time).

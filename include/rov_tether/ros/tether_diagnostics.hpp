@@ -41,6 +41,10 @@ class TetherDiagnostics
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
  private:
+  /// The measured values (lengths, tensions, loads, counts).
+  void addMeasures(const TetherSummary& summary, diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// The warnings and errors (stale pose, over-tension, outrun, failures, overload) merged into the summary.
+  void mergeAlarms(const TetherSummary& summary, diagnostic_updater::DiagnosticStatusWrapper& status);
   /// This tether's lines of the topology report, as values and warnings.
   void diagnoseTopology(diagnostic_updater::DiagnosticStatusWrapper& status);
 

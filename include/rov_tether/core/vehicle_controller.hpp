@@ -1,0 +1,154 @@
+#pragma once
+// The built-in controller of a dynamic vehicle: a setpoint (a world position and a yaw) and the body's state
+// in, a body-frame thrust wrench out (docs/model.md, "Vehicle controller"). ROS-free.
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "rov_tether/core/status.hpp"
+#include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/core/vehicle_params.hpp"
+
+namespace rov_tether
+{
+
+/// The controlled axes, in this order: surge, sway, heave (body frame) and yaw.
+using Vector4 = Eigen::Vector4d;
+
+/// How the default gains are designed from a vehicle (ControllerGains::design).
+struct ControllerDesign
+{
+  /// Natural frequency omega of the loop's oscillatory pole pair per axis (surge, sway, heave, yaw) [rad/s].
+  /// 1 rad/s in translation keeps a 4 m step of the BlueROV2 Heavy within its surge thrust (kp 27.8 N/m);
+  /// 2 rad/s in yaw, where its inertia is small against its yaw thrust: the yaw loop stays unsaturated for
+  /// any wrapped error (kp 3.3 N m/rad, pi rad: 10.4 of 30.4 N m).
+  Vector4 bandwidth{1.0, 1.0, 1.0, 2.0};
+  /// Damping ratio zeta of that pair: 1, critically damped.
+  double damping_ratio = 1.0;
+  /// The integral's pole at -integral_ratio * omega: slow against the pair, so it removes a steady offset
+  /// (a current, a tether's pull) in about 1 / (integral_ratio omega) = 5 s without changing the pair.
+  double integral_ratio = 0.2;
+
+  /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio >= 0. Names the field and value.
+  Status validate() const;
+};
+
+/**
+ * Gains of the four PID loops, per axis in Vector4's order (surge, sway, heave [N, m, s]; yaw [N m, rad, s]).
+ *
+ * Defaults: ControllerGains::design(VehicleParams{}, ControllerDesign{}), the BlueROV2 Heavy with omega 1 rad/s
+ * in translation and 2 rad/s in yaw, zeta 1, integral pole at 0.2 omega (a test checks that the numbers below
+ * are that design's). The design places the poles of each axis's loop linearised at rest,
+ *   m' x'' + d x' = u,   u = kp e + ki int(e) - kd x'     (m' = mass + added mass, d = linear damping),
+ * whose characteristic polynomial m' s^3 + (d + kd) s^2 + kp s + ki is made m' (s^2 + 2 zeta omega s +
+ * omega^2)(s + omega_i), omega_i = integral_ratio omega:
+ *   kp = m' (omega^2 + 2 zeta omega omega_i),  ki = m' omega^2 omega_i,  kd = m' (2 zeta omega + omega_i) - d.
+ * with m' = mass + added_mass[i] (yaw: inertia z + added_mass[5]; the centre of gravity's cross terms left
+ * out) and d = linear_damping[i]. Quadratic damping is zero at rest; moving, it only damps the loop more.
+ * BlueROV2 Heavy: m' 19.86, 20.62, 32.18 kg and 0.592 kg m^2, d 13.7, 0, 33.0 N s/m and 0 N m s.
+ * The closed loop's step response (setpoint to position, linearised) is that third-order system's, with the
+ * integral's zero at -ki / kp: it overshoots by 16.9% with these ratios (within the thrust limits;
+ * test VehicleController.SurgeStepFollowsTheLinearisedLoop), the price of integral action on the error.
+ */
+struct ControllerGains
+{
+  /// kp [N/m; N m/rad]: on the error e (setpoint - position, in the body frame; wrapped yaw error).
+  Vector4 proportional{27.804, 28.868, 45.052, 3.3152};
+  /// ki [N/(m s); N m/(rad s)]: on the error's integral.
+  Vector4 integral{3.972, 4.124, 6.436, 0.9472};
+  /// kd [N s/m; N m s/rad]: on the measured velocity (minus the feed-forward velocity), never on the
+  /// error's rate, so a setpoint step gives no kick.
+  Vector4 derivative{29.992, 45.364, 37.796, 2.6048};
+  /// Largest |integral term| [N; N m]: the BlueROV2 Heavy's thrust limits, so the integral alone never asks
+  /// for more than the thrusters give. Reaching it is reported (ControllerOutput::integral_held_axes).
+  Vector4 integral_limit{113.7, 113.7, 160.8, 30.4};
+  /// Anti-windup by conditional integration (VehicleController). Off only to show what it prevents (tests).
+  bool anti_windup = true;
+
+  /// Finite; proportional > 0; integral, derivative, integral_limit >= 0. Names the field, axis and value.
+  Status validate() const;
+
+  /// The pole-placement design above for `vehicle`, the integral limited at its thrust limits. kd is
+  /// m' (2 zeta omega + omega_i) - d; a vehicle damped more than that (kd < 0) is refused, naming the axis:
+  /// ask for a higher bandwidth.
+  static Status design(const VehicleParams& vehicle, const ControllerDesign& design, ControllerGains* gains);
+};
+
+/// What one update commanded.
+struct ControllerOutput
+{
+  /// Body-frame thrust [Fx, Fy, Fz, Mx, My, Mz] [N, N m], each axis within the vehicle's thrust_limit; roll
+  /// and pitch are always 0.
+  Wrench thrust = Wrench::Zero();
+  /// Bit i set (ThrustUsed's numbering: 0 surge, 1 sway, 2 heave, 5 yaw): the PID asked for more than the
+  /// limit on that axis and was held at it.
+  std::uint8_t saturated_axes = 0;
+  /// Bit i set (same numbering): the integral went beyond its integral_limit in this update and was held at it.
+  std::uint8_t integral_held_axes = 0;
+};
+
+/// A setpoint: where the vehicle should be, and optionally how fast the setpoint moves.
+struct VehicleSetpoint
+{
+  /// Position of the body origin, world frame [m].
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  /// Heading [rad]: the angle of the body's x axis in the world's x-y plane from world x, counter-clockwise.
+  double yaw = 0.0;
+  /// Feed-forward velocity of the setpoint, world frame [m/s] (0: hold a point).
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  /// Feed-forward yaw rate [rad/s].
+  double yaw_rate = 0.0;
+};
+
+/**
+ * Per-axis PID from a setpoint to a body-frame thrust, as ROV position controllers are built (Fossen 2011,
+ * ch. 12, "PID control"; Astrom and Hagglund, "Advanced PID Control", 2006, ch. 3, for the windup):
+ *  - surge, sway, heave: the world error setpoint - position rotated into the body frame by the attitude,
+ *    e = R^T (p_ref - p); the derivative term acts on the measured body velocity, kd (R^T v_ff - v);
+ *  - yaw: the heading error wrapped to [-pi, pi] (the short way round), the derivative on the body yaw rate r
+ *    (the heading's rate while the vehicle is level);
+ *  - roll and pitch are not controlled: their thrust is 0 and the restoring moment (the centre of buoyancy
+ *    above the centre of gravity: 0.01 m on the BlueROV2 Heavy) rights the vehicle.
+ * Each axis's output kp e + I + D is held within +-thrust_limit (reported, ControllerOutput).
+ *
+ * Anti-windup: conditional integration (clamping). The integral is advanced, I += ki e dt, only when the
+ * output is within its limit or the error would pull it back inside; while the output is held at its limit
+ * and the error pushes further out, I stays as it is. Chosen over back-calculation because it needs no
+ * tracking time constant per vehicle and leaves I unchanged during a long saturation (a far setpoint, a
+ * vehicle held by its tether), where back-calculation drives I to whatever keeps the unsaturated output at the
+ * limit: a large opposite value when the proportional term alone exceeds it, which then has to unwind. The
+ * integral term is also held within +-integral_limit. The integrator is forward Euler: the output uses I
+ * from before this update.
+ * No allocation in update() (fixed-size Eigen only).
+ */
+class VehicleController
+{
+ public:
+  /// The default gains (the BlueROV2 Heavy's) for the default vehicle.
+  VehicleController() = default;
+
+  /// Validates `gains` and checks each axis's loop linearised at rest against `vehicle`: it is stable when
+  /// (d + kd) kp > m' ki (Routh-Hurwitz for m' s^3 + (d + kd) s^2 + kp s + ki). Refused whole, with the
+  /// axis, the values and the rule, and nothing changes; on success the integrals restart at 0.
+  Status configure(const VehicleParams& vehicle, const ControllerGains& gains);
+  const ControllerGains& gains() const { return gains_; }
+
+  /// One update of dt [s] > 0: the thrust for `body` to reach `setpoint`. Refuses a non-finite setpoint or
+  /// dt <= 0 (nothing changes). The thrust limits are those configure() was given.
+  Status update(double dt, const VehicleSetpoint& setpoint, const VehicleBody& body, ControllerOutput* output);
+
+  /// The integral terms [N; N m], per axis (surge, sway, heave, yaw).
+  const Vector4& integral() const { return integral_; }
+  /// Restarts the integrals at 0.
+  void reset() { integral_.setZero(); }
+
+  /// The heading [rad] in (-pi, pi] of an attitude: the angle of its x axis projected on the world's x-y plane.
+  static double yawOf(const Eigen::Quaterniond& attitude);
+
+ private:
+  ControllerGains gains_;
+  Vector4 limit_{113.7, 113.7, 160.8, 30.4};  ///< Thrust limits of the controlled axes [N; N m].
+  Vector4 integral_ = Vector4::Zero();
+};
+
+}  // namespace rov_tether

@@ -1,0 +1,228 @@
+#include "rov_tether/core/vehicle_controller.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace rov_tether
+{
+namespace
+{
+
+constexpr const char* kAxisNames[4] = {"surge", "sway", "heave", "yaw"};
+// Bit of each controlled axis in ThrustUsed's numbering (0 surge, 1 sway, 2 heave, 5 yaw), and its wrench row.
+constexpr int kWrenchRow[4] = {0, 1, 2, 5};
+constexpr double kPi = 3.14159265358979323846;
+
+std::string number(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// "" or "<field>[<axis>]: must be <rule> (got <value>)" for the first axis breaking the rule.
+template <typename Rule>
+std::string checkEach(const char* field, const Vector4& values, const char* rule, Rule ok)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    if (!std::isfinite(values[i]))
+    {
+      return std::string(field) + "[" + kAxisNames[i] + "]: must be finite (got " + number(values[i]) + ")";
+    }
+    if (!ok(values[i]))
+    {
+      return std::string(field) + "[" + kAxisNames[i] + "]: must be " + rule + " (got " + number(values[i]) + ")";
+    }
+  }
+  return "";
+}
+
+// Mass with added mass m' and linear damping d of the controlled axis i of `vehicle` (ControllerGains).
+double effectiveMass(const VehicleParams& vehicle, int i)
+{
+  return (i < 3 ? vehicle.mass : vehicle.inertia.z()) + vehicle.added_mass[kWrenchRow[i]];
+}
+
+double linearDamping(const VehicleParams& vehicle, int i) { return vehicle.linear_damping[kWrenchRow[i]]; }
+
+}  // namespace
+
+Status ControllerDesign::validate() const
+{
+  const std::string bad = checkEach("bandwidth", bandwidth, "> 0 rad/s", [](double x) { return x > 0.0; });
+  if (!bad.empty())
+  {
+    return Status::error("controller design: " + bad);
+  }
+  if (!std::isfinite(damping_ratio) || !(damping_ratio > 0.0))
+  {
+    return Status::error("controller design: damping_ratio: must be finite and > 0 (got " + number(damping_ratio) +
+                         ")");
+  }
+  if (!std::isfinite(integral_ratio) || !(integral_ratio >= 0.0))
+  {
+    return Status::error("controller design: integral_ratio: must be finite and >= 0 (got " + number(integral_ratio) +
+                         ")");
+  }
+  return Status::success();
+}
+
+Status ControllerGains::validate() const
+{
+  const auto positive = [](double x) { return x > 0.0; };
+  const auto nonNegative = [](double x) { return x >= 0.0; };
+  const std::string problems[] = {
+      checkEach("proportional", proportional, "> 0", positive),
+      checkEach("integral", integral, ">= 0", nonNegative),
+      checkEach("derivative", derivative, ">= 0", nonNegative),
+      checkEach("integral_limit", integral_limit, ">= 0", nonNegative),
+  };
+  for (const auto& problem : problems)
+  {
+    if (!problem.empty())
+    {
+      return Status::error("controller: " + problem);
+    }
+  }
+  return Status::success();
+}
+
+Status ControllerGains::design(const VehicleParams& vehicle, const ControllerDesign& design, ControllerGains* gains)
+{
+  const Status vehicle_ok = vehicle.validate();
+  if (!vehicle_ok)
+  {
+    return vehicle_ok;
+  }
+  const Status design_ok = design.validate();
+  if (!design_ok)
+  {
+    return design_ok;
+  }
+  ControllerGains designed;
+  for (int i = 0; i < 4; ++i)
+  {
+    const double m = effectiveMass(vehicle, i);
+    const double w = design.bandwidth[i];
+    const double wi = design.integral_ratio * w;
+    const double z = design.damping_ratio;
+    designed.proportional[i] = m * (w * w + 2.0 * z * w * wi);
+    designed.integral[i] = m * w * w * wi;
+    designed.derivative[i] = m * (2.0 * z * w + wi) - linearDamping(vehicle, i);
+    if (designed.derivative[i] < 0.0)
+    {
+      return Status::error(std::string("controller design: ") + kAxisNames[i] + ": the vehicle's linear damping " +
+                           number(linearDamping(vehicle, i)) +
+                           " exceeds m' (2 zeta omega + omega_i) = " + number(m * (2.0 * z * w + wi)) +
+                           " (a negative derivative gain): ask for a higher bandwidth");
+    }
+    designed.integral_limit[i] = vehicle.thrust_limit[kWrenchRow[i]];
+  }
+  designed.anti_windup = true;
+  *gains = designed;
+  return Status::success();
+}
+
+Status VehicleController::configure(const VehicleParams& vehicle, const ControllerGains& gains)
+{
+  const Status vehicle_ok = vehicle.validate();
+  if (!vehicle_ok)
+  {
+    return vehicle_ok;
+  }
+  const Status gains_ok = gains.validate();
+  if (!gains_ok)
+  {
+    return gains_ok;
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    const double m = effectiveMass(vehicle, i);
+    const double d = linearDamping(vehicle, i);
+    // Routh-Hurwitz for m s^3 + (d + kd) s^2 + kp s + ki with every coefficient > 0 (kp > 0 checked; ki = 0
+    // leaves a PD loop, stable when d + kd > 0).
+    const double damping = d + gains.derivative[i];
+    const bool stable =
+        gains.integral[i] == 0.0 ? damping > 0.0 : damping * gains.proportional[i] > m * gains.integral[i];
+    if (!stable)
+    {
+      return Status::error(
+          std::string("controller: ") + kAxisNames[i] + ": the loop linearised at rest is unstable: (d + kd) kp = " +
+          number(damping * gains.proportional[i]) + " must exceed m' ki = " + number(m * gains.integral[i]) + " (d " +
+          number(d) + ", kd " + number(gains.derivative[i]) + ", kp " + number(gains.proportional[i]) + ", ki " +
+          number(gains.integral[i]) + ", m' " + number(m) + "; d + kd > 0 without ki)");
+    }
+  }
+  gains_ = gains;
+  for (int i = 0; i < 4; ++i)
+  {
+    limit_[i] = vehicle.thrust_limit[kWrenchRow[i]];
+  }
+  integral_.setZero();
+  return Status::success();
+}
+
+double VehicleController::yawOf(const Eigen::Quaterniond& attitude)
+{
+  const Eigen::Vector3d forward = attitude * Eigen::Vector3d::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, const VehicleBody& body,
+                                 ControllerOutput* output)
+{
+  if (!std::isfinite(dt) || !(dt > 0.0))
+  {
+    return Status::error("vehicle controller: dt must be finite and > 0 (got " + number(dt) + ")");
+  }
+  if (!setpoint.position.allFinite() || !std::isfinite(setpoint.yaw) || !setpoint.velocity.allFinite() ||
+      !std::isfinite(setpoint.yaw_rate))
+  {
+    return Status::error("vehicle controller: the setpoint (position, yaw, velocity, yaw rate) must be finite");
+  }
+  const Eigen::Quaterniond to_body = body.attitude().conjugate();
+  const Eigen::Vector3d position_error = to_body * (setpoint.position - body.position());
+  const Eigen::Vector3d velocity_error = to_body * setpoint.velocity - body.velocity().head<3>();
+  // std::remainder(x, 2 pi) is x - 2 pi n with n the nearest integer: the error in [-pi, pi], the short way.
+  const double yaw_error = std::remainder(setpoint.yaw - yawOf(body.attitude()), 2.0 * kPi);
+  const double yaw_rate_error = setpoint.yaw_rate - body.velocity()[5];
+
+  const Vector4 error(position_error.x(), position_error.y(), position_error.z(), yaw_error);
+  const Vector4 rate_error(velocity_error.x(), velocity_error.y(), velocity_error.z(), yaw_rate_error);
+
+  ControllerOutput result;
+  for (int i = 0; i < 4; ++i)
+  {
+    const double wanted = gains_.proportional[i] * error[i] + integral_[i] + gains_.derivative[i] * rate_error[i];
+    const double limit = limit_[i];
+    const double held = wanted > limit ? limit : (wanted < -limit ? -limit : wanted);
+    const auto bit = static_cast<std::uint8_t>(1u << kWrenchRow[i]);
+    if (held != wanted)
+    {
+      result.saturated_axes |= bit;
+    }
+    result.thrust[kWrenchRow[i]] = held;
+
+    // Conditional integration: not while held at the limit with the error pushing further out.
+    const bool winding = held != wanted && error[i] * wanted > 0.0;
+    if (!gains_.anti_windup || !winding)
+    {
+      integral_[i] += gains_.integral[i] * error[i] * dt;
+    }
+    const double cap = gains_.integral_limit[i];
+    if (integral_[i] > cap || integral_[i] < -cap)
+    {
+      integral_[i] = integral_[i] > cap ? cap : -cap;
+      result.integral_held_axes |= bit;
+    }
+  }
+  if (output != nullptr)
+  {
+    *output = result;
+  }
+  return Status::success();
+}
+
+}  // namespace rov_tether

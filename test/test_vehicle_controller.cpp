@@ -1,0 +1,463 @@
+// The built-in vehicle controller (VehicleController, ControllerGains) on a VehicleBody, and its YAML block
+// (spec::readControllerGains). Each bound says where it comes from.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/core/vehicle_controller.hpp"
+#include "rov_tether/spec/vehicle_reader.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kStep = 0.005;  // [s] the runner's default step, at which the runner updates the controller
+
+/// The BlueROV2 Heavy (defaults) made neutrally buoyant: only the restoring moment (r_B above r_G) remains.
+VehicleParams neutral()
+{
+  VehicleParams p;
+  p.displaced_volume = p.mass / p.water_density;
+  return p;
+}
+
+/// The same without quadratic damping: the body's translation is then exactly the linear plant
+/// m' x'' + d x' = u the gains are designed on.
+VehicleParams linearPlant()
+{
+  VehicleParams p = neutral();
+  p.quadratic_damping.setZero();
+  return p;
+}
+
+VehicleBody bodyAt(const VehicleParams& params, const Eigen::Vector3d& position, double yaw = 0.0)
+{
+  VehicleBody body;
+  EXPECT_TRUE(body.setParams(params).ok);
+  const Eigen::Quaterniond attitude(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(body.setState(position, attitude, Twist::Zero()).ok);
+  return body;
+}
+
+/// One closed-loop step: the controller's thrust for the body's state now, then the body's step under it.
+ControllerOutput closedLoopStep(VehicleController* controller, VehicleBody* body, const VehicleSetpoint& setpoint)
+{
+  ControllerOutput out;
+  EXPECT_TRUE(controller->update(kStep, setpoint, *body, &out).ok);
+  EXPECT_TRUE(body->step(kStep, out.thrust, Wrench::Zero(), nullptr).ok);
+  return out;
+}
+
+/// The surge loop linearised at rest, m' x'' = -d x' + kp e + ki int(e) - kd x', in the error coordinates
+/// z = [e, e', int(e)] with e = r - x and r fixed (x' = -e'): z' = A z.
+Eigen::Matrix3d surgeLoop(const VehicleParams& vehicle, const ControllerGains& gains)
+{
+  const double m = vehicle.mass + vehicle.added_mass[0];
+  const double d = vehicle.linear_damping[0];
+  Eigen::Matrix3d a;
+  // e' = z1;  e'' = -x'' = -(kp e + ki int(e) + (d + kd) e') / m';  int(e)' = e.
+  a << 0.0, 1.0, 0.0,                                                                      //
+      -gains.proportional[0] / m, -(d + gains.derivative[0]) / m, -gains.integral[0] / m,  //
+      1.0, 0.0, 0.0;
+  return a;
+}
+
+// The defaults are the pole-placement design of vehicle_controller.hpp for the BlueROV2 Heavy (the numbers in
+// the header are that design's, to the digits written), and the design places the poles it says: the
+// closed loop's characteristic polynomial m' s^3 + (d + kd) s^2 + kp s + ki has roots -zeta omega +- ... =
+// -omega (twice, zeta 1) and -0.2 omega. Seen failing with kd = m' (2 zeta omega + omega_i) (d not subtracted).
+TEST(VehicleController, DefaultsAreThePolePlacementForTheBlueRov2Heavy)
+{
+  ControllerGains designed;
+  ASSERT_TRUE(ControllerGains::design(VehicleParams{}, ControllerDesign{}, &designed).ok);
+  const ControllerGains defaults;
+  for (int i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(defaults.proportional[i], designed.proportional[i], 1e-9) << i;
+    EXPECT_NEAR(defaults.integral[i], designed.integral[i], 1e-9) << i;
+    EXPECT_NEAR(defaults.derivative[i], designed.derivative[i], 1e-9) << i;
+    EXPECT_NEAR(defaults.integral_limit[i], designed.integral_limit[i], 1e-9) << i;
+  }
+  // The surge loop's eigenvalues: -1 (double) and -0.2 [1/s]. A double root is found to about sqrt(eps).
+  const Eigen::Vector3cd poles = surgeLoop(VehicleParams{}, designed).eigenvalues();
+  std::array<double, 3> real{poles[0].real(), poles[1].real(), poles[2].real()};
+  std::sort(real.begin(), real.end());
+  EXPECT_NEAR(real[0], -1.0, 1e-6);
+  EXPECT_NEAR(real[1], -1.0, 1e-6);
+  EXPECT_NEAR(real[2], -0.2, 1e-9);
+}
+
+// A 1 m surge step with the default gains on the linear plant (the BlueROV2 without quadratic damping), small
+// enough that the thrust never reaches its limit. Physics: the closed loop is then the linear third-order
+// system z' = A z (surgeLoop), whose exact solution is z(t) = exp(A t) z(0), z(0) = [1, 0, 0]. Its step
+// response overshoots by the integral's zero: 16.9% (the header's figure), reached at about 5 s, and settles.
+// The simulation differs from it only by the discretisation: the thrust held over each step (a delay of
+// h / 2) and the forward-Euler integral, an error of order h |x'|max ~ 0.005 x 0.5 m/s = 2.5 mm: bound 5 mm
+// (0.5% of the step). Checked every 0.1 s for 40 s; the overshoot within the same 5 mm of the exact one.
+// Seen failing with the integral taken on twice the error.
+TEST(VehicleController, SurgeStepFollowsTheLinearisedLoop)
+{
+  const VehicleParams vehicle = linearPlant();
+  VehicleController controller;
+  ASSERT_TRUE(controller.configure(vehicle, ControllerGains{}).ok);
+  VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
+  VehicleSetpoint setpoint;
+  setpoint.position = Eigen::Vector3d(1.0, 0.0, 0.0);
+
+  const Eigen::Matrix3d a = surgeLoop(vehicle, controller.gains());
+  const Eigen::Vector3d start(1.0, 0.0, 0.0);
+  double exact_peak = 0.0;
+  double simulated_peak = 0.0;
+  const int steps = static_cast<int>(std::lround(40.0 / kStep));
+  for (int i = 1; i <= steps; ++i)
+  {
+    const ControllerOutput out = closedLoopStep(&controller, &body, setpoint);
+    ASSERT_EQ(out.saturated_axes, 0) << "the step must stay within the thrust limits";
+    const double t = i * kStep;
+    const double exact = 1.0 - (Eigen::Matrix3d(a * t).exp() * start)[0];  // x = r - e
+    exact_peak = std::max(exact_peak, exact);
+    simulated_peak = std::max(simulated_peak, body.position().x());
+    if (i % 20 == 0)
+    {
+      ASSERT_NEAR(body.position().x(), exact, 5e-3) << "t = " << t;
+    }
+  }
+  EXPECT_NEAR(exact_peak - 1.0, 0.169, 0.001) << "the header's overshoot";
+  EXPECT_NEAR(simulated_peak, exact_peak, 5e-3);
+  EXPECT_NEAR(body.position().x(), 1.0, 5e-3) << "settled";
+  EXPECT_NEAR(body.position().y(), 0.0, 1e-9) << "no sway from a surge step";
+}
+
+// Holding a point in a 0.3 m/s current along x. Physics: at rest over the ground the body is 0.3 m/s
+// against the water, so the current pushes it with the drag F = Xu U + Xuu U^2 = 13.7 x 0.3 + 141 x 0.09 =
+// 16.80 N. A PD loop (ki = 0) holds it where the spring balances it, F / kp = 0.604 m downstream (within 1%:
+// the first-order step's steady state is exact; 1% for what is left of the transient). The PID holds it on
+// the point, its integral term the thrust that balances the drag, -F (1%). How fast: linearised at the
+// current's speed the damping is d + 2 Xuu U = 98.3 N s/m, which makes the integral's pole pair slower,
+// -0.110 1/s (computed below from the loop's matrix); after 120 s, 13 of its time constants, e^-13 = 2e-6 of
+// the 0.6 m offset is left: within 1 mm. Seen failing with the integral never advanced.
+TEST(VehicleController, IntegralRemovesTheOffsetOfAConstantCurrent)
+{
+  const VehicleParams vehicle = neutral();
+  const double speed = 0.3;
+  const double drag = vehicle.linear_damping[0] * speed + vehicle.quadratic_damping[0] * speed * speed;
+  VehicleParams linearised = vehicle;
+  linearised.linear_damping[0] += 2.0 * vehicle.quadratic_damping[0] * speed;
+  const double slowest = surgeLoop(linearised, ControllerGains{}).eigenvalues().real().maxCoeff();
+  EXPECT_NEAR(slowest, -0.110, 0.001);
+  const double duration = 120.0;
+  ASSERT_GT(-slowest * duration, 13.0);
+  for (const bool integral : {false, true})
+  {
+    SCOPED_TRACE(integral ? "PID" : "PD");
+    ControllerGains gains;
+    if (!integral)
+    {
+      gains.integral.setZero();
+    }
+    VehicleController controller;
+    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
+    VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
+    ASSERT_TRUE(body.setCurrent(Eigen::Vector3d(speed, 0.0, 0.0)).ok);
+    const VehicleSetpoint hold;
+    const int steps = static_cast<int>(std::lround(duration / kStep));
+    for (int i = 0; i < steps; ++i)
+    {
+      closedLoopStep(&controller, &body, hold);
+    }
+    if (integral)
+    {
+      EXPECT_NEAR(body.position().x(), 0.0, 1e-3);
+      EXPECT_NEAR(controller.integral()[0], -drag, 0.01 * drag);
+    }
+    else
+    {
+      const double offset = drag / gains.proportional[0];
+      EXPECT_NEAR(body.position().x(), offset, 0.01 * offset);
+    }
+  }
+}
+
+// Setpoints far away on every axis and heading, jumping every 5 s, from a tilted vehicle in a current: the
+// thrust on each axis is at most the vehicle's thrust_limit (its thrusters' force, vehicle_params.hpp);
+// held axes are reported as such and hold exactly the limit; roll and pitch get no thrust (left to the
+// restoring moment). Seen failing with the output not held at the limit.
+TEST(VehicleController, ThrustNeverExceedsTheLimit)
+{
+  const VehicleParams vehicle = neutral();
+  VehicleController controller;
+  ASSERT_TRUE(controller.configure(vehicle, ControllerGains{}).ok);
+  VehicleBody body;
+  ASSERT_TRUE(body.setParams(vehicle).ok);
+  const Eigen::Quaterniond tilted(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1.0, 1.0, 0.0).normalized()));
+  ASSERT_TRUE(body.setState(Eigen::Vector3d::Zero(), tilted, Twist::Zero()).ok);
+  ASSERT_TRUE(body.setCurrent(Eigen::Vector3d(0.2, -0.4, 0.1)).ok);
+  const Eigen::Vector3d targets[] = {{50.0, -30.0, -20.0}, {-40.0, 25.0, 10.0}, {5.0, 60.0, -50.0}, {0.0, 0.0, 0.0}};
+  const double headings[] = {2.5, -3.0, 1.0, 0.0};
+  int saturated_updates = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    VehicleSetpoint setpoint;
+    setpoint.position = targets[k];
+    setpoint.yaw = headings[k];
+    setpoint.velocity = Eigen::Vector3d(0.5, 0.5, -0.5);  // a feed-forward too
+    for (int i = 0; i < static_cast<int>(std::lround(5.0 / kStep)); ++i)
+    {
+      const ControllerOutput out = closedLoopStep(&controller, &body, setpoint);
+      for (int axis = 0; axis < 6; ++axis)
+      {
+        ASSERT_LE(std::abs(out.thrust[axis]), vehicle.thrust_limit[axis]) << "axis " << axis;
+        if ((out.saturated_axes >> axis) & 1u)
+        {
+          ASSERT_EQ(std::abs(out.thrust[axis]), vehicle.thrust_limit[axis]) << "axis " << axis;
+        }
+      }
+      ASSERT_EQ(out.thrust[3], 0.0);
+      ASSERT_EQ(out.thrust[4], 0.0);
+      saturated_updates += out.saturated_axes != 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(saturated_updates, 1000) << "the setpoints must drive the thrust to its limits";
+}
+
+// Anti-windup. On the linear plant with the surge thrust limited to 20 N (cruise 20 / 13.7 = 1.46 m/s, reached
+// within 20 s: 14 time constants m' / d = 1.45 s), the setpoint 100 m ahead holds the thrust at its limit for
+// 20 s (kp e > 2000 N asked); then the setpoint moves to 1 m ahead of the vehicle. With conditional
+// integration the integral never moved (exactly 0 at the switch), so from there the loop is the linear PID
+// from z0 = [e, e', int(e)] = [1 m, -1.46 m/s, 0], as long as it stays within the limit: its exact solution
+// exp(A t) z0 gives the overshoot, and the thrust kp e + ki int(e) - kd x' along it stays below 20 N (checked
+// here), so the simulation must follow it, within the step test's 5 mm. Without anti-windup the integral
+// winds up to its limit (20 N, the thrust limit) during the saturation, and unwinding it takes the error's
+// integral 20 N / ki = 5 m s past the setpoint: the overshoot is more than 5 times the bound (0.64 m against
+// 0.083 m in a plain Euler model of the two loops). Seen failing with the conditional integration removed
+// (the integral always advanced).
+TEST(VehicleController, AntiWindupBoundsTheOvershootAfterALongSaturation)
+{
+  VehicleParams vehicle = linearPlant();
+  vehicle.thrust_limit[0] = 20.0;
+  ControllerGains designed;
+  ASSERT_TRUE(ControllerGains::design(vehicle, ControllerDesign{}, &designed).ok);
+  ASSERT_EQ(designed.integral_limit[0], 20.0);
+  double overshoot[2] = {0.0, 0.0};
+  double bound = 0.0;
+  for (const bool anti_windup : {true, false})
+  {
+    SCOPED_TRACE(anti_windup ? "anti-windup" : "plain integrator");
+    ControllerGains gains = designed;
+    gains.anti_windup = anti_windup;
+    VehicleController controller;
+    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
+    VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
+    VehicleSetpoint far;
+    far.position = Eigen::Vector3d(100.0, 0.0, 0.0);
+    for (int i = 0; i < static_cast<int>(std::lround(20.0 / kStep)); ++i)
+    {
+      const ControllerOutput out = closedLoopStep(&controller, &body, far);
+      ASSERT_TRUE(out.saturated_axes & 1u) << "surge saturated all along";
+    }
+    EXPECT_NEAR(body.velocity()[0], 20.0 / 13.7, 1e-3) << "cruising";
+    VehicleSetpoint near;
+    near.position = body.position() + Eigen::Vector3d(1.0, 0.0, 0.0);
+    if (anti_windup)
+    {
+      EXPECT_EQ(controller.integral()[0], 0.0);
+      const Eigen::Vector3d z0(1.0, -body.velocity()[0], 0.0);
+      const Eigen::Matrix3d a = surgeLoop(vehicle, gains);
+      double largest_thrust = 0.0;
+      for (double t = 0.0; t < 60.0; t += 0.01)
+      {
+        const Eigen::Vector3d z = Eigen::Matrix3d(a * t).exp() * z0;
+        bound = std::max(bound, -z[0]);  // x - r = -e
+        largest_thrust = std::max(largest_thrust, std::abs(gains.proportional[0] * z[0] + gains.integral[0] * z[2] +
+                                                           gains.derivative[0] * z[1]));
+      }
+      ASSERT_LT(largest_thrust, 20.0) << "the linear loop must stay within the limit for its solution to hold";
+      bound += 5e-3;
+    }
+    else
+    {
+      EXPECT_EQ(controller.integral()[0], gains.integral_limit[0]);
+    }
+    for (int i = 0; i < static_cast<int>(std::lround(60.0 / kStep)); ++i)
+    {
+      closedLoopStep(&controller, &body, near);
+      overshoot[anti_windup ? 0 : 1] =
+          std::max(overshoot[anti_windup ? 0 : 1], body.position().x() - near.position.x());
+    }
+  }
+  EXPECT_LE(overshoot[0], bound);
+  EXPECT_GT(overshoot[1], 5.0 * bound) << "with anti-windup " << overshoot[0] << " m, bound " << bound << " m";
+}
+
+// A heading of +170 degrees to reach -170: the short way is +20 degrees through 180, not -340 through 0.
+// The first yaw moment is positive (counter-clockwise), the heading never comes within 150 degrees of 0 on
+// the way (the long way would cross 0), and it settles at -170 (0.5 degree after 20 s: the yaw loop's slowest
+// pole, -0.4 1/s, has decayed by e^-8). Seen failing without the wrap.
+TEST(VehicleController, YawWrapsTheShortWay)
+{
+  const VehicleParams vehicle = neutral();
+  VehicleController controller;
+  ASSERT_TRUE(controller.configure(vehicle, ControllerGains{}).ok);
+  const double deg = kPi / 180.0;
+  VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero(), 170.0 * deg);
+  VehicleSetpoint setpoint;
+  setpoint.yaw = -170.0 * deg;
+  ControllerOutput first;
+  ASSERT_TRUE(controller.update(kStep, setpoint, body, &first).ok);
+  EXPECT_GT(first.thrust[5], 0.0);
+  EXPECT_NEAR(first.thrust[5], controller.gains().proportional[3] * 20.0 * deg, 1e-9);
+  for (int i = 0; i < static_cast<int>(std::lround(20.0 / kStep)); ++i)
+  {
+    closedLoopStep(&controller, &body, setpoint);
+    ASSERT_GT(std::abs(VehicleController::yawOf(body.attitude())), 150.0 * deg) << "turned the long way";
+  }
+  EXPECT_NEAR(VehicleController::yawOf(body.attitude()), -170.0 * deg, 0.5 * deg);
+}
+
+// Bad gains, designs and updates are refused with a message naming the field, the axis and the value, and
+// change nothing. The unstable case: ki above (d + kd) kp / m' (Routh-Hurwitz), 10 times the default surge's
+// limit (d + kd) kp / m' = 43.69 x 27.80 / 19.86 = 61.2 N/(m s). Seen failing with configure() not checking the
+// loop's stability.
+TEST(VehicleController, BadGainsAreRefused)
+{
+  const VehicleParams vehicle = neutral();
+  VehicleController controller;
+  ASSERT_TRUE(controller.configure(vehicle, ControllerGains{}).ok);
+  const auto refusal = [&](const ControllerGains& gains)
+  {
+    const Status status = controller.configure(vehicle, gains);
+    EXPECT_FALSE(status.ok);
+    EXPECT_EQ(controller.gains().proportional, ControllerGains{}.proportional) << "unchanged";
+    return status.message;
+  };
+  ControllerGains gains;
+  gains.proportional[1] = -1.0;
+  EXPECT_EQ(refusal(gains), "controller: proportional[sway]: must be > 0 (got -1)");
+  gains = ControllerGains{};
+  gains.integral[3] = std::nan("");
+  EXPECT_EQ(refusal(gains), "controller: integral[yaw]: must be finite (got nan)");
+  gains = ControllerGains{};
+  gains.integral_limit[2] = -5.0;
+  EXPECT_EQ(refusal(gains), "controller: integral_limit[heave]: must be >= 0 (got -5)");
+  gains = ControllerGains{};
+  gains.derivative[0] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(refusal(gains), "controller: derivative[surge]: must be finite (got inf)");
+  gains = ControllerGains{};
+  gains.integral[0] = 612.0;
+  EXPECT_NE(refusal(gains).find("controller: surge: the loop linearised at rest is unstable"), std::string::npos);
+
+  ControllerDesign design;
+  ControllerGains designed;
+  design.bandwidth[2] = 0.0;
+  EXPECT_EQ(ControllerGains::design(vehicle, design, &designed).message,
+            "controller design: bandwidth[heave]: must be > 0 rad/s (got 0)");
+  design = ControllerDesign{};
+  design.damping_ratio = -1.0;
+  EXPECT_FALSE(ControllerGains::design(vehicle, design, &designed).ok);
+  // A vehicle damped more than the design asks: m' (2 zeta omega + omega_i) = 43.7 N s/m in surge < 100.
+  VehicleParams damped = vehicle;
+  damped.linear_damping[0] = 100.0;
+  const Status refused = ControllerGains::design(damped, ControllerDesign{}, &designed);
+  EXPECT_NE(refused.message.find("controller design: surge: the vehicle's linear damping 100 exceeds"),
+            std::string::npos)
+      << refused.message;
+
+  VehicleSetpoint setpoint;
+  setpoint.position.y() = std::nan("");
+  const VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
+  ControllerOutput out;
+  EXPECT_FALSE(controller.update(kStep, setpoint, body, &out).ok);
+  EXPECT_FALSE(controller.update(0.0, VehicleSetpoint{}, body, &out).ok);
+  EXPECT_EQ(controller.integral(), Vector4::Zero()) << "a refused update changes nothing";
+}
+
+// The vehicle file's optional `controller:` block (spec::readControllerGains).
+std::string vehicleFile(const std::string& name)
+{
+  return std::string(ROV_TETHER_SOURCE_DIR) + "/config/vehicles/" + name + ".yaml";
+}
+
+std::string readBlock(const std::string& text, const VehicleParams& vehicle, ControllerGains* gains)
+{
+  return spec::readControllerGains(YAML::Load(text), "vehicles/test.yaml", vehicle, gains);
+}
+
+// The shipped BlueROV2 Heavy file's block states the default design: its gains are ControllerGains{}. A
+// vehicle file without a block (the work-class example) gets the default design for its own mass and damping:
+// kp = m' (omega^2 + 2 zeta omega omega_i) = (2916 + 1374) x 1.4 = 6006 N/m in surge.
+TEST(VehicleControllerYaml, ShippedFilesGiveTheDesignedGains)
+{
+  VehicleParams params;
+  ControllerGains gains;
+  gains.proportional.setConstant(1.0);  // overwritten
+  ASSERT_EQ(spec::loadVehicleParamsFile(vehicleFile("bluerov2_heavy"), &params, &gains), "");
+  for (int i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(gains.proportional[i], ControllerGains{}.proportional[i], 1e-9);
+    EXPECT_NEAR(gains.integral[i], ControllerGains{}.integral[i], 1e-9);
+    EXPECT_NEAR(gains.derivative[i], ControllerGains{}.derivative[i], 1e-9);
+    EXPECT_NEAR(gains.integral_limit[i], ControllerGains{}.integral_limit[i], 1e-9);
+  }
+  ASSERT_EQ(spec::loadVehicleParamsFile(vehicleFile("work_class_example"), &params, &gains), "");
+  EXPECT_NEAR(gains.proportional[0], (2916.0 + 1374.0) * 1.4, 1e-6);
+  EXPECT_NEAR(gains.integral_limit[0], 24560.0, 1e-9);
+}
+
+// Design keys give the design; gain keys replace what they name, the rest stays designed.
+TEST(VehicleControllerYaml, DesignKeysThenGainKeys)
+{
+  const VehicleParams vehicle = neutral();
+  ControllerGains gains;
+  ASSERT_EQ(readBlock("{bandwidth: [2, 1, 1, 2], integral_ratio: 0.0}", vehicle, &gains), "");
+  EXPECT_NEAR(gains.proportional[0], 19.86 * 4.0, 1e-9);  // m' omega^2, no integral pole
+  EXPECT_EQ(gains.integral[0], 0.0);
+  EXPECT_NEAR(gains.derivative[0], 19.86 * 4.0 - 13.7, 1e-9);  // m' 2 zeta omega - d
+  ASSERT_EQ(readBlock("{proportional: [30, 30, 40, 4]}", vehicle, &gains), "");
+  EXPECT_EQ(gains.proportional, Vector4(30.0, 30.0, 40.0, 4.0));
+  EXPECT_NEAR(gains.integral[0], ControllerGains{}.integral[0], 1e-9);
+}
+
+// Unknown or repeated keys, non-finite numbers, wrong sizes and unstable gains are refused, naming the file
+// and the key; `gains` is untouched. In a vehicle file, a bad block refuses the file.
+TEST(VehicleControllerYaml, BadBlocksAreRefused)
+{
+  const VehicleParams vehicle = neutral();
+  ControllerGains gains;
+  gains.proportional.setConstant(7.0);
+  EXPECT_EQ(readBlock("{gain: 3}", vehicle, &gains),
+            "vehicles/test.yaml: controller: gain: no controller setting of that name (bandwidth, damping_ratio, "
+            "integral_ratio, proportional, integral, derivative, integral_limit)");
+  EXPECT_EQ(readBlock("{damping_ratio: .nan}", vehicle, &gains),
+            "vehicles/test.yaml: controller: damping_ratio: must be finite");
+  EXPECT_EQ(readBlock("{integral: [1, 2, 3]}", vehicle, &gains),
+            "vehicles/test.yaml: controller: integral: expected a list of 4 numbers");
+  EXPECT_EQ(readBlock("{derivative: [1, 2, .inf, 3]}", vehicle, &gains),
+            "vehicles/test.yaml: controller: derivative[2]: must be finite");
+  EXPECT_EQ(readBlock("{damping_ratio: 1, damping_ratio: 2}", vehicle, &gains).find("given twice") != std::string::npos,
+            true);
+  EXPECT_NE(readBlock("{integral: [1000, 4, 6, 1]}", vehicle, &gains)
+                .find("controller: surge: the loop linearised at rest is unstable"),
+            std::string::npos);
+  EXPECT_EQ(readBlock("{damping_ratio: 0}", vehicle, &gains),
+            "vehicles/test.yaml: controller design: damping_ratio: must be finite and > 0 (got 0)");
+  EXPECT_EQ(readBlock("[1, 2]", vehicle, &gains).rfind("vehicles/test.yaml: controller: expected a map", 0), 0u);
+  EXPECT_EQ(gains.proportional, Vector4::Constant(7.0)) << "untouched";
+
+  YAML::Node file = YAML::LoadFile(vehicleFile("bluerov2_heavy"));
+  file["controller"] = YAML::Load("{bandwidth: [1, 1, 1, -2]}");
+  VehicleParams params;
+  EXPECT_EQ(spec::readVehicleParams(file, "vehicles/test.yaml", &params),
+            "vehicles/test.yaml: controller design: bandwidth[yaw]: must be > 0 rad/s (got -2)");
+}
+
+}  // namespace
+}  // namespace rov_tether::test
