@@ -90,8 +90,7 @@ std::string whyNoCoupling(const Tether& tether)
 {
   if (tether.params().solver != SolverType::kDirect)
   {
-    return "it needs solver: direct (this tether runs " + toString(tether.params().solver) +
-           "): set solver: direct";
+    return "it needs solver: direct (this tether runs " + toString(tether.params().solver) + "): set solver: direct";
   }
   if (tether.vehicleDynamic())
   {

@@ -428,7 +428,8 @@ TEST(Scheduler, AWatchedTetherIsToldAfterEachOfItsStepsAndTheWorldMovesAsUnwatch
     std::unique_ptr<Scheduler> scheduler;
     std::unique_ptr<RecordingHooks> fine_hooks, coarse_hooks;
   };
-  auto make = [&](Run& run, bool watch) {
+  auto make = [&](Run& run, bool watch)
+  {
     ASSERT_TRUE(test::succeeded(run.world.add("fine", std::make_unique<Tether>(fine, Position::Zero()))));
     ASSERT_TRUE(test::succeeded(run.world.add("coarse", std::make_unique<Tether>(coarse, Position::Zero()))));
     run.scheduler = std::make_unique<Scheduler>(run.world, options.interpolation_delay, [] { return ros::WallTime(); });

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "rov_tether/GetTension.h"
-#include "rov_tether/TetherCoupling.h"
 #include "rov_tether/TetherConfig.h"
+#include "rov_tether/TetherCoupling.h"
 #include "rov_tether/TetherState.h"
 #include "rov_tether/Topology.h"
 #include "rov_tether/core/tether.hpp"

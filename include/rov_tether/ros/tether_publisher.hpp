@@ -96,11 +96,11 @@ class TetherPublisher
   ros::Publisher state_pub_;
   ros::Publisher wrench_pub_;
   ros::Publisher vehicle_wrench_pub_;
-  ros::Publisher coupling_pub_;        ///< ~coupling (TetherCoupling), after every step with subscribers.
-  EndLinearisation linearisation_;     ///< Reused by publishCoupling().
-  TetherCoupling coupling_;            ///< Reused by publishCoupling().
-  bool coupling_explained_ = false;    ///< explainMissingCoupling() has warned for this subscription.
-  ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
+  ros::Publisher coupling_pub_;      ///< ~coupling (TetherCoupling), after every step with subscribers.
+  EndLinearisation linearisation_;   ///< Reused by publishCoupling().
+  TetherCoupling coupling_;          ///< Reused by publishCoupling().
+  bool coupling_explained_ = false;  ///< explainMissingCoupling() has warned for this subscription.
+  ros::Publisher tf_pub_;            ///< /tf: the spool outlet and the cable's vehicle end.
   tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
   ros::Publisher legend_pub_;   ///< ~legend: the colour legend image, latched.
