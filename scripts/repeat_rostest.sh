@@ -5,8 +5,8 @@
 #   BUILD_DIR=$PWD/catkin_build_sanitize scripts/repeat_rostest.sh test/ros/overload.test 10
 # The build must exist (scripts/test.sh or scripts/setup.sh makes it). The runs share one master of their own
 # on port 11500 (rostest --reuse-master), so a rostest running elsewhere on the machine (port 22422) does
-# not collide with them. Under a sanitizer build the nodes run with ASAN_OPTIONS=detect_leaks=0, as in
-# scripts/test.sh. Exit code: the number of failed runs.
+# not collide with them; REPEAT_PORT=N takes another port, for two of these at once. Under a sanitizer build
+# the nodes run with ASAN_OPTIONS=detect_leaks=0, as in scripts/test.sh. Exit code: the number of failed runs.
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 test_file="$(realpath "${1:?usage: scripts/repeat_rostest.sh TEST.test [N]}")"
@@ -16,11 +16,14 @@ export PATH="/usr/bin:/bin:$PATH"
 set +u
 source "$build/devel/setup.bash"
 set -u
-export ROS_HOME="$build/ros_home_repeat" ROS_MASTER_URI="http://localhost:11500"
+port="${REPEAT_PORT:-11500}"
+ros_home="$build/ros_home_repeat"
+[[ "$port" == 11500 ]] || ros_home="${ros_home}_$port"
+export ROS_HOME="$ros_home" ROS_MASTER_URI="http://localhost:$port"
 if [[ "$build" == *sanitize* ]]; then
   export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 fi
-roscore -p 11500 >/dev/null 2>&1 &
+roscore -p "$port" >/dev/null 2>&1 &
 master=$!
 trap 'kill $master 2>/dev/null; wait $master 2>/dev/null' EXIT
 sleep 5

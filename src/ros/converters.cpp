@@ -418,6 +418,31 @@ geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Iso
   return wrenchMessage(force, attachment_offset.cross(force), stamp, vehicle_frame);
 }
 
+void toCouplingMessage(const EndLinearisation& linearisation, const Force& pull, const std::string& frame_id,
+                       TetherCoupling* message)
+{
+  message->header.stamp = ros::Time(std::max(linearisation.time, 0.0));
+  message->header.frame_id = frame_id;
+  message->force.x = pull.x();
+  message->force.y = pull.y();
+  message->force.z = pull.z();
+  message->position.x = linearisation.position.x();
+  message->position.y = linearisation.position.y();
+  message->position.z = linearisation.position.z();
+  message->velocity.x = linearisation.velocity.x();
+  message->velocity.y = linearisation.velocity.y();
+  message->velocity.z = linearisation.velocity.z();
+  for (int row = 0; row < 3; ++row)
+  {
+    for (int col = 0; col < 3; ++col)
+    {
+      message->stiffness[3 * row + col] = linearisation.stiffness(row, col);
+      message->damping[3 * row + col] = linearisation.damping(row, col);
+    }
+  }
+  message->taut = linearisation.taut;
+}
+
 namespace
 {
 /// One field of a config as the core's parameter value.

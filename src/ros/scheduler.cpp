@@ -208,21 +208,38 @@ void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)
   }
 }
 
+double Scheduler::nextStop(double target) const
+{
+  double stop = target;
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  {
+    const TetherSchedule& s = tethers_[i];
+    if (s.next_state <= stop)
+    {
+      stop = s.next_state;  // the earliest ~state point due by the target
+    }
+    const Tether& tether = world_.tether(i);
+    if (s.hooks->watchesSteps() && tether.stepFits(stop))
+    {
+      stop = std::min(stop, tether.nextStepTime());  // the end of its next step, where it is told
+    }
+  }
+  return stop;
+}
+
 void Scheduler::advance(double target)
 {
+  std::vector<std::uint64_t>& steps_before = stepped_before_;
   for (;;)
   {
-    // The earliest ~state point due by the target, among all tethers.
-    double next = std::numeric_limits<double>::infinity();
-    for (const auto& s : tethers_)
+    const double stop = nextStop(target);
+    steps_before.resize(tethers_.size());
+    for (std::size_t i = 0; i < tethers_.size(); ++i)
     {
-      if (s.next_state <= target)
-      {
-        next = std::min(next, s.next_state);
-      }
+      steps_before[i] = world_.tether(i).stepCount();
     }
-    const bool state_due = next <= target;
-    const Status status = world_.advanceTo(state_due ? next : target);
+    std::size_t taken = 0;
+    const Status status = world_.advanceTo(stop, &taken);
     if (!status.ok)
     {
       // A target from ROS time is finite and far below Tether::kMaxTime; were one refused, nothing is
@@ -230,17 +247,28 @@ void Scheduler::advance(double target)
       ROS_WARN_THROTTLE(1.0, "tether_node: physics advance refused: %s", status.message.c_str());
       return;
     }
-    if (!state_due)
+    for (std::size_t i = 0; i < tethers_.size(); ++i)
     {
-      break;
+      if (tethers_[i].hooks->watchesSteps() && world_.tether(i).stepCount() != steps_before[i])
+      {
+        tethers_[i].hooks->stepped();
+      }
     }
+    bool state_due = false;
     for (auto& s : tethers_)
     {
-      if (s.next_state <= next)
+      if (s.next_state <= stop)
       {
         s.hooks->publishState();
         s.next_state += s.state_period;
+        state_due = true;
       }
+    }
+    // On at a ~state point or a watched step's end short of the target; done at the target, or when a
+    // watched step did not fit after all (nothing taken: never loop on the spot).
+    if (stop >= target || (!state_due && taken == 0))
+    {
+      break;
     }
   }
 }

@@ -123,6 +123,7 @@ void TetherNode::publishState()
 void TetherNode::afterAdvance(const ros::Time& now)
 {
   diagnostics_.report(now);
+  publisher_.explainMissingCoupling(tether_);
   // The vehicle's box where it is at the tether's time: a dynamic body's pose, or the poses interpolated.
   if (tether_.vehicleAttached())
   {

@@ -52,6 +52,8 @@ TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions&
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);
   vehicle_wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench_vehicle", 10);
+  // A simulator takes the latest; 100 covers half a second of steps at 200 Hz for a subscriber that wants all.
+  coupling_pub_ = private_nh.advertise<TetherCoupling>("coupling", 100);
   if (!options.spool_outlet_frame.empty() || !options.cable_end_frame.empty())
   {
     tf_pub_ = private_nh.advertise<tf2_msgs::TFMessage>("/tf", 10);
@@ -81,6 +83,63 @@ void TetherPublisher::publishState(const Tether& tether, std::uint32_t resets, c
     toTransforms(tether, ros::Time(std::max(tether.time(), 0.0)), options_.world_frame, options_.spool_outlet_frame,
                  options_.cable_end_frame, &transforms_);
     tf_pub_.publish(transforms_);
+  }
+}
+
+namespace
+{
+
+/// Why `tether` cannot give ~coupling, or "" when it can.
+std::string whyNoCoupling(const Tether& tether)
+{
+  if (tether.params().solver != SolverType::kDirect)
+  {
+    return "it needs solver: direct (this tether runs " + toString(tether.params().solver) + "): set solver: direct";
+  }
+  if (tether.vehicleDynamic())
+  {
+    return "the vehicle is dynamic, its tether coupled inside the step: ~coupling is for a kinematic vehicle "
+           "end driven by an external simulator's poses";
+  }
+  return "";
+}
+
+}  // namespace
+
+bool TetherPublisher::couplingWanted(const Tether& tether) const
+{
+  return coupling_pub_.getNumSubscribers() > 0 && whyNoCoupling(tether).empty();
+}
+
+void TetherPublisher::publishCoupling(Tether& tether)
+{
+  if (!tether.vehicleAttached())
+  {
+    return;  // no pose yet (diagnostics say so): nothing pulls anything
+  }
+  const Status status = tether.vehicleEndLinearisation(&linearisation_);
+  if (!status.ok)
+  {
+    ROS_WARN_THROTTLE(5.0, "tether_node: %s not published: %s", coupling_pub_.getTopic().c_str(),
+                      status.message.c_str());
+    return;
+  }
+  toCouplingMessage(linearisation_, pullOnVehicle(tether), options_.world_frame, &coupling_);
+  coupling_pub_.publish(coupling_);
+}
+
+void TetherPublisher::explainMissingCoupling(const Tether& tether)
+{
+  const std::string why = coupling_pub_.getNumSubscribers() > 0 ? whyNoCoupling(tether) : "";
+  if (why.empty())
+  {
+    coupling_explained_ = false;
+  }
+  else if (!coupling_explained_)
+  {
+    ROS_WARN("tether_node: %s is subscribed but nothing is published: %s", coupling_pub_.getTopic().c_str(),
+             why.c_str());
+    coupling_explained_ = true;
   }
 }
 

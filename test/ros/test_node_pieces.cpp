@@ -213,8 +213,12 @@ class RecordingHooks : public TetherHooks
   void beforeAdvance(const ros::Time&) override { ++before; }
   void afterAdvance(const ros::Time&) override { ++after; }
   void restarted(const ros::Time&) override { ++restarts; }
+  bool watchesSteps() const override { return watch_steps; }
+  void stepped() override { step_times.push_back(tether_.time()); }
 
   std::vector<double> state_times;
+  std::vector<double> step_times;  ///< The tether's time at each stepped() call.
+  bool watch_steps = false;
   int before = 0, after = 0, restarts = 0;
 
  private:
@@ -408,6 +412,67 @@ TEST(Scheduler, EachTetherOfAWorldKeepsItsStateGridAndMovesAsAlone)
   EXPECT_NEAR(static_cast<double>(hooks_fast.state_times.size()), 3.0 * hooks_slow.state_times.size(), 3.0);
   EXPECT_EQ(test::positions(world.tether(0)), test::positions(alone_fast.world.tether(0)));
   EXPECT_EQ(test::positions(world.tether(1)), test::positions(alone_slow.world.tether(0)));
+}
+
+// ~coupling is published after every internal step of its tether: a watched tether is told once per step, at
+// the step's end, and the world (two tethers of different steps, in lockstep) moves exactly as unwatched, with
+// the same ~state points.
+TEST(Scheduler, AWatchedTetherIsToldAfterEachOfItsStepsAndTheWorldMovesAsUnwatched)
+{
+  NodeOptions options;
+  TetherParams fine = quietParams(), coarse = quietParams();
+  coarse.time_step = 0.01;
+  struct Run
+  {
+    World world;
+    std::unique_ptr<Scheduler> scheduler;
+    std::unique_ptr<RecordingHooks> fine_hooks, coarse_hooks;
+  };
+  auto make = [&](Run& run, bool watch)
+  {
+    ASSERT_TRUE(test::succeeded(run.world.add("fine", std::make_unique<Tether>(fine, Position::Zero()))));
+    ASSERT_TRUE(test::succeeded(run.world.add("coarse", std::make_unique<Tether>(coarse, Position::Zero()))));
+    run.scheduler = std::make_unique<Scheduler>(run.world, options.interpolation_delay, [] { return ros::WallTime(); });
+    run.fine_hooks = std::make_unique<RecordingHooks>(run.world.tether(0));
+    run.coarse_hooks = std::make_unique<RecordingHooks>(run.world.tether(1));
+    run.coarse_hooks->watch_steps = watch;
+    run.scheduler->add(options, *run.fine_hooks, "fine");
+    run.scheduler->add(options, *run.coarse_hooks, "coarse");
+  };
+  Run watched, unwatched;
+  make(watched, true);
+  make(unwatched, false);
+  double coarse_start = std::nan("");
+  for (double now = 20.0; now < 21.0; now += 0.0137)  // ticks off both step grids
+  {
+    const double x = 1.0 + 0.5 * (now - 20.0);
+    for (Run* run : {&watched, &unwatched})
+    {
+      for (std::size_t i = 0; i < 2; ++i)
+      {
+        ASSERT_TRUE(test::succeeded(run->world.tether(i).addVehicleSample(now, Position(x, 0.0, -1.0))));
+      }
+      run->scheduler->tick(ros::Time(now));
+    }
+    if (std::isnan(coarse_start))
+    {
+      coarse_start = watched.world.tether(1).time();  // after the first tick, which starts the tethers
+    }
+  }
+  const std::vector<double>& steps = watched.coarse_hooks->step_times;
+  ASSERT_GT(steps.size(), 50u);
+  EXPECT_LE(steps.front(), coarse_start + 0.01 + 1e-9) << "from the first step on";
+  for (std::size_t k = 1; k < steps.size(); ++k)
+  {
+    EXPECT_NEAR(steps[k] - steps[k - 1], 0.01, 1e-9) << "at each step's end, none twice, none left out";
+  }
+  EXPECT_DOUBLE_EQ(steps.back(), watched.world.tether(1).time());
+  EXPECT_TRUE(watched.fine_hooks->step_times.empty()) << "an unwatched tether is not told";
+  EXPECT_TRUE(unwatched.coarse_hooks->step_times.empty());
+  EXPECT_EQ(watched.fine_hooks->state_times, unwatched.fine_hooks->state_times);
+  EXPECT_EQ(watched.coarse_hooks->state_times, unwatched.coarse_hooks->state_times);
+  EXPECT_EQ(test::positions(watched.world.tether(0)), test::positions(unwatched.world.tether(0)));
+  EXPECT_EQ(test::positions(watched.world.tether(1)), test::positions(unwatched.world.tether(1)));
 }
 
 TEST(Scheduler, SharesTheWallTimeByWorkAndOnlyTheOverloadedTetherDegrades)

@@ -309,6 +309,37 @@ TEST(Converters, WrenchesUseTheVehiclePoseAtTheForcesTimeInBothFrames)
   EXPECT_NEAR(f.x(), pull.dot(yawed(45.0).rotation().col(0)), 1e-12) << "x is the vehicle's forward axis";
 }
 
+// ~coupling carries the linearisation as given, K and C row-major (an asymmetric K tells rows from columns),
+// stamped with its physics time in the world frame, F0 the pull ~wrench gives.
+TEST(Converters, CouplingMessageCarriesTheLinearisationRowMajorAtItsPhysicsTime)
+{
+  EndLinearisation linearisation;
+  linearisation.time = 12.345;
+  linearisation.position = Position(10.0, -2.0, -3.0);
+  linearisation.velocity = Velocity(0.5, 0.25, -0.125);
+  linearisation.force = Force(-40.0, 1.0, 2.0);
+  linearisation.stiffness << -1e4, 1.0, 2.0, 3.0, -40.0, 4.0, 5.0, 6.0, -40.5;
+  linearisation.damping << -1.0, -2.0, -3.0, -4.0, -5.0, -6.0, -7.0, -8.0, -9.0;
+  linearisation.taut = true;
+  const Force pull(-39.0, 0.5, 1.5);
+  TetherCoupling msg;
+  toCouplingMessage(linearisation, pull, "world", &msg);
+  EXPECT_EQ(msg.header.stamp, ros::Time(12.345));
+  EXPECT_EQ(msg.header.frame_id, "world");
+  EXPECT_EQ(Eigen::Vector3d(msg.force.x, msg.force.y, msg.force.z), pull);
+  EXPECT_EQ(Eigen::Vector3d(msg.position.x, msg.position.y, msg.position.z), linearisation.position);
+  EXPECT_EQ(Eigen::Vector3d(msg.velocity.x, msg.velocity.y, msg.velocity.z), linearisation.velocity);
+  EXPECT_EQ(msg.stiffness[1], 1.0) << "row 0, column 1";
+  EXPECT_EQ(msg.stiffness[3], 3.0) << "row 1, column 0";
+  EXPECT_EQ(msg.damping[5], -6.0) << "row 1, column 2";
+  for (int k = 0; k < 9; ++k)
+  {
+    EXPECT_EQ(msg.stiffness[k], linearisation.stiffness(k / 3, k % 3)) << k;
+    EXPECT_EQ(msg.damping[k], linearisation.damping(k / 3, k % 3)) << k;
+  }
+  EXPECT_TRUE(msg.taut);
+}
+
 // A cable cannot push: when the vehicle drives into the cable faster than it can give way, the end
 // segment is compressed and PBD's bilateral constraint carries a negative tension, which would push the
 // vehicle away. The wrench then carries nothing.

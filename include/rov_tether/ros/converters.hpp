@@ -13,6 +13,7 @@
 
 #include "rov_tether/GetTension.h"
 #include "rov_tether/TetherConfig.h"
+#include "rov_tether/TetherCoupling.h"
 #include "rov_tether/TetherState.h"
 #include "rov_tether/Topology.h"
 #include "rov_tether/core/tether.hpp"
@@ -113,6 +114,12 @@ geometry_msgs::WrenchStamped toWrench(const Force& pull, const Eigen::Isometry3d
 geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Isometry3d& vehicle,
                                              const Eigen::Vector3d& attachment_offset, const ros::Time& stamp,
                                              const std::string& vehicle_frame);
+
+/// ~coupling: `linearisation` (Tether::vehicleEndLinearisation) stamped with its physics time, in `frame_id`
+/// (the world frame); F0 is `pull` (pullOnVehicle: what ~wrench gives, zero when the end segment is
+/// compressed), K and C row-major.
+void toCouplingMessage(const EndLinearisation& linearisation, const Force& pull, const std::string& frame_id,
+                       TetherCoupling* message);
 
 /// Applies every dynamic_reconfigure field to `params` through the core's setParameter (the .cfg uses
 /// the model's parameter names). Returns "" or every problem, each naming its parameter; it does not

@@ -25,6 +25,11 @@ class TetherHooks
   virtual void beforeAdvance(const ros::Time& /*now*/) {}
   /// ~state (and ~wrench) is due at the tether's current physics time, a point of its state grid.
   virtual void publishState() = 0;
+  /// True while the node wants every internal step of this tether (~coupling has subscribers): the world
+  /// then advances to each of its steps' ends in turn and calls stepped() there.
+  virtual bool watchesSteps() const { return false; }
+  /// After each internal step of this tether while watchesSteps(): its physics time is that step's end.
+  virtual void stepped() {}
   /// After the physics advanced on this tick: reports, markers, diagnostics.
   virtual void afterAdvance(const ros::Time& /*now*/) {}
   /// The tether was re-laid at ROS time `now` (start, clock jump, ~reset): inputs and outputs start over.
@@ -84,7 +89,9 @@ struct TetherSchedule
  * advances from one due point to the next and the tethers due there publish. A tether more than its
  * max_lag behind skips ahead with its cable held (error, counted), publishes that held state at once and
  * restarts its ~state grid there, so a node that cannot hold real time still publishes at least once a
- * skip. After the physics, the wall time it
+ * skip. A tether whose hooks watch its steps (~coupling subscribed) is told after each of its internal steps
+ * (the world still steps in lockstep; unwatched, it advances to the next stop in one call, as before). After
+ * the physics, the wall time it
  * took is shared among the tethers by their work (steps x particles x iterations x substeps; exact for
  * one tether) and fed to each tether's LoadGovernor. Needs no ROS master: the wall clock is injected.
  */
@@ -131,8 +138,12 @@ class Scheduler
   void resetAll(const ros::Time& now, const std::string& why);
   /// Sets tether i's next ~state point for physics target `target`, and skips ahead beyond max_lag.
   void prepare(std::size_t i, double target, const ros::Time& now);
-  /// Advances the world to `target`, stopping at every due ~state point to publish.
+  /// Advances the world to `target`, stopping at every due ~state point to publish, and after every step of
+  /// a tether whose hooks watch its steps.
   void advance(double target);
+  /// Where advance() stops next on its way to `target`: the earliest due ~state point, or the end of the
+  /// next step of a tether whose steps are watched, or `target`.
+  double nextStop(double target) const;
   /// Shares `wall` [s] among the tethers by work and updates their statistics and governors.
   void account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before);
 
@@ -143,6 +154,7 @@ class Scheduler
   double target_ = 0.0;  ///< Physics target of the last tick [s].
   WallClock wall_clock_;
   std::vector<TetherSchedule> tethers_;
+  std::vector<std::uint64_t> stepped_before_;  ///< advance(): each tether's step count before a stop (reused).
   bool started_ = false;
   ros::Time last_time_;      ///< ROS time of the last tick (or reset).
   ros::WallTime last_wall_;  ///< Wall time of the last tick's start; zero before the first.

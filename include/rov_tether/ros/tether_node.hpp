@@ -54,6 +54,9 @@ class TetherNode : public TetherHooks
   void publishState() override;
   void afterAdvance(const ros::Time& now) override;
   void restarted(const ros::Time& now) override;
+  /// While ~coupling is subscribed (and the tether can give it): every step is published.
+  bool watchesSteps() const override { return publisher_.couplingWanted(tether_); }
+  void stepped() override { publisher_.publishCoupling(tether_); }
   PoseTiming poseTiming() const override;
   ros::Time earliestArrival() const override { return pose_input_.earliestArrival(); }
 

@@ -57,9 +57,11 @@ class StateBuilder
 
 /**
  * One tether's topics: ~state, ~wrench and ~wrench_vehicle (on its state grid, see Scheduler; the last
- * only computed while someone subscribes), the tf frames of the spool outlet and the cable's vehicle end
- * (with ~state), ~markers at a rate (only while someone subscribes), contact points and the vehicle's box
- * included, and the colour legend ~legend (latched, once).
+ * only computed while someone subscribes), ~coupling after every physics step (only while someone subscribes:
+ * the linearisation costs a factorisation and three solves; direct solver and kinematic vehicle end only), the
+ * tf frames of the spool outlet and the cable's vehicle end (with ~state), ~markers at a rate (only while
+ * someone subscribes), contact points and the vehicle's box included, and the colour legend ~legend
+ * (latched, once).
  */
 class TetherPublisher
 {
@@ -81,6 +83,16 @@ class TetherPublisher
   /// After a reset of the tether.
   void restart(const Tether& tether);
 
+  /// True while ~coupling has subscribers and `tether` can give it: solver direct, a kinematic vehicle end.
+  bool couplingWanted(const Tether& tether) const;
+  /// Publishes ~coupling for `tether`'s last step (call after each step while couplingWanted()). Before the
+  /// first pose there is no vehicle and nothing is published; a linearisation refused otherwise is a
+  /// throttled warning with the core's reason.
+  void publishCoupling(Tether& tether);
+  /// Warns once while ~coupling is subscribed but `tether` cannot give it (another solver, a dynamic vehicle),
+  /// saying what to use; again after the subscribers left or it could be given meanwhile.
+  void explainMissingCoupling(const Tether& tether);
+
  private:
   NodeOptions options_;
   Eigen::Vector3d vehicle_size_;
@@ -88,7 +100,11 @@ class TetherPublisher
   ros::Publisher state_pub_;
   ros::Publisher wrench_pub_;
   ros::Publisher vehicle_wrench_pub_;
-  ros::Publisher tf_pub_;  ///< /tf: the spool outlet and the cable's vehicle end.
+  ros::Publisher coupling_pub_;      ///< ~coupling (TetherCoupling), after every step with subscribers.
+  EndLinearisation linearisation_;   ///< Reused by publishCoupling().
+  TetherCoupling coupling_;          ///< Reused by publishCoupling().
+  bool coupling_explained_ = false;  ///< explainMissingCoupling() has warned for this subscription.
+  ros::Publisher tf_pub_;            ///< /tf: the spool outlet and the cable's vehicle end.
   tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;
   ros::Publisher legend_pub_;   ///< ~legend: the colour legend image, latched.

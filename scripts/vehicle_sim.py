@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""An example external vehicle simulator coupled to tether_node: a point vehicle (3-DOF translation) that
+feels its tether, integrated at its own rate, publishing its pose on the topic the node reads.
+
+The tether's pull comes from the node's ~coupling (rov_tether/TetherCoupling, once per physics step): the pull
+F0 at the attachment point x0 moving at v0, and the tether's stiffness K = dF/dx and damping C = dF/dv there.
+Each step the simulator applies F = F0 + K (x - x0) + C (v - v0) at its own state x, v, from the latest
+message, with K and C inside its implicit step (coupled_step below): the stable way for a stiff tether. A taut
+10 m tether at EA 1e5 N is a 1e4 N/m spring; on a 20 kg vehicle, applied explicitly, it needs steps below
+2 sqrt(m / k) = 89 ms undamped and, delayed by a topic loop, below c / k = 1.4 ms with the vehicle's own drag
+c: no simulator runs that fast, and the vehicle bounces off its tether (docs/node.md, "External vehicle
+simulators"). ~tether_force: wrench applies the node's ~wrench as it comes, the old way, to show that.
+
+A slack tether's message has no stiffness (F0, K, C zero): it cannot say where the tether comes taut again.
+For ~slack_memory seconds of the node's time after the last taut message, the simulator keeps applying that
+one (a unilateral spring: no pull until the vehicle is back where it pulled), so a tether that goes slack
+for a moment and comes taut again acts at once, not a message delay late (interpolation_delay: 0.1 s at
+0.5 m/s is 5 cm of stretch unseen, 500 N at 1e4 N/m). Beyond it, the tether is slack until a taut message
+comes. The first time a tether comes taut is seen that late in any case: give the node interpolation_delay 0.
+
+Until the first ~coupling message the vehicle is held at ~start (its tether's pull is not known yet); its pose
+is published all along, so the node attaches it. Time: ROS time (/clock under use_sim_time); the vehicle steps
+by 1 / ~rate until it reaches ROS time and publishes each step's pose, stamped with the step's time.
+
+Parameters: ~rate [Hz] (100), ~mass [kg] (13.5), ~added_mass [kg] per world axis ([6.36, 7.12, 18.68]),
+~linear_drag [N s/m] per axis ([13.7, 0, 33.0]), ~quadratic_drag [N s^2/m^2] per axis ([141, 217, 190]): the
+BlueROV2 Heavy's surge, sway and heave of von Benzon et al. 2022 (docs/references.md), ~thrust [N] a
+world-frame vector ([0, 0, 0]), ~start [m] ([0, 0, 0]), ~world_frame (world), ~pose_topic (rov_pose),
+~coupling_topic (tether_node/coupling), ~slack_memory [s] (1.0), ~tether_force (coupling | wrench | none),
+~wrench_topic (tether_node/wrench).
+"""
+import math
+
+import rospy
+from geometry_msgs.msg import PoseStamped, WrenchStamped
+
+from rov_tether.msg import TetherCoupling
+
+
+def mat_vec(a, x):
+    return [sum(a[i][k] * x[k] for k in range(3)) for i in range(3)]
+
+
+def solve3(a, b):
+    """x with a x = b for a 3x3 matrix a (Gaussian elimination with partial pivoting)."""
+    m = [list(a[i]) + [b[i]] for i in range(3)]
+    for c in range(3):
+        p = max(range(c, 3), key=lambda r: abs(m[r][c]))
+        m[c], m[p] = m[p], m[c]
+        for r in range(c + 1, 3):
+            f = m[r][c] / m[c][c]
+            m[r] = [m[r][k] - f * m[c][k] for k in range(4)]
+    x = [0.0, 0.0, 0.0]
+    for r in (2, 1, 0):
+        x[r] = (m[r][3] - sum(m[r][k] * x[k] for k in range(r + 1, 3))) / m[r][r]
+    return x
+
+
+def coupled_step(x, v, h, mass, drag, thrust, coupling):
+    """One backward-Euler step of h [s] of a point vehicle on its tether: returns (x, v, pull) at its end.
+
+    mass: 3x3 [kg] (rigid body and added mass); drag: 3x3 [N s/m], the drag linearised at v (linear +
+    quadratic |v|); thrust [N], world frame; coupling: (F0, x0, v0, K, C) of the latest ~coupling, or None.
+    Implicit in the tether, M (v' - v) = h (thrust - drag v' + F0 + K (x' - x0) + C (v' - v0)) with
+    x' = x + h v':  (M + h drag - h C - h^2 K) v' = M v + h (thrust + F0 + K (x - x0) - C v0).
+    K and C are negative semi-definite (moving away from the spool pulls harder towards it), so the matrix is
+    positive definite at any stiffness and step: no rate is too slow for the tether. A cable cannot push: when
+    the linearised pull would point against F0 (the vehicle closed on the spool since the message), the step
+    is taken again with the tether slack."""
+    if coupling is not None:
+        f0, x0, v0, k, c = coupling
+        a = [[mass[i][j] + h * drag[i][j] - h * c[i][j] - h * h * k[i][j] for j in range(3)] for i in range(3)]
+        kx, cv, mv = mat_vec(k, [x[i] - x0[i] for i in range(3)]), mat_vec(c, v0), mat_vec(mass, v)
+        v_new = solve3(a, [mv[i] + h * (thrust[i] + f0[i] + kx[i] - cv[i]) for i in range(3)])
+        x_new = [x[i] + h * v_new[i] for i in range(3)]
+        dx, dv = [x_new[i] - x0[i] for i in range(3)], [v_new[i] - v0[i] for i in range(3)]
+        pull = [f0[i] + a_k + a_c for i, (a_k, a_c) in enumerate(zip(mat_vec(k, dx), mat_vec(c, dv)))]
+        if sum(pull[i] * f0[i] for i in range(3)) > 0.0:
+            return x_new, v_new, pull
+    a = [[mass[i][j] + h * drag[i][j] for j in range(3)] for i in range(3)]  # slack: the vehicle alone
+    mv = mat_vec(mass, v)
+    v_new = solve3(a, [mv[i] + h * thrust[i] for i in range(3)])
+    return [x[i] + h * v_new[i] for i in range(3)], v_new, [0.0, 0.0, 0.0]
+
+
+def diagonal(values):
+    return [[values[i] if i == j else 0.0 for j in range(3)] for i in range(3)]
+
+
+def vector_param(name, default):
+    value = rospy.get_param(name, default)
+    if not (isinstance(value, (list, tuple)) and len(value) == 3 and
+            all(isinstance(a, (int, float)) and math.isfinite(a) for a in value)):
+        raise ValueError("%s must be a list of 3 finite numbers, got %r" % (rospy.resolve_name(name), value))
+    return [float(a) for a in value]
+
+
+class VehicleSim:
+    """The vehicle, its latest tether message and its publisher."""
+
+    def __init__(self):
+        self.rate = float(rospy.get_param("~rate", 100.0))
+        mass = float(rospy.get_param("~mass", 13.5))
+        added = vector_param("~added_mass", [6.36, 7.12, 18.68])
+        self.linear = vector_param("~linear_drag", [13.7, 0.0, 33.0])
+        self.quadratic = vector_param("~quadratic_drag", [141.0, 217.0, 190.0])
+        self.thrust = vector_param("~thrust", [0.0, 0.0, 0.0])
+        self.x = vector_param("~start", [0.0, 0.0, 0.0])
+        self.frame = rospy.get_param("~world_frame", "world")
+        self.tether_force = rospy.get_param("~tether_force", "coupling")
+        self.slack_memory = float(rospy.get_param("~slack_memory", 1.0))
+        if not (self.rate > 0.0 and math.isfinite(self.rate)) or not mass > 0.0 or min(added) < 0.0 or \
+                min(self.linear + self.quadratic) < 0.0 or not self.slack_memory >= 0.0:
+            raise ValueError("~rate and ~mass must be > 0, ~added_mass, the drags and ~slack_memory >= 0")
+        if self.tether_force not in ("coupling", "wrench", "none"):
+            raise ValueError("~tether_force must be coupling, wrench or none, got '%s'" % self.tether_force)
+        self.mass = diagonal([mass + a for a in added])
+        self.v = [0.0, 0.0, 0.0]
+        self.coupling = None  # (F0, x0, v0, K, C) the step applies: the latest ~coupling, or the last taut one
+        self.last_taut = None  # (stamp [s], (F0, x0, v0, K, C)) of the last taut ~coupling
+        self.wrench = None    # [N] the latest ~wrench's force (~tether_force: wrench)
+        self.pull = [0.0, 0.0, 0.0]
+        self.pub = rospy.Publisher(rospy.get_param("~pose_topic", "rov_pose"), PoseStamped, queue_size=100)
+        if self.tether_force == "coupling":
+            rospy.Subscriber(rospy.get_param("~coupling_topic", "tether_node/coupling"), TetherCoupling,
+                             self.on_coupling, queue_size=1, tcp_nodelay=True)
+        elif self.tether_force == "wrench":
+            rospy.Subscriber(rospy.get_param("~wrench_topic", "tether_node/wrench"), WrenchStamped,
+                             self.on_wrench, queue_size=1, tcp_nodelay=True)
+
+    def on_coupling(self, msg):
+        f, p, u = msg.force, msg.position, msg.velocity
+        k, c = msg.stiffness, msg.damping
+        coupling = ([f.x, f.y, f.z], [p.x, p.y, p.z], [u.x, u.y, u.z],
+                    [list(k[0:3]), list(k[3:6]), list(k[6:9])], [list(c[0:3]), list(c[3:6]), list(c[6:9])])
+        stamp = msg.header.stamp.to_sec()
+        if msg.taut:
+            self.last_taut = (stamp, coupling)
+        elif self.last_taut is not None and stamp - self.last_taut[0] <= self.slack_memory:
+            coupling = self.last_taut[1]  # slack for a moment: the last taut spring, unilateral
+        self.coupling = coupling
+
+    def on_wrench(self, msg):
+        f = msg.wrench.force
+        self.wrench = [f.x, f.y, f.z]
+
+    def started(self):
+        """The vehicle moves once the tether's pull is known (or is not wanted)."""
+        return self.tether_force == "none" or (self.coupling if self.tether_force == "coupling" else self.wrench)
+
+    def step(self, h):
+        if not self.started():
+            return
+        drag = diagonal([self.linear[i] + self.quadratic[i] * abs(self.v[i]) for i in range(3)])
+        if self.tether_force == "wrench":
+            # The old way: the last published pull as a given force, explicit and late.
+            thrust = [self.thrust[i] + self.wrench[i] for i in range(3)]
+            self.x, self.v, _ = coupled_step(self.x, self.v, h, self.mass, drag, thrust, None)
+            self.pull = list(self.wrench)
+        else:
+            self.x, self.v, self.pull = coupled_step(self.x, self.v, h, self.mass, drag, self.thrust, self.coupling)
+
+    def publish(self, t):
+        msg = PoseStamped()
+        msg.header.stamp = rospy.Time.from_sec(t)
+        msg.header.frame_id = self.frame
+        msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = self.x
+        msg.pose.orientation.w = 1.0
+        self.pub.publish(msg)
+
+
+def sleep_until(due):
+    """Until ROS time reaches due [s]. Under /clock this waits on the condition rospy.sleep waits on, against
+    due itself: rospy.sleep(due - now) counts from the time it reads itself, later than now when a /clock
+    message came between, and then sleeps past due, for good when the clock waits for this simulator (a
+    lockstep driver such as external_coupling.test)."""
+    if rospy.rostime.is_wallclock():
+        rospy.sleep(max(0.0, due - rospy.Time.now().to_sec()))
+        return
+    cond = rospy.rostime.get_rostime_cond()
+    with cond:
+        while not rospy.is_shutdown() and rospy.Time.now().to_sec() < due - 1e-9:
+            cond.wait(0.5)
+
+
+def main():
+    rospy.init_node("vehicle_sim")
+    try:
+        sim = VehicleSim()
+    except ValueError as error:
+        rospy.logfatal("vehicle_sim: %s", error)
+        raise SystemExit(1)
+    h = 1.0 / sim.rate
+    while not rospy.is_shutdown() and rospy.Time.now().is_zero():
+        rospy.sleep(0.01)  # simulated time has not started
+    t = rospy.Time.now().to_sec()
+    sim.publish(t)
+    rospy.loginfo("vehicle_sim: %.0f Hz, thrust [%.1f, %.1f, %.1f] N, tether force from %s", sim.rate,
+                  sim.thrust[0], sim.thrust[1], sim.thrust[2], sim.tether_force)
+    while not rospy.is_shutdown():
+        now = rospy.Time.now().to_sec()
+        while t + h <= now + 1e-9:  # catch up with ROS time in steps of exactly h
+            sim.step(h)
+            t += h
+            sim.publish(t)
+        sleep_until(t + h)
+
+if __name__ == "__main__":
+    main()
