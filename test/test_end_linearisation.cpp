@@ -304,6 +304,58 @@ TEST(EndLinearisation, AHeavyChainAnswersWithItsLastSegment)
   EXPECT_GT(-k(0, 0), 10.0 * ea / 2.0);
 }
 
+// (2b) The horizon: the same heavy chain linearised over a step of 1000 s instead of h (what a simulator whose
+// state runs that far ahead of x0 feels). The particles' inertia per step becomes m / tau^2 = (h / tau)^2 of
+// what it was (4e6 N/m -> 4e-6 N/m), so the chain answers as a light one: the series bounds of test (2), with
+// the masses scaled, hold; they are within 1e-3 of EA / L_total and T / L_total. A horizon shorter than h is
+// the step's own K, bit for bit; a negative or NaN one is refused.
+TEST(EndLinearisation, ALongHorizonAnswersWithTheWholeChain)
+{
+  const double ea = 1e3;
+  const std::unique_ptr<Tether> sim = straightChain(ea, 1000.0, 2.02, 2);
+  const double h = sim->params().time_step / sim->params().substeps;
+  const double tau = 1000.0;
+  EndLinearisation step;
+  EndLinearisation shorter;
+  EndLinearisation linearised;
+  ASSERT_TRUE(succeeded(sim->vehicleEndLinearisation(&step)));
+  ASSERT_TRUE(succeeded(sim->vehicleEndLinearisation(&shorter, 0.5 * h)));
+  EXPECT_EQ(shorter.stiffness, step.stiffness);
+  EXPECT_EQ(step.horizon, h);
+  ASSERT_TRUE(succeeded(sim->vehicleEndLinearisation(&linearised, tau)));
+  ASSERT_TRUE(linearised.taut);
+  EXPECT_EQ(linearised.horizon, tau);
+  EXPECT_EQ(linearised.force, step.force);
+  const ChainNumbers chain = chainNumbers(*sim);
+  std::vector<double> mass_per_horizon;
+  for (const double mu : chain.mass_per_step)
+  {
+    mass_per_horizon.push_back(mu * (h / tau) * (h / tau));
+  }
+  std::vector<double> axial;
+  std::vector<double> across;
+  for (std::size_t k = 0; k < chain.tension.size(); ++k)
+  {
+    axial.push_back(ea / chain.rest[k]);
+    across.push_back(chain.tension[k] / chain.length[k]);
+  }
+  const SeriesBounds along_bounds = seriesBounds(axial, mass_per_horizon);
+  const SeriesBounds across_bounds = seriesBounds(across, mass_per_horizon);
+  const Eigen::Matrix3d& k = linearised.stiffness;
+  const double rounding = 1e-9 * k.cwiseAbs().maxCoeff();
+  EXPECT_GE(-k(0, 0), along_bounds.lower - rounding);
+  EXPECT_LE(-k(0, 0), along_bounds.upper + rounding);
+  EXPECT_NEAR(-k(0, 0), ea / 2.0, 1e-3 * ea / 2.0);
+  for (int axis : {1, 2})
+  {
+    EXPECT_GE(-k(axis, axis), across_bounds.lower - rounding) << axis;
+    EXPECT_LE(-k(axis, axis), across_bounds.upper + rounding) << axis;
+  }
+  EndLinearisation refused;
+  EXPECT_FALSE(sim->vehicleEndLinearisation(&refused, -1.0).ok);
+  EXPECT_FALSE(sim->vehicleEndLinearisation(&refused, std::nan("")).ok);
+}
+
 // (3) A cable's K is minus the Schur complement of a symmetric Hessian: symmetric (to rounding, 1e-9 of its
 // largest entry), and while every segment pulls, negative semi-definite (moving the end away pulls it back
 // harder: -K >= 0) and no stiffer than the last segment held alone, B / h^2 = EA / L n n^T + T / |d| (I - n n^T)

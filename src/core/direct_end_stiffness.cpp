@@ -7,7 +7,7 @@ namespace rov_tether
 {
 
 bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, const SolverSettings& settings,
-                           Eigen::Matrix3d* stiffness, bool* taut)
+                           double horizon, Eigen::Matrix3d* stiffness, bool* taut)
 {
   stiffness->setZero();
   *taut = false;
@@ -24,6 +24,10 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
   {
     columns_.assign(9 * n, 0.0);
   }
+  if (scaled_.size() < n)
+  {
+    scaled_.assign(n, 0.0);
+  }
   if (n < f + 2 || !(settings.time_step > 0.0))
   {
     return true;  // no segment, or no step taken since the cable was laid out: nothing pulls yet
@@ -33,7 +37,14 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
     return false;  // an end that is not pinned (a dynamic vehicle) is not this linearisation's
   }
   const std::size_t m = n - 1 - f;
-  const double* lambda = multipliers.stretch.data() + f;
+  // The step linearised is one of `step` [s]: the multipliers (force h^2) are carried over as the same forces.
+  const double step = std::max(settings.time_step, horizon);
+  const double carry = (step / settings.time_step) * (step / settings.time_step);
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    scaled_[k] = multipliers.stretch[f + k] * carry;
+  }
+  const double* lambda = scaled_.data();
   const double end_lambda = lambda[m - 1];
   if (!(end_lambda > 0.0))
   {
@@ -46,6 +57,7 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
   // spool segment is taken by its elastic law (a drum giving way within the step is left out).
   SolverSettings elastic = settings;
   elastic.drum = nullptr;
+  elastic.time_step = step;
   DirectWorkspace& ws = workspace_;
   ws.begin(cable, scratch_, elastic);
   double* model = ws.on();
@@ -103,7 +115,7 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
       answer(r, c) = columns_[c * rows + 3 * (m - 1) + r];
     }
   }
-  const double h2 = settings.time_step * settings.time_step;
+  const double h2 = step * step;
   *stiffness = -(block - block * answer) / h2;
   return true;
 }

@@ -25,8 +25,11 @@ class EndStiffness
   /// complement of the step's Hessian onto x_e, K = -(B - B Y) / h^2 with B the last segment's block and Y
   /// the free particles' answer dx_f/dx_e = -H_ff^-1 H_fe (three solves with one factorisation). Zero, and
   /// *taut false, when the last segment carries no tension. False when the Hessian is not positive definite.
-  /// Its own workspace: the solver's warm start for the next step is not touched. Allocation-free once sized.
-  bool compute(const Cable& cable, const Multipliers& multipliers, const SolverSettings& settings,
+  /// `horizon` [s] > h: the same at the same state for an implicit step of that length instead of h (the
+  /// particles' inertia M / horizon^2, the pull and its multipliers unchanged as forces): what the chain
+  /// answers over a longer time, tending to the static stiffness. Its own workspace: the solver's warm start
+  /// for the next step is not touched. Allocation-free once sized.
+  bool compute(const Cable& cable, const Multipliers& multipliers, const SolverSettings& settings, double horizon,
                Eigen::Matrix3d* stiffness, bool* taut);
 
  private:
@@ -34,6 +37,7 @@ class EndStiffness
   PrimalNewton primal_;
   Multipliers scratch_;          ///< What DirectWorkspace::begin clears (the step's own are not touched).
   std::vector<double> columns_;  ///< The three right-hand sides, then dx_f/dx_e by columns.
+  std::vector<double> scaled_;   ///< The step's multipliers as the horizon's step would carry them.
 };
 
 }  // namespace rov_tether

@@ -88,10 +88,10 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
 
 void DirectSolver::forget() { methods_->workspace.forget(); }
 
-bool DirectSolver::endStiffness(const Cable& cable, const SolverSettings& settings, Eigen::Matrix3d* stiffness,
-                                bool* taut)
+bool DirectSolver::endStiffness(const Cable& cable, const SolverSettings& settings, double horizon,
+                                Eigen::Matrix3d* stiffness, bool* taut)
 {
-  return methods_->end.compute(cable, multipliers(), settings, stiffness, taut);
+  return methods_->end.compute(cable, multipliers(), settings, horizon, stiffness, taut);
 }
 
 }  // namespace rov_tether

@@ -706,8 +706,13 @@ Force Tether::vehicleForce() const
   return endForce(cable_, solver_->multipliers(), last_step_);
 }
 
-Status Tether::vehicleEndLinearisation(EndLinearisation* out)
+Status Tether::vehicleEndLinearisation(EndLinearisation* out, double horizon)
 {
+  if (!(horizon >= 0.0) || !std::isfinite(horizon))
+  {
+    return Status::error("end linearisation refused: horizon = " + std::to_string(horizon) +
+                         " s: must be finite and >= 0 (0: the last step's own)");
+  }
   if (!track_.attached())
   {
     return Status::error("end linearisation refused: no vehicle is attached (the last particle is a free end)");
@@ -729,7 +734,9 @@ Status Tether::vehicleEndLinearisation(EndLinearisation* out)
   out->velocity = end_velocity_;
   out->force = vehicleForce();
   out->damping.setZero();  // the step has no term in the end's velocity (end_linearisation.hpp)
-  if (!direct->endStiffness(cable_, SolverSettings::from(params_, last_step_), &out->stiffness, &out->taut))
+  const SolverSettings settings = SolverSettings::from(params_, last_step_);
+  out->horizon = std::max(horizon, settings.time_step);
+  if (!direct->endStiffness(cable_, settings, horizon, &out->stiffness, &out->taut))
   {
     return Status::error("end linearisation failed: the last step's system is not positive definite");
   }

@@ -440,6 +440,7 @@ void toCouplingMessage(const EndLinearisation& linearisation, const Force& pull,
       message->damping[3 * row + col] = linearisation.damping(row, col);
     }
   }
+  message->horizon = linearisation.horizon;
   message->taut = linearisation.taut;
 }
 

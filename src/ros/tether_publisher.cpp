@@ -117,7 +117,8 @@ void TetherPublisher::publishCoupling(Tether& tether)
   {
     return;  // no pose yet (diagnostics say so): nothing pulls anything
   }
-  const Status status = tether.vehicleEndLinearisation(&linearisation_);
+  // The simulator's state runs interpolation_delay ahead of the step: K is the chain's answer over that time.
+  const Status status = tether.vehicleEndLinearisation(&linearisation_, options_.interpolation_delay);
   if (!status.ok)
   {
     ROS_WARN_THROTTLE(5.0, "tether_node: %s not published: %s", coupling_pub_.getTopic().c_str(),

@@ -76,9 +76,11 @@ class DirectSolver : public ConstraintSolver
   /// the other particles answering through the step's Newton system (end_linearisation.hpp, docs/model.md
   /// "A kinematic end's linearisation for external simulators"). `cable` and the multipliers are the step's
   /// result; `settings` the step's (time_step the sub-step h). Zero and *taut false when the last segment
-  /// carries no tension; false when the system is not positive definite. The step's warm start is not
-  /// touched (a workspace of its own); allocation-free after the first call.
-  bool endStiffness(const Cable& cable, const SolverSettings& settings, Eigen::Matrix3d* stiffness, bool* taut);
+  /// carries no tension; false when the system is not positive definite. `horizon` [s] > h linearises a step
+  /// of that length instead (the particles' inertia M / horizon^2). The step's warm start is not touched (a
+  /// workspace of its own); allocation-free after the first call.
+  bool endStiffness(const Cable& cable, const SolverSettings& settings, double horizon, Eigen::Matrix3d* stiffness,
+                    bool* taut);
 
  protected:
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;

@@ -170,7 +170,12 @@ class Tether
   /// a vehicle, with a dynamic one (VehicleCoupling couples it inside the step) and for solvers other than
   /// `direct`; an error too if the step's system is not positive definite (`out` then holds F0, K = C = 0).
   /// Allocation-free after the first call; the next step is the same whether it is called or not.
-  Status vehicleEndLinearisation(EndLinearisation* out);
+  /// `horizon` [s]: how long after the step the simulator applies it (0, or less than the sub-step h: the
+  /// step's own K). A longer horizon linearises an implicit step of that length at the same state: the
+  /// chain's inertia M / horizon^2 answers less, so K tends to the static stiffness (-EA / L_total along a
+  /// taut chain). A simulator whose state runs `interpolation_delay` ahead of the physics needs that one: the
+  /// step's K, twice as stiff on a 10 m chain at h = 5 ms, rings a 0.1 s loop. Refused when negative or NaN.
+  Status vehicleEndLinearisation(EndLinearisation* out, double horizon = 0.0);
   /// Deployed length, end tensions, maximum tension and strain.
   TetherSummary summary() const;
   /// The same from segment tensions the caller already computed (computeSegmentTensions).
