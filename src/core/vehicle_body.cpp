@@ -144,17 +144,54 @@ double VehicleBody::potentialEnergy() const
   return params_.weight() * z_g - params_.buoyancy() * z_b;
 }
 
-Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
 {
   if (!(dt > 0.0) || !(dt <= stable_step_))
   {
     return Status::error("vehicle step: dt must be in (0, " + number(stable_step_) +
                          "] s, the restoring moment's stability limit (got " + number(dt) + ")");
   }
+  start->dt = dt;
+  start->relative = velocity_;
+  start->relative.head<3>() -= attitude_.conjugate() * current_;
+  start->restoring = restoringWrench();
+  // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
+  Matrix6 damped = mass_matrix_;
+  damped.diagonal() += dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
+  start->damped.compute(damped);
+  return Status::success();
+}
+
+Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+{
+  VehicleStepStart start;
+  const Status started = startStep(dt, &start);
+  return started ? step(start, thrust, external, used) : started;
+}
+
+Status VehicleBody::step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+{
+  return advance(start, thrust, external, &position_, &attitude_, &velocity_, used);
+}
+
+Status VehicleBody::stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude) const
+{
+  Twist velocity;
+  *position = position_;
+  *attitude = attitude_;
+  return advance(start, thrust, external, position, attitude, &velocity, nullptr);
+}
+
+Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude, Twist* velocity,
+                            ThrustUsed* used) const
+{
   if (!finite(thrust) || !finite(external))
   {
     return Status::error("vehicle step: thrust and external wrench must be finite");
   }
+  const double dt = start.dt;
   // Thrust held within its limit per axis, and reported.
   ThrustUsed applied;
   for (int i = 0; i < 6; ++i)
@@ -167,18 +204,12 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
     }
   }
 
-  const Vector3 current_in_body = attitude_.conjugate() * current_;
-  Twist relative = velocity_;
-  relative.head<3>() -= current_in_body;
-  const Twist speed = relative.cwiseAbs();  // |nu_r| at the step's start, for the damping
-
   // 1. Kick: thrust, external wrench and the restoring wrench at this attitude.
-  relative += dt * mass_factor_.solve(applied.applied + external + restoringWrench());
+  Twist relative = start.relative;
+  relative += dt * mass_factor_.solve(applied.applied + external + start.restoring);
 
-  // 2. Damping, implicit per axis with |nu_r| from the step's start (exact at a steady state).
-  Matrix6 damped = mass_matrix_;
-  damped.diagonal() += dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(speed));
-  relative = damped.ldlt().solve(mass_matrix_ * relative);
+  // 2. Damping, implicit per axis with |nu_r| from the step's start (start.damped: M + dt D).
+  relative = start.damped.solve(mass_matrix_ * relative);
 
   // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
   // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
@@ -199,14 +230,14 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
   const Vector3 turn = dt * mean.tail<3>();
   const double angle = turn.norm();
   const Eigen::Quaterniond half_way =
-      angle > 0.0 ? attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle)) : attitude_;
-  position_ += dt * (half_way * mean.head<3>() + current_);
+      angle > 0.0 ? *attitude * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle)) : *attitude;
+  *position += dt * (half_way * mean.head<3>() + current_);
   if (angle > 0.0)
   {
-    attitude_ = (attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle))).normalized();
+    *attitude = (*attitude * Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle))).normalized();
   }
-  velocity_ = relative;
-  velocity_.head<3>() += attitude_.conjugate() * current_;
+  *velocity = relative;
+  velocity->head<3>() += attitude->conjugate() * current_;
 
   if (used != nullptr)
   {

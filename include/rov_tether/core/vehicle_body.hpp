@@ -26,6 +26,17 @@ struct ThrustUsed
   bool saturated() const { return saturated_axes != 0; }
 };
 
+/// What every step of dt from one state needs, whatever its thrust and external wrench: the velocity relative to
+/// the water and its magnitude's damping, factored (M + dt D(|nu_r|)), and the restoring wrench. Steps from the same
+/// state with the same dt share one (VehicleCoupling: two steps and the end's mobility per sub-step).
+struct VehicleStepStart
+{
+  double dt = 0.0;
+  Twist relative = Twist::Zero();           ///< nu_r at the start
+  Wrench restoring = Wrench::Zero();        ///< restoringWrench() at the start
+  Eigen::LDLT<Matrix6> damped;              ///< M + dt D(|nu_r|), factored
+};
+
 /**
  * A vehicle's rigid body (Fossen 2011: rigid-body kinetics ch. 3, hydrostatics ch. 4, added mass and damping
  * ch. 6-7, an irrotational constant current ch. 8):
@@ -79,6 +90,13 @@ class VehicleBody
    * held constant over the step. Refuses non-finite input and a step outside the limit, leaving the state.
    */
   Status step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used);
+  /// The same step in two parts: startStep() prepares it from the state as it is (refusing dt as step() does),
+  /// and step(start, ...) takes it; steps from one start (the state unchanged in between) share its work.
+  Status startStep(double dt, VehicleStepStart* start) const;
+  Status step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used);
+  /// Where step(start, ...) would put the body (position, attitude), the body unchanged.
+  Status stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
+                 Eigen::Quaterniond* attitude) const;
 
   /// The largest stable step [s]: 2 / sqrt(k / I') for the restoring spring (class comment); infinite with
   /// no restoring moment.
@@ -103,6 +121,9 @@ class VehicleBody
 
  private:
   void prepare();  // the constant matrices and the step limit from params_
+  /// The step from `start`: the end's pose and velocity, and the thrust applied (no state change).
+  Status advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
+                 Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();

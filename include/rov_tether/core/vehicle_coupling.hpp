@@ -53,7 +53,11 @@ class VehicleCoupling
 
   /// The current at the attachment point [m/s], world frame, for the body's next steps (finite: the tether's
   /// own current field).
-  void setCurrent(const Eigen::Vector3d& current) { (void)body_.setCurrent(current); }
+  void setCurrent(const Eigen::Vector3d& current)
+  {
+    (void)body_.setCurrent(current);
+    started_ = false;
+  }
   /// Step 1: the attachment point after a step of h [s] under the body's own forces alone. Refuses a step
   /// beyond the body's stable limit; the body is unchanged.
   Status predict(double h, Position* predicted);
@@ -68,11 +72,14 @@ class VehicleCoupling
   const Force& pull() const { return pull_; }
 
  private:
-  /// The attachment point's 3x3 mobility W_p in the body frame for a step of h [1/kg].
-  Eigen::Matrix3d pointMobility(double h) const;
+  /// The attachment point's 3x3 mobility W_p in the body frame for the step `start` prepares [1/kg].
+  Eigen::Matrix3d pointMobility(const VehicleStepStart& start) const;
 
-  VehicleBody body_;
-  VehicleBody start_;  ///< The body at the sub-step's start (predict() steps a copy; finish() steps from it).
+  VehicleBody body_;  ///< At the sub-step's start until finish() (predict() leaves it).
+  /// The sub-step's start, prepared by predict() and shared by inverseMass() and finish() (valid while started_:
+  /// the body unchanged since).
+  VehicleStepStart start_;
+  bool started_ = false;
   Eigen::Vector3d offset_;
   Wrench thrust_ = Wrench::Zero();
   ThrustUsed used_;
