@@ -1,7 +1,7 @@
 #include "rov_tether/core/vehicle_body.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -34,37 +34,6 @@ Matrix6 coriolis(const Matrix6& mass, const Twist& nu)
   c.bottomLeftCorner<3, 3>() = -s1;
   c.bottomRightCorner<3, 3>() = -skew(momentum.tail<3>());
   return c;
-}
-
-// Solves (M + S) x = b for M symmetric positive definite and S skew-symmetric (the Cayley transform's M + h/2 C)
-// by Gaussian elimination without pivoting. It needs none: x^T (M + S) x = x^T M x > 0, so every leading block
-// and every Schur complement has a positive definite symmetric part and a pivot a_kk >= the smallest eigenvalue
-// of M (Golub and Van Loan, Matrix Computations, 4th ed., sec. 4.4.4). Unrolled for 6x6, far cheaper than a
-// general factorisation with row exchanges.
-Twist solvePositiveReal(Matrix6 a, Twist b)
-{
-  for (int k = 0; k < 6; ++k)
-  {
-    for (int i = k + 1; i < 6; ++i)
-    {
-      const double factor = a(i, k) / a(k, k);
-      for (int j = k + 1; j < 6; ++j)
-      {
-        a(i, j) -= factor * a(k, j);
-      }
-      b[i] -= factor * b[k];
-    }
-  }
-  for (int i = 5; i >= 0; --i)
-  {
-    double sum = b[i];
-    for (int j = i + 1; j < 6; ++j)
-    {
-      sum -= a(i, j) * b[j];
-    }
-    b[i] = sum / a(i, i);
-  }
-  return b;
 }
 
 bool finite(const Vector6& values) { return values.allFinite(); }
@@ -105,14 +74,14 @@ void VehicleBody::prepare()
   rigid.bottomRightCorner<3, 3>() = Matrix3(params_.inertia.asDiagonal()) - m * s_g * s_g;
   mass_matrix_ = rigid;
   mass_matrix_.diagonal() += params_.added_mass;
-  mass_factor_.compute(mass_matrix_);
+  const Eigen::LDLT<Matrix6> mass_factor(mass_matrix_);
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
   // effective rotational inertia I' (translation free: the inverse of M^-1's rotational block) at
   // omega_n = sqrt(k / I'); semi-implicit Euler on a spring is stable for h omega_n < 2.
   const double k = (params_.buoyancy() * params_.center_of_buoyancy - params_.weight() * r_g).norm();
-  const Matrix6 inverse = mass_factor_.solve(Matrix6::Identity());
+  const Matrix6 inverse = mass_factor.solve(Matrix6::Identity());
   const Matrix3 compliance = 0.5 * (inverse.bottomRightCorner<3, 3>() + inverse.bottomRightCorner<3, 3>().transpose());
   const double largest_compliance = Eigen::SelfAdjointEigenSolver<Matrix3>(compliance).eigenvalues().maxCoeff();
   stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
@@ -235,12 +204,11 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
     }
   }
 
-  // 1. Kick: thrust, external wrench and the restoring wrench at this attitude.
-  Twist relative = start.relative;
-  relative += dt * mass_factor_.solve(applied.applied + external + start.restoring);
-
-  // 2. Damping, implicit per axis with |nu_r| from the step's start (start.damped: M + dt D).
-  relative = start.damped.solve(mass_matrix_ * relative);
+  // 1. Kick: thrust, external wrench and the restoring wrench at this attitude, nu_k = nu_r + h M^-1 tau; and
+  // 2. damping, implicit per axis with |nu_r| from the step's start: (M + h D) nu' = M nu_k = M nu_r + h tau
+  // (start.damped), one solve for both.
+  Twist relative =
+      start.damped.solve(Twist(mass_matrix_ * start.relative + dt * (applied.applied + external + start.restoring)));
 
   // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
   // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
@@ -251,7 +219,9 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   for (int pass = 0; pass < 2; ++pass)
   {
     const Matrix6 c = coriolis(mass_matrix_, 0.5 * (before + turned));
-    turned = solvePositiveReal(mass_matrix_ + 0.5 * dt * c, (mass_matrix_ - 0.5 * dt * c) * before);
+    PositiveRealLu<6> cayley;  // M + h/2 C: its symmetric part is M, so it needs no pivoting
+    cayley.compute(mass_matrix_ + 0.5 * dt * c);
+    turned = cayley.solve(Twist((mass_matrix_ - 0.5 * dt * c) * before));
   }
   relative = turned;
 

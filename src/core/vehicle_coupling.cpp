@@ -1,6 +1,5 @@
 #include "rov_tether/core/vehicle_coupling.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 namespace rov_tether

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
+#include "rov_tether/core/positive_real_lu.hpp"
 #include "rov_tether/core/status.hpp"
 #include "rov_tether/core/vehicle_params.hpp"
 
@@ -34,7 +35,7 @@ struct VehicleStepStart
   double dt = 0.0;
   Twist relative = Twist::Zero();           ///< nu_r at the start
   Wrench restoring = Wrench::Zero();        ///< restoringWrench() at the start
-  Eigen::LDLT<Matrix6> damped;              ///< M + dt D(|nu_r|), factored
+  PositiveRealLu<6> damped;                 ///< M + dt D(|nu_r|), factored
 };
 
 /**
@@ -127,7 +128,6 @@ class VehicleBody
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
-  Eigen::LDLT<Matrix6> mass_factor_;
   double stable_step_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
