@@ -23,17 +23,35 @@ Matrix3 skew(const Vector3& a)
 }
 
 // Fossen's skew-symmetric Coriolis-centripetal matrix of a symmetric mass matrix M at nu (Fossen 2011,
-// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu, so C(nu) nu = [w x p1; v x p1 + w x p2].
-Matrix6 coriolis(const Matrix6& mass, const Twist& nu)
+// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu = `momentum`. The Cayley transform needs
+// only M + a C (three skew blocks added to M) and C b, which is [b_w x p1; b_v x p1 + b_w x p2] for b = [b_v; b_w].
+// Adds -S(q) = [0, q_z, -q_y; -q_z, 0, q_x; q_y, -q_x, 0] to the 3x3 block of `sum` at (row, col).
+void addMinusSkew(Matrix6& sum, int row, int col, const Vector3& q)
 {
-  const Vector6 momentum = mass * nu;
-  const Matrix3 s1 = skew(momentum.head<3>());
-  Matrix6 c;
-  c.topLeftCorner<3, 3>().setZero();
-  c.topRightCorner<3, 3>() = -s1;
-  c.bottomLeftCorner<3, 3>() = -s1;
-  c.bottomRightCorner<3, 3>() = -skew(momentum.tail<3>());
-  return c;
+  sum(row, col + 1) += q.z();
+  sum(row, col + 2) -= q.y();
+  sum(row + 1, col) -= q.z();
+  sum(row + 1, col + 2) += q.x();
+  sum(row + 2, col) += q.y();
+  sum(row + 2, col + 1) -= q.x();
+}
+
+Matrix6 massPlusCoriolis(const Matrix6& mass, const Vector6& momentum, double a)
+{
+  const Vector3 q1 = a * momentum.head<3>();
+  Matrix6 sum = mass;
+  addMinusSkew(sum, 0, 3, q1);
+  addMinusSkew(sum, 3, 0, q1);
+  addMinusSkew(sum, 3, 3, a * momentum.tail<3>());
+  return sum;
+}
+
+Vector6 coriolisTimes(const Vector6& momentum, const Vector6& b)
+{
+  Vector6 product;
+  product.head<3>() = b.tail<3>().cross(momentum.head<3>());
+  product.tail<3>() = b.head<3>().cross(momentum.head<3>()) + b.tail<3>().cross(momentum.tail<3>());
+  return product;
 }
 
 bool finite(const Vector6& values) { return values.allFinite(); }
@@ -215,13 +233,14 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   // the two ends (one pass of the implicit midpoint rule): frozen at the start alone, the body's momentum
   // would turn with a first-order error in its length.
   const Twist before = relative;
+  const Vector6 momentum_before = mass_matrix_ * before;
   Twist turned = before;
   for (int pass = 0; pass < 2; ++pass)
   {
-    const Matrix6 c = coriolis(mass_matrix_, 0.5 * (before + turned));
+    const Vector6 momentum = mass_matrix_ * (0.5 * (before + turned));  // C's argument, M nu
     PositiveRealLu<6> cayley;  // M + h/2 C: its symmetric part is M, so it needs no pivoting
-    cayley.compute(mass_matrix_ + 0.5 * dt * c);
-    turned = cayley.solve(Twist((mass_matrix_ - 0.5 * dt * c) * before));
+    cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
+    turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
   relative = turned;
 
@@ -230,12 +249,16 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   const Twist mean = 0.5 * (before + relative);
   const Vector3 turn = dt * mean.tail<3>();
   const double angle = turn.norm();
-  const Eigen::Quaterniond half_way =
-      angle > 0.0 ? *attitude * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle)) : *attitude;
-  *position += dt * (half_way * mean.head<3>() + current_);
   if (angle > 0.0)
   {
-    *attitude = (*attitude * Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle))).normalized();
+    const Eigen::Quaterniond half_turn(Eigen::AngleAxisd(0.5 * angle, turn / angle));
+    const Eigen::Quaterniond half_way = *attitude * half_turn;
+    *position += dt * (half_way * mean.head<3>() + current_);
+    *attitude = (half_way * half_turn).normalized();  // the whole turn: exp(h omega / 2) twice
+  }
+  else
+  {
+    *position += dt * (*attitude * mean.head<3>() + current_);
   }
   *velocity = relative;
   velocity->head<3>() += attitude->conjugate() * current_;

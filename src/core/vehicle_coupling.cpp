@@ -54,30 +54,30 @@ Eigen::Matrix3d VehicleCoupling::pointMobility(const VehicleStepStart& start) co
 
 double VehicleCoupling::inverseMass(const Position& neighbour, const Position& predicted, double h) const
 {
-  Eigen::Matrix3d mobility;
-  if (started_ && start_.dt == h)
-  {
-    mobility = pointMobility(start_);  // the factorisation predict() made
-  }
-  else
+  VehicleStepStart fallback;
+  if (!(started_ && start_.dt == h))
   {
     // Without predict() (or for another h): M + h D(|nu_r|) as the body's step would factor it.
     const VehicleParams& p = body_.params();
     Matrix6 resisted = body_.massMatrix();
     resisted.diagonal() += h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
-    VehicleStepStart start;
-    start.dt = h;
-    start.damped.compute(resisted);
-    mobility = pointMobility(start);
+    fallback.dt = h;
+    fallback.damped.compute(resisted);
   }
+  const VehicleStepStart& start = started_ && start_.dt == h ? start_ : fallback;  // predict()'s factorisation
   const Position along = predicted - neighbour;
   const double length = along.norm();
   if (!(length > 0.0))
   {
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(mobility, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(pointMobility(start), Eigen::EigenvaluesOnly)
+        .eigenvalues()
+        .maxCoeff();
   }
+  // n^T W_p n = (G^T n)^T (M + h D)^-1 (G^T n), G^T n = [n; r x n]: one solve along n, not W_p's three.
   const Eigen::Vector3d n = body_.attitude().conjugate() * (along / length);
-  return n.dot(mobility * n);
+  Vector6 wrench;
+  wrench << n, offset_.cross(n);
+  return wrench.dot(start.damped.solve(wrench));
 }
 
 Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment_point)
