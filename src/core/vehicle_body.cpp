@@ -1,7 +1,7 @@
 #include "rov_tether/core/vehicle_body.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -175,7 +175,8 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->restoring = restoringWrench();
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
   Matrix6 damped = mass_matrix_;
-  damped.diagonal() += dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
+  damped.diagonal() +=
+      dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
   start->damped.compute(damped);
   return Status::success();
 }

@@ -5,8 +5,7 @@
 namespace rov_tether
 {
 
-VehicleCoupling::VehicleCoupling(const VehicleBody& body, const Eigen::Vector3d& offset)
-    : body_(body), offset_(offset)
+VehicleCoupling::VehicleCoupling(const VehicleBody& body, const Eigen::Vector3d& offset) : body_(body), offset_(offset)
 {
 }
 
@@ -60,7 +59,8 @@ double VehicleCoupling::inverseMass(const Position& neighbour, const Position& p
     // Without predict() (or for another h): M + h D(|nu_r|) as the body's step would factor it.
     const VehicleParams& p = body_.params();
     Matrix6 resisted = body_.massMatrix();
-    resisted.diagonal() += h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
+    resisted.diagonal() +=
+        h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
     fallback.dt = h;
     fallback.damped.compute(resisted);
   }

@@ -33,9 +33,9 @@ struct ThrustUsed
 struct VehicleStepStart
 {
   double dt = 0.0;
-  Twist relative = Twist::Zero();           ///< nu_r at the start
-  Wrench restoring = Wrench::Zero();        ///< restoringWrench() at the start
-  PositiveRealLu<6> damped;                 ///< M + dt D(|nu_r|), factored
+  Twist relative = Twist::Zero();     ///< nu_r at the start
+  Wrench restoring = Wrench::Zero();  ///< restoringWrench() at the start
+  PositiveRealLu<6> damped;           ///< M + dt D(|nu_r|), factored
 };
 
 /**
