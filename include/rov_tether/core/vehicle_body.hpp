@@ -62,6 +62,9 @@ struct VehicleStepStart
  *     after one fixed-point pass (the implicit midpoint rule: second order for a free body);
  *  4. drift with that mean velocity nu_m = (nu_r' + nu_r'') / 2: attitude *= exp(h omega_m / 2), position +=
  *     h (R_half v_m + V_c) with R_half the attitude half-way through the turn.
+ * Parts 1 and 2 are one solve, (M + h D_n) nu_r' = M nu_r + h tau; M + h D_n and M + h/2 C are factored without
+ * pivoting (PositiveRealLu: their symmetric parts are positive definite), and M + h D_n once for every step from
+ * the same start (startStep()).
  * First order in h overall (the kick and the damping are). The one conditional part is the restoring moment
  * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): it is a spring of stiffness at
  * most k = |B r_B - W r_G| on the smallest effective rotational inertia I' (with added inertia, translation

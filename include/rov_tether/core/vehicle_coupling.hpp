@@ -31,7 +31,8 @@ namespace rov_tether
  *     force and its moment offset x F: semi-implicit, F fixed from the solve), and the last particle is put
  *     at the attachment point it reaches. Along the tether the two agree (step 2); they differ by the
  *     sideways motion and the turn of the step, which the next step's solve sees as a new position.
- * No allocation (fixed-size Eigen only).
+ * Steps 1, 2 and 4 share one factorisation of M + h D (the same start, the same damping): the body is stepped
+ * twice a sub-step, and no more (docs/benchmarks.md, "A dynamic vehicle end"). No allocation (fixed-size Eigen only).
  */
 class VehicleCoupling
 {
