@@ -1,7 +1,7 @@
 #include "rov_tether/core/vehicle_body.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -23,17 +23,35 @@ Matrix3 skew(const Vector3& a)
 }
 
 // Fossen's skew-symmetric Coriolis-centripetal matrix of a symmetric mass matrix M at nu (Fossen 2011,
-// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu, so C(nu) nu = [w x p1; v x p1 + w x p2].
-Matrix6 coriolis(const Matrix6& mass, const Twist& nu)
+// ch. 3 and 6): C(nu) = [0, -S(p1); -S(p1), -S(p2)], [p1; p2] = M nu = `momentum`. The Cayley transform needs
+// only M + a C (three skew blocks added to M) and C b, which is [b_w x p1; b_v x p1 + b_w x p2] for b = [b_v; b_w].
+// Adds -S(q) = [0, q_z, -q_y; -q_z, 0, q_x; q_y, -q_x, 0] to the 3x3 block of `sum` at (row, col).
+void addMinusSkew(Matrix6& sum, int row, int col, const Vector3& q)
 {
-  const Vector6 momentum = mass * nu;
-  const Matrix3 s1 = skew(momentum.head<3>());
-  Matrix6 c;
-  c.topLeftCorner<3, 3>().setZero();
-  c.topRightCorner<3, 3>() = -s1;
-  c.bottomLeftCorner<3, 3>() = -s1;
-  c.bottomRightCorner<3, 3>() = -skew(momentum.tail<3>());
-  return c;
+  sum(row, col + 1) += q.z();
+  sum(row, col + 2) -= q.y();
+  sum(row + 1, col) -= q.z();
+  sum(row + 1, col + 2) += q.x();
+  sum(row + 2, col) += q.y();
+  sum(row + 2, col + 1) -= q.x();
+}
+
+Matrix6 massPlusCoriolis(const Matrix6& mass, const Vector6& momentum, double a)
+{
+  const Vector3 q1 = a * momentum.head<3>();
+  Matrix6 sum = mass;
+  addMinusSkew(sum, 0, 3, q1);
+  addMinusSkew(sum, 3, 0, q1);
+  addMinusSkew(sum, 3, 3, a * momentum.tail<3>());
+  return sum;
+}
+
+Vector6 coriolisTimes(const Vector6& momentum, const Vector6& b)
+{
+  Vector6 product;
+  product.head<3>() = b.tail<3>().cross(momentum.head<3>());
+  product.tail<3>() = b.head<3>().cross(momentum.head<3>()) + b.tail<3>().cross(momentum.tail<3>());
+  return product;
 }
 
 bool finite(const Vector6& values) { return values.allFinite(); }
@@ -74,14 +92,14 @@ void VehicleBody::prepare()
   rigid.bottomRightCorner<3, 3>() = Matrix3(params_.inertia.asDiagonal()) - m * s_g * s_g;
   mass_matrix_ = rigid;
   mass_matrix_.diagonal() += params_.added_mass;
-  mass_factor_.compute(mass_matrix_);
+  const Eigen::LDLT<Matrix6> mass_factor(mass_matrix_);
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
   // effective rotational inertia I' (translation free: the inverse of M^-1's rotational block) at
   // omega_n = sqrt(k / I'); semi-implicit Euler on a spring is stable for h omega_n < 2.
   const double k = (params_.buoyancy() * params_.center_of_buoyancy - params_.weight() * r_g).norm();
-  const Matrix6 inverse = mass_factor_.solve(Matrix6::Identity());
+  const Matrix6 inverse = mass_factor.solve(Matrix6::Identity());
   const Matrix3 compliance = 0.5 * (inverse.bottomRightCorner<3, 3>() + inverse.bottomRightCorner<3, 3>().transpose());
   const double largest_compliance = Eigen::SelfAdjointEigenSolver<Matrix3>(compliance).eigenvalues().maxCoeff();
   stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
@@ -144,17 +162,55 @@ double VehicleBody::potentialEnergy() const
   return params_.weight() * z_g - params_.buoyancy() * z_b;
 }
 
-Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
 {
   if (!(dt > 0.0) || !(dt <= stable_step_))
   {
     return Status::error("vehicle step: dt must be in (0, " + number(stable_step_) +
                          "] s, the restoring moment's stability limit (got " + number(dt) + ")");
   }
+  start->dt = dt;
+  start->relative = velocity_;
+  start->relative.head<3>() -= attitude_.conjugate() * current_;
+  start->restoring = restoringWrench();
+  // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
+  Matrix6 damped = mass_matrix_;
+  damped.diagonal() +=
+      dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
+  start->damped.compute(damped);
+  return Status::success();
+}
+
+Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+{
+  VehicleStepStart start;
+  const Status started = startStep(dt, &start);
+  return started ? step(start, thrust, external, used) : started;
+}
+
+Status VehicleBody::step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
+{
+  return advance(start, thrust, external, &position_, &attitude_, &velocity_, used);
+}
+
+Status VehicleBody::stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude) const
+{
+  Twist velocity;
+  *position = position_;
+  *attitude = attitude_;
+  return advance(start, thrust, external, position, attitude, &velocity, nullptr);
+}
+
+Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude, Twist* velocity,
+                            ThrustUsed* used) const
+{
   if (!finite(thrust) || !finite(external))
   {
     return Status::error("vehicle step: thrust and external wrench must be finite");
   }
+  const double dt = start.dt;
   // Thrust held within its limit per axis, and reported.
   ThrustUsed applied;
   for (int i = 0; i < 6; ++i)
@@ -167,29 +223,25 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
     }
   }
 
-  const Vector3 current_in_body = attitude_.conjugate() * current_;
-  Twist relative = velocity_;
-  relative.head<3>() -= current_in_body;
-  const Twist speed = relative.cwiseAbs();  // |nu_r| at the step's start, for the damping
-
-  // 1. Kick: thrust, external wrench and the restoring wrench at this attitude.
-  relative += dt * mass_factor_.solve(applied.applied + external + restoringWrench());
-
-  // 2. Damping, implicit per axis with |nu_r| from the step's start (exact at a steady state).
-  Matrix6 damped = mass_matrix_;
-  damped.diagonal() += dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(speed));
-  relative = damped.ldlt().solve(mass_matrix_ * relative);
+  // 1. Kick: thrust, external wrench and the restoring wrench at this attitude, nu_k = nu_r + h M^-1 tau; and
+  // 2. damping, implicit per axis with |nu_r| from the step's start: (M + h D) nu' = M nu_k = M nu_r + h tau
+  // (start.damped), one solve for both.
+  Twist relative =
+      start.damped.solve(Twist(mass_matrix_ * start.relative + dt * (applied.applied + external + start.restoring)));
 
   // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
   // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
   // the two ends (one pass of the implicit midpoint rule): frozen at the start alone, the body's momentum
   // would turn with a first-order error in its length.
   const Twist before = relative;
+  const Vector6 momentum_before = mass_matrix_ * before;
   Twist turned = before;
   for (int pass = 0; pass < 2; ++pass)
   {
-    const Matrix6 c = coriolis(mass_matrix_, 0.5 * (before + turned));
-    turned = (mass_matrix_ + 0.5 * dt * c).partialPivLu().solve((mass_matrix_ - 0.5 * dt * c) * before);
+    const Vector6 momentum = mass_matrix_ * (0.5 * (before + turned));  // C's argument, M nu
+    PositiveRealLu<6> cayley;  // M + h/2 C: its symmetric part is M, so it needs no pivoting
+    cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
+    turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
   relative = turned;
 
@@ -198,15 +250,19 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
   const Twist mean = 0.5 * (before + relative);
   const Vector3 turn = dt * mean.tail<3>();
   const double angle = turn.norm();
-  const Eigen::Quaterniond half_way =
-      angle > 0.0 ? attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle)) : attitude_;
-  position_ += dt * (half_way * mean.head<3>() + current_);
   if (angle > 0.0)
   {
-    attitude_ = (attitude_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle))).normalized();
+    const Eigen::Quaterniond half_turn(Eigen::AngleAxisd(0.5 * angle, turn / angle));
+    const Eigen::Quaterniond half_way = *attitude * half_turn;
+    *position += dt * (half_way * mean.head<3>() + current_);
+    *attitude = (half_way * half_turn).normalized();  // the whole turn: exp(h omega / 2) twice
   }
-  velocity_ = relative;
-  velocity_.head<3>() += attitude_.conjugate() * current_;
+  else
+  {
+    *position += dt * (*attitude * mean.head<3>() + current_);
+  }
+  *velocity = relative;
+  velocity->head<3>() += attitude->conjugate() * current_;
 
   if (used != nullptr)
   {

@@ -1,13 +1,11 @@
 #include "rov_tether/core/vehicle_coupling.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 namespace rov_tether
 {
 
-VehicleCoupling::VehicleCoupling(const VehicleBody& body, const Eigen::Vector3d& offset)
-    : body_(body), start_(body), offset_(offset)
+VehicleCoupling::VehicleCoupling(const VehicleBody& body, const Eigen::Vector3d& offset) : body_(body), offset_(offset)
 {
 }
 
@@ -23,43 +21,63 @@ Status VehicleCoupling::setThrust(const Wrench& thrust)
 
 Status VehicleCoupling::predict(double h, Position* predicted)
 {
-  start_ = body_;
-  const Status stepped = body_.step(h, thrust_, Wrench::Zero(), nullptr);
+  started_ = false;
+  const Status started = body_.startStep(h, &start_);
+  if (!started)
+  {
+    return started;
+  }
+  started_ = true;
+  Eigen::Vector3d position;
+  Eigen::Quaterniond attitude;
+  const Status stepped = body_.stepped(start_, thrust_, Wrench::Zero(), &position, &attitude);
   if (stepped)
   {
-    *predicted = attachment();
+    *predicted = position + attitude * offset_;
   }
-  body_ = start_;
   return stepped;
 }
 
-Eigen::Matrix3d VehicleCoupling::pointMobility(double h) const
+Eigen::Matrix3d VehicleCoupling::pointMobility(const VehicleStepStart& start) const
 {
   // The body's step answers a wrench tau held over it by h (M + h D)^-1 tau in velocity (the kick, then the
-  // implicit damping at the step's start speed), and by h^2 times that in pose. A force F at the offset r is
-  // the wrench G^T F = [F; r x F], and the point moves by G = [I, -S(r)] of the pose change.
-  const VehicleParams& p = body_.params();
-  Matrix6 resisted = body_.massMatrix();
-  resisted.diagonal() += h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
+  // implicit damping at the step's start speed: start.damped), and by h^2 times that in pose. A force F at the
+  // offset r is the wrench G^T F = [F; r x F], and the point moves by G = [I, -S(r)] of the pose change.
   Eigen::Matrix<double, 6, 3> wrench_of_force;
   wrench_of_force.topRows<3>().setIdentity();
   wrench_of_force.bottomRows<3>() << 0.0, -offset_.z(), offset_.y(), offset_.z(), 0.0, -offset_.x(), -offset_.y(),
       offset_.x(), 0.0;  // S(r): r x F
-  const Eigen::Matrix<double, 6, 3> motion = resisted.ldlt().solve(wrench_of_force);
+  const Eigen::Matrix<double, 6, 3> motion = start.damped.solve(wrench_of_force);
   return wrench_of_force.transpose() * motion;  // G^T = [I; S(r)], so G = [I, S(r)^T] = [I, -S(r)]
 }
 
 double VehicleCoupling::inverseMass(const Position& neighbour, const Position& predicted, double h) const
 {
-  const Eigen::Matrix3d mobility = pointMobility(h);
+  VehicleStepStart fallback;
+  if (!(started_ && start_.dt == h))
+  {
+    // Without predict() (or for another h): M + h D(|nu_r|) as the body's step would factor it.
+    const VehicleParams& p = body_.params();
+    Matrix6 resisted = body_.massMatrix();
+    resisted.diagonal() +=
+        h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
+    fallback.dt = h;
+    fallback.damped.compute(resisted);
+  }
+  const VehicleStepStart& start = started_ && start_.dt == h ? start_ : fallback;  // predict()'s factorisation
   const Position along = predicted - neighbour;
   const double length = along.norm();
   if (!(length > 0.0))
   {
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(mobility, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(pointMobility(start), Eigen::EigenvaluesOnly)
+        .eigenvalues()
+        .maxCoeff();
   }
+  // n^T W_p n = (G^T n)^T (M + h D)^-1 (G^T n), G^T n = [n; r x n]: one solve along n, not W_p's three.
   const Eigen::Vector3d n = body_.attitude().conjugate() * (along / length);
-  return n.dot(mobility * n);
+  Vector6 wrench;
+  wrench << n, offset_.cross(n);
+  return wrench.dot(start.damped.solve(wrench));
 }
 
 Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment_point)
@@ -68,11 +86,20 @@ Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment
   {
     return Status::error("vehicle coupling: the tether's pull is not finite");
   }
-  body_ = start_;
+  if (!started_ || start_.dt != h)
+  {
+    const Status started = body_.startStep(h, &start_);
+    if (!started)
+    {
+      *attachment_point = attachment();
+      return started;
+    }
+  }
+  started_ = false;  // the body moves on
   const Eigen::Vector3d force = body_.attitude().conjugate() * pull;
   Wrench external;
   external << force, offset_.cross(force);
-  const Status stepped = body_.step(h, thrust_, external, &used_);
+  const Status stepped = body_.step(start_, thrust_, external, &used_);
   if (stepped)
   {
     pull_ = pull;

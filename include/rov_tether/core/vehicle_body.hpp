@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
+#include "rov_tether/core/positive_real_lu.hpp"
 #include "rov_tether/core/status.hpp"
 #include "rov_tether/core/vehicle_params.hpp"
 
@@ -24,6 +25,17 @@ struct ThrustUsed
   /// Bit i set: axis i (surge, sway, heave, roll, pitch, yaw) was commanded beyond its limit and held at it.
   std::uint8_t saturated_axes = 0;
   bool saturated() const { return saturated_axes != 0; }
+};
+
+/// What every step of dt from one state needs, whatever its thrust and external wrench: the velocity relative to
+/// the water and its magnitude's damping, factored (M + dt D(|nu_r|)), and the restoring wrench. Steps from the same
+/// state with the same dt share one (VehicleCoupling: two steps and the end's mobility per sub-step).
+struct VehicleStepStart
+{
+  double dt = 0.0;
+  Twist relative = Twist::Zero();     ///< nu_r at the start
+  Wrench restoring = Wrench::Zero();  ///< restoringWrench() at the start
+  PositiveRealLu<6> damped;           ///< M + dt D(|nu_r|), factored
 };
 
 /**
@@ -50,6 +62,9 @@ struct ThrustUsed
  *     after one fixed-point pass (the implicit midpoint rule: second order for a free body);
  *  4. drift with that mean velocity nu_m = (nu_r' + nu_r'') / 2: attitude *= exp(h omega_m / 2), position +=
  *     h (R_half v_m + V_c) with R_half the attitude half-way through the turn.
+ * Parts 1 and 2 are one solve, (M + h D_n) nu_r' = M nu_r + h tau; M + h D_n and M + h/2 C are factored without
+ * pivoting (PositiveRealLu: their symmetric parts are positive definite), and M + h D_n once for every step from
+ * the same start (startStep()).
  * First order in h overall (the kick and the damping are). The one conditional part is the restoring moment
  * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): it is a spring of stiffness at
  * most k = |B r_B - W r_G| on the smallest effective rotational inertia I' (with added inertia, translation
@@ -79,6 +94,13 @@ class VehicleBody
    * held constant over the step. Refuses non-finite input and a step outside the limit, leaving the state.
    */
   Status step(double dt, const Wrench& thrust, const Wrench& external, ThrustUsed* used);
+  /// The same step in two parts: startStep() prepares it from the state as it is (refusing dt as step() does),
+  /// and step(start, ...) takes it; steps from one start (the state unchanged in between) share its work.
+  Status startStep(double dt, VehicleStepStart* start) const;
+  Status step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used);
+  /// Where step(start, ...) would put the body (position, attitude), the body unchanged.
+  Status stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
+                 Eigen::Quaterniond* attitude) const;
 
   /// The largest stable step [s]: 2 / sqrt(k / I') for the restoring spring (class comment); infinite with
   /// no restoring moment.
@@ -103,10 +125,12 @@ class VehicleBody
 
  private:
   void prepare();  // the constant matrices and the step limit from params_
+  /// The step from `start`: the end's pose and velocity, and the thrust applied (no state change).
+  Status advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
+                 Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
-  Eigen::LDLT<Matrix6> mass_factor_;
   double stable_step_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();

@@ -31,7 +31,8 @@ namespace rov_tether
  *     force and its moment offset x F: semi-implicit, F fixed from the solve), and the last particle is put
  *     at the attachment point it reaches. Along the tether the two agree (step 2); they differ by the
  *     sideways motion and the turn of the step, which the next step's solve sees as a new position.
- * No allocation (fixed-size Eigen only).
+ * Steps 1, 2 and 4 share one factorisation of M + h D (the same start, the same damping): the body is stepped
+ * twice a sub-step, and no more (docs/benchmarks.md, "A dynamic vehicle end"). No allocation (fixed-size Eigen only).
  */
 class VehicleCoupling
 {
@@ -53,7 +54,11 @@ class VehicleCoupling
 
   /// The current at the attachment point [m/s], world frame, for the body's next steps (finite: the tether's
   /// own current field).
-  void setCurrent(const Eigen::Vector3d& current) { (void)body_.setCurrent(current); }
+  void setCurrent(const Eigen::Vector3d& current)
+  {
+    (void)body_.setCurrent(current);
+    started_ = false;
+  }
   /// Step 1: the attachment point after a step of h [s] under the body's own forces alone. Refuses a step
   /// beyond the body's stable limit; the body is unchanged.
   Status predict(double h, Position* predicted);
@@ -68,11 +73,14 @@ class VehicleCoupling
   const Force& pull() const { return pull_; }
 
  private:
-  /// The attachment point's 3x3 mobility W_p in the body frame for a step of h [1/kg].
-  Eigen::Matrix3d pointMobility(double h) const;
+  /// The attachment point's 3x3 mobility W_p in the body frame for the step `start` prepares [1/kg].
+  Eigen::Matrix3d pointMobility(const VehicleStepStart& start) const;
 
-  VehicleBody body_;
-  VehicleBody start_;  ///< The body at the sub-step's start (predict() steps a copy; finish() steps from it).
+  VehicleBody body_;  ///< At the sub-step's start until finish() (predict() leaves it).
+  /// The sub-step's start, prepared by predict() and shared by inverseMass() and finish() (valid while started_:
+  /// the body unchanged since).
+  VehicleStepStart start_;
+  bool started_ = false;
   Eigen::Vector3d offset_;
   Wrench thrust_ = Wrench::Zero();
   ThrustUsed used_;

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# What a dynamic vehicle end adds to a step of `direct` (issue 25: at most 10% at 100 segments), counted in
+# instructions under valgrind's callgrind, so the machine's load does not move it:
+#   scripts/vehicle_overhead.sh            (BENCH=path/to/rov_tether_bench to use a built binary as it is)
+# Runs BM_StepDirectDynamicVehicle/SEGMENTS/{0,1}/{0,1} (bending off/on; vehicle end kinematic/dynamic, the
+# same cable and set-up) and prints, per case, the instructions of one step (the benchmark loop's calls of
+# Tether::step(), inclusive, over their count), the ratio dynamic / kinematic, and what the coupling's own
+# calls (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (medians of
+# 3, --benchmark_min_time=0.2) and its CPU-time ratios, for the record: a loaded machine moves them, and they are
+# higher than the instruction ratios (the chain's loops run as AVX2 clones, the body's 6x6 algebra as scalar code).
+set -euo pipefail
+if [ -z "${BENCH:-}" ]; then
+  source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+  build_target rov_tether_bench
+  BENCH="$BUILD_DIR/devel/lib/rov_tether/rov_tether_bench"
+fi
+command -v valgrind >/dev/null || { echo "valgrind is missing (apt-get install valgrind)"; exit 1; }
+segments="${SEGMENTS:-100}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+for bending in 0 1; do
+  for dynamic in 0 1; do
+    name="BM_StepDirectDynamicVehicle/$segments/$bending/$dynamic"
+    valgrind --tool=callgrind --callgrind-out-file="$work/$bending$dynamic.cg" "$BENCH" \
+      --benchmark_filter="^$name\$" --benchmark_min_time=0.05 >"$work/$bending$dynamic.log" 2>&1 ||
+      { cat "$work/$bending$dynamic.log"; exit 1; }
+    callgrind_annotate --tree=caller --inclusive=yes --threshold=100 "$work/$bending$dynamic.cg" \
+      >"$work/$bending$dynamic.txt" 2>/dev/null
+  done
+done
+/usr/bin/python3 - "$work" "$segments" <<'PYTHON'
+import re, sys
+work, segments = sys.argv[1], sys.argv[2]
+arc = re.compile(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+([<*])\s+(.*?)(?: \(([\d,]+)x\))? \[")
+
+def functions(path):
+    """{callee: (inclusive instructions, {caller: (instructions, calls)})} from callgrind_annotate's caller tree."""
+    found, callers = {}, {}
+    for line in open(path):
+        m = arc.match(line)
+        if not m:
+            if not line.strip():
+                callers = {}
+            continue
+        count, kind, name, calls = int(m.group(1).replace(",", "")), m.group(2), m.group(3), m.group(4)
+        if kind == "<":
+            callers[name] = (count, int(calls.replace(",", "")) if calls else 0)
+        else:
+            found[name] = (count, callers)
+            callers = {}
+    return found
+
+def one(functions_, suffix):
+    return [v for k, v in functions_.items() if k.endswith(suffix)]
+
+def per_step(found):
+    (inclusive, callers), = one(found, "rov_tether::Tether::step()")
+    (count, calls), = [v for k, v in callers.items() if "BM_StepDirectDynamicVehicle" in k]
+    return count / calls, calls
+
+def coupling(found):
+    """Instructions per call of the coupling's three functions, summed (one call each per sub-step)."""
+    total = 0.0
+    for part in ("VehicleCoupling::predict(", "VehicleCoupling::inverseMass(", "VehicleCoupling::finish("):
+        (inclusive, callers), = [v for k, v in found.items() if part in k]
+        total += inclusive / sum(c for _, c in callers.values())
+    return total
+
+for bending in "01":
+    kin, dyn = functions("%s/%s0.txt" % (work, bending)), functions("%s/%s1.txt" % (work, bending))
+    (k, k_calls), (d, d_calls) = per_step(kin), per_step(dyn)
+    print("BM_StepDirectDynamicVehicle/%s/%s/{0,1} (%s): instructions per step kinematic %.0f (%d steps), "
+          "dynamic %.0f (%d steps), dynamic / kinematic = %.3f; the coupling's calls %.0f per sub-step"
+          % (segments, bending, "bending on" if bending == "1" else "bending off", k, k_calls, d, d_calls, d / k,
+             coupling(dyn)))
+PYTHON
+if [ "${WALL:-0}" = 1 ]; then
+  "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$" --benchmark_min_time=0.2 \
+    --benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_format=json >"$work/wall.json" 2>/dev/null
+  /usr/bin/python3 - "$work/wall.json" <<'PYTHON'
+import json, sys
+times = {b["run_name"]: b["cpu_time"] for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("aggregate_name") == "median"}
+for name in sorted(n for n in times if n.endswith("/0")):
+    dynamic = name[:-1] + "1"
+    print("%s,1: CPU time per step (median of 3) kinematic %.2f us, dynamic %.2f us, dynamic / kinematic = %.3f"
+          % (name, times[name], times[dynamic], times[dynamic] / times[name]))
+print("BM_VehicleBodyStep: one body step %.3f us CPU (median of 3)" % times["BM_VehicleBodyStep"])
+PYTHON
+fi
