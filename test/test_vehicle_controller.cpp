@@ -344,10 +344,9 @@ TEST(VehicleController, LevelHoldRightsARolledVehicle)
     ASSERT_TRUE(controller.configure(vehicle, gains).ok);
     VehicleBody body;
     ASSERT_TRUE(body.setParams(vehicle).ok);
-    ASSERT_TRUE(
-        body.setState(Eigen::Vector3d::Zero(), Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
-                      Twist::Zero())
-            .ok);
+    ASSERT_TRUE(body.setState(Eigen::Vector3d::Zero(),
+                              Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), Twist::Zero())
+                    .ok);
     double late_swing = 0.0;
     for (int i = 1; i <= static_cast<int>(std::lround(2.5 / kStep)); ++i)
     {

@@ -342,7 +342,8 @@ std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::Xml
   {
     std::string why;
     const std::string path = resolveMeshFile(candidate.options.vehicle_params, &why);
-    const std::string read = path.empty() ? why : spec::loadVehicleParamsFile(path, &candidate.vehicle, &candidate.gains);
+    const std::string read =
+        path.empty() ? why : spec::loadVehicleParamsFile(path, &candidate.vehicle, &candidate.gains);
     error = read.empty() ? "" : "vehicle_params: " + read;
   }
   if (error.empty())

@@ -129,9 +129,9 @@ void TetherNode::afterAdvance(const ros::Time& now)
   {
     vehicle_pose_ = vehicle_io_ ? vehicle_io_->pose() : pose_input_.vehicleAt(tether_.time());
   }
-  const double marker_wall =
-      publisher_.publishMarkers(tether_, world_.contacts(index_), now, scheduler_.schedule(index_).governor.markerRate(),
-                                tether_.vehicleAttached() ? &vehicle_pose_ : nullptr);
+  const double marker_wall = publisher_.publishMarkers(tether_, world_.contacts(index_), now,
+                                                       scheduler_.schedule(index_).governor.markerRate(),
+                                                       tether_.vehicleAttached() ? &vehicle_pose_ : nullptr);
   scheduler_.governor(index_).addMarkerTime(marker_wall);
   diagnostics_.publish();
 }

@@ -47,7 +47,9 @@ void StateBuilder::restart(const Tether& tether)
 
 TetherPublisher::TetherPublisher(ros::NodeHandle& private_nh, const NodeOptions& options,
                                  const Eigen::Vector3d& vehicle_size)
-    : options_(options), vehicle_size_(vehicle_size), builder_(options.world_frame, options.rov_frame, options.attachment_offset)
+    : options_(options),
+      vehicle_size_(vehicle_size),
+      builder_(options.world_frame, options.rov_frame, options.attachment_offset)
 {
   state_pub_ = private_nh.advertise<TetherState>("state", 10);
   wrench_pub_ = private_nh.advertise<geometry_msgs::WrenchStamped>("wrench", 10);

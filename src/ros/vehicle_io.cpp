@@ -66,8 +66,8 @@ geometry_msgs::TransformStamped toVehicleTransform(const VehicleBody& body, cons
   return transform;
 }
 
-void toVehicleMarker(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size, bool present,
-                     const ros::Time& stamp, const std::string& frame_id, visualization_msgs::Marker* marker)
+void toVehicleMarker(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size, bool present, const ros::Time& stamp,
+                     const std::string& frame_id, visualization_msgs::Marker* marker)
 {
   marker->header.stamp = stamp;
   marker->header.frame_id = frame_id;
@@ -149,7 +149,8 @@ VehicleIo::VehicleIo(const TetherSetup& setup, Tether& tether, const std::string
   const Status configured = controller_.configure(vehicle_params_, setup.gains);
   if (!configured)
   {
-    throw std::runtime_error("tether_node" + label + ": the vehicle controller refused its gains: " + configured.message);
+    throw std::runtime_error("tether_node" + label +
+                             ": the vehicle controller refused its gains: " + configured.message);
   }
 }
 
@@ -198,8 +199,8 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
     return false;
   }
   start_due_ = false;
-  ROS_INFO("tether_node%s: dynamic vehicle started at [%.3f, %.3f, %.3f] in %s", label_.c_str(),
-           pose.translation().x(), pose.translation().y(), pose.translation().z(), options_.world_frame.c_str());
+  ROS_INFO("tether_node%s: dynamic vehicle started at [%.3f, %.3f, %.3f] in %s", label_.c_str(), pose.translation().x(),
+           pose.translation().y(), pose.translation().z(), options_.world_frame.c_str());
   return true;
 }
 

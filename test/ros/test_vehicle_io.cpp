@@ -94,8 +94,8 @@ TEST(VehicleIo, OdometryGivesTheTwistInTheBodyFrameOfATurnedBody)
   ThrustUsed used;
   ASSERT_TRUE(test::succeeded(body.step(1e-3, Wrench::Zero(), Wrench::Zero(), &used)));
   const Eigen::Vector3d world_velocity = (body.position() - before) / 1e-3;
-  const Eigen::Quaterniond q(odom.pose.pose.orientation.w, odom.pose.pose.orientation.x,
-                             odom.pose.pose.orientation.y, odom.pose.pose.orientation.z);
+  const Eigen::Quaterniond q(odom.pose.pose.orientation.w, odom.pose.pose.orientation.x, odom.pose.pose.orientation.y,
+                             odom.pose.pose.orientation.z);
   const Eigen::Vector3d from_odom =
       q * Eigen::Vector3d(odom.twist.twist.linear.x, odom.twist.twist.linear.y, odom.twist.twist.linear.z);
   // Within what 1 ms of damping (141 u|u| + 13.7 u on 20 kg: 0.008 m/s) and turning (0.3 rad/s) changes.
@@ -151,8 +151,10 @@ TEST(VehicleIo, ConfigurationsADynamicVehicleCannotRunAreRefused)
   EXPECT_EQ(defaults.options.cmd_wrench_timeout, 0.5);
   EXPECT_FALSE(defaults.options.has_vehicle_start);
   const std::string file = std::string(ROV_TETHER_SOURCE_DIR) + "/config/vehicles/work_class_example.yaml";
-  const TetherSetup dynamic = setupFrom("{vehicle_model: dynamic, vehicle_start: [1, 2, -3, 0.5], "
-                                        "cmd_wrench_timeout: 0.2, vehicle_params: 'file://" + file + "'}");
+  const TetherSetup dynamic = setupFrom(
+      "{vehicle_model: dynamic, vehicle_start: [1, 2, -3, 0.5], "
+      "cmd_wrench_timeout: 0.2, vehicle_params: 'file://" +
+      file + "'}");
   EXPECT_EQ(dynamic.options.vehicle_start, Eigen::Vector4d(1.0, 2.0, -3.0, 0.5));
   EXPECT_TRUE(dynamic.options.has_vehicle_start);
   EXPECT_EQ(dynamic.options.cmd_wrench_timeout, 0.2);
@@ -191,8 +193,9 @@ TEST(VehicleIo, ConfigurationsADynamicVehicleCannotRunAreRefused)
 // and once the command is stale the thrust is zero and the water slows it.
 TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
 {
-  TetherSetup setup = setupFrom("{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
-                                "initial_deployed_length: 8.0, winch_mode: locked}");
+  TetherSetup setup = setupFrom(
+      "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
+      "initial_deployed_length: 8.0, winch_mode: locked}");
   Tether tether(setup.params, Position::Zero(), 0.0);
   VehicleIo io(setup, tether, "");
   io.beforeAdvance(ros::Time(1.0));
@@ -226,8 +229,9 @@ TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
 // thrust is commanded the vehicle stays; once the commands stop, the controller brings it to the setpoint.
 TEST(VehicleIo, PosesAfterTheStartAreSetpointsUnlessAFreshCommandWins)
 {
-  TetherSetup setup = setupFrom("{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
-                                "initial_deployed_length: 8.0, winch_mode: locked}");
+  TetherSetup setup = setupFrom(
+      "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
+      "initial_deployed_length: 8.0, winch_mode: locked}");
   Tether tether(setup.params, Position::Zero(), 0.0);
   VehicleIo io(setup, tether, "");
   io.beforeAdvance(ros::Time(1.0));

@@ -51,7 +51,7 @@ struct EndLinearisation
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  ///< K = dF/dx [N/m], world frame.
   /// The step length K is the linearisation of [s]: the sub-step h, or the horizon asked for when longer.
   double horizon = 0.0;
-  Eigen::Matrix3d damping = Eigen::Matrix3d::Zero();    ///< C = dF/dv [N s/m], world frame (zero: see above).
+  Eigen::Matrix3d damping = Eigen::Matrix3d::Zero();  ///< C = dF/dv [N s/m], world frame (zero: see above).
   bool taut = false;  ///< False: the end segment carries no tension; K and C are then zero.
 };
 

@@ -41,8 +41,8 @@ geometry_msgs::TransformStamped toVehicleTransform(const VehicleBody& body, cons
 /// The vehicle drawn as a box of `size` [m] (length x, width y, height z, centred on the vehicle origin) at
 /// `pose` (world frame): a CUBE, namespace "vehicle", id 0, half transparent so the attachment point inside
 /// shows; DELETE while `present` is false (no vehicle yet).
-void toVehicleMarker(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size, bool present,
-                     const ros::Time& stamp, const std::string& frame_id, visualization_msgs::Marker* marker);
+void toVehicleMarker(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size, bool present, const ros::Time& stamp,
+                     const std::string& frame_id, visualization_msgs::Marker* marker);
 
 /// A start pose [x, y, z, yaw] [m, rad] as a transform (upright, turned by yaw about z).
 Eigen::Isometry3d startPose(const Eigen::Vector4d& xyz_yaw);
@@ -75,8 +75,8 @@ class WrenchCommand
  private:
   double timeout_;
   Wrench command_ = Wrench::Zero();
-  ros::Time arrival_;         ///< Zero before the first command.
-  bool stale_said_ = false;   ///< The current stale period was reported.
+  ros::Time arrival_;        ///< Zero before the first command.
+  bool stale_said_ = false;  ///< The current stale period was reported.
   std::uint64_t accepted_ = 0;
   std::uint64_t refused_ = 0;
   std::uint64_t stale_periods_ = 0;
@@ -134,10 +134,10 @@ class VehicleIo
   WrenchCommand command_;
   Wrench thrust_ = Wrench::Zero();  ///< The command applied on the last tick (before saturation) [N, N m].
   VehicleController controller_;
-  VehicleHistory setpoints_;         ///< Poses taken after the start (world frame, vehicle origin).
+  VehicleHistory setpoints_;  ///< Poses taken after the start (world frame, vehicle origin).
   std::uint64_t setpoint_count_ = 0;
-  double last_control_time_ = 0.0;   ///< Tether time of the controller's last update [s]; NaN: none since it took over.
-  const char* driver_ = "none";      ///< What set the last thrust: "cmd_wrench", "controller" or "none".
+  double last_control_time_ = 0.0;  ///< Tether time of the controller's last update [s]; NaN: none since it took over.
+  const char* driver_ = "none";     ///< What set the last thrust: "cmd_wrench", "controller" or "none".
   ros::Subscriber command_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher tf_pub_;
