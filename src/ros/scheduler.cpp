@@ -251,7 +251,7 @@ void Scheduler::advance(double target)
     {
       if (tethers_[i].hooks->watchesSteps() && world_.tether(i).stepCount() != steps_before[i])
       {
-        tethers_[i].hooks->stepped();
+        tethers_[i].hooks->stepped(delay_);
       }
     }
     bool state_due = false;

@@ -181,6 +181,11 @@ void TetherNode::applyPendingParams()
   warnAboutStability();
 }
 
+double TetherNode::couplingHorizon(double delay) const
+{
+  return std::max(delay, ros::Time::now().toSec() - tether_.time());
+}
+
 void TetherNode::warnAboutStability() const
 {
   const TetherParams& p = tether_.params();

@@ -113,14 +113,15 @@ bool TetherPublisher::couplingWanted(const Tether& tether) const
   return coupling_pub_.getNumSubscribers() > 0 && whyNoCoupling(tether).empty();
 }
 
-void TetherPublisher::publishCoupling(Tether& tether)
+void TetherPublisher::publishCoupling(Tether& tether, double horizon)
 {
   if (!tether.vehicleAttached())
   {
     return;  // no pose yet (diagnostics say so): nothing pulls anything
   }
-  // The simulator's state runs interpolation_delay ahead of the step: K is the chain's answer over that time.
-  const Status status = tether.vehicleEndLinearisation(&linearisation_, options_.interpolation_delay);
+  // The simulator's state runs the physics' delay ahead of the step (interpolation_delay, or more when poses
+  // come sparse or late): K is the chain's answer over that time.
+  const Status status = tether.vehicleEndLinearisation(&linearisation_, horizon);
   if (!status.ok)
   {
     ROS_WARN_THROTTLE(5.0, "tether_node: %s not published: %s", coupling_pub_.getTopic().c_str(),

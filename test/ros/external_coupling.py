@@ -73,6 +73,15 @@ def settling(samples, taut):
     return later[0] - taut if later else math.inf
 
 
+def lag_summary(lags):
+    if not lags:
+        return "none"
+    ordered = sorted(lags)
+    return "median %.3f s, 99%% %.3f s, max %.3f s (%d of %d above 0.03 s, first %s)" % (
+        ordered[len(ordered) // 2], ordered[int(0.99 * len(ordered))], ordered[-1], sum(l > 0.03 for l in lags),
+        len(lags), ["%.3f" % l for l in lags[:8]])
+
+
 def reference():
     """(P_ref [N], T_ref [s]): the peak pull and the settling time of the same vehicle coupled inside the step,
     from rov_tether_run on test/ros/external_coupling_reference.yaml (its vehicle.csv, one row per step)."""
@@ -105,6 +114,7 @@ class Run:
         self.name, self.delay, self.period = name, delay, 1.0 / rate
         self.poses, self.pulls = [], []
         self.stiffness = math.nan
+        self.lags = []  # [s] how far its ~coupling was behind the clock, beyond its delay, as the clock moved on
         self.lock = threading.Lock()
         self.pose_sub = rospy.Subscriber("/%s/pose" % name, PoseStamped, self.on_pose, queue_size=1000,
                                          tcp_nodelay=True)
@@ -130,6 +140,11 @@ class Run:
             # and further behind when poses come late (its delay grows to the gaps it sees): NODE_SLACK.
             behind = self.delay + NODE_SLACK
             return not self.pulls or self.pulls[-1][0] >= clock - behind - 1e-6
+
+    def note_lag(self, clock):
+        with self.lock:
+            if self.pulls:
+                self.lags.append(clock - self.pulls[-1][0] - self.delay)
 
     def describe(self, clock):
         with self.lock:
@@ -178,6 +193,8 @@ class ExternalCoupling(unittest.TestCase):
                               file=sys.stderr)
                     break
                 time.sleep(0.0002)
+            for r in runs:
+                r.note_lag(clock)
             if end is None:
                 tauts = [r.taut() for r in runs]
                 if all(t is not None for t in tauts):
@@ -215,10 +232,10 @@ class ExternalCoupling(unittest.TestCase):
         gaps = [round((b[0] - a[0]) / TIME_STEP, 6) for a, b in zip(pulls, pulls[1:])]
         print("[ measured ] %s: taut at %.3f s at %.4f m/s, peak pull %.1f N (bound %.1f N), settled %.2f s after; "
               "from %.2f s after: pull %.2f..%.2f N, speed at most %.5f m/s; %d couplings, %d gaps of one step; "
-              "K along the tether %.0f N/m" %
+              "K along the tether %.0f N/m; coupling behind the clock beyond the delay: %s" %
               (run.name, taut - 1000.0, v_impact, peak, impact_bound(v_impact), settled, self.allowed,
                min(late_pulls or [math.nan]), max(late_pulls or [math.nan]), max(late_speeds or [math.nan]),
-               len(pulls), gaps.count(1.0), run.stiffness), file=sys.stderr)
+               len(pulls), gaps.count(1.0), run.stiffness, lag_summary(run.lags)), file=sys.stderr)
         return v_impact, peak, late_pulls, late_speeds, gaps
 
     def check(self, run, reference_peak, v_impact, peak, late_pulls, late_speeds, gaps):

@@ -214,7 +214,7 @@ class RecordingHooks : public TetherHooks
   void afterAdvance(const ros::Time&) override { ++after; }
   void restarted(const ros::Time&) override { ++restarts; }
   bool watchesSteps() const override { return watch_steps; }
-  void stepped() override { step_times.push_back(tether_.time()); }
+  void stepped(double /*delay*/) override { step_times.push_back(tether_.time()); }
 
   std::vector<double> state_times;
   std::vector<double> step_times;  ///< The tether's time at each stepped() call.

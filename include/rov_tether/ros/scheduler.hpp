@@ -28,8 +28,9 @@ class TetherHooks
   /// True while the node wants every internal step of this tether (~coupling has subscribers): the world
   /// then advances to each of its steps' ends in turn and calls stepped() there.
   virtual bool watchesSteps() const { return false; }
-  /// After each internal step of this tether while watchesSteps(): its physics time is that step's end.
-  virtual void stepped() {}
+  /// After each internal step of this tether while watchesSteps(): its physics time is that step's end, `delay`
+  /// [s] behind ROS time (delay(): interpolation_delay, or more for sparse or late poses).
+  virtual void stepped(double /*delay*/) {}
   /// After the physics advanced on this tick: reports, markers, diagnostics.
   virtual void afterAdvance(const ros::Time& /*now*/) {}
   /// The tether was re-laid at ROS time `now` (start, clock jump, ~reset): inputs and outputs start over.

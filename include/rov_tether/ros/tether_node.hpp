@@ -56,7 +56,8 @@ class TetherNode : public TetherHooks
   void restarted(const ros::Time& now) override;
   /// While ~coupling is subscribed (and the tether can give it): every step is published.
   bool watchesSteps() const override { return publisher_.couplingWanted(tether_); }
-  void stepped() override { publisher_.publishCoupling(tether_); }
+  /// ~coupling for the step just taken; K over the time a simulator runs ahead of it (couplingHorizon()).
+  void stepped(double delay) override { publisher_.publishCoupling(tether_, couplingHorizon(delay)); }
   PoseTiming poseTiming() const override;
   ros::Time earliestArrival() const override { return pose_input_.earliestArrival(); }
 
@@ -68,6 +69,9 @@ class TetherNode : public TetherHooks
   void applyPendingParams();
   /// Warns when the parameters make the method unstable (lumped_mass above its critical step).
   void warnAboutStability() const;
+  /// How far ahead of the step just taken an external simulator's state is [s]: ROS time now less the step's
+  /// time, at least the physics' `delay` (the node running behind on a busy machine adds to it).
+  double couplingHorizon(double delay) const;
   /// `options` with the tf frames this tether publishes prefixed "name/" among several tethers.
   static NodeOptions withTetherFrames(NodeOptions options, const std::string& name);
   /// Adds the tether to the world and returns it (throws when the world refuses the name).

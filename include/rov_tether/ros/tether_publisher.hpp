@@ -87,8 +87,9 @@ class TetherPublisher
   bool couplingWanted(const Tether& tether) const;
   /// Publishes ~coupling for `tether`'s last step (call after each step while couplingWanted()). Before the
   /// first pose there is no vehicle and nothing is published; a linearisation refused otherwise is a
-  /// throttled warning with the core's reason.
-  void publishCoupling(Tether& tether);
+  /// throttled warning with the core's reason. `horizon` [s]: how far the simulator
+  /// runs ahead of the step (the physics' delay behind ROS time), the time K answers over.
+  void publishCoupling(Tether& tether, double horizon);
   /// Warns once while ~coupling is subscribed but `tether` cannot give it (another solver, a dynamic vehicle),
   /// saying what to use; again after the subscribers left or it could be given meanwhile.
   void explainMissingCoupling(const Tether& tether);
