@@ -190,21 +190,39 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
 
 Status VehicleBody::step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
 {
-  return advance(start, thrust, external, &position_, &attitude_, &velocity_, used);
+  return advance(start, thrust, external, &position_, &attitude_, &velocity_, used, nullptr);
 }
 
 Status VehicleBody::stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
-                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude) const
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude, VehicleStepTrial* trial) const
 {
   Twist velocity;
   *position = position_;
   *attitude = attitude_;
-  return advance(start, thrust, external, position, attitude, &velocity, nullptr);
+  return advance(start, thrust, external, position, attitude, &velocity, nullptr, trial);
+}
+
+Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTrial& trial, const Wrench& more)
+{
+  if (!finite(more))
+  {
+    return Status::error("vehicle step: the external wrench must be finite");
+  }
+  const double dt = start.dt;
+  const Twist before = trial.damped + dt * start.damped.solve(more);
+  // C at the mean of the ends, the far end guessed as the trial's moved by what `more` added (the implicit
+  // midpoint rule's one pass, as step()'s second).
+  const Vector6 momentum = mass_matrix_ * (before + 0.5 * (trial.turned - trial.damped));
+  PositiveRealLu<6> cayley;
+  cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
+  const Twist after = cayley.solve(Twist(mass_matrix_ * before - 0.5 * dt * coriolisTimes(momentum, before)));
+  drift(dt, before, after, &position_, &attitude_, &velocity_);
+  return Status::success();
 }
 
 Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
                             Eigen::Vector3d* position, Eigen::Quaterniond* attitude, Twist* velocity,
-                            ThrustUsed* used) const
+                            ThrustUsed* used, VehicleStepTrial* trial) const
 {
   if (!finite(thrust) || !finite(external))
   {
@@ -236,17 +254,36 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   const Twist before = relative;
   const Vector6 momentum_before = mass_matrix_ * before;
   Twist turned = before;
-  for (int pass = 0; pass < 2; ++pass)
+  // A trial (stepped() for stepAgain()) takes the first pass only: C at the start, where the body goes to
+  // O(h^3) in position; stepAgain() takes the second from it.
+  const int passes = trial != nullptr ? 1 : 2;
+  for (int pass = 0; pass < passes; ++pass)
   {
     const Vector6 momentum = mass_matrix_ * (0.5 * (before + turned));  // C's argument, M nu
     PositiveRealLu<6> cayley;  // M + h/2 C: its symmetric part is M, so it needs no pivoting
     cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
     turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
-  relative = turned;
+  if (trial != nullptr)
+  {
+    trial->damped = before;
+    trial->turned = turned;
+    trial->used = applied;
+  }
+  drift(dt, before, turned, position, attitude, velocity);
+  if (used != nullptr)
+  {
+    *used = applied;
+  }
+  return Status::success();
+}
 
+void VehicleBody::drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position,
+                        Eigen::Quaterniond* attitude, Twist* velocity) const
+{
   // 4. Drift with the velocity the Coriolis step turned (the mean of its two ends, the rate at which it
   // turned the momentum): position by R v_r + V_c, attitude by the body rate's exponential.
+  const Twist& relative = after;
   const Twist mean = 0.5 * (before + relative);
   const Vector3 turn = dt * mean.tail<3>();
   const double angle = turn.norm();
@@ -263,12 +300,6 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   }
   *velocity = relative;
   velocity->head<3>() += attitude->conjugate() * current_;
-
-  if (used != nullptr)
-  {
-    *used = applied;
-  }
-  return Status::success();
 }
 
 }  // namespace rov_tether

@@ -30,7 +30,7 @@ Status VehicleCoupling::predict(double h, Position* predicted)
   started_ = true;
   Eigen::Vector3d position;
   Eigen::Quaterniond attitude;
-  const Status stepped = body_.stepped(start_, thrust_, Wrench::Zero(), &position, &attitude);
+  const Status stepped = body_.stepped(start_, thrust_, Wrench::Zero(), &position, &attitude, &trial_);
   if (stepped)
   {
     *predicted = position + attitude * offset_;
@@ -86,7 +86,17 @@ Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment
   {
     return Status::error("vehicle coupling: the tether's pull is not finite");
   }
-  if (!started_ || start_.dt != h)
+  const Eigen::Vector3d force = body_.attitude().conjugate() * pull;
+  Wrench external;
+  external << force, offset_.cross(force);
+  Status stepped = Status::success();
+  if (started_ && start_.dt == h)
+  {
+    // predict()'s step with the pull besides: one solve of each of its factors (VehicleBody::stepAgain).
+    stepped = body_.stepAgain(start_, trial_, external);
+    used_ = trial_.used;
+  }
+  else
   {
     const Status started = body_.startStep(h, &start_);
     if (!started)
@@ -94,12 +104,9 @@ Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment
       *attachment_point = attachment();
       return started;
     }
+    stepped = body_.step(start_, thrust_, external, &used_);
   }
   started_ = false;  // the body moves on
-  const Eigen::Vector3d force = body_.attitude().conjugate() * pull;
-  Wrench external;
-  external << force, offset_.cross(force);
-  const Status stepped = body_.step(start_, thrust_, external, &used_);
   if (stepped)
   {
     pull_ = pull;

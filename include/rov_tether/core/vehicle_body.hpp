@@ -38,6 +38,15 @@ struct VehicleStepStart
   PositiveRealLu<6> damped;           ///< M + dt D(|nu_r|), factored
 };
 
+/// What stepped() computed that a second step from the same start, with the same thrust and more external
+/// wrench, reuses (stepAgain()): the velocity after parts 1 and 2 and after part 3.
+struct VehicleStepTrial
+{
+  Twist damped = Twist::Zero();  ///< nu_r' (parts 1 and 2)
+  Twist turned = Twist::Zero();  ///< nu_r'' (part 3)
+  ThrustUsed used;               ///< the thrust applied
+};
+
 /**
  * A vehicle's rigid body (Fossen 2011: rigid-body kinetics ch. 3, hydrostatics ch. 4, added mass and damping
  * ch. 6-7, an irrotational constant current ch. 8):
@@ -98,9 +107,23 @@ class VehicleBody
   /// and step(start, ...) takes it; steps from one start (the state unchanged in between) share its work.
   Status startStep(double dt, VehicleStepStart* start) const;
   Status step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used);
-  /// Where step(start, ...) would put the body (position, attitude), the body unchanged.
+  /// Where step(start, ...) would put the body (position, attitude), the body unchanged. With a `trial`, which
+  /// keeps what stepAgain() reuses, part 3 takes its first pass only (C at the start: the position differs
+  /// from step()'s by O(h^3)); stepAgain() takes the second.
   Status stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
-                 Eigen::Quaterniond* attitude) const;
+                 Eigen::Quaterniond* attitude, VehicleStepTrial* trial = nullptr) const;
+  /**
+   * Takes the step stepped(start, thrust, external, ..., trial) tried, with `more` external wrench (body frame,
+   * about the origin) besides: parts 1 and 2 are linear in the wrench, so nu_r' gains h (M + h D_n)^-1 `more`
+   * (one solve of the shared factor); part 3 is one Cayley pass, C taken at the mean of nu_r' and the trial's
+   * nu_r'' moved by as much (the kinetic energy kept exactly as ever, C being skew-symmetric); part 4 drifts
+   * as step() does. The same step as step(start, thrust, external + more) but for part 3's second pass
+   * starting from the trial's first (which did not see `more`) moved by what `more` adds: the same order, two
+   * factorisations of M + h/2 C for the two steps instead of four. A VehicleCoupling
+   * sub-step is one stepped() and one stepAgain() (docs/benchmarks.md, "A dynamic vehicle end"). Refuses a
+   * non-finite `more`, leaving the state.
+   */
+  Status stepAgain(const VehicleStepStart& start, const VehicleStepTrial& trial, const Wrench& more);
 
   /// The largest stable step [s]: 2 / sqrt(k / I') for the restoring spring (class comment); infinite with
   /// no restoring moment.
@@ -127,7 +150,11 @@ class VehicleBody
   void prepare();  // the constant matrices and the step limit from params_
   /// The step from `start`: the end's pose and velocity, and the thrust applied (no state change).
   Status advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
-                 Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used) const;
+                 Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used, VehicleStepTrial* trial) const;
+  /// Part 4: the pose after a step of dt from `position`, `attitude` whose Coriolis part turned nu_r from
+  /// `before` to `after`; `velocity` is `after` over the ground.
+  void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position, Eigen::Quaterniond* attitude,
+             Twist* velocity) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();

@@ -27,12 +27,14 @@ namespace rov_tether
  *  3. the solver solves the chain with the last particle of inverse mass w at x~; the tether's pull on the
  *     vehicle is what moved it off its prediction: F = (x - x~) / (h^2 w), from the same solve, so a taut
  *     tether holds a thrusting vehicle with the force the step's end needs, not the last step's;
- *  4. finish(): the body takes its step again from the same start, now with F at the attachment point (the
- *     force and its moment offset x F: semi-implicit, F fixed from the solve), and the last particle is put
- *     at the attachment point it reaches. Along the tether the two agree (step 2); they differ by the
- *     sideways motion and the turn of the step, which the next step's solve sees as a new position.
- * Steps 1, 2 and 4 share one factorisation of M + h D (the same start, the same damping): the body is stepped
- * twice a sub-step, and no more (docs/benchmarks.md, "A dynamic vehicle end"). No allocation (fixed-size Eigen only).
+ *  4. finish(): the body takes predict()'s step again, now with F at the attachment point besides (the force
+ *     and its moment offset x F: semi-implicit, F fixed from the solve; VehicleBody::stepAgain, which reuses
+ *     the prediction's work), and the last particle is put at the attachment point it reaches. Along the
+ *     tether the two agree (step 2); they differ by the sideways motion and the turn of the step, which the
+ *     next step's solve sees as a new position.
+ * Steps 1, 2 and 4 share one factorisation of M + h D (the same start, the same damping), and step 4 starts
+ * its Coriolis part from the prediction's: one body step and one Coriolis pass a sub-step (docs/benchmarks.md,
+ * "A dynamic vehicle end"). No allocation (fixed-size Eigen only).
  */
 class VehicleCoupling
 {
@@ -80,6 +82,7 @@ class VehicleCoupling
   /// The sub-step's start, prepared by predict() and shared by inverseMass() and finish() (valid while started_:
   /// the body unchanged since).
   VehicleStepStart start_;
+  VehicleStepTrial trial_;  ///< predict()'s step, taken again with the pull by finish()
   bool started_ = false;
   Eigen::Vector3d offset_;
   Wrench thrust_ = Wrench::Zero();
