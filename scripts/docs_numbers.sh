@@ -38,3 +38,23 @@ for ((i = 0; i < ${#variants[@]}; ++i)); do
   # shellcheck disable=SC2086  # a variant is a name and its --set arguments, split on purpose
   run ${variants[i]%% *} "$OUT/variant_$i" $(echo "${variants[i]}" | cut -s -d' ' -f2-)
 done
+if ((${#variants[@]} > 0)); then
+  # docs/model.md, "A vehicle at an obstacle": pillar_wrap_dynamic written at every step (output_rate 200 Hz,
+  # a copy of the scenario), its largest pulls at the vehicle, where the vehicle was and how fast it came.
+  every="$OUT/pillar_wrap_dynamic_every_step"
+  mkdir -p "$every"
+  sed -e 's/^output_rate:.*/output_rate: 200.0/' -e "s|\.\./config/|$ROOT/config/|" \
+    "$ROOT/scenarios/pillar_wrap_dynamic.yaml" >"$every/scenario.yaml"
+  echo "== pillar_wrap_dynamic at every step: the largest pulls at the vehicle"
+  "$RUN" "$every/scenario.yaml" --out "$every" >/dev/null
+  /usr/bin/python3 - "$every/vehicle.csv" <<'PYTHON'
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+pulls = [float(r["tether_tension"]) for r in rows]
+for i in sorted(sorted(range(1, len(rows)), key=lambda i: -pulls[i])[:3]):
+    r, before = rows[i], rows[i - 1]
+    print("t %s s: pull %.0f N (%.0f N the step before); vehicle %.3f m from the pillar's axis, coming at %.2f m/s"
+          % (r["t"], pulls[i], pulls[i - 1], math.hypot(float(r["x"]), float(r["y"])),
+             math.hypot(float(before["u"]), float(before["v"]))))
+PYTHON
+fi
