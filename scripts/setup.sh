@@ -18,7 +18,7 @@ PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-emp
           python3-dynamic-reconfigure librostest-dev python3-rostest python3-rospy python3-roslaunch
           python3-rosbag librosbag-dev rosbash python3-rosnode python3-rostopic python3-rosservice
           python3-rosparam python3-tf2-ros bc
-          libopencv-dev libsensor-msgs-dev python3-sensor-msgs libimage-transport-dev libcv-bridge-dev libroslib-dev
+          libopencv-dev libpng-dev libsensor-msgs-dev python3-sensor-msgs libimage-transport-dev libcv-bridge-dev libroslib-dev
           libnav-msgs-dev ros-nav-msgs python3-nav-msgs libtopic-tools-dev
           ${PACKAGES_EXTRA:-})
 

@@ -13,6 +13,7 @@
 
 #include "camera_fixtures.hpp"
 #include "rov_tether/camera/dataset_writer.hpp"
+#include "rov_tether/camera/png_file.hpp"
 #include "rov_tether/camera/shape_history.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
@@ -584,6 +585,34 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   EXPECT_GT(seen, 10u);  // it turns and looks back along its tether from 28.6 s on
   EXPECT_LE(worst_coverage, 1e-6);
   EXPECT_LT(worst_time, scenario.params.time_step);
+  std::filesystem::remove_all(dir);
+}
+
+// writePng (libpng) read back by OpenCV's own PNG reader: every sample exact (PNG is lossless), 16-bit values
+// above 255 in the right byte order (a missing swap reads 0x0102 as 0x0201), BGR colours in their channels,
+// and refusals: an unwritable path, a type the dataset never writes, an empty image.
+TEST(Dataset, PngFilesReadBackExactly)
+{
+  const std::string dir = std::filesystem::temp_directory_path() / "rov_tether_png_test";
+  std::filesystem::create_directories(dir);
+  cv::Mat grey(3, 5, CV_8UC1), depth(4, 3, CV_16UC1), colour(2, 3, CV_8UC3);
+  cv::randu(grey, 0, 256);
+  cv::randu(depth, 0, 65536);
+  depth.at<std::uint16_t>(0, 0) = 0x0102;
+  cv::randu(colour, 0, 256);
+  colour.at<cv::Vec3b>(0, 0) = cv::Vec3b(255, 0, 10);  // blue in OpenCV's BGR
+  for (const cv::Mat* image : {&grey, &depth, &colour})
+  {
+    const std::string path = dir + "/image.png";
+    ASSERT_TRUE(rov_tether::camera::writePng(path, *image));
+    const cv::Mat back = cv::imread(path, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(back.type(), image->type());
+    ASSERT_EQ(back.size(), image->size());
+    EXPECT_EQ(cv::norm(back, *image, cv::NORM_INF), 0.0);
+  }
+  EXPECT_FALSE(rov_tether::camera::writePng(dir + "/no/such/dir/image.png", grey));
+  EXPECT_FALSE(rov_tether::camera::writePng(dir + "/float.png", cv::Mat(2, 2, CV_32FC1, cv::Scalar(1.0))));
+  EXPECT_FALSE(rov_tether::camera::writePng(dir + "/empty.png", cv::Mat()));
   std::filesystem::remove_all(dir);
 }
 

@@ -3,8 +3,9 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "rov_tether/camera/png_file.hpp"
 
 namespace rov_tether::camera
 {
@@ -222,8 +223,7 @@ std::string DatasetWriter::writeFrame(Camera& camera, CameraSummary& summary, co
   // Every tether point is within the deployed length of the attachment (the path point), and the camera
   // within |position| of it: the farthest a tether point can be in this frame.
   depthPreview(depth_mm_, sim.deployedLength() + camera.spec->position.norm(), preview_);
-  if (!cv::imwrite(mask_path, renderer_.mask()) || !cv::imwrite(depth_path, depth_mm_) ||
-      !cv::imwrite(preview_path, preview_))
+  if (!writePng(mask_path, renderer_.mask()) || !writePng(depth_path, depth_mm_) || !writePng(preview_path, preview_))
   {
     return "cannot write '" + mask_path + "', '" + depth_path + "' or '" + preview_path + "'";
   }
