@@ -89,6 +89,53 @@ TEST(ScenarioFile, BadScenariosNameTheField)
 }
 
 // config/default.yaml holds every parameter at exactly the struct's default.
+// pathAt finds the waypoint by bisection; against its definition, read off the path directly: held before
+// the first waypoint and after the last, and between the last waypoint at or before t and the next, linear.
+// 2000 waypoints with repeated times (a jump: the later one wins from that time on), probed at every
+// waypoint's time, between them and beyond both ends: exactly the same positions (the same arithmetic).
+// A NaN time gives the first waypoint, as before. wrenchAt shares the lookup.
+TEST(ScenarioPath, BisectionFindsTheWaypointsTheDefinitionSays)
+{
+  std::vector<Waypoint> path;
+  double time = 0.5;
+  for (int k = 0; k < 2000; ++k)
+  {
+    time += k % 7 == 3 ? 0.0 : 0.01 * (1 + k % 5);  // every seventh a repeated time
+    path.push_back({time, Position(std::sin(0.1 * k), std::cos(0.07 * k), -0.001 * k)});
+  }
+  const auto definition = [&](double t) -> Position
+  {
+    if (t < path.front().time)
+    {
+      return path.front().position;
+    }
+    std::size_t last = 0;  // the last waypoint at or before t
+    for (std::size_t k = 0; k < path.size(); ++k)
+    {
+      last = path[k].time <= t ? k : last;
+    }
+    if (last + 1 == path.size())
+    {
+      return path.back().position;
+    }
+    const Waypoint& a = path[last];
+    const Waypoint& b = path[last + 1];
+    return a.position + (t - a.time) / (b.time - a.time) * (b.position - a.position);
+  };
+  std::vector<double> probes = {0.0, path.front().time - 1e-9, path.back().time + 1.0};
+  for (std::size_t k = 0; k + 1 < path.size(); ++k)
+  {
+    probes.push_back(path[k].time);
+    probes.push_back(0.5 * (path[k].time + path[k + 1].time));
+  }
+  for (const double t : probes)
+  {
+    ASSERT_EQ(pathAt(path, t), definition(t)) << "t = " << t;
+  }
+  EXPECT_EQ(pathAt(path, std::nan("")), path.front().position);
+  EXPECT_EQ(pathAt({}, 1.0), Position::Zero());
+}
+
 TEST(ConfigFiles, DefaultYamlListsEveryParameterAtItsDefault)
 {
   const std::string path = std::string(ROV_TETHER_SOURCE_DIR) + "/config/default.yaml";

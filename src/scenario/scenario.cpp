@@ -8,58 +8,42 @@
 namespace rov_tether
 {
 
-Position pathAt(const std::vector<Waypoint>& path, double t)
+namespace
 {
-  if (path.empty())
+
+/// `points`' `value` at time t, piecewise-linear (pathAt, wrenchAt): the last point at or before t found by
+/// bisection (times never decrease: the readers refuse a path or schedule going back), held before the first
+/// (and for a t that is NaN) and after the last.
+template <typename Point, typename Value>
+Value interpolated(const std::vector<Point>& points, Value Point::*value, double t)
+{
+  if (points.empty())
   {
-    return Position::Zero();
+    return Value::Zero();
   }
-  if (t < path.front().time)
+  if (!(t >= points.front().time))
   {
-    return path.front().position;
+    return points.front().*value;
   }
-  for (std::size_t k = path.size(); k-- > 0;)
+  const auto after = std::upper_bound(points.begin(), points.end(), t,
+                                      [](double time, const Point& point) { return time < point.time; });
+  if (after == points.end())
   {
-    if (path[k].time <= t)
-    {
-      if (k + 1 == path.size())
-      {
-        return path[k].position;
-      }
-      const Waypoint& a = path[k];
-      const Waypoint& b = path[k + 1];
-      const double alpha = (t - a.time) / (b.time - a.time);
-      return a.position + alpha * (b.position - a.position);
-    }
+    return points.back().*value;
   }
-  return path.front().position;
+  const Point& a = *(after - 1);  // a.time <= t < b.time
+  const Point& b = *after;
+  const double alpha = (t - a.time) / (b.time - a.time);
+  return a.*value + alpha * (b.*value - a.*value);
 }
+
+}  // namespace
+
+Position pathAt(const std::vector<Waypoint>& path, double t) { return interpolated(path, &Waypoint::position, t); }
 
 Wrench wrenchAt(const std::vector<WrenchPoint>& schedule, double t)
 {
-  if (schedule.empty())
-  {
-    return Wrench::Zero();
-  }
-  if (t < schedule.front().time)
-  {
-    return schedule.front().wrench;
-  }
-  for (std::size_t k = schedule.size(); k-- > 0;)
-  {
-    if (schedule[k].time <= t)
-    {
-      if (k + 1 == schedule.size())
-      {
-        return schedule[k].wrench;
-      }
-      const WrenchPoint& a = schedule[k];
-      const WrenchPoint& b = schedule[k + 1];
-      const double alpha = (t - a.time) / (b.time - a.time);
-      return a.wrench + alpha * (b.wrench - a.wrench);
-    }
-  }
-  return schedule.front().wrench;
+  return interpolated(schedule, &WrenchPoint::wrench, t);
 }
 
 Position Scenario::vehicleAt(double t) const { return pathAt(vehicle, t); }
