@@ -25,6 +25,19 @@ VehicleParams neutral()
   return p;
 }
 
+/// A free body: the BlueROV2 Heavy neutrally buoyant with r_B = r_G (no restoring wrench) and no damping.
+VehicleParams freeBody()
+{
+  VehicleParams p = neutral();
+  p.center_of_buoyancy.setZero();
+  p.linear_damping.setZero();
+  p.quadratic_damping.setZero();
+  return p;
+}
+
+/// A velocity moving and turning about every axis [m/s, rad/s].
+Twist spinning() { return (Twist() << 0.6, -0.4, 0.3, 0.8, -0.5, 1.2).finished(); }
+
 VehicleBody bodyWith(const VehicleParams& params)
 {
   VehicleBody body;
@@ -269,13 +282,8 @@ TEST(VehicleBody, EnergyNeverIncreasesWithoutThrust)
 // frozen at the step's start only (first order: ratio 2, 16% drift).
 TEST(VehicleBody, FreeBodyKeepsItsImpulse)
 {
-  VehicleParams p;
-  p.displaced_volume = p.mass / p.water_density;
-  p.center_of_buoyancy.setZero();
-  p.linear_damping.setZero();
-  p.quadratic_damping.setZero();
-  Twist nu;
-  nu << 0.6, -0.4, 0.3, 0.8, -0.5, 1.2;
+  const VehicleParams p = freeBody();
+  const Twist nu = spinning();
   const auto impulse = [](const VehicleBody& body, Eigen::Vector3d* linear, Eigen::Vector3d* angular)
   {
     const Vector6 momentum = body.massMatrix() * body.velocity();
@@ -316,13 +324,8 @@ TEST(VehicleBody, FreeBodyKeepsItsImpulse)
 // damping stepAgain() keeps the kinetic energy (1e-9 J, rounding).
 TEST(VehicleBody, StepAgainIsTheWholeStepWithTheAddedWrench)
 {
-  VehicleParams p;
-  p.displaced_volume = p.mass / p.water_density;
-  p.center_of_buoyancy.setZero();
-  p.linear_damping.setZero();
-  p.quadratic_damping.setZero();
-  Twist nu;
-  nu << 0.6, -0.4, 0.3, 0.8, -0.5, 1.2;
+  const VehicleParams p = freeBody();
+  const Twist nu = spinning();
   const Eigen::Vector3d offset(-0.2, 0.1, 0.05), force(-30.0, 10.0, 5.0);
   Wrench more;
   more << force, offset.cross(force);
@@ -337,19 +340,24 @@ TEST(VehicleBody, StepAgainIsTheWholeStepWithTheAddedWrench)
     }
     return Twist(body.velocity());
   };
+  // A dynamic end's sub-step: the trial without `added`, then taken again with it.
+  const auto tryThenStep = [](VehicleBody& body, double h, const Wrench& added)
+  {
+    VehicleStepStart start;
+    ASSERT_TRUE(body.startStep(h, &start).ok);
+    VehicleStepTrial trial;
+    Eigen::Vector3d position;
+    Eigen::Quaterniond attitude;
+    ASSERT_TRUE(body.stepped(start, Wrench::Zero(), Wrench::Zero(), &position, &attitude, &trial).ok);
+    ASSERT_TRUE(body.stepAgain(start, trial, added).ok);
+  };
   const auto again = [&](double h)
   {
     VehicleBody body = bodyWith(p);
     EXPECT_TRUE(body.setState({0, 0, 0}, Eigen::Quaterniond::Identity(), nu).ok);
     for (int n = 0; n < static_cast<int>(std::lround(duration / h)); ++n)
     {
-      VehicleStepStart start;
-      EXPECT_TRUE(body.startStep(h, &start).ok);
-      VehicleStepTrial trial;
-      Eigen::Vector3d position;
-      Eigen::Quaterniond attitude;
-      EXPECT_TRUE(body.stepped(start, Wrench::Zero(), Wrench::Zero(), &position, &attitude, &trial).ok);
-      EXPECT_TRUE(body.stepAgain(start, trial, more).ok);
+      tryThenStep(body, h, more);
     }
     return Twist(body.velocity());
   };
@@ -367,13 +375,7 @@ TEST(VehicleBody, StepAgainIsTheWholeStepWithTheAddedWrench)
   const double energy = body.kineticEnergy();
   for (int n = 0; n < 1000; ++n)
   {
-    VehicleStepStart start;
-    ASSERT_TRUE(body.startStep(kStep, &start).ok);
-    VehicleStepTrial trial;
-    Eigen::Vector3d position;
-    Eigen::Quaterniond attitude;
-    ASSERT_TRUE(body.stepped(start, Wrench::Zero(), Wrench::Zero(), &position, &attitude, &trial).ok);
-    ASSERT_TRUE(body.stepAgain(start, trial, Wrench::Zero()).ok);
+    tryThenStep(body, kStep, Wrench::Zero());
   }
   EXPECT_NEAR(body.kineticEnergy(), energy, 1e-9);
   Wrench bad = Wrench::Zero();
