@@ -382,6 +382,70 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   fs::remove(err);
 }
 
+// The run's Newton effort (issue 24): by definition the sum, the largest and the worst residual of what the
+// solver reported after each sub-step. A direct tether stepped by hand, reading solverIterations() and
+// solverResidual() after every step (one sub-step each: no contact), gives exactly what solverEffort() summed;
+// each sub-step takes at least one iteration and at most `iterations`. The runner's summary carries it and
+// prints its "newton" line for direct, and neither for pbd (which reports no iterations).
+TEST(Runner, ReportsTheNewtonEffortTheSolverTook)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  scenario.params.solver = SolverType::kDirect;
+  Tether tether(scenario.params, scenario.spool, scenario.vehicleAt(0.0));
+  std::uint64_t iterations = 0;
+  int most = -1;
+  double worst = 0.0;
+  const int steps = 400;
+  for (int i = 0; i < steps; ++i)
+  {
+    ASSERT_TRUE(tether.addVehicleSample(0.005 * (i + 1), scenario.vehicleAt(0.005 * (i + 1))).ok);
+    tether.step();
+    iterations += static_cast<std::uint64_t>(tether.solverIterations());
+    most = std::max(most, tether.solverIterations());
+    worst = std::max(worst, tether.solverResidual());
+  }
+  const SolverEffort& effort = tether.solverEffort();
+  EXPECT_EQ(effort.substeps, static_cast<std::uint64_t>(steps));
+  EXPECT_EQ(effort.iterations, iterations);
+  EXPECT_EQ(effort.max_iterations, most);
+  EXPECT_EQ(effort.max_residual, worst);
+  EXPECT_GE(effort.meanIterations(), 1.0);
+  EXPECT_LE(effort.max_iterations, scenario.params.iterations);
+
+  const std::string dir = temporaryDirectory("newton");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  EXPECT_EQ(summary.solver.substeps, summary.steps);
+  EXPECT_GE(summary.solver.max_iterations, 1);
+  scenario.params.solver = SolverType::kPbd;
+  ASSERT_EQ(runScenario(scenario, dir + "_pbd", &summary), "");
+  EXPECT_EQ(summary.solver.substeps, 0u);
+  EXPECT_TRUE(std::isnan(summary.solver.meanIterations()));
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  for (const auto& [solver, printed] : {std::pair<std::string, bool>{"direct", true}, {"pbd", false}})
+  {
+    std::ofstream(scenario_path) << "params: {solver: " << solver << "}\nspool: [0, 0, 0]\n"
+                                 << "vehicle: [[0, 1.5, 0, 0], [2, 2.5, 0, 0]]\nduration: 0.5\n";
+    const std::string out = dir + "_summary.txt";
+    ASSERT_EQ(std::system((std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir +
+                           "_" + solver + "_cli > " + out + " 2>&1")
+                              .c_str()),
+              0);
+    bool found = false;
+    for (const std::string& line : readLines(out))
+    {
+      found = found || line.rfind("newton          ", 0) == 0;
+    }
+    EXPECT_EQ(found, printed) << solver;
+    fs::remove(out);
+    fs::remove_all(dir + "_" + solver + "_cli");
+  }
+  fs::remove(scenario_path);
+  fs::remove_all(dir);
+  fs::remove_all(dir + "_pbd");
+}
+
 // Every shipped scenario (scenarios/ and scenarios/datasets/, worlds included) loads without a deprecation
 // warning and runs without a simulation failure, over-tension (the node's default 500 N) or an outrun winch
 // (issue 26, item 15: forward_camera_dive used the deprecated `passive` and read 9.6 kN at 9.6% strain).

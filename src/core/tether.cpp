@@ -446,7 +446,7 @@ void Tether::subStep(double h, double t)
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
-  max_solver_iterations_ = std::max(max_solver_iterations_, solver_->lastIterations());
+  effort_.add(solver_->lastIterations(), solver_->lastResidual());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
   {
@@ -464,6 +464,20 @@ void Tether::subStep(double h, double t)
     why << "direct solver did not converge (residual " << residual << " of a segment's length after "
         << solver_->lastIterations() << " iterations)";
     fail(why.str());
+  }
+}
+
+void SolverEffort::add(int sub_step_iterations, double residual)
+{
+  if (sub_step_iterations >= 0)
+  {
+    ++substeps;
+    iterations += static_cast<std::uint64_t>(sub_step_iterations);
+    max_iterations = std::max(max_iterations, sub_step_iterations);
+  }
+  if (residual > max_residual)
+  {
+    max_residual = residual;
   }
 }
 
@@ -626,7 +640,7 @@ Status Tether::reset(double time)
   winch_speed_ = 0.0;
   outrun_time_ = 0.0;
   noise_.reseed(params_.seed);
-  max_solver_iterations_ = -1;
+  effort_ = SolverEffort{};
   time_ = target_time_ = base_time_ = time;
   base_steps_ = steps_;
   layOut(params_.initial_deployed_length);

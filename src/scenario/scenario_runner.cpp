@@ -434,6 +434,7 @@ RunSummary summaryOf(const World& world, std::vector<RunSummary> each, std::size
     each[i].deployed_end = world.tether(i).deployedLength();
     each[i].jumps = world.tether(i).jumpCount();
     each[i].recoveries = world.tether(i).recoveryCount();
+    each[i].solver = world.tether(i).solverEffort();
     each[i].last_failure = world.tether(i).lastFailure();
     steps += each[i].steps;
   }

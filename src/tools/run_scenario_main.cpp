@@ -154,6 +154,11 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
               s.deployed_end, s.deployed_max, p.cable_length, rov_tether::toString(p.winch_mode).c_str());
   std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension, s.max_tension_vehicle);
   std::printf("max strain      %.4g%s\n", s.max_strain, s.jumps ? "" : "");
+  if (s.solver.substeps > 0)
+  {
+    std::printf("newton          %.2f iterations per sub-step, at most %d (of %d); residual at most %.3g of a segment\n",
+                s.solver.meanIterations(), s.solver.max_iterations, p.iterations, s.solver.max_residual);
+  }
   if (s.jumps > 0)
   {
     std::printf("vehicle jumps   %llu (cable re-laid)\n", static_cast<unsigned long long>(s.jumps));

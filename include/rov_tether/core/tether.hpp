@@ -25,6 +25,23 @@
 namespace rov_tether
 {
 
+/// The Newton iterations and residuals a solver that stops on a tolerance (direct) took, summed over sub-steps.
+struct SolverEffort
+{
+  std::uint64_t substeps = 0;    ///< Sub-steps that reported their iterations.
+  std::uint64_t iterations = 0;  ///< Their iterations, summed.
+  int max_iterations = -1;       ///< The most one took; -1: none reported.
+  double max_residual = 0.0;     ///< The largest relative residual one stopped at [-].
+  /// Mean iterations per sub-step; NaN when none reported.
+  double meanIterations() const
+  {
+    return substeps > 0 ? static_cast<double>(iterations) / static_cast<double>(substeps)
+                        : std::numeric_limits<double>::quiet_NaN();
+  }
+  /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none).
+  void add(int iterations, double residual);
+};
+
 /**
  * The tether: a damped Verlet particle chain (paper eq. 6) with constraints, a spool and a vehicle end.
  * It composes the parts, each in its own file: the Cable (particle arrays), the VehicleTrack (samples,
@@ -183,7 +200,9 @@ class Tether
   /// Iterations the solver took in the last sub-step when it stops on a tolerance (direct), else -1.
   int solverIterations() const { return solver_->lastIterations(); }
   /// The most iterations any sub-step took since construction or reset() (direct), else -1.
-  int maxSolverIterations() const { return max_solver_iterations_; }
+  int maxSolverIterations() const { return effort_.max_iterations; }
+  /// What the solver took over every sub-step since construction or reset() (direct; none for the others).
+  const SolverEffort& solverEffort() const { return effort_; }
   /// Largest relative constraint residual the solver stopped at in the last sub-step (direct), else NaN.
   double solverResidual() const { return solver_->lastResidual(); }
   /// Number of vehicle jumps handled by re-laying the cable.
@@ -266,7 +285,7 @@ class Tether
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;
   std::uint64_t recoveries_ = 0;
-  int max_solver_iterations_ = -1;
+  SolverEffort effort_;
   std::string last_failure_;
 };
 

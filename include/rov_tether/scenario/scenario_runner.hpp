@@ -30,6 +30,7 @@ struct RunSummary
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
   double max_tension_time = 0.0;     ///< Output time of max_tension [s].
   std::uint64_t recoveries = 0;      ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
+  SolverEffort solver;               ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
   std::string last_failure;          ///< Tether::lastFailure() ("" for none).
   std::size_t outrun_rows = 0;       ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
   double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
