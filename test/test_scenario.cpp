@@ -428,8 +428,8 @@ TEST(Runner, ReportsTheNewtonEffortTheSolverTook)
     std::ofstream(scenario_path) << "params: {solver: " << solver << "}\nspool: [0, 0, 0]\n"
                                  << "vehicle: [[0, 1.5, 0, 0], [2, 2.5, 0, 0]]\nduration: 0.5\n";
     const std::string out = dir + "_summary.txt";
-    ASSERT_EQ(std::system((std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir +
-                           "_" + solver + "_cli > " + out + " 2>&1")
+    ASSERT_EQ(std::system((std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir + "_" +
+                           solver + "_cli > " + out + " 2>&1")
                               .c_str()),
               0);
     bool found = false;

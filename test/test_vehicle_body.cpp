@@ -364,11 +364,13 @@ TEST(VehicleBody, StepAgainIsTheWholeStepWithTheAddedWrench)
   const double difference = (whole(kStep) - again(kStep)).norm();
   const double difference_half = (whole(kStep / 2) - again(kStep / 2)).norm();
   const double own_error = (whole(kStep) - whole(kStep / 64)).norm();
-  std::printf("[ measured ] stepAgain vs step at h = %g s: %.3g m/s apart after %g s (%.3g at h/2); step()'s own "
-              "error %.3g m/s\n", kStep, difference, duration, difference_half, own_error);
+  std::printf(
+      "[ measured ] stepAgain vs step at h = %g s: %.3g m/s apart after %g s (%.3g at h/2); step()'s own "
+      "error %.3g m/s\n",
+      kStep, difference, duration, difference_half, own_error);
   EXPECT_LT(difference, own_error) << "difference " << difference << " m/s, step()'s own error " << own_error;
-  EXPECT_GT(difference / difference_half, 3.0) << "difference " << difference << " at h, " << difference_half
-                                               << " at h/2";
+  EXPECT_GT(difference / difference_half, 3.0)
+      << "difference " << difference << " at h, " << difference_half << " at h/2";
 
   VehicleBody body = bodyWith(p);
   ASSERT_TRUE(body.setState({0, 0, 0}, Eigen::Quaterniond::Identity(), nu).ok);

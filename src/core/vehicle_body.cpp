@@ -221,8 +221,8 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
 }
 
 Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
-                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude, Twist* velocity,
-                            ThrustUsed* used, VehicleStepTrial* trial) const
+                            Eigen::Vector3d* position, Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used,
+                            VehicleStepTrial* trial) const
 {
   if (!finite(thrust) || !finite(external))
   {

@@ -156,8 +156,9 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
   std::printf("max strain      %.4g%s\n", s.max_strain, s.jumps ? "" : "");
   if (s.solver.substeps > 0)
   {
-    std::printf("newton          %.2f iterations per sub-step, at most %d (of %d); residual at most %.3g of a segment\n",
-                s.solver.meanIterations(), s.solver.max_iterations, p.iterations, s.solver.max_residual);
+    std::printf(
+        "newton          %.2f iterations per sub-step, at most %d (of %d); residual at most %.3g of a segment\n",
+        s.solver.meanIterations(), s.solver.max_iterations, p.iterations, s.solver.max_residual);
   }
   if (s.jumps > 0)
   {

@@ -153,8 +153,8 @@ class VehicleBody
                  Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used, VehicleStepTrial* trial) const;
   /// Part 4: the pose after a step of dt from `position`, `attitude` whose Coriolis part turned nu_r from
   /// `before` to `after`; `velocity` is `after` over the ground.
-  void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position, Eigen::Quaterniond* attitude,
-             Twist* velocity) const;
+  void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position,
+             Eigen::Quaterniond* attitude, Twist* velocity) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
