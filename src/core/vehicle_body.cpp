@@ -283,8 +283,7 @@ void VehicleBody::drift(double dt, const Twist& before, const Twist& after, Eige
 {
   // 4. Drift with the velocity the Coriolis step turned (the mean of its two ends, the rate at which it
   // turned the momentum): position by R v_r + V_c, attitude by the body rate's exponential.
-  const Twist& relative = after;
-  const Twist mean = 0.5 * (before + relative);
+  const Twist mean = 0.5 * (before + after);
   const Vector3 turn = dt * mean.tail<3>();
   const double angle = turn.norm();
   if (angle > 0.0)
@@ -298,7 +297,7 @@ void VehicleBody::drift(double dt, const Twist& before, const Twist& after, Eige
   {
     *position += dt * (*attitude * mean.head<3>() + current_);
   }
-  *velocity = relative;
+  *velocity = after;
   velocity->head<3>() += attitude->conjugate() * current_;
 }
 

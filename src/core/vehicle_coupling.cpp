@@ -92,7 +92,7 @@ Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment
   Status stepped = Status::success();
   if (started_ && start_.dt == h)
   {
-    // predict()'s step with the pull besides: one solve of each of its factors (VehicleBody::stepAgain).
+    // predict()'s step with the pull besides (VehicleBody::stepAgain: the pull's kick and one Coriolis pass).
     stepped = body_.stepAgain(start_, trial_, external);
     used_ = trial_.used;
   }
