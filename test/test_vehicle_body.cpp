@@ -416,6 +416,32 @@ TEST(VehicleBody, CoupleTurnsAFreeBodyAboutItsCentreOfGravity)
   EXPECT_LT(centre_velocity.norm(), 1e-3 * turn.norm() * p.center_of_gravity.norm());
 }
 
+// A free body spinning about a principal axis through its centre of gravity (freeBody(): r_G = r_B = 0)
+// keeps its rate (C(nu) nu = [0; w x I w] = 0 for w along a principal axis), so after N steps its attitude is
+// the turn by w N h about that axis, exactly up to rounding (1e-12 rad over 200 steps of ~1e-16 each). Three
+// rates: 2 and 12 rad/s (0.02 and 0.12 rad a step, turned by the short series) and 40 rad/s (0.4 rad a step,
+// by sine and cosine); fails if either way of turning the attitude is wrong (the series' x^4 term or the half
+// angle off; its higher terms move a step's turn by less than rounding does).
+TEST(VehicleBody, SpinAboutAPrincipalAxisTurnsByRateTimesTime)
+{
+  for (const double rate : {2.0, 12.0, 40.0})
+  {
+    VehicleBody body = bodyWith(freeBody());
+    Twist nu = Twist::Zero();
+    nu[5] = rate;
+    ASSERT_TRUE(body.setState({0, 0, 0}, Eigen::Quaterniond::Identity(), nu).ok);
+    const int steps = 200;
+    for (int i = 0; i < steps; ++i)
+    {
+      ASSERT_TRUE(body.step(kStep, Wrench::Zero(), Wrench::Zero(), nullptr).ok);
+    }
+    const Eigen::Quaterniond expected(Eigen::AngleAxisd(rate * steps * kStep, Eigen::Vector3d::UnitZ()));
+    EXPECT_LT(body.attitude().angularDistance(expected), 1e-12) << "at " << rate << " rad/s";
+    EXPECT_NEAR(body.velocity()[5], rate, 1e-12 * rate);
+    EXPECT_LT(body.position().norm(), 1e-12);
+  }
+}
+
 // 6. Current: a body at rest in a uniform current of 0.4 m/s along world x drifts to the current's velocity.
 // The water moves past it at -0.4 m/s relative; with no Coriolis coupling for a flow along a principal axis,
 // the relative speed decays as in test 1 (same closed form and bound): the body's speed over ground is the

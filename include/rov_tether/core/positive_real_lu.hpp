@@ -29,10 +29,11 @@ class PositiveRealLu
 #pragma GCC unroll 8
     for (int k = 0; k < N; ++k)
     {
+      inverse_pivot_[k] = 1.0 / lu_(k, k);
 #pragma GCC unroll 8
       for (int i = k + 1; i < N; ++i)
       {
-        const double factor = lu_(i, k) / lu_(k, k);
+        const double factor = lu_(i, k) * inverse_pivot_[k];
         lu_(i, k) = factor;  // L below the diagonal (unit diagonal), U on and above it
 #pragma GCC unroll 8
         for (int j = k + 1; j < N; ++j)
@@ -64,13 +65,16 @@ class PositiveRealLu
       {
         b.row(i) -= lu_(i, j) * b.row(j);
       }
-      b.row(i) /= lu_(i, i);
+      b.row(i) *= inverse_pivot_[i];
     }
     return b;
   }
 
  private:
   Matrix lu_ = Matrix::Identity();
+  // 1 / U's diagonal: N divisions a factorisation, none in a solve (a division's latency is several
+  // multiplications', and the back substitution's are in series).
+  Eigen::Matrix<double, N, 1> inverse_pivot_ = Eigen::Matrix<double, N, 1>::Ones();
 };
 
 }  // namespace rov_tether

@@ -148,11 +148,12 @@ class VehicleBody
 
  private:
   void prepare();  // the constant matrices and the step limit from params_
-  /// The step from `start`: the end's pose and velocity, and the thrust applied (no state change).
+  /// The step from `start`: the end's pose and velocity (skipped when `velocity` is null), and the thrust applied
+  /// (no state change).
   Status advance(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, Eigen::Vector3d* position,
                  Eigen::Quaterniond* attitude, Twist* velocity, ThrustUsed* used, VehicleStepTrial* trial) const;
   /// Part 4: the pose after a step of dt from `position`, `attitude` whose Coriolis part turned nu_r from
-  /// `before` to `after`; `velocity` is `after` over the ground.
+  /// `before` to `after`; `velocity` (unless null) is `after` over the ground.
   void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position,
              Eigen::Quaterniond* attitude, Twist* velocity) const;
 
