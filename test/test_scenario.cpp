@@ -1,4 +1,5 @@
 // Scenario files, parameter files and the rov_tether_run executable.
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -418,10 +419,45 @@ TEST(Runner, ReportsTheNewtonEffortTheSolverTook)
   ASSERT_EQ(runScenario(scenario, dir, &summary), "");
   EXPECT_EQ(summary.solver.substeps, summary.steps);
   EXPECT_GE(summary.solver.max_iterations, 1);
+  // state.csv's last three columns are each row's share of that effort (the sub-steps since the row before,
+  // as many for every row at a fixed output rate): the rows' means average to the run's mean, and their
+  // maxima and residuals peak at the run's, within the printed digits (4 and 3 significant).
+  const auto newtonColumns = [](const fs::path& state)
+  {
+    std::vector<std::array<double, 3>> rows;
+    for (const std::string& line : readLines(state))
+    {
+      const std::size_t c3 = line.rfind(','), c2 = line.rfind(',', c3 - 1), c1 = line.rfind(',', c2 - 1);
+      if (line.rfind("t,", 0) != 0)
+      {
+        rows.push_back({std::stod(line.substr(c1 + 1, c2 - c1 - 1)), std::stod(line.substr(c2 + 1, c3 - c2 - 1)),
+                        std::stod(line.substr(c3 + 1))});
+      }
+    }
+    return rows;
+  };
+  const auto rows = newtonColumns(fs::path(dir) / "state.csv");
+  ASSERT_GT(rows.size(), 2u);
+  EXPECT_TRUE(std::isnan(rows[0][0])) << "t = 0 comes before any sub-step";
+  double mean_sum = 0.0, most_seen = 0.0, worst_seen = 0.0;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+  {
+    mean_sum += rows[i][0];
+    most_seen = std::max(most_seen, rows[i][1]);
+    worst_seen = std::max(worst_seen, rows[i][2]);
+  }
+  EXPECT_NEAR(mean_sum / static_cast<double>(rows.size() - 1), summary.solver.meanIterations(),
+              1e-3 * summary.solver.meanIterations());
+  EXPECT_EQ(most_seen, summary.solver.max_iterations);
+  EXPECT_NEAR(worst_seen, summary.solver.max_residual, 5e-3 * summary.solver.max_residual);
   scenario.params.solver = SolverType::kPbd;
   ASSERT_EQ(runScenario(scenario, dir + "_pbd", &summary), "");
   EXPECT_EQ(summary.solver.substeps, 0u);
   EXPECT_TRUE(std::isnan(summary.solver.meanIterations()));
+  for (const auto& row : newtonColumns(fs::path(dir + "_pbd") / "state.csv"))
+  {
+    EXPECT_TRUE(std::isnan(row[0]) && std::isnan(row[1]) && std::isnan(row[2])) << "pbd reports no Newton effort";
+  }
   const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
   for (const auto& [solver, printed] : {std::pair<std::string, bool>{"direct", true}, {"pbd", false}})
   {

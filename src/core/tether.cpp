@@ -447,6 +447,7 @@ void Tether::subStep(double h, double t)
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
   effort_.add(solver_->lastIterations(), solver_->lastResidual());
+  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
   {
@@ -641,6 +642,7 @@ Status Tether::reset(double time)
   outrun_time_ = 0.0;
   noise_.reseed(params_.seed);
   effort_ = SolverEffort{};
+  effort_since_mark_ = SolverEffort{};
   time_ = target_time_ = base_time_ = time;
   base_steps_ = steps_;
   layOut(params_.initial_deployed_length);

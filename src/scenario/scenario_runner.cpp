@@ -15,7 +15,8 @@
 namespace rov_tether
 {
 
-const char* const kStateCsvHeader = "t,deployed_length,tension_spool,tension_vehicle,max_tension,max_strain";
+const char* const kStateCsvHeader =
+    "t,deployed_length,tension_spool,tension_vehicle,max_tension,max_strain,newton_mean,newton_max,newton_residual";
 const char* const kShapeCsvHeader = "t,i,x,y,z,tension";
 const char* const kTopologyCsvHeader = "t,tether,object,kind,value";
 
@@ -90,15 +91,26 @@ std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::strin
   return "";
 }
 
-/// A tether's state row and shape rows at t_out, and its running maxima.
-void writeTether(const Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file,
+/// A tether's state row and shape rows at t_out, and its running maxima; the row's Newton effort is the
+/// sub-steps' since the previous row (the tether's mark is moved on).
+void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file,
                  std::vector<double>& tensions, std::vector<Position>& positions, RunSummary* result)
 {
   sim.computeSegmentTensions(tensions);
   const TetherSummary s = sim.summarize(tensions);
   sim.copyPositions(positions);
-  std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g\n", t_out, s.deployed_length, s.tension_spool,
+  std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g,", t_out, s.deployed_length, s.tension_spool,
                s.tension_vehicle, s.max_tension, s.max_strain);
+  const SolverEffort& effort = sim.solverEffortSinceMark();
+  if (effort.substeps > 0)
+  {
+    std::fprintf(state_file, "%.4g,%d,%.3g\n", effort.meanIterations(), effort.max_iterations, effort.max_residual);
+  }
+  else
+  {
+    std::fputs("nan,nan,nan\n", state_file);  // no sub-step since the last row, or a solver without Newton
+  }
+  sim.markSolverEffort();
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
     std::fprintf(shape_file, "%.6f,%zu,%.6f,%.6f,%.6f,", t_out, i, positions[i].x(), positions[i].y(),
@@ -388,7 +400,7 @@ class Stepper
 };
 
 /// Steps to every output time, writing each tether's rows (and the topology's); returns the topology rows.
-std::size_t writeOutputs(const Scenario& scenario, const World& world, Stepper& stepper,
+std::size_t writeOutputs(const Scenario& scenario, World& world, Stepper& stepper,
                          const std::vector<RunObserver*>& observers, const std::vector<OutputFile>& files,
                          std::FILE* topology_file, std::vector<RunSummary>& each)
 {

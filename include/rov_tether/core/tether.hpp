@@ -203,6 +203,10 @@ class Tether
   int maxSolverIterations() const { return effort_.max_iterations; }
   /// What the solver took over every sub-step since construction or reset() (direct; none for the others).
   const SolverEffort& solverEffort() const { return effort_; }
+  /// The same since the last markSolverEffort() (or construction, or reset()): what one row of output covers.
+  const SolverEffort& solverEffortSinceMark() const { return effort_since_mark_; }
+  /// Starts solverEffortSinceMark() afresh.
+  void markSolverEffort() { effort_since_mark_ = SolverEffort{}; }
   /// Largest relative constraint residual the solver stopped at in the last sub-step (direct), else NaN.
   double solverResidual() const { return solver_->lastResidual(); }
   /// Number of vehicle jumps handled by re-laying the cable.
@@ -286,6 +290,7 @@ class Tether
   std::uint64_t jumps_ = 0;
   std::uint64_t recoveries_ = 0;
   SolverEffort effort_;
+  SolverEffort effort_since_mark_;
   std::string last_failure_;
 };
 
