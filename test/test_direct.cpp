@@ -288,6 +288,84 @@ TEST(Direct, TenThousandToOneMassRatio)
   }
 }
 
+// Kelvin-Voigt axial damping (axial_damping, BA): one free particle of mass m between two pinned ones, on two
+// taut segments of rest length L along x, moved along them by less than their pre-stretch and let go, is a
+// damped oscillator m u'' = -k u - c u' with k = 2 EA / L, c = 2 BA / L (both segments pull along x, each
+// T = EA e + BA de/dt). Its damping ratio zeta = c / (2 sqrt(k m)) is read from the logarithmic decrement of
+// successive peaks, zeta = d / sqrt(4 pi^2 + d^2). The implicit (backward Euler) step damps an oscillator by
+// about omega h / 2 more (its amplification 1 / sqrt(1 + omega^2 h^2) a step), so the measured zeta is within
+// omega h of the set one, and that excess halves with the step; with BA = 0 only the step's own remains.
+// Both of direct's paths: the dual (no bending) and the primal (with EI; the straight joint takes no load).
+double measuredDampingRatio(double damping, double h, bool bending)
+{
+  const double rest = 1.0, prestrain = 0.01, kick = 0.002, mass = 1.0;
+  Cable cable;
+  cable.resize(3);
+  cable.place(0, Position(0.0, 0.0, 0.0));
+  cable.place(1, Position(rest * (1.0 + prestrain) + kick, 0.0, 0.0));
+  cable.place(2, Position(2.0 * rest * (1.0 + prestrain), 0.0, 0.0));
+  std::fill(cable.rest.begin(), cable.rest.end(), rest);
+  cable.inv_mass = {0.0, 1.0 / mass, 0.0};
+  cable.stretch_weight = {mass, mass};
+  cable.bend_rest.assign(cable.bend_rest.size(), 2.0 * rest);
+  cable.bend_weight.assign(cable.bend_weight.size(), 0.0);
+  DirectSolver solver;
+  solver.multipliers().resize(3);
+  SolverSettings settings;
+  settings.time_step = h;
+  settings.axial_stiffness = 100.0;
+  settings.axial_damping = damping;
+  settings.bending = bending;
+  settings.bending_stiffness = bending ? 0.2 : 0.0;
+  settings.tolerance = 1e-12;
+  std::vector<double> peaks;
+  double before = kick, now = kick;
+  const int steps = static_cast<int>(std::lround(3.0 / h));
+  for (int step = 0; step < steps && peaks.size() < 6; ++step)
+  {
+    const double x = cable.x[1];
+    cable.x[1] += x - cable.px[1];  // Verlet, no drag
+    cable.px[1] = x;
+    solver.solve(cable, settings, Contacts{}, 3);
+    const double next = cable.x[1] - rest * (1.0 + prestrain);
+    if (now > before && now >= next && now > 0.0)
+    {
+      peaks.push_back(now);
+    }
+    before = now;
+    now = next;
+  }
+  if (peaks.size() < 3)
+  {
+    return std::nan("");
+  }
+  const double decrement = std::log(peaks.front() / peaks.back()) / static_cast<double>(peaks.size() - 1);
+  return decrement / std::sqrt(4.0 * M_PI * M_PI + decrement * decrement);
+}
+
+TEST(Direct, AxialDampingIsKelvinVoigt)
+{
+  const double stiffness = 2.0 * 100.0 / 1.0, mass = 1.0;  // k = 2 EA / L [N/m]
+  const double omega = std::sqrt(stiffness / mass);
+  const double zeta = 0.1;
+  const double damping = zeta * 2.0 * std::sqrt(stiffness * mass) * 1.0 / 2.0;  // BA = c L / 2
+  for (const bool bending : {false, true})
+  {
+    for (const double h : {1e-3, 5e-4})
+    {
+      const double measured = measuredDampingRatio(damping, h, bending);
+      const double undamped = measuredDampingRatio(0.0, h, bending);
+      std::printf("[ measured ] %s path, h = %g s: zeta %.5f (set %.3f, omega h = %.4f); BA = 0: %.5f\n",
+                  bending ? "primal" : "dual", h, measured, zeta, omega * h, undamped);
+      EXPECT_LT(std::abs(measured - zeta), omega * h) << h;
+      EXPECT_LT(undamped, omega * h) << h;
+    }
+    const double excess = measuredDampingRatio(damping, 1e-3, bending) - zeta;
+    const double excess_half = measuredDampingRatio(damping, 5e-4, bending) - zeta;
+    EXPECT_NEAR(excess / excess_half, 2.0, 0.4) << "first order in h";
+  }
+}
+
 // Bending that is EI: a short clamped cable (the first two particles pinned) sags under its own weight
 // by w L^4 / (8 EI) at the tip (small deflection, 1% of L; Euler-Bernoulli cantilever), within 5%.
 TEST(Direct, CantileverTipDeflectionIsWL4Over8EI)

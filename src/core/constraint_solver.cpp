@@ -14,6 +14,7 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.bending = params.bending;
   settings.time_step = h;
   settings.axial_stiffness = params.axial_stiffness;
+  settings.axial_damping = params.axial_damping;
   settings.bending_stiffness = params.bending_stiffness;
   settings.over_relaxation = params.over_relaxation;
   settings.tolerance = params.solver_tolerance;

@@ -58,6 +58,7 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
   SolverSettings elastic = settings;
   elastic.drum = nullptr;
   elastic.time_step = step;
+  elastic.axial_damping = 0.0;  // K is the elastic answer; the damping is a force on velocity, not position
   DirectWorkspace& ws = workspace_;
   ws.begin(cable, scratch_, elastic);
   double* model = ws.on();

@@ -38,7 +38,7 @@ void DirectWorkspace::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&xt, &yt, &zt, &sx, &sy, &sz, &nx, &ny, &nz, &len, &c, &alpha, &gamma, &inv_rest, &warm_lambda,
+  for (auto* v : {&xt, &yt, &zt, &sx, &sy, &sz, &nx, &ny, &nz, &len, &c, &alpha, &stop, &gamma, &inv_rest, &warm_lambda,
                   &correction_x, &correction_y, &correction_z})
   {
     v->assign(n, 0.0);
@@ -59,11 +59,30 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   bending = settings.bending && settings.bending_stiffness > 0.0 && m >= 2;
   unilateral = !bending;
   nominal = cable.rest[n - 2];
-  const double h2 = settings.time_step * settings.time_step;
+  const double h = settings.time_step;
+  const double h2 = h * h;
+  // Kelvin-Voigt, backward Euler: a taut segment's force T = (EA C + BA (C - C_0) / h) / L, C_0 its stretch
+  // at the step's start (from px), is lambda = T h^2, that is C - s = alpha lambda with alpha = L / (EA h^2 +
+  // BA h) and s = BA / (h EA + BA) C_0: the undamped law with a softer compliance about a shifted rest
+  // length. C_0 is taken as 0 when the segment was slack (a snap's rate counts from taut). BA = 0: s = 0 and
+  // the undamped alpha. The drum's segment follows the drum's law (spool_drum.hpp), undamped.
+  const double damping = settings.axial_damping;
+  const double shift_share = damping > 0.0 ? damping / (h * settings.axial_stiffness + damping) : 0.0;
   for (std::size_t k = 0; k < m; ++k)
   {
-    alpha[k] = cable.rest[f + k] / (settings.axial_stiffness * h2);
-    inv_rest[k] = 1.0 / cable.rest[f + k];
+    const double rest = cable.rest[f + k];
+    const bool damped = shift_share > 0.0 && !(k == 0 && settings.drum != nullptr);
+    alpha[k] = rest / (settings.axial_stiffness * h2 + (damped ? damping * h : 0.0));
+    inv_rest[k] = 1.0 / rest;
+    double shift = 0.0;
+    if (damped)
+    {
+      const double dx = cable.px[f + k + 1] - cable.px[f + k];
+      const double dy = cable.py[f + k + 1] - cable.py[f + k];
+      const double dz = cable.pz[f + k + 1] - cable.pz[f + k];
+      shift = shift_share * std::max(std::sqrt(dx * dx + dy * dy + dz * dz) - rest, 0.0);
+    }
+    stop[k] = rest + shift;
   }
   for (std::size_t k = 0; bending && k + 1 < m; ++k)
   {
@@ -132,8 +151,8 @@ void DirectWorkspace::forget()
 void DirectWorkspace::geometry(const Cable& cable)
 {
   const std::size_t f = first;
-  segmentGeometry(cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, cable.rest.data() + f, nx.data(),
-                  ny.data(), nz.data(), len.data(), c.data(), m);
+  segmentGeometry(cable.x.data() + f, cable.y.data() + f, cable.z.data() + f, stop.data(), nx.data(), ny.data(),
+                  nz.data(), len.data(), c.data(), m);
 }
 
 void DirectWorkspace::save(const Cable& cable)

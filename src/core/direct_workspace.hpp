@@ -49,8 +49,11 @@ struct DirectWorkspace
   std::vector<double> xt, yt, zt;       ///< Predicted positions x~ [m].
   std::vector<double> sx, sy, sz;       ///< Saved positions (rejected steps, line search).
   std::vector<double> nx, ny, nz, len;  ///< Unit vector and length of segment k.
-  std::vector<double> c;                ///< C_k = |d_k| - L_k [m].
-  std::vector<double> alpha;            ///< alpha_k = L_k / (EA h^2) [1/kg].
+  std::vector<double> c;                ///< C_k = |d_k| - L_k - s_k [m] (s_k: axial damping's shift, else 0).
+  std::vector<double> alpha;            ///< alpha_k = L_k / (EA h^2 + BA h) [1/kg].
+  /// L_k + s_k [m]: the rest length plus, with axial damping BA, the shift s_k = BA / (h EA + BA) C_k(start)
+  /// that makes C - s = alpha lambda the Kelvin-Voigt law (DirectWorkspace::begin).
+  std::vector<double> stop;
   std::vector<double> inv_rest;         ///< 1 / L_k [1/m].
   std::vector<double> gamma;            ///< Compliance of bending joint j [1/(kg m^2)].
   /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and

@@ -55,6 +55,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"weight_in_water", &TetherParams::weight_in_water},
       {"mass_per_length", &TetherParams::mass_per_length},
       {"axial_stiffness", &TetherParams::axial_stiffness},
+      {"axial_damping", &TetherParams::axial_damping},
       {"bending_stiffness", &TetherParams::bending_stiffness},
       {"drag_model", &TetherParams::drag_model},
       {"diameter", &TetherParams::diameter},

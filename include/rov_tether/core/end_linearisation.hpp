@@ -33,8 +33,10 @@ using Velocity = Eigen::Vector3d;
  * zero in this model: the end enters the step only through its position at the step's end (pinned there).
  * The prediction x~ of every free particle uses its own velocity (x - x_prev), drag (damping or Morison) acts
  * on the free particles' own velocities (Morison's tangent reads the end's position from the step's start,
- * already past), and there is no axial (Kelvin-Voigt) damping in a segment (docs/model.md explains why). The
- * chain's damping reaches the vehicle through the chain's own motion, which the next step's pull carries.
+ * already past). With `axial_damping` (Kelvin-Voigt, docs/model.md) the last segment's dashpot does answer
+ * the end's velocity within the step; C leaves it out (zero) and K is the elastic answer alone
+ * (docs/limitations.md). The chain's damping reaches the vehicle through the chain's own motion, which the
+ * next step's pull carries.
  *
  * The linearisation is of the last sub-step (with `substeps` > 1 the earlier sub-steps' answer to the
  * interpolated end is not in it), with the spool segment on its elastic law (a brake drum's give within the

@@ -110,6 +110,10 @@ struct TetherParams
   /// Axial stiffness EA [N]. xpbd and lumped_mass use it; the pbd solvers do not (see README), for them it
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
+  /// Axial damping BA [N s] (Kelvin-Voigt: a taut segment's tension is EA e + BA de/dt, e its strain; MoorDyn's
+  /// BA, OrcaFlex's axial damping), inside `direct`'s implicit step; 0 = none. The spool segment, when a winch
+  /// drum takes it into the step, follows the drum's law instead.
+  double axial_damping = 0.0;
   /// Bending stiffness EI [N m^2] of xpbd's and direct's bending at the joints (when `bending` is on); 0 = no
   /// bending resistance. The default is a 2 cm polyurethane-jacketed tether's (E 25 MPa, I = pi d^4 / 64):
   /// without it direct's one-sided segments let the paper's noise crumple a slack cable. pbd's bending
