@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "rov_tether/core/direct_solver.hpp"
+#include "rov_tether/core/lumped_mass_solver.hpp"
 #include "rov_tether/core/pbd_solver.hpp"
 #include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
@@ -295,9 +296,19 @@ TEST(Direct, TenThousandToOneMassRatio)
 // successive peaks, zeta = d / sqrt(4 pi^2 + d^2). The implicit (backward Euler) step damps an oscillator by
 // about omega h / 2 more (its amplification 1 / sqrt(1 + omega^2 h^2) a step), so the measured zeta is within
 // omega h of the set one, and that excess halves with the step; with BA = 0 only the step's own remains.
-// Both of direct's paths: the dual (no bending) and the primal (with EI; the straight joint takes no load).
-double measuredDampingRatio(double damping, double h, bool bending)
+// Both of direct's paths: the dual (no bending) and the primal (with EI; the straight joint takes no load);
+// and lumped_mass, explicit (no numerical damping of its own; its dashpot reads the step's predicted motion),
+// within the same bound.
+enum class Path
 {
+  kDual,
+  kPrimal,
+  kLumpedMass,
+};
+
+double measuredDampingRatio(double damping, double h, Path path)
+{
+  const bool bending = path == Path::kPrimal;
   const double rest = 1.0, prestrain = 0.01, kick = 0.002, mass = 1.0;
   Cable cable;
   cable.resize(3);
@@ -309,7 +320,9 @@ double measuredDampingRatio(double damping, double h, bool bending)
   cable.stretch_weight = {mass, mass};
   cable.bend_rest.assign(cable.bend_rest.size(), 2.0 * rest);
   cable.bend_weight.assign(cable.bend_weight.size(), 0.0);
-  DirectSolver solver;
+  DirectSolver direct;
+  LumpedMassSolver lumped;
+  ConstraintSolver& solver = path == Path::kLumpedMass ? static_cast<ConstraintSolver&>(lumped) : direct;
   solver.multipliers().resize(3);
   SolverSettings settings;
   settings.time_step = h;
@@ -349,20 +362,62 @@ TEST(Direct, AxialDampingIsKelvinVoigt)
   const double omega = std::sqrt(stiffness / mass);
   const double zeta = 0.1;
   const double damping = zeta * 2.0 * std::sqrt(stiffness * mass) * 1.0 / 2.0;  // BA = c L / 2
-  for (const bool bending : {false, true})
+  for (const Path path : {Path::kDual, Path::kPrimal, Path::kLumpedMass})
   {
+    const char* name = path == Path::kDual ? "direct, dual" : (path == Path::kPrimal ? "direct, primal" : "lumped_mass");
     for (const double h : {1e-3, 5e-4})
     {
-      const double measured = measuredDampingRatio(damping, h, bending);
-      const double undamped = measuredDampingRatio(0.0, h, bending);
-      std::printf("[ measured ] %s path, h = %g s: zeta %.5f (set %.3f, omega h = %.4f); BA = 0: %.5f\n",
-                  bending ? "primal" : "dual", h, measured, zeta, omega * h, undamped);
-      EXPECT_LT(std::abs(measured - zeta), omega * h) << h;
-      EXPECT_LT(undamped, omega * h) << h;
+      const double measured = measuredDampingRatio(damping, h, path);
+      const double undamped = measuredDampingRatio(0.0, h, path);
+      std::printf("[ measured ] %s, h = %g s: zeta %.5f (set %.3f, omega h = %.4f); BA = 0: %.5f\n", name, h,
+                  measured, zeta, omega * h, undamped);
+      EXPECT_LT(std::abs(measured - zeta), omega * h) << name << ", h = " << h;
+      EXPECT_LT(std::abs(undamped), omega * h) << name << ", h = " << h;
     }
-    const double excess = measuredDampingRatio(damping, 1e-3, bending) - zeta;
-    const double excess_half = measuredDampingRatio(damping, 5e-4, bending) - zeta;
-    EXPECT_NEAR(excess / excess_half, 2.0, 0.4) << "first order in h";
+    if (path != Path::kLumpedMass)  // backward Euler's excess omega h / 2 (lumped_mass's is far smaller)
+    {
+      const double excess = measuredDampingRatio(damping, 1e-3, path) - zeta;
+      const double excess_half = measuredDampingRatio(damping, 5e-4, path) - zeta;
+      EXPECT_NEAR(excess / excess_half, 2.0, 0.4) << name << ": first order in h";
+    }
+  }
+}
+
+// lumped_mass with axial damping: an explicit step of a damped oscillator is stable for h omega < 2 (sqrt(1 +
+// zeta^2) - zeta), so TetherParams::criticalStep() shrinks with BA. At zeta = 2 for the fastest mode (BA = 2 L
+// sqrt(EA mu)) a swinging cable sub-stepped at 0.9 of that step runs 2 s without a blow-up, and at 0.9 of the
+// undamped critical step (4.2x longer) it blows up (the divergence check re-lays it).
+TEST(LumpedMass, AxialDampingShortensTheCriticalStep)
+{
+  TetherParams p;
+  p.solver = SolverType::kLumpedMass;
+  p.noise = 0.0;
+  p.winch_mode = WinchMode::kLocked;
+  p.initial_deployed_length = p.cable_length;
+  p.axial_damping = 2.0 * p.segment_length * std::sqrt(p.axial_stiffness * p.mass_per_length);
+  const double undamped = p.segment_length / std::sqrt(p.axial_stiffness / p.mass_per_length);
+  EXPECT_NEAR(p.criticalStep(), undamped * (std::sqrt(5.0) - 2.0), 1e-12 * undamped);
+  for (const double critical : {p.criticalStep(), undamped})
+  {
+    p.substeps = static_cast<int>(std::ceil(p.time_step / (0.9 * critical)));
+    Tether sim(p, Position::Zero(), Position(0.7 * p.cable_length, 0.0, 0.0));
+    for (int k = 1; k <= 200; ++k)
+    {
+      const double t = 0.01 * k;
+      ASSERT_TRUE(sim.addVehicleSample(t, Position(0.7 * p.cable_length + 2.0 * t, std::sin(3.0 * t), 0.0)).ok);
+      ASSERT_TRUE(sim.advanceTo(t - 0.01).ok);
+    }
+    std::printf("[ measured ] lumped_mass, zeta 2, %d sub-steps (0.9 of the %s critical step): %llu blow-ups\n",
+                p.substeps, critical == undamped ? "undamped" : "damped",
+                static_cast<unsigned long long>(sim.recoveryCount()));
+    if (critical == undamped)
+    {
+      EXPECT_GT(sim.recoveryCount(), 0u) << "the undamped critical step must be too long with this damping";
+    }
+    else
+    {
+      EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+    }
   }
 }
 

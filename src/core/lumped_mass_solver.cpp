@@ -18,9 +18,14 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
   }
   const double h2 = settings.time_step * settings.time_step;
   const double ea = settings.axial_stiffness;
+  // Kelvin-Voigt damping BA de/dt on a taut segment, its strain rate from the particles' predicted motion
+  // over the step (x - x_n: the velocity after drag and weight, semi-implicit), read before this sweep
+  // moves them; the tension stays >= 0 (a cable does not push).
+  const double ba_over_h = settings.axial_damping / settings.time_step;
   double max_strain = -1.0;
   double strain_sum = 0.0;  // NaN or infinity anywhere makes the sum non-finite (max() would skip a NaN)
   // Forces at x_n (the previous positions px): explicit. The corrections go to the predictions x.
+  Position moved(state.x[f] - state.px[f], state.y[f] - state.py[f], state.z[f] - state.pz[f]);  // particle j's
   for (std::size_t j = f; j + 1 < n; ++j)
   {
     const double dx = state.px[j + 1] - state.px[j];
@@ -30,7 +35,18 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
     const double strain = length / state.rest[j] - 1.0;
     max_strain = std::max(max_strain, strain);
     strain_sum += strain;
-    const double tension = ea * std::max(strain, 0.0);
+    const Position moved_next(state.x[j + 1] - state.px[j + 1], state.y[j + 1] - state.py[j + 1],
+                              state.z[j + 1] - state.pz[j + 1]);
+    double tension = ea * std::max(strain, 0.0);
+    if (ba_over_h > 0.0 && strain > 0.0 && length > 0.0)
+    {
+      // d(length)/dt h = n . (moved_next - moved), strain rate over 1 / rest.
+      const double lengthening = ((moved_next.x() - moved.x()) * dx + (moved_next.y() - moved.y()) * dy +
+                                  (moved_next.z() - moved.z()) * dz) /
+                                 length;
+      tension = std::max(tension + ba_over_h * lengthening / state.rest[j], 0.0);
+    }
+    moved = moved_next;
     lambda.stretch[j] = tension * h2;  // the same readout as the constraint methods: lambda / h^2
     const double scale = length > 0.0 ? tension * h2 / length : 0.0;
     const double move_a = state.inv_mass[j] * scale;

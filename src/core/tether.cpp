@@ -453,7 +453,8 @@ void Tether::subStep(double h, double t)
   {
     std::ostringstream why;
     why << "lumped_mass diverged (segment strain " << strain << "): the sub-step " << h
-        << " s exceeds the critical step " << params_.criticalStep() << " s = segment_length / sqrt(EA / mu)";
+        << " s exceeds the critical step " << params_.criticalStep()
+        << " s = segment_length / sqrt(EA / mu) (shorter with axial_damping)";
     fail(why.str());
   }
   const double residual = solver_->lastResidual();

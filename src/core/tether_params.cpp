@@ -368,8 +368,12 @@ double TetherParams::effectiveMassPerLength() const
 
 double TetherParams::criticalStep() const
 {
-  // The axial waves are the fastest, and added mass acts across the cable only: the cable's own mass.
-  return segment_length / std::sqrt(axial_stiffness / mass_per_length);
+  // The axial waves are the fastest, and added mass acts across the cable only: the cable's own mass. The
+  // fastest mode (neighbours in opposite phase, omega = 2 sqrt(EA / mu) / L) is stable for h omega < 2
+  // undamped; axial damping BA gives it the damping ratio zeta = BA / (L sqrt(EA mu)), and an explicit
+  // step of a damped oscillator is stable for h omega < 2 (sqrt(1 + zeta^2) - zeta).
+  const double zeta = axial_damping / (segment_length * std::sqrt(axial_stiffness * mass_per_length));
+  return segment_length / std::sqrt(axial_stiffness / mass_per_length) * (std::sqrt(1.0 + zeta * zeta) - zeta);
 }
 
 double TetherParams::winchPull() const

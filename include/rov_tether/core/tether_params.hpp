@@ -111,8 +111,9 @@ struct TetherParams
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
   /// Axial damping BA [N s] (Kelvin-Voigt: a taut segment's tension is EA e + BA de/dt, e its strain; MoorDyn's
-  /// BA, OrcaFlex's axial damping), inside `direct`'s implicit step; 0 = none. The spool segment, when a winch
-  /// drum takes it into the step, follows the drum's law instead.
+  /// BA, OrcaFlex's axial damping), inside `direct`'s implicit step and on `lumped_mass`'s explicit one (which
+  /// it makes shorter: criticalStep()); 0 = none. The spool segment, when a winch drum takes it into direct's
+  /// step, follows the drum's law instead. xpbd does not read it.
   double axial_damping = 0.0;
   /// Bending stiffness EI [N m^2] of xpbd's and direct's bending at the joints (when `bending` is on); 0 = no
   /// bending resistance. The default is a 2 cm polyurethane-jacketed tether's (E 25 MPa, I = pi d^4 / 64):
@@ -194,7 +195,8 @@ struct TetherParams
   /// The winch motor's stall pull [N]: max_winch_pull, or when 0, 1.25 x the larger of target_tension +
   /// tension_deadband and brake_tension (a motor a quarter stronger than the tension it is set to hold).
   double winchPull() const;
-  /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s].
+  /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s], times
+  /// sqrt(1 + zeta^2) - zeta with axial damping (zeta = BA / (dL sqrt(EA mu)), its fastest mode's ratio).
   double criticalStep() const;
   /// A copy with `auto` segment_length and iterations replaced by the chosen values (flags cleared).
   TetherParams resolved() const;
