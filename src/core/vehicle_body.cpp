@@ -273,8 +273,8 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   Twist turned = before;
   // A trial (stepped() for stepAgain()) takes the first pass only: C at the start, where the body goes to
   // O(h^3) in position; stepAgain() takes the second from it. (An explicit midpoint step in its place, which
-  // needs no factorisation, moved the coupled step twice as far from step() in
-  // VehicleBody.StepAgainIsTheWholeStepWithTheAddedWrench.)
+  // needs no factorisation, fails VehicleBody.StepAgainIsTheWholeStepWithTheAddedWrench: the coupled step
+  // strays from step() by more than step()'s own error.)
   const int passes = trial != nullptr ? 1 : 2;
   for (int pass = 0; pass < passes; ++pass)
   {
