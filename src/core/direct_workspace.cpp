@@ -64,14 +64,17 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   // Kelvin-Voigt, backward Euler: a taut segment's force T = (EA C + BA (C - C_0) / h) / L, C_0 its stretch
   // at the step's start (from px), is lambda = T h^2, that is C - s = alpha lambda with alpha = L / (EA h^2 +
   // BA h) and s = BA / (h EA + BA) C_0: the undamped law with a softer compliance about a shifted rest
-  // length. C_0 is taken as 0 when the segment was slack (a snap's rate counts from taut). BA = 0: s = 0 and
-  // the undamped alpha. The drum's segment follows the drum's law (spool_drum.hpp), undamped.
+  // length. A one-sided segment (no bending) takes C_0 as 0 when it was slack (a snap's rate counts from
+  // taut); a two-sided one (a rod, with bending) carries compression and takes C_0 as it is. BA = 0: s = 0 and
+  // the undamped alpha. The spool segment is left undamped: the winch changes its rest length before the step
+  // (pay-out, reel-in), which px's length does not know, and a drum's law replaces its elastic one.
   const double damping = settings.axial_damping;
   const double shift_share = damping > 0.0 ? damping / (h * settings.axial_stiffness + damping) : 0.0;
+  const double slack_floor = unilateral ? 0.0 : -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < m; ++k)
   {
     const double rest = cable.rest[f + k];
-    const bool damped = shift_share > 0.0 && !(k == 0 && settings.drum != nullptr);
+    const bool damped = shift_share > 0.0 && k > 0;
     alpha[k] = rest / (settings.axial_stiffness * h2 + (damped ? damping * h : 0.0));
     inv_rest[k] = 1.0 / rest;
     double shift = 0.0;
@@ -80,7 +83,7 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
       const double dx = cable.px[f + k + 1] - cable.px[f + k];
       const double dy = cable.py[f + k + 1] - cable.py[f + k];
       const double dz = cable.pz[f + k + 1] - cable.pz[f + k];
-      shift = shift_share * std::max(std::sqrt(dx * dx + dy * dy + dz * dz) - rest, 0.0);
+      shift = shift_share * std::max(std::sqrt(dx * dx + dy * dy + dz * dz) - rest, slack_floor);
     }
     stop[k] = rest + shift;
   }

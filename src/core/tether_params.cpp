@@ -373,7 +373,8 @@ double TetherParams::criticalStep() const
   // undamped; axial damping BA gives it the damping ratio zeta = BA / (L sqrt(EA mu)), and an explicit
   // step of a damped oscillator is stable for h omega < 2 (sqrt(1 + zeta^2) - zeta).
   const double zeta = axial_damping / (segment_length * std::sqrt(axial_stiffness * mass_per_length));
-  return segment_length / std::sqrt(axial_stiffness / mass_per_length) * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  // sqrt(1 + z^2) - z = 1 / (sqrt(1 + z^2) + z), the second without cancellation at large z.
+  return segment_length / std::sqrt(axial_stiffness / mass_per_length) / (std::sqrt(1.0 + zeta * zeta) + zeta);
 }
 
 double TetherParams::winchPull() const
