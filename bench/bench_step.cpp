@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "banded.hpp"
@@ -166,25 +167,25 @@ void BM_StepDirectDynamicVehicle(benchmark::State& state)
   // ends are compared over the same stretch of motion: stepped on from one start, the cable settles as the
   // benchmark runs, and the Newton iterations a step takes (1 or 2 here) would depend on how long it ran.
   constexpr int kWindow = 100;  // steps an iteration: 0.5 s at the default 5 ms
-  const auto start = [&](Tether* sim)
+  const auto start = [&](std::optional<Tether>* sim)
   {
-    *sim = makeCable(state, static_cast<int>(state.range(0)),
-                     [&](TetherParams& p)
-                     {
-                       p.solver = SolverType::kDirect;
-                       p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
-                     });
+    sim->emplace(makeCable(state, static_cast<int>(state.range(0)),
+                           [&](TetherParams& p)
+                           {
+                             p.solver = SolverType::kDirect;
+                             p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
+                           }));
     rov_tether::VehicleBody body;
-    const Position end = sim->particle(sim->deployedParticleCount() - 1);
+    const Position end = (*sim)->particle((*sim)->deployedParticleCount() - 1);
     if (dynamic && (!body.setState(end, Eigen::Quaterniond::Identity(), rov_tether::Twist::Zero()).ok ||
-                    !sim->attachVehicleBody(body, Eigen::Vector3d::Zero()).ok))
+                    !(*sim)->attachVehicleBody(body, Eigen::Vector3d::Zero()).ok))
     {
       return std::string("the dynamic vehicle was refused");
     }
-    const rov_tether::Status moving = sim->advance(1.0);
+    const rov_tether::Status moving = (*sim)->advance(1.0);
     return moving.ok ? std::string() : "the cable did not start moving: " + moving.message;
   };
-  Tether sim = makeCable(state, 2);
+  std::optional<Tether> sim;  // built afresh for every window
   rov_tether::SolverEffort effort;
   for (auto _ : state)
   {
@@ -195,15 +196,15 @@ void BM_StepDirectDynamicVehicle(benchmark::State& state)
       state.SkipWithError(refused.c_str());
       return;
     }
-    const rov_tether::SolverEffort before = sim.solverEffort();
+    const rov_tether::SolverEffort before = sim->solverEffort();
     state.ResumeTiming();
     for (int i = 0; i < kWindow; ++i)
     {
-      sim.step();
+      sim->step();
     }
-    benchmark::DoNotOptimize(sim.state().x.data());
-    effort.substeps += sim.solverEffort().substeps - before.substeps;
-    effort.iterations += sim.solverEffort().iterations - before.iterations;
+    benchmark::DoNotOptimize(sim->state().x.data());
+    effort.substeps += sim->solverEffort().substeps - before.substeps;
+    effort.iterations += sim->solverEffort().iterations - before.iterations;
   }
   state.SetLabel(dynamic ? "dynamic vehicle" : "kinematic vehicle");
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * kWindow);  // steps: items_per_second

@@ -293,12 +293,13 @@ TEST(Direct, TenThousandToOneMassRatio)
 // segments of rest length L along x, moved along them and let go, is a damped oscillator as long as both
 // segments pull or push (one-sided paths: taut, moved by less than their pre-stretch; a rod: either way):
 // m u'' = -k u - c u' with k = 2 EA / L, c = 2 BA / L (each segment's force EA e + BA de/dt along x). Its
-// damping ratio zeta = c / (2 sqrt(k m)) is read from the logarithmic decrement of successive peaks, zeta = d / sqrt(4 pi^2 + d^2). The implicit (backward Euler) step damps an oscillator by
-// about omega h / 2 more (its amplification 1 / sqrt(1 + omega^2 h^2) a step), so the measured zeta is within
-// omega h of the set one, and that excess halves with the step; with BA = 0 only the step's own remains.
-// Both of direct's paths: the dual (no bending) and the primal (with EI; the straight joint takes no load);
-// and lumped_mass, explicit (no numerical damping of its own; its dashpot reads the step's predicted motion),
-// within the same bound.
+// damping ratio zeta = c / (2 sqrt(k m)) is read from the logarithmic decrement d of successive peaks:
+// zeta = d / sqrt(4 pi^2 + d^2). The implicit (backward Euler) step damps an oscillator by about omega h / 2
+// more (its amplification 1 / sqrt(1 + omega^2 h^2) a step), so the measured zeta is within omega h of the
+// set one, and that excess halves with the step; with BA = 0 only the step's own remains. Both of direct's
+// paths: the dual (no bending) and the primal (with EI; the straight joint takes no load); and lumped_mass,
+// explicit (no numerical damping of its own; its dashpot reads the step's predicted motion), within the same
+// bound.
 enum class Path
 {
   kDual,
@@ -369,13 +370,14 @@ TEST(Direct, AxialDampingIsKelvinVoigt)
   const double damping = zeta * 2.0 * std::sqrt(stiffness * mass) * 1.0 / 2.0;  // BA = c L / 2
   for (const Path path : {Path::kDual, Path::kPrimal, Path::kLumpedMass})
   {
-    const char* name = path == Path::kDual ? "direct, dual" : (path == Path::kPrimal ? "direct, primal" : "lumped_mass");
+    const char* name =
+        path == Path::kDual ? "direct, dual" : (path == Path::kPrimal ? "direct, primal" : "lumped_mass");
     for (const double h : {1e-3, 5e-4})
     {
       const double measured = measuredDampingRatio(damping, h, path);
       const double undamped = measuredDampingRatio(0.0, h, path);
-      std::printf("[ measured ] %s, h = %g s: zeta %.5f (set %.3f, omega h = %.4f); BA = 0: %.5f\n", name, h,
-                  measured, zeta, omega * h, undamped);
+      std::printf("[ measured ] %s, h = %g s: zeta %.5f (set %.3f, omega h = %.4f); BA = 0: %.5f\n", name, h, measured,
+                  zeta, omega * h, undamped);
       EXPECT_LT(std::abs(measured - zeta), omega * h) << name << ", h = " << h;
       EXPECT_LT(std::abs(undamped), omega * h) << name << ", h = " << h;
     }

@@ -171,9 +171,10 @@ TEST(Spool, AxialDampingReadsNoStrainRateIntoAPayOut)
     }
     if (damping > 0.0)
     {
-      std::printf("[ measured ] direct, BA %g N s, paying out at 0.5 m/s: spool tension off the undamped run by at "
-                  "most %.4f N beyond 2%% (undamped peak %.3f N)\n",
-                  damping, worst, largest);
+      std::printf(
+          "[ measured ] direct, BA %g N s, paying out at 0.5 m/s: spool tension off the undamped run by at "
+          "most %.4f N beyond 2%% (undamped peak %.3f N)\n",
+          damping, worst, largest);
       EXPECT_LT(worst, 0.01);
       EXPECT_GT(largest, 0.1) << "the cable must pull at the spool for the comparison to mean anything";
     }

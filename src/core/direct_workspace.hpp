@@ -54,8 +54,8 @@ struct DirectWorkspace
   /// L_k + s_k [m]: the rest length plus, with axial damping BA, the shift s_k = BA / (h EA + BA) C_k(start)
   /// that makes C - s = alpha lambda the Kelvin-Voigt law (DirectWorkspace::begin).
   std::vector<double> stop;
-  std::vector<double> inv_rest;         ///< 1 / L_k [1/m].
-  std::vector<double> gamma;            ///< Compliance of bending joint j [1/(kg m^2)].
+  std::vector<double> inv_rest;  ///< 1 / L_k [1/m].
+  std::vector<double> gamma;     ///< Compliance of bending joint j [1/(kg m^2)].
   /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and
   /// after row m - 1 (on() points at row 0).
   std::vector<double> on_padded;

@@ -42,9 +42,9 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
     if (ba_over_h > 0.0 && strain > 0.0 && length > 0.0 && j > f)  // the spool segment undamped, as direct's
     {
       // d(length)/dt h = n . (moved_next - moved), strain rate over 1 / rest.
-      const double lengthening = ((moved_next.x() - moved.x()) * dx + (moved_next.y() - moved.y()) * dy +
-                                  (moved_next.z() - moved.z()) * dz) /
-                                 length;
+      const double lengthening =
+          ((moved_next.x() - moved.x()) * dx + (moved_next.y() - moved.y()) * dy + (moved_next.z() - moved.z()) * dz) /
+          length;
       tension = std::max(tension + ba_over_h * lengthening / state.rest[j], 0.0);
     }
     moved = moved_next;

@@ -68,7 +68,8 @@ Eigen::Quaterniond halfTurn(const Vector3& turn)
   {
     const double sine_over_angle = 0.25 * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));  // sin(a/4) / a
     const double cosine = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
-    return Eigen::Quaterniond(cosine, sine_over_angle * turn.x(), sine_over_angle * turn.y(), sine_over_angle * turn.z());
+    return Eigen::Quaterniond(cosine, sine_over_angle * turn.x(), sine_over_angle * turn.y(),
+                              sine_over_angle * turn.z());
   }
   const double angle = std::sqrt(angle_squared);
   return Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * angle, turn / angle));

@@ -193,7 +193,8 @@ void TetherNode::warnAboutStability() const
   {
     ROS_WARN(
         "tether_node: lumped_mass sub-step %.3g s exceeds its critical step %.3g s (segment_length / "
-        "sqrt(EA / mu), shorter with axial_damping): it will diverge (detected and reported); set substeps >= %.0f or iterations: auto",
+        "sqrt(EA / mu), shorter with axial_damping): it will diverge (detected and reported); set substeps >= %.0f or "
+        "iterations: auto",
         p.subStep(), p.criticalStep(), std::ceil(p.time_step / p.criticalStep()));
   }
 }

@@ -93,8 +93,8 @@ std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::strin
 
 /// A tether's state row and shape rows at t_out, and its running maxima; the row's Newton effort is the
 /// sub-steps' since the previous row (the tether's mark is moved on).
-void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file,
-                 std::vector<double>& tensions, std::vector<Position>& positions, RunSummary* result)
+void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file, std::vector<double>& tensions,
+                 std::vector<Position>& positions, RunSummary* result)
 {
   sim.computeSegmentTensions(tensions);
   const TetherSummary s = sim.summarize(tensions);
