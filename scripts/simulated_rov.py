@@ -7,6 +7,11 @@ followed piecewise-linearly. The vehicle turns towards its direction of travel a
 attached behind the vehicle then never moves faster than the vehicle's speed plus what the turn adds
 (|attachment offset| x yaw rate).
 
+The dive's clock starts when someone listens: until rov_pose has a subscriber (the tether node), for at
+most ~wait_for_listener seconds, the vehicle holds its first waypoint and publishes it. A tether node that
+starts slowly (a sanitizer build, a loaded machine) then attaches to the vehicle at the start of its dive,
+not to a vehicle already under way, whose first pose would lay the cable out taut and jerk it.
+
 With ~loop the dive repeats; when the last waypoint is not the first, a closing leg takes the vehicle back
 to the start at the dive's slowest speed, so the loop has no jump either.
 
@@ -16,7 +21,7 @@ the vehicle frame, the angles those of a frame looking along its x axis with z u
 as a scenario's `cameras:` entries give them. (Debian ships no static_transform_publisher.)
 
 Parameters: ~rate [Hz] (20), ~world_frame (world), ~rov_frame (rov), ~publish_tf (false), ~loop (true),
-~max_yaw_rate [deg/s] (30), ~waypoints (list of [t, x, y, z]; default: the dive of
+~max_yaw_rate [deg/s] (30), ~wait_for_listener [s] (30; 0 starts at once), ~waypoints (list of [t, x, y, z]; default: the dive of
 scenarios/spool_payout.yaml), ~camera_frame ("" = none), ~camera_pose ([0, 0, 0, 0, 0, 0]).
 """
 import math
@@ -156,6 +161,10 @@ def main():
     if not max_yaw_rate > 0:
         rospy.logfatal("simulated_rov: ~max_yaw_rate must be positive [deg/s], got %s", max_yaw_rate)
         return
+    wait_for_listener = float(rospy.get_param("~wait_for_listener", 30.0))
+    if not wait_for_listener >= 0 or math.isinf(wait_for_listener):
+        rospy.logfatal("simulated_rov: ~wait_for_listener must be finite and >= 0 [s], got %s", wait_for_listener)
+        return
     camera_frame = rospy.get_param("~camera_frame", "")
     camera_pose = rospy.get_param("~camera_pose", [0.0] * 6)
     if camera_frame and (len(camera_pose) != 6 or not all(math.isfinite(float(v)) for v in camera_pose)):
@@ -179,9 +188,18 @@ def main():
     pub = rospy.Publisher("rov_pose", PoseStamped, queue_size=10)
     broadcaster = tf2_ros.TransformBroadcaster() if publish_tf else None
     rate = rospy.Rate(rate_hz)
-    start = rospy.Time.now()
+    start = waiting_since = rospy.Time.now()
+    waiting = wait_for_listener > 0
     while not rospy.is_shutdown():
         now = rospy.Time.now()
+        if waiting:
+            if pub.get_num_connections() > 0:
+                waiting = False
+            elif (now - waiting_since).to_sec() >= wait_for_listener:
+                waiting = False
+                rospy.logwarn("simulated_rov: nobody subscribed to %s within ~wait_for_listener = %.0f s: "
+                              "the dive starts anyway", pub.resolved_name, wait_for_listener)
+            start = now  # the dive's clock starts when the waiting ends: until then, its first pose
         if now < start:  # simulated time went backwards (bag loop): restart the dive
             start = now
             dive.restart()

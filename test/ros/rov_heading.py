@@ -28,6 +28,7 @@ import simulated_rov  # noqa: E402  (scripts/ is not a Python package)
 
 ROUNDING = 1e-6  # [m]
 TIMEOUT = 30.0  # [s] for the node's first pose
+LATE = 2.0  # [s] the test subscribes this long after it starts
 
 
 def demo_offset():
@@ -88,9 +89,18 @@ class RovHeading(unittest.TestCase):
         rospy.init_node("rov_heading_test")
         waypoints = rospy.get_param("/simulated_rov/waypoints")
         dive = simulated_rov.Dive(waypoints)  # the node's path with its closing leg, for v_max
+        # The dive waits for a listener (~wait_for_listener): subscribed late, the first pose is still the
+        # first waypoint's, exactly (a dive already under way would be LATE x 1 m/s = 2 m along its first leg).
+        rospy.sleep(LATE)
         received = []
         rospy.Subscriber("/rov_pose", PoseStamped, received.append, queue_size=100)
-        rospy.wait_for_message("/rov_pose", PoseStamped, timeout=TIMEOUT)
+        deadline = rospy.Time.now() + rospy.Duration(TIMEOUT)
+        while not received and rospy.Time.now() < deadline:
+            rospy.sleep(0.01)
+        self.assertTrue(received, "no pose on /rov_pose within %.0f s" % TIMEOUT)
+        first = received[0].pose.position
+        self.assertEqual([first.x, first.y, first.z], waypoints[0][1:],
+                         "the vehicle holds its first waypoint until someone listens")
         end = rospy.Time.now() + rospy.Duration(dive.period + 1.0)  # one whole loop and its wrap
         while not rospy.is_shutdown() and rospy.Time.now() < end:
             rospy.sleep(0.1)
