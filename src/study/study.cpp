@@ -65,27 +65,6 @@ void finish(Result& r, const Tether& sim, double cpu, double simulated)
   }
 }
 
-/// Upward zero crossings of a sampled signal, linearly interpolated [s].
-struct CrossingCounter
-{
-  double last_t = kNaN, last_v = kNaN;
-  std::vector<double> crossings;
-  void add(double t, double v)
-  {
-    if (last_v < 0.0 && v >= 0.0)
-    {
-      crossings.push_back(last_t + (t - last_t) * (-last_v) / (v - last_v));
-    }
-    last_t = t, last_v = v;
-  }
-  /// Mean period between the first and last crossing [s]; NaN with fewer than two.
-  double period() const
-  {
-    return crossings.size() < 2 ? kNaN
-                                : (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  }
-};
-
 // --- Statics: the catenary between level supports --------------------------------------------------
 
 /// `length` of cable in `segments` segments, all deployed, winch locked, no bending, no noise: the

@@ -3,6 +3,7 @@
 // rov_tether_study tool (CSV for the charts) and by the tests that pin its findings.
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,27 @@ struct StabilityPoint
 };
 StabilityPoint stability(SolverType method, double time_step, double stiffness, double speed,
                          double over_relaxation = 1.0);
+
+/// Upward zero crossings of a sampled signal, linearly interpolated [s]: a period from a free oscillation.
+struct CrossingCounter
+{
+  double last_t = std::numeric_limits<double>::quiet_NaN(), last_v = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> crossings;
+  void add(double t, double v)
+  {
+    if (last_v < 0.0 && v >= 0.0)
+    {
+      crossings.push_back(last_t + (t - last_t) * (-last_v) / (v - last_v));
+    }
+    last_t = t, last_v = v;
+  }
+  /// Mean period between the first and last crossing [s]; NaN with fewer than two.
+  double period() const
+  {
+    return crossings.size() < 2 ? std::numeric_limits<double>::quiet_NaN()
+                                : (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  }
+};
 
 /// CPU time of the process [s].
 double cpuSeconds();
