@@ -121,9 +121,10 @@ TEST(BendingDynamics, TensionedBeamModesMatchTheClosedForm)
     for (int n = 0; n < 3; ++n)
     {
       const double error = m.measured[n] / m.expected[n] - 1.0;
-      std::printf("[ measured ] tensioned beam EI/(T L^2) = %g, L = %.0f m, T = %.4g N: mode %d %.4f rad/s, "
-                  "closed form %.4f, error %+.2f%%\n",
-                  row.beta, row.length, tension, n + 1, m.measured[n], m.expected[n], 100.0 * error);
+      std::printf(
+          "[ measured ] tensioned beam EI/(T L^2) = %g, L = %.0f m, T = %.4g N: mode %d %.4f rad/s, "
+          "closed form %.4f, error %+.2f%%\n",
+          row.beta, row.length, tension, n + 1, m.measured[n], m.expected[n], 100.0 * error);
       EXPECT_LT(std::abs(error), 0.02) << "EI/(T L^2) = " << row.beta << ", mode " << n + 1;
     }
   }
