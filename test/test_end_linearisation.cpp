@@ -384,7 +384,9 @@ TEST(EndLinearisation, ACableStiffnessIsSymmetricAndRestoring)
   EXPECT_EQ(linearised.force, sim->vehicleForce());
   EXPECT_EQ(linearised.position, sim->particle(n - 1));
   EXPECT_EQ(linearised.time, sim->time());
-  EXPECT_NEAR(linearised.force.norm(), tension, 1e-9 * tension);
+  // ...the last segment's pull back along it plus the weight in water of the half segment the end carries.
+  const Force half_segment(0.0, 0.0, -0.5 * sim->params().weight_in_water * chain.rest.back());
+  EXPECT_NEAR((linearised.force - half_segment + tension * along).norm(), 0.0, 1e-9 * tension);
 }
 
 // v0 is the end's motion over the last step: a vehicle sampled moving at 0.2 m/s along y.

@@ -50,6 +50,23 @@ Force endForce(const Cable& cable, const Multipliers& lambda, double step)
   return pull / (step * step);
 }
 
+Force startForce(const Cable& cable, const Multipliers& lambda, double step)
+{
+  const std::size_t n = cable.size();
+  const std::size_t f = cable.first;
+  if (step <= 0.0 || f + 1 >= n)
+  {
+    return Force::Zero();
+  }
+  // A stretched constraint (lambda > 0) pulls the outlet towards the cable.
+  Force pull = lambda.stretch[f] * cable.direction(f, f + 1);
+  if (f + 2 < n)
+  {
+    pull += lambda.bend[f] * cable.direction(f, f + 2);
+  }
+  return pull / (step * step);
+}
+
 TetherSummary summarize(const Cable& cable, const std::vector<double>& tensions, double deployed_length, double time)
 {
   TetherSummary result;

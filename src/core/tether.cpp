@@ -509,7 +509,9 @@ void Tether::finishVehicle(double h)
   const std::size_t n = cable_.size();
   // The tether's pull is what moved the attachment particle off its prediction in the solve:
   // M (x - x~) = h^2 F for the particle of mass 1 / w.
-  const Force pull = (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_);
+  // The vehicle carries the last half segment's weight besides (a pinned particle's share, vehicleForce()).
+  const Force pull =
+      (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_) + halfSegmentWeight(n - 2);
   cable_.setInverseMass(n - 1, 0.0);  // pinned again between sub-steps, as the kinematic end is
   Position reached;
   const Status stepped = vehicle_->finish(h, pull, &reached);
@@ -720,7 +722,25 @@ Force Tether::vehicleForce() const
   {
     return vehicle_->pull();
   }
-  return endForce(cable_, solver_->multipliers(), last_step_);
+  if (last_step_ <= 0.0)
+  {
+    return Force::Zero();
+  }
+  return endForce(cable_, solver_->multipliers(), last_step_) + halfSegmentWeight(cable_.size() - 2);
+}
+
+Force Tether::spoolForce() const
+{
+  if (last_step_ <= 0.0 || deployedParticleCount() < 2)
+  {
+    return Force::Zero();
+  }
+  return startForce(cable_, solver_->multipliers(), last_step_) + halfSegmentWeight(cable_.first);
+}
+
+Force Tether::halfSegmentWeight(std::size_t j) const
+{
+  return Force(0.0, 0.0, -0.5 * params_.weight_in_water * cable_.rest[j]);
 }
 
 Status Tether::vehicleEndLinearisation(EndLinearisation* out, double horizon)
@@ -768,7 +788,10 @@ TetherSummary Tether::summary() const
 
 TetherSummary Tether::summarize(const std::vector<double>& tensions) const
 {
-  return rov_tether::summarize(cable_, tensions, deployedLength(), time_);
+  TetherSummary s = rov_tether::summarize(cable_, tensions, deployedLength(), time_);
+  s.spool_force = spoolForce();
+  s.vehicle_force = vehicleForce();
+  return s;
 }
 
 }  // namespace rov_tether

@@ -95,6 +95,9 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
   const TetherSummary summary = sim.summarize(tensions);
   msg->tension_spool = summary.tension_spool;
   msg->tension_vehicle = summary.tension_vehicle;
+  const auto vector3 = [](const Force& f, geometry_msgs::Vector3& out) { out.x = f.x(), out.y = f.y(), out.z = f.z(); };
+  vector3(summary.spool_force, msg->spool_force);
+  vector3(summary.vehicle_force, msg->vehicle_force);
   msg->max_tension = summary.max_tension;
   msg->max_tension_segment = static_cast<std::uint32_t>(summary.max_tension_segment);
   msg->max_tension_arc_length = tensions.empty() ? 0.0 : sim.arcLengthFromVehicleToSegment(summary.max_tension_segment);

@@ -81,6 +81,8 @@ void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_upd
   const LoadGovernor& governor = schedule.governor;
   status.add("deployed length [m]", summary.deployed_length);
   status.add("tension at vehicle [N]", summary.tension_vehicle);
+  status.add("force on vehicle [N]", summary.vehicle_force.norm());
+  status.add("force on spool [N]", summary.spool_force.norm());
   status.add("max tension [N]", summary.max_tension);
   status.add("step time [us]", schedule.step_seconds * 1e6);
   status.add("physics real-time factor", schedule.real_time_factor);

@@ -16,7 +16,8 @@ namespace rov_tether
 {
 
 const char* const kStateCsvHeader =
-    "t,deployed_length,tension_spool,tension_vehicle,max_tension,max_strain,newton_mean,newton_max,newton_residual";
+    "t,deployed_length,tension_spool,tension_vehicle,spool_force,vehicle_force,max_tension,max_strain,newton_mean,"
+    "newton_max,newton_residual";
 const char* const kShapeCsvHeader = "t,i,x,y,z,tension";
 const char* const kTopologyCsvHeader = "t,tether,object,kind,value";
 
@@ -99,8 +100,8 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   sim.computeSegmentTensions(tensions);
   const TetherSummary s = sim.summarize(tensions);
   sim.copyPositions(positions);
-  std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g,", t_out, s.deployed_length, s.tension_spool,
-               s.tension_vehicle, s.max_tension, s.max_strain);
+  std::fprintf(state_file, "%.6f,%.6f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,", t_out, s.deployed_length, s.tension_spool,
+               s.tension_vehicle, s.spool_force.norm(), s.vehicle_force.norm(), s.max_tension, s.max_strain);
   const SolverEffort& effort = sim.solverEffortSinceMark();
   if (effort.substeps > 0)
   {

@@ -165,6 +165,11 @@ TEST(Converters, StateMessageCarriesTheSimulation)
   EXPECT_DOUBLE_EQ(msg.max_tension, summary.max_tension);
   EXPECT_EQ(msg.max_tension_segment, summary.max_tension_segment);
   EXPECT_GT(msg.max_tension, 1.0);  // a heavy cable hangs in tension
+  // The end forces, world frame: the cable pulls both ends down (a heavy cable hanging between them).
+  EXPECT_EQ(Force(msg.spool_force.x, msg.spool_force.y, msg.spool_force.z), summary.spool_force);
+  EXPECT_EQ(Force(msg.vehicle_force.x, msg.vehicle_force.y, msg.vehicle_force.z), summary.vehicle_force);
+  EXPECT_LT(msg.spool_force.z, 0.0);
+  EXPECT_LT(msg.vehicle_force.z, 0.0);
   EXPECT_NEAR(msg.residual_stretch, summary.mean_strain, 1e-12);
   EXPECT_EQ(msg.winch_mode, "locked");
   EXPECT_EQ(msg.winch_speed, 0.25);

@@ -20,6 +20,11 @@ struct TetherSummary
   std::size_t max_tension_segment = 0;  ///< Segment index of max_tension, 0 at the spool.
   double max_strain = 0.0;              ///< Largest geometric strain |d| / rest - 1 [-].
   double mean_strain = 0.0;             ///< Mean absolute geometric strain, the solver's residual stretch [-].
+  /// The force the spool outlet receives from the cable [N], world frame: the first segment's pull plus the
+  /// weight in water of the half segment lumped at the outlet particle (Tether::spoolForce()).
+  Force spool_force = Force::Zero();
+  /// The force the vehicle receives [N] (Tether::vehicleForce()); zero with no vehicle attached.
+  Force vehicle_force = Force::Zero();
 };
 
 /**
@@ -32,6 +37,9 @@ void segmentTensions(const Cable& cable, const Multipliers& lambda, double step,
 
 /// Pull of the cable on its last particle (the vehicle attachment) [N], from the same multipliers.
 Force endForce(const Cable& cable, const Multipliers& lambda, double step);
+
+/// Pull of the cable on its first deployed particle (the spool outlet) [N], from the same multipliers.
+Force startForce(const Cable& cable, const Multipliers& lambda, double step);
 
 /// Deployed length, end tensions, maximum tension and strain from segment tensions already computed.
 TetherSummary summarize(const Cable& cable, const std::vector<double>& tensions, double deployed_length, double time);

@@ -178,9 +178,16 @@ class Tether
   bool segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const;
   /// Arc length from the vehicle end to the middle of deployed segment k (k = 0 at the spool) [m].
   double arcLengthFromVehicleToSegment(std::size_t k) const;
-  /// Pull of the tether on the vehicle attachment point [N]; zero without a vehicle. With a dynamic vehicle,
-  /// the force the last sub-step's solve applied to it (VehicleCoupling).
+  /// The force the vehicle receives at its attachment point [N], world frame; zero without a vehicle: the
+  /// last segment's pull plus the weight in water of the half segment lumped at the attachment particle, which
+  /// the vehicle carries (a kinematic end's particle is pinned, so nothing else holds it up). With a dynamic
+  /// vehicle, the force the last sub-step applied to the body (VehicleCoupling), the same two terms.
+  /// Not included: that half segment's inertia and drag (m a with m = mass_per_length x dL / 2), and the
+  /// last bending joint's force on the end (`direct`'s joints carry no multiplier here).
   Force vehicleForce() const;
+  /// The force the spool outlet receives from the cable [N], world frame: the first segment's pull plus the
+  /// weight in water of the half segment lumped at the outlet. Zero before the first step.
+  Force spoolForce() const;
   /// The pull on a kinematic vehicle end linearised in the end's position and velocity, for an external
   /// vehicle simulator (end_linearisation.hpp): F0 = vehicleForce(), K from the last `direct` step's own
   /// Newton system (a factorisation and three solves, on demand), C = 0 (derived there). Refused without
@@ -285,6 +292,9 @@ class Tether
   double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].
   std::uint64_t base_steps_ = 0;
   mutable std::vector<double> tension_scratch_;  ///< Reused by summary() so it does not allocate.
+  /// Weight in water of half of deployed segment `j` (an index into the cable) [N]: what the particle at
+  /// either of its ends carries of it.
+  Force halfSegmentWeight(std::size_t j) const;
   double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;

@@ -1,0 +1,116 @@
+// End forces (issue 24): what the spool and the vehicle receive from a heavy cable, against the closed-form
+// end reactions of its catenary. docs/references.md, "End forces of a heavy catenary".
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "rov_tether/core/tether.hpp"
+#include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/study/study.hpp"
+#include "test_helpers.hpp"
+
+namespace rov_tether::test
+{
+namespace
+{
+
+// A heavy jumper-like cable (410 N/m in water, EA 5e8 N; 100 m between level supports 80 m apart) in coarse
+// 2.5 m segments, at rest. A continuous catenary's supports each carry H horizontally and half its weight,
+// w L / 2, vertically; the discrete chain's end segments carry that less the half segment of weight lumped
+// at the end particle, w dL / 2 = 2.5% of V here, which the support holds too. The end forces
+// (spoolForce(), vehicleForce()) must match H and w L / 2 within 0.1% (the issue's bound; the chain's own
+// discretisation moves H by O((dL / L)^2), measured below), where the end segments' tensions miss the
+// support tension T(0) by about w dL / 2 x V / T(0).
+constexpr double kLength = 100.0, kSpan = 80.0, kWeight = 410.0, kStiffness = 5e8;
+
+TetherParams heavyCable()
+{
+  TetherParams p;
+  p.cable_length = kLength;
+  p.segment_length = 2.5;
+  p.initial_deployed_length = kLength;
+  p.min_deployed_length = p.segment_length;
+  p.winch_mode = WinchMode::kLocked;
+  p.noise = 0.0;
+  p.bending = false;
+  p.weight_in_water = kWeight;
+  p.mass_per_length = 50.0;
+  p.axial_stiffness = kStiffness;
+  return p;
+}
+
+study::Catenary heavyCatenary()
+{
+  study::Catenary reference;
+  reference.length = kLength;
+  reference.weight = kWeight;
+  reference.stiffness = kStiffness;
+  EXPECT_TRUE(reference.solve(kSpan));
+  return reference;
+}
+
+TEST(EndForces, HeavyCatenaryEndsCarryTheClosedFormReactions)
+{
+  Tether sim(heavyCable(), Position::Zero(), Position(kSpan, 0.0, 0.0));
+  ASSERT_TRUE(sim.advance(60.0).ok);
+  const study::Catenary reference = heavyCatenary();
+  const double h = reference.horizontal, v = 0.5 * kWeight * kLength;
+  const Force spool = sim.spoolForce(), vehicle = sim.vehicleForce();
+  const TetherSummary s = sim.summary();
+  const double support = reference.tension(0.0);
+  std::printf(
+      "[ measured ] heavy catenary, 2.5 m segments: H %.2f N, V %.2f N; spool (%.2f, %.2f, %.2f) N, "
+      "vehicle (%.2f, %.2f, %.2f) N; end segments %.2f / %.2f N against T(0) %.2f N (%+.2f%%)\n",
+      h, v, spool.x(), spool.y(), spool.z(), vehicle.x(), vehicle.y(), vehicle.z(), s.tension_spool, s.tension_vehicle,
+      support, 100.0 * (s.tension_spool / support - 1.0));
+  // The supports pull the cable up and outwards, so the cable pulls the spool towards the vehicle (+x) and
+  // the vehicle back (-x), and both down.
+  EXPECT_NEAR(spool.x(), h, 1e-3 * h);
+  EXPECT_NEAR(vehicle.x(), -h, 1e-3 * h);
+  EXPECT_NEAR(spool.z(), -v, 1e-3 * v);
+  EXPECT_NEAR(vehicle.z(), -v, 1e-3 * v);
+  EXPECT_NEAR(spool.y(), 0.0, 1e-9 * v);
+  EXPECT_EQ(s.spool_force, spool);
+  EXPECT_EQ(s.vehicle_force, vehicle);
+  // The segment tensions stay what they are, the axial force inside the end segments: short of the support's.
+  EXPECT_LT(s.tension_spool, support * (1.0 - 1e-3));
+}
+
+// A dynamic vehicle carries the half segment at its end as a kinematic one does: the same catenary hung
+// from a body too heavy to move much (1e9 kg, neutrally buoyant, its damping scaled alike: it drifts a few mm
+// in the minute; heavier, the pull, M (x - x~) / h^2, would lose digits to rounding: 4% at 1e12 kg), which
+// the step couples in, pulls it with the closed-form reaction within 0.1%. Without the half segment's
+// weight its vertical pull would be 2.5% short.
+TEST(EndForces, ADynamicVehicleCarriesItsHalfSegment)
+{
+  VehicleParams heavy;  // the BlueROV2 Heavy with every mass, inertia and damping scaled up alike
+  const double scale = 1e9 / heavy.mass;
+  heavy.mass *= scale;
+  heavy.inertia *= scale;
+  heavy.added_mass *= scale;
+  heavy.linear_damping *= scale;
+  heavy.quadratic_damping *= scale;
+  heavy.displaced_volume = heavy.mass / heavy.water_density;
+  VehicleBody body;
+  ASSERT_TRUE(body.setParams(heavy).ok);
+  ASSERT_TRUE(body.setState({kSpan, 0.0, 0.0}, Eigen::Quaterniond::Identity(), Twist::Zero()).ok);
+  Tether sim(heavyCable(), Position::Zero());
+  const Status attached = sim.attachVehicleBody(body, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(attached.ok) << attached.message;
+  ASSERT_TRUE(sim.advance(60.0).ok);
+  const study::Catenary reference = heavyCatenary();
+  const double h = reference.horizontal, v = 0.5 * kWeight * kLength;
+  const Force pull = sim.vehicleForce();
+  std::printf(
+      "[ measured ] heavy catenary from a 1e9 kg vehicle: pull (%.2f, %.2f, %.2f) N against (%.2f, 0, %.2f) N; "
+      "the vehicle moved %.2g m\n",
+      pull.x(), pull.y(), pull.z(), -h, -v,
+      (sim.particle(sim.deployedParticleCount() - 1) - Position(kSpan, 0.0, 0.0)).norm());
+  EXPECT_NEAR(pull.x(), -h, 1e-3 * h);
+  EXPECT_NEAR(pull.z(), -v, 1e-3 * v);
+  EXPECT_EQ(sim.summary().vehicle_force, pull);
+}
+
+}  // namespace
+}  // namespace rov_tether::test
