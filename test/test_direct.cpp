@@ -305,6 +305,8 @@ enum class Path
   kDual,
   kPrimal,
   kLumpedMass,
+  kXpbd,         ///< in place (a short cable)
+  kXpbdBlocked,  ///< the blocked copies a long cable takes
 };
 
 double measuredDampingRatio(double damping, double h, Path path)
@@ -328,7 +330,12 @@ double measuredDampingRatio(double damping, double h, Path path)
   cable.bend_weight.assign(cable.bend_weight.size(), 0.0);
   DirectSolver direct;
   LumpedMassSolver lumped;
-  ConstraintSolver& solver = path == Path::kLumpedMass ? static_cast<ConstraintSolver&>(lumped) : direct;
+  PbdSolver xpbd(true);
+  PbdSolver xpbd_blocked(true, 0);
+  ConstraintSolver& solver = path == Path::kLumpedMass    ? static_cast<ConstraintSolver&>(lumped)
+                             : path == Path::kXpbd        ? static_cast<ConstraintSolver&>(xpbd)
+                             : path == Path::kXpbdBlocked ? static_cast<ConstraintSolver&>(xpbd_blocked)
+                                                          : direct;
   solver.multipliers().resize(4);
   SolverSettings settings;
   settings.time_step = h;
@@ -337,6 +344,7 @@ double measuredDampingRatio(double damping, double h, Path path)
   settings.bending = bending;
   settings.bending_stiffness = bending ? 0.2 : 0.0;
   settings.tolerance = 1e-12;
+  settings.iterations = 50;  // xpbd's Gauss-Seidel: enough sweeps for its two segments to converge
   std::vector<double> peaks;
   double before = kick, now = kick;
   const int steps = static_cast<int>(std::lround(3.0 / h));
@@ -368,10 +376,10 @@ TEST(Direct, AxialDampingIsKelvinVoigt)
   const double omega = std::sqrt(stiffness / mass);
   const double zeta = 0.1;
   const double damping = zeta * 2.0 * std::sqrt(stiffness * mass) * 1.0 / 2.0;  // BA = c L / 2
-  for (const Path path : {Path::kDual, Path::kPrimal, Path::kLumpedMass})
+  for (const Path path : {Path::kDual, Path::kPrimal, Path::kLumpedMass, Path::kXpbd, Path::kXpbdBlocked})
   {
-    const char* name =
-        path == Path::kDual ? "direct, dual" : (path == Path::kPrimal ? "direct, primal" : "lumped_mass");
+    const char* names[] = {"direct, dual", "direct, primal", "lumped_mass", "xpbd, in place", "xpbd, blocked"};
+    const char* name = names[static_cast<int>(path)];
     for (const double h : {1e-3, 5e-4})
     {
       const double measured = measuredDampingRatio(damping, h, path);

@@ -145,7 +145,7 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"axial_stiffness", "double", "N", 0.0, 1e12, kOpen, kClosed, "",
        "EA: `xpbd`, `lumped_mass`, `direct` stiffness; `pbd`: only the scale of T/EA", kLive},
       {"axial_damping", "double", "N s", 0.0, 1e12, kClosed, kClosed, "",
-       "BA: Kelvin-Voigt axial damping (`direct`, `lumped_mass`), tension EA e + BA de/dt; 0 = none", kLive},
+       "BA: Kelvin-Voigt axial damping (`direct`, `xpbd`, `lumped_mass`), tension EA e + BA de/dt; 0 = none", kLive},
       {"bending_stiffness", "double", "N m^2", 0.0, 1e9, kClosed, kClosed, "",
        "EI of `xpbd`'s and `direct`'s bending; 0 = none", kLive},
       {"drag_model", "string", "-", kNone, kNone, kClosed, kClosed, "", "the paper's damping or Morison drag", kLive},

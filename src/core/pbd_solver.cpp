@@ -20,15 +20,18 @@ constexpr double kMinLengthSquared = 1e-24;
  * not overlap, so the loop has no dependency between iterations and vectorises.
  *
  * kPower 0 is PBD (rigid), its correction scaled by `relax` (successive over-relaxation; 1 = the paper's). kPower 1 is
- * XPBD with the compliance alpha~ = compliance * rest (already divided by dt^2): the multiplier increment is
- * (C - alpha~ lambda) / (w_a + w_b + alpha~).
+ * XPBD with the compliance alpha~ = compliance * alpha_len (already divided by dt^2): the multiplier increment is
+ * (C - alpha~ lambda) / (w_a + w_b + alpha~) with C = |d| - stop. Undamped, alpha_len and stop are the rest
+ * lengths; with axial damping (Kelvin-Voigt), PbdSolver::dampedLengths.
  */
 template <int kPower>
 ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay, double* __restrict az,
                                     const double* __restrict aw, double* __restrict bx, double* __restrict by,
                                     double* __restrict bz, const double* __restrict bw, const double* __restrict rest,
                                     const double* __restrict weight, double* __restrict lambda, std::size_t count,
-                                    double compliance = 0.0, double relax = 1.0)
+                                    double compliance = 0.0, double relax = 1.0,
+                                    const double* __restrict stop = nullptr,
+                                    const double* __restrict alpha_len = nullptr)
 {
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -47,10 +50,9 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
     }
     else
     {
-      const double r = rest[k];
-      const double alpha = compliance * r;
+      const double alpha = compliance * alpha_len[k];
       const double delta =
-          (length_squared * inv_length - r - alpha * lambda[k]) / (aw[k] + bw[k] + alpha + kMinLengthSquared);
+          (length_squared * inv_length - stop[k] - alpha * lambda[k]) / (aw[k] + bw[k] + alpha + kMinLengthSquared);
       lambda[k] += delta;
       s = delta * inv_length;
     }
@@ -73,7 +75,7 @@ ROV_TETHER_INLINE void projectPairs(double* __restrict ax, double* __restrict ay
  */
 template <int kPower>
 void projectPairAnisotropic(Cable& cable, std::size_t a, std::size_t b, double rest, double& lambda, double compliance,
-                            double relax)
+                            double relax, double stop = 0.0, double alpha_len = 0.0)
 {
   const double dx = cable.x[b] - cable.x[a];
   const double dy = cable.y[b] - cable.y[a];
@@ -98,8 +100,8 @@ void projectPairAnisotropic(Cable& cable, std::size_t a, std::size_t b, double r
   }
   else
   {
-    const double alpha = compliance * rest;
-    const double delta = (length_squared * inv_length - rest - alpha * lambda) / (mobility + alpha);
+    const double alpha = compliance * alpha_len;
+    const double delta = (length_squared * inv_length - stop - alpha * lambda) / (mobility + alpha);
     lambda += delta;
     s = delta * inv_length;
   }
@@ -131,6 +133,8 @@ struct Blocked
   const double* rest;
   const double* weight;
   double* lambda;
+  const double* stop;       ///< xpbd: the length each stretch constraint holds (rest, or shifted by damping).
+  const double* alpha_len;  ///< xpbd: compliance * alpha_len is the constraint's alpha~ (rest undamped).
   const double* bend_rest;
   const double* bend_weight;
   double* bend_lambda;
@@ -162,7 +166,7 @@ ROV_TETHER_INLINE void projectResidue(const Blocked& c, std::size_t r, std::size
   else
   {
     projectPairs<1>(c.x + a, c.y + a, c.z + a, c.w + a, c.x + b, c.y + b, c.z + b, c.w + b, rest, weight, lambda, count,
-                    compliance);
+                    compliance, 1.0, c.stop + a, c.alpha_len + a);
   }
 }
 
@@ -266,21 +270,45 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
   if (x_.size() < capacity)
   {
     for (auto* v : {&x_, &y_, &z_, &inv_mass_, &rest_, &weight_, &lambda_, &bend_rest_, &bend_weight_, &bend_lambda_,
-                    &joint_x_, &joint_y_, &joint_z_})
+                    &joint_x_, &joint_y_, &joint_z_, &stop_, &alpha_len_})
     {
       v->assign(capacity, 0.0);
     }
   }
+  if (cable_stop_.size() < state.size())
+  {
+    cable_stop_.assign(state.size(), 0.0);
+    cable_alpha_len_.assign(state.size(), 0.0);
+  }
   const double relax = compliant_ ? 1.0 : settings.over_relaxation;
+  const bool damped = compliant_ && settings.axial_damping > 0.0;
   // An anisotropic cable (added mass) is projected in place, constraint by constraint, in the same order.
   if (m <= direct_particles_ || state.anisotropic)
   {
-    solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, inv_ei_h2, relax);
+    const double* stop = state.rest.data();
+    const double* alpha_len = state.rest.data();
+    if (damped)
+    {
+      for (std::size_t j = f; j + 1 < state.size(); ++j)
+      {
+        dampedLengths(state, j, settings, &cable_stop_[j], &cable_alpha_len_[j]);
+      }
+      stop = cable_stop_.data();
+      alpha_len = cable_alpha_len_.data();
+    }
+    solveDirect(state, lambda, settings.iterations, bending, stretch_compliance, inv_ei_h2, relax, stop, alpha_len);
     copied_first_ = static_cast<std::size_t>(-1);  // the blocked copies are stale from here on
     return;
   }
   block_ = m / 4 + 2;  // room for particle 4 k + r + 2 one block further on
   copyIn(state, m);
+  if (damped)
+  {
+    for (std::size_t l = 0; l + 1 < m; ++l)
+    {
+      dampedLengths(state, f + l, settings, &stop_[slot(l)], &alpha_len_[slot(l)]);
+    }
+  }
   const Blocked blocked{x_.data(),
                         y_.data(),
                         z_.data(),
@@ -288,6 +316,8 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
                         rest_.data(),
                         weight_.data(),
                         lambda_.data(),
+                        damped ? stop_.data() : rest_.data(),
+                        damped ? alpha_len_.data() : rest_.data(),
                         bend_rest_.data(),
                         bend_weight_.data(),
                         bend_lambda_.data(),
@@ -301,6 +331,31 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
                         relax};
   solveBlocked(blocked, settings, bending);
   copyOut(state, lambda, m, bending);
+}
+
+void PbdSolver::dampedLengths(const Cable& state, std::size_t j, const SolverSettings& settings, double* stop,
+                              double* alpha_len)
+{
+  // Kelvin-Voigt in XPBD's implicit step, as direct's (direct_workspace.cpp): a segment's force T = (EA C +
+  // BA (C - C_0) / h) / L, C_0 its stretch at the step's start (from px), is lambda = T h^2 when C - s = alpha~
+  // lambda, alpha~ = L / (EA h^2 + BA h) and s = BA / (h EA + BA) C_0: the undamped constraint about the
+  // shifted length L + s, with its compliance L / (EA h^2) scaled by EA / (EA + BA / h). xpbd's constraints
+  // are two-sided, so C_0 counts as it is. The spool segment stays undamped: the winch changes its rest
+  // length before the step, which px's length does not know.
+  const double rest = state.rest[j];
+  if (j == state.first)
+  {
+    *stop = *alpha_len = rest;
+    return;
+  }
+  const double h = settings.time_step;
+  const double ea = settings.axial_stiffness;
+  const double ba = settings.axial_damping;
+  const double dx = state.px[j + 1] - state.px[j];
+  const double dy = state.py[j + 1] - state.py[j];
+  const double dz = state.pz[j + 1] - state.pz[j];
+  *stop = rest + ba / (h * ea + ba) * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest);
+  *alpha_len = rest * (ea / (ea + ba / h));
 }
 
 void PbdSolver::copyIn(Cable& state, std::size_t m)
@@ -377,7 +432,8 @@ namespace
 /// state's own arrays. The constraints of one call share no particle, so their order does not matter.
 template <int kPower>
 void projectStrided(Cable& state, Multipliers& multipliers, std::size_t first, std::size_t end, std::size_t step,
-                    std::size_t span, bool bend, double compliance, double relax)
+                    std::size_t span, bool bend, double compliance, double relax, const double* stop = nullptr,
+                    const double* alpha_len = nullptr)
 {
   double* x = state.x.data();
   double* y = state.y.data();
@@ -390,11 +446,13 @@ void projectStrided(Cable& state, Multipliers& multipliers, std::size_t first, s
   {
     if (state.anisotropic)
     {
-      projectPairAnisotropic<kPower>(state, j, j + span, rest[j], lambda[j], compliance, relax);
+      projectPairAnisotropic<kPower>(state, j, j + span, rest[j], lambda[j], compliance, relax,
+                                     kPower == 1 ? stop[j] : 0.0, kPower == 1 ? alpha_len[j] : 0.0);
       continue;
     }
     projectPairs<kPower>(x + j, y + j, z + j, w + j, x + j + span, y + j + span, z + j + span, w + j + span, rest + j,
-                         weight + j, lambda + j, 1, compliance, relax);
+                         weight + j, lambda + j, 1, compliance, relax, kPower == 1 ? stop + j : nullptr,
+                         kPower == 1 ? alpha_len + j : nullptr);
   }
 }
 
@@ -421,7 +479,8 @@ void projectJointsStrided(Cable& state, std::size_t first, std::size_t end, doub
 
 template <int kStretch>
 void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                     double inv_ei_h2, double relax, double* mx, double* my, double* mz)
+                     double inv_ei_h2, double relax, double* mx, double* my, double* mz, const double* stop,
+                     const double* alpha_len)
 {
   const std::size_t f = state.first;
   const std::size_t segments_end = state.size() - 1;
@@ -431,8 +490,9 @@ void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool ben
     // The blocked solver's sets, merged where they are independent: all even segments, all odd ones,
     // then bending residues {0, 1} and {2, 3} (mod 4), or the joints' residues 0, 1, 2, 3 in turn. Same
     // projections, same order of dependent ones.
-    projectStrided<kStretch>(state, lambda, f, segments_end, 2, 1, false, stretch_compliance, relax);
-    projectStrided<kStretch>(state, lambda, f + 1, segments_end, 2, 1, false, stretch_compliance, relax);
+    projectStrided<kStretch>(state, lambda, f, segments_end, 2, 1, false, stretch_compliance, relax, stop, alpha_len);
+    projectStrided<kStretch>(state, lambda, f + 1, segments_end, 2, 1, false, stretch_compliance, relax, stop,
+                             alpha_len);
     if (bending)
     {
       for (std::size_t r : {0, 2})
@@ -451,7 +511,7 @@ void solveDirectImpl(Cable& state, Multipliers& lambda, int iterations, bool ben
 }  // namespace
 
 void PbdSolver::solveDirect(Cable& state, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                            double inv_ei_h2, double relax)
+                            double inv_ei_h2, double relax, const double* stop, const double* alpha_len)
 {
   const std::size_t f = state.first;
   resetMultipliers(state, lambda, state.size() - 1, state.size() >= f + 3 ? state.size() - 2 : f);
@@ -460,12 +520,13 @@ void PbdSolver::solveDirect(Cable& state, Multipliers& lambda, int iterations, b
   std::fill(joint_z_.begin(), joint_z_.end(), 0.0);
   if (stretch_compliance == 0.0)
   {
-    solveDirectImpl<0>(state, lambda, iterations, bending, 0.0, 0.0, relax, nullptr, nullptr, nullptr);
+    solveDirectImpl<0>(state, lambda, iterations, bending, 0.0, 0.0, relax, nullptr, nullptr, nullptr, nullptr,
+                       nullptr);
   }
   else
   {
     solveDirectImpl<1>(state, lambda, iterations, bending, stretch_compliance, inv_ei_h2, 1.0, joint_x_.data(),
-                       joint_y_.data(), joint_z_.data());
+                       joint_y_.data(), joint_z_.data(), stop, alpha_len);
   }
   state.dirty_begin = state.dirty_end = 0;
 }

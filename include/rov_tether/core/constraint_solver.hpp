@@ -19,7 +19,7 @@ struct SolverSettings
   bool bending = true;           ///< Project the (i, i+2) bending constraints.
   double time_step = 0.005;      ///< Step the constraints are solved for [s].
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
-  double axial_damping = 0.0;    ///< BA [N s]: Kelvin-Voigt damping of direct and lumped_mass (0 = none).
+  double axial_damping = 0.0;    ///< BA [N s]: Kelvin-Voigt damping of direct, xpbd and lumped_mass (0 = none).
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
   double tolerance = 1e-8;       ///< direct: stop when every residual is below this x its length [-].

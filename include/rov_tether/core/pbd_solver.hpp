@@ -38,8 +38,13 @@ class PbdSolver : public ConstraintSolver
   void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) override;
 
  private:
+  /// `stop`, `alpha_len`: xpbd's stretch lengths by cable index (dampedLengths; the rest lengths undamped).
   void solveDirect(Cable& cable, Multipliers& lambda, int iterations, bool bending, double stretch_compliance,
-                   double inv_ei_h2, double relax);
+                   double inv_ei_h2, double relax, const double* stop, const double* alpha_len);
+  /// xpbd with axial_damping: segment j's (a cable index) shifted length `stop` and the length `alpha_len`
+  /// whose product with 1 / (EA dt^2) is its compliance (see the definition).
+  static void dampedLengths(const Cable& cable, std::size_t j, const SolverSettings& settings, double* stop,
+                            double* alpha_len);
   /// Where particle l of the deployed cable sits in the blocked arrays.
   std::size_t slot(std::size_t l) const { return (l & 3) * block_ + (l >> 2); }
   /// Copies the m deployed particles into the blocked arrays: their masses, rest lengths and weights where
@@ -55,6 +60,8 @@ class PbdSolver : public ConstraintSolver
   std::vector<double> rest_, weight_, lambda_;                 ///< Stretch constraint l joins l, l + 1.
   std::vector<double> bend_rest_, bend_weight_, bend_lambda_;  ///< Bending constraint l joins l, l + 2.
   std::vector<double> joint_x_, joint_y_, joint_z_;            ///< xpbd: joint l's three multipliers.
+  std::vector<double> stop_, alpha_len_;              ///< xpbd with axial damping: stretch l's lengths (dampedLengths).
+  std::vector<double> cable_stop_, cable_alpha_len_;  ///< The same by cable index, for the in-place path.
   std::size_t block_ = 0;
   std::size_t copied_first_ = static_cast<std::size_t>(-1);  ///< Layout of the copied constraint data.
   std::size_t copied_size_ = 0;

@@ -111,9 +111,9 @@ struct TetherParams
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
   /// Axial damping BA [N s] (Kelvin-Voigt: a taut segment's tension is EA e + BA de/dt, e its strain; MoorDyn's
-  /// BA, OrcaFlex's axial damping), inside `direct`'s implicit step and on `lumped_mass`'s explicit one (which
-  /// it makes shorter: criticalStep()); 0 = none. The spool segment (its rest length the winch's) is left
-  /// undamped. xpbd does not read it.
+  /// BA, OrcaFlex's axial damping), inside `direct`'s and `xpbd`'s implicit steps and on `lumped_mass`'s
+  /// explicit one (which it makes shorter: criticalStep()); 0 = none. The spool segment (its rest length the
+  /// winch's) is left undamped.
   double axial_damping = 0.0;
   /// Bending stiffness EI [N m^2] of xpbd's and direct's bending at the joints (when `bending` is on); 0 = no
   /// bending resistance. The default is a 2 cm polyurethane-jacketed tether's (E 25 MPa, I = pi d^4 / 64):
