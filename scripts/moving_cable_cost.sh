@@ -3,7 +3,7 @@
 #   scripts/moving_cable_cost.sh [SEGMENTS...]      (default 100 1000; BENCH=path/to/rov_tether_bench to use a
 #                                                    built binary as it is)
 # Runs BM_StepDirectBending/N (the default EI, the end pinned) and BM_StepDirectBendingMoving/N/{0,1} (the end
-# swaying across the cable with the winch locked; driving away with a brake winch paying out), three
+# moving across the cable at 1 m/s with the winch locked; driving away at 0.5 m/s with a brake paying out), three
 # repetitions each, and prints the CPU time of one step (medians), the ratio moving / static and the mean
 # Newton iterations a sub-step.
 set -euo pipefail
@@ -21,12 +21,14 @@ runs = collections.defaultdict(list)
 for b in json.load(sys.stdin)["benchmarks"]:
     if b.get("run_type") != "iteration":
         continue
+    if b.get("error_occurred"):
+        sys.exit("%s: %s" % (b["run_name"], b.get("error_message", "failed")))
     # [us] of CPU a step: the static benchmark steps once an iteration, the moving one a window of steps.
     per_step = b["cpu_time"] / b.get("steps_per_iteration", 1.0)
     runs[b["run_name"]].append((per_step, b.get("newton_iterations", float("nan"))))
 for size in sys.argv[1].split():
     static = statistics.median(t for t, _ in runs["BM_StepDirectBending/%s" % size])
-    for case, what in (("0", "swaying, winch locked"), ("1", "driving away, brake paying out")):
+    for case, what in (("0", "moving across, winch locked"), ("1", "driving away, brake paying out")):
         moving = runs["BM_StepDirectBendingMoving/%s/%s" % (size, case)]
         cost = statistics.median(t for t, _ in moving)
         print("N = %s, %s: %.1f us a step against %.1f us static, moving / static = %.2f; Newton %.2f a sub-step"

@@ -25,6 +25,7 @@ Parameters: ~rate [Hz] (20), ~world_frame (world), ~rov_frame (rov), ~publish_tf
 scenarios/spool_payout.yaml), ~camera_frame ("" = none), ~camera_pose ([0, 0, 0, 0, 0, 0]).
 """
 import math
+import time
 
 import rospy
 import tf2_ros
@@ -188,14 +189,17 @@ def main():
     pub = rospy.Publisher("rov_pose", PoseStamped, queue_size=10)
     broadcaster = tf2_ros.TransformBroadcaster() if publish_tf else None
     rate = rospy.Rate(rate_hz)
-    start = waiting_since = rospy.Time.now()
+    start = rospy.Time.now()
+    # The wait is timed on the wall clock: under simulated time, ROS time is 0 until /clock ticks and can
+    # jump (a bag's epoch, a loop back), neither of which says how long the vehicle has waited.
+    waiting_since = time.monotonic()
     waiting = wait_for_listener > 0
     while not rospy.is_shutdown():
         now = rospy.Time.now()
         if waiting:
             if pub.get_num_connections() > 0:
                 waiting = False
-            elif (now - waiting_since).to_sec() >= wait_for_listener:
+            elif time.monotonic() - waiting_since >= wait_for_listener:
                 waiting = False
                 rospy.logwarn("simulated_rov: nobody subscribed to %s within ~wait_for_listener = %.0f s: "
                               "the dive starts anyway", pub.resolved_name, wait_for_listener)

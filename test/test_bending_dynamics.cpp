@@ -100,10 +100,10 @@ Modes measureModes(double length, double tension, double axial_stiffness)
 // missing added mass would double every frequency, a wrong EI would move the last two rows.
 // Where the 2% comes from (the bound), and what the discretisation takes of it: the discrete
 // modes are low by (n pi dL / 2L)^2 / 6 on the string part and twice that on the bending part (0.8% at
-// mode 3 with 30 segments), and the implicit step by (omega h)^2 / 3 (0.15% at most here); the 1 mm jog
+// mode 3 with 30 segments), and the implicit step by (omega h)^2 / 3 (0.15% at most here); the 0.1 mm jog
 // (its largest modal amplitude q = 2 jog / pi) changes the tension by EA (q n pi / L)^2 / 4: under 1e-5 of T
-// in the tensioned rows (EA = 1e3 T), and 5e-4 of the beam's EI (pi / L)^2 with EA 1e5 N (a 1 mm jog
-// measured mode 1 3.8% high: the beam is stiffened by its own stretch).
+// in the tensioned rows (EA = 1e3 T), and 5e-4 of the beam's EI (pi / L)^2 with EA 1e5 N (a 1 mm jog, ten
+// times this one, measured mode 1 3.8% high: the beam is stiffened by its own stretch).
 TEST(BendingDynamics, TensionedBeamModesMatchTheClosedForm)
 {
   struct Row

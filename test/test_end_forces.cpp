@@ -112,5 +112,34 @@ TEST(EndForces, ADynamicVehicleCarriesItsHalfSegment)
   EXPECT_EQ(sim.summary().vehicle_force, pull);
 }
 
+// A cable cannot push: a pbd cable (bilateral constraints) driven back along itself at 5 m/s carries
+// compression in its end segments, which neither end receives; each still carries its half segment's weight
+// in water, exactly. Both ends' pushes left in, the vehicle would be pushed away along the cable.
+TEST(EndForces, ACompressedEndSegmentPushesNeitherEnd)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.solver = SolverType::kPbd;
+  p.winch_mode = WinchMode::kLocked;
+  p.initial_deployed_length = 3.0;
+  p.weight_in_water = 2.0;
+  Tether sim(p, Position::Zero(), Position(3.0, 0.0, 0.0));  // straight and taut along x
+  for (int k = 1; k <= 20; ++k)
+  {
+    ASSERT_TRUE(sim.addVehicleSample(0.01 * k, Position(3.0 - 0.05 * k, 0.0, 0.0)).ok);
+  }
+  bool compressed = false;
+  for (int k = 0; k < 20 && !compressed; ++k)
+  {
+    sim.step();
+    const TetherSummary s = sim.summary();
+    compressed = s.tension_vehicle < -0.1 && s.tension_spool < -0.1;
+  }
+  ASSERT_TRUE(compressed) << "the end segments never carried compression together";
+  const double dl = sim.state().rest[sim.state().size() - 2];
+  EXPECT_EQ(sim.vehicleForce(), Force(0.0, 0.0, -0.5 * p.weight_in_water * dl));
+  EXPECT_EQ(sim.spoolForce(), Force(0.0, 0.0, -0.5 * p.weight_in_water * sim.state().rest[sim.state().first]));
+}
+
 }  // namespace
 }  // namespace rov_tether::test

@@ -722,11 +722,14 @@ Force Tether::vehicleForce() const
   {
     return vehicle_->pull();
   }
-  if (last_step_ <= 0.0)
+  const std::size_t n = cable_.size();
+  if (last_step_ <= 0.0 || n < cable_.first + 2)
   {
     return Force::Zero();
   }
-  return endForce(cable_, solver_->multipliers(), last_step_) + halfSegmentWeight(cable_.size() - 2);
+  return cannotPush(endForce(cable_, solver_->multipliers(), last_step_),
+                    cable_.position(n - 2) - cable_.position(n - 1)) +
+         halfSegmentWeight(n - 2);
 }
 
 Force Tether::spoolForce() const
@@ -735,7 +738,15 @@ Force Tether::spoolForce() const
   {
     return Force::Zero();
   }
-  return startForce(cable_, solver_->multipliers(), last_step_) + halfSegmentWeight(cable_.first);
+  const std::size_t f = cable_.first;
+  return cannotPush(startForce(cable_, solver_->multipliers(), last_step_),
+                    cable_.position(f + 1) - cable_.position(f)) +
+         halfSegmentWeight(f);
+}
+
+Force Tether::cannotPush(const Force& pull, const Position& towards_cable)
+{
+  return pull.dot(towards_cable) > 0.0 ? pull : Force::Zero();
 }
 
 Force Tether::halfSegmentWeight(std::size_t j) const

@@ -373,18 +373,6 @@ void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& 
   }
 }
 
-Force pullOnVehicle(const Tether& sim)
-{
-  const std::size_t n = sim.deployedParticleCount();
-  if (!sim.vehicleAttached() || n < 2)
-  {
-    return Force::Zero();
-  }
-  const Force force = sim.vehicleForce();
-  const Eigen::Vector3d towards_cable = sim.particle(n - 2) - sim.particle(n - 1);
-  return force.dot(towards_cable) > 0.0 ? force : Force::Zero();
-}
-
 namespace
 {
 

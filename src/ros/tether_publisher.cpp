@@ -31,12 +31,12 @@ const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t reset
 
 geometry_msgs::WrenchStamped StateBuilder::wrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
 {
-  return toWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, frame_id_);
+  return toWrench(tether.vehicleForce(), vehicle, attachment_offset_, stamp_, frame_id_);
 }
 
 geometry_msgs::WrenchStamped StateBuilder::vehicleWrench(const Tether& tether, const Eigen::Isometry3d& vehicle) const
 {
-  return toVehicleWrench(pullOnVehicle(tether), vehicle, attachment_offset_, stamp_, vehicle_frame_);
+  return toVehicleWrench(tether.vehicleForce(), vehicle, attachment_offset_, stamp_, vehicle_frame_);
 }
 
 void StateBuilder::restart(const Tether& tether)
@@ -128,7 +128,7 @@ void TetherPublisher::publishCoupling(Tether& tether, double horizon)
                       status.message.c_str());
     return;
   }
-  toCouplingMessage(linearisation_, pullOnVehicle(tether), options_.world_frame, &coupling_);
+  toCouplingMessage(linearisation_, tether.vehicleForce(), options_.world_frame, &coupling_);
   coupling_pub_.publish(coupling_);
 }
 

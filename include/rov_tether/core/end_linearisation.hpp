@@ -16,7 +16,8 @@ using Velocity = Eigen::Vector3d;
  * (Tether::vehicleEndLinearisation; docs/model.md, "A kinematic end's linearisation for external simulators").
  *
  * K (stiffness) is the derivative of the last `direct` step's solved pull on the end, F = -lambda_e n_e / h^2
- * (vehicleForce(): the last segment's multiplier along its direction), with respect to where the end was at
+ * (the last segment's multiplier along its direction; vehicleForce() adds the constant weight of the half
+ * segment at the end, which K does not see), with respect to where the end was at
  * the step's end, the other particles answering through the step's own equations: their masses M / h^2, the
  * segments' axial stiffness 1 / alpha = EA h^2 / L, the geometric stiffness lambda / |d| (I - n n^T) and the
  * bending joints (EI > 0). With H the step energy's Hessian at the step's solution, B its last segment's block
@@ -33,10 +34,11 @@ using Velocity = Eigen::Vector3d;
  * zero in this model: the end enters the step only through its position at the step's end (pinned there).
  * The prediction x~ of every free particle uses its own velocity (x - x_prev), drag (damping or Morison) acts
  * on the free particles' own velocities (Morison's tangent reads the end's position from the step's start,
- * already past). With `axial_damping` (Kelvin-Voigt, docs/model.md) the last segment's dashpot does answer
- * the end's velocity within the step; C leaves it out (zero) and K is the elastic answer alone
- * (docs/limitations.md). The chain's damping reaches the vehicle through the chain's own motion, which the
- * next step's pull carries.
+ * already past). With `axial_damping` (Kelvin-Voigt, docs/model.md) the last segment's dashpot reads its
+ * strain rate from its length at the step's start, taken from x_prev, and a kinematic end's x_prev is where it
+ * is placed (Cable::place), so the dashpot does not see the end's own velocity (a limitation,
+ * docs/limitations.md): C = 0 is exact for the step as it is, and K the answer about the damped rest length. The
+ * chain's damping reaches the vehicle through the chain's own motion, which the next step's pull carries.
  *
  * The linearisation is of the last sub-step (with `substeps` > 1 the earlier sub-steps' answer to the
  * interpolated end is not in it), with the spool segment on its elastic law (a brake drum's give within the

@@ -178,15 +178,18 @@ class Tether
   bool segmentAtArcLengthFromVehicle(double arc_length, std::size_t* segment) const;
   /// Arc length from the vehicle end to the middle of deployed segment k (k = 0 at the spool) [m].
   double arcLengthFromVehicleToSegment(std::size_t k) const;
-  /// The force the vehicle receives at its attachment point [N], world frame; zero without a vehicle: the
-  /// last segment's pull plus the weight in water of the half segment lumped at the attachment particle, which
-  /// the vehicle carries (a kinematic end's particle is pinned, so nothing else holds it up). With a dynamic
-  /// vehicle, the force the last sub-step applied to the body (VehicleCoupling), the same two terms.
-  /// Not included: that half segment's inertia and drag (m a with m = mass_per_length x dL / 2), and the
-  /// last bending joint's force on the end (`direct`'s joints carry no multiplier here).
+  /// The force the vehicle receives at its attachment point [N], world frame; zero without a vehicle and
+  /// before the first step: the last segment's pull, unless the segment is compressed (a cable cannot push:
+  /// a pbd, xpbd or rod segment carrying compression gives nothing), plus the weight in water of the half
+  /// segment lumped at the attachment particle, which the vehicle carries (a kinematic end's particle is
+  /// pinned, so nothing else holds it up). With a dynamic vehicle, the force the last sub-step applied to the
+  /// body (VehicleCoupling): the solve's pull and the same weight. Not included: that half segment's inertia
+  /// and drag (m a with m = mass_per_length x dL / 2), and the last bending joint's force on the end (the
+  /// joints of `direct` and `xpbd` carry no multiplier here).
   Force vehicleForce() const;
-  /// The force the spool outlet receives from the cable [N], world frame: the first segment's pull plus the
-  /// weight in water of the half segment lumped at the outlet. Zero before the first step.
+  /// The force the spool outlet receives from the cable [N], world frame, as vehicleForce(): the first
+  /// segment's pull (none when it is compressed) plus the weight in water of the half segment lumped at the
+  /// outlet; not the first bending joint's force on it. Zero before the first step.
   Force spoolForce() const;
   /// The pull on a kinematic vehicle end linearised in the end's position and velocity, for an external
   /// vehicle simulator (end_linearisation.hpp): F0 = vehicleForce(), K from the last `direct` step's own
@@ -295,6 +298,8 @@ class Tether
   /// Weight in water of half of deployed segment `j` (an index into the cable) [N]: what the particle at
   /// either of its ends carries of it.
   Force halfSegmentWeight(std::size_t j) const;
+  /// `pull` when it pulls towards the cable (a positive component along `towards_cable`), else zero.
+  static Force cannotPush(const Force& pull, const Position& towards_cable);
   double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;

@@ -97,11 +97,6 @@ void toTopologyMessage(const World& world, const std::vector<TopologyEntry>& ent
 void toTransforms(const Tether& sim, const ros::Time& stamp, const std::string& world_frame,
                   const std::string& spool_frame, const std::string& end_frame, tf2_msgs::TFMessage* message);
 
-/// The pull of the tether on the vehicle at the attachment point [N, world frame]: Tether::vehicleForce(), or
-/// zero when the end segment is compressed (a cable cannot push: the force's component along the end
-/// segment, towards the cable, is not positive). Zero without a vehicle.
-Force pullOnVehicle(const Tether& sim);
-
 /// `pull` [N] in `frame_id` (the world frame), with its torque about the vehicle origin [N m]: the lever arm
 /// is `attachment_offset` (vehicle frame) turned by the orientation of `vehicle`, the vehicle's pose at the
 /// time of the force (the physics' time).
@@ -116,8 +111,8 @@ geometry_msgs::WrenchStamped toVehicleWrench(const Force& pull, const Eigen::Iso
                                              const std::string& vehicle_frame);
 
 /// ~coupling: `linearisation` (Tether::vehicleEndLinearisation) stamped with its physics time, in `frame_id`
-/// (the world frame); F0 is `pull` (pullOnVehicle: what ~wrench gives, zero when the end segment is
-/// compressed), K and C row-major.
+/// (the world frame); F0 is `pull` (Tether::vehicleForce(), what ~wrench gives: no push from a compressed
+/// end segment, the half segment's weight always), K and C row-major.
 void toCouplingMessage(const EndLinearisation& linearisation, const Force& pull, const std::string& frame_id,
                        TetherCoupling* message);
 
