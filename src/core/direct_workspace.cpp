@@ -69,7 +69,7 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   // the undamped alpha. The spool segment is left undamped: the winch changes its rest length before the step
   // (pay-out, reel-in), which px's length does not know, and a drum's law replaces its elastic one.
   const double damping = settings.axial_damping;
-  const double shift_share = damping > 0.0 ? damping / (h * settings.axial_stiffness + damping) : 0.0;
+  const double shift_share = settings.dampingShiftShare();
   const double slack_floor = unilateral ? 0.0 : -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < m; ++k)
   {
@@ -77,15 +77,7 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
     const bool damped = shift_share > 0.0 && k > 0;
     alpha[k] = rest / (settings.axial_stiffness * h2 + (damped ? damping * h : 0.0));
     inv_rest[k] = 1.0 / rest;
-    double shift = 0.0;
-    if (damped)
-    {
-      const double dx = cable.px[f + k + 1] - cable.px[f + k];
-      const double dy = cable.py[f + k + 1] - cable.py[f + k];
-      const double dz = cable.pz[f + k + 1] - cable.pz[f + k];
-      shift = shift_share * std::max(std::sqrt(dx * dx + dy * dy + dz * dz) - rest, slack_floor);
-    }
-    stop[k] = rest + shift;
+    stop[k] = rest + (damped ? shift_share * std::max(cable.startLength(f + k) - rest, slack_floor) : 0.0);
   }
   for (std::size_t k = 0; bending && k + 1 < m; ++k)
   {

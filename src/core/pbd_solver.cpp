@@ -275,11 +275,6 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
       v->assign(capacity, 0.0);
     }
   }
-  if (cable_stop_.size() < state.size())
-  {
-    cable_stop_.assign(state.size(), 0.0);
-    cable_alpha_len_.assign(state.size(), 0.0);
-  }
   const double relax = compliant_ ? 1.0 : settings.over_relaxation;
   const bool damped = compliant_ && settings.axial_damping > 0.0;
   // An anisotropic cable (added mass) is projected in place, constraint by constraint, in the same order.
@@ -289,6 +284,11 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
     const double* alpha_len = state.rest.data();
     if (damped)
     {
+      if (cable_stop_.size() < state.size())  // sized for the whole cable once: pay-out never reallocates
+      {
+        cable_stop_.assign(state.size(), 0.0);
+        cable_alpha_len_.assign(state.size(), 0.0);
+      }
       for (std::size_t j = f; j + 1 < state.size(); ++j)
       {
         dampedLengths(state, j, settings, &cable_stop_[j], &cable_alpha_len_[j]);
@@ -348,14 +348,9 @@ void PbdSolver::dampedLengths(const Cable& state, std::size_t j, const SolverSet
     *stop = *alpha_len = rest;
     return;
   }
-  const double h = settings.time_step;
   const double ea = settings.axial_stiffness;
-  const double ba = settings.axial_damping;
-  const double dx = state.px[j + 1] - state.px[j];
-  const double dy = state.py[j + 1] - state.py[j];
-  const double dz = state.pz[j + 1] - state.pz[j];
-  *stop = rest + ba / (h * ea + ba) * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest);
-  *alpha_len = rest * (ea / (ea + ba / h));
+  *stop = rest + settings.dampingShiftShare() * (state.startLength(j) - rest);
+  *alpha_len = rest * (ea / (ea + settings.axial_damping / settings.time_step));
 }
 
 void PbdSolver::copyIn(Cable& state, std::size_t m)

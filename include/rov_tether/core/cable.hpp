@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -69,6 +70,12 @@ struct Cable
   void place(std::size_t i, const Position& p);
   /// Geometric strain |x_{j+1} - x_j| / rest_j - 1 of segment j [-].
   double strain(std::size_t j) const { return (position(j + 1) - position(j)).norm() / rest[j] - 1.0; }
+  /// Length of segment j at the step's start, from the previous positions px, py, pz [m].
+  double startLength(std::size_t j) const
+  {
+    const double dx = px[j + 1] - px[j], dy = py[j + 1] - py[j], dz = pz[j + 1] - pz[j];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  }
   /// Unit vector from particle a to particle b (zero when they coincide).
   Position direction(std::size_t a, std::size_t b) const;
   /// Recomputes the lumped masses of deployed particles [lo, hi] (half of each neighbouring segment at

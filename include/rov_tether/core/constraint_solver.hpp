@@ -20,6 +20,12 @@ struct SolverSettings
   double time_step = 0.005;      ///< Step the constraints are solved for [s].
   double axial_stiffness = 1e5;  ///< EA [N]; unused by the pbd solvers.
   double axial_damping = 0.0;    ///< BA [N s]: Kelvin-Voigt damping of direct, xpbd and lumped_mass (0 = none).
+  /// The implicit step's Kelvin-Voigt shift per unit of a segment's stretch at the step's start,
+  /// BA / (h EA + BA) (0 undamped): C - s = alpha lambda with s this times C_0 (direct_workspace.cpp).
+  double dampingShiftShare() const
+  {
+    return axial_damping > 0.0 ? axial_damping / (time_step * axial_stiffness + axial_damping) : 0.0;
+  }
   double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
   double tolerance = 1e-8;       ///< direct: stop when every residual is below this x its length [-].
