@@ -30,6 +30,12 @@ void Cable::place(std::size_t i, const Position& p)
   z[i] = pz[i] = p.z();
 }
 
+void Cable::placeMoving(std::size_t i, const Position& p, const Position& moved)
+{
+  place(i, p - moved);
+  x[i] = p.x(), y[i] = p.y(), z[i] = p.z();
+}
+
 Position Cable::direction(std::size_t a, std::size_t b) const
 {
   const Position d = position(b) - position(a);

@@ -62,7 +62,7 @@ void PrimalNewton::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&lambda_, &lambda_step_})
+  for (auto* v : {&lambda_, &lambda_step_, &middle_})
   {
     v->assign(n, 0.0);
   }
@@ -100,6 +100,7 @@ PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double to
   std::copy(lambda, lambda + m, lambda_.begin());
   Result result;
   result.residual = std::numeric_limits<double>::infinity();
+  model_unsettled_ = false;
   while (result.residual > tolerance && result.iterations < max_iterations)
   {
     if (!std::isfinite(step(cable, &result.rounds)))
@@ -179,8 +180,7 @@ double PrimalNewton::energy(const Cable& cable) const
       drum = ws_.drum->energy(ws_.c[0]);  // the spool segment and the drum in series
       continue;
     }
-    const double c = ws_.unilateral ? std::max(ws_.c[k], 0.0) : ws_.c[k];
-    elastic += c * c / ws_.alpha[k];
+    elastic += 2.0 * potential(k, ws_.c[k]);
   }
   for (std::size_t j = 0; ws_.bending && j + 1 < ws_.m; ++j)
   {
@@ -197,7 +197,41 @@ double PrimalNewton::segmentForce(std::size_t k, double c) const
   {
     return ws_.drum->force(c);
   }
-  return (ws_.unilateral ? std::max(c, 0.0) : c) / ws_.alpha[k];
+  return ws_.law(k, c);
+}
+
+double PrimalNewton::potential(std::size_t k, double c) const
+{
+  // The integral of the law from where it is 0: C^2 / (2 alpha) (max(C, 0) for a cable); with a middle
+  // piece f(C) = kink / alpha + slope (C - kink), zero at z, the integral f(C)^2 / (2 slope) from z, and above
+  // the kink that at the kink plus (C^2 - kink^2) / (2 alpha): continuous, as the line search needs.
+  const double a = ws_.alpha[k];
+  if (!ws_.unilateral)
+  {
+    return 0.5 * c * c / a;
+  }
+  if (!(ws_.dashpot[k] > 0.0))
+  {
+    const double taut = std::max(c, 0.0);
+    return 0.5 * taut * taut / a;
+  }
+  const double kink = ws_.kink[k];
+  if (c >= kink)
+  {
+    return 0.5 * (c * c - kink * kink) / a + middleEnergy(k, kink);
+  }
+  return middleEnergy(k, std::max(c, ws_.zero[k]));
+}
+
+double PrimalNewton::middleForce(std::size_t k, double c) const
+{
+  return ws_.kink[k] / ws_.alpha[k] + ws_.dashpot[k] * (c - ws_.kink[k]);
+}
+
+double PrimalNewton::middleEnergy(std::size_t k, double c) const
+{
+  const double force = middleForce(k, c);
+  return 0.5 * force * force / ws_.dashpot[k];
 }
 
 void PrimalNewton::assemble(const Cable& cable)
@@ -281,6 +315,12 @@ void PrimalNewton::assemble(const Cable& cable)
       // stiffness.
       lam = 0.0;
       axial = 0.0;
+    }
+    else if (inMiddle(k))
+    {
+      // The dashpot's middle piece of a slack segment: its force and slope (DirectWorkspace::begin).
+      lam = middleForce(k, ws_.c[k]);
+      axial = ws_.dashpot[k];
     }
     else if (!(model[k] > 0.0))
     {
@@ -373,9 +413,10 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
   const std::size_t m = ws_.m;
   const std::size_t rows = 3 * (m + 1);
   double* model = ws_.on();
-  for (std::size_t k = 0; k < m; ++k)
+  for (std::size_t k = 0; k < m && !model_unsettled_; ++k)
   {
-    model[k] = !ws_.unilateral || ws_.c[k] > 0.0 || ws_.taut[ws_.first + k] ? 1.0 : 0.0;
+    model[k] = !ws_.unilateral || ws_.c[k] > ws_.kink[k] || ws_.taut[ws_.first + k] ? 1.0 : 0.0;
+    middle_[k] = model[k] == 0.0 && ws_.dashpot[k] > 0.0 && ws_.c[k] > ws_.zero[k] ? 1.0 : 0.0;
   }
   for (int round = 0;; ++round)
   {
@@ -400,12 +441,18 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
     std::size_t changes = 0;
     for (std::size_t k = ws_.drum != nullptr ? 1 : 0; ws_.unilateral && k < m; ++k)
     {
-      const double now = linearStretch(k) > 0.0 ? 1.0 : 0.0;
-      changes += now != model[k] ? 1 : 0;
+      const double stretch = linearStretch(k);
+      const double now = stretch > ws_.kink[k] ? 1.0 : 0.0;
+      const double middle = now == 0.0 && ws_.dashpot[k] > 0.0 && stretch > ws_.zero[k] ? 1.0 : 0.0;
+      changes += now != model[k] || middle != middle_[k] ? 1 : 0;
       model[k] = now;
+      middle_[k] = middle;
     }
     if (changes == 0 || round + 1 >= kMaxModelRounds)
     {
+      // Still changing after the last round (a long slack run going taut a segment a round): the next
+      // Newton iteration goes on from this model, not from the start again.
+      model_unsettled_ = changes > 0;
       return true;
     }
   }
@@ -460,7 +507,10 @@ void PrimalNewton::multiplierStep(const Cable& cable)
   const double* model = ws_.on();
   for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < ws_.m; ++k)
   {
-    lambda_step_[k] = (model[k] > 0.0 ? linearStretch(k) / ws_.alpha[k] : 0.0) - lambda_[k];
+    const double target = model[k] > 0.0 ? linearStretch(k) / ws_.alpha[k]
+                          : inMiddle(k)  ? middleForce(k, linearStretch(k))
+                                         : 0.0;
+    lambda_step_[k] = target - lambda_[k];
   }
   if (ws_.drum != nullptr && !(cable.inv_mass[ws_.first + 1] > 0.0))
   {
@@ -491,6 +541,10 @@ double PrimalNewton::slope(double* largest) const
     else if (ws_.unilateral && model[k] > 0.0)
     {
       model_force = ws_.c[k] / ws_.alpha[k];
+    }
+    else if (inMiddle(k))
+    {
+      model_force = middleForce(k, ws_.c[k]);
     }
     else
     {
@@ -583,6 +637,12 @@ double PrimalNewton::residual(const Cable& cable)
     else if (!ws_.unilateral || model[k] > 0.0)
     {
       r = std::abs(ws_.c[k] - ws_.alpha[k] * lam);
+    }
+    else if (ws_.dashpot[k] > 0.0)
+    {
+      // Against the law's force (the middle piece's or 0), as the move it would make; and past the kink.
+      r = std::max(ws_.c[k] - ws_.kink[k], 0.0) +
+          std::abs(lam - ws_.law(k, ws_.c[k])) * (cable.inv_mass[f + k] + cable.inv_mass[f + k + 1]);
     }
     else
     {

@@ -39,6 +39,14 @@ class PrimalNewton
   /// The force (multiplier) segment k carries at stretch c: its law (one-sided for a cable; the drum's for
   /// the spool segment when there is one).
   double segmentForce(std::size_t k, double c) const;
+  /// Segment k's energy at stretch c: the integral of its law (continuous across the law's pieces).
+  double potential(std::size_t k, double c) const;
+  /// The dashpot's middle piece of segment k's law (DirectWorkspace::kink): its force at c, and its
+  /// energy from where that force is 0.
+  double middleForce(std::size_t k, double c) const;
+  double middleEnergy(std::size_t k, double c) const;
+  /// Segment k is in the model on its law's middle piece (this step has one for it).
+  bool inMiddle(std::size_t k) const { return ws_.dashpot[k] > 0.0 && middle_[k] > 0.0; }
   /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass
   /// (assembleMass), the segments' axial and geometric stiffness (assembleSegments), the joints' bending.
   void assemble(const Cable& cable);
@@ -76,6 +84,10 @@ class PrimalNewton
   /// The multipliers as unknowns of their own (Newton on positions and multipliers together, the
   /// multipliers eliminated from each linear solve), and their change over a Newton step.
   std::vector<double> lambda_, lambda_step_;
+  /// The model's segments on their law's middle piece, 1 or 0 (only read where the step has one).
+  std::vector<double> middle_;
+  /// The last Newton iteration's model had not settled in kMaxModelRounds: the next starts from it.
+  bool model_unsettled_ = false;
 };
 
 }  // namespace rov_tether

@@ -60,7 +60,9 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   const double tolerance = settings.tolerance;
   // The dual path first, unless the chain is a rod or was pulled too hard in the last step; the primal
   // takes over from where the dual stopped.
-  bool primal = workspace.bending || workspace.tension_ratio > kDualTensionRatio;
+  // The dual has no dashpot's middle piece (DirectWorkspace::kink): a damped cable with a slack segment goes
+  // to the primal.
+  bool primal = workspace.bending || workspace.dashpots || workspace.tension_ratio > kDualTensionRatio;
   if (primal)
   {
     methods_->primal.warmStart(cable, lam);

@@ -38,8 +38,9 @@ void DirectWorkspace::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&xt, &yt, &zt, &sx, &sy, &sz, &nx, &ny, &nz, &len, &c, &alpha, &stop, &gamma, &inv_rest, &warm_lambda,
-                  &correction_x, &correction_y, &correction_z})
+  for (auto* v : {&xt,    &yt,       &zt,          &sx,           &sy,           &sz,          &nx,      &ny,
+                  &nz,    &len,      &c,           &alpha,        &stop,         &kink,        &dashpot, &zero,
+                  &gamma, &inv_rest, &warm_lambda, &correction_x, &correction_y, &correction_z})
   {
     v->assign(n, 0.0);
   }
@@ -64,20 +65,32 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   // Kelvin-Voigt, backward Euler: a taut segment's force T = (EA C + BA (C - C_0) / h) / L, C_0 its stretch
   // at the step's start (from px), is lambda = T h^2, that is C - s = alpha lambda with alpha = L / (EA h^2 +
   // BA h) and s = BA / (h EA + BA) C_0: the undamped law with a softer compliance about a shifted rest
-  // length. A one-sided segment (no bending) takes C_0 as 0 when it was slack (a snap's rate counts from
-  // taut); a two-sided one (a rod, with bending) carries compression and takes C_0 as it is. BA = 0: s = 0 and
-  // the undamped alpha. The spool segment is left undamped: the winch changes its rest length before the step
-  // (pay-out, reel-in), which px's length does not know, and a drum's law replaces its elastic one.
+  // length (a rod's, two-sided, carries compression). BA = 0: s = 0 and the undamped alpha. The spool segment is
+  // left undamped: the winch changes its rest length before the step (pay-out, reel-in), which px's length
+  // does not know, and a drum's law replaces its elastic one.
+  // A cable's dashpot pulls when it is slack too, as MoorDyn's: a slack segment (C_0 < 0) pulled straight
+  // carries BA (e - e_0) / (h L) before it is taut, so a snap is spread over the time the slack takes to
+  // close, not an impulse over one step. Its spring is one-sided, and the sum is never below 0 (the cable
+  // does not push). In C (= e - s, s = BA / (h EA + BA) C_0) that is a three-piece convex law: C / alpha
+  // above the kink -s (e = 0), the dashpot's slope BA h / L below it down to where its force is 0
+  // (e = e_0), 0 below that. A segment taut at the start (C_0 >= 0) has no middle piece: its dashpot's
+  // push would take the sum below 0 at once.
   const double damping = settings.axial_damping;
   const double shift_share = settings.dampingShiftShare();
-  const double slack_floor = unilateral ? 0.0 : -std::numeric_limits<double>::infinity();
+  dashpots = false;
   for (std::size_t k = 0; k < m; ++k)
   {
     const double rest = cable.rest[f + k];
     const bool damped = shift_share > 0.0 && k > 0;
     alpha[k] = rest / (settings.axial_stiffness * h2 + (damped ? damping * h : 0.0));
     inv_rest[k] = 1.0 / rest;
-    stop[k] = rest + (damped ? shift_share * std::max(cable.startLength(f + k) - rest, slack_floor) : 0.0);
+    const double start = damped ? cable.startLength(f + k) - rest : 0.0;
+    stop[k] = rest + shift_share * start;
+    const bool middle = damped && unilateral && start < 0.0;
+    kink[k] = middle ? -shift_share * start : 0.0;
+    dashpot[k] = middle ? damping * h / rest : 0.0;
+    zero[k] = middle ? start * (1.0 - shift_share) : 0.0;
+    dashpots = dashpots || middle;
   }
   for (std::size_t k = 0; bending && k + 1 < m; ++k)
   {

@@ -3,6 +3,7 @@
 // solved, its segment geometry, the active set, and what the last step leaves the next. Not installed: only
 // DirectSolver's front (direct_solver.cpp) and the two methods see it. Sized once (reserve); a step never
 // allocates.
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -54,6 +55,22 @@ struct DirectWorkspace
   /// L_k + s_k [m]: the rest length plus, with axial damping BA, the shift s_k = BA / (h EA + BA) C_k(start)
   /// that makes C - s = alpha lambda the Kelvin-Voigt law (DirectWorkspace::begin).
   std::vector<double> stop;
+  /// A cable segment slack at the step's start, with axial damping: its dashpot pulls before it is taut (a
+  /// slack segment pulled straight), so its law has a middle piece (DirectWorkspace::begin). In C's units,
+  /// `kink` where the segment becomes taut (above: C / alpha), `dashpot` the middle piece's slope [1/kg]
+  /// (0: none, and kink 0: the law max(C, 0) / alpha), `zero` where the middle piece's force reaches 0.
+  std::vector<double> kink, dashpot, zero;
+  bool dashpots = false;  ///< Some segment has a middle piece: the primal path takes the step.
+  /// Segment k's force (multiplier) at C = c by its law: C / alpha (two-sided for a rod); a cable's, with
+  /// the dashpot's middle piece, never below 0.
+  double law(std::size_t k, double c) const
+  {
+    if (!unilateral || c >= kink[k])
+    {
+      return unilateral ? std::max(c, 0.0) / alpha[k] : c / alpha[k];
+    }
+    return c > zero[k] ? kink[k] / alpha[k] + dashpot[k] * (c - kink[k]) : 0.0;
+  }
   std::vector<double> inv_rest;  ///< 1 / L_k [1/m].
   std::vector<double> gamma;     ///< Compliance of bending joint j [1/(kg m^2)].
   /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and

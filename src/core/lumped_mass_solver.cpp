@@ -18,10 +18,11 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
   }
   const double h2 = settings.time_step * settings.time_step;
   const double ea = settings.axial_stiffness;
-  // Kelvin-Voigt damping BA de/dt on a taut segment, its strain rate from the particles' predicted motion
-  // over the step (x - x_n: the velocity after drag and weight, semi-implicit), read before this sweep
-  // moves them; the tension stays >= 0 (a cable does not push). The spool segment, whose rest length the
-  // winch changes before the step, is left undamped (DirectWorkspace::begin).
+  // Kelvin-Voigt damping BA de/dt, on a slack segment too (a slack segment pulled straight pulls, as
+  // MoorDyn's and direct's), its strain rate from the particles' predicted motion over the step (x - x_n: the
+  // velocity after drag and weight, semi-implicit), read before this sweep moves them; the tension stays >= 0
+  // (a cable does not push). The spool segment, whose rest length the winch changes before the step, is left
+  // undamped (DirectWorkspace::begin).
   const double ba_over_h = settings.axial_damping / settings.time_step;
   double max_strain = -1.0;
   double strain_sum = 0.0;  // NaN or infinity anywhere makes the sum non-finite (max() would skip a NaN)
@@ -39,7 +40,7 @@ void LumpedMassSolver::project(Cable& state, Multipliers& lambda, const SolverSe
     const Position moved_next(state.x[j + 1] - state.px[j + 1], state.y[j + 1] - state.py[j + 1],
                               state.z[j + 1] - state.pz[j + 1]);
     double tension = ea * std::max(strain, 0.0);
-    if (ba_over_h > 0.0 && strain > 0.0 && length > 0.0 && j > f)  // the spool segment undamped, as direct's
+    if (ba_over_h > 0.0 && length > 0.0 && j > f)  // the spool segment undamped, as direct's
     {
       // d(length)/dt h = n . (moved_next - moved), strain rate over 1 / rest.
       const double lengthening =

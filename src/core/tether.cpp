@@ -417,7 +417,9 @@ void Tether::subStep(double h, double t)
   }
   else if (track_.attached())
   {
-    cable_.place(n - 1, track_.position());
+    // Its motion over the sub-step (none after a jump or a new attachment) in px: the last segment's
+    // dashpot reads it.
+    cable_.placeMoving(n - 1, track_.position(), end_velocity_ * h);
   }
   if (world_contact_ != nullptr)
   {

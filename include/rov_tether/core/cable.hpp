@@ -68,6 +68,9 @@ struct Cable
   Position position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   /// Sets position and previous position of particle i (zero velocity) [m].
   void place(std::size_t i, const Position& p);
+  /// Sets particle i at p, having moved by `moved` over the step: its previous position p - moved (a
+  /// kinematic end, so a dashpot reads its motion in the strain rate) [m].
+  void placeMoving(std::size_t i, const Position& p, const Position& moved);
   /// Geometric strain |x_{j+1} - x_j| / rest_j - 1 of segment j [-].
   double strain(std::size_t j) const { return (position(j + 1) - position(j)).norm() / rest[j] - 1.0; }
   /// Length of segment j at the step's start, from the previous positions px, py, pz [m].
