@@ -783,7 +783,7 @@ Status Tether::vehicleEndLinearisation(EndLinearisation* out, double horizon)
   out->position = track_.position();
   out->velocity = end_velocity_;
   out->force = vehicleForce();
-  out->damping.setZero();  // the step has no term in the end's velocity (end_linearisation.hpp)
+  out->damping.setZero();  // no term in the end's velocity without axial damping; with it, not computed yet
   const SolverSettings settings = SolverSettings::from(params_, last_step_);
   out->horizon = std::max(horizon, settings.time_step);
   if (!direct->endStiffness(cable_, settings, horizon, &out->stiffness, &out->taut))

@@ -30,15 +30,14 @@ using Velocity = Eigen::Vector3d;
  * -EA / l_last and -T / l_last. With EI > 0 the pull read is still the last segment's (the step's bending
  * force on the pinned end is not in vehicleForce()), so K is its derivative and not exactly symmetric.
  *
- * C (damping) is the pull's derivative with respect to the end's velocity at a fixed end position, and it is
- * zero in this model: the end enters the step only through its position at the step's end (pinned there).
- * The prediction x~ of every free particle uses its own velocity (x - x_prev), drag (damping or Morison) acts
- * on the free particles' own velocities (Morison's tangent reads the end's position from the step's start,
- * already past). With `axial_damping` (Kelvin-Voigt, docs/model.md) the last segment's dashpot reads its
- * strain rate from its length at the step's start, taken from x_prev, and a kinematic end's x_prev is where it
- * is placed (Cable::place), so the dashpot does not see the end's own velocity (a limitation,
- * docs/limitations.md): C = 0 is exact for the step as it is, and K the answer about the damped rest length. The
- * chain's damping reaches the vehicle through the chain's own motion, which the next step's pull carries.
+ * C (damping) is the pull's derivative with respect to the end's velocity at a fixed end position. Without
+ * `axial_damping` it is zero in this model: the end enters the step only through its position at the step's
+ * end (pinned there). The prediction x~ of every free particle uses its own velocity (x - x_prev), drag
+ * (damping or Morison) acts on the free particles' own velocities (Morison's tangent reads the end's position
+ * from the step's start, already past). With `axial_damping` (Kelvin-Voigt, docs/model.md) the last
+ * segment's dashpot reads the end's motion over the step (its x_prev, Cable::placeMoving), so the pull has a
+ * term in the end's velocity, about -(BA / l_last) n n^T for a taut last segment before the chain answers; it
+ * is not computed yet and C is left zero (docs/limitations.md).
  *
  * The linearisation is of the last sub-step (with `substeps` > 1 the earlier sub-steps' answer to the
  * interpolated end is not in it), with the spool segment on its elastic law (a brake drum's give within the
