@@ -39,7 +39,8 @@ fi
 
 OUT="$ROOT/catkin_build/fuzz"
 mkdir -p "$OUT/artifacts"
-# The scenario code builds obstacles through makeObstacle (src/geometry, rov_tether_geometry).
+# The scenario code builds obstacles through makeObstacle (src/geometry, rov_tether_geometry), with the
+# mesh module's code linked in (-rdynamic: makeObstacle finds its entry point in the program).
 CORE=("$ROOT"/src/core/*.cpp "$ROOT"/src/geometry/*.cpp "$ROOT"/src/spec/*.cpp "$ROOT"/src/scenario/*.cpp)
 FLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
   -I"$ROOT/include" -I/usr/include/eigen3)
@@ -56,7 +57,7 @@ status=0
 cases=""
 for target in "${TARGETS[@]}"; do
   echo "== $target: building"
-  clang++ "${FLAGS[@]}" "$ROOT/test/fuzz/$target.cpp" "${OBJECTS[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp \
+  clang++ "${FLAGS[@]}" "$ROOT/test/fuzz/$target.cpp" "${OBJECTS[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp -rdynamic \
     -o "$OUT/$target"
   corpus="$ROOT/test/fuzz/corpus/$target"
   scratch="$OUT/corpus_$target"

@@ -242,6 +242,57 @@ TEST(Runner, SummaryShowsWhatAutoChose)
   fs::remove_all(dir);
 }
 
+// The runner's start-up (issue 24: docs/benchmarks.md): FCL and assimp (meshes) and OpenCV (cameras) are
+// modules it loads only for a scenario that asks for them (geometry/module.hpp). The loader's own record
+// (glibc's LD_DEBUG=files, on stderr) says which libraries a run initialised: a plain scenario none of
+// them; one with a mesh obstacle and a camera both, and the run writes the camera's frames through the
+// module. Fails if the runner links either again, or if a module cannot be found from the build's lib.
+TEST(Runner, LoadsTheMeshAndCameraModulesOnlyWhenAScenarioAsks)
+{
+  const std::string dir = temporaryDirectory("modules");
+  const fs::path plain = fs::path(dir + "_plain.yaml");
+  const fs::path full = fs::path(dir + "_full.yaml");
+  std::ofstream(plain) << kGood;
+  std::ofstream(full)
+      << kGood << "obstacles:\n  - {name: wreck, type: mesh, file: '" << ROV_TETHER_SOURCE_DIR
+      << "/meshes/wreck.stl', position: [40, 0, -5]}\n"
+      << "cameras:\n  - {name: front, position: [0.5, 0, 0], orientation: [0, 0, 0], rate: 2, width: 64, height: 48, "
+         "K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]}\n";
+  auto loaded = [&](const fs::path& scenario, const std::string& out)
+  {
+    const std::string log = out + "_ld.txt";
+    const std::string command = "LD_DEBUG=files " + std::string(ROV_TETHER_RUNNER) + " " + scenario.string() +
+                                " --out " + out + " >/dev/null 2> " + log;
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    std::string text;
+    for (const std::string& line : readLines(log))
+    {
+      text += line + "\n";
+    }
+    fs::remove(log);
+    return text;
+  };
+  const std::string plain_log = loaded(plain, dir + "_a");
+  ASSERT_NE(plain_log.find("calling init: "), std::string::npos) << "no loader record: " << plain_log;
+  for (const char* library : {"libfcl", "libassimp", "libopencv_core", "librov_tether_mesh", "librov_tether_camera"})
+  {
+    EXPECT_EQ(plain_log.find(library), std::string::npos) << library << " loaded for a plain scenario";
+  }
+  const std::string full_log = loaded(full, dir + "_b");
+  for (const char* library : {"libfcl", "libassimp", "libopencv_core", "librov_tether_mesh", "librov_tether_camera"})
+  {
+    EXPECT_NE(full_log.find(library), std::string::npos) << library << " not loaded for a mesh and a camera";
+  }
+  EXPECT_TRUE(fs::exists(fs::path(dir + "_b") / "cameras" / "front" / "index.csv"));
+  EXPECT_TRUE(fs::exists(fs::path(dir + "_b") / "topology.csv"));
+  for (const fs::path& p : {plain, full})
+  {
+    fs::remove(p);
+  }
+  fs::remove_all(dir + "_a");
+  fs::remove_all(dir + "_b");
+}
+
 TEST(Runner, WritesStateAndShapeCsv)
 {
   const std::string dir = temporaryDirectory("good");

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "rov_tether/camera/png_file.hpp"
 
@@ -236,3 +237,19 @@ std::string DatasetWriter::writeFrame(Camera& camera, CameraSummary& summary, co
 }
 
 }  // namespace rov_tether::camera
+
+// The module's entry point, loaded by makeCameraDataset (scenario/camera_dataset.cpp) with dlopen: C linkage,
+// so its name is known without C++ mangling. A camera CameraModel refuses is an error, not an exception.
+extern "C" __attribute__((visibility("default"))) rov_tether::CameraDataset* rov_tether_make_camera_dataset(
+    const rov_tether::Scenario* scenario, const std::string* out_dir, std::string* error)
+{
+  try
+  {
+    return new rov_tether::camera::DatasetWriter(*scenario, *out_dir);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    *error = e.what();
+    return nullptr;
+  }
+}

@@ -592,3 +592,11 @@ std::unique_ptr<Obstacle> makeMeshObstacle(const ObstacleSpec& spec, Status* sta
 }
 
 }  // namespace rov_tether
+
+// The module's entry point, loaded by makeObstacle (make_obstacle.cpp) with dlopen: C linkage, so its name
+// is known without C++ mangling.
+extern "C" __attribute__((visibility("default"))) rov_tether::Obstacle* rov_tether_make_mesh_obstacle(
+    const rov_tether::ObstacleSpec* spec, rov_tether::Status* status)
+{
+  return rov_tether::makeMeshObstacle(*spec, status).release();
+}

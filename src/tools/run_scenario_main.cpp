@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rov_tether/camera/dataset_writer.hpp"
+#include "rov_tether/scenario/camera_dataset.hpp"
 #include "rov_tether/scenario/scenario_runner.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
@@ -168,7 +168,7 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
 
 /// Prints the files written: per tether, the topology and each camera's dataset.
 void printWritten(const rov_tether::Scenario& scenario, const std::string& out_dir, const rov_tether::RunSummary& s,
-                  const rov_tether::camera::DatasetWriter* dataset)
+                  const rov_tether::CameraDataset* dataset)
 {
   if (scenario.tethers.empty())
   {
@@ -194,8 +194,7 @@ void printWritten(const rov_tether::Scenario& scenario, const std::string& out_d
   {
     std::printf("wrote           %s/topology.csv (%zu rows)\n", out_dir.c_str(), s.topology_rows);
   }
-  for (const auto& camera :
-       dataset ? dataset->summary() : std::vector<rov_tether::camera::DatasetWriter::CameraSummary>{})
+  for (const auto& camera : dataset ? dataset->summary() : std::vector<rov_tether::CameraDataset::CameraSummary>{})
   {
     std::printf("camera %-8s %s/cameras/%s/: %zu frames, tether in %zu, coverage mean %.4f, max %.4f\n",
                 camera.name.c_str(), out_dir.c_str(), camera.name.c_str(), camera.frames, camera.frames_with_tether,
@@ -233,17 +232,15 @@ int main(int argc, char** argv)
     return 2;
   }
 
-  std::unique_ptr<rov_tether::camera::DatasetWriter> dataset;
+  std::unique_ptr<rov_tether::CameraDataset> dataset;
   std::vector<rov_tether::RunObserver*> observers;
   if (!scenario.cameras.empty())
   {
-    try
+    std::string why;
+    dataset = rov_tether::makeCameraDataset(scenario, out_dir, &why);
+    if (!dataset)
     {
-      dataset = std::make_unique<rov_tether::camera::DatasetWriter>(scenario, out_dir);
-    }
-    catch (const std::invalid_argument& e)
-    {
-      std::fprintf(stderr, "rov_tether_run: %s: cameras: %s\n", scenario_path.c_str(), e.what());
+      std::fprintf(stderr, "rov_tether_run: %s: cameras: %s\n", scenario_path.c_str(), why.c_str());
       return 2;
     }
     observers.push_back(dataset.get());

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rov_tether/camera/tether_renderer.hpp"
+#include "rov_tether/scenario/camera_dataset.hpp"
 #include "rov_tether/scenario/scenario_runner.hpp"
 
 namespace rov_tether::camera
@@ -58,29 +59,19 @@ void depthPreview(const cv::Mat& depth_mm, double far_m, cv::Mat& preview);
  * and index.csv (frame,t,coverage), frame k at the last physics step at or
  * before k / rate (t is that step's time). The seabed hides what lies below it.
  */
-class DatasetWriter : public RunObserver
+class DatasetWriter : public CameraDataset
 {
  public:
-  /// Per camera: frames written, and the coverage over them.
-  struct CameraSummary
-  {
-    std::string name;
-    std::size_t frames = 0;
-    std::size_t frames_with_tether = 0;
-    double mean_coverage = 0.0;
-    double max_coverage = 0.0;
-  };
-
   /// `scenario` must outlive the writer. Throws std::invalid_argument for a camera CameraModel refuses.
   DatasetWriter(const Scenario& scenario, const std::string& out_dir);
   ~DatasetWriter() override;
   /// Creates the directories and the index files; "" or the error.
-  std::string open();
+  std::string open() override;
   double nextTime() const override;
   std::string observe(const Tether& sim) override;
   /// Closes the index files; "" or the error.
-  std::string close();
-  const std::vector<CameraSummary>& summary() const { return summary_; }
+  std::string close() override;
+  const std::vector<CameraSummary>& summary() const override { return summary_; }
 
  private:
   struct Camera
