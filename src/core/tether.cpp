@@ -266,9 +266,13 @@ void Tether::detachVehicle()
 
 Position Tether::vehicleAt(double t)
 {
-  if (track_.attachIfDue(t))
+  // The first sample's time has come: lay the cable out to it, or, when that was more than a sub-step ago
+  // (1.5 of one: room for the rounding of step times), to where the vehicle is at t (laid to an old sample,
+  // the end would be dragged the whole way in one step: 16,000 N in the pillar demo when the node started
+  // late under load).
+  if (track_.attachIfDue(t, 1.5 * params_.subStep()))
   {
-    layOut(lengthToReach(track_.position()));  // the first sample's time has come: lay the cable out to it
+    layOut(lengthToReach(track_.position()));
   }
   if (!track_.attached())
   {

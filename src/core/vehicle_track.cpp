@@ -53,7 +53,7 @@ void VehicleTrack::detach()
   samples_.clear();
 }
 
-bool VehicleTrack::attachIfDue(double t)
+bool VehicleTrack::attachIfDue(double t, double late)
 {
   if (attached_ || samples_.empty() || samples_.front().time > t)
   {
@@ -61,6 +61,12 @@ bool VehicleTrack::attachIfDue(double t)
   }
   attached_ = true;
   position_ = samples_.front().position;
+  if (t - samples_.front().time > late)
+  {
+    // The samples before t were never simulated (they queued while a node started): attach where they put
+    // the vehicle at t. A jump among them is moot, for the cable is laid out fresh.
+    position_ = advance(t).position;
+  }
   return true;
 }
 

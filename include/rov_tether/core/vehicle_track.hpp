@@ -34,9 +34,11 @@ class VehicleTrack
   /// Drops the samples and detaches: the last particle becomes a free end.
   void detach();
 
-  /// True when the vehicle is not attached yet and its first sample's time t [s] has come: attaches it
-  /// at that sample (position()); the tether then lays its cable out to it.
-  bool attachIfDue(double t);
+  /// True when the vehicle is not attached yet and its first sample's time has come by t [s]: attaches it
+  /// at that sample (position()), or, when that sample is more than `late` [s] before t, where the samples
+  /// put it at t (the ones before were never simulated: a node that started late with poses queued); the
+  /// tether then lays its cable out to it.
+  bool attachIfDue(double t, double late);
   /// Where the samples put the attachment at time t [s] (attached only), and whether a jump was passed.
   struct Target
   {
