@@ -223,14 +223,9 @@ double PrimalNewton::potential(std::size_t k, double c) const
   return middleEnergy(k, std::max(c, ws_.zero[k]));
 }
 
-double PrimalNewton::middleForce(std::size_t k, double c) const
-{
-  return ws_.kink[k] / ws_.alpha[k] + ws_.dashpot[k] * (c - ws_.kink[k]);
-}
-
 double PrimalNewton::middleEnergy(std::size_t k, double c) const
 {
-  const double force = middleForce(k, c);
+  const double force = ws_.middleForce(k, c);
   return 0.5 * force * force / ws_.dashpot[k];
 }
 
@@ -319,7 +314,7 @@ void PrimalNewton::assemble(const Cable& cable)
     else if (inMiddle(k))
     {
       // The dashpot's middle piece of a slack segment: its force and slope (DirectWorkspace::begin).
-      lam = middleForce(k, ws_.c[k]);
+      lam = ws_.middleForce(k, ws_.c[k]);
       axial = ws_.dashpot[k];
     }
     else if (!(model[k] > 0.0))
@@ -416,7 +411,7 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
   for (std::size_t k = 0; k < m && !model_unsettled_; ++k)
   {
     model[k] = !ws_.unilateral || ws_.c[k] > ws_.kink[k] || ws_.taut[ws_.first + k] ? 1.0 : 0.0;
-    middle_[k] = model[k] == 0.0 && ws_.dashpot[k] > 0.0 && ws_.c[k] > ws_.zero[k] ? 1.0 : 0.0;
+    middle_[k] = onMiddle(k, model[k], ws_.c[k]);
   }
   for (int round = 0;; ++round)
   {
@@ -443,7 +438,7 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
     {
       const double stretch = linearStretch(k);
       const double now = stretch > ws_.kink[k] ? 1.0 : 0.0;
-      const double middle = now == 0.0 && ws_.dashpot[k] > 0.0 && stretch > ws_.zero[k] ? 1.0 : 0.0;
+      const double middle = onMiddle(k, now, stretch);
       changes += now != model[k] || middle != middle_[k] ? 1 : 0;
       model[k] = now;
       middle_[k] = middle;
@@ -508,7 +503,7 @@ void PrimalNewton::multiplierStep(const Cable& cable)
   for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < ws_.m; ++k)
   {
     const double target = model[k] > 0.0 ? linearStretch(k) / ws_.alpha[k]
-                          : inMiddle(k)  ? middleForce(k, linearStretch(k))
+                          : inMiddle(k)  ? ws_.middleForce(k, linearStretch(k))
                                          : 0.0;
     lambda_step_[k] = target - lambda_[k];
   }
@@ -544,7 +539,7 @@ double PrimalNewton::slope(double* largest) const
     }
     else if (inMiddle(k))
     {
-      model_force = middleForce(k, ws_.c[k]);
+      model_force = ws_.middleForce(k, ws_.c[k]);
     }
     else
     {

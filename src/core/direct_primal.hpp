@@ -41,10 +41,14 @@ class PrimalNewton
   double segmentForce(std::size_t k, double c) const;
   /// Segment k's energy at stretch c: the integral of its law (continuous across the law's pieces).
   double potential(std::size_t k, double c) const;
-  /// The dashpot's middle piece of segment k's law (DirectWorkspace::kink): its force at c, and its
-  /// energy from where that force is 0.
-  double middleForce(std::size_t k, double c) const;
+  /// The energy of the dashpot's middle piece of segment k's law (DirectWorkspace::kink) at c, from where its
+  /// force is 0.
   double middleEnergy(std::size_t k, double c) const;
+  /// 1 when segment k, off the taut branch (taut 0) at stretch c, is on its law's middle piece, else 0.
+  double onMiddle(std::size_t k, double taut, double c) const
+  {
+    return taut == 0.0 && ws_.dashpot[k] > 0.0 && c > ws_.zero[k] ? 1.0 : 0.0;
+  }
   /// Segment k is in the model on its law's middle piece (this step has one for it).
   bool inMiddle(std::size_t k) const { return ws_.dashpot[k] > 0.0 && middle_[k] > 0.0; }
   /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass

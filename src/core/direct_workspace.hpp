@@ -69,8 +69,10 @@ struct DirectWorkspace
     {
       return unilateral ? std::max(c, 0.0) / alpha[k] : c / alpha[k];
     }
-    return c > zero[k] ? kink[k] / alpha[k] + dashpot[k] * (c - kink[k]) : 0.0;
+    return c > zero[k] ? middleForce(k, c) : 0.0;
   }
+  /// The law's middle piece of segment k (a slack segment's dashpot) at C = c: kink / alpha + slope (c - kink).
+  double middleForce(std::size_t k, double c) const { return kink[k] / alpha[k] + dashpot[k] * (c - kink[k]); }
   std::vector<double> inv_rest;  ///< 1 / L_k [1/m].
   std::vector<double> gamma;     ///< Compliance of bending joint j [1/(kg m^2)].
   /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and
