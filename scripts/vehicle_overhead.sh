@@ -2,12 +2,15 @@
 # What a dynamic vehicle end adds to a step of `direct` (issue 25: at most 10% at 100 segments), counted in
 # instructions under valgrind's callgrind, so the machine's load does not move it:
 #   scripts/vehicle_overhead.sh            (BENCH=path/to/rov_tether_bench to use a built binary as it is)
-# Runs BM_StepDirectDynamicVehicle/SEGMENTS/{0,1}/{0,1} (bending off/on; vehicle end kinematic/dynamic, the
-# same cable and set-up) and prints, per case, the instructions of one step (the benchmark loop's calls of
-# Tether::step(), inclusive, over their count), the ratio dynamic / kinematic, and what the coupling's own
-# calls (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (medians of
-# 3, --benchmark_min_time=0.2) and its CPU-time ratios, for the record: a loaded machine moves them, and they are
-# higher than the instruction ratios (the chain's loops run as AVX2 clones, the body's 6x6 algebra as scalar code).
+# Runs BM_StepDirectDynamicVehicle/SEGMENTS/{0,1}/{0,1,2} (bending off/on; vehicle end kinematic and pinned,
+# dynamic, or kinematic along the dynamic vehicle's own path: the same cable and set-up) and prints, per case,
+# the instructions of one step (the benchmark loop's calls of Tether::step(), inclusive, over their count), the
+# ratios dynamic / pinned and dynamic / kinematic on the same path (which leaves out what the vehicle's motion
+# costs the chain's solve, and is what the coupling itself costs), and what the coupling's own calls
+# (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (medians of 9
+# repetitions interleaved at random, --benchmark_min_time=0.2) and its CPU-time ratios, for the record: a loaded
+# machine moves them, and they are higher than the instruction ratios (the chain's loops run as AVX2 clones, the
+# body's 6x6 algebra as scalar code).
 set -euo pipefail
 if [ -z "${BENCH:-}" ]; then
   source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -19,7 +22,7 @@ segments="${SEGMENTS:-100}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 for bending in 0 1; do
-  for dynamic in 0 1; do
+  for dynamic in 0 1 2; do
     name="BM_StepDirectDynamicVehicle/$segments/$bending/$dynamic"
     valgrind --tool=callgrind --callgrind-out-file="$work/$bending$dynamic.cg" "$BENCH" \
       --benchmark_filter="^$name\$" --benchmark_min_time=0.05 >"$work/$bending$dynamic.log" 2>&1 ||
@@ -67,25 +70,29 @@ def coupling(found):
     return total
 
 for bending in "01":
-    kin, dyn = functions("%s/%s0.txt" % (work, bending)), functions("%s/%s1.txt" % (work, bending))
-    (k, k_calls), (d, d_calls) = per_step(kin), per_step(dyn)
-    print("BM_StepDirectDynamicVehicle/%s/%s/{0,1} (%s): instructions per step kinematic %.0f (%d steps), "
-          "dynamic %.0f (%d steps), dynamic / kinematic = %.3f; the coupling's calls %.0f per sub-step"
-          % (segments, bending, "bending on" if bending == "1" else "bending off", k, k_calls, d, d_calls, d / k,
+    kin, dyn, path = (functions("%s/%s%d.txt" % (work, bending, v)) for v in range(3))
+    (k, k_calls), (d, d_calls), (p, p_calls) = per_step(kin), per_step(dyn), per_step(path)
+    print("BM_StepDirectDynamicVehicle/%s/%s/{0,1,2} (%s): instructions per step kinematic pinned %.0f, dynamic "
+          "%.0f, kinematic on the dynamic's path %.0f (%d, %d, %d steps); dynamic / pinned = %.3f, dynamic / same "
+          "path = %.3f; the coupling's calls %.0f per sub-step"
+          % (segments, bending, "bending on" if bending == "1" else "bending off", k, d, p, k_calls, d_calls, p_calls, d / k, d / p,
              coupling(dyn)))
 PYTHON
 if [ "${WALL:-0}" = 1 ]; then
   "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$" --benchmark_min_time=0.2 \
-    --benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_format=json >"$work/wall.json" 2>/dev/null
+    --benchmark_repetitions=9 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+    --benchmark_format=json >"$work/wall.json" 2>/dev/null
   /usr/bin/python3 - "$work/wall.json" <<'PYTHON'
 import json, sys
 medians = [b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("aggregate_name") == "median"]
 # A step's CPU time [us]: the vehicle benchmark's iterations are windows of steps (items: steps per second).
 times = {b["run_name"]: 1e6 / b["items_per_second"] if "items_per_second" in b else b["cpu_time"] for b in medians}
 for name in sorted(n for n in times if n.endswith("/0")):
-    dynamic = name[:-1] + "1"
-    print("%s,1: CPU time per step (median of 3) kinematic %.2f us, dynamic %.2f us, dynamic / kinematic = %.3f"
-          % (name, times[name], times[dynamic], times[dynamic] / times[name]))
-print("BM_VehicleBodyStep: one body step %.3f us CPU (median of 3)" % times["BM_VehicleBodyStep"])
+    dynamic, path = name[:-1] + "1", name[:-1] + "2"
+    print("%s,1,2: CPU time per step (median of 9) kinematic pinned %.2f us, dynamic %.2f us, kinematic on the "
+          "same path %.2f us; dynamic / pinned = %.3f, dynamic / same path = %.3f"
+          % (name, times[name], times[dynamic], times[path], times[dynamic] / times[name],
+             times[dynamic] / times[path]))
+print("BM_VehicleBodyStep: one body step %.3f us CPU (median of 9)" % times["BM_VehicleBodyStep"])
 PYTHON
 fi

@@ -1,5 +1,5 @@
 // The direct solver's linear solves: the sweeps written in banded.cpp against LAPACK and against the
-// residual of the system they solve; and the vehicle body's 6x6 solves (PositiveRealLu).
+// residual of the system they solve; and the vehicle body's 6x6 solves (PositiveRealLu, BodyLu).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "rov_tether/core/body_lu.hpp"
 #include "rov_tether/core/positive_real_lu.hpp"
 
 namespace rov_tether::test
@@ -257,6 +258,82 @@ TEST(PositiveRealLu, SolvesMatricesWithAPositiveDefiniteSymmetricPart)
     const double kappa = a.norm() * a.inverse().norm();
     EXPECT_LT((x - pivoted).norm(), 100.0 * kEps * kappa * pivoted.norm()) << "trial " << trial;
     const Eigen::Matrix<double, 6, 3> b3 = random(6, 3);
+    const Eigen::Matrix<double, 6, 3> x3 = lu.solve(b3);
+    EXPECT_LT((a * x3 - b3).norm(), 100.0 * kEps * a.norm() * x3.norm()) << "trial " << trial;
+  }
+}
+
+/// BodyLu (a vehicle body's step: the Schur complement of a diagonal translational block) on the matrices of
+/// that step: A = M + K with M a mass matrix about an origin off the centre of gravity (translational block
+/// m I plus diagonal added mass, coupling blocks -+m S(r_G), rotational block I_G - m S(r_G)^2 plus added
+/// inertia, all random: masses 1 kg to 5 t, |r_G| up to 0.5 m) plus, in turn, a diagonal damping h D, or a
+/// skew-symmetric K of the Coriolis form (zero translational block; off-diagonal and rotational blocks up to
+/// 10x M's norm: a fast turn). The same bounds as PositiveRealLu's (backward stable without pivoting, Golub and
+/// Van Loan 2013, sec. 4.4.4): residual within 100 eps |A| |x|, and x within kappa(A) 100 eps of Eigen's pivoted
+/// LU. Fails with the Schur complement's A21 A11^-1 A12 left out (residual of order |A12|^2 / A11 |x|).
+TEST(BodyLu, SolvesAVehicleBodysStep)
+{
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto skew = [](const Eigen::Vector3d& a)
+  {
+    Eigen::Matrix3d s;
+    s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+    return s;
+  };
+  const auto vector = [&]() { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
+  constexpr double kEps = 2.220446049250313e-16;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    const double mass = std::pow(10.0, 1.85 * (u(rng) + 1.0));  // 1 kg to 5 t
+    const Eigen::Vector3d r_g = 0.5 * vector() / std::sqrt(3.0);
+    const Eigen::Vector3d inertia = mass * (0.02 + 0.01 * (vector().array() + 1.0)).matrix();
+    const Eigen::Vector3d added = mass * (0.5 + 0.5 * vector().array()).matrix();
+    const Eigen::Vector3d added_inertia = inertia.cwiseProduct((0.5 + 0.5 * vector().array()).matrix());
+    Matrix6 m;
+    m.topLeftCorner<3, 3>() = Eigen::Matrix3d((Eigen::Vector3d::Constant(mass) + added).asDiagonal());
+    m.topRightCorner<3, 3>() = -mass * skew(r_g);
+    m.bottomLeftCorner<3, 3>() = mass * skew(r_g);
+    m.bottomRightCorner<3, 3>() =
+        Eigen::Matrix3d((inertia + added_inertia).asDiagonal()) - mass * skew(r_g) * skew(r_g);
+    Matrix6 k = Matrix6::Zero();
+    if (trial % 3 == 0)
+    {
+      Eigen::Matrix<double, 6, 1> damping;
+      for (int i = 0; i < 6; ++i)
+      {
+        damping[i] = 0.5 * (u(rng) + 1.0) * m.norm();
+      }
+      k = damping.asDiagonal();
+    }
+    else
+    {
+      const Eigen::Matrix3d coupling = skew(vector());
+      const Eigen::Matrix3d turning = skew(vector());
+      k.topRightCorner<3, 3>() = coupling;
+      k.bottomLeftCorner<3, 3>() = coupling;  // -S^T = S: the block pair of C(nu) = [0, -S(p1); -S(p1), -S(p2)]
+      k.bottomRightCorner<3, 3>() = turning;
+      k *= 10.0 * u(rng) * m.norm() / k.norm();
+    }
+    const Matrix6 a = m + k;
+    BodyLu lu;
+    lu.compute(a);
+    Eigen::Matrix<double, 6, 1> b;
+    Eigen::Matrix<double, 6, 3> b3;
+    for (int i = 0; i < 6; ++i)
+    {
+      b[i] = u(rng);
+      for (int j = 0; j < 3; ++j)
+      {
+        b3(i, j) = u(rng);
+      }
+    }
+    const Eigen::Matrix<double, 6, 1> x = lu.solve(b);
+    EXPECT_LT((a * x - b).norm(), 100.0 * kEps * a.norm() * x.norm()) << "trial " << trial;
+    const Eigen::Matrix<double, 6, 1> pivoted = a.partialPivLu().solve(b);
+    const double kappa = a.norm() * a.inverse().norm();
+    EXPECT_LT((x - pivoted).norm(), 100.0 * kEps * kappa * pivoted.norm()) << "trial " << trial;
     const Eigen::Matrix<double, 6, 3> x3 = lu.solve(b3);
     EXPECT_LT((a * x3 - b3).norm(), 100.0 * kEps * a.norm() * x3.norm()) << "trial " << trial;
   }

@@ -112,6 +112,9 @@ void VehicleBody::prepare()
   mass_matrix_ = rigid;
   mass_matrix_.diagonal() += params_.added_mass;
   const Eigen::LDLT<Matrix6> mass_factor(mass_matrix_);
+  // A body whose origin is its centre of gravity (most published models, the BlueROV2 Heavy's) has a diagonal
+  // M: its products are six multiplications.
+  diagonal_mass_ = mass_matrix_.isDiagonal(0.0);
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
@@ -122,6 +125,11 @@ void VehicleBody::prepare()
   const Matrix3 compliance = 0.5 * (inverse.bottomRightCorner<3, 3>() + inverse.bottomRightCorner<3, 3>().transpose());
   const double largest_compliance = Eigen::SelfAdjointEigenSolver<Matrix3>(compliance).eigenvalues().maxCoeff();
   stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
+}
+
+Vector6 VehicleBody::massTimes(const Vector6& v) const
+{
+  return diagonal_mass_ ? Vector6(mass_matrix_.diagonal().cwiseProduct(v)) : Vector6(mass_matrix_ * v);
 }
 
 Status VehicleBody::setState(const Eigen::Vector3d& position, const Eigen::Quaterniond& attitude, const Twist& velocity)
@@ -230,10 +238,10 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
   const Twist before = trial.damped + dt * start.damped.solve(more);
   // C at the mean of the ends, the far end guessed as the trial's moved by what `more` added (the implicit
   // midpoint rule's one pass, as step()'s second).
-  const Vector6 momentum = mass_matrix_ * (before + 0.5 * (trial.turned - trial.damped));
-  PositiveRealLu<6> cayley;
+  const Vector6 momentum = massTimes(before + 0.5 * (trial.turned - trial.damped));
+  BodyLu cayley;
   cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
-  const Twist after = cayley.solve(Twist(mass_matrix_ * before - 0.5 * dt * coriolisTimes(momentum, before)));
+  const Twist after = cayley.solve(Twist(massTimes(before) - 0.5 * dt * coriolisTimes(momentum, before)));
   drift(dt, before, after, &position_, &attitude_, &velocity_);
   return Status::success();
 }
@@ -263,14 +271,14 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   // 2. damping, implicit per axis with |nu_r| from the step's start: (M + h D) nu' = M nu_k = M nu_r + h tau
   // (start.damped), one solve for both.
   Twist relative =
-      start.damped.solve(Twist(mass_matrix_ * start.relative + dt * (applied.applied + external + start.restoring)));
+      start.damped.solve(Twist(massTimes(start.relative) + dt * (applied.applied + external + start.restoring)));
 
   // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
   // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
   // the two ends (one pass of the implicit midpoint rule): frozen at the start alone, the body's momentum
   // would turn with a first-order error in its length.
   const Twist before = relative;
-  const Vector6 momentum_before = mass_matrix_ * before;
+  const Vector6 momentum_before = massTimes(before);
   Twist turned = before;
   // A trial (stepped() for stepAgain()) takes the first pass only: C at the start, where the body goes to
   // O(h^3) in position; stepAgain() takes the second from it. (An explicit midpoint step in its place, which
@@ -280,8 +288,8 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   for (int pass = 0; pass < passes; ++pass)
   {
     // C's argument M nu, at the mean of the two ends: on the first pass both are `before`.
-    const Vector6 momentum = pass == 0 ? momentum_before : Vector6(mass_matrix_ * (0.5 * (before + turned)));
-    PositiveRealLu<6> cayley;  // M + h/2 C: its symmetric part is M, so it needs no pivoting
+    const Vector6 momentum = pass == 0 ? momentum_before : massTimes(0.5 * (before + turned));
+    BodyLu cayley;  // M + h/2 C: its symmetric part is M, its translational block diagonal
     cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
     turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }

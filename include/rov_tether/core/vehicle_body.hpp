@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
-#include "rov_tether/core/positive_real_lu.hpp"
+#include "rov_tether/core/body_lu.hpp"
 #include "rov_tether/core/status.hpp"
 #include "rov_tether/core/vehicle_params.hpp"
 
@@ -35,7 +35,7 @@ struct VehicleStepStart
   double dt = 0.0;
   Twist relative = Twist::Zero();     ///< nu_r at the start
   Wrench restoring = Wrench::Zero();  ///< restoringWrench() at the start
-  PositiveRealLu<6> damped;           ///< M + dt D(|nu_r|), factored
+  BodyLu damped;                      ///< M + dt D(|nu_r|), factored
 };
 
 /// What stepped() computed that a second step from the same start, with the same thrust and more external
@@ -72,8 +72,8 @@ struct VehicleStepTrial
  *  4. drift with that mean velocity nu_m = (nu_r' + nu_r'') / 2: attitude *= exp(h omega_m / 2), position +=
  *     h (R_half v_m + V_c) with R_half the attitude half-way through the turn.
  * Parts 1 and 2 are one solve, (M + h D_n) nu_r' = M nu_r + h tau; M + h D_n and M + h/2 C are factored without
- * pivoting (PositiveRealLu: their symmetric parts are positive definite), and M + h D_n once for every step from
- * the same start (startStep()).
+ * pivoting, the translational block first (BodyLu: their symmetric parts are positive definite, their
+ * translational blocks diagonal), and M + h D_n once for every step from the same start (startStep()).
  * First order in h overall (the kick and the damping are). The one conditional part is the restoring moment
  * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): it is a spring of stiffness at
  * most k = |B r_B - W r_G| on the smallest effective rotational inertia I' (with added inertia, translation
@@ -157,8 +157,12 @@ class VehicleBody
   void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position,
              Eigen::Quaterniond* attitude, Twist* velocity) const;
 
+  /// M v (six products when M is diagonal).
+  Vector6 massTimes(const Vector6& v) const;
+
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
+  bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
   double stable_step_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
