@@ -211,36 +211,45 @@ void BM_StepDirectBendingMoving(benchmark::State& state)
   state.counters["steps_per_iteration"] = kWindow;
 }
 
+/// BM_StepDirectDynamicVehicle's cable: BM_StepDirect's, or BM_StepDirectBending's when `bending`.
+Tether vehicleBenchCable(benchmark::State& state, bool bending)
+{
+  return makeCable(state, static_cast<int>(state.range(0)),
+                   [&](TetherParams& p)
+                   {
+                     p.solver = SolverType::kDirect;
+                     p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
+                   });
+}
+
+/// Attaches the BlueROV2 Heavy, at rest, at the cable's end; false when refused.
+bool attachBodyAtEnd(Tether* sim)
+{
+  rov_tether::VehicleBody body;
+  const Position end = sim->particle(sim->deployedParticleCount() - 1);
+  return body.setState(end, Eigen::Quaterniond::Identity(), rov_tether::Twist::Zero()).ok &&
+         sim->attachVehicleBody(body, Eigen::Vector3d::Zero()).ok;
+}
+
 /// Steps a copy of BM_StepDirectDynamicVehicle's dynamic set-up for 1 s and `window` steps more and feeds its
 /// attachment point to `follower` as vehicle samples, one a step. Not inlined, so that scripts/vehicle_overhead.sh
 /// can tell the leader's steps (called from here) from the benchmark's.
 __attribute__((noinline)) std::string followDynamicPath(benchmark::State& state, bool bending, int window,
                                                         Tether* follower)
 {
-  Tether leader = makeCable(state, static_cast<int>(state.range(0)),
-                            [&](TetherParams& p)
-                            {
-                              p.solver = SolverType::kDirect;
-                              p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
-                            });
-  rov_tether::VehicleBody body;
-  const Position end = leader.particle(leader.deployedParticleCount() - 1);
-  if (!body.setState(end, Eigen::Quaterniond::Identity(), rov_tether::Twist::Zero()).ok ||
-      !leader.attachVehicleBody(body, Eigen::Vector3d::Zero()).ok)
+  Tether leader = vehicleBenchCable(state, bending);
+  if (!attachBodyAtEnd(&leader))
   {
     return "the dynamic vehicle was refused";
   }
-  const auto feed = [&]()
-  { return follower->addVehicleSample(leader.time(), leader.particle(leader.deployedParticleCount() - 1)); };
-  if (!feed().ok)
-  {
-    return "a vehicle sample was refused";
-  }
   const int steps = static_cast<int>(std::lround(1.0 / leader.params().time_step)) + window + 2;
-  for (int i = 0; i < steps; ++i)
+  for (int i = 0; i <= steps; ++i)
   {
-    leader.step();
-    if (!feed().ok)
+    if (i > 0)
+    {
+      leader.step();
+    }
+    if (!follower->addVehicleSample(leader.time(), leader.particle(leader.deployedParticleCount() - 1)).ok)
     {
       return "a vehicle sample was refused";
     }
@@ -269,16 +278,8 @@ void BM_StepDirectDynamicVehicle(benchmark::State& state)
   constexpr int kWindow = 100;  // steps an iteration: 0.5 s at the default 5 ms
   const auto start = [&](std::optional<Tether>* sim)
   {
-    sim->emplace(makeCable(state, static_cast<int>(state.range(0)),
-                           [&](TetherParams& p)
-                           {
-                             p.solver = SolverType::kDirect;
-                             p.bending_stiffness = bending ? p.bending_stiffness : 0.0;
-                           }));
-    rov_tether::VehicleBody body;
-    const Position end = (*sim)->particle((*sim)->deployedParticleCount() - 1);
-    if (dynamic && (!body.setState(end, Eigen::Quaterniond::Identity(), rov_tether::Twist::Zero()).ok ||
-                    !(*sim)->attachVehicleBody(body, Eigen::Vector3d::Zero()).ok))
+    sim->emplace(vehicleBenchCable(state, bending));
+    if (dynamic && !attachBodyAtEnd(&**sim))
     {
       return std::string("the dynamic vehicle was refused");
     }

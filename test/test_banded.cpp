@@ -212,6 +212,21 @@ TEST(Banded, BlockSolveRefusesIndefiniteMatrices)
   EXPECT_FALSE(banded::solveBlockBanded(system.diag.data(), system.first.data(), nullptr, x.data(), 5, work.data()));
 }
 
+/// A rows x cols matrix of entries uniform in [-1, 1].
+Eigen::MatrixXd randomMatrix(std::mt19937& rng, int rows, int cols)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd m(rows, cols);
+  for (int i = 0; i < rows; ++i)
+  {
+    for (int j = 0; j < cols; ++j)
+    {
+      m(i, j) = u(rng);
+    }
+  }
+  return m;
+}
+
 /// PositiveRealLu (a vehicle body's 6x6 solves, no pivoting) on the matrices it is for: A = M + S, M symmetric
 /// positive definite (random, eigenvalues over three decades, like a mass matrix with added inertia) and S
 /// skew-symmetric up to 10x M's norm (the Cayley transform's h/2 C at a fast turn), or S = 0 (M + h D).
@@ -223,18 +238,7 @@ TEST(PositiveRealLu, SolvesMatricesWithAPositiveDefiniteSymmetricPart)
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   std::mt19937 rng(25);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const auto random = [&](int rows, int cols)
-  {
-    Eigen::MatrixXd m(rows, cols);
-    for (int i = 0; i < rows; ++i)
-    {
-      for (int j = 0; j < cols; ++j)
-      {
-        m(i, j) = u(rng);
-      }
-    }
-    return m;
-  };
+  const auto random = [&](int rows, int cols) { return randomMatrix(rng, rows, cols); };
   constexpr double kEps = 2.220446049250313e-16;
   for (int trial = 0; trial < 200; ++trial)
   {
@@ -319,16 +323,8 @@ TEST(BodyLu, SolvesAVehicleBodysStep)
     const Matrix6 a = m + k;
     BodyLu lu;
     lu.compute(a);
-    Eigen::Matrix<double, 6, 1> b;
-    Eigen::Matrix<double, 6, 3> b3;
-    for (int i = 0; i < 6; ++i)
-    {
-      b[i] = u(rng);
-      for (int j = 0; j < 3; ++j)
-      {
-        b3(i, j) = u(rng);
-      }
-    }
+    const Eigen::Matrix<double, 6, 1> b = randomMatrix(rng, 6, 1);
+    const Eigen::Matrix<double, 6, 3> b3 = randomMatrix(rng, 6, 3);
     const Eigen::Matrix<double, 6, 1> x = lu.solve(b);
     EXPECT_LT((a * x - b).norm(), 100.0 * kEps * a.norm() * x.norm()) << "trial " << trial;
     const Eigen::Matrix<double, 6, 1> pivoted = a.partialPivLu().solve(b);
