@@ -43,6 +43,40 @@ TEST(ScenarioFile, ParsesAGoodScenario)
   EXPECT_EQ(scenario.output_rate, 4.0);
 }
 
+// Sections and attachments are read from a tether's parameters, in the order written (from the vehicle end).
+TEST(ScenarioFile, ParsesSectionsAndAttachments)
+{
+  const std::string yaml = R"(
+params:
+  cable_length: 20
+  segment_length: 0.5
+  sections:
+    - {length: 5, weight_in_water: 2.0, axial_stiffness: 5e4}
+    - {mass_per_length: 0.3}
+  attachments:
+    - {name: float, arc_length_from_vehicle: 10, mass: 0.5, net_buoyancy: 5, added_mass: 0.2, drag_area: 0.01}
+spool: [0, 0, 0]
+duration: 1
+)";
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(yaml, &scenario), "");
+  const TetherParams& p = scenario.params;
+  ASSERT_EQ(p.sections.size(), 2u);
+  EXPECT_EQ(p.sections[0].length, 5.0);
+  const std::vector<std::pair<std::string, double>> first = {{"weight_in_water", 2.0}, {"axial_stiffness", 5e4}};
+  EXPECT_EQ(p.sections[0].properties, first);
+  EXPECT_TRUE(std::isnan(p.sections[1].length));  // runs to the drum
+  ASSERT_EQ(p.attachments.size(), 1u);
+  const CableAttachment& a = p.attachments[0];
+  EXPECT_EQ(a.name, "float");
+  EXPECT_EQ(a.arc_length_from_vehicle, 10.0);
+  EXPECT_EQ(a.mass, 0.5);
+  EXPECT_EQ(a.net_buoyancy, 5.0);
+  EXPECT_EQ(a.added_mass, 0.2);
+  EXPECT_EQ(a.drag_area, 0.01);
+  EXPECT_EQ(a.drag_coefficient, 1.0);  // not written: its default
+}
+
 struct BadScenario
 {
   std::string yaml;
@@ -80,6 +114,22 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"params: {iterations: 3, iterations: 700}\nspool: [0, 0, 0]\nduration: 1", "duplicate key 'params.iterations'"},
       {"spool: [0, 0, 0]\nduration: 1\ntethers:\n  - {name: a, spool: [0, 0, 0], name: b}",
        "duplicate key 'tethers[0].name'"},
+      // A cable's sections and attachments (issue 22): each problem named by its place.
+      {"params: {sections: 3}\nspool: [0, 0, 0]\nduration: 1", "params.sections: expected a list of maps"},
+      {"params: {sections: [{length: x}]}\nspool: [0, 0, 0]\nduration: 1",
+       "params.sections[0].length: expected a number"},
+      {"params: {sections: [{length: 3.33}, {}]}\nspool: [0, 0, 0]\nduration: 1",
+       "section 1 of 2: length 3.33 m is not a whole number of segments of 0.1 m"},
+      {"params: {sections: [{length: 5, drag: 0.9}, {}]}\nspool: [0, 0, 0]\nduration: 1",
+       "section 1 of 2: 'drag' is not a property a section may set"},
+      {"params: {sections: [{length: 5, weight_in_water: 1e9}, {}]}\nspool: [0, 0, 0]\nduration: 1",
+       "section 1 of 2: weight_in_water = 1e+09"},
+      {"params: {attachments: [{name: a, arc_length_from_vehicle: 2, colour: 1}]}\nspool: [0, 0, 0]\nduration: 1",
+       "params.attachments[0].colour: unknown key"},
+      {"params: {attachments: [{arc_length_from_vehicle: 2}]}\nspool: [0, 0, 0]\nduration: 1",
+       "params.attachments[0].name: missing"},
+      {"params: {attachments: [{name: a, arc_length_from_vehicle: 20}]}\nspool: [0, 0, 0]\nduration: 1",
+       "attachment 'a': arc_length_from_vehicle = 20 m"},
   };
   for (const auto& c : cases)
   {

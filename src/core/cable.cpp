@@ -20,6 +20,7 @@ void Cable::resize(std::size_t particles)
     v->assign(bends, 0.0);
   }
   first = 0;
+  loading = CableLoading{};
   markDirty(0, particles);
 }
 
@@ -45,7 +46,8 @@ Position Cable::direction(std::size_t a, std::size_t b) const
 
 void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_per_length, bool last_pinned)
 {
-  anisotropic = mass_per_length.along != mass_per_length.across;
+  const bool loaded = !loading.empty();
+  anisotropic = loaded || mass_per_length.along != mass_per_length.across;
   const std::size_t n = size();
   const std::size_t f = first;
   lo = std::max(lo, f);
@@ -59,6 +61,18 @@ void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_pe
     const double right = i + 1 < n ? rest[i] : 0.0;
     const double length = 0.5 * (left + right);
     const bool pinned = i <= f || (last_pinned && i + 1 == n) || length <= 0.0;
+    if (loaded)
+    {
+      // Each neighbouring segment's half of its own material, and the attachments' (added) mass in every
+      // direction.
+      const double across = 0.5 * ((i > f ? loading.mass_across[i - 1] * rest[i - 1] : 0.0) +
+                                   (i + 1 < n ? loading.mass_across[i] * rest[i] : 0.0));
+      const double along = 0.5 * ((i > f ? loading.mass_along[i - 1] * rest[i - 1] : 0.0) +
+                                  (i + 1 < n ? loading.mass_along[i] * rest[i] : 0.0));
+      inv_mass[i] = pinned ? 0.0 : 1.0 / (across + loading.point_mass[i]);
+      inv_mass_along[i] = pinned ? 0.0 : 1.0 / (along + loading.point_mass[i]);
+      continue;
+    }
     inv_mass[i] = pinned ? 0.0 : 1.0 / (mass_per_length.across * length);
     inv_mass_along[i] = pinned ? 0.0 : 1.0 / (mass_per_length.along * length);
   }

@@ -1,5 +1,7 @@
 #include "rov_tether/core/constraint_solver.hpp"
 
+#include <algorithm>
+
 #include "rov_tether/core/direct_solver.hpp"
 #include "rov_tether/core/lumped_mass_solver.hpp"
 #include "rov_tether/core/pbd_solver.hpp"
@@ -16,6 +18,21 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.axial_stiffness = params.axial_stiffness;
   settings.axial_damping = params.axial_damping;
   settings.bending_stiffness = params.bending_stiffness;
+  // Sections of their own damping or bending: the largest switches it on (direct reads each segment's).
+  for (const CableSection& section : params.sections)
+  {
+    for (const auto& [name, value] : section.properties)
+    {
+      if (name == "axial_damping")
+      {
+        settings.axial_damping = std::max(settings.axial_damping, value);
+      }
+      else if (name == "bending_stiffness")
+      {
+        settings.bending_stiffness = std::max(settings.bending_stiffness, value);
+      }
+    }
+  }
   settings.over_relaxation = params.over_relaxation;
   settings.tolerance = params.solver_tolerance;
   return settings;

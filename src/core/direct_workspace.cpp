@@ -78,22 +78,38 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   const double damping = settings.axial_damping;
   const double shift_share = settings.dampingShiftShare();
   dashpots = false;
+  // Sections (CableLoading): each segment's own EA and BA, and each joint's EI.
+  const CableLoading& load = cable.loading;
+  const bool loaded = !load.empty();
   for (std::size_t k = 0; k < m; ++k)
   {
     const double rest = cable.rest[f + k];
-    const bool damped = shift_share > 0.0 && k > 0;
-    alpha[k] = rest / (settings.axial_stiffness * h2 + (damped ? damping * h : 0.0));
+    const double own_damping = loaded && shift_share > 0.0 ? load.axial_damping[f + k] : damping;
+    const double own_stiffness = loaded ? load.axial_stiffness[f + k] : settings.axial_stiffness;
+    const double share =
+        loaded && own_damping > 0.0 ? own_damping / (h * own_stiffness + own_damping) : (loaded ? 0.0 : shift_share);
+    const bool damped = share > 0.0 && k > 0;
+    alpha[k] = rest / (own_stiffness * h2 + (damped ? own_damping * h : 0.0));
     inv_rest[k] = 1.0 / rest;
     const double start = damped ? cable.startLength(f + k) - rest : 0.0;
-    stop[k] = rest + shift_share * start;
+    stop[k] = rest + share * start;
     const bool middle = damped && unilateral && start < 0.0;
-    kink[k] = middle ? -shift_share * start : 0.0;
-    dashpot[k] = middle ? damping * h / rest : 0.0;
-    zero[k] = middle ? start * (1.0 - shift_share) : 0.0;
+    kink[k] = middle ? -share * start : 0.0;
+    dashpot[k] = middle ? own_damping * h / rest : 0.0;
+    zero[k] = middle ? start * (1.0 - share) : 0.0;
     dashpots = dashpots || middle;
   }
   for (std::size_t k = 0; bending && k + 1 < m; ++k)
   {
+    if (loaded)
+    {
+      // The joint's two half segments in series: each half's compliance L / (2 EI) (a segment of EI 0 is a
+      // hinge: infinite compliance).
+      gamma[k] = (0.5 * cable.rest[f + k] / load.bending_stiffness[f + k] +
+                  0.5 * cable.rest[f + k + 1] / load.bending_stiffness[f + k + 1]) /
+                 h2;
+      continue;
+    }
     gamma[k] = 0.5 * (cable.rest[f + k] + cable.rest[f + k + 1]) / (settings.bending_stiffness * h2);
   }
   std::copy(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end(), xt.begin());

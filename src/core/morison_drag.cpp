@@ -24,6 +24,8 @@ void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, do
   const double sink_across = -params.weight_in_water / mass.across * h * h;
   const double sink_along = -params.weight_in_water / mass.along * h * h;
   const bool uniform = current.uniform();
+  const CableLoading& load = cable.loading;
+  const bool loaded = !load.empty();
   const Position& u0 = current.mean();
   for (std::size_t i = begin; i < end; ++i)
   {
@@ -36,17 +38,37 @@ void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, do
     Position tangent = (i + 1 < n ? cable.position(i + 1) : x) - behind;
     const double tangent_length = tangent.norm();
     tangent = tangent_length > 0.0 ? Position(tangent / tangent_length) : Position::Zero();
-    const double share = 0.5 * (cable.rest[i - 1] + (i + 1 < n ? cable.rest[i] : 0.0));
-    const double h_per_mass = cable.inv_mass[i] * h * share;
-    const double h_per_mass_along = cable.inv_mass_along[i] * h * share;
     Position along = relative.dot(tangent) * tangent;
     Position across = relative - along;
-    along *= 1.0 - std::min(h_per_mass_along * tangential * along.norm(), 1.0);
-    across *= 1.0 - std::min(h_per_mass * normal * across.norm(), 1.0);
+    double sink_i = sink_across, sink_along_i = sink_along;
+    if (loaded)
+    {
+      // Each neighbouring segment's half of its own drag and weight, and the attachments' (a body's drag
+      // taken on both components of the flow).
+      const double left = cable.rest[i - 1], right = i + 1 < n ? cable.rest[i] : 0.0;
+      const double point_drag = load.point_drag[i];
+      const double drag_across =
+          0.5 * (load.normal_drag[i - 1] * left + (i + 1 < n ? load.normal_drag[i] * right : 0.0)) + point_drag;
+      const double drag_along =
+          0.5 * (load.tangential_drag[i - 1] * left + (i + 1 < n ? load.tangential_drag[i] * right : 0.0)) + point_drag;
+      along *= 1.0 - std::min(cable.inv_mass_along[i] * h * drag_along * along.norm(), 1.0);
+      across *= 1.0 - std::min(cable.inv_mass[i] * h * drag_across * across.norm(), 1.0);
+      const double weight = load.particleWeight(i, cable.rest, cable.first);
+      sink_i = -weight * cable.inv_mass[i] * h * h;
+      sink_along_i = -weight * cable.inv_mass_along[i] * h * h;
+    }
+    else
+    {
+      const double share = 0.5 * (cable.rest[i - 1] + (i + 1 < n ? cable.rest[i] : 0.0));
+      const double h_per_mass = cable.inv_mass[i] * h * share;
+      const double h_per_mass_along = cable.inv_mass_along[i] * h * share;
+      along *= 1.0 - std::min(h_per_mass_along * tangential * along.norm(), 1.0);
+      across *= 1.0 - std::min(h_per_mass * normal * across.norm(), 1.0);
+    }
     Position next = x + (water + along + across) * h;
     // The weight: its share along the cable with the cable's mass, across with the added mass too.
-    next.z() += sink_across;
-    next += (sink_along - sink_across) * tangent.z() * tangent;
+    next.z() += sink_i;
+    next += (sink_along_i - sink_i) * tangent.z() * tangent;
     cable.px[i] = x.x(), cable.py[i] = x.y(), cable.pz[i] = x.z();
     cable.x[i] = next.x(), cable.y[i] = next.y(), cable.z[i] = next.z();
   }

@@ -25,6 +25,22 @@ void PaperDamping::integrate(Cable& cable, std::size_t begin, std::size_t end, d
   // Net weight in water; a neutrally buoyant cable (the default) does no gravity work at all.
   const double sink = params.weight_in_water != 0.0 ? weightDisplacement(params, h) : 0.0;
   const double damping = params.dampingFactor(h);
+  if (!cable.loading.empty())
+  {
+    // Sections and attachments: each particle's own weight over its own mass (the paper's drag is one
+    // damping factor for every particle).
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Position drift = (1.0 - damping) * h * current.at(cable.position(i), t);
+      const double weight = cable.loading.particleWeight(i, cable.rest, cable.first);
+      const double x = cable.x[i], y = cable.y[i], z = cable.z[i];
+      cable.x[i] += (x - cable.px[i]) * damping + drift.x();
+      cable.y[i] += (y - cable.py[i]) * damping + drift.y();
+      cable.z[i] += (z - cable.pz[i]) * damping + drift.z() - weight * cable.inv_mass[i] * h * h;
+      cable.px[i] = x, cable.py[i] = y, cable.pz[i] = z;
+    }
+    return;
+  }
   if (!current.uniform())
   {
     // Damping relative to the local water velocity: v' = u + D (v - u).

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cable_layout.hpp"
+#include "rov_tether/core/cable_sections.hpp"
 #include "rov_tether/core/direct_solver.hpp"
 
 namespace rov_tether
@@ -173,7 +174,10 @@ Status Tether::setParams(const TetherParams& params)
     base_time_ = time_;
     base_steps_ = steps_;
   }
-  if (new_mass)
+  // Sections and attachments take the tether's values where they set none: any change may change them.
+  const bool was_loaded = !cable_.loading.empty();
+  CableSections::load(params_, &cable_);
+  if (new_mass || was_loaded || !cable_.loading.empty())
   {
     refreshDerived(cable_.first, cable_.size() - 1);
   }
@@ -183,6 +187,7 @@ Status Tether::setParams(const TetherParams& params)
 void Tether::build(double deployed_length)
 {
   cable_.resize(params_.segmentCount() + 1);
+  CableSections::load(params_, &cable_);
   solver_->multipliers().resize(cable_.size());
   tension_scratch_.reserve(cable_.size());
   layOut(deployed_length);
@@ -517,7 +522,7 @@ void Tether::finishVehicle(double h)
   // M (x - x~) = h^2 F for the particle of mass 1 / w.
   // The vehicle carries the last half segment's weight besides (a pinned particle's share, vehicleForce()).
   const Force pull =
-      (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_) + halfSegmentWeight(n - 2);
+      (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_) + endLoad(n - 1, n - 2);
   cable_.setInverseMass(n - 1, 0.0);  // pinned again between sub-steps, as the kinematic end is
   Position reached;
   const Status stepped = vehicle_->finish(h, pull, &reached);
@@ -735,7 +740,7 @@ Force Tether::vehicleForce() const
   }
   return cannotPush(endForce(cable_, solver_->multipliers(), last_step_),
                     cable_.position(n - 2) - cable_.position(n - 1)) +
-         halfSegmentWeight(n - 2);
+         endLoad(n - 1, n - 2);
 }
 
 Force Tether::spoolForce() const
@@ -747,7 +752,7 @@ Force Tether::spoolForce() const
   const std::size_t f = cable_.first;
   return cannotPush(startForce(cable_, solver_->multipliers(), last_step_),
                     cable_.position(f + 1) - cable_.position(f)) +
-         halfSegmentWeight(f);
+         endLoad(f, f);
 }
 
 Force Tether::cannotPush(const Force& pull, const Position& towards_cable)
@@ -755,9 +760,13 @@ Force Tether::cannotPush(const Force& pull, const Position& towards_cable)
   return pull.dot(towards_cable) > 0.0 ? pull : Force::Zero();
 }
 
-Force Tether::halfSegmentWeight(std::size_t j) const
+Force Tether::endLoad(std::size_t i, std::size_t j) const
 {
-  return Force(0.0, 0.0, -0.5 * params_.weight_in_water * cable_.rest[j]);
+  if (cable_.loading.empty())
+  {
+    return Force(0.0, 0.0, -0.5 * params_.weight_in_water * cable_.rest[j]);
+  }
+  return Force(0.0, 0.0, -0.5 * cable_.loading.weight[j] * cable_.rest[j] + cable_.loading.point_force[i]);
 }
 
 Status Tether::vehicleEndLinearisation(EndLinearisation* out, double horizon)

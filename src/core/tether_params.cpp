@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rov_tether/core/cable_sections.hpp"
+
 namespace rov_tether
 {
 namespace
@@ -352,6 +354,11 @@ std::vector<std::string> TetherParams::validate() const
   {
     relation("winch_speed = " + formatValue(winch_speed) + ": must be in [-max_winch_speed, max_winch_speed] = [" +
              formatValue(-max_winch_speed) + ", " + formatValue(max_winch_speed) + "]");
+  }
+  if (errors.empty() && (!sections.empty() || !attachments.empty()))
+  {
+    const auto material = CableSections::check(*this);
+    errors.insert(errors.end(), material.begin(), material.end());
   }
   return errors;
 }

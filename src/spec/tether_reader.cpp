@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "rov_tether/spec/cable_material_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::spec
@@ -67,9 +68,21 @@ std::string readTetherParams(const YAML::Node& map, const std::string& prefix, P
   const std::vector<std::string>& model = parameterNames();
   std::vector<std::string> errors;
   std::vector<std::pair<std::string, ParamValue>> values;
+  TetherParams candidate = *params;
   for (const auto& entry : map)
   {
     const std::string name = entry.first.as<std::string>();
+    // The cable's material along it: lists of maps, not in the parameter table.
+    if (name == "sections" || name == "attachments")
+    {
+      const std::string error = name == "sections" ? readSections(entry.second, prefix, &candidate.sections)
+                                                   : readAttachments(entry.second, prefix, &candidate.attachments);
+      if (!error.empty())
+      {
+        errors.push_back(error);
+      }
+      continue;
+    }
     if (keys == ParamKeys::kModelOnly && std::find(model.begin(), model.end(), name) == model.end())
     {
       continue;  // the caller's (a node option, `tethers`, ...)
@@ -84,7 +97,6 @@ std::string readTetherParams(const YAML::Node& map, const std::string& prefix, P
     values.emplace_back(name, value);
   }
   // The core's one loader of parameter values: types and ranges, and the whole set validated.
-  TetherParams candidate = *params;
   for (const auto& error : applyParameters(values, &candidate))
   {
     errors.push_back(prefix + error);

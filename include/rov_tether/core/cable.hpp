@@ -17,6 +17,38 @@ using Position = Eigen::Vector3d;
 using Force = Eigen::Vector3d;
 
 /**
+ * A cable whose material is not the same all along it (sections, attachments: CableSections::load), per
+ * segment and per particle, indexed like the Cable's arrays. Empty for a uniform cable, whose material is its
+ * parameters': every reader keeps that case's arithmetic as it was.
+ */
+struct CableLoading
+{
+  // Per segment j (joining particles j and j + 1).
+  std::vector<double> mass_along;         ///< Mass per metre along the cable [kg/m].
+  std::vector<double> mass_across;        ///< Mass per metre across it, added mass included [kg/m].
+  std::vector<double> weight;             ///< Net weight in water per metre, down positive [N/m].
+  std::vector<double> normal_drag;        ///< 1/2 rho C_dn d: drag across per metre per (m/s)^2 [kg/m^2].
+  std::vector<double> tangential_drag;    ///< 1/2 rho C_dt pi d: drag along per metre per (m/s)^2 [kg/m^2].
+  std::vector<double> axial_stiffness;    ///< EA [N].
+  std::vector<double> axial_damping;      ///< BA [N s].
+  std::vector<double> bending_stiffness;  ///< EI [N m^2].
+  // Per particle i: the attachments' shares (one between two particles is split by its distance to each).
+  std::vector<double> point_mass;   ///< Mass, added mass included [kg].
+  std::vector<double> point_force;  ///< Net buoyancy, up positive [N].
+  std::vector<double> point_drag;   ///< 1/2 rho C_d A [kg/m].
+
+  bool empty() const { return mass_along.empty(); }
+  /// Net weight in water of particle i's share: half of each neighbouring segment less its attachments'
+  /// buoyancy, down positive [N]; `rest` the cable's segment lengths, `first` the spool outlet.
+  double particleWeight(std::size_t i, const std::vector<double>& rest, std::size_t first) const
+  {
+    const double left = i > first ? weight[i - 1] * rest[i - 1] : 0.0;
+    const double right = i + 1 < rest.size() + 1 ? weight[i] * rest[i] : 0.0;
+    return 0.5 * (left + right) - point_force[i];
+  }
+};
+
+/**
  * The particles of the whole cable (deployed or on the spool) as structure-of-arrays, so that the solver
  * loops are contiguous and vectorise. Nothing else: forces, solvers, the spool and the vehicle act on it.
  *
@@ -42,6 +74,7 @@ struct Cable
   std::vector<double> bend_rest;       ///< Rest distance of bending constraint j: rest_j + rest_{j+1} [m].
   std::vector<double> bend_weight;     ///< 1 / (w_j + w_{j+2}) [kg], 0 when both are pinned.
   std::size_t first = 0;               ///< Index of the spool outlet particle.
+  CableLoading loading;                ///< Material per segment and particle when not uniform.
   /// Particles whose mass, or whose constraints' rest length or weight, changed since a solver last
   /// read them: [dirty_begin, dirty_end). Solvers that keep copies refresh only this range.
   std::size_t dirty_begin = 0;

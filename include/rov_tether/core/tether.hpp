@@ -295,9 +295,9 @@ class Tether
   double base_time_ = 0.0;    ///< Time of step number base_steps_; time_ = base + k dt avoids drift [s].
   std::uint64_t base_steps_ = 0;
   mutable std::vector<double> tension_scratch_;  ///< Reused by summary() so it does not allocate.
-  /// Weight in water of half of deployed segment `j` (an index into the cable) [N]: what the particle at
-  /// either of its ends carries of it.
-  Force halfSegmentWeight(std::size_t j) const;
+  /// What end particle `i` carries besides the tether's pull [N]: the weight in water of half of its
+  /// deployed segment `j` (indices into the cable), and the buoyancy of an attachment's share on it.
+  Force endLoad(std::size_t i, std::size_t j) const;
   /// `pull` when it pulls towards the cable (a positive component along `towards_cable`), else zero.
   static Force cannotPush(const Force& pull, const Position& towards_cable);
   double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).

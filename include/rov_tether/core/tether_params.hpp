@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "rov_tether/core/cable_section.hpp"
 #include "rov_tether/core/line_mass.hpp"
 
 namespace rov_tether
@@ -174,6 +175,12 @@ struct TetherParams
   /// The fastest the vehicle can move [m/s]: between samples dt apart it may move this * dt more than
   /// max_vehicle_jump without being a jump.
   double max_vehicle_speed = 3.0;
+
+  /// The cable in sections of their own material, from the vehicle end (issue 22); none: one uniform cable of
+  /// the parameters above. Not in the parameter table: a list of maps (`sections:` in a description).
+  std::vector<CableSection> sections;
+  /// Floats and clump weights clipped onto the cable (`attachments:` in a description).
+  std::vector<CableAttachment> attachments;
 
   /// Returns one message per invalid field ("field = value: allowed range"); empty when valid.
   std::vector<std::string> validate() const;

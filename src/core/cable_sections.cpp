@@ -1,0 +1,351 @@
+#include "rov_tether/core/cable_sections.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace rov_tether
+{
+namespace
+{
+
+// The fields of SectionMaterial by parameter name: the one list properties() and make() read.
+using Field = double SectionMaterial::*;
+const std::vector<std::pair<std::string, Field>>& fields()
+{
+  static const std::vector<std::pair<std::string, Field>> table = {
+      {"mass_per_length", &SectionMaterial::mass_per_length},
+      {"weight_in_water", &SectionMaterial::weight_in_water},
+      {"diameter", &SectionMaterial::diameter},
+      {"axial_stiffness", &SectionMaterial::axial_stiffness},
+      {"bending_stiffness", &SectionMaterial::bending_stiffness},
+      {"axial_damping", &SectionMaterial::axial_damping},
+      {"normal_drag_coefficient", &SectionMaterial::normal_drag_coefficient},
+      {"tangential_drag_coefficient", &SectionMaterial::tangential_drag_coefficient},
+      {"added_mass_coefficient", &SectionMaterial::added_mass_coefficient},
+  };
+  return table;
+}
+
+std::string number(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+SectionMaterial SectionMaterial::of(const TetherParams& params)
+{
+  SectionMaterial material;
+  for (const auto& [name, field] : fields())
+  {
+    material.*field = std::get<double>(getParameter(params, name));
+  }
+  return material;
+}
+
+void SectionMaterial::applyTo(TetherParams* params) const
+{
+  for (const auto& [name, field] : fields())
+  {
+    setParameter(*params, name, this->*field);
+  }
+}
+
+bool SectionMaterial::operator==(const SectionMaterial& other) const
+{
+  return std::all_of(fields().begin(), fields().end(),
+                     [&](const auto& entry) { return this->*entry.second == other.*entry.second; });
+}
+
+const std::vector<std::string>& CableSections::properties()
+{
+  static const std::vector<std::string> names = []
+  {
+    std::vector<std::string> result;
+    for (const auto& entry : fields())
+    {
+      result.push_back(entry.first);
+    }
+    return result;
+  }();
+  return names;
+}
+
+Status CableSections::make(const TetherParams& params, const std::vector<CableSection>& sections, CableSections* out)
+{
+  const std::size_t segments = params.segmentCount();
+  CableSections made;
+  if (sections.empty())
+  {
+    made.materials_ = {SectionMaterial::of(params)};
+    made.ends_ = {segments};
+    *out = std::move(made);
+    return Status::success();
+  }
+  std::vector<std::string> errors;
+  double covered = 0.0;  // [m] by the sections before the one at hand
+  std::size_t end = 0;   // segments from the vehicle end
+  for (std::size_t s = 0; s < sections.size(); ++s)
+  {
+    const CableSection& section = sections[s];
+    const std::string which = "section " + std::to_string(s + 1) + " of " + std::to_string(sections.size());
+    const bool last = s + 1 == sections.size();
+    double length = section.length;
+    if (std::isnan(length) && last)
+    {
+      length = params.cable_length - covered;  // runs to the drum
+      if (!(length > 0.0))
+      {
+        errors.push_back(which + ": the sections before it cover " + number(covered) + " m of the " +
+                         number(params.cable_length) + " m cable, so none is left for it to run to the drum");
+        continue;
+      }
+    }
+    else if (!std::isfinite(length) || !(length > 0.0))
+    {
+      errors.push_back(which + ": length must be finite and positive" +
+                       (last ? std::string() : std::string(" (only the last section may leave it out)")) + " (got " +
+                       number(length) + ")");
+      continue;
+    }
+    covered += length;
+    if (last)
+    {
+      if (std::abs(covered - params.cable_length) > 1e-6 * params.segment_length)
+      {
+        errors.push_back("sections: their lengths add up to " + number(covered) + " m, not cable_length " +
+                         number(params.cable_length) +
+                         " m (leave the last section's length out to run it to the drum)");
+        continue;
+      }
+      end = segments;  // what is left, a short last segment included
+    }
+    else
+    {
+      const double count = length / params.segment_length;
+      if (std::abs(count - std::round(count)) > 1e-6)
+      {
+        errors.push_back(which + ": length " + number(length) + " m is not a whole number of segments of " +
+                         number(params.segment_length) + " m (segments never straddle a section boundary)");
+        continue;
+      }
+      end += static_cast<std::size_t>(std::round(count));
+      if (end >= segments)
+      {
+        errors.push_back(which + ": ends " + number(covered) + " m from the vehicle, at or beyond the cable's " +
+                         number(params.cable_length) + " m, and is not the last section");
+        continue;
+      }
+    }
+    // The section's material is the tether's parameters with its properties set, checked by the parameter
+    // table's own ranges (and TetherParams::validate's relations) so a section is held to what the tether is.
+    TetherParams own = params;
+    own.sections.clear(), own.attachments.clear();  // its own material only (validate() checks those)
+    std::vector<std::string> seen;
+    bool named = true;
+    for (const auto& [name, value] : section.properties)
+    {
+      const auto& allowed = properties();
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+      {
+        errors.push_back(which + ": '" + name + "' is not a property a section may set");
+        named = false;
+        continue;
+      }
+      if (std::find(seen.begin(), seen.end(), name) != seen.end())
+      {
+        errors.push_back(which + ": '" + name + "' is set twice");
+        named = false;
+        continue;
+      }
+      seen.push_back(name);
+      const std::string error = setParameter(own, name, value);
+      if (!error.empty())
+      {
+        errors.push_back(which + ": " + error);
+        named = false;
+      }
+    }
+    if (!named)
+    {
+      continue;
+    }
+    for (const std::string& error : own.validate())
+    {
+      errors.push_back(which + ": " + error);
+    }
+    const SectionMaterial material = SectionMaterial::of(own);
+    if (!made.materials_.empty() && made.materials_.back() == material)
+    {
+      made.ends_.back() = end;  // the same material as the section before: one section
+    }
+    else
+    {
+      made.materials_.push_back(material);
+      made.ends_.push_back(end);
+    }
+  }
+  if (!errors.empty())
+  {
+    std::string text = "cable sections rejected: ";
+    for (std::size_t i = 0; i < errors.size(); ++i)
+    {
+      text += (i > 0 ? "; " : "") + errors[i];
+    }
+    return Status::error(text);
+  }
+  *out = std::move(made);
+  return Status::success();
+}
+
+std::vector<std::string> CableSections::check(const TetherParams& params)
+{
+  std::vector<std::string> errors;
+  CableSections made;
+  const Status sections = make(params, params.sections, &made);
+  if (!sections)
+  {
+    errors.push_back(sections.message);
+  }
+  else if (params.solver != SolverType::kDirect)
+  {
+    const SectionMaterial own = SectionMaterial::of(params);
+    for (const SectionMaterial& material : made.materials())
+    {
+      if (material.axial_stiffness != own.axial_stiffness || material.axial_damping != own.axial_damping ||
+          material.bending_stiffness != own.bending_stiffness)
+      {
+        errors.push_back(
+            "sections: a section of its own axial_stiffness, axial_damping or bending_stiffness needs "
+            "solver direct (the others take one stiffness for the whole cable); solver is " +
+            formatParamValue(getParameter(params, "solver")));
+        break;
+      }
+    }
+  }
+  std::vector<std::string> names;
+  for (std::size_t a = 0; a < params.attachments.size(); ++a)
+  {
+    const CableAttachment& attachment = params.attachments[a];
+    const std::string which =
+        "attachment " + (attachment.name.empty() ? std::to_string(a + 1) : "'" + attachment.name + "'");
+    if (attachment.name.empty())
+    {
+      errors.push_back(which + ": name missing");
+    }
+    else if (std::find(names.begin(), names.end(), attachment.name) != names.end())
+    {
+      errors.push_back(which + ": the name is used twice");
+    }
+    names.push_back(attachment.name);
+    const double arc = attachment.arc_length_from_vehicle;
+    if (!(arc > 0.0 && arc <= params.cable_length))
+    {
+      errors.push_back(which + ": arc_length_from_vehicle = " + number(arc) + " m: must be in (0, cable_length " +
+                       number(params.cable_length) + " m] (a body at the vehicle end is the vehicle's)");
+    }
+    const std::vector<std::pair<const char*, double>> non_negative = {
+        {"mass", attachment.mass},
+        {"added_mass", attachment.added_mass},
+        {"drag_area", attachment.drag_area},
+        {"drag_coefficient", attachment.drag_coefficient}};
+    for (const auto& [field, value] : non_negative)
+    {
+      if (!(value >= 0.0 && value <= 1e7))
+      {
+        errors.push_back(which + ": " + field + " = " + number(value) + ": must be in [0, 1e7]");
+      }
+    }
+    if (!(std::abs(attachment.net_buoyancy) <= 1e7))
+    {
+      errors.push_back(which + ": net_buoyancy = " + number(attachment.net_buoyancy) +
+                       " N: must be finite, within +-1e7 N (up positive)");
+    }
+  }
+  return errors;
+}
+
+void CableSections::load(const TetherParams& params, Cable* cable)
+{
+  CableLoading& loading = cable->loading;
+  CableSections made;
+  const Status status = make(params, params.sections, &made);
+  if (!status || (made.uniform() && params.attachments.empty()))
+  {
+    loading = CableLoading{};  // a uniform cable (check() reports a description that does not fit)
+    return;
+  }
+  const std::size_t n = cable->size();
+  const std::size_t segments = n - 1;
+  for (auto* v :
+       {&loading.mass_along, &loading.mass_across, &loading.weight, &loading.normal_drag, &loading.tangential_drag,
+        &loading.axial_stiffness, &loading.axial_damping, &loading.bending_stiffness})
+  {
+    v->assign(segments, 0.0);
+  }
+  for (auto* v : {&loading.point_mass, &loading.point_force, &loading.point_drag})
+  {
+    v->assign(n, 0.0);
+  }
+  constexpr double kPi = 3.14159265358979323846;
+  const double half_rho = 0.5 * params.water_density;
+  // Each section's values once (through the tether's own formulas), then each segment's.
+  std::vector<std::array<double, 8>> values;
+  for (const SectionMaterial& material : made.materials_)
+  {
+    TetherParams own = params;
+    material.applyTo(&own);
+    values.push_back({own.mass_per_length, own.effectiveMassPerLength(), own.weight_in_water,
+                      half_rho * own.normal_drag_coefficient * own.diameter,
+                      half_rho * own.tangential_drag_coefficient * kPi * own.diameter, own.axial_stiffness,
+                      own.axial_damping, own.bending_stiffness});
+  }
+  for (std::size_t j = 0; j < segments; ++j)
+  {
+    const auto& v = values[made.sectionOf(segments - 1 - j)];
+    loading.mass_along[j] = v[0], loading.mass_across[j] = v[1], loading.weight[j] = v[2];
+    loading.normal_drag[j] = v[3], loading.tangential_drag[j] = v[4];
+    loading.axial_stiffness[j] = v[5], loading.axial_damping[j] = v[6], loading.bending_stiffness[j] = v[7];
+  }
+  for (const CableAttachment& attachment : params.attachments)
+  {
+    const Place place = placeOf(params, n, attachment);
+    const auto add = [&](std::size_t particle, double share)
+    {
+      loading.point_mass[particle] += share * (attachment.mass + attachment.added_mass);
+      loading.point_force[particle] += share * attachment.net_buoyancy;
+      loading.point_drag[particle] += share * half_rho * attachment.drag_coefficient * attachment.drag_area;
+    };
+    add(place.near, 1.0 - place.far_share);
+    if (place.far != place.near)
+    {
+      add(place.far, place.far_share);
+    }
+  }
+}
+
+CableSections::Place CableSections::placeOf(const TetherParams& params, std::size_t particles,
+                                            const CableAttachment& attachment)
+{
+  // Particle particles - 1 is the vehicle end; s particles from it is arc length s * segment_length.
+  const double last = static_cast<double>(particles - 1);
+  const double s = std::min(attachment.arc_length_from_vehicle / params.segment_length, last);
+  const double whole = std::floor(s);
+  Place place;
+  place.near = particles - 1 - static_cast<std::size_t>(whole);
+  place.far_share = s - whole;
+  place.far = place.far_share > 0.0 && place.near > 0 ? place.near - 1 : place.near;
+  return place;
+}
+
+std::size_t CableSections::sectionOf(std::size_t k) const
+{
+  const auto it = std::upper_bound(ends_.begin(), ends_.end(), k);
+  return it == ends_.end() ? ends_.size() - 1 : static_cast<std::size_t>(it - ends_.begin());
+}
+
+}  // namespace rov_tether

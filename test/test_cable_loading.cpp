@@ -1,0 +1,466 @@
+// A cable of more than one material (issue 22): floats and clump weights clipped on, and sections of their
+// own weight and stiffness, at rest against statics solved independently in the test. docs/references.md,
+// "Cables of sections and attachments".
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "rov_tether/core/tether.hpp"
+
+namespace rov_tether
+{
+namespace
+{
+
+/// A cable between two fixed ends that only gravity and what is clipped on shape: locked winch, no noise,
+/// no bending (the statics below are a string's), the whole cable deployed.
+TetherParams lockedString(double length, double segment)
+{
+  TetherParams p;
+  p.cable_length = length;
+  p.segment_length = segment;
+  p.initial_deployed_length = length;
+  p.min_deployed_length = segment;
+  p.winch_mode = WinchMode::kLocked;
+  p.noise = 0.0;
+  p.bending = false;
+  p.weight_in_water = 0.0;
+  p.solver = SolverType::kDirect;
+  return p;
+}
+
+CableAttachment body(const char* name, double arc, double buoyancy)
+{
+  CableAttachment a;
+  a.name = name;
+  a.arc_length_from_vehicle = arc;
+  a.mass = 1.0;
+  a.net_buoyancy = buoyancy;
+  return a;
+}
+
+/// A section as the test's statics sees it: length [m], weight in water [N/m] and EA [N].
+struct Piece
+{
+  double length, weight, stiffness;
+};
+
+/**
+ * The elastic catenary of a cable of pieces (listed from the spool end) hung between the spool at the origin
+ * and `end` in the x-z plane, solved by shooting, independently of the simulator: the force the cable beyond
+ * unstretched arc length s carries is F(s) = (H, V0 + W(s)) (W the weight from the spool to s, dF/ds = w z),
+ * and the cable runs along it stretched by 1 + |F| / EA. Newton on (H, V0) until the far end lands on `end`
+ * within 1e-10 m, from a first guess (any near enough: the simulator's own spool pull is used). Returns the
+ * positions at every `step` of arc length from the spool, and the stretched length of each piece.
+ */
+bool shoot(const std::vector<Piece>& pieces, const Eigen::Vector2d& end, double step, Eigen::Vector2d guess,
+           std::vector<Eigen::Vector2d>* at, std::vector<double>* stretched)
+{
+  const int fine = 200;  // integration points per `step` (midpoint rule: error O((step / fine)^2))
+  auto run = [&](const Eigen::Vector2d& hv, bool record)
+  {
+    Eigen::Vector2d r = Eigen::Vector2d::Zero();
+    double weight_above = 0.0;  // W(s)
+    if (record)
+    {
+      at->assign(1, r);
+      stretched->clear();
+    }
+    for (const Piece& piece : pieces)
+    {
+      const auto steps = static_cast<int>(std::lround(piece.length / step));
+      double length = 0.0;
+      for (int k = 0; k < steps; ++k)
+      {
+        for (int q = 0; q < fine; ++q)
+        {
+          const double ds = step / fine;
+          const double w_mid = weight_above + piece.weight * (q + 0.5) * ds;
+          const Eigen::Vector2d force(hv.x(), hv.y() + w_mid);
+          const double t = force.norm();
+          const Eigen::Vector2d dr = force / t * (1.0 + t / piece.stiffness) * ds;
+          r += dr;
+          length += dr.norm();
+        }
+        weight_above += piece.weight * step;
+        if (record)
+        {
+          at->push_back(r);
+        }
+      }
+      if (record)
+      {
+        stretched->push_back(length);
+      }
+    }
+    return r;
+  };
+  Eigen::Vector2d hv = guess;
+  for (int iteration = 0; iteration < 50; ++iteration)
+  {
+    const Eigen::Vector2d miss = run(hv, false) - end;
+    if (miss.norm() < 1e-10)
+    {
+      run(hv, true);
+      return true;
+    }
+    Eigen::Matrix2d jacobian;
+    for (int c = 0; c < 2; ++c)
+    {
+      Eigen::Vector2d probe = hv;
+      probe[c] += 1e-6 * std::max(1.0, std::abs(hv[c]));
+      jacobian.col(c) = (run(probe, false) - end - miss) / (probe[c] - hv[c]);
+    }
+    hv -= jacobian.inverse() * miss;
+  }
+  return false;
+}
+
+/// The V a point force B (up positive) makes of a weightless elastic cable of length 2 l between level ends
+/// 2 s apart, clipped at its middle: two straight legs of stretched length l (1 + T / EA), each carrying T
+/// with 2 T sin(theta) = |B|. Returns the apex's height above the ends (signed as B) and T.
+void vStatics(double l, double s, double buoyancy, double ea, double* apex, double* tension)
+{
+  double t = 0.0;
+  for (int k = 0; k < 100; ++k)  // fixed point on the stretch (T / EA << 1: converges at once)
+  {
+    const double leg = l * (1.0 + t / ea);
+    const double rise = std::sqrt(leg * leg - s * s);
+    t = std::abs(buoyancy) * leg / (2.0 * rise);
+    *apex = std::copysign(rise, buoyancy);
+  }
+  *tension = t;
+}
+
+// A weightless cable 10 m long between ends 8 m apart with a 20 N float clipped at its middle: statics gives
+// two straight legs, apex sqrt(5^2 - 4^2) = 3 m up (plus the legs' stretch), T = B / (2 sin(theta)) = 16.7 N
+// in each. The issue's bounds: apex within 1%, tension within 2%. A clump weight makes the same V upside down.
+TEST(Attachments, AFloatOrAClumpWeightBendsAWeightlessCableIntoAV)
+{
+  for (const double buoyancy : {20.0, -20.0})
+  {
+    TetherParams p = lockedString(10.0, 0.1);
+    p.attachments = {body(buoyancy > 0.0 ? "float" : "clump", 5.0, buoyancy)};
+    Tether sim(p, Position::Zero(), Position(8.0, 0.0, 0.0));
+    ASSERT_TRUE(sim.advance(60.0).ok);
+    double apex = 0.0, tension = 0.0;
+    vStatics(5.0, 4.0, buoyancy, p.axial_stiffness, &apex, &tension);
+    const std::size_t middle = sim.deployedParticleCount() / 2;  // 50 segments from either end
+    const Position top = sim.particle(middle);
+    std::vector<double> tensions;
+    sim.computeSegmentTensions(tensions);
+    const auto [low, high] = std::minmax_element(tensions.begin(), tensions.end());
+    std::printf("[ measured ] %+.0f N at the middle: apex %.4f m (statics %.4f), tension %.3f-%.3f N (statics %.3f)\n",
+                buoyancy, top.z(), apex, *low, *high, tension);
+    EXPECT_NEAR(top.z(), apex, 0.01 * std::abs(apex));
+    EXPECT_NEAR(top.x(), 4.0, 0.01 * std::abs(apex));
+    EXPECT_NEAR(*low, tension, 0.02 * tension);
+    EXPECT_NEAR(*high, tension, 0.02 * tension);
+    // Two straight legs: every particle on the line from its end to the apex, within the same 1%.
+    for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
+    {
+      const Position x = sim.particle(k);
+      const double along = x.x() <= 4.0 ? x.x() / 4.0 : (8.0 - x.x()) / 4.0;
+      EXPECT_NEAR(x.z(), along * top.z(), 0.01 * std::abs(apex)) << "particle " << k;
+    }
+  }
+}
+
+/// A cable hanging from its spool with a free end, in three sections (from the bottom: 3 m at 8 N/m, a 4 m
+/// float section at -1 N/m, 3 m at 2 N/m to the drum): each segment carries the weight in water of all the
+/// cable below its middle (the lumped chain's segment k carries particles 0..k, half of its own segment
+/// included), and the spool the whole 26 N, under either drag model (each applies the weight its own way). Bound: the
+/// issue's 0.5% (direct stops at a 1e-8 residual).
+TEST(Sections, AHangingCableCarriesTheWeightOfEverySectionBelowIt)
+{
+  for (const DragModel drag : {DragModel::kDamping, DragModel::kMorison})
+  {
+    TetherParams p = lockedString(10.0, 0.1);
+    p.drag_model = drag;
+    p.sections = {{3.0, {{"weight_in_water", 8.0}}}, {4.0, {{"weight_in_water", -1.0}}}, {}};
+    p.sections.back().properties = {{"weight_in_water", 2.0}};
+    Tether sim(p, Position::Zero());
+    ASSERT_TRUE(sim.advance(60.0).ok);
+    std::vector<double> tensions;
+    sim.computeSegmentTensions(tensions);  // spool first
+    const std::size_t m = tensions.size();
+    ASSERT_EQ(m, 100u);
+    auto weight_below = [](double s)  // of the cable below arc length s from the bottom [N]
+    { return 8.0 * std::min(s, 3.0) - 1.0 * std::clamp(s - 3.0, 0.0, 4.0) + 2.0 * std::max(s - 7.0, 0.0); };
+    for (std::size_t k = 0; k < m; ++k)  // k from the bottom
+    {
+      const double expected = weight_below((static_cast<double>(k) + 0.5) * 0.1);
+      EXPECT_NEAR(tensions[m - 1 - k], expected, 0.005 * expected) << "segment " << k << " from the bottom";
+    }
+    const Force spool = sim.spoolForce();
+    std::printf("[ measured ] spool %.4f N down (statics 26 N); top segment %.4f N (statics %.4f N)\n", -spool.z(),
+                tensions[0], weight_below(9.95));
+    EXPECT_NEAR(-spool.z(), 26.0, 0.005 * 26.0);
+  }
+}
+
+// A lazy wave: a cable of heavy, buoyant, neutral and heavy sections (the buoyant one soft, EA 2000 N, so its
+// stretch shows) from a spool at the origin to a vehicle 30 m out and 15 m down, at rest, against the elastic
+// catenary solved by shooting in the test. The issue's bound: every particle within 1% of the span of where
+// the shooting puts its material. And the soft section's stretch, |F| / EA integrated, within 2% of itself
+// (with the tether's EA 1e5 N it would be 50x smaller).
+TEST(Sections, ALazyWaveHangsAsTheElasticCatenaryShootingGives)
+{
+  TetherParams p = lockedString(50.0, 0.1);
+  p.weight_in_water = 3.0;
+  // From the vehicle end: 10 m heavy (the tether's), 10 m buoyant and soft, 5 m neutral, 25 m heavy to the drum.
+  p.sections = {{10.0, {}},
+                {10.0, {{"weight_in_water", -6.0}, {"axial_stiffness", 2000.0}}},
+                {5.0, {{"weight_in_water", 0.0}}},
+                {}};
+  Tether sim(p, Position::Zero(), Position(30.0, 0.0, -15.0));
+  ASSERT_TRUE(sim.advance(120.0).ok);
+  const std::vector<Piece> from_spool = {{25.0, 3.0, 1e5}, {5.0, 0.0, 1e5}, {10.0, -6.0, 2000.0}, {10.0, 3.0, 1e5}};
+  const Force pull = sim.spoolForce();  // the first guess only
+  std::vector<Eigen::Vector2d> at;
+  std::vector<double> stretched;
+  ASSERT_TRUE(
+      shoot(from_spool, Eigen::Vector2d(30.0, -15.0), 0.1, Eigen::Vector2d(pull.x(), pull.z()), &at, &stretched));
+  ASSERT_EQ(at.size(), sim.deployedParticleCount());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < at.size(); ++k)
+  {
+    const Position x = sim.particle(k);
+    worst = std::max(worst, std::hypot(x.x() - at[k].x(), x.z() - at[k].y()));
+    EXPECT_NEAR(std::abs(x.y()), 0.0, 1e-9);
+  }
+  double soft = 0.0;  // the soft section's stretched length in the simulation: its particles 300 to 400
+  for (std::size_t k = 300; k < 400; ++k)
+  {
+    soft += (sim.particle(k + 1) - sim.particle(k)).norm();
+  }
+  std::printf(
+      "[ measured ] lazy wave: worst particle %.4f m from the shooting solution (span 30 m); soft section "
+      "%.5f m long (shooting %.5f m), its middle at z %.3f m\n",
+      worst, soft, stretched[2], at[350].y());
+  EXPECT_LT(worst, 0.01 * 30.0);
+  EXPECT_NEAR(soft - 10.0, stretched[2] - 10.0, 0.02 * (stretched[2] - 10.0));
+}
+
+/// Statics of a weightless cable with a float B at its apex: legs l1 (from the spool at the origin) and l2
+/// (to the vehicle at (span, 0)), straight (EA 1e5 N stretches them by 1e-4 here). Both legs taut: the apex
+/// from the triangle and T1 u1 + T2 u2 = -B z (u from the apex towards each end). When that asks a leg to push,
+/// it is slack and the float stands on the other, straight up from its end with T = B.
+void apexStatics(double l1, double l2, double span, double buoyancy, Eigen::Vector2d* apex, double* t1, double* t2)
+{
+  const double x = (l1 * l1 - l2 * l2 + span * span) / (2.0 * span);
+  *apex = Eigen::Vector2d(x, std::sqrt(std::max(l1 * l1 - x * x, 0.0)));
+  const Eigen::Vector2d u1 = -*apex / l1, u2 = (Eigen::Vector2d(span, 0.0) - *apex) / l2;
+  Eigen::Matrix2d legs;
+  legs << u1, u2;
+  const Eigen::Vector2d t = legs.inverse() * Eigen::Vector2d(0.0, -buoyancy);
+  *t1 = t.x(), *t2 = t.y();
+  if (!(t.x() > 0.0 && t.y() > 0.0))
+  {
+    const bool on_first = l1 * l1 + span * span <= l2 * l2 + 1e-12;  // the spool's leg is the taut one
+    *apex = on_first ? Eigen::Vector2d(0.0, l1) : Eigen::Vector2d(span, l2);
+    *t1 = on_first ? buoyancy : 0.0, *t2 = on_first ? 0.0 : buoyancy;
+  }
+}
+
+// Pay-out carries an attachment with its material: a 10 N float clipped 11 m from the vehicle end of a
+// neutral 20 m cable, on the drum while 10.6 m are out, is released when 11 m are and rides out with its
+// material. Paid out to 15 m it sits where statics puts a float on legs of 4 m and 11 m between ends 10.4 m
+// apart (1% of the apex height; tensions 2%). No spike at release: the largest tension over the whole pay-out
+// stays within twice the largest static tension of any leg split on the way (a load applied at once overshoots
+// its static answer by at most 2x, the dynamic load factor of a step load).
+TEST(Attachments, PayOutCarriesAnAttachmentWithItsMaterial)
+{
+  TetherParams p = lockedString(20.0, 0.1);
+  p.initial_deployed_length = 10.6;
+  p.winch_mode = WinchMode::kSpeed;
+  p.winch_speed = 0.2;
+  constexpr double kArc = 11.0, kSpan = 10.4, kOut = 15.0, kFloat = 10.0;
+  p.attachments = {body("float", kArc, kFloat)};
+  Tether sim(p, Position::Zero(), Position(kSpan, 0.0, 0.0));
+  ASSERT_TRUE(sim.setTargetLength(kOut).ok);
+  double peak = 0.0, static_peak = 0.0;
+  std::vector<double> tensions;
+  for (int k = 0; k < 3000; ++k)  // 60 s: paid out by about 22 s, then settling
+  {
+    ASSERT_TRUE(sim.advance(0.02).ok);
+    sim.computeSegmentTensions(tensions);
+    peak = std::max(peak, *std::max_element(tensions.begin(), tensions.end()));
+    const double out = sim.deployedLength() - kArc;  // the float's leg to the spool, once released
+    if (out > 0.0)
+    {
+      Eigen::Vector2d apex;
+      double t1 = 0.0, t2 = 0.0;
+      apexStatics(out, kArc, kSpan, kFloat, &apex, &t1, &t2);
+      static_peak = std::max({static_peak, t1, t2});
+    }
+  }
+  ASSERT_NEAR(sim.deployedLength(), kOut, 1e-9);
+  Eigen::Vector2d apex;
+  double t1 = 0.0, t2 = 0.0;
+  apexStatics(kOut - kArc, kArc, kSpan, kFloat, &apex, &t1, &t2);
+  const std::size_t at = sim.deployedParticleCount() - 1 - 110;  // the float's material, 110 segments out
+  const Position top = sim.particle(at);
+  sim.computeSegmentTensions(tensions);
+  std::printf(
+      "[ measured ] float at (%.4f, %.4f) m (statics (%.4f, %.4f)); legs %.3f / %.3f N (statics %.3f / %.3f); "
+      "peak over the pay-out %.3f N, largest static %.3f N\n",
+      top.x(), top.z(), apex.x(), apex.y(), tensions.front(), tensions.back(), t1, t2, peak, static_peak);
+  EXPECT_NEAR(top.x(), apex.x(), 0.01 * apex.y());
+  EXPECT_NEAR(top.z(), apex.y(), 0.01 * apex.y());
+  EXPECT_NEAR(tensions.front(), t1, 0.02 * t1);
+  EXPECT_NEAR(tensions.back(), t2, 0.02 * t2);
+  EXPECT_LT(peak, 2.0 * static_peak);
+}
+
+/**
+ * Small deflections w(x) (up positive) of a tensioned beam pinned at x = 0 and x = span with a point force P
+ * (up) at x = a, EI(x) piecewise: (EI w'')'' - T w'' = P delta(x - a), w = EI w'' = 0 at both ends. Solved by
+ * finite differences on `intervals` intervals, as the pair m = EI w'', m'' - T w'' = q (m is continuous where EI
+ * jumps; a node on the jump takes the two halves in series). Returns w at the nodes.
+ */
+std::vector<double> beamColumn(double span, double tension, double force, double a, double (*stiffness)(double x),
+                               int intervals)
+{
+  const double h = span / intervals;
+  const int n = intervals - 1;  // interior nodes; unknowns w_1..w_n then m_1..m_n
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
+  const auto load = static_cast<int>(std::lround(a / h));
+  for (int i = 1; i <= n; ++i)
+  {
+    const int row = i - 1;
+    const double x = i * h;
+    const double left = stiffness(x - 1e-9), right = stiffness(x + 1e-9);
+    const double ei = 2.0 / (1.0 / left + 1.0 / right);
+    // m_i - EI_i (w_{i+1} - 2 w_i + w_{i-1}) / h^2 = 0
+    entries.emplace_back(row, n + row, 1.0);
+    // m'' - T w'' = q: (m_{i+1} - 2 m_i + m_{i-1} - T (w_{i+1} - 2 w_i + w_{i-1})) / h^2 = q_i
+    for (const auto& [offset, weight] : {std::pair{-1, 1.0}, std::pair{0, -2.0}, std::pair{1, 1.0}})
+    {
+      const int j = i + offset;
+      if (j < 1 || j > n)
+      {
+        continue;  // w_0 = w_N = m_0 = m_N = 0
+      }
+      entries.emplace_back(row, j - 1, -ei * weight / (h * h));
+      entries.emplace_back(n + row, n + j - 1, weight / (h * h));
+      entries.emplace_back(n + row, j - 1, -tension * weight / (h * h));
+    }
+    rhs[n + row] = i == load ? force / h : 0.0;
+  }
+  Eigen::SparseMatrix<double> matrix(2 * n, 2 * n);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(matrix);
+  const Eigen::VectorXd solution = lu.solve(rhs);
+  std::vector<double> w(intervals + 1, 0.0);
+  for (int i = 1; i <= n; ++i)
+  {
+    w[i] = solution[i - 1];
+  }
+  return w;
+}
+
+/// The beam test's bending stiffness along x from the spool: 2000 N m^2 for the 5 m at the spool, 500 N m^2
+/// for the 5 m at the vehicle [N m^2].
+double twoStiffnesses(double x) { return x < 5.0 ? 2000.0 : 500.0; }
+
+// Bending per section: a neutral 10 m rod, pretensioned (its ends 10.01 m apart: about 100 N at EA 1e5 N),
+// of EI 500 N m^2 for the 5 m at the vehicle and 2000 N m^2 for the 5 m to the drum (the tether's own is
+// 0.2), lifted by a 5 N float 4 m from the vehicle, against the beam-column equation with the same
+// stiffnesses and the tension the simulation carries, solved in the test. The deflection (about 8 cm) is
+// small: linear theory is out by O((w / L)^2). Bound: every particle within 2% of the largest deflection.
+// With the stiffer section's EI the whole way the largest deflection is about half (measured: 3.2 cm).
+TEST(Sections, EachSectionBendsWithItsOwnStiffness)
+{
+  TetherParams p = lockedString(10.0, 0.1);
+  p.bending = true;
+  p.sections = {{5.0, {{"bending_stiffness", 500.0}}}, {}};
+  p.sections.back().properties = {{"bending_stiffness", 2000.0}};
+  p.attachments = {body("float", 4.0, 5.0)};
+  constexpr double kSpan = 10.01;
+  Tether sim(p, Position::Zero(), Position(kSpan, 0.0, 0.0));
+  ASSERT_TRUE(sim.advance(60.0).ok);
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  double mean = 0.0;
+  for (const double t : tensions)
+  {
+    mean += t / static_cast<double>(tensions.size());
+  }
+  constexpr int kIntervals = 2002;  // nodes 0.005 m apart; the float's x = 10.01 - 4 (1 + 1e-3) ~ 6.006 m
+  const std::vector<double> w =
+      beamColumn(kSpan, mean, 5.0, kSpan - 4.0 * (1.0 + mean / p.axial_stiffness), twoStiffnesses, kIntervals);
+  const double largest = *std::max_element(w.begin(), w.end());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < sim.deployedParticleCount(); ++k)
+  {
+    const Position x = sim.particle(k);
+    const double node = std::clamp(x.x() / kSpan * kIntervals, 0.0, static_cast<double>(kIntervals));
+    const auto i = std::min(static_cast<int>(node), kIntervals - 1);
+    const double expected = w[i] + (node - i) * (w[i + 1] - w[i]);
+    worst = std::max(worst, std::abs(x.z() - expected));
+  }
+  std::printf(
+      "[ measured ] beam of two stiffnesses: tension %.2f N, largest deflection %.4f m (beam-column %.4f m), "
+      "worst particle %.5f m off\n",
+      mean, sim.particle(60).z(), largest, worst);
+  EXPECT_LT(worst, 0.02 * largest);
+}
+
+/// An attachment between two particles is split between them by its distance to each: the total force and
+/// its centre along the cable are the attachment's, so a float 5.05 m from the vehicle on 0.1 m segments
+/// loads the particles at 5.0 and 5.1 m half each.
+TEST(Attachments, OneBetweenTwoParticlesIsSharedByThemKeepingItsTotal)
+{
+  TetherParams p = lockedString(10.0, 0.1);
+  p.attachments = {body("float", 5.05, 20.0), body("clump", 2.0, -4.0)};
+  Tether sim(p, Position::Zero(), Position(8.0, 0.0, 0.0));
+  const CableLoading& load = sim.state().loading;
+  ASSERT_FALSE(load.empty());
+  const std::size_t n = sim.state().size();
+  double total = 0.0, moment = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    total += load.point_force[i];
+    moment += load.point_force[i] * static_cast<double>(n - 1 - i) * p.segment_length;
+  }
+  EXPECT_NEAR(total, 16.0, 1e-12);
+  EXPECT_NEAR(moment, 20.0 * 5.05 - 4.0 * 2.0, 1e-9);
+  EXPECT_NEAR(load.point_force[n - 1 - 50], 10.0, 1e-9);
+  EXPECT_NEAR(load.point_force[n - 1 - 51], 10.0, 1e-9);
+  EXPECT_NEAR(load.point_force[n - 1 - 20], -4.0, 1e-12);
+  EXPECT_NEAR(load.point_mass[n - 1 - 50] + load.point_mass[n - 1 - 51], 1.0, 1e-12);
+}
+
+/// Bad attachments are refused with their names and reasons, and the tether is not built.
+TEST(Attachments, BadOnesAreRefusedByName)
+{
+  TetherParams p = lockedString(10.0, 0.1);
+  CableAttachment far = body("far", 12.0, 1.0);
+  CableAttachment twice = body("far", 3.0, 1.0);
+  CableAttachment heavy = body("negative", 3.0, 1.0);
+  heavy.mass = -1.0;
+  CableAttachment nameless = body("", 3.0, 1.0);
+  p.attachments = {far, twice, heavy, nameless};
+  std::string all;
+  for (const std::string& error : p.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_NE(all.find("attachment 'far': arc_length_from_vehicle = 12 m: must be in (0, cable_length 10 m]"),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("attachment 'far': the name is used twice"), std::string::npos) << all;
+  EXPECT_NE(all.find("attachment 'negative': mass = -1: must be in [0, 1e7]"), std::string::npos) << all;
+  EXPECT_NE(all.find("attachment 4: name missing"), std::string::npos) << all;
+  EXPECT_THROW(Tether(p, Position::Zero(), Position(8.0, 0.0, 0.0)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rov_tether
