@@ -296,7 +296,8 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
     }
     const bool known = std::find(model.begin(), model.end(), name) != model.end() ||
                        std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" ||
-                       name == "cameras" || name == "obstacles" || name == "tether_contact" || tether_name;
+                       name == "cameras" || name == "obstacles" || name == "tether_contact" || name == "sections" ||
+                       name == "attachments" || tether_name;
     if (!known)
     {
       unknown += (unknown.empty() ? "" : ", ") + name;

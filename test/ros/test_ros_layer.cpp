@@ -218,6 +218,53 @@ TEST(Converters, MarkersDrawTheCableColouredByTensionWithStripes)
   EXPECT_EQ(markers.markers[2].action, visualization_msgs::Marker::DELETE);
 }
 
+// A cable of sections with attachments (issue 22) draws each section in its own colour over the tension
+// colours, and each attachment as a sphere where its material is, as big as a sphere of water weighing its
+// net buoyancy (a float yellow, a clump weight grey); one still on the drum is hidden.
+TEST(Converters, MarkersDrawSectionsAndAttachments)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  params.winch_mode = WinchMode::kLocked;
+  params.initial_deployed_length = 3.0;
+  params.sections = {{1.0, {{"weight_in_water", 2.0}}}, {}};
+  CableAttachment float_on;
+  float_on.name = "float";
+  float_on.arc_length_from_vehicle = 1.5;
+  float_on.net_buoyancy = 4.0 / 3.0 * 3.14159265358979 * 0.05 * 0.05 * 0.05 * params.water_density * 9.81;
+  CableAttachment clump = float_on;
+  clump.name = "clump";
+  clump.arc_length_from_vehicle = 5.0;  // on the drum while 3 m are out
+  clump.net_buoyancy = -20.0;
+  params.attachments = {float_on, clump};
+  Tether sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
+  ASSERT_TRUE(test::succeeded(sim.advance(1.0)));
+  std::vector<double> tensions;
+  sim.computeSegmentTensions(tensions);
+  visualization_msgs::MarkerArray markers;
+  toMarkers(sim, tensions, ros::Time(1.0), MarkerOptions{}, &markers);
+  ASSERT_EQ(markers.markers.size(), 7u);
+  const auto& sections = markers.markers[4];
+  EXPECT_EQ(sections.ns, "tether_sections");
+  EXPECT_EQ(sections.action, visualization_msgs::Marker::ADD);
+  ASSERT_EQ(sections.points.size(), 60u);  // 30 deployed segments, from the vehicle end
+  EXPECT_NEAR(sections.points.front().x, 2.0, 1e-12);
+  const auto vehicle_colour = sections.colors.front(), spool_colour = sections.colors.back();
+  EXPECT_NE(vehicle_colour.g, spool_colour.g);
+  for (std::size_t k = 0; k < 30; ++k)  // the first 10 segments from the vehicle are the first section's
+  {
+    EXPECT_EQ(sections.colors[2 * k].g, k < 10 ? vehicle_colour.g : spool_colour.g) << k;
+  }
+  const auto& sphere = markers.markers[5];
+  EXPECT_EQ(sphere.action, visualization_msgs::Marker::ADD);
+  EXPECT_NEAR(sphere.scale.x, 0.1, 1e-9);                       // a 5 cm radius sphere of water weighs its buoyancy
+  const std::size_t at = sim.deployedParticleCount() - 1 - 15;  // 1.5 m from the vehicle on 0.1 m segments
+  EXPECT_NEAR(sphere.pose.position.x, sim.particle(at).x(), 1e-12);
+  EXPECT_NEAR(sphere.pose.position.z, sim.particle(at).z(), 1e-12);
+  EXPECT_GT(sphere.color.g, 0.8f);                                           // yellow
+  EXPECT_EQ(markers.markers[6].action, visualization_msgs::Marker::DELETE);  // on the drum
+}
+
 // The legend a user reads the cable's colours by (issue 26, item 16), an image rviz shows beside its 3D view:
 // every colour of the scale as a swatch in exactly the colour the cable gets at that tension (tensionColor,
 // at 8 bits), the compression grey, and a stripe half plain, half lighter; on config/tether.rviz's background.
@@ -687,6 +734,32 @@ TEST(ParameterServer, TheNodeAndTheRunnerReadParametersWithOneReader)
     EXPECT_EQ("params." + from_node, from_runner) << entry;
     EXPECT_EQ(unchanged.iterations, TetherParams{}.iterations) << entry;  // nothing applied on error
   }
+}
+
+// A cable's sections and attachments (issue 22) from the parameter server (lists of maps) read as the runner
+// reads them from a scenario's params, and are no unknown keys; a bad one is refused with the same message.
+TEST(ParameterServer, SectionsAndAttachmentsReadAsTheRunnerReadsThem)
+{
+  const std::string good =
+      "{segment_length: 0.5, sections: [{length: 4, weight_in_water: 1.5}, {axial_stiffness: 2e4}], "
+      "attachments: [{name: float, arc_length_from_vehicle: 3, mass: 0.4, net_buoyancy: 6}]}";
+  const XmlRpc::XmlRpcValue dict = rov_tether::test::toXmlRpc(YAML::Load(good));
+  TetherParams node;
+  ASSERT_EQ(loadTetherParams(dict, &node), "");
+  EXPECT_EQ(unknownParameters(dict), "");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + good, &scenario), "");
+  ASSERT_EQ(node.sections.size(), 2u);
+  EXPECT_EQ(node.sections, scenario.params.sections);
+  EXPECT_EQ(node.attachments, scenario.params.attachments);
+  EXPECT_EQ(node.attachments.at(0).net_buoyancy, 6.0);
+  const std::string bad = "{attachments: [{name: float, arc_length_from_vehicle: -3}]}";
+  TetherParams unchanged;
+  const std::string from_node = loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(bad)), &unchanged);
+  const std::string from_runner = parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + bad, &scenario);
+  EXPECT_NE(from_node.find("attachment 'float': arc_length_from_vehicle = -3 m"), std::string::npos) << from_node;
+  EXPECT_EQ("params." + from_node, from_runner);
+  EXPECT_TRUE(unchanged.attachments.empty());
 }
 
 TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
