@@ -115,6 +115,9 @@ TEST(CableSections, ADescriptionThatDoesNotFitIsRefusedWithEveryReason)
   CableSection straddles;
   straddles.length = 2.05;
   refused({straddles, CableSection{}}, "not a whole number of segments");
+  CableSection sliver;  // rounds to no segment at all: its material would be nowhere
+  sliver.length = 1e-9;
+  refused({sliver, CableSection{}}, "not a whole number of segments");
   CableSection missing;  // a length left out before the last
   refused({missing, CableSection{}}, "only the last section may leave it out");
   CableSection negative;

@@ -47,7 +47,7 @@ Position Cable::direction(std::size_t a, std::size_t b) const
 void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_per_length, bool last_pinned)
 {
   const bool loaded = !loading.empty();
-  anisotropic = loaded || mass_per_length.along != mass_per_length.across;
+  anisotropic = loaded ? loading.anisotropic : mass_per_length.along != mass_per_length.across;
   const std::size_t n = size();
   const std::size_t f = first;
   lo = std::max(lo, f);
@@ -65,12 +65,13 @@ void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_pe
     {
       // Each neighbouring segment's half of its own material, and the attachments' (added) mass in every
       // direction.
-      const double across = 0.5 * ((i > f ? loading.mass_across[i - 1] * rest[i - 1] : 0.0) +
-                                   (i + 1 < n ? loading.mass_across[i] * rest[i] : 0.0));
+      const double across = 0.5 * ((i > f ? loading.segmentMassAcross(i - 1) * rest[i - 1] : 0.0) +
+                                   (i + 1 < n ? loading.segmentMassAcross(i) * rest[i] : 0.0));
+      const double point = loading.point_mass[i] + loading.wetness(i) * loading.point_added[i];
       const double along = 0.5 * ((i > f ? loading.mass_along[i - 1] * rest[i - 1] : 0.0) +
                                   (i + 1 < n ? loading.mass_along[i] * rest[i] : 0.0));
-      inv_mass[i] = pinned ? 0.0 : 1.0 / (across + loading.point_mass[i]);
-      inv_mass_along[i] = pinned ? 0.0 : 1.0 / (along + loading.point_mass[i]);
+      inv_mass[i] = pinned ? 0.0 : 1.0 / (across + point);
+      inv_mass_along[i] = pinned ? 0.0 : 1.0 / (along + point);
       continue;
     }
     inv_mass[i] = pinned ? 0.0 : 1.0 / (mass_per_length.across * length);

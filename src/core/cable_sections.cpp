@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace rov_tether
 {
@@ -127,7 +128,7 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
     else
     {
       const double count = length / params.segment_length;
-      if (std::abs(count - std::round(count)) > 1e-6)
+      if (std::abs(count - std::round(count)) > 1e-6 || std::round(count) < 1.0)
       {
         errors.push_back(which + ": length " + number(length) + " m is not a whole number of segments of " +
                          number(params.segment_length) + " m (segments never straddle a section boundary)");
@@ -211,7 +212,26 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
   {
     errors.push_back(sections.message);
   }
-  else if (params.solver != SolverType::kDirect)
+  else if (params.bending && made.materials().size() > 1)
+  {
+    // direct solves a bending cable as a rod, which carries compression: a section of no bending stiffness
+    // in it would push where a limp cable cannot.
+    const auto& materials = made.materials();
+    const bool bends = std::any_of(materials.begin(), materials.end(),
+                                   [](const SectionMaterial& m) { return m.bending_stiffness > 0.0; });
+    for (std::size_t s = 0; bends && s < materials.size(); ++s)
+    {
+      if (materials[s].bending_stiffness == 0.0)
+      {
+        errors.push_back(
+            "sections: a section of bending_stiffness 0 in a cable that bends elsewhere would carry "
+            "compression (a bending cable is solved as a rod); give it a small bending_stiffness, or "
+            "set bending false");
+        break;
+      }
+    }
+  }
+  if (sections && params.solver != SolverType::kDirect)
   {
     const SectionMaterial own = SectionMaterial::of(params);
     for (const SectionMaterial& material : made.materials())
@@ -274,25 +294,36 @@ void CableSections::load(const TetherParams& params, Cable* cable)
   CableLoading& loading = cable->loading;
   CableSections made;
   const Status status = make(params, params.sections, &made);
-  if (!status || (made.uniform() && params.attachments.empty()))
+  const bool surface = !std::isnan(params.water_surface_z);
+  if (!status)
   {
-    loading = CableLoading{};  // a uniform cable (check() reports a description that does not fit)
+    // validate() (check()) refuses such a description before a tether is built or changed.
+    throw std::invalid_argument(status.message);
+  }
+  if (made.uniform() && params.attachments.empty() && !surface)
+  {
+    loading = CableLoading{};  // a uniform cable: the parameters' own arithmetic
     return;
   }
   const std::size_t n = cable->size();
   const std::size_t segments = n - 1;
+  loading.anisotropic = false;
   for (auto* v :
        {&loading.mass_along, &loading.mass_across, &loading.weight, &loading.normal_drag, &loading.tangential_drag,
         &loading.axial_stiffness, &loading.axial_damping, &loading.bending_stiffness})
   {
     v->assign(segments, 0.0);
   }
-  for (auto* v : {&loading.point_mass, &loading.point_force, &loading.point_drag})
+  for (auto* v : {&loading.point_mass, &loading.point_added, &loading.point_force, &loading.point_drag})
   {
     v->assign(n, 0.0);
   }
+  // All under water until WaterSurface::update says otherwise (it runs before every sub-step).
+  loading.submerged.assign(surface ? segments : 0, 1.0);
+  loading.wet.assign(surface ? n : 0, 1.0);
   constexpr double kPi = 3.14159265358979323846;
   const double half_rho = 0.5 * params.water_density;
+  const bool morison = params.drag_model == DragModel::kMorison;
   // Each section's values once (through the tether's own formulas), then each segment's.
   std::vector<std::array<double, 8>> values;
   for (const SectionMaterial& material : made.materials_)
@@ -310,13 +341,16 @@ void CableSections::load(const TetherParams& params, Cable* cable)
     loading.mass_along[j] = v[0], loading.mass_across[j] = v[1], loading.weight[j] = v[2];
     loading.normal_drag[j] = v[3], loading.tangential_drag[j] = v[4];
     loading.axial_stiffness[j] = v[5], loading.axial_damping[j] = v[6], loading.bending_stiffness[j] = v[7];
+    loading.anisotropic = loading.anisotropic || v[0] != v[1];
   }
   for (const CableAttachment& attachment : params.attachments)
   {
     const Place place = placeOf(params, n, attachment);
     const auto add = [&](std::size_t particle, double share)
     {
-      loading.point_mass[particle] += share * (attachment.mass + attachment.added_mass);
+      loading.point_mass[particle] += share * attachment.mass;
+      // Added mass is Morison's, as the cable's own (none under the paper's damping).
+      loading.point_added[particle] += morison ? share * attachment.added_mass : 0.0;
       loading.point_force[particle] += share * attachment.net_buoyancy;
       loading.point_drag[particle] += share * half_rho * attachment.drag_coefficient * attachment.drag_area;
     };

@@ -18,20 +18,22 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.axial_stiffness = params.axial_stiffness;
   settings.axial_damping = params.axial_damping;
   settings.bending_stiffness = params.bending_stiffness;
-  // Sections of their own damping or bending: the largest switches it on (direct reads each segment's).
+  // A cable in sections: the largest damping and bending of any section switch them on (direct reads each
+  // segment's own); a section that sets neither has the tether's.
+  if (!params.sections.empty())
+  {
+    settings.axial_damping = settings.bending_stiffness = 0.0;
+  }
   for (const CableSection& section : params.sections)
   {
+    double damping = params.axial_damping, bending = params.bending_stiffness;
     for (const auto& [name, value] : section.properties)
     {
-      if (name == "axial_damping")
-      {
-        settings.axial_damping = std::max(settings.axial_damping, value);
-      }
-      else if (name == "bending_stiffness")
-      {
-        settings.bending_stiffness = std::max(settings.bending_stiffness, value);
-      }
+      damping = name == "axial_damping" ? value : damping;
+      bending = name == "bending_stiffness" ? value : bending;
     }
+    settings.axial_damping = std::max(settings.axial_damping, damping);
+    settings.bending_stiffness = std::max(settings.bending_stiffness, bending);
   }
   settings.over_relaxation = params.over_relaxation;
   settings.tolerance = params.solver_tolerance;

@@ -45,8 +45,10 @@ void MorisonDrag::integrate(Cable& cable, std::size_t begin, std::size_t end, do
     {
       // Each neighbouring segment's half of its own drag and weight, and the attachments' (a body's drag
       // taken on both components of the flow).
-      const double left = cable.rest[i - 1], right = i + 1 < n ? cable.rest[i] : 0.0;
-      const double point_drag = load.point_drag[i];
+      // Above a water surface: no drag (each half segment's share under water has it).
+      const double left = load.submergedShare(i - 1) * cable.rest[i - 1];
+      const double right = i + 1 < n ? load.submergedShare(i) * cable.rest[i] : 0.0;
+      const double point_drag = load.wetness(i) * load.point_drag[i];
       const double drag_across =
           0.5 * (load.normal_drag[i - 1] * left + (i + 1 < n ? load.normal_drag[i] * right : 0.0)) + point_drag;
       const double drag_along =

@@ -28,15 +28,16 @@ void PaperDamping::integrate(Cable& cable, std::size_t begin, std::size_t end, d
   if (!cable.loading.empty())
   {
     // Sections and attachments: each particle's own weight over its own mass (the paper's drag is one
-    // damping factor for every particle).
+    // damping factor for every particle under water; above a water surface, none, and no current).
     for (std::size_t i = begin; i < end; ++i)
     {
-      const Position drift = (1.0 - damping) * h * current.at(cable.position(i), t);
+      const double own = cable.loading.wetness(i) > 0.0 ? damping : 1.0;
+      const Position drift = (1.0 - own) * h * current.at(cable.position(i), t);
       const double weight = cable.loading.particleWeight(i, cable.rest, cable.first);
       const double x = cable.x[i], y = cable.y[i], z = cable.z[i];
-      cable.x[i] += (x - cable.px[i]) * damping + drift.x();
-      cable.y[i] += (y - cable.py[i]) * damping + drift.y();
-      cable.z[i] += (z - cable.pz[i]) * damping + drift.z() - weight * cable.inv_mass[i] * h * h;
+      cable.x[i] += (x - cable.px[i]) * own + drift.x();
+      cable.y[i] += (y - cable.py[i]) * own + drift.y();
+      cable.z[i] += (z - cable.pz[i]) * own + drift.z() - weight * cable.inv_mass[i] * h * h;
       cable.px[i] = x, cable.py[i] = y, cable.pz[i] = z;
     }
     return;

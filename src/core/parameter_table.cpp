@@ -163,6 +163,8 @@ const std::vector<ParameterInfo>& parameterInfo()
        kLive},
       {"seabed_z", "double", "m", -1e5, 1e5, kClosed, kClosed, "[-1e5, 1e5] or absent (.nan)",
        "height of a flat seabed", kAtStart},
+      {"water_surface_z", "double", "m", -1e5, 1e5, kClosed, kClosed, "[-1e5, 1e5] or absent (.nan)",
+       "height of the water surface: above it no buoyancy, drag or added mass", kAtStart},
       {"seabed_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "", "Coulomb friction on the seabed", kLive},
       {"cable_friction", "double", "-", 0.0, 10.0, kClosed, kClosed, "",
        "Coulomb friction on another tether or itself (obstacles: their own `friction`)", kLive},
@@ -235,9 +237,9 @@ std::string parameterTableMarkdown()
     {
       shown = "`" + shown + "`";
     }
-    if (info.name == "seabed_z" && std::isnan(defaults.seabed_z))
+    if (const auto* number = std::get_if<double>(&value); number != nullptr && std::isnan(*number))
     {
-      shown = ".nan (none)";
+      shown = ".nan (none)";  // an optional height (seabed_z, water_surface_z)
     }
     out += "| `" + info.name + "` | " + info.type + " | " + info.unit + " | " + shown + " | " + formatRange(info) +
            " | " + (info.live ? "yes" : "") + " | " + info.meaning + " |\n";

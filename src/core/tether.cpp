@@ -10,6 +10,7 @@
 #include "cable_layout.hpp"
 #include "rov_tether/core/cable_sections.hpp"
 #include "rov_tether/core/direct_solver.hpp"
+#include "rov_tether/core/water_surface.hpp"
 
 namespace rov_tether
 {
@@ -407,6 +408,11 @@ void Tether::subStep(double h, double t)
     track_.setPosition(vehicleAt(t));
     end_velocity_ = was_attached && jumps == jumps_ ? Velocity((track_.position() - before) / h) : Velocity::Zero();
   }
+  std::size_t lo = 0, hi = 0;
+  if (!std::isnan(params_.water_surface_z) && WaterSurface::update(cable_, params_.water_surface_z, &lo, &hi))
+  {
+    refreshDerived(lo, hi);  // the added mass of what crossed the surface
+  }
   if (cable_.anisotropic)
   {
     cable_.updateTangents();  // the directions the added mass does not act in, fixed for the sub-step
@@ -673,11 +679,13 @@ bool Tether::winchAtItsLimit(double h) const
   }
   // The tension at which the mode gives way: the brake, the auto-tension target, the strain rule's threshold
   // as a tension (its stretch payout_threshold x L under EA).
-  const double gives_way = params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
-                           : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
-                           : params_.winch_mode == WinchMode::kStrain
-                               ? params_.payout_threshold * params_.axial_stiffness
-                               : -1.0;
+  const double gives_way =
+      params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
+      : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
+      : params_.winch_mode == WinchMode::kStrain
+          ? params_.payout_threshold *
+                (cable_.loading.empty() ? params_.axial_stiffness : cable_.loading.axial_stiffness[cable_.first])
+          : -1.0;
   const double tension = solver_->multipliers().stretch[cable_.first] / (h * h);
   return gives_way >= 0.0 && tension > gives_way;
 }
@@ -766,7 +774,7 @@ Force Tether::endLoad(std::size_t i, std::size_t j) const
   {
     return Force(0.0, 0.0, -0.5 * params_.weight_in_water * cable_.rest[j]);
   }
-  return Force(0.0, 0.0, -0.5 * cable_.loading.weight[j] * cable_.rest[j] + cable_.loading.point_force[i]);
+  return Force(0.0, 0.0, -0.5 * cable_.loading.segmentWeight(j) * cable_.rest[j] + cable_.loading.pointForce(i));
 }
 
 Status Tether::vehicleEndLinearisation(EndLinearisation* out, double horizon)

@@ -68,6 +68,7 @@ const std::vector<std::pair<std::string, Member>>& parameterTable()
       {"current", &TetherParams::current},
       {"current_variation", &TetherParams::current_variation},
       {"seabed_z", &TetherParams::seabed_z},
+      {"water_surface_z", &TetherParams::water_surface_z},
       {"seabed_friction", &TetherParams::seabed_friction},
       {"cable_friction", &TetherParams::cable_friction},
       {"winch_mode", &TetherParams::winch_mode},
@@ -284,12 +285,27 @@ std::string assignField(WinchMode& target, const ParamValue& value, const std::s
   return "";
 }
 
+/// The largest length that both a and b are whole multiples of, to 1e-9 of the larger (Euclid's algorithm on
+/// lengths); tiny when they have none that is not (a ratio no fraction of small numbers gives).
+double commonDivisor(double a, double b)
+{
+  const double tolerance = 1e-9 * std::max(a, b);
+  while (b > tolerance)
+  {
+    double rest = std::fmod(a, b);
+    rest = rest > b - tolerance ? 0.0 : rest;
+    a = b, b = rest;
+  }
+  return a;
+}
+
 }  // namespace
 
 std::vector<std::string> TetherParams::validate() const
 {
   std::vector<std::string> errors;
   // Each field's own range, from the parameter table (the README, default.yaml and the .cfg agree with it).
+  const TetherParams defaults;
   for (const ParameterInfo& info : parameterInfo())
   {
     if (std::isnan(info.min))
@@ -299,9 +315,10 @@ std::vector<std::string> TetherParams::validate() const
     const std::vector<double> values = numericValues(*this, info.name);
     for (std::size_t k = 0; k < values.size(); ++k)
     {
-      if (info.name == "seabed_z" && std::isnan(values[k]))
+      const ParamValue fallback = getParameter(defaults, info.name);
+      if (std::isnan(values[k]) && std::holds_alternative<double>(fallback) && std::isnan(std::get<double>(fallback)))
       {
-        continue;  // absent: no seabed
+        continue;  // an optional height, absent (seabed_z, water_surface_z)
       }
       const std::string label = values.size() == 1 ? info.name : info.name + "[" + std::string(1, "xyz"[k % 3]) + "]";
       checkRange(errors, label, values[k], info.min, info.max, info.min_open, info.max_open);
@@ -381,7 +398,19 @@ double TetherParams::criticalStep() const
   // step of a damped oscillator is stable for h omega < 2 (sqrt(1 + zeta^2) - zeta).
   const double zeta = axial_damping / (segment_length * std::sqrt(axial_stiffness * mass_per_length));
   // sqrt(1 + z^2) - z = 1 / (sqrt(1 + z^2) + z), the second without cancellation at large z.
-  return segment_length / std::sqrt(axial_stiffness / mass_per_length) / (std::sqrt(1.0 + zeta * zeta) + zeta);
+  double step = segment_length / std::sqrt(axial_stiffness / mass_per_length) / (std::sqrt(1.0 + zeta * zeta) + zeta);
+  // A cable in sections: its lightest, stiffest section's (an attachment only adds mass, which is slower).
+  for (const CableSection& section : sections)
+  {
+    TetherParams own = *this;
+    own.sections.clear(), own.attachments.clear();
+    for (const auto& [name, value] : section.properties)
+    {
+      (void)setParameter(own, name, value);  // checked by validate(); a refused one leaves the tether's
+    }
+    step = std::min(step, own.criticalStep());
+  }
+  return step;
 }
 
 double TetherParams::winchPull() const
@@ -399,6 +428,18 @@ TetherParams TetherParams::resolved() const
     const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
     const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
     r.segment_length = std::max(cable_length / count, 1.0e-3);
+    // Sections end on segment boundaries: the longest segment within `longest` that every section's length (the
+    // last one's is what is left) is a whole number of.
+    double common = 0.0;
+    for (std::size_t s = 0; s + 1 < sections.size(); ++s)
+    {
+      const double length = sections[s].length;
+      common = !(length > 0.0) ? common : common > 0.0 ? commonDivisor(common, length) : length;
+    }
+    if (common >= 1.0e-3)
+    {
+      r.segment_length = common / std::ceil(common / longest - 1e-9);
+    }
     r.segment_length_auto = false;
   }
   if (iterations_auto)

@@ -81,17 +81,23 @@ void addMaterialMarkers(const Tether& sim, const std_msgs::Header& header, const
 {
   const Cable& cable = sim.state();
   const CableLoading& load = cable.loading;
+  const TetherParams& p = sim.params();
+  if (p.sections.empty() && p.attachments.empty())
+  {
+    return;  // a uniform cable, and it stays one (sections are not live)
+  }
+  visualization_msgs::Marker& sections =
+      startMarker(markers, id, visualization_msgs::Marker::LINE_LIST, header, options.ns + "_sections");
+  sections.points.clear();
+  sections.colors.clear();
   if (load.empty())
   {
+    sections.action = visualization_msgs::Marker::DELETE;  // sections a live change made the tether's material
     return;
   }
   const std::size_t n = cable.size();
   const std::size_t f = cable.first;
-  visualization_msgs::Marker& sections =
-      startMarker(markers, id, visualization_msgs::Marker::LINE_LIST, header, options.ns + "_sections");
   sections.scale.x = 2.0 * options.line_width;
-  sections.points.clear();
-  sections.colors.clear();
   std::size_t section = 0;  // counted from the vehicle end
   bool several = false;
   for (std::size_t j = n - 1; j-- > f;)
@@ -110,7 +116,6 @@ void addMaterialMarkers(const Tether& sim, const std_msgs::Header& header, const
     several = j + 2 < n && !sameMaterial(load, j);  // a boundary still on the drum
   }
   sections.action = several ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
-  const TetherParams& p = sim.params();
   for (std::size_t a = 0; a < p.attachments.size(); ++a)
   {
     const CableAttachment& attachment = p.attachments[a];
@@ -123,8 +128,9 @@ void addMaterialMarkers(const Tether& sim, const std_msgs::Header& header, const
         toPoint((1.0 - place.far_share) * cable.position(place.near) + place.far_share * cable.position(place.far));
     constexpr double kPi = 3.14159265358979323846;
     const double volume = std::abs(attachment.net_buoyancy) / (p.water_density * 9.81);
+    const double diameter = std::cbrt(6.0 * volume / kPi);
     sphere.scale.x = sphere.scale.y = sphere.scale.z =
-        std::max(std::cbrt(6.0 * volume / kPi), 2.0 * options.line_width);
+        std::isfinite(diameter) ? std::max(diameter, 2.0 * options.line_width) : 2.0 * options.line_width;
     sphere.color = attachment.net_buoyancy >= 0.0 ? rgba(1.0, 0.85, 0.1) : rgba(0.45, 0.45, 0.5);
   }
 }

@@ -33,18 +33,50 @@ struct CableLoading
   std::vector<double> axial_damping;      ///< BA [N s].
   std::vector<double> bending_stiffness;  ///< EI [N m^2].
   // Per particle i: the attachments' shares (one between two particles is split by its distance to each).
-  std::vector<double> point_mass;   ///< Mass, added mass included [kg].
-  std::vector<double> point_force;  ///< Net buoyancy, up positive [N].
+  std::vector<double> point_mass;   ///< Their own mass [kg].
+  std::vector<double> point_added;  ///< Their added mass [kg].
+  std::vector<double> point_force;  ///< Net buoyancy in water, up positive [N].
   std::vector<double> point_drag;   ///< 1/2 rho C_d A [kg/m].
+  // With a water surface (water_surface_z; empty without one: all submerged). WaterSurface::update sets them.
+  std::vector<double> submerged;  ///< Per segment: the share of it below the surface [-].
+  std::vector<double> wet;        ///< Per particle: 1 below the surface, 0 above [-].
+
+  /// Standard gravity, for the weight in air above the surface [m/s^2].
+  static constexpr double kGravity = 9.80665;
+
+  /// True when some segment's mass across differs from its mass along (added mass).
+  bool anisotropic = false;
 
   bool empty() const { return mass_along.empty(); }
-  /// Net weight in water of particle i's share: half of each neighbouring segment less its attachments'
-  /// buoyancy, down positive [N]; `rest` the cable's segment lengths, `first` the spool outlet.
+  /// Share of segment j under water [-].
+  double submergedShare(std::size_t j) const { return submerged.empty() ? 1.0 : submerged[j]; }
+  /// Whether particle i is under water: 1 or 0 [-].
+  double wetness(std::size_t i) const { return wet.empty() ? 1.0 : wet[i]; }
+  /// Weight per metre of segment j, down positive: in water below the surface, in air above it, in proportion
+  /// when it crosses [N/m].
+  double segmentWeight(std::size_t j) const
+  {
+    if (submerged.empty())
+    {
+      return weight[j];
+    }
+    const double f = submerged[j];
+    return f * weight[j] + (1.0 - f) * mass_along[j] * kGravity;
+  }
+  /// Mass per metre of segment j across the cable: the added mass only for its share under water [kg/m].
+  double segmentMassAcross(std::size_t j) const
+  {
+    return submerged.empty() ? mass_across[j] : mass_along[j] + submerged[j] * (mass_across[j] - mass_along[j]);
+  }
+  /// The attachments' force on particle i, up positive: their net buoyancy in water, their weight in air [N].
+  double pointForce(std::size_t i) const { return wetness(i) > 0.0 ? point_force[i] : -point_mass[i] * kGravity; }
+  /// Net weight of particle i's share: half of each neighbouring segment less its attachments' buoyancy, down
+  /// positive [N]; `rest` the cable's segment lengths, `first` the spool outlet.
   double particleWeight(std::size_t i, const std::vector<double>& rest, std::size_t first) const
   {
-    const double left = i > first ? weight[i - 1] * rest[i - 1] : 0.0;
-    const double right = i + 1 < rest.size() + 1 ? weight[i] * rest[i] : 0.0;
-    return 0.5 * (left + right) - point_force[i];
+    const double left = i > first ? segmentWeight(i - 1) * rest[i - 1] : 0.0;
+    const double right = i < rest.size() ? segmentWeight(i) * rest[i] : 0.0;
+    return 0.5 * (left + right) - pointForce(i);
   }
 };
 

@@ -139,6 +139,9 @@ struct TetherParams
   double current_variation = 0.0;
   /// Height of a flat seabed [m]; NaN (absent) = no seabed.
   double seabed_z = std::numeric_limits<double>::quiet_NaN();
+  /// Height of the water surface [m]; NaN (absent) = everything submerged. Above it the cable weighs
+  /// mass_per_length g and has no drag or added mass; a segment crossing it is split in proportion.
+  double water_surface_z = std::numeric_limits<double>::quiet_NaN();
   /// Coulomb friction coefficient of the seabed [-].
   double seabed_friction = 0.5;
   /// Coulomb friction coefficient of the cable on another cable or on itself (World contact) [-].
