@@ -73,68 +73,6 @@ std_msgs::ColorRGBA sectionColor(std::size_t section)
   return rgba(c[0], c[1], c[2], 0.45);
 }
 
-/// The cable's sections (an overlay twice the line's width in each section's colour, over the tension
-/// colours) and its attachments (a sphere each, of the size of a sphere of water weighing its net buoyancy:
-/// floats yellow, clump weights grey), as markers from `id` on; nothing for a uniform cable.
-void addMaterialMarkers(const Tether& sim, const std_msgs::Header& header, const MarkerOptions& options, std::size_t id,
-                        visualization_msgs::MarkerArray* markers)
-{
-  const Cable& cable = sim.state();
-  const CableLoading& load = cable.loading;
-  const TetherParams& p = sim.params();
-  if (p.sections.empty() && p.attachments.empty())
-  {
-    return;  // a uniform cable, and it stays one (sections are not live)
-  }
-  visualization_msgs::Marker& sections =
-      startMarker(markers, id, visualization_msgs::Marker::LINE_LIST, header, options.ns + "_sections");
-  sections.points.clear();
-  sections.colors.clear();
-  if (load.empty())
-  {
-    sections.action = visualization_msgs::Marker::DELETE;  // sections a live change made the tether's material
-    return;
-  }
-  const std::size_t n = cable.size();
-  const std::size_t f = cable.first;
-  sections.scale.x = 2.0 * options.line_width;
-  std::size_t section = 0;  // counted from the vehicle end
-  bool several = false;
-  for (std::size_t j = n - 1; j-- > f;)
-  {
-    if (j + 2 < n && !sameMaterial(load, j))
-    {
-      ++section, several = true;
-    }
-    sections.points.push_back(toPoint(cable.position(j + 1)));
-    sections.points.push_back(toPoint(cable.position(j)));
-    sections.colors.push_back(sectionColor(section));
-    sections.colors.push_back(sectionColor(section));
-  }
-  for (std::size_t j = f; j-- > 0 && !several;)
-  {
-    several = j + 2 < n && !sameMaterial(load, j);  // a boundary still on the drum
-  }
-  sections.action = several ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
-  for (std::size_t a = 0; a < p.attachments.size(); ++a)
-  {
-    const CableAttachment& attachment = p.attachments[a];
-    visualization_msgs::Marker& sphere =
-        startMarker(markers, id + 1 + a, visualization_msgs::Marker::SPHERE, header, options.ns + "_attachments");
-    // Where its material is: between the two particles it is shared by (CableSections::load).
-    const CableSections::Place place = CableSections::placeOf(p, n, attachment);
-    sphere.action = place.far >= f ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;  // drum
-    sphere.pose.position =
-        toPoint((1.0 - place.far_share) * cable.position(place.near) + place.far_share * cable.position(place.far));
-    constexpr double kPi = 3.14159265358979323846;
-    const double volume = std::abs(attachment.net_buoyancy) / (p.water_density * 9.81);
-    const double diameter = std::cbrt(6.0 * volume / kPi);
-    sphere.scale.x = sphere.scale.y = sphere.scale.z =
-        std::isfinite(diameter) ? std::max(diameter, 2.0 * options.line_width) : 2.0 * options.line_width;
-    sphere.color = attachment.net_buoyancy >= 0.0 ? rgba(1.0, 0.85, 0.1) : rgba(0.45, 0.45, 0.5);
-  }
-}
-
 }  // namespace
 
 std_msgs::ColorRGBA tensionColor(double tension, double full_scale, bool stripe)
@@ -250,8 +188,68 @@ void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros
   std::snprintf(text, sizeof(text), "%.2f m out, %.2f N", sim.deployedLength(),
                 tensions.empty() ? 0.0 : tensions.back());
   label.text = text;
+}
 
-  addMaterialMarkers(sim, header, options, 4, markers);
+void toMaterialMarkers(const Tether& sim, const ros::Time& stamp, const MarkerOptions& options, std::size_t id,
+                       visualization_msgs::MarkerArray* markers)
+{
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = options.frame_id;
+  const Cable& cable = sim.state();
+  const CableLoading& load = cable.loading;
+  const TetherParams& p = sim.params();
+  if (p.sections.empty() && p.attachments.empty())
+  {
+    return;  // a uniform cable, and it stays one (sections are not live)
+  }
+  visualization_msgs::Marker& sections =
+      startMarker(markers, id, visualization_msgs::Marker::LINE_LIST, header, options.ns + "_sections");
+  sections.points.clear();
+  sections.colors.clear();
+  if (load.empty())
+  {
+    sections.action = visualization_msgs::Marker::DELETE;  // sections a live change made the tether's material
+    return;
+  }
+  const std::size_t n = cable.size();
+  const std::size_t f = cable.first;
+  sections.scale.x = 2.0 * options.line_width;
+  std::size_t section = 0;  // counted from the vehicle end
+  bool several = false;
+  for (std::size_t j = n - 1; j-- > f;)
+  {
+    if (j + 2 < n && !sameMaterial(load, j))
+    {
+      ++section, several = true;
+    }
+    sections.points.push_back(toPoint(cable.position(j + 1)));
+    sections.points.push_back(toPoint(cable.position(j)));
+    sections.colors.push_back(sectionColor(section));
+    sections.colors.push_back(sectionColor(section));
+  }
+  for (std::size_t j = f; j-- > 0 && !several;)
+  {
+    several = j + 2 < n && !sameMaterial(load, j);  // a boundary still on the drum
+  }
+  sections.action = several ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+  for (std::size_t a = 0; a < p.attachments.size(); ++a)
+  {
+    const CableAttachment& attachment = p.attachments[a];
+    visualization_msgs::Marker& sphere =
+        startMarker(markers, id + 1 + a, visualization_msgs::Marker::SPHERE, header, options.ns + "_attachments");
+    // Where its material is: between the two particles it is shared by (CableSections::load).
+    const CableSections::Place place = CableSections::placeOf(p, n, attachment);
+    sphere.action = place.far >= f ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;  // drum
+    sphere.pose.position =
+        toPoint((1.0 - place.far_share) * cable.position(place.near) + place.far_share * cable.position(place.far));
+    constexpr double kPi = 3.14159265358979323846;
+    const double volume = std::abs(attachment.net_buoyancy) / (p.water_density * 9.81);
+    const double diameter = std::cbrt(6.0 * volume / kPi);
+    sphere.scale.x = sphere.scale.y = sphere.scale.z =
+        std::isfinite(diameter) ? std::max(diameter, 2.0 * options.line_width) : 2.0 * options.line_width;
+    sphere.color = attachment.net_buoyancy >= 0.0 ? rgba(1.0, 0.85, 0.1) : rgba(0.45, 0.45, 0.5);
+  }
 }
 
 void toLegendImage(const MarkerOptions& options, sensor_msgs::Image* image)

@@ -9,11 +9,26 @@ namespace rov_tether::ros_layer
 namespace
 {
 
-/// Index of the contact points in ~markers, after toMarkers' four, and of the vehicle's box after them.
+/// Index of the contact points in ~markers, after toMarkers' four, of the vehicle's box after them, and of the
+/// first of the sections' and attachments' markers (toMaterialMarkers).
 constexpr std::size_t kContactMarker = 4;
 constexpr std::size_t kVehicleMarker = 5;
+constexpr std::size_t kMaterialMarkers = 6;
 
 }  // namespace
+
+void buildMarkers(const Tether& tether, const std::vector<double>& tensions, const ContactRecord& contacts,
+                  const Eigen::Isometry3d* vehicle, const Eigen::Vector3d& vehicle_size, const MarkerOptions& options,
+                  visualization_msgs::MarkerArray* markers)
+{
+  const ros::Time stamp(std::max(tether.time(), 0.0));
+  toMarkers(tether, tensions, stamp, options, markers);
+  markers->markers.resize(std::max<std::size_t>(markers->markers.size(), kVehicleMarker + 1));
+  toContactMarker(contacts, stamp, options, &markers->markers[kContactMarker]);
+  toVehicleMarker(vehicle != nullptr ? *vehicle : Eigen::Isometry3d::Identity(), vehicle_size, vehicle != nullptr,
+                  stamp, options.frame_id, &markers->markers[kVehicleMarker]);
+  toMaterialMarkers(tether, stamp, options, kMaterialMarkers, markers);
+}
 
 const TetherState& StateBuilder::state(const Tether& tether, std::uint32_t resets)
 {
@@ -176,12 +191,7 @@ double TetherPublisher::publishMarkers(const Tether& tether, const ContactRecord
   marker_options.line_width = options_.marker_line_width;
   marker_options.tension_full_scale = options_.tension_full_scale;
   marker_options.stripe_segments = options_.stripe_segments;
-  const ros::Time stamp(std::max(tether.time(), 0.0));
-  toMarkers(tether, tensions_, stamp, marker_options, &markers_);
-  markers_.markers.resize(std::max<std::size_t>(markers_.markers.size(), kVehicleMarker + 1));
-  toContactMarker(contacts, stamp, marker_options, &markers_.markers[kContactMarker]);
-  toVehicleMarker(vehicle != nullptr ? *vehicle : Eigen::Isometry3d::Identity(), vehicle_size_, vehicle != nullptr,
-                  stamp, options_.world_frame, &markers_.markers[kVehicleMarker]);
+  buildMarkers(tether, tensions_, contacts, vehicle, vehicle_size_, marker_options, &markers_);
   marker_pub_.publish(markers_);  // serialised here for every remote subscriber: part of the cost
   return (ros::WallTime::now() - start).toSec();
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "../test_helpers.hpp"
 #include "rov_tether/camera/camera_model.hpp"
@@ -15,6 +16,7 @@
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/param_loader.hpp"
+#include "rov_tether/ros/tether_publisher.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
 #include "rov_tether/ros/world_report.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
@@ -243,6 +245,8 @@ TEST(Converters, MarkersDrawSectionsAndAttachments)
   sim.computeSegmentTensions(tensions);
   visualization_msgs::MarkerArray markers;
   toMarkers(sim, tensions, ros::Time(1.0), MarkerOptions{}, &markers);
+  ASSERT_EQ(markers.markers.size(), 4u);  // the cable's own; the node puts its contacts and vehicle at 4 and 5
+  toMaterialMarkers(sim, ros::Time(1.0), MarkerOptions{}, 4, &markers);
   ASSERT_EQ(markers.markers.size(), 7u);
   const auto& sections = markers.markers[4];
   EXPECT_EQ(sections.ns, "tether_sections");
@@ -263,6 +267,20 @@ TEST(Converters, MarkersDrawSectionsAndAttachments)
   EXPECT_NEAR(sphere.pose.position.z, sim.particle(at).z(), 1e-12);
   EXPECT_GT(sphere.color.g, 0.8f);                                           // yellow
   EXPECT_EQ(markers.markers[6].action, visualization_msgs::Marker::DELETE);  // on the drum
+
+  // As the node publishes them, after its contact points and vehicle box: every marker its own (ns, id).
+  visualization_msgs::MarkerArray node;
+  const Eigen::Isometry3d vehicle = Eigen::Isometry3d::Identity();
+  buildMarkers(sim, tensions, ContactRecord{}, &vehicle, Eigen::Vector3d::Ones(), MarkerOptions{}, &node);
+  ASSERT_EQ(node.markers.size(), 9u);
+  std::set<std::pair<std::string, int>> ids;
+  for (const auto& marker : node.markers)
+  {
+    EXPECT_TRUE(ids.insert({marker.ns, marker.id}).second) << marker.ns << " " << marker.id;
+  }
+  EXPECT_EQ(node.markers[6].ns, "tether_sections");
+  EXPECT_EQ(node.markers[7].ns, "tether_attachments");
+  EXPECT_EQ(node.markers[7].action, visualization_msgs::Marker::ADD);
 }
 
 // The legend a user reads the cable's colours by (issue 26, item 16), an image rviz shows beside its 3D view:
@@ -712,7 +730,7 @@ TEST(ParameterServer, TheNodeAndTheRunnerReadParametersWithOneReader)
   ASSERT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + good, &scenario), "");
   for (const auto& name : parameterNames())
   {
-    EXPECT_EQ(getParameter(node, name), getParameter(scenario.params, name)) << name;
+    EXPECT_TRUE(test::sameParamValue(getParameter(node, name), getParameter(scenario.params, name))) << name;
   }
   EXPECT_EQ(node.iterations, 4);
   EXPECT_EQ(node.current[0], 0.5);
@@ -1349,8 +1367,8 @@ TEST(WorldSpec, NodeAndRunnerBuildTheSameWorld)
       EXPECT_EQ(node_world.name(i), runner_world.name(i));
       for (const auto& name : parameterNames())
       {
-        EXPECT_EQ(getParameter(node_world.tether(i).params(), name),
-                  getParameter(runner_world.tether(i).params(), name))
+        EXPECT_TRUE(test::sameParamValue(getParameter(node_world.tether(i).params(), name),
+                                         getParameter(runner_world.tether(i).params(), name)))
             << node_world.name(i) << " " << name;
       }
       node_world.tether(i).copyPositions(node_positions);

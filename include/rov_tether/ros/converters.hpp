@@ -51,6 +51,17 @@ void toStateMessage(const Tether& sim, const std::vector<double>& tensions, cons
 void toMarkers(const Tether& sim, const std::vector<double>& tensions, const ros::Time& stamp,
                const MarkerOptions& options, visualization_msgs::MarkerArray* markers);
 
+/**
+ * Draws a cable of sections and attachments (issue 22), markers from `first_id` on: a LINE_LIST twice the line's
+ * width in each section's colour over the tension colours (namespace `<ns>_sections`, from the vehicle end:
+ * white, pink, green, orange, repeating; DELETE when a live change made the sections the tether's material), then
+ * a SPHERE per attachment where its material is, the size of a sphere of water weighing its net buoyancy,
+ * yellow for a float, grey for a clump weight (`<ns>_attachments`; DELETE while on the drum). Nothing for a
+ * tether without sections or attachments. Reuses `markers`' storage.
+ */
+void toMaterialMarkers(const Tether& sim, const ros::Time& stamp, const MarkerOptions& options, std::size_t first_id,
+                       visualization_msgs::MarkerArray* markers);
+
 /// Size of the colour legend image (toLegendImage) and the width of its swatches [px].
 constexpr int kLegendWidth = 300;
 constexpr int kLegendHeight = 190;

@@ -23,6 +23,15 @@ namespace rov_tether::ros_layer
  * Builds ~state, ~wrench and ~wrench_vehicle for a tether at its current physics time (stamped with it),
  * measuring the winch speed between two states. Needs no ROS master.
  */
+/**
+ * ~markers as the node publishes them: toMarkers' four (ids 0-3), where the cable touched something in its last
+ * step (4, toContactMarker), the vehicle's box at `vehicle` (5, deleted when nullptr), then the sections and
+ * attachments (6 on, toMaterialMarkers). Reuses `markers`' storage.
+ */
+void buildMarkers(const Tether& tether, const std::vector<double>& tensions, const ContactRecord& contacts,
+                  const Eigen::Isometry3d* vehicle, const Eigen::Vector3d& vehicle_size, const MarkerOptions& options,
+                  visualization_msgs::MarkerArray* markers);
+
 class StateBuilder
 {
  public:
