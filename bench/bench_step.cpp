@@ -117,6 +117,47 @@ void BM_StepDirect(benchmark::State& state)
   state.counters["newton_iterations"] = sim.solverIterations();
 }
 
+/// What sections and attachments cost (issue 22), like for like: BM_StepDirect's cable (second arg 0 as it is;
+/// 1 the same cable with an attachment of no mass, buoyancy or drag, which puts it on the per-segment material
+/// path with the same physics; 2 a real one: three sections of their own weight and EA, a float and a clump
+/// weight, under a water surface it crosses; third arg 0 the paper's damping, 1 Morison). The counter is the
+/// Newton iterations of the last sub-step: 0 and 1 take the same.
+void BM_StepDirectSections(benchmark::State& state)
+{
+  const int kind = static_cast<int>(state.range(1));
+  const bool morison = state.range(2) == 1;
+  Tether sim = makeCable(state, static_cast<int>(state.range(0)),
+                         [&](TetherParams& p)
+                         {
+                           p.solver = SolverType::kDirect;
+                           p.bending_stiffness = 0.0;
+                           p.drag_model = morison ? DragModel::kMorison : DragModel::kDamping;
+                           rov_tether::CableAttachment none;
+                           none.name = "none";
+                           none.arc_length_from_vehicle = 0.5 * p.cable_length;
+                           none.drag_coefficient = 0.0;
+                           if (kind == 1)
+                           {
+                             p.attachments = {none};
+                           }
+                           if (kind == 2)
+                           {
+                             const double third = 0.1 * std::round(p.cable_length / 0.3);
+                             p.sections = {{third, {{"weight_in_water", 0.5}, {"axial_stiffness", 5e4}}},
+                                           {third, {{"weight_in_water", -0.3}, {"diameter", 0.05}}},
+                                           {}};
+                             rov_tether::CableAttachment buoy = none, clump = none;
+                             buoy.name = "float", buoy.net_buoyancy = 2.0, buoy.mass = 0.2, buoy.drag_area = 0.01;
+                             clump.name = "clump", clump.net_buoyancy = -1.0, clump.mass = 0.3;
+                             clump.arc_length_from_vehicle = 0.2 * p.cable_length;
+                             p.attachments = {buoy, clump};
+                             p.water_surface_z = 0.0;  // the cable lies about z = 0: it crosses
+                           }
+                         });
+  run(state, sim, 0.0);
+  state.counters["newton_iterations"] = sim.solverIterations();
+}
+
 /// The end's linearisation for an external simulator (Tether::vehicleEndLinearisation) alone, one call an
 /// iteration on BM_StepDirect's cable (no bending stiffness) made heavy in water (1 N/m), so that it hangs and
 /// its last segment pulls (a slack end would return K = 0 without a solve): an assembly of the step's Hessian,
@@ -458,6 +499,7 @@ BENCHMARK(BM_StepPbdNoBending)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepXpbd)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepLumpedMass)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirect)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepDirectSections)->ArgsProduct({{100}, {0, 1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EndLinearisation)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirectBending)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepDirectBendingMoving)->ArgsProduct({{100, 1000}, {0, 1}})->Unit(benchmark::kMicrosecond);

@@ -12,54 +12,18 @@
 # machine moves them, and they are higher than the instruction ratios (the chain's loops run as AVX2 clones, the
 # body's 6x6 algebra as scalar code).
 set -euo pipefail
-if [ -z "${BENCH:-}" ]; then
-  source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-  build_target rov_tether_bench
-  BENCH="$BUILD_DIR/devel/lib/rov_tether/rov_tether_bench"
-fi
-command -v valgrind >/dev/null || { echo "valgrind is missing (apt-get install valgrind)"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/callgrind_bench.sh"
 segments="${SEGMENTS:-100}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
 for bending in 0 1; do
   for dynamic in 0 1 2; do
-    name="BM_StepDirectDynamicVehicle/$segments/$bending/$dynamic"
-    valgrind --tool=callgrind --callgrind-out-file="$work/$bending$dynamic.cg" "$BENCH" \
-      --benchmark_filter="^$name\$" --benchmark_min_time=0.05 >"$work/$bending$dynamic.log" 2>&1 ||
-      { cat "$work/$bending$dynamic.log"; exit 1; }
-    callgrind_annotate --tree=caller --inclusive=yes --threshold=100 "$work/$bending$dynamic.cg" \
-      >"$work/$bending$dynamic.txt" 2>/dev/null
+    callgrind_bench "BM_StepDirectDynamicVehicle/$segments/$bending/$dynamic" "$bending$dynamic"
   done
 done
-/usr/bin/python3 - "$work" "$segments" <<'PYTHON'
-import re, sys
+/usr/bin/python3 - "$work" "$segments" "$here" <<'PYTHON'
+import sys
 work, segments = sys.argv[1], sys.argv[2]
-arc = re.compile(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+([<*])\s+(.*?)(?: \(([\d,]+)x\))? \[")
-
-def functions(path):
-    """{callee: (inclusive instructions, {caller: (instructions, calls)})} from callgrind_annotate's caller tree."""
-    found, callers = {}, {}
-    for line in open(path):
-        m = arc.match(line)
-        if not m:
-            if not line.strip():
-                callers = {}
-            continue
-        count, kind, name, calls = int(m.group(1).replace(",", "")), m.group(2), m.group(3), m.group(4)
-        if kind == "<":
-            callers[name] = (count, int(calls.replace(",", "")) if calls else 0)
-        else:
-            found[name] = (count, callers)
-            callers = {}
-    return found
-
-def one(functions_, suffix):
-    return [v for k, v in functions_.items() if k.endswith(suffix)]
-
-def per_step(found):
-    (inclusive, callers), = one(found, "rov_tether::Tether::step()")
-    (count, calls), = [v for k, v in callers.items() if "BM_StepDirectDynamicVehicle" in k]
-    return count / calls, calls
+sys.path.insert(0, sys.argv[3])
+from callgrind_tree import functions, per_step
 
 def coupling(found):
     """Instructions per call of the coupling's three functions, summed (one call each per sub-step)."""
@@ -71,7 +35,7 @@ def coupling(found):
 
 for bending in "01":
     kin, dyn, path = (functions("%s/%s%d.txt" % (work, bending, v)) for v in range(3))
-    (k, k_calls), (d, d_calls), (p, p_calls) = per_step(kin), per_step(dyn), per_step(path)
+    (k, k_calls), (d, d_calls), (p, p_calls) = (per_step(f, "BM_StepDirectDynamicVehicle") for f in (kin, dyn, path))
     print("BM_StepDirectDynamicVehicle/%s/%s/{0,1,2} (%s): instructions per step kinematic pinned %.0f, dynamic "
           "%.0f, kinematic on the dynamic's path %.0f (%d, %d, %d steps); dynamic / pinned = %.3f, dynamic / same "
           "path = %.3f; the coupling's calls %.0f per sub-step"

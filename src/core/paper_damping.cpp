@@ -29,10 +29,12 @@ void PaperDamping::integrate(Cable& cable, std::size_t begin, std::size_t end, d
   {
     // Sections and attachments: each particle's own weight over its own mass (the paper's drag is one
     // damping factor for every particle under water; above a water surface, none, and no current).
+    const bool uniform = current.uniform();
+    const Position& u0 = current.mean();
     for (std::size_t i = begin; i < end; ++i)
     {
       const double own = cable.loading.wetness(i) > 0.0 ? damping : 1.0;
-      const Position drift = (1.0 - own) * h * current.at(cable.position(i), t);
+      const Position drift = (1.0 - own) * h * (uniform ? u0 : current.at(cable.position(i), t));
       const double weight = cable.loading.particleWeight(i, cable.rest, cable.first);
       const double x = cable.x[i], y = cable.y[i], z = cable.z[i];
       cable.x[i] += (x - cable.px[i]) * own + drift.x();
