@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the figures of the README and docs/runner.md from rov_tether_run output (state.csv / shape.csv).
+"""Draws the figures of the README, docs/runner.md and docs/model.md from rov_tether_run output (state.csv / shape.csv).
 
 usage: figures.py OUT_DIR DOCS_DIR
 OUT_DIR holds one sub-folder per run, as written by scripts/figures.sh.
@@ -101,11 +101,31 @@ def paper_2d(out, docs):
     fig.savefig(docs / "paper_fig11_noise.png", dpi=100)
 
 
+def lazy_wave(out, docs):
+    """The lazy wave from a boat: the cable seen from the side (x, z) as the vehicle drives out and back."""
+    shape = shapes(out / "lazy_wave")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for time in (10.0, 20.0, 30.0, 50.0):
+        pts = shape[time]
+        ax.plot([p[0] for p in pts], [p[2] for p in pts], ".-", markersize=2, label=f"t = {time:g} s")
+    ax.axhline(0.0, color="tab:blue", linewidth=0.8, linestyle="--", label="water surface")
+    ax.axhline(-16.0, color="saddlebrown", linewidth=1.5, label="seabed")
+    ax.plot([0], [1.5], "ks", label="spool (on deck)")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title("scenarios/lazy_wave.yaml: floats hold the tether off the seabed")
+    fig.tight_layout()
+    fig.savefig(docs / "images" / "lazy_wave.png", dpi=100)
+
+
 def main():
     out, docs = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
     docs.mkdir(parents=True, exist_ok=True)
     payout(out, docs)
     paper_2d(out, docs)
+    lazy_wave(out, docs)
     print(f"figures written to {docs}")
 
 
