@@ -627,12 +627,12 @@ TEST(Attachments, BadOnesAreRefusedByName)
   {
     all += error + "\n";
   }
-  EXPECT_NE(all.find("attachment 'far': arc_length_from_vehicle = 12 m: must be in (0, cable_length 10 m]"),
+  EXPECT_NE(all.find("attachments[0] 'far': arc_length_from_vehicle = 12 m: must be in (0, cable_length 10 m]"),
             std::string::npos)
       << all;
-  EXPECT_NE(all.find("attachment 'far': the name is used twice"), std::string::npos) << all;
-  EXPECT_NE(all.find("attachment 'negative': mass = -1: must be in [0, 1e7]"), std::string::npos) << all;
-  EXPECT_NE(all.find("attachment 4: name missing"), std::string::npos) << all;
+  EXPECT_NE(all.find("attachments[1] 'far': the name is used twice"), std::string::npos) << all;
+  EXPECT_NE(all.find("attachments[2] 'negative': mass = -1: must be in [0, 1e7]"), std::string::npos) << all;
+  EXPECT_NE(all.find("attachments[3]: name missing"), std::string::npos) << all;
   EXPECT_THROW(Tether(p, Position::Zero(), Position(8.0, 0.0, 0.0)), std::invalid_argument);
 }
 

@@ -129,7 +129,7 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"params: {attachments: [{arc_length_from_vehicle: 2}]}\nspool: [0, 0, 0]\nduration: 1",
        "params.attachments[0].name: missing"},
       {"params: {attachments: [{name: a, arc_length_from_vehicle: 20}]}\nspool: [0, 0, 0]\nduration: 1",
-       "attachment 'a': arc_length_from_vehicle = 20 m"},
+       "params.attachments[0] 'a': arc_length_from_vehicle = 20 m"},
   };
   for (const auto& c : cases)
   {

@@ -192,7 +192,7 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
   }
   if (!errors.empty())
   {
-    std::string text = "cable sections rejected: ";
+    std::string text = "sections: ";
     for (std::size_t i = 0; i < errors.size(); ++i)
     {
       text += (i > 0 ? "; " : "") + errors[i];
@@ -251,8 +251,9 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
   for (std::size_t a = 0; a < params.attachments.size(); ++a)
   {
     const CableAttachment& attachment = params.attachments[a];
+    // Named as the readers name it: attachments[k] (from 0, in the order written) and its name.
     const std::string which =
-        "attachment " + (attachment.name.empty() ? std::to_string(a + 1) : "'" + attachment.name + "'");
+        "attachments[" + std::to_string(a) + "]" + (attachment.name.empty() ? "" : " '" + attachment.name + "'");
     if (attachment.name.empty())
     {
       errors.push_back(which + ": name missing");
@@ -266,7 +267,9 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
     if (!(arc > 0.0 && arc <= params.cable_length))
     {
       errors.push_back(which + ": arc_length_from_vehicle = " + number(arc) + " m: must be in (0, cable_length " +
-                       number(params.cable_length) + " m] (a body at the vehicle end is the vehicle's)");
+                       number(params.cable_length) + " m]" +
+                       (arc > 0.0 ? std::string(" (it is beyond the drum end)")
+                                  : std::string(" (a body at the vehicle end is the vehicle's)")));
     }
     const std::vector<std::pair<const char*, double>> non_negative = {
         {"mass", attachment.mass},

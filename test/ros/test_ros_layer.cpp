@@ -775,7 +775,7 @@ TEST(ParameterServer, SectionsAndAttachmentsReadAsTheRunnerReadsThem)
   TetherParams unchanged;
   const std::string from_node = loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(bad)), &unchanged);
   const std::string from_runner = parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + bad, &scenario);
-  EXPECT_NE(from_node.find("attachment 'float': arc_length_from_vehicle = -3 m"), std::string::npos) << from_node;
+  EXPECT_NE(from_node.find("attachments[0] 'float': arc_length_from_vehicle = -3 m"), std::string::npos) << from_node;
   EXPECT_EQ("params." + from_node, from_runner);
   EXPECT_TRUE(unchanged.attachments.empty());
 }
