@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Prints a live one-line summary of tether_node: deployed length, tension at the vehicle, winch, and the
 physics real-time factor from /diagnostics. ~state_topic (/tether_node/state), ~period [s] (1.0),
-~duration [s] (0 = until shut down)."""
+~duration [s] (0 = until shut down), ~label ("": a word put before each line, to tell several summaries apart)."""
 import math
 
 import rospy
@@ -44,6 +44,7 @@ def main():
     topic = rospy.get_param("~state_topic", "/tether_node/state")
     period = float(rospy.get_param("~period", 1.0))
     duration = float(rospy.get_param("~duration", 0.0))
+    label = str(rospy.get_param("~label", ""))
     rospy.Subscriber(topic, TetherState, on_state)
     rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
     start = rospy.Time.now()
@@ -56,7 +57,8 @@ def main():
             continue
         if first_stamp is None or s.header.stamp < first_stamp:
             first_stamp = s.header.stamp
-        print(summary_line((s.header.stamp - first_stamp).to_sec(), s, latest["rtf"], latest["diag"]), flush=True)
+        line = summary_line((s.header.stamp - first_stamp).to_sec(), s, latest["rtf"], latest["diag"])
+        print(("%-9s " % label if label else "") + line, flush=True)
         if duration > 0 and (rospy.Time.now() - start).to_sec() >= duration:
             break
 

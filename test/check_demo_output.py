@@ -117,8 +117,10 @@ class DemoOutput(unittest.TestCase):
         self.assertTrue(configs)
         for config in configs:
             displays = yaml.safe_load(config.read_text())["Visualization Manager"]["Displays"]
-            legends = [d for d in displays if d["Class"] == "rviz/Image" and d["Image Topic"] == "/tether_node/legend"]
-            self.assertEqual(len(legends), 1, "%s: no Image display of /tether_node/legend" % config.name)
+            # /tether_node/legend, or a tether's of several (/tether_node/<name>/legend: tms_demo.rviz)
+            legends = [d for d in displays if d["Class"] == "rviz/Image"
+                       and re.fullmatch(r"/tether_node/(\w+/)?legend", d["Image Topic"])]
+            self.assertEqual(len(legends), 1, "%s: no Image display of a tether's legend" % config.name)
             self.assertTrue(legends[0]["Enabled"], config.name)
             for tf in (d for d in displays if d["Class"] == "rviz/TF"):
                 self.assertFalse(tf["Show Names"], "%s: tf names cover the spool and the label" % config.name)

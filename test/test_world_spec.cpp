@@ -37,7 +37,10 @@ TEST(WorldSpec, TetherNamesFollowOneRule)
 TEST(WorldSpec, NamesAreCheckedAcrossTethersObstaclesAndCameras)
 {
   WorldSpec spec;
-  spec.tethers = {{"a", {}, Position::Zero(), {}}, {"b", {}, Position(1.0, 0.0, 0.0), {}}};
+  spec.tethers.resize(2);
+  spec.tethers[0].name = "a";
+  spec.tethers[1].name = "b";
+  spec.tethers[1].spool = Position(1.0, 0.0, 0.0);
   ObstacleSpec pillar;
   pillar.name = "pillar";
   pillar.type = ShapeType::Sphere;

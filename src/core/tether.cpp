@@ -201,6 +201,7 @@ void Tether::layOut(double deployed_length)
     world_contact_->forget();
   }
   spool_.setDeployedLength(cable_, deployed_length);
+  spool_moved_ = Position::Zero();  // laid out at rest where the spool is
   CableLayout(params_).layOut(cable_, spool_.outlet(), track_.attached() ? &track_.position() : nullptr,
                               deployedLength());
   solver_->multipliers().clear();
@@ -229,8 +230,18 @@ Status Tether::setSpoolPosition(const Position& spool)
   {
     return Status::error("spool position rejected: not finite or beyond +-1e6 m");
   }
+  spool_moved_ += spool - spool_.outlet();
   spool_.setOutlet(spool);
   return Status::success();
+}
+
+Status Tether::setVehicleLoad(const Force& force, const Eigen::Vector3d& moment)
+{
+  if (vehicle_ == nullptr)
+  {
+    return Status::error("vehicle load rejected: the vehicle end is not dynamic");
+  }
+  return vehicle_->setLoad(force, moment);
 }
 
 Status Tether::addVehicleSample(double t, const Position& vehicle)
@@ -399,7 +410,8 @@ void Tether::step()
 void Tether::subStep(double h, double t)
 {
   const std::size_t n = cable_.size();
-  cable_.place(cable_.first, spool_.outlet());
+  cable_.placeMoving(cable_.first, spool_.outlet(), spool_moved_);
+  spool_moved_ = Position::Zero();
   if (vehicle_ == nullptr && track_.active())
   {
     const bool was_attached = track_.attached();

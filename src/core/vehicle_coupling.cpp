@@ -19,6 +19,30 @@ Status VehicleCoupling::setThrust(const Wrench& thrust)
   return Status::success();
 }
 
+Status VehicleCoupling::setLoad(const Force& force, const Eigen::Vector3d& moment)
+{
+  if (!force.allFinite() || !moment.allFinite())
+  {
+    return Status::error("vehicle load rejected: every component must be finite");
+  }
+  load_force_ = force;
+  load_moment_ = moment;
+  loaded_ = !force.isZero(0.0) || !moment.isZero(0.0);
+  started_ = false;
+  return Status::success();
+}
+
+Wrench VehicleCoupling::load() const
+{
+  Wrench wrench = Wrench::Zero();
+  if (loaded_)
+  {
+    const Eigen::Quaterniond to_body = body_.attitude().conjugate();
+    wrench << to_body * load_force_, to_body * load_moment_;
+  }
+  return wrench;
+}
+
 Status VehicleCoupling::predict(double h, Position* predicted)
 {
   started_ = false;
@@ -30,7 +54,7 @@ Status VehicleCoupling::predict(double h, Position* predicted)
   started_ = true;
   Eigen::Vector3d position;
   Eigen::Quaterniond attitude;
-  const Status stepped = body_.stepped(start_, thrust_, Wrench::Zero(), &position, &attitude, &trial_);
+  const Status stepped = body_.stepped(start_, thrust_, load(), &position, &attitude, &trial_);
   if (stepped)
   {
     *predicted = position + attitude * offset_;
@@ -104,7 +128,7 @@ Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment
       *attachment_point = attachment();
       return started;
     }
-    stepped = body_.step(start_, thrust_, external, &used_);
+    stepped = body_.step(start_, thrust_, load() + external, &used_);
   }
   started_ = false;  // the body moves on
   if (stepped)

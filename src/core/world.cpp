@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "rov_tether/core/topology.hpp"
 
@@ -79,7 +80,15 @@ Status World::advanceTo(double t, std::size_t* steps)
       grid_time_ = stepping.time();
       grid_stale_ = false;
     }
+    if (tethers_[next].carrier != npos)
+    {
+      placeMountedSpool(next);
+    }
     stepping.step();
+    if (tethers_[next].carrier != npos)
+    {
+      loadCarrier(tethers_[next].carrier);
+    }
     grid_stale_ = grid_stale_ || (contact_on_ && scene_.between_tethers && !scene_.grid.holds(next, stepping.state()));
     ++taken;
   }
@@ -98,6 +107,82 @@ Status World::advanceTo(double t, std::size_t* steps)
     *steps = taken;
   }
   return Status::success();
+}
+
+Status World::mountSpool(std::size_t i, std::size_t carrier, const Eigen::Vector3d& outlet_offset)
+{
+  if (i >= tethers_.size() || carrier >= tethers_.size())
+  {
+    return Status::error("world: spool mount rejected: no such tether");
+  }
+  const std::string who = "world: spool of '" + tethers_[i].name + "' on '" + tethers_[carrier].name + "' rejected: ";
+  if (i == carrier)
+  {
+    return Status::error(who + "a tether cannot carry its own spool");
+  }
+  if (tethers_[i].carrier != npos)
+  {
+    return Status::error(who + "it is already on '" + tethers_[tethers_[i].carrier].name + "'");
+  }
+  if (!tethers_[carrier].tether->vehicleDynamic())
+  {
+    return Status::error(who + "'" + tethers_[carrier].name +
+                         "' has no dynamic vehicle to carry it (vehicle model: dynamic)");
+  }
+  for (std::size_t up = tethers_[carrier].carrier; up != npos; up = tethers_[up].carrier)
+  {
+    if (up == i)
+    {
+      return Status::error(who + "'" + tethers_[carrier].name + "' rides, through its spool, on '" + tethers_[i].name +
+                           "' (a loop)");
+    }
+  }
+  if (!outlet_offset.allFinite() || outlet_offset.norm() > VehicleParams::kMaxOffset)
+  {
+    std::ostringstream out;
+    out << who << "the outlet offset must be finite and within " << VehicleParams::kMaxOffset
+        << " m of the body origin";
+    return Status::error(out.str());
+  }
+  tethers_[i].carrier = carrier;
+  tethers_[i].outlet_offset = outlet_offset;
+  placeMountedSpool(i);
+  loadCarrier(carrier);
+  return Status::success();
+}
+
+void World::placeMountedSpool(std::size_t i)
+{
+  const Entry& entry = tethers_[i];
+  const VehicleBody* body = tethers_[entry.carrier].tether->vehicleBody();
+  if (body != nullptr)
+  {
+    // Within limits: the body's attachment point is (Tether refuses to go beyond them), and the offset
+    // within kMaxOffset of it; were it refused, the spool would stay where it was.
+    (void)entry.tether->setSpoolPosition(body->position() + body->attitude() * entry.outlet_offset);
+  }
+}
+
+void World::loadCarrier(std::size_t carrier)
+{
+  Tether& body_tether = *tethers_[carrier].tether;
+  const VehicleBody* body = body_tether.vehicleBody();
+  if (body == nullptr)
+  {
+    return;
+  }
+  Force force = Force::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const Entry& entry : tethers_)
+  {
+    if (entry.carrier == carrier)
+    {
+      const Force pull = entry.tether->spoolForce();
+      force += pull;
+      moment += (body->attitude() * entry.outlet_offset).cross(pull);
+    }
+  }
+  (void)body_tether.setVehicleLoad(force, moment);  // finite: a tether's forces are (a failure resets it)
 }
 
 double World::time() const

@@ -3,6 +3,8 @@
 #include <ros/names.h>
 #include <ros/package.h>
 
+#include <algorithm>
+
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/spec/obstacle_reader.hpp"
 
@@ -15,7 +17,9 @@ WorldSpec namesOnly(const std::vector<std::string>& tether_names, const std::vec
   WorldSpec spec;
   for (const std::string& name : tether_names)
   {
-    spec.tethers.push_back({name, {}, Position::Zero(), {}});
+    ScenarioTether tether;
+    tether.name = name;
+    spec.tethers.push_back(tether);
   }
   spec.obstacles = obstacles;
   spec.cameras = cameras;
@@ -70,8 +74,24 @@ std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vect
   WorldSpec result;
   for (std::size_t i = 0; i < setups.size() && i < names.size(); ++i)
   {
-    result.tethers.push_back({names[i], setups[i].params, setups[i].options.spool_position, {}});
+    ScenarioTether tether;
+    tether.name = names[i];
+    tether.params = setups[i].params;
+    tether.spool = setups[i].options.spool_position;
+    const NodeOptions& options = setups[i].options;
+    const auto carrier = std::find(names.begin(), names.end(), options.spool_on);
+    if (!options.spool_on.empty() && carrier != names.end())
+    {
+      // Where the spool starts: the outlet of the carrier's vehicle at vehicle_start (checkSpoolMounts: it has one).
+      const Eigen::Vector4d& start = setups[static_cast<std::size_t>(carrier - names.begin())].options.vehicle_start;
+      tether.spool_on = options.spool_on;
+      tether.spool_outlet_offset = options.spool_outlet_offset;
+      tether.spool =
+          start.head<3>() + Eigen::AngleAxisd(start[3], Eigen::Vector3d::UnitZ()) * options.spool_outlet_offset;
+    }
+    result.tethers.push_back(tether);
   }
+  result.vehicles_attached_later = true;  // the node's VehicleIo starts each; WorldNode mounts the spools then
   result.tether_contact = options.tether_contact;
   for (ObstacleSpec obstacle : options.obstacles)
   {

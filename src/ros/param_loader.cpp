@@ -25,7 +25,8 @@ const std::vector<std::string>& nodeOptionNames()
       "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
       "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
       "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",         "world_frame_from_pose",
-      "max_pose_future",    "vehicle_model",      "vehicle_params",      "cmd_wrench_timeout", "vehicle_start"};
+      "max_pose_future",    "vehicle_model",      "vehicle_params",      "cmd_wrench_timeout", "vehicle_start",
+      "spool_on",           "spool_outlet_offset"};
   return names;
 }
 
@@ -211,6 +212,8 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.vector3("attachment_offset", &candidate.attachment_offset);
   read.text("spool_frame", &candidate.spool_frame);
   read.vector3("spool_position", &candidate.spool_position);
+  read.text("spool_on", &candidate.spool_on);
+  read.vector3("spool_outlet_offset", &candidate.spool_outlet_offset);
   read.number("physics_rate", &candidate.physics_rate, 1.0, 5000.0);
   read.number("interpolation_delay", &candidate.interpolation_delay, 0.0, 10.0);
   read.number("state_rate", &candidate.state_rate, 0.1, 1000.0);

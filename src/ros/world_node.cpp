@@ -93,6 +93,40 @@ void checkVehicleFrames(const std::vector<std::string>& names, const std::vector
   }
 }
 
+/// A spool on another tether's vehicle (spool_on, a TMS): that tether is listed before, its vehicle is dynamic
+/// and starts at vehicle_start (where the spool starts), and the spool has no spool_frame of its own.
+void checkSpoolMounts(const std::vector<std::string>& names, const std::vector<TetherSetup>& setups)
+{
+  for (std::size_t i = 0; i < setups.size(); ++i)
+  {
+    const NodeOptions& options = setups[i].options;
+    if (options.spool_on.empty())
+    {
+      continue;
+    }
+    const std::string who = "parameter " + (names.empty() ? std::string("spool_on") : names[i] + "/spool_on") + " = '" +
+                            options.spool_on + "': ";
+    const auto carrier = std::find(names.begin(), names.end(), options.spool_on);
+    if (carrier == names.end() || carrier - names.begin() >= static_cast<std::ptrdiff_t>(i))
+    {
+      throw std::runtime_error(who + (names.empty() ? "a spool rides on another tether: list both in `tethers`"
+                                                    : "expected a tether listed before " + names[i] + " in `tethers`"));
+    }
+    const NodeOptions& carried_by = setups[static_cast<std::size_t>(carrier - names.begin())].options;
+    if (carried_by.vehicle_model != "dynamic" || !carried_by.has_vehicle_start)
+    {
+      throw std::runtime_error(who +
+                               "its vehicle must be dynamic (vehicle_model: dynamic) with a vehicle_start, "
+                               "where the spool starts");
+    }
+    if (!options.spool_frame.empty())
+    {
+      throw std::runtime_error(who + "not with spool_frame '" + options.spool_frame +
+                               "': the spool goes where the vehicle carries it");
+    }
+  }
+}
+
 }  // namespace
 
 namespace
@@ -104,6 +138,7 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
   if (names.empty())
   {
     setups.push_back(loadTetherSetup(private_nh, XmlRpc::XmlRpcValue()));
+    checkSpoolMounts(names, setups);
     return setups;
   }
   XmlRpc::XmlRpcValue shared;
@@ -114,6 +149,7 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
   }
   shareOneClock(names, &setups);
   checkVehicleFrames(names, setups);
+  checkSpoolMounts(names, setups);
   return setups;
 }
 
@@ -153,7 +189,8 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // The world's own parameters (in ~ only): obstacles, built before anything is advertised.
   const std::vector<std::string> world_names = names.empty() ? std::vector<std::string>{"tether"} : names;
   WorldOptions world_options;
-  WorldSpec world_spec = describeWorld(private_nh_, world_names, setups, &world_options);
+  world_spec_ = describeWorld(private_nh_, world_names, setups, &world_options);
+  const WorldSpec& world_spec = world_spec_;
   const bool has_cameras = private_nh_.hasParam("cameras");
   const std::string world_error = buildWorld(world_spec, &world_);
   if (!world_error.empty())
@@ -190,6 +227,13 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
                                            setups.front().options.world_frame, setups.front().options.max_pose_future,
                                            setups.front().options.max_lag);
   }
+  for (std::size_t i = 0; i < world_spec.tethers.size(); ++i)
+  {
+    if (!world_spec.tethers[i].spool_on.empty())
+    {
+      unmounted_.push_back(i);  // mounted when the vehicle that carries it starts (mountStartedCarriers)
+    }
+  }
   input_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &input_queue_);
   input_spinner_->start();
   timer_ = nh_.createTimer(ros::Duration(1.0 / clock.physics_rate), &WorldNode::onTimer, this);
@@ -208,6 +252,29 @@ WorldNode::~WorldNode()
   }
 }
 
+void WorldNode::mountStartedCarriers()
+{
+  for (auto i = unmounted_.begin(); i != unmounted_.end();)
+  {
+    const ScenarioTether& tether = world_spec_.tethers[*i];
+    if (!world_.tether(world_.find(tether.spool_on)).vehicleDynamic())
+    {
+      ++i;
+      continue;
+    }
+    const std::string error = mountSpool(world_spec_, *i, &world_);
+    if (error.empty())
+    {
+      ROS_INFO("tether_node: %s's spool rides on %s's vehicle", tether.name.c_str(), tether.spool_on.c_str());
+    }
+    else
+    {
+      ROS_ERROR("tether_node: %s's spool stays at spool_position: %s", tether.name.c_str(), error.c_str());
+    }
+    i = unmounted_.erase(i);
+  }
+}
+
 void WorldNode::onTimer(const ros::TimerEvent& /*event*/)
 {
   const ros::Time now = ros::Time::now();
@@ -216,6 +283,7 @@ void WorldNode::onTimer(const ros::TimerEvent& /*event*/)
     obstacles_->update(now);  // obstacles that move with a frame, before the physics steps
   }
   scheduler_->tick(now);
+  mountStartedCarriers();
   topology_->publish();
   if (cameras_)
   {

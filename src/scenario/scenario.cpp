@@ -48,16 +48,35 @@ Wrench wrenchAt(const std::vector<WrenchPoint>& schedule, double t)
 
 Position Scenario::vehicleAt(double t) const { return pathAt(vehicle, t); }
 
+bool Scenario::hasDynamicVehicle() const
+{
+  return dynamic.has_value() ||
+         std::any_of(tethers.begin(), tethers.end(), [](const ScenarioTether& t) { return t.dynamic.has_value(); });
+}
+
 std::vector<ScenarioTether> Scenario::tetherList() const
 {
   if (!tethers.empty())
   {
     return tethers;
   }
-  return {ScenarioTether{"tether", params, spool, vehicle, dynamic}};
+  ScenarioTether one;
+  one.name = "tether";
+  one.params = params;
+  one.spool = spool;
+  one.vehicle = vehicle;
+  one.dynamic = dynamic;
+  return {one};
 }
 
-Tether PathDriver::makeSimulation() const { return makeTether(ScenarioTether{"", params_, spool_, vehicle_, {}}); }
+Tether PathDriver::makeSimulation() const
+{
+  ScenarioTether one;
+  one.params = params_;
+  one.spool = spool_;
+  one.vehicle = vehicle_;
+  return makeTether(one);
+}
 
 const std::vector<Waypoint>& PathDriver::noPath()
 {

@@ -530,11 +530,13 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
       warnings.push_back(who + "simulation failure (" + std::to_string(s.recoveries) +
                          "), the last: " + s.last_failure);
     }
-    if (s.max_tension > max_tension_warning)
+    const double warn_above =
+        std::isnan(tethers[i].max_tension_warning) ? max_tension_warning : tethers[i].max_tension_warning;
+    if (s.max_tension > warn_above)
     {
       std::snprintf(line, sizeof line,
                     "over-tension: %.4g N at t = %.2f s, above max_tension_warning = %.4g N (max strain %.3g)",
-                    s.max_tension, s.max_tension_time, max_tension_warning, s.max_strain);
+                    s.max_tension, s.max_tension_time, warn_above, s.max_strain);
       warnings.push_back(who + line);
     }
     if (s.outrun_rows > 0)

@@ -80,6 +80,32 @@ std::string readCameras(const YAML::Node& node, double duration, std::vector<Sce
   return "";
 }
 
+/// Reads a spool that rides on another tether's vehicle: `{on: name, outlet_offset: [x, y, z]}` (the offset
+/// optional, zero by default).
+std::string readSpoolMount(const YAML::Node& node, const std::string& field, ScenarioTether* tether)
+{
+  for (const auto& entry : node)
+  {
+    const std::string key = entry.first.as<std::string>();
+    if (key != "on" && key != "outlet_offset")
+    {
+      return field + ": unknown field '" + key + "' (expected [x, y, z], or on and outlet_offset)";
+    }
+  }
+  if (!node["on"])
+  {
+    return field + ".on: missing (the tether whose vehicle carries this spool)";
+  }
+  std::string error = spec::readText(node["on"], field + ".on", &tether->spool_on);
+  if (error.empty() && node["outlet_offset"])
+  {
+    Position offset;
+    error = spec::readPosition(node["outlet_offset"], field + ".outlet_offset", &offset);
+    tether->spool_outlet_offset = offset;
+  }
+  return error;
+}
+
 /// Reads one entry of `tethers` (see ScenarioTether); "" or a message naming the field.
 std::string readTether(const YAML::Node& node, const std::string& field, const std::string& base_dir,
                        ScenarioTether* tether)
@@ -91,9 +117,9 @@ std::string readTether(const YAML::Node& node, const std::string& field, const s
   for (const auto& entry : node)
   {
     const std::string key = entry.first.as<std::string>();
-    if (key != "name" && key != "params" && key != "spool" && key != "vehicle")
+    if (key != "name" && key != "params" && key != "spool" && key != "vehicle" && key != "max_tension_warning")
     {
-      return field + ": unknown field '" + key + "' (expected name, params, spool, vehicle)";
+      return field + ": unknown field '" + key + "' (expected name, params, spool, vehicle, max_tension_warning)";
     }
   }
   if (!node["name"])
@@ -113,10 +139,21 @@ std::string readTether(const YAML::Node& node, const std::string& field, const s
       return error;
     }
   }
-  const std::string error = spec::readPosition(node["spool"], field + ".spool", &tether->spool);
+  const std::string error = node["spool"] && node["spool"].IsMap()
+                                ? readSpoolMount(node["spool"], field + ".spool", tether)
+                                : spec::readPosition(node["spool"], field + ".spool", &tether->spool);
   if (!error.empty())
   {
     return error;
+  }
+  if (node["max_tension_warning"])
+  {
+    const std::string warning_error =
+        readNumber(node["max_tension_warning"], field + ".max_tension_warning", &tether->max_tension_warning);
+    if (!warning_error.empty() || !(tether->max_tension_warning >= 0.0))
+    {
+      return warning_error.empty() ? field + ".max_tension_warning: expected a tension >= 0 [N]" : warning_error;
+    }
   }
   return node["vehicle"] ? scenario_yaml::readVehicle(node["vehicle"], field + ".vehicle", base_dir, &tether->vehicle,
                                                       &tether->dynamic)

@@ -60,6 +60,12 @@ std::string validateWorldSpec(const WorldSpec& spec)
     {
       return who + ": used twice";
     }
+    const std::string& on = spec.tethers[i].spool_on;
+    if (!on.empty() && std::count(tethers.begin(), tethers.end(), on) == 0)
+    {
+      return "tethers[" + std::to_string(i) + "].spool.on = '" + on +
+             "': " + (on == name ? "a tether cannot carry its own spool" : "no tether of that name listed before it");
+    }
     tethers.push_back(name);
   }
   // The one tether of a world without a `tethers` list is called "tether" (a node's, a scenario's).
@@ -79,6 +85,15 @@ std::string validateWorldSpec(const WorldSpec& spec)
                                                  "': " + (by_tether ? "already used by a tether" : "used twice");
                                         })
                        : error;
+}
+
+std::string mountSpool(const WorldSpec& spec, std::size_t i, World* world)
+{
+  const ScenarioTether& tether = spec.tethers[i];
+  const Status mounted =
+      world->mountSpool(world->find(tether.name), world->find(tether.spool_on), tether.spool_outlet_offset);
+  return mounted.ok ? ""
+                    : "tethers[" + std::to_string(i) + "].spool.on = '" + tether.spool_on + "': " + mounted.message;
 }
 
 WorldSpec worldSpecOf(const Scenario& scenario)
@@ -112,8 +127,15 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     return invalid;
   }
   world->setContactBetweenTethers(spec.tether_contact);
-  for (const ScenarioTether& tether : spec.tethers)
+  for (ScenarioTether tether : spec.tethers)
   {
+    const std::size_t carrier = tether.spool_on.empty() ? World::npos : world->find(tether.spool_on);
+    if (carrier != World::npos && spec.tethers[carrier].dynamic)
+    {
+      // The outlet where the carrier's body starts (validateWorldSpec: the carrier was listed, so built, before).
+      const VehicleBody body = startBody(*spec.tethers[carrier].dynamic);
+      tether.spool = body.position() + body.attitude() * tether.spool_outlet_offset;
+    }
     const Status added = world->add(tether.name, std::make_unique<Tether>(makeTether(tether)));
     if (!added.ok)
     {
@@ -123,6 +145,14 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     if (!attached.empty())
     {
       return (spec.tethers.size() == 1 ? "" : "tethers: " + tether.name + ": ") + attached;
+    }
+  }
+  for (std::size_t i = 0; i < spec.tethers.size() && !spec.vehicles_attached_later; ++i)
+  {
+    const std::string mounted = spec.tethers[i].spool_on.empty() ? "" : mountSpool(spec, i, world);
+    if (!mounted.empty())
+    {
+      return mounted;
     }
   }
   std::vector<std::unique_ptr<Obstacle>> obstacles;

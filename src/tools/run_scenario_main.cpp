@@ -27,7 +27,8 @@ void usage(std::FILE* out)
                "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv; with a dynamic vehicle\n"
                "  (`vehicle: {model: dynamic, ...}`), DIR/vehicle.csv.\n"
                "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
-               "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's).\n"
+               "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's), for\n"
+               "                          each tether that does not set its own max_tension_warning.\n"
                "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
                "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }

@@ -4,10 +4,10 @@ failure, a deprecation or an over-tension warning (issue 26, item 15; the scenar
 test_core, ShippedFiles.EveryScenarioRunsWithoutFailuresOrWarnings).
 
 Each file is started with roslaunch against this master for a while, with what it needs to do its work:
-the demos bring their own simulated ROV (rviz off: no display here); tether.launch and tethers.launch get
-vehicle poses from this test, a few metres out from each spool; replay.launch replays
-test/data/straight_excursion.bag, and ends by itself. A launch file missing from LAUNCHES fails the test, so
-a new one cannot go unchecked.
+the demos (tms_demo.launch too) bring their own simulated ROV (rviz off: no display here); tether.launch
+and tethers.launch get vehicle poses from this test, a few metres out from each spool; replay.launch
+replays test/data/straight_excursion.bag, and ends by itself. A launch file missing from LAUNCHES fails the
+test, so a new one cannot go unchecked.
 
 What fails a launch file, from its output (roslaunch prints every node's log with output="screen") and from
 /diagnostics while it runs: an ERROR or FATAL log other than the node saying the machine is too slow (a
@@ -41,6 +41,7 @@ LAUNCHES = {
     "tether.launch": ([], 12.0, {"/rov_pose": (0.0, 0.0, 0.0)}),
     "tethers.launch": ([], 12.0, {"/rov%d/pose" % k: (4.0 * k, 0.0, 0.0) for k in range(8)}),
     "replay.launch": (["bag:=" + BAG, "rate:=5", "output:=replay_out.bag"], 60.0, None),  # ends by itself
+    "tms_demo.launch": (["rviz:=false"], 30.0, None),  # the cage lowered 9 m, the ROV 12 m out
 }
 # An ERROR the node logs when the machine cannot keep up: a property of the machine, not of the launch file.
 MACHINE_TOO_SLOW = re.compile(r"fell [0-9.]+ s behind real time|skipped ahead")

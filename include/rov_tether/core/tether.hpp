@@ -82,7 +82,9 @@ class Tether
   /// How far the fastest particle moved in the last step, while a World contact is set [m].
   double lastMotion() const { return substep_policy_.lastMotion(); }
 
-  /// Moves the spool outlet [m]. Refuses non-finite positions.
+  /// Moves the spool outlet [m]. Refuses non-finite positions. The next sub-step places the outlet particle
+  /// there moving by the distance moved since the last sub-step (its previous position in px), so the first
+  /// segment's damping sees a spool that moves (a TMS's, World::mountSpool) as moving, not as jumping.
   Status setSpoolPosition(const Position& spool);
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
   /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle
@@ -131,6 +133,10 @@ class Tether
   const ThrustUsed* vehicleThrustUsed() const { return vehicle_ ? &vehicle_->thrustUsed() : nullptr; }
   /// True while a dynamic vehicle is attached.
   bool vehicleDynamic() const { return vehicle_ != nullptr; }
+  /// A load on the dynamic vehicle besides its tether's pull, held until changed: a world-frame force [N] and
+  /// its moment about the body origin [N m] (VehicleCoupling::setLoad; a TMS carries the pull of the tether it
+  /// pays out, World::mountSpool). Refused without a dynamic vehicle or with non-finite values.
+  Status setVehicleLoad(const Force& force, const Eigen::Vector3d& moment);
 
   /// Advances by dt [s] (any value >= 0) in fixed internal steps; returns the number of steps taken
   /// through `steps` when given. Refuses negative or non-finite dt.
@@ -286,7 +292,8 @@ class Tether
 
   std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
   Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].
-  double vehicle_inv_mass_ = 0.0;                  ///< Its inverse mass in this sub-step's solve [1/kg].
+  Position spool_moved_ = Position::Zero();  ///< How far setSpoolPosition moved the outlet since the last sub-step [m].
+  double vehicle_inv_mass_ = 0.0;            ///< Its inverse mass in this sub-step's solve [1/kg].
   /// The kinematic end's velocity over the last sub-step [m/s] (zero after an attach, a jump, a skip).
   Velocity end_velocity_ = Velocity::Zero();
 

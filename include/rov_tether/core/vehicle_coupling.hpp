@@ -54,6 +54,12 @@ class VehicleCoupling
   /// What the last step applied (the command within the limits) and which axes were held.
   const ThrustUsed& thrustUsed() const { return used_; }
 
+  /// A load besides the tether's, held until changed: the world-frame force [N] and its moment about the body
+  /// origin [N m] (a TMS carries the pull of the tether its winch pays out: World::mountSpool). The body feels
+  /// it in every step from the next one on, turned into its frame at each step's start. Refuses non-finite
+  /// values.
+  Status setLoad(const Force& force, const Eigen::Vector3d& moment);
+
   /// The current at the attachment point [m/s], world frame, for the body's next steps (finite: the tether's
   /// own current field).
   void setCurrent(const Eigen::Vector3d& current)
@@ -88,6 +94,12 @@ class VehicleCoupling
   Wrench thrust_ = Wrench::Zero();
   ThrustUsed used_;
   Force pull_ = Force::Zero();
+  Force load_force_ = Force::Zero();                       ///< setLoad's force, world frame [N]
+  Eigen::Vector3d load_moment_ = Eigen::Vector3d::Zero();  ///< and its moment about the origin, world frame [N m]
+  bool loaded_ = false;                                    ///< setLoad gave a non-zero load
+
+  /// The load in the body frame now, about the origin (zero without one).
+  Wrench load() const;
 };
 
 }  // namespace rov_tether

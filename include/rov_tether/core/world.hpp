@@ -55,6 +55,23 @@ class World
   /// Index of the tether called `name`, or npos.
   std::size_t find(const std::string& name) const;
 
+  /**
+   * Mounts tether i's spool on the dynamic vehicle of tether `carrier` (a TMS on its umbilical): before each of
+   * tether i's steps its spool outlet is put at the carrier's body pose times `outlet_offset` (body frame [m]),
+   * moving (Tether::setSpoolPosition), and after each the force its cable gave the spool (Tether::spoolForce)
+   * goes to the body at that point, summed over every tether mounted on it (Tether::setVehicleLoad), from the
+   * body's next step on. An explicit exchange, once a step each way: stable while the mounted cable is light
+   * beside the body (a tether of a few kilograms on a TMS of a tonne; docs/model.md "A TMS"). Tethers step in
+   * the order they were added, so add the carrier first, or the spool lags the body by a step. The spool is
+   * put there now. If the carrier's vehicle stops being dynamic (detached, reset), the spool stays where it
+   * was last put. Refuses an index out of range, a tether mounted on itself or already mounted, a carrier
+   * without a dynamic vehicle or mounted (through others) on tether i, and an offset not finite or beyond
+   * VehicleParams::kMaxOffset; nothing changes then.
+   */
+  Status mountSpool(std::size_t i, std::size_t carrier, const Eigen::Vector3d& outlet_offset);
+  /// The tether whose vehicle carries tether i's spool, or npos for a spool fixed in the world.
+  std::size_t spoolCarrier(std::size_t i) const { return tethers_[i].carrier; }
+
   /// Advances every tether until its time is within one of its steps of t [s], in lockstep (see above).
   /// Returns the steps taken, all tethers together, through `steps` when given. Refuses a non-finite t
   /// or one beyond Tether::kMaxTime, and changes nothing then.
@@ -96,10 +113,17 @@ class World
   /// radii.
   static constexpr double kSkin = 0.5;
 
+  /// Puts a mounted tether's spool where its carrier's body holds it.
+  void placeMountedSpool(std::size_t i);
+  /// Gives `carrier`'s body the pull of every spool mounted on it.
+  void loadCarrier(std::size_t carrier);
+
   struct Entry
   {
     std::string name;
     std::unique_ptr<Tether> tether;
+    std::size_t carrier = npos;                               ///< Whose body carries the spool (mountSpool).
+    Eigen::Vector3d outlet_offset = Eigen::Vector3d::Zero();  ///< The outlet on that body, body frame [m].
   };
   std::vector<Entry> tethers_;
   ContactScene scene_;

@@ -26,7 +26,12 @@ struct NodeOptions
   Eigen::Vector3d attachment_offset = Eigen::Vector3d::Zero();  ///< Tether attachment in the vehicle frame [m].
   std::string spool_frame;  ///< Empty: the spool is fixed at spool_position; else a tf frame.
   Eigen::Vector3d spool_position = Eigen::Vector3d::Zero();  ///< Spool outlet in world_frame [m].
-  double physics_rate = 200.0;                               ///< Timer rate advancing the physics [Hz].
+  /// Non-empty: the spool rides on the dynamic vehicle of the tether of this name (a TMS), listed before this
+  /// one in `tethers`, at spool_outlet_offset in that vehicle's frame; spool_position and spool_frame are then
+  /// not used (World::mountSpool).
+  std::string spool_on;
+  Eigen::Vector3d spool_outlet_offset = Eigen::Vector3d::Zero();  ///< The outlet on spool_on's vehicle, its frame [m].
+  double physics_rate = 200.0;                                    ///< Timer rate advancing the physics [Hz].
   /// The physics runs this far behind ROS time so that vehicle poses, which arrive late, bracket it and
   /// the vehicle end is interpolated smoothly instead of held and jerked [s].
   double interpolation_delay = 0.1;

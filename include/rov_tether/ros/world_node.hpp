@@ -14,6 +14,7 @@
 #include "rov_tether/ros/tether_camera.hpp"
 #include "rov_tether/ros/tether_node.hpp"
 #include "rov_tether/ros/world_report.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -29,6 +30,8 @@ namespace rov_tether::ros_layer
  * draws every tether in each camera after every tick. The private list `obstacles` puts obstacles in the
  * world (ObstacleScene: those with a tf frame follow it, ~obstacles draws them), `tether_contact` switches
  * contact between tethers, and TopologyReport publishes ~topology and feeds every tether's diagnostics.
+ * A tether whose `spool_on` names another (a TMS: the spool on that tether's dynamic vehicle) has its spool
+ * mounted on that vehicle (World::mountSpool) in the tick it starts at vehicle_start.
  */
 class WorldNode
 {
@@ -43,12 +46,16 @@ class WorldNode
 
  private:
   void onTimer(const ros::TimerEvent& event);
+  /// Mounts each spool still waiting whose carrier's dynamic vehicle has started (after the tick that started it).
+  void mountStartedCarriers();
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  ///< Created once the parameters loaded.
+  WorldSpec world_spec_;                                     ///< The world as described (its tethers' spool mounts).
   World world_;
+  std::vector<std::size_t> unmounted_;  ///< Tethers (world_spec_ order) whose carrier has not started yet.
   std::unique_ptr<Scheduler> scheduler_;
   std::unique_ptr<TopologyReport> topology_;
   std::unique_ptr<ObstacleScene> obstacles_;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,6 +66,13 @@ struct ScenarioTether
   /// setpoints; otherwise the kinematic vehicle's positions.
   std::vector<Waypoint> vehicle;
   std::optional<DynamicVehicle> dynamic = std::nullopt;  ///< A dynamic vehicle; none: the kinematic end of `vehicle`.
+  /// Non-empty: the spool rides on the dynamic vehicle of the tether of this name (a TMS; `spool: {on: name,
+  /// outlet_offset: [x, y, z]}`), which is listed before this one; `spool` is then where the outlet starts.
+  std::string spool_on;
+  Eigen::Vector3d spool_outlet_offset = Eigen::Vector3d::Zero();  ///< The outlet on that body, body frame [m].
+  /// The tension above which the run warns of this tether [N] (the node's per-tether option of that name); NaN:
+  /// the run's (rov_tether_run --max-tension-warning, 500 N by default).
+  double max_tension_warning = std::numeric_limits<double>::quiet_NaN();
 };
 
 /**
@@ -102,6 +110,8 @@ struct Scenario
   /// Whether the run is a world's (obstacles, a `tethers` list or contact between tethers): then the runner
   /// also writes DIR/topology.csv. Otherwise it writes exactly state.csv and shape.csv, as it always has.
   bool usesWorld() const { return !tethers.empty() || !obstacles.empty() || tether_contact; }
+  /// Whether any vehicle is dynamic: the top-level one or one of the `tethers`.
+  bool hasDynamicVehicle() const;
   /// The tethers to run: `tethers`, or the one of params, spool and vehicle (named "tether").
   std::vector<ScenarioTether> tetherList() const;
 

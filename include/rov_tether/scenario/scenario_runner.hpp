@@ -69,8 +69,8 @@ class RunObserver
 constexpr double kDefaultMaxTensionWarning = 500.0;
 
 /// What the node warns of, for a run (each tether's, named when there are several): simulation failures,
-/// a tension above `max_tension_warning` [N] (over-tension) and the vehicle outrunning the winch. Empty when
-/// the run gave none.
+/// a tension above `max_tension_warning` [N] (over-tension; a tether's own ScenarioTether::max_tension_warning
+/// instead, where it sets one) and the vehicle outrunning the winch. Empty when the run gave none.
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
 
 /// The CSV headers, part of the documented format.

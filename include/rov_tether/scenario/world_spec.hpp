@@ -31,6 +31,9 @@ struct WorldSpec
   /// Checked here with the tethers' and obstacles' names; built by the caller, which knows how they look at
   /// the world (the node's CameraSet on tf frames, the runner's DatasetWriter on the vehicle).
   std::vector<spec::CameraSpec> cameras;
+  /// The dynamic vehicles are attached after buildWorld, by the caller (the node's, when each starts): it
+  /// then mounts the spools that ride on them too (mountSpool). False (the runner): buildWorld does both.
+  bool vehicles_attached_later = false;
 };
 
 /// The one rule for a tether's name, the node's and the runner's: 1-64 letters, digits, '_' or '-' (a
@@ -44,6 +47,10 @@ extern const char* const kTetherNameRule;
 /// used once, and that no obstacle or camera takes a tether's name or another's of its kind. Returns "" or
 /// the first problem, naming the entry ("tethers[1].name = 'a': used twice").
 [[nodiscard]] std::string validateWorldSpec(const WorldSpec& spec);
+
+/// Mounts tether i's spool (spec.tethers[i].spool_on) on its carrier in `world` (built from `spec`):
+/// World::mountSpool. "" or the error, naming the entry ("tethers[1].spool.on = 'umbilical': ...").
+[[nodiscard]] std::string mountSpool(const WorldSpec& spec, std::size_t i, World* world);
 
 /// A scenario's world: its tetherList() (the one tether of params, spool and vehicle is called "tether"),
 /// obstacles, tether_contact and cameras.
@@ -61,6 +68,8 @@ Tether makeTether(const ScenarioTether& tether);
  * (makeObstacle: a mesh file is read here and only here). What was built is in the World: its tethers
  * (World::tether) and obstacles (World::obstacle, with their specs and poses). Returns "" or the error,
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
+ * A spool that rides on another tether's vehicle (ScenarioTether::spool_on) starts at the outlet of that
+ * vehicle's start pose and is mounted on it (mountSpool), unless spec.vehicles_attached_later.
  */
 [[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world);
 
