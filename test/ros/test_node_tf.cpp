@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "rov_tether/TetherState.h"
 
@@ -139,7 +141,7 @@ std::string siblingExecutable(const std::string& name)
 // parameter.
 TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
 {
-  const std::array<std::pair<const char*, const char*>, 6> cases = {{
+  const std::array<std::pair<const char*, const char*>, 8> cases = {{
       {"_iterations:=0", "iterations = 0"},
       {"_drag:=lots", "parameter 'drag': wrong type"},
       {"_pose_source:=gps", "pose_source = 'gps'"},
@@ -147,9 +149,18 @@ TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
       {"_segment_length:=5.0 _cable_length:=2.0", "segment_length = 5: must not exceed cable_length = 2"},
       {"_overload_policy:=panic", "overload_policy = 'panic'"},
       {"_tethers:=a", "parameter 'tethers': expected a non-empty list of names"},
+      // a spool on another tether's vehicle (a TMS): only among several, on a dynamic vehicle that has a start
+      {"_spool_on:=umbilical", "parameter spool_on = 'umbilical': a spool rides on another tether: list both"},
+      // (tethers [a, b] set below: a list cannot be given as a command-line assignment)
+      {"_b/spool_on:=a",
+       "parameter b/spool_on = 'a': its vehicle must be dynamic (vehicle_model: dynamic) with a vehicle_start"},
   }};
   for (const auto& [assignment, expected] : cases)
   {
+    if (std::string(assignment) == "_b/spool_on:=a")
+    {
+      ros::NodeHandle().setParam("/bad_tether_node/tethers", std::vector<std::string>{"a", "b"});
+    }
     // The tether_node built beside this test (rosrun would be ambiguous with a second, sanitizer build).
     const std::string command =
         siblingExecutable("tether_node") + " __name:=bad_tether_node " + assignment + " 2>&1; echo exit=$?";
