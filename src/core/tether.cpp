@@ -201,7 +201,7 @@ void Tether::layOut(double deployed_length)
     world_contact_->forget();
   }
   spool_.setDeployedLength(cable_, deployed_length);
-  spool_moved_ = Position::Zero();  // laid out at rest where the spool is
+  spool_placed_ = spool_.outlet();  // laid out at rest where the spool is
   CableLayout(params_).layOut(cable_, spool_.outlet(), track_.attached() ? &track_.position() : nullptr,
                               deployedLength());
   solver_->multipliers().clear();
@@ -224,14 +224,17 @@ void Tether::refreshDerived(std::size_t lo, std::size_t hi)
   cable_.updateMasses(lo, hi, params_.lineMass(), track_.attached());
 }
 
-Status Tether::setSpoolPosition(const Position& spool)
+Status Tether::setSpoolPosition(const Position& spool, bool jump)
 {
   if (!withinLimits(spool))
   {
     return Status::error("spool position rejected: not finite or beyond +-1e6 m");
   }
-  spool_moved_ += spool - spool_.outlet();
   spool_.setOutlet(spool);
+  if (jump)
+  {
+    layOut(track_.attached() ? lengthToReach(track_.position()) : deployedLength());  // places the outlet there
+  }
   return Status::success();
 }
 
@@ -389,10 +392,14 @@ void Tether::step()
   {
     step_motion_.start(cable_);
   }
+  // A spool moved since the last step (setSpoolPosition) moves there in equal parts over the sub-steps.
+  spool_step_ = (spool_.outlet() - spool_placed_) / substeps;
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
+    spool_placed_ = k == substeps ? spool_.outlet() : Position(spool_placed_ + spool_step_);
     subStep(h, k == substeps ? next_time : next_time - dt + k * h);
   }
+  spool_step_ = Position::Zero();
   last_step_ = h;
   substep_policy_.tookStep(substeps);
   if (world_contact_ != nullptr)
@@ -410,8 +417,7 @@ void Tether::step()
 void Tether::subStep(double h, double t)
 {
   const std::size_t n = cable_.size();
-  cable_.placeMoving(cable_.first, spool_.outlet(), spool_moved_);
-  spool_moved_ = Position::Zero();
+  cable_.placeMoving(cable_.first, spool_placed_, spool_step_);
   if (vehicle_ == nullptr && track_.active())
   {
     const bool was_attached = track_.attached();
@@ -574,6 +580,7 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
     return Status::error("dynamic vehicle rejected: its attachment point is not finite or beyond +-1e6 m");
   }
   vehicle_ = std::move(coupling);
+  ++vehicle_starts_;
   track_.detach();
   track_.attachAt(time_, attachment);
   layOut(lengthToReach(attachment));  // as when a first sample attaches: the cable reaches the vehicle

@@ -146,21 +146,29 @@ Status World::mountSpool(std::size_t i, std::size_t carrier, const Eigen::Vector
   }
   tethers_[i].carrier = carrier;
   tethers_[i].outlet_offset = outlet_offset;
-  placeMountedSpool(i);
+  tethers_[i].carrier_starts = tethers_[carrier].tether->vehicleStarts();
+  placeMountedSpool(i, true);
   loadCarrier(carrier);
   return Status::success();
 }
 
-void World::placeMountedSpool(std::size_t i)
+void World::placeMountedSpool(std::size_t i, bool jump)
 {
-  const Entry& entry = tethers_[i];
-  const VehicleBody* body = tethers_[entry.carrier].tether->vehicleBody();
-  if (body != nullptr)
+  Entry& entry = tethers_[i];
+  const Tether& carrier = *tethers_[entry.carrier].tether;
+  const VehicleBody* body = carrier.vehicleBody();
+  if (body == nullptr)
   {
-    // Within limits: the body's attachment point is (Tether refuses to go beyond them), and the offset
-    // within kMaxOffset of it; were it refused, the spool would stay where it was.
-    (void)entry.tether->setSpoolPosition(body->position() + body->attitude() * entry.outlet_offset);
+    return;
   }
+  const Position outlet = body->position() + body->attitude() * entry.outlet_offset;
+  // A vehicle that started again (a reset) did not travel to where it is: the spool jumps with it.
+  const bool restarted = carrier.vehicleStarts() != entry.carrier_starts;
+  entry.carrier_starts = carrier.vehicleStarts();
+  const bool there = entry.tether->particle(0) == outlet;
+  // Within limits: the body's attachment point is (Tether refuses to go beyond them), and the offset within
+  // kMaxOffset of it; were it refused, the spool would stay where it was.
+  (void)entry.tether->setSpoolPosition(outlet, (jump || restarted) && !there);
 }
 
 void World::loadCarrier(std::size_t carrier)

@@ -1,6 +1,7 @@
 #include "rov_tether/ros/world_node.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -100,9 +101,22 @@ void checkSpoolMounts(const std::vector<std::string>& names, const std::vector<T
   for (std::size_t i = 0; i < setups.size(); ++i)
   {
     const NodeOptions& options = setups[i].options;
+    const std::string prefix = names.empty() ? "" : names[i] + "/";
     if (options.spool_on.empty())
     {
+      if (!options.spool_outlet_offset.isZero(0.0))
+      {
+        throw std::runtime_error("parameter " + prefix +
+                                 "spool_outlet_offset: only with spool_on (the outlet on another tether's vehicle)");
+      }
       continue;
+    }
+    if (options.spool_outlet_offset.norm() > VehicleParams::kMaxOffset)
+    {
+      std::ostringstream message;
+      message << "parameter " << prefix << "spool_outlet_offset: must be within " << VehicleParams::kMaxOffset
+              << " m of the vehicle's origin";
+      throw std::runtime_error(message.str());
     }
     const std::string who = "parameter " + (names.empty() ? std::string("spool_on") : names[i] + "/spool_on") + " = '" +
                             options.spool_on + "': ";
@@ -123,6 +137,11 @@ void checkSpoolMounts(const std::vector<std::string>& names, const std::vector<T
     {
       throw std::runtime_error(who + "not with spool_frame '" + options.spool_frame +
                                "': the spool goes where the vehicle carries it");
+    }
+    if (!options.spool_position.isZero(0.0))
+    {
+      ROS_WARN("tether_node: parameter %sspool_position is not used: the spool rides on %s's vehicle (spool_on)",
+               prefix.c_str(), options.spool_on.c_str());
     }
   }
 }
@@ -269,7 +288,7 @@ void WorldNode::mountStartedCarriers()
     }
     else
     {
-      ROS_ERROR("tether_node: %s's spool stays at spool_position: %s", tether.name.c_str(), error.c_str());
+      ROS_ERROR("tether_node: %s's spool stays where it is: %s", tether.name.c_str(), error.c_str());
     }
     i = unmounted_.erase(i);
   }

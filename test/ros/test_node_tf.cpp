@@ -141,7 +141,7 @@ std::string siblingExecutable(const std::string& name)
 // parameter.
 TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
 {
-  const std::array<std::pair<const char*, const char*>, 8> cases = {{
+  const std::array<std::pair<const char*, const char*>, 9> cases = {{
       {"_iterations:=0", "iterations = 0"},
       {"_drag:=lots", "parameter 'drag': wrong type"},
       {"_pose_source:=gps", "pose_source = 'gps'"},
@@ -151,15 +151,22 @@ TEST(TetherNodeStartup, BadParameterStopsTheNodeWithAMessage)
       {"_tethers:=a", "parameter 'tethers': expected a non-empty list of names"},
       // a spool on another tether's vehicle (a TMS): only among several, on a dynamic vehicle that has a start
       {"_spool_on:=umbilical", "parameter spool_on = 'umbilical': a spool rides on another tether: list both"},
-      // (tethers [a, b] set below: a list cannot be given as a command-line assignment)
+      {"(spool_outlet_offset set below)", "parameter spool_outlet_offset: only with spool_on"},
+      // (tethers [a, b] set below)
       {"_b/spool_on:=a",
        "parameter b/spool_on = 'a': its vehicle must be dynamic (vehicle_model: dynamic) with a vehicle_start"},
   }};
-  for (const auto& [assignment, expected] : cases)
+  for (auto [assignment, expected] : cases)
   {
+    // Lists cannot be given as command-line assignments: set on the master instead.
     if (std::string(assignment) == "_b/spool_on:=a")
     {
       ros::NodeHandle().setParam("/bad_tether_node/tethers", std::vector<std::string>{"a", "b"});
+    }
+    if (std::string(assignment) == "(spool_outlet_offset set below)")
+    {
+      ros::NodeHandle().setParam("/bad_tether_node/spool_outlet_offset", std::vector<double>{0.0, 0.0, -1.0});
+      assignment = "";
     }
     // The tether_node built beside this test (rosrun would be ambiguous with a second, sanitizer build).
     const std::string command =

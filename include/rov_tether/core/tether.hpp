@@ -82,10 +82,13 @@ class Tether
   /// How far the fastest particle moved in the last step, while a World contact is set [m].
   double lastMotion() const { return substep_policy_.lastMotion(); }
 
-  /// Moves the spool outlet [m]. Refuses non-finite positions. The next sub-step places the outlet particle
-  /// there moving by the distance moved since the last sub-step (its previous position in px), so the first
-  /// segment's damping sees a spool that moves (a TMS's, World::mountSpool) as moving, not as jumping.
-  Status setSpoolPosition(const Position& spool);
+  /// Moves the spool outlet [m]. Refuses non-finite positions. The next step moves the outlet particle there
+  /// in equal parts over its sub-steps, each placed moving by its part (the previous position in px), so the
+  /// first segment's damping sees a spool that moves (a TMS's, World::mountSpool; a spool_frame's) as moving,
+  /// not as jumping. With `jump` the spool did not travel there (its carrier started again elsewhere): the
+  /// cable is re-laid at rest from the new outlet, to the vehicle (or hanging), as for a vehicle jump (not
+  /// counted in jumpCount(), which counts the vehicle's).
+  Status setSpoolPosition(const Position& spool, bool jump = false);
   /// Adds a vehicle attachment position [m] at time t [s]. Refuses non-finite values and times older
   /// than the last sample (a sample at the same time replaces it). The first sample attaches the vehicle
   /// when the simulation reaches its time (the cable is laid out to it then).
@@ -133,6 +136,9 @@ class Tether
   const ThrustUsed* vehicleThrustUsed() const { return vehicle_ ? &vehicle_->thrustUsed() : nullptr; }
   /// True while a dynamic vehicle is attached.
   bool vehicleDynamic() const { return vehicle_ != nullptr; }
+  /// How many dynamic vehicles have been attached so far (attachVehicleBody): a new one after a reset is a
+  /// vehicle that started again, not one that moved there.
+  std::uint64_t vehicleStarts() const { return vehicle_starts_; }
   /// A load on the dynamic vehicle besides its tether's pull, held until changed: a world-frame force [N] and
   /// its moment about the body origin [N m] (VehicleCoupling::setLoad; a TMS carries the pull of the tether it
   /// pays out, World::mountSpool). Refused without a dynamic vehicle or with non-finite values.
@@ -292,8 +298,10 @@ class Tether
 
   std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
   Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].
-  Position spool_moved_ = Position::Zero();  ///< How far setSpoolPosition moved the outlet since the last sub-step [m].
-  double vehicle_inv_mass_ = 0.0;            ///< Its inverse mass in this sub-step's solve [1/kg].
+  Position spool_placed_ = Position::Zero();       ///< Where the outlet particle was last placed [m].
+  Position spool_step_ = Position::Zero();         ///< Its move per sub-step in this step, towards the outlet [m].
+  std::uint64_t vehicle_starts_ = 0;               ///< Dynamic vehicles attached so far.
+  double vehicle_inv_mass_ = 0.0;                  ///< Its inverse mass in this sub-step's solve [1/kg].
   /// The kinematic end's velocity over the last sub-step [m/s] (zero after an attach, a jump, a skip).
   Velocity end_velocity_ = Velocity::Zero();
 

@@ -62,11 +62,13 @@ class World
    * goes to the body at that point, summed over every tether mounted on it (Tether::setVehicleLoad), from the
    * body's next step on. An explicit exchange, once a step each way: stable while the mounted cable is light
    * beside the body (a tether of a few kilograms on a TMS of a tonne; docs/model.md "A TMS"). Tethers step in
-   * the order they were added, so add the carrier first, or the spool lags the body by a step. The spool is
-   * put there now. If the carrier's vehicle stops being dynamic (detached, reset), the spool stays where it
-   * was last put. Refuses an index out of range, a tether mounted on itself or already mounted, a carrier
-   * without a dynamic vehicle or mounted (through others) on tether i, and an offset not finite or beyond
-   * VehicleParams::kMaxOffset; nothing changes then.
+   * the order they were added, so add the carrier first, or the spool lags the body by a step; with the same
+   * time_step (the usual case) the spool moves smoothly, with a longer one the carrier's, in its steps. The
+   * spool is put there now (the cable re-laid at rest from it, unless it is there already). If the carrier's
+   * vehicle stops being dynamic (detached, reset), the spool stays where it was last put; when a dynamic
+   * vehicle starts there again (Tether::vehicleStarts), the spool jumps to it (setSpoolPosition's `jump`). Refuses an
+   * index out of range, a tether mounted on itself or already mounted, a carrier without a dynamic vehicle or mounted
+   * (through others) on tether i, and an offset not finite or beyond VehicleParams::kMaxOffset; nothing changes then.
    */
   Status mountSpool(std::size_t i, std::size_t carrier, const Eigen::Vector3d& outlet_offset);
   /// The tether whose vehicle carries tether i's spool, or npos for a spool fixed in the world.
@@ -113,8 +115,9 @@ class World
   /// radii.
   static constexpr double kSkin = 0.5;
 
-  /// Puts a mounted tether's spool where its carrier's body holds it.
-  void placeMountedSpool(std::size_t i);
+  /// Puts a mounted tether's spool where its carrier's body holds it: moving, or as a jump (`jump`, or a
+  /// carrier that started again since).
+  void placeMountedSpool(std::size_t i, bool jump = false);
   /// Gives `carrier`'s body the pull of every spool mounted on it.
   void loadCarrier(std::size_t carrier);
 
@@ -124,6 +127,7 @@ class World
     std::unique_ptr<Tether> tether;
     std::size_t carrier = npos;                               ///< Whose body carries the spool (mountSpool).
     Eigen::Vector3d outlet_offset = Eigen::Vector3d::Zero();  ///< The outlet on that body, body frame [m].
+    std::uint64_t carrier_starts = 0;  ///< The carrier's Tether::vehicleStarts when the spool was last placed.
   };
   std::vector<Entry> tethers_;
   ContactScene scene_;
