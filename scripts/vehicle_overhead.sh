@@ -7,10 +7,10 @@
 # the instructions of one step (the benchmark loop's calls of Tether::step(), inclusive, over their count), the
 # ratios dynamic / pinned and dynamic / kinematic on the same path (which leaves out what the vehicle's motion
 # costs the chain's solve, and is what the coupling itself costs), and what the coupling's own calls
-# (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (medians of 9
-# repetitions interleaved at random, --benchmark_min_time=0.2) and its CPU-time ratios, for the record: a loaded
-# machine moves them, and they are higher than the instruction ratios (the chain's loops run as AVX2 clones, the
-# body's 6x6 algebra as scalar code).
+# (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (REPETITIONS, 15,
+# repetitions interleaved at random, pinned to one core, --benchmark_min_time=0.2) and its CPU-time ratios, of
+# the medians and of the minima, for the record: a loaded machine moves them, and they are higher than the
+# instruction ratios (the chain's loops run as AVX2 clones, the body's 6x6 algebra as scalar code).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/callgrind_bench.sh"
 segments="${SEGMENTS:-100}"
@@ -43,20 +43,28 @@ for bending in "01":
              coupling(dyn)))
 PYTHON
 if [ "${WALL:-0}" = 1 ]; then
-  "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$" --benchmark_min_time=0.2 \
-    --benchmark_repetitions=9 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+  # Pinned to one core where taskset exists (the benchmark is single-threaded; a migration costs it caches).
+  pin=(); command -v taskset >/dev/null && pin=(taskset -c 0)
+  "${pin[@]}" "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$" \
+    --benchmark_min_time=0.2 --benchmark_repetitions="${REPETITIONS:-15}" --benchmark_enable_random_interleaving=true \
     --benchmark_format=json >"$work/wall.json" 2>/dev/null
   /usr/bin/python3 - "$work/wall.json" <<'PYTHON'
-import json, sys
-medians = [b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("aggregate_name") == "median"]
-# A step's CPU time [us]: the vehicle benchmark's iterations are windows of steps (items: steps per second).
-times = {b["run_name"]: 1e6 / b["items_per_second"] if "items_per_second" in b else b["cpu_time"] for b in medians}
-for name in sorted(n for n in times if n.endswith("/0")):
+import json, statistics, sys
+runs = [b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("run_type") == "iteration"]
+# A step's CPU time [us] per repetition: the vehicle benchmark's iterations are windows of steps (items: steps
+# per second). The median says what a step costs; the minimum is what a repetition not slowed by the machine's
+# other load costs, the steadier of the two on a shared machine.
+times = {}
+for b in runs:
+    times.setdefault(b["run_name"], []).append(1e6 / b["items_per_second"] if "items_per_second" in b else b["cpu_time"])
+n = len(next(iter(times.values())))
+for name in sorted(k for k in times if k.endswith("/0")):
     dynamic, path = name[:-1] + "1", name[:-1] + "2"
-    print("%s,1,2: CPU time per step (median of 9) kinematic pinned %.2f us, dynamic %.2f us, kinematic on the "
-          "same path %.2f us; dynamic / pinned = %.3f, dynamic / same path = %.3f"
-          % (name, times[name], times[dynamic], times[path], times[dynamic] / times[name],
-             times[dynamic] / times[path]))
-print("BM_VehicleBodyStep: one body step %.3f us CPU (median of 9)" % times["BM_VehicleBodyStep"])
+    for label, pick in (("median", statistics.median), ("minimum", min)):
+        k, d, p = pick(times[name]), pick(times[dynamic]), pick(times[path])
+        print("%s,1,2: CPU time per step (%s of %d) kinematic pinned %.2f us, dynamic %.2f us, kinematic on the "
+              "same path %.2f us; dynamic / pinned = %.3f, dynamic / same path = %.3f"
+              % (name, label, n, k, d, p, d / k, d / p))
+print("BM_VehicleBodyStep: one body step %.3f us CPU (median of %d)" % (statistics.median(times["BM_VehicleBodyStep"]), n))
 PYTHON
 fi

@@ -268,17 +268,19 @@ TEST(Tms, RaisingTheCageTakesAWinchThatCanLiftIt)
                              kTetherWeight * tms.cable().deployedLength();
       worst_balance = std::max(worst_balance, std::abs(tms.line().spoolForce().z() + weights + drag) / weights);
     }
-    std::printf(
-        "[ measured ] stall pull %.0f N: cage rose %.2f m, speed off 0.3 m/s by %.1f%%, vertical "
-        "balance off by %.2f%%\n",
-        stall, highest - start, 100.0 * worst_speed, 100.0 * worst_balance);
     if (stall > cageWeightInWater() + 2.0 * kUmbilicalWeight * kUmbilicalLength)
     {
+      std::printf(
+          "[ measured ] stall pull %.0f N: cage rose %.2f m, speed off 0.3 m/s by %.1f%%, vertical balance "
+          "off by %.2f%%\n",
+          stall, highest - start, 100.0 * worst_speed, 100.0 * worst_balance);
       EXPECT_LT(worst_speed, 0.05);
       EXPECT_LT(worst_balance, 0.01);
     }
     else
     {
+      std::printf("[ measured ] stall pull %.0f N: the cage's highest point %.2f m above its start\n", stall,
+                  highest - start);
       EXPECT_LE(highest, start + 1e-3) << "a winch that stalls below the load lifted it";
     }
   }
