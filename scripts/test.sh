@@ -21,11 +21,16 @@ RESULTS="$PLAIN_BUILD/test_results/rov_tether"
 rm -rf "$RESULTS" && mkdir -p "$RESULTS"
 status=0
 
+# A stage's heading, with the time since the suite started (where the suite's time goes: keep it under 60 min).
+stage() {
+  echo "== $* [$((SECONDS / 60)) min $((SECONDS % 60)) s]"
+}
+
 # Runs every gtest binary and rostest of the build in $BUILD_DIR; JUnit results go to $1.
 run_suite() {
   local results="$1"
   mkdir -p "$results"
-  echo "== building tests in $BUILD_DIR"
+  stage "building tests in $BUILD_DIR"
   build_target tests
   # test_* binaries need no ROS master; rostest_* ones are started by rostest below.
   # Each binary runs as one gtest shard per core, the shards side by side (GTEST_TOTAL_SHARDS): every case
@@ -34,7 +39,7 @@ run_suite() {
   shards="$(nproc)"
   for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
     name="$(basename "$binary")"
-    echo "== $name ($shards shards)"
+    stage "$name ($shards shards)"
     local pids=()
     for ((shard = 0; shard < shards; shard++)); do
       GTEST_TOTAL_SHARDS="$shards" GTEST_SHARD_INDEX="$shard" \
@@ -55,7 +60,7 @@ run_suite() {
     failed=0
     for launch in "$ROOT"/test/ros/*.test; do
       log="$BUILD_DIR/rostest_$(basename "$launch").log"
-      echo "== rostest $(basename "$launch")"
+      stage "rostest $(basename "$launch")"
       rostest --results-base-dir="$results/rostest" "$launch" >"$log" 2>&1 || {
         tail -40 "$log"
         failed=1  # the other rostests still run
@@ -72,7 +77,7 @@ run_suite "$RESULTS/plain"
 # parameters): no build, no master, so once. JUnit XML through rosunit.
 for check in "$ROOT"/test/check_*.py; do
   name="$(basename "$check" .py)"
-  echo "== $name"
+  stage "$name"
   /usr/bin/python3 "$check" --gtest_output="xml:$RESULTS/plain/$name.xml" || status=1
 done
 
@@ -89,15 +94,17 @@ if [ "$SANITIZERS" != 0 ]; then
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
   export ASAN_OPTIONS_NODES="detect_leaks=0:abort_on_error=1"
-  echo "== the same under AddressSanitizer + UndefinedBehaviorSanitizer"
+  stage "the same under AddressSanitizer + UndefinedBehaviorSanitizer"
   run_suite "$RESULTS/sanitizers"
   unset ASAN_OPTIONS ASAN_OPTIONS_NODES UBSAN_OPTIONS
   BUILD_DIR="$PLAIN_BUILD"
 fi
 
 if [ "$FUZZ" != 0 ]; then
+  stage "fuzzing"
   "$ROOT/scripts/fuzz.sh" --seconds "$FUZZ_SECONDS" --junit "$RESULTS/fuzz" || status=1
 fi
 
+stage "counting"
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$RESULTS" || status=1
 exit $status
