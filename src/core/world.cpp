@@ -126,8 +126,9 @@ Status World::mountSpool(std::size_t i, std::size_t carrier, const Eigen::Vector
   }
   if (!tethers_[carrier].tether->vehicleDynamic())
   {
-    return Status::error(who + "'" + tethers_[carrier].name +
-                         "' has no dynamic vehicle to carry it (vehicle model: dynamic)");
+    return Status::error(
+        who + "'" + tethers_[carrier].name +
+        "' has no dynamic vehicle to carry it (the runner's model: dynamic, the node's vehicle_model: dynamic)");
   }
   for (std::size_t up = tethers_[carrier].carrier; up != npos; up = tethers_[up].carrier)
   {
