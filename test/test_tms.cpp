@@ -70,6 +70,17 @@ TetherParams umbilical()
   return p;
 }
 
+/// The umbilical on its winch in speed mode at `speed` [m/s] (positive lowers), up to 0.5 m/s at 0.1 m/s^2.
+TetherParams umbilicalOnItsWinch(double speed)
+{
+  TetherParams p = umbilical();
+  p.winch_mode = WinchMode::kSpeed;
+  p.winch_speed = speed;
+  p.max_winch_speed = 0.5;
+  p.max_winch_acceleration = 0.1;
+  return p;
+}
+
 /// The tether from the cage to the ROV: light, a cable.
 TetherParams tether()
 {
@@ -192,11 +203,7 @@ TEST(Tms, TheUmbilicalCarriesTheCageTheTetherAndTheRovsPull)
 //    stepped to it.
 TEST(Tms, LoweringTheCageWhileTheRovDrivesAwayKeepsBothTensionsToTheirWinches)
 {
-  TetherParams line = umbilical();
-  line.winch_mode = WinchMode::kSpeed;
-  line.winch_speed = 0.3;
-  line.max_winch_speed = 0.5;
-  line.max_winch_acceleration = 0.1;
+  const TetherParams line = umbilicalOnItsWinch(0.3);
   TetherParams cable = tether();
   cable.winch_mode = WinchMode::kConstantTension;
   cable.target_tension = 50.0;
@@ -246,11 +253,7 @@ TEST(Tms, RaisingTheCageTakesAWinchThatCanLiftIt)
 {
   for (const double stall : {30000.0, 5000.0})
   {
-    TetherParams line = umbilical();
-    line.winch_mode = WinchMode::kSpeed;
-    line.winch_speed = -0.3;
-    line.max_winch_speed = 0.5;
-    line.max_winch_acceleration = 0.1;
+    TetherParams line = umbilicalOnItsWinch(-0.3);
     line.max_winch_pull = stall;
     Tms tms(line, tether());
     const double start = tms.body().position().z();
