@@ -335,5 +335,64 @@ TEST(BodyLu, SolvesAVehicleBodysStep)
   }
 }
 
+/// BodyLu's two shortcuts for a body whose mass matrix is diagonal (origin at the centre of gravity):
+/// computeDiagonal(d) for M + h D = diag(d), and computeGyroscopic(d, p, q) for M + h/2 C = [diag(d1), -S(p);
+/// -S(p), diag(d2) - S(q)], each checked by its residual against the matrix it stands for, built in full (the
+/// bound of SolvesAVehicleBodysStep: 100 eps |A| |x|). One object is reused across the three forms in turn, so a
+/// shortcut's state left behind by the one before (the diagonal flag) fails it too. Fails with a sign of S(p) or
+/// S(q) turned, or a diagonal factor that outlives a later compute().
+TEST(BodyLu, ShortcutsForADiagonalMassSolveTheMatricesTheyStandFor)
+{
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  std::mt19937 rng(25);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto minus_skew = [](const Eigen::Vector3d& a)
+  {
+    Eigen::Matrix3d s;
+    s << 0.0, a.z(), -a.y(), -a.z(), 0.0, a.x(), a.y(), -a.x(), 0.0;
+    return s;
+  };
+  constexpr double kEps = 2.220446049250313e-16;
+  BodyLu lu;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    const double mass = std::pow(10.0, 1.85 * (u(rng) + 1.0));  // 1 kg to 5 t
+    Vector6 d;
+    for (int i = 0; i < 6; ++i)
+    {
+      d[i] = mass * (i < 3 ? 1.0 + 0.5 * (u(rng) + 1.0) : 0.02 + 0.02 * (u(rng) + 1.0));
+    }
+    Matrix6 a = Matrix6(d.asDiagonal());
+    const int form = trial % 3;
+    if (form == 0)
+    {
+      lu.computeDiagonal(d);
+    }
+    else
+    {
+      const Eigen::Vector3d p = 10.0 * mass * Eigen::Vector3d(u(rng), u(rng), u(rng));  // a fast turn
+      const Eigen::Vector3d q = 0.5 * mass * Eigen::Vector3d(u(rng), u(rng), u(rng));
+      a.topRightCorner<3, 3>() = minus_skew(p);
+      a.bottomLeftCorner<3, 3>() = minus_skew(p);
+      a.bottomRightCorner<3, 3>() += minus_skew(q);
+      if (form == 1)
+      {
+        lu.computeGyroscopic(d, p, q);
+      }
+      else
+      {
+        lu.compute(a);  // the general form, after a diagonal shortcut two trials before
+      }
+    }
+    const Vector6 b = randomMatrix(rng, 6, 1);
+    const Vector6 x = lu.solve(b);
+    EXPECT_LT((a * x - b).norm(), 100.0 * kEps * a.norm() * x.norm()) << "trial " << trial << ", form " << form;
+    const Eigen::Matrix<double, 6, 3> b3 = randomMatrix(rng, 6, 3);
+    const Eigen::Matrix<double, 6, 3> x3 = lu.solve(b3);
+    EXPECT_LT((a * x3 - b3).norm(), 100.0 * kEps * a.norm() * x3.norm()) << "trial " << trial << ", form " << form;
+  }
+}
+
 }  // namespace
 }  // namespace rov_tether::test

@@ -46,6 +46,17 @@ Matrix6 massPlusCoriolis(const Matrix6& mass, const Vector6& momentum, double a)
   return sum;
 }
 
+// Factors M + a C(momentum) into `lu`: without building the 6 x 6 matrix when M is diagonal.
+void factorMassPlusCoriolis(const Matrix6& mass, bool diagonal, const Vector6& momentum, double a, BodyLu* lu)
+{
+  if (diagonal)
+  {
+    lu->computeGyroscopic(mass.diagonal(), a * momentum.head<3>(), a * momentum.tail<3>());
+    return;
+  }
+  lu->compute(massPlusCoriolis(mass, momentum, a));
+}
+
 Vector6 coriolisTimes(const Vector6& momentum, const Vector6& b)
 {
   Vector6 product;
@@ -201,10 +212,18 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->relative.head<3>() -= attitude_.conjugate() * current_;
   start->restoring = restoringWrench();
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
-  Matrix6 damped = mass_matrix_;
-  damped.diagonal() +=
+  const Vector6 damping =
       dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
-  start->damped.compute(damped);
+  if (diagonal_mass_)
+  {
+    start->damped.computeDiagonal(mass_matrix_.diagonal() + damping);  // six divisions
+  }
+  else
+  {
+    Matrix6 damped = mass_matrix_;
+    damped.diagonal() += damping;
+    start->damped.compute(damped);
+  }
   return Status::success();
 }
 
@@ -240,7 +259,7 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
   // midpoint rule's one pass, as step()'s second).
   const Vector6 momentum = massTimes(before + 0.5 * (trial.turned - trial.damped));
   BodyLu cayley;
-  cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
+  factorMassPlusCoriolis(mass_matrix_, diagonal_mass_, momentum, 0.5 * dt, &cayley);
   const Twist after = cayley.solve(Twist(massTimes(before) - 0.5 * dt * coriolisTimes(momentum, before)));
   drift(dt, before, after, &position_, &attitude_, &velocity_);
   return Status::success();
@@ -290,7 +309,7 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
     // C's argument M nu, at the mean of the two ends: on the first pass both are `before`.
     const Vector6 momentum = pass == 0 ? momentum_before : massTimes(0.5 * (before + turned));
     BodyLu cayley;  // M + h/2 C: its symmetric part is M, its translational block diagonal
-    cayley.compute(massPlusCoriolis(mass_matrix_, momentum, 0.5 * dt));
+    factorMassPlusCoriolis(mass_matrix_, diagonal_mass_, momentum, 0.5 * dt, &cayley);
     turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
   if (trial != nullptr)

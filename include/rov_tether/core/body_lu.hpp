@@ -28,29 +28,58 @@ class BodyLu
   /// Factors `a` (A11 diagonal and positive, the symmetric part positive definite; not checked).
   void compute(const Matrix6& a)
   {
-    inverse_diagonal_ = a.diagonal().head<3>().cwiseInverse();
+    diagonal_ = false;
+    inverse_.head<3>() = a.diagonal().head<3>().cwiseInverse();
     upper_ = a.topRightCorner<3, 3>();
-    lower_ = a.bottomLeftCorner<3, 3>() * inverse_diagonal_.asDiagonal();  // A21 A11^-1
+    lower_ = a.bottomLeftCorner<3, 3>() * inverse_.head<3>().asDiagonal();  // A21 A11^-1
     schur_.compute(a.bottomRightCorner<3, 3>() - lower_ * upper_);
+  }
+
+  /// Factors [diag(d1), -S(p); -S(p), diag(d2) - S(q)] with d = [d1; d2] (d1 positive; not checked), S(a) b =
+  /// a x b: M + h/2 C for a diagonal M, Fossen's Coriolis matrix C at M nu = [p1; p2] being [0, -S(p1);
+  /// -S(p1), -S(p2)], so p = h/2 p1 and q = h/2 p2 (VehicleBody's Cayley step). The same factorisation as
+  /// compute() without building the 6 x 6 matrix.
+  void computeGyroscopic(const Eigen::Matrix<double, 6, 1>& d, const Eigen::Vector3d& p, const Eigen::Vector3d& q)
+  {
+    diagonal_ = false;
+    inverse_.head<3>() = d.head<3>().cwiseInverse();
+    upper_ << 0.0, p.z(), -p.y(), -p.z(), 0.0, p.x(), p.y(), -p.x(), 0.0;  // -S(p)
+    lower_ = upper_ * inverse_.head<3>().asDiagonal();
+    Eigen::Matrix3d a22;
+    a22 << d[3], q.z(), -q.y(), -q.z(), d[4], q.x(), q.y(), -q.x(), d[5];  // diag(d2) - S(q)
+    schur_.compute(a22 - lower_ * upper_);
+  }
+
+  /// Factors the diagonal matrix diag(d) (d positive; not checked): solve() is then six multiplications. M + h D
+  /// of a body whose origin is its centre of gravity (VehicleBody::startStep).
+  void computeDiagonal(const Eigen::Matrix<double, 6, 1>& d)
+  {
+    diagonal_ = true;
+    inverse_ = d.cwiseInverse();
   }
 
   /// x with A x = b, for each column of b.
   template <int Cols>
   Eigen::Matrix<double, 6, Cols> solve(const Eigen::Matrix<double, 6, Cols>& b) const
   {
+    if (diagonal_)
+    {
+      return inverse_.asDiagonal() * b;
+    }
     Eigen::Matrix<double, 6, Cols> x;
     x.template bottomRows<3>() =
         schur_.solve(Eigen::Matrix<double, 3, Cols>(b.template bottomRows<3>() - lower_ * b.template topRows<3>()));
     x.template topRows<3>() =
-        inverse_diagonal_.asDiagonal() * (b.template topRows<3>() - upper_ * x.template bottomRows<3>());
+        inverse_.head<3>().asDiagonal() * (b.template topRows<3>() - upper_ * x.template bottomRows<3>());
     return x;
   }
 
  private:
-  Eigen::Vector3d inverse_diagonal_ = Eigen::Vector3d::Ones();  ///< A11^-1
-  Eigen::Matrix3d upper_ = Eigen::Matrix3d::Zero();             ///< A12
-  Eigen::Matrix3d lower_ = Eigen::Matrix3d::Zero();             ///< A21 A11^-1
-  PositiveRealLu<3> schur_;                                     ///< S = A22 - A21 A11^-1 A12
+  bool diagonal_ = false;  ///< computeDiagonal(): A = diag(d), A^-1 = diag(inverse_)
+  Eigen::Matrix<double, 6, 1> inverse_ = Eigen::Matrix<double, 6, 1>::Ones();  ///< A11^-1 (head), or diag(d)^-1
+  Eigen::Matrix3d upper_ = Eigen::Matrix3d::Zero();                            ///< A12
+  Eigen::Matrix3d lower_ = Eigen::Matrix3d::Zero();                            ///< A21 A11^-1
+  PositiveRealLu<3> schur_;                                                    ///< S = A22 - A21 A11^-1 A12
 };
 
 }  // namespace rov_tether
