@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace rov_tether::test
 {
@@ -47,18 +48,21 @@ inline std::string readFile(const std::string& path)
 
 /// A file of "key hash" lines under test/golden/. Compares each computed hash with the committed one;
 /// with ROV_TETHER_UPDATE_GOLDEN=1 set, writes the computed ones instead (when the test finishes).
+/// A test may own only the keys that contain `scope` (one of several tests sharing the file, each one run
+/// of the suite's shards): it checks and rewrites those, and leaves the others as they are.
 class GoldenFile
 {
  public:
-  explicit GoldenFile(const std::string& name)
+  explicit GoldenFile(const std::string& name, std::string scope = "")
       : path_(std::string(ROV_TETHER_SOURCE_DIR) + "/test/golden/" + name),
+        scope_(std::move(scope)),
         update_(std::getenv("ROV_TETHER_UPDATE_GOLDEN") != nullptr)
   {
     std::istringstream in(readFile(path_));
     std::string key, value;
     while (in >> key >> value)
     {
-      expected_[key] = value;
+      (key.find(scope_) != std::string::npos ? expected_ : others_)[key] = value;
     }
   }
   ~GoldenFile()
@@ -66,8 +70,10 @@ class GoldenFile
     // Written only from a complete, passing run: a test that stopped early would drop hashes silently.
     if (update_ && !::testing::Test::HasFailure() && computed_.size() >= expected_.size())
     {
+      std::map<std::string, std::string> all = others_;
+      all.insert(computed_.begin(), computed_.end());
       std::ofstream out(path_);
-      for (const auto& [key, value] : computed_)
+      for (const auto& [key, value] : all)
       {
         out << key << ' ' << value << '\n';
       }
@@ -78,6 +84,7 @@ class GoldenFile
 
   void check(const std::string& key, std::uint64_t hash)
   {
+    ASSERT_NE(key.find(scope_), std::string::npos) << key << " is outside this test's scope '" << scope_ << "'";
     computed_[key] = hex(hash);
     if (update_)
     {
@@ -100,8 +107,10 @@ class GoldenFile
 
  private:
   std::string path_;
+  std::string scope_;  ///< the keys this test owns contain it ("": all)
   bool update_;
-  std::map<std::string, std::string> expected_;
+  std::map<std::string, std::string> expected_;  ///< the committed hashes in scope
+  std::map<std::string, std::string> others_;    ///< the committed hashes of the file's other tests
   std::map<std::string, std::string> computed_;
 };
 
