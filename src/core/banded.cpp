@@ -311,6 +311,7 @@ namespace
 struct BlockRow
 {
   double l10, l20, l21, d0, d1, d2;
+  double inv[3];  ///< 1 / d0, 1 / d1, 1 / d2: each pivot's reciprocal, taken once
   double below1[9];
   double below2[9];
 };
@@ -333,6 +334,7 @@ inline bool factorBlock(const double* s, BlockRow& row)
   }
   row.l21 = (s[7] - row.l20 * s[3]) / row.d1;
   row.d2 = s[8] - row.l20 * s[6] - row.l21 * row.l21 * row.d1;
+  row.inv[0] = 1.0 / row.d0, row.inv[1] = 1.0 / row.d1, row.inv[2] = 1.0 / row.d2;
   return row.d2 > 0.0;
 }
 
@@ -350,7 +352,7 @@ inline void solveTransposed(const double* a, const BlockRow& row, double* y)
 /// s -= y D^-1 y^T (lower triangle) and stores L(l, k) = y D^-1 into `below`.
 inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
 {
-  const double inv[3] = {1.0 / pivot.d0, 1.0 / pivot.d1, 1.0 / pivot.d2};
+  const double* inv = pivot.inv;
   for (std::size_t r = 0; r < 3; ++r)
   {
     for (std::size_t c = 0; c < 3; ++c)

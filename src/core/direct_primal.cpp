@@ -27,7 +27,7 @@ constexpr int kMaxModelRounds = 30;
 constexpr double kCompressedShare = 0.125;
 
 /// Joint curvature C_b = a x_p - (a + b) x_p+1 + b x_p+2 at the joint after particle p (each axis; a and b
-/// the inverse rest lengths of its two segments), and its weights g = (a, -(a + b), b): linear in the
+/// the inverse rest lengths of its two segments, given), and its weights g = (a, -(a + b), b): linear in the
 /// positions. The energy, its gradient and Hessian, and the force residual all read it from here.
 struct JointCurvature
 {
@@ -35,10 +35,10 @@ struct JointCurvature
   double c[3];
 };
 
-JointCurvature jointCurvature(const Cable& cable, std::size_t p)
+JointCurvature jointCurvature(const Cable& cable, std::size_t p, const double* inv_rest)
 {
-  const double a = 1.0 / cable.rest[p];
-  const double b = 1.0 / cable.rest[p + 1];
+  const double a = inv_rest[0];  // 1 / L of the segment before the joint (DirectWorkspace::inv_rest)
+  const double b = inv_rest[1];
   return {{a, -(a + b), b},
           {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
            a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
@@ -184,7 +184,7 @@ double PrimalNewton::energy(const Cable& cable) const
   }
   for (std::size_t j = 0; ws_.bending && j + 1 < ws_.m; ++j)
   {
-    const JointCurvature joint = jointCurvature(cable, f + j);
+    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
     const double* cb = joint.c;
     elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) / ws_.gamma[j];
   }
@@ -268,20 +268,24 @@ void PrimalNewton::assemble(const Cable& cable)
     }
     // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
     const double mass = 1.0 / w[l];
-    double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
-    if (cable.anisotropic)
+    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
+    if (!cable.anisotropic)
     {
-      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
-      const double less = 1.0 / cable.inv_mass_along[f + l] - mass;
-      for (std::size_t a = 0; a < 3; ++a)
+      double* diagonal = &hessian_diag_[9 * l];  // m I: its three diagonals
+      diagonal[0] += mass, diagonal[4] += mass, diagonal[8] += mass;
+      grad_[3 * l] = mass * d[0], grad_[3 * l + 1] = mass * d[1], grad_[3 * l + 2] = mass * d[2];
+      continue;
+    }
+    double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
+    const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+    const double less = 1.0 / cable.inv_mass_along[f + l] - mass;
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
       {
-        for (std::size_t c = 0; c < 3; ++c)
-        {
-          block[3 * a + c] += less * t[a] * t[c];
-        }
+        block[3 * a + c] += less * t[a] * t[c];
       }
     }
-    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
     for (std::size_t a = 0; a < 3; ++a)
     {
       grad_[3 * l + a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
@@ -366,14 +370,14 @@ void PrimalNewton::assemble(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const double* w = cable.inv_mass.data() + f;
-  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (std::size_t j = 0; j + 1 < ws_.m; ++j)
   {
-    // C_b is linear in the positions, so its Hessian is constant.
-    const JointCurvature joint = jointCurvature(cable, f + j);
+    // C_b is linear in the positions, so its Hessian is constant: g_r g_s / gamma times the identity, added
+    // on the three diagonals of each 3x3 block (its zeros left alone).
+    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
     const double* g = joint.g;
     const double* cb = joint.c;
-    const double inv = 1.0 / ws_.gamma[j];
+    const double inv = ws_.inv_gamma[j];
     for (std::size_t r = 0; r < 3; ++r)
     {
       if (w[j + r] == 0.0)
@@ -390,8 +394,9 @@ void PrimalNewton::assemble(const Cable& cable)
         {
           continue;
         }
-        std::vector<double>& target = r == s ? hessian_diag_ : r == s + 1 ? hessian_first_ : hessian_second_;
-        addTo(&target[9 * (j + s)], kIdentity, g[r] * g[s] * inv);
+        double* block = &(r == s ? hessian_diag_ : r == s + 1 ? hessian_first_ : hessian_second_)[9 * (j + s)];
+        const double v = g[r] * g[s] * inv;
+        block[0] += v, block[4] += v, block[8] += v;
       }
     }
   }
@@ -647,14 +652,14 @@ double PrimalNewton::residual(const Cable& cable)
   }
   for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
   {
-    const JointCurvature joint = jointCurvature(cable, f + j);
+    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
     const double* g = joint.g;
     const double* cb = joint.c;
     for (std::size_t r = 0; r < 3; ++r)
     {
       for (std::size_t axis = 0; axis < 3; ++axis)
       {
-        force[3 * (j + r) + axis] += g[r] * cb[axis] / ws_.gamma[j];
+        force[3 * (j + r) + axis] += g[r] * cb[axis] * ws_.inv_gamma[j];
       }
     }
   }

@@ -38,9 +38,9 @@ void DirectWorkspace::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&xt,    &yt,       &zt,          &sx,           &sy,           &sz,          &nx,      &ny,
-                  &nz,    &len,      &c,           &alpha,        &stop,         &kink,        &dashpot, &zero,
-                  &gamma, &inv_rest, &warm_lambda, &correction_x, &correction_y, &correction_z})
+  for (auto* v : {&xt,    &yt,        &zt,       &sx,          &sy,           &sz,           &nx,          &ny,
+                  &nz,    &len,       &c,        &alpha,       &stop,         &kink,         &dashpot,     &zero,
+                  &gamma, &inv_gamma, &inv_rest, &warm_lambda, &correction_x, &correction_y, &correction_z})
   {
     v->assign(n, 0.0);
   }
@@ -127,6 +127,10 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
       // cable (2 N at 1 m/s with EI 0.2). The cable leaves the spool over a sheave: a hinge there.
       gamma[0] = std::numeric_limits<double>::infinity();
     }
+  }
+  for (std::size_t k = 0; bending && k + 1 < m; ++k)
+  {
+    inv_gamma[k] = 1.0 / gamma[k];  // 0 at a hinge
   }
 }
 

@@ -73,8 +73,9 @@ struct DirectWorkspace
   }
   /// The law's middle piece of segment k (a slack segment's dashpot) at C = c: kink / alpha + slope (c - kink).
   double middleForce(std::size_t k, double c) const { return kink[k] / alpha[k] + dashpot[k] * (c - kink[k]); }
-  std::vector<double> inv_rest;  ///< 1 / L_k [1/m].
-  std::vector<double> gamma;     ///< Compliance of bending joint j [1/(kg m^2)].
+  std::vector<double> inv_rest;   ///< 1 / L_k [1/m].
+  std::vector<double> gamma;      ///< Compliance of bending joint j [1/(kg m^2)].
+  std::vector<double> inv_gamma;  ///< 1 / gamma_j: the joint's stiffness, 0 at a hinge.
   /// The active set (dual) or the model's segments (primal), 1 or 0, padded with a zero before row 0 and
   /// after row m - 1 (on() points at row 0).
   std::vector<double> on_padded;
