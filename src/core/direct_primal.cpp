@@ -659,7 +659,7 @@ double PrimalNewton::residual(const Cable& cable)
     {
       for (std::size_t axis = 0; axis < 3; ++axis)
       {
-        force[3 * (j + r) + axis] += g[r] * cb[axis] * ws_.inv_gamma[j];
+        force[3 * (j + r) + axis] += g[r] * cb[axis] / ws_.gamma[j];
       }
     }
   }
