@@ -43,10 +43,18 @@ run_suite() {
   for binary in "$BUILD_DIR"/devel/lib/rov_tether/test_*; do
     name="$(basename "$binary")"
     stage "$name ($shards shards, $cores at a time)"
-    # A shard that crashes (a sanitizer's abort) exits 1 through bash, so xargs still runs the others.
-    seq 0 $((shards - 1)) | xargs -P "$cores" -I{} bash -c \
-      'GTEST_TOTAL_SHARDS="$1" GTEST_SHARD_INDEX="$2" "$3" --gtest_output="xml:$4.shard$2.xml" --gtest_brief=1 || exit 1' \
-      _ "$shards" {} "$binary" "$results/$name" || status=1
+    # A shard that fails exits 1 through bash (never by a signal), so xargs still runs the others. gtest
+    # exits 1 when a case failed, and its JUnit file says which; any other code (a sanitizer's abort before
+    # the file is written, a leak reported after it) is written down as a failed case of its own, so the
+    # count cannot read green.
+    seq 0 $((shards - 1)) | xargs -P "$cores" -I{} bash -c '
+      GTEST_TOTAL_SHARDS="$1" GTEST_SHARD_INDEX="$2" "$3" --gtest_output="xml:$4.shard$2.xml" --gtest_brief=1 && exit 0
+      code=$?
+      if [ "$code" != 1 ]; then
+        printf "<testsuites><testsuite name=\"shards\"><testcase classname=\"%s\" name=\"shard%s_exit_code_%s\"><failure message=\"the shard exited with code %s\"/></testcase></testsuite></testsuites>\n" \
+          "$(basename "$3")" "$2" "$code" "$code" >"$4.shard$2.exit.xml"
+      fi
+      exit 1' _ "$shards" {} "$binary" "$results/$name" || status=1
   done
   # The node with a ROS master: rostest starts its own roscore on a free port. A subshell, so each
   # build's workspace environment stays its own.

@@ -338,9 +338,11 @@ TEST(BodyLu, SolvesAVehicleBodysStep)
 /// BodyLu's two shortcuts for a body whose mass matrix is diagonal (origin at the centre of gravity):
 /// computeDiagonal(d) for M + h D = diag(d), and computeGyroscopic(d, p, q) for M + h/2 C = [diag(d1), -S(p);
 /// -S(p), diag(d2) - S(q)], each checked by its residual against the matrix it stands for, built in full (the
-/// bound of SolvesAVehicleBodysStep: 100 eps |A| |x|). One object is reused across the three forms in turn, so a
+/// bound of SolvesAVehicleBodysStep: 100 eps |A| |x|), and against compute() of that matrix, which they must
+/// match bit for bit (they do its operations, less the additions of zeros: a vehicle's step is the same with
+/// them). One object is reused across the forms in the order diagonal, general, diagonal, gyroscopic, so a
 /// shortcut's state left behind by the one before (the diagonal flag) fails it too. Fails with a sign of S(p) or
-/// S(q) turned, or a diagonal factor that outlives a later compute().
+/// S(q) turned, or with the diagonal flag outliving a later compute() or computeGyroscopic().
 TEST(BodyLu, ShortcutsForADiagonalMassSolveTheMatricesTheyStandFor)
 {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -364,7 +366,8 @@ TEST(BodyLu, ShortcutsForADiagonalMassSolveTheMatricesTheyStandFor)
       d[i] = mass * (i < 3 ? 1.0 + 0.5 * (u(rng) + 1.0) : 0.02 + 0.02 * (u(rng) + 1.0));
     }
     Matrix6 a = Matrix6(d.asDiagonal());
-    const int form = trial % 3;
+    constexpr int kForms[4] = {0, 2, 0, 1};  // every change of form to and from the diagonal one
+    const int form = kForms[trial % 4];
     if (form == 0)
     {
       lu.computeDiagonal(d);
@@ -391,6 +394,12 @@ TEST(BodyLu, ShortcutsForADiagonalMassSolveTheMatricesTheyStandFor)
     const Eigen::Matrix<double, 6, 3> b3 = randomMatrix(rng, 6, 3);
     const Eigen::Matrix<double, 6, 3> x3 = lu.solve(b3);
     EXPECT_LT((a * x3 - b3).norm(), 100.0 * kEps * a.norm() * x3.norm()) << "trial " << trial << ", form " << form;
+    if (form != 2)
+    {
+      BodyLu general;
+      general.compute(a);
+      EXPECT_EQ(x, general.solve(b)) << "trial " << trial << ", form " << form;
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,24 @@ TEST_P(GoldenVariant, RunnerOutputsOfEveryShippedScenario)
   // Every scenario takes every variant today: a variant that stops applying is a change to look at.
   EXPECT_EQ(cases, files.size() - worlds - dynamic);
   EXPECT_EQ(worlds, 2u);  // pillar_wrap.yaml and two_rovs.yaml; a plain scenario that became a world's would show
+}
+
+// runner.txt holds no key that no variant's case owns: a variant removed or renamed would leave its hashes
+// behind unchecked (each GoldenVariant case checks only its own keys). Fails with a key of another name added.
+TEST(Golden, EveryRunnerHashBelongsToAVariant)
+{
+  std::istringstream in(readFile(std::string(ROV_TETHER_SOURCE_DIR) + "/test/golden/runner.txt"));
+  std::string key, value;
+  std::size_t keys = 0;
+  while (in >> key >> value)
+  {
+    ++keys;
+    const bool owned =
+        std::any_of(variants().begin(), variants().end(),
+                    [&](const auto& variant) { return key.find("/" + variant.first + "/") != std::string::npos; });
+    EXPECT_TRUE(owned) << key << " in test/golden/runner.txt belongs to no variant of test_golden.cpp";
+  }
+  EXPECT_GT(keys, 0u);
 }
 
 // The shipped scenarios of a world (obstacles, several tethers, contact between them): as shipped, every
