@@ -80,9 +80,9 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
   double coupling_before = 0.0;  // times the identity
   if (ws.bending && m >= 2)
   {
-    const double a = 1.0 / cable.rest[f + m - 2];
-    const double b = 1.0 / cable.rest[f + m - 1];
-    const double inv = 1.0 / ws.gamma[m - 2];
+    const double a = ws.inv_rest[m - 2];
+    const double b = ws.inv_rest[m - 1];
+    const double inv = ws.inv_gamma[m - 2];
     coupling_last += -(a + b) * b * inv * Eigen::Matrix3d::Identity();
     coupling_before = a * b * inv;
   }

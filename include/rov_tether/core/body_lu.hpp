@@ -43,10 +43,10 @@ class BodyLu
   {
     diagonal_ = false;
     inverse_.head<3>() = d.head<3>().cwiseInverse();
-    upper_ << 0.0, p.z(), -p.y(), -p.z(), 0.0, p.x(), p.y(), -p.x(), 0.0;  // -S(p)
+    upper_ = minusSkew(p);
     lower_ = upper_ * inverse_.head<3>().asDiagonal();
-    Eigen::Matrix3d a22;
-    a22 << d[3], q.z(), -q.y(), -q.z(), d[4], q.x(), q.y(), -q.x(), d[5];  // diag(d2) - S(q)
+    Eigen::Matrix3d a22 = minusSkew(q);
+    a22.diagonal() = d.tail<3>();  // diag(d2) - S(q)
     schur_.compute(a22 - lower_ * upper_);
   }
 
@@ -75,6 +75,14 @@ class BodyLu
   }
 
  private:
+  /// -S(v): -S(v) b = b x v.
+  static Eigen::Matrix3d minusSkew(const Eigen::Vector3d& v)
+  {
+    Eigen::Matrix3d m;
+    m << 0.0, v.z(), -v.y(), -v.z(), 0.0, v.x(), v.y(), -v.x(), 0.0;
+    return m;
+  }
+
   bool diagonal_ = false;  ///< computeDiagonal(): A = diag(d), A^-1 = diag(inverse_)
   Eigen::Matrix<double, 6, 1> inverse_ = Eigen::Matrix<double, 6, 1>::Ones();  ///< A11^-1 (head), or diag(d)^-1
   Eigen::Matrix3d upper_ = Eigen::Matrix3d::Zero();                            ///< A12
