@@ -336,7 +336,7 @@ TEST(BodyLu, SolvesAVehicleBodysStep)
 }
 
 /// BodyLu's two shortcuts for a body whose mass matrix is diagonal (origin at the centre of gravity):
-/// computeDiagonal(d) for M + h D = diag(d), and computeGyroscopic(d, p, q) for M + h/2 C = [diag(d1), -S(p);
+/// computeDiagonal(d) for M + h D = diag(d), and computeGyroscopic(d1^-1, d2, p, q) for M + h/2 C = [diag(d1), -S(p);
 /// -S(p), diag(d2) - S(q)], each checked by its residual against the matrix it stands for, built in full (the
 /// bound of SolvesAVehicleBodysStep: 100 eps |A| |x|), and against compute() of that matrix, which they must
 /// match bit for bit (they do its operations, less the additions of zeros: a vehicle's step is the same with
@@ -381,7 +381,7 @@ TEST(BodyLu, ShortcutsForADiagonalMassSolveTheMatricesTheyStandFor)
       a.bottomRightCorner<3, 3>() += minus_skew(q);
       if (form == 1)
       {
-        lu.computeGyroscopic(d, p, q);
+        lu.computeGyroscopic(d.head<3>().cwiseInverse(), d.tail<3>(), p, q);
       }
       else
       {

@@ -46,16 +46,7 @@ Matrix6 massPlusCoriolis(const Matrix6& mass, const Vector6& momentum, double a)
   return sum;
 }
 
-// Factors M + a C(momentum) into `lu`: without building the 6 x 6 matrix when M is diagonal.
-void factorMassPlusCoriolis(const Matrix6& mass, bool diagonal, const Vector6& momentum, double a, BodyLu* lu)
-{
-  if (diagonal)
-  {
-    lu->computeGyroscopic(mass.diagonal(), a * momentum.head<3>(), a * momentum.tail<3>());
-    return;
-  }
-  lu->compute(massPlusCoriolis(mass, momentum, a));
-}
+
 
 Vector6 coriolisTimes(const Vector6& momentum, const Vector6& b)
 {
@@ -126,6 +117,7 @@ void VehicleBody::prepare()
   // A body whose origin is its centre of gravity (most published models, the BlueROV2 Heavy's) has a diagonal
   // M: its products are six multiplications.
   diagonal_mass_ = mass_matrix_.isDiagonal(0.0);
+  inverse_translational_mass_ = mass_matrix_.diagonal().head<3>().cwiseInverse();
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
@@ -138,9 +130,15 @@ void VehicleBody::prepare()
   stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
 }
 
-Vector6 VehicleBody::massTimes(const Vector6& v) const
+void VehicleBody::factorMassPlusCoriolis(const Vector6& momentum, double a, BodyLu* lu) const
 {
-  return diagonal_mass_ ? Vector6(mass_matrix_.diagonal().cwiseProduct(v)) : Vector6(mass_matrix_ * v);
+  if (diagonal_mass_)
+  {
+    lu->computeGyroscopic(inverse_translational_mass_, mass_matrix_.diagonal().tail<3>(), a * momentum.head<3>(),
+                          a * momentum.tail<3>());
+    return;
+  }
+  lu->compute(massPlusCoriolis(mass_matrix_, momentum, a));
 }
 
 Status VehicleBody::setState(const Eigen::Vector3d& position, const Eigen::Quaterniond& attitude, const Twist& velocity)
@@ -259,7 +257,7 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
   // midpoint rule's one pass, as step()'s second).
   const Vector6 momentum = massTimes(before + 0.5 * (trial.turned - trial.damped));
   BodyLu cayley;
-  factorMassPlusCoriolis(mass_matrix_, diagonal_mass_, momentum, 0.5 * dt, &cayley);
+  factorMassPlusCoriolis(momentum, 0.5 * dt, &cayley);
   const Twist after = cayley.solve(Twist(massTimes(before) - 0.5 * dt * coriolisTimes(momentum, before)));
   drift(dt, before, after, &position_, &attitude_, &velocity_);
   return Status::success();
@@ -309,7 +307,7 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
     // C's argument M nu, at the mean of the two ends: on the first pass both are `before`.
     const Vector6 momentum = pass == 0 ? momentum_before : massTimes(0.5 * (before + turned));
     BodyLu cayley;  // M + h/2 C: its symmetric part is M, its translational block diagonal
-    factorMassPlusCoriolis(mass_matrix_, diagonal_mass_, momentum, 0.5 * dt, &cayley);
+    factorMassPlusCoriolis(momentum, 0.5 * dt, &cayley);
     turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
   if (trial != nullptr)

@@ -35,18 +35,19 @@ class BodyLu
     schur_.compute(a.bottomRightCorner<3, 3>() - lower_ * upper_);
   }
 
-  /// Factors [diag(d1), -S(p); -S(p), diag(d2) - S(q)] with d = [d1; d2] (d1 positive; not checked), S(a) b =
-  /// a x b: M + h/2 C for a diagonal M, Fossen's Coriolis matrix C at M nu = [p1; p2] being [0, -S(p1);
-  /// -S(p1), -S(p2)], so p = h/2 p1 and q = h/2 p2 (VehicleBody's Cayley step). The same factorisation as
-  /// compute() without building the 6 x 6 matrix.
-  void computeGyroscopic(const Eigen::Matrix<double, 6, 1>& d, const Eigen::Vector3d& p, const Eigen::Vector3d& q)
+  /// Factors [diag(d1), -S(p); -S(p), diag(d2) - S(q)] given d1^-1 = `inverse_d1` (d1 positive; not checked),
+  /// S(a) b = a x b: M + h/2 C for a diagonal M, Fossen's Coriolis matrix C at M nu = [p1; p2] being [0, -S(p1);
+  /// -S(p1), -S(p2)], so p = h/2 p1 and q = h/2 p2 (VehicleBody's Cayley step, which keeps M's d1^-1: d1 does
+  /// not change from step to step). The same factorisation as compute() without building the 6 x 6 matrix.
+  void computeGyroscopic(const Eigen::Vector3d& inverse_d1, const Eigen::Vector3d& d2, const Eigen::Vector3d& p,
+                         const Eigen::Vector3d& q)
   {
     diagonal_ = false;
-    inverse_.head<3>() = d.head<3>().cwiseInverse();
+    inverse_.head<3>() = inverse_d1;
     upper_ = minusSkew(p);
-    lower_ = upper_ * inverse_.head<3>().asDiagonal();
+    lower_ = upper_ * inverse_d1.asDiagonal();
     Eigen::Matrix3d a22 = minusSkew(q);
-    a22.diagonal() = d.tail<3>();  // diag(d2) - S(q)
+    a22.diagonal() = d2;  // diag(d2) - S(q)
     schur_.compute(a22 - lower_ * upper_);
   }
 

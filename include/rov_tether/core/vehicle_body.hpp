@@ -158,11 +158,18 @@ class VehicleBody
              Eigen::Quaterniond* attitude, Twist* velocity) const;
 
   /// M v (six products when M is diagonal).
-  Vector6 massTimes(const Vector6& v) const;
+  Vector6 massTimes(const Vector6& v) const
+  {
+    return diagonal_mass_ ? Vector6(mass_matrix_.diagonal().cwiseProduct(v)) : Vector6(mass_matrix_ * v);
+  }
+  /// Factors M + a C(momentum) (part 3's Cayley transform) into `lu`: without building the 6 x 6 matrix when M is
+  /// diagonal.
+  void factorMassPlusCoriolis(const Vector6& momentum, double a, BodyLu* lu) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
   bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
+  Eigen::Vector3d inverse_translational_mass_ = Eigen::Vector3d::Ones();  ///< M's diagonal's head, inverted
   double stable_step_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
