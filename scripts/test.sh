@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds, and runs
-#   1. every gtest binary (no ROS master) and every rostest (the node with a master), and the repository
-#      checks test/check_*.py (no build, no master);
+#   1. every gtest binary (no ROS master) and every rostest (the node with a master), and the checks
+#      test/check_*.py (no master; check_core_cmake.py builds the core with plain CMake in a scratch directory);
 #   2. the same again built with AddressSanitizer and UndefinedBehaviorSanitizer, in catkin_build_sanitize
 #      (SANITIZERS=0 skips it);
 #   3. each libFuzzer target (clang) for FUZZ_SECONDS seconds (default 60) on its corpus in test/fuzz
@@ -80,7 +80,7 @@ run_suite() {
 run_suite "$RESULTS/plain"
 
 # Checks of the repository itself (every rostest registered, launch files clear their nodes'
-# parameters): no build, no master, so once. JUnit XML through rosunit.
+# parameters) and of the core's plain CMake build: no master, so once. JUnit XML through rosunit.
 for check in "$ROOT"/test/check_*.py; do
   name="$(basename "$check" .py)"
   stage "$name"
