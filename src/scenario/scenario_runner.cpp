@@ -9,6 +9,7 @@
 #include <memory>
 #include <utility>
 
+#include "rov_tether/scenario/scenario_stepper.hpp"
 #include "rov_tether/scenario/vehicle_driver.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
 
@@ -152,18 +153,6 @@ std::size_t writeTopology(const World& world, double t_out, std::FILE* file, std
   return entries.size();
 }
 
-/// One path driver per tether, in scenario order.
-std::vector<PathDriver> driversOf(const std::vector<ScenarioTether>& tethers)
-{
-  std::vector<PathDriver> drivers;
-  drivers.reserve(tethers.size());
-  for (const ScenarioTether& tether : tethers)
-  {
-    drivers.emplace_back(tether);
-  }
-  return drivers;
-}
-
 /// state.csv and shape.csv per tether (in out_dir itself for a single-tether scenario), vehicle.csv per dynamic
 /// vehicle (beside its tether's), then topology.csv.
 std::vector<OutputFile> outputFilesOf(const Scenario& scenario, const std::vector<ScenarioTether>& tethers,
@@ -218,190 +207,8 @@ std::vector<RunSummary> startOutputs(const std::vector<ScenarioTether>& tethers,
   return each;
 }
 
-/// Moves the world along the tethers' paths and lets the observers look; keeps the first error of each.
-class Stepper
-{
- public:
-  Stepper(const Scenario& scenario, const std::vector<ScenarioTether>& tethers, World& world,
-          std::vector<PathDriver> drivers)
-      : scenario_(scenario), tethers_(tethers), world_(world), drivers_(std::move(drivers))
-  {
-    for (std::size_t i = 0; i < tethers.size(); ++i)
-    {
-      if (tethers[i].dynamic)
-      {
-        vehicles_.emplace_back(i, VehicleDriver(tethers[i]));
-      }
-    }
-  }
-
-  /// The dynamic vehicles' drivers with their tethers' indices, in scenario order.
-  const std::vector<std::pair<std::size_t, VehicleDriver>>& vehicles() const { return vehicles_; }
-
-  /// Feeds every tether's path up to t and advances the world there, in chunks as PathDriver::advanceTo does
-  /// (for one tether, the very same calls: a world of one tether without contact steps as that tether).
-  /// False, with runError() set, when a sample or an advance is refused.
-  bool advance(double t)
-  {
-    const auto start = std::chrono::steady_clock::now();
-    if (!vehicles_.empty())
-    {
-      const bool advanced = advanceStepByStep(t);
-      cpu_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      return advanced;
-    }
-    for (;;)
-    {
-      bool fed = true;
-      double reach = t;
-      for (std::size_t i = 0; i < drivers_.size(); ++i)
-      {
-        if (!drivers_[i].fedUpTo(t))
-        {
-          fed = false;
-          double fed_to = t;
-          const Status status = drivers_[i].feed(world_.tether(i), t, &fed_to);
-          if (!status.ok)
-          {
-            run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + status.message;
-            return false;
-          }
-          reach = std::min(reach, fed_to);
-        }
-      }
-      if (fed)
-      {
-        break;
-      }
-      if (!advanceWorld(reach))
-      {
-        return false;
-      }
-    }
-    if (!advanceWorld(t))
-    {
-      return false;
-    }
-    cpu_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return true;
-  }
-
-  /// Lets the observers look at every time of theirs up to `until` [s], in time order.
-  void observe(const std::vector<RunObserver*>& observers, double until)
-  {
-    while (observer_error_.empty() && run_error_.empty())
-    {
-      RunObserver* next = nullptr;
-      for (RunObserver* observer : observers)
-      {
-        if (observer->nextTime() <= until + 1e-9 && (!next || observer->nextTime() < next->nextTime()))
-        {
-          next = observer;
-        }
-      }
-      if (next == nullptr || !advance(next->nextTime()))
-      {
-        return;
-      }
-      observer_error_ = next->observe(world_.tether(0));
-    }
-  }
-
-  /// The first refused sample or advance (a path or time that was not validated): the run stops there and
-  /// writes nothing more; its partial files are removed and the caller gets this message.
-  const std::string& runError() const { return run_error_; }
-  /// The first observer's error ("" while none).
-  const std::string& observerError() const { return observer_error_; }
-  /// Time spent advancing [s].
-  double cpuSeconds() const { return cpu_; }
-
- private:
-  /// With dynamic vehicles: one step at a time, as World::advanceTo orders them (the tether whose next step
-  /// comes first), each dynamic vehicle's thrust set before its tether steps (VehicleDriver::beforeStep) and
-  /// the kinematic paths fed up to it. False, with runError() set, when something is refused.
-  bool advanceStepByStep(double t)
-  {
-    for (;;)
-    {
-      double next = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < world_.size(); ++i)
-      {
-        if (world_.tether(i).stepFits(t))
-        {
-          next = std::min(next, world_.tether(i).nextStepTime());
-        }
-      }
-      if (!std::isfinite(next))
-      {
-        return advanceWorld(t);
-      }
-      if (!feedUpTo(next))
-      {
-        return false;
-      }
-      for (auto& [i, driver] : vehicles_)
-      {
-        Tether& sim = world_.tether(i);
-        if (sim.stepFits(next))
-        {
-          const Status set = driver.beforeStep(sim);
-          if (!set.ok)
-          {
-            run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + set.message;
-            return false;
-          }
-        }
-      }
-      if (!advanceWorld(next))
-      {
-        return false;
-      }
-    }
-  }
-
-  /// Feeds every kinematic path up to t; false, with runError() set, when a sample is refused.
-  bool feedUpTo(double t)
-  {
-    for (std::size_t i = 0; i < drivers_.size(); ++i)
-    {
-      while (!drivers_[i].fedUpTo(t))
-      {
-        double reach = t;
-        const Status status = drivers_[i].feed(world_.tether(i), t, &reach);
-        if (!status.ok)
-        {
-          run_error_ = (scenario_.tethers.empty() ? "" : "tether " + tethers_[i].name + ": ") + status.message;
-          return false;
-        }
-      }
-    }
-    return true;
-  }
-
-  /// World::advanceTo(t); false, with runError() set, when it is refused.
-  bool advanceWorld(double t)
-  {
-    const Status status = world_.advanceTo(t);
-    if (!status.ok)
-    {
-      run_error_ = status.message;
-      return false;
-    }
-    return true;
-  }
-
-  const Scenario& scenario_;
-  const std::vector<ScenarioTether>& tethers_;
-  World& world_;
-  std::vector<PathDriver> drivers_;
-  std::vector<std::pair<std::size_t, VehicleDriver>> vehicles_;
-  double cpu_ = 0.0;
-  std::string run_error_;
-  std::string observer_error_;
-};
-
 /// Steps to every output time, writing each tether's rows (and the topology's); returns the topology rows.
-std::size_t writeOutputs(const Scenario& scenario, World& world, Stepper& stepper,
+std::size_t writeOutputs(const Scenario& scenario, World& world, ScenarioStepper& stepper,
                          const std::vector<RunObserver*>& observers, const std::vector<OutputFile>& files,
                          std::FILE* topology_file, std::vector<RunSummary>& each)
 {
@@ -473,8 +280,8 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
 std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers)
 {
-  const std::vector<ScenarioTether> tethers = scenario.tetherList();
-  std::vector<PathDriver> drivers = driversOf(tethers);
+  ScenarioStepper stepper(scenario, world);
+  const std::vector<ScenarioTether>& tethers = stepper.tethers();
   if (world.size() != tethers.size())
   {
     return "tethers: the world holds " + std::to_string(world.size()) + ", the scenario " +
@@ -490,7 +297,6 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
   std::vector<RunSummary> each = startOutputs(tethers, world, files, topology_file);
 
-  Stepper stepper(scenario, tethers, world, std::move(drivers));
   const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
   const bool ok = stepper.observerError().empty() && stepper.runError().empty();
   const std::string close_error = closeAll(files, ok, out_dir);

@@ -8,6 +8,7 @@
 
 #include "rov_tether/core/world.hpp"
 #include "rov_tether/scenario/scenario.hpp"
+#include "rov_tether/scenario/scenario_stepper.hpp"
 
 namespace rov_tether
 {
@@ -37,19 +38,6 @@ struct RunSummary
   std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
   std::size_t vehicle_rows = 0;      ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
   std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
-};
-
-/// Something that looks at a run at times of its own (the camera dataset writer): the runner advances the
-/// simulation there between its own output times. Looking changes nothing in the run.
-class RunObserver
-{
- public:
-  virtual ~RunObserver() = default;
-  /// The simulated time it wants to look at next [s]; +inf when it is done.
-  virtual double nextTime() const = 0;
-  /// Looks at the simulation, advanced to the last step at or before nextTime(). Returns "" or an error,
-  /// which ends the run.
-  virtual std::string observe(const Tether& sim) = 0;
 };
 
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list

@@ -1,0 +1,84 @@
+#pragma once
+// Moving a world built from a scenario along its tethers' paths: the loop of the offline runner
+// (scenario_runner.hpp) and of the Python API. No YAML and no output files here.
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rov_tether/core/world.hpp"
+#include "rov_tether/scenario/scenario.hpp"
+#include "rov_tether/scenario/vehicle_driver.hpp"
+
+namespace rov_tether
+{
+
+/// Something that looks at a run at times of its own (the camera dataset writer): the runner advances the
+/// simulation there between its own output times. Looking changes nothing in the run.
+class RunObserver
+{
+ public:
+  virtual ~RunObserver() = default;
+  /// The simulated time it wants to look at next [s]; +inf when it is done.
+  virtual double nextTime() const = 0;
+  /// Looks at the simulation, advanced to the last step at or before nextTime(). Returns "" or an error,
+  /// which ends the run.
+  virtual std::string observe(const Tether& sim) = 0;
+};
+
+/**
+ * Advances a World that buildWorld built from worldSpecOf(scenario) along the scenario's tethers: each
+ * kinematic vehicle path fed as samples a little ahead of the simulation (PathDriver), each dynamic vehicle's
+ * thrust set before every step of its tether (VehicleDriver: a thrust schedule, or its controller following
+ * the path), and observers let look at their own times. Keeps the first error of each kind. The scenario and
+ * the world must outlive it; it keeps its own copy of the tether list (the drivers refer into it), so it can
+ * be neither copied nor moved.
+ */
+class ScenarioStepper
+{
+ public:
+  ScenarioStepper(const Scenario& scenario, World& world);
+  ScenarioStepper(const ScenarioStepper&) = delete;
+  ScenarioStepper& operator=(const ScenarioStepper&) = delete;
+
+  /// Feeds every tether's path up to t [s] and advances the world there, in chunks as PathDriver::advanceTo
+  /// does (for one tether, the very same calls: a world of one tether without contact steps as that tether).
+  /// False, with runError() set, when a sample or an advance is refused.
+  bool advance(double t);
+  /// Lets the observers look at every time of theirs up to `until` [s], in time order.
+  void observe(const std::vector<RunObserver*>& observers, double until);
+
+  /// The scenario's tethers (Scenario::tetherList), in World order.
+  const std::vector<ScenarioTether>& tethers() const { return tethers_; }
+  /// The dynamic vehicles' drivers with their tethers' indices, in scenario order.
+  const std::vector<std::pair<std::size_t, VehicleDriver>>& vehicles() const { return vehicles_; }
+  /// The first refused sample or advance (a path or time that was not validated), naming the tether of a
+  /// `tethers` list: the runner stops there, writes nothing more and returns this message.
+  const std::string& runError() const { return run_error_; }
+  /// The first observer's error ("" while none).
+  const std::string& observerError() const { return observer_error_; }
+  /// Time spent advancing [s].
+  double cpuSeconds() const { return cpu_; }
+
+ private:
+  /// With dynamic vehicles: one step at a time, as World::advanceTo orders them (the tether whose next step
+  /// comes first), each dynamic vehicle's thrust set before its tether steps (VehicleDriver::beforeStep) and
+  /// the kinematic paths fed up to it. False, with runError() set, when something is refused.
+  bool advanceStepByStep(double t);
+  /// Feeds every kinematic path up to t; false, with runError() set, when a sample is refused.
+  bool feedUpTo(double t);
+  /// World::advanceTo(t); false, with runError() set, when it is refused.
+  bool advanceWorld(double t);
+
+  bool named_;  ///< A `tethers` list: errors name the tether.
+  const std::vector<ScenarioTether> tethers_;
+  World& world_;
+  std::vector<PathDriver> drivers_;
+  std::vector<std::pair<std::size_t, VehicleDriver>> vehicles_;
+  double cpu_ = 0.0;
+  std::string run_error_;
+  std::string observer_error_;
+};
+
+}  // namespace rov_tether
