@@ -20,6 +20,7 @@ PACKAGES=(build-essential cmake pkg-config catkin python3-catkin-pkg python3-emp
           python3-rosparam python3-tf2-ros bc
           libopencv-dev libpng-dev libsensor-msgs-dev python3-sensor-msgs libimage-transport-dev libcv-bridge-dev libroslib-dev
           libnav-msgs-dev ros-nav-msgs python3-nav-msgs libtopic-tools-dev
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
           ${PACKAGES_EXTRA:-})
 
 install_missing() {

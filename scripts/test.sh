@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds, and runs
-#   1. every gtest binary (no ROS master) and every rostest (the node with a master), and the checks
-#      test/check_*.py (no master; check_core_cmake.py builds the core with plain CMake in a scratch directory);
+#   1. every gtest binary (no ROS master) and every rostest (the node with a master), the checks
+#      test/check_*.py (no master; check_core_cmake.py builds the core with plain CMake in a scratch directory)
+#      and the Python API's tests test/python (pytest);
 #   2. the same again built with AddressSanitizer and UndefinedBehaviorSanitizer, in catkin_build_sanitize
 #      (SANITIZERS=0 skips it);
 #   3. each libFuzzer target (clang) for FUZZ_SECONDS seconds (default 60) on its corpus in test/fuzz
@@ -87,6 +88,15 @@ for check in "$ROOT"/test/check_*.py; do
   /usr/bin/python3 "$check" --gtest_output="xml:$RESULTS/plain/$name.xml" || status=1
 done
 
+# The Python API (import rov_tether: test/python, pytest) against the plain build, once; its JUnit file is
+# counted with the rest. No cache directory is left in the tree (-p no:cacheprovider).
+stage "pytest test/python"
+(
+  use_ros_environment
+  ROV_TETHER_RUN="$BUILD_DIR/devel/lib/rov_tether/rov_tether_run" /usr/bin/python3 -m pytest -q -p no:cacheprovider \
+    --junitxml="$RESULTS/plain/pytest.xml" "$ROOT/test/python"
+) || status=1
+
 if [ "$SANITIZERS" != 0 ]; then
   # ASan + UBSan: any error aborts the process (UBSan does not recover), so the case fails. Leaks are
   # reported for our gtest binaries; roscpp keeps process-lifetime singletons, so the ROS nodes run
@@ -98,10 +108,11 @@ if [ "$SANITIZERS" != 0 ]; then
   # documentation advises: a third of the compile time of -O3 -g for a test file, and this build was the
   # suite's longest stage. The build type Sanitize keeps the physics libraries (core, mesh, camera) at -O3
   # (CMakeLists.txt), so the sanitized node keeps the pace its rostests expect; NDEBUG as in Release.
-  # The benchmarks are not built here: they run no test, and sanitized timings mean nothing.
+  # The benchmarks are not built here: they run no test, and sanitized timings mean nothing. Nor is the Python
+  # module: Python would have to preload the sanitizer runtime to import it (test/python runs once, above).
   build_package -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-    -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DROV_TETHER_BENCHMARKS=OFF
+    -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DROV_TETHER_BENCHMARKS=OFF -DROV_TETHER_PYTHON=OFF
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
   export ASAN_OPTIONS_NODES="detect_leaks=0:abort_on_error=1"

@@ -9,7 +9,9 @@ scripts/test.sh once, with no ROS master (JUnit XML with --gtest_output=xml:FILE
   links rov_tether::study and hangs the S = 8 catenary: equal horizontal tension in every segment and the
   chain's weight held at the supports, within 1% (it exits non-zero otherwise);
 - the installed runner runs a scenario with a mesh obstacle and a camera, so both modules it loads beside
-  itself (rov_tether_mesh, rov_tether_camera) are found in the install prefix.
+  itself (rov_tether_mesh, rov_tether_camera) are found in the install prefix;
+- the Python module imports from the build directory and from the prefix (PYTHONPATH) and hangs the same
+  catenary.
 
 Built at -O0 without debug information: about a minute and a half on two cores, the whole core set.
 """
@@ -45,6 +47,7 @@ class CoreWithPlainCMake(unittest.TestCase):
         cls.work = tempfile.TemporaryDirectory(prefix="rov_tether_core_")
         work = pathlib.Path(cls.work.name)
         cls.prefix = work / "prefix"
+        cls.build = work / "build"
         cls.build_error = None
         try:
             jobs = str(os.cpu_count() or 2)
@@ -112,6 +115,32 @@ class CoreWithPlainCMake(unittest.TestCase):
             self.assertEqual(len(rows), 11)  # 0 to 2 s at 5 Hz
             frames = (pathlib.Path(work) / "out" / "cameras" / "forward" / "index.csv").read_text().splitlines()
             self.assertEqual(len(frames), 1 + 3)  # a header, then frames at 0, 1 and 2 s
+
+    def test_the_python_module_imports_from_the_build_and_from_the_prefix(self):
+        # The S = 8 catenary's weight, held at the supports' segments as in test/consumer: the module steps the
+        # same core. Run with `python3 -I` (no user site, no PYTHONPATH but ours) from an empty directory.
+        program = textwrap.dedent("""\
+            import math, sys
+            import rov_tether
+            world = rov_tether.World({"params": {"cable_length": 10.0, "initial_deployed_length": 10.0,
+                                                 "segment_length": 0.5, "weight_in_water": 1.0, "noise": 0.0,
+                                                 "winch_mode": "locked"},
+                                      "spool": [0.0, 0.0, 0.0], "vehicle": [[0.0, 8.0, 0.0, 0.0]]})
+            world.advance_to(30.0)
+            tether = world.tethers[0]
+            p, t = tether.positions, tether.segment_tension
+            vertical = lambda k: t[k] * abs(p[k + 1][2] - p[k][2]) / math.dist(p[k + 1], p[k])
+            held = vertical(0) + vertical(len(t) - 1)
+            print(rov_tether._core.__file__, held)
+            sys.exit(0 if abs(held - 9.5) < 0.095 else 1)
+            """)
+        for where in (self.build / "python", self.prefix / "lib" / "python3" / "dist-packages"):
+            with tempfile.TemporaryDirectory() as empty:
+                env = dict(ENV, PYTHONPATH=str(where))
+                done = subprocess.run(["/usr/bin/python3", "-c", program], env=env, cwd=empty, capture_output=True,
+                                      text=True)
+                self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+                self.assertIn(str(where), done.stdout)
 
 
 if __name__ == "__main__":

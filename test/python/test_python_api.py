@@ -1,0 +1,171 @@
+"""The Python API (import rov_tether; issue 23, docs/python.md), run by scripts/test.sh with pytest in the
+catkin build's environment (its devel space on PYTHONPATH). ROV_TETHER_RUN names the runner to compare with
+(default: the catkin build's)."""
+import csv
+import math
+import os
+import pathlib
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import rov_tether
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+RUNNER = os.environ.get("ROV_TETHER_RUN", str(ROOT / "catkin_build" / "devel" / "lib" / "rov_tether" / "rov_tether_run"))
+
+
+def run_scenario(path, out):
+    """rov_tether_run PATH --out OUT; its stdout and stderr, and whether it succeeded."""
+    done = subprocess.run([RUNNER, str(path), "--out", str(out)], capture_output=True, text=True)
+    return done.returncode == 0, done.stdout + done.stderr
+
+
+def shape_rows(path):
+    """shape.csv as {t: (positions N x 3, tensions N - 1)}."""
+    rows = {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            positions, tensions = rows.setdefault(float(row["t"]), ([], []))
+            positions.append([float(row["x"]), float(row["y"]), float(row["z"])])
+            if row["tension"]:
+                tensions.append(float(row["tension"]))
+    return {t: (np.array(p), np.array(s)) for t, (p, s) in rows.items()}
+
+
+# The runner prints positions with 6 decimals (%.6f) and tensions with 6 significant digits (%.6g): the same
+# state read through Python must match to that rounding, so the bounds are half a unit of the last digit
+# (plus a little for the binary value of the decimal). The two step the world by the same calls
+# (ScenarioStepper), so any larger difference is a different simulation.
+@pytest.mark.parametrize("scenario", ["pillar_wrap.yaml", "two_rovs.yaml", "dynamic_dive.yaml"])
+def test_a_scenario_from_python_gives_the_runners_shapes_and_tensions(scenario, tmp_path):
+    ok, output = run_scenario(ROOT / "scenarios" / scenario, tmp_path)
+    assert ok, output
+    world = rov_tether.World.from_scenario(str(ROOT / "scenarios" / scenario))
+    names = [t.name for t in world.tethers]
+    single = names == ["tether"] and not (tmp_path / "tether").exists()
+    expected = {name: shape_rows(tmp_path / ("shape.csv" if single else name + "/shape.csv")) for name in names}
+    times = sorted(next(iter(expected.values())))
+    assert len(times) > 10
+    for t in times:
+        world.advance_to(t)
+        for tether in world.tethers:
+            positions, tensions = expected[tether.name][t]
+            assert tether.positions.shape == positions.shape, (tether.name, t)
+            np.testing.assert_allclose(tether.positions, positions, rtol=0, atol=5.1e-7, err_msg="%s at %g s" % (tether.name, t))
+            np.testing.assert_allclose(tether.segment_tension, tensions, rtol=5.1e-6, atol=1e-12,
+                                       err_msg="%s at %g s" % (tether.name, t))
+
+
+def hanging_world():
+    """A 5 m cable of 1 N/m in water hanging from a spool at 2 m depth with a free end: no path, no noise."""
+    return rov_tether.World({"spool": [1.0, -2.0, -2.0],
+                             "params": {"cable_length": 10.0, "initial_deployed_length": 5.0, "segment_length": 0.25,
+                                        "weight_in_water": 1.0, "noise": 0.0, "winch_mode": "locked"}})
+
+
+# A chain hanging in still water: segment k carries the weight in water of the particles below it, each
+# particle a segment's (the free end half of one), so the spool's segment holds w (L - ds / 2) and the last
+# w ds / 2; and the chain hangs straight down from the spool, as long as it is deployed (the stretch is
+# w L / EA, 5e-5 here). 1% on the tensions and 1 mm on the line, after 40 s of water drag.
+def test_arrays_have_the_documented_shapes_units_and_frames():
+    world = hanging_world()
+    world.advance_to(40.0)
+    assert world.time == pytest.approx(40.0)
+    (tether,) = world.tethers
+    positions, tensions = tether.positions, np.asarray(tether.segment_tension)
+    assert positions.shape == (21, 3) and positions.dtype == np.float64
+    assert tensions.shape == (20,)
+    np.testing.assert_allclose(positions[0], [1.0, -2.0, -2.0])             # the spool, world frame, first
+    np.testing.assert_allclose(positions[:, :2], np.tile([1.0, -2.0], (21, 1)), atol=1e-3)
+    assert positions[-1, 2] == pytest.approx(-2.0 - 5.0, abs=1e-3)          # z up: the end below the spool
+    assert tether.deployed_length == pytest.approx(5.0)
+    assert tether.tension_spool == pytest.approx(1.0 * (5.0 - 0.125), rel=0.01)
+    assert tether.tension_vehicle == pytest.approx(0.125, rel=0.01)
+    assert tensions[0] == tether.tension_spool and tensions[-1] == tether.tension_vehicle
+
+
+def test_a_vehicle_driven_from_python_pulls_its_tether():
+    world = hanging_world()
+    (tether,) = world.tethers
+    tether.add_vehicle_sample(0.0, [1.0, -2.0, -7.5])   # 0.5 m below the hanging end: the cable is pulled taut
+    tether.add_vehicle_sample(30.0, [1.0, -2.0, -7.5])
+    world.advance_to(30.0)
+    np.testing.assert_allclose(tether.positions[-1], [1.0, -2.0, -7.5], atol=1e-9)
+    # Taut between two points 5.5 m apart with 5 m of cable: the stretch is 10%, so T = EA 0.1 >> the weight.
+    assert tether.tension_vehicle > 10.0 * 5.0
+
+
+def runner_error(tmp_path, text):
+    path = tmp_path / "bad.yaml"
+    path.write_text(text)
+    ok, output = run_scenario(path, tmp_path / "out")
+    assert not ok
+    return path, output
+
+
+@pytest.mark.parametrize("text", [
+    "params: {iterations: -3}\nspool: [0, 0, 0]\nduration: 1.0\n",
+    "spool: [0, 0]\nduration: 1.0\n",
+    "spool: [0, 0, 0]\nduration: 1.0\nvehicle: [[0.0, 1.0, 0.0, 0.0], [-1.0, 2.0, 0.0, 0.0]]\n",
+    "spool: [0, 0, 0]\nduration: 1.0\nobstacles: [{name: wreck, type: mesh, file: missing.stl}]\n",
+    "spool: [0, 0, 0]\nduration: 1.0\nunknown_key: 1\n",
+])
+def test_bad_input_raises_with_the_runners_message(tmp_path, text):
+    path, output = runner_error(tmp_path, text)
+    with pytest.raises(ValueError) as raised:
+        rov_tether.World.from_scenario(str(path))
+    assert str(raised.value) in output
+    assert len(str(raised.value)) > 10
+
+
+def test_bad_calls_raise():
+    world = hanging_world()
+    (tether,) = world.tethers
+    with pytest.raises(ValueError, match="finite"):
+        world.advance_to(math.nan)
+    world.advance_to(1.0)
+    with pytest.raises(RuntimeError, match="does not step back"):
+        world.advance_to(0.5)
+    with pytest.raises(KeyError, match="no tether named 'b'"):
+        world.tether("b")
+    with pytest.raises(ValueError, match=r"\[x, y, z\]"):
+        tether.add_vehicle_sample(2.0, [1.0, 2.0])
+    with pytest.raises(ValueError):
+        tether.add_vehicle_sample(2.0, [math.nan, 0.0, 0.0])
+    with pytest.raises(ValueError, match="vehicle path"):
+        rov_tether.World.from_scenario(str(ROOT / "scenarios" / "pillar_wrap.yaml")).tethers[0].add_vehicle_sample(
+            0.0, [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="spool"):
+        rov_tether.World({"spool": "here"})
+    assert world.tether("tether").name == "tether"
+
+
+# While one thread steps, another runs Python: with the GIL held through advance_to the second would stand
+# still for the whole call (a C++ call is never pre-empted for the switch interval), so its longest pause
+# would be the call's length. Released, its pauses are the scheduler's: a quarter of the call bounds them on
+# two cores with margin.
+def test_the_gil_is_released_while_stepping():
+    world = rov_tether.World.from_scenario(str(ROOT / "scenarios" / "pillar_wrap.yaml"))
+    world.advance_to(0.1)
+    span = {}
+
+    def step():
+        span["start"] = time.perf_counter()
+        world.advance_to(20.0)
+        span["end"] = time.perf_counter()
+
+    stepping = threading.Thread(target=step)
+    ticks = []
+    stepping.start()
+    while stepping.is_alive():
+        ticks.append(time.perf_counter())
+    stepping.join()
+    ticks = [t for t in ticks if span["start"] <= t <= span["end"]]
+    length = span["end"] - span["start"]
+    assert length > 0.05, "the call is too short to tell"
+    pauses = np.diff([span["start"]] + ticks + [span["end"]])
+    assert pauses.max() < 0.25 * length, (pauses.max(), length)
