@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rov_tether/scenario/scenario_yaml.hpp"
+#include "rov_tether/core/vehicle_body.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
 #include "session.hpp"
 
@@ -159,7 +160,95 @@ struct TetherView
       throw py::value_error(added.message);
     }
   }
+
+  py::dict winch() const;
+  void setTargetLength(double length);
+  void setParam(const std::string& name, const py::handle& value);
+  py::object vehicle() const;
+  void setVehicleThrust(const std::vector<double>& wrench);
 };
+
+py::dict TetherView::winch() const
+{
+  const std::lock_guard<std::mutex> lock(session->mutex);
+  const Tether& sim = tether();
+  py::dict state;
+  state["mode"] = toString(sim.params().winch_mode);
+  state["deployed_length"] = sim.deployedLength();
+  state["speed"] = sim.winchSpeed();
+  state["target_length"] = sim.targetLength();
+  state["outrun"] = sim.winchOutrun();
+  return state;
+}
+
+void TetherView::setTargetLength(double length)
+{
+  const std::lock_guard<std::mutex> lock(session->mutex);
+  const Status set = session->world.tether(index).setTargetLength(length);
+  if (!set.ok)
+  {
+    throw py::value_error(set.message);
+  }
+}
+
+void TetherView::setParam(const std::string& name, const py::handle& value)
+{
+  const std::string assignment = name + "=" + py::str(value).cast<std::string>();
+  const std::lock_guard<std::mutex> lock(session->mutex);
+  Tether& sim = session->world.tether(index);
+  TetherParams params = sim.params();
+  const std::string error = applyAssignment(assignment, &params);
+  if (!error.empty())
+  {
+    throw py::value_error(error);
+  }
+  const Status set = sim.setParams(params);
+  if (!set.ok)
+  {
+    throw py::value_error(set.message);
+  }
+}
+
+py::object TetherView::vehicle() const
+{
+  const std::lock_guard<std::mutex> lock(session->mutex);
+  const VehicleBody* body = tether().vehicleBody();
+  if (body == nullptr)
+  {
+    return py::none();
+  }
+  const Eigen::Quaterniond& q = body->attitude();
+  const Twist& v = body->velocity();
+  const Wrench& applied = tether().vehicleThrustUsed()->applied;
+  py::dict state;
+  state["position"] = std::vector<double>{body->position().x(), body->position().y(), body->position().z()};
+  state["orientation"] = std::vector<double>{q.x(), q.y(), q.z(), q.w()};
+  state["velocity"] = std::vector<double>(v.data(), v.data() + 6);
+  state["thrust"] = std::vector<double>(applied.data(), applied.data() + 6);
+  return std::move(state);
+}
+
+void TetherView::setVehicleThrust(const std::vector<double>& wrench)
+{
+  if (wrench.size() != 6)
+  {
+    throw py::value_error("set_vehicle_thrust: [Fx, Fy, Fz, Mx, My, Mz] in the body frame (got " +
+                          std::to_string(wrench.size()) + " numbers)");
+  }
+  const std::lock_guard<std::mutex> lock(session->mutex);
+  Tether& sim = session->world.tether(index);
+  if (!sim.vehicleDynamic())
+  {
+    throw py::value_error("set_vehicle_thrust: tether '" + session->world.name(index) +
+                          "' has no dynamic vehicle (vehicle: {model: dynamic, ...} in its description)");
+  }
+  const Status set = sim.setVehicleThrust(Wrench(wrench.data()));
+  if (!set.ok)
+  {
+    throw py::value_error(set.message);
+  }
+  session->stepper->releaseVehicle(index);  // the command is the caller's from now on
+}
 
 py::dict topologyRecord(const World& world, const TopologyEntry& e)
 {
@@ -196,6 +285,20 @@ PYBIND11_MODULE(_core, m)
       .def_property_readonly("time", [](const TetherView& t) { return t.tether().time(); }, "Its time [s]")
       .def("add_vehicle_sample", &TetherView::addVehicleSample, py::arg("t"), py::arg("position"),
            "Where the vehicle end is at time t [s]: [x, y, z] [m] (only for a tether without a scenario path)")
+      .def_property_readonly("winch", &TetherView::winch,
+                             "The winch: mode, deployed_length [m], speed [m/s] (pay-out over the last step, negative "
+                             "reeling in), target_length [m] (speed mode; NaN: none), outrun (the vehicle outruns it)")
+      .def("set_target_length", &TetherView::setTargetLength, py::arg("length"),
+           "In speed mode, pays out or reels in towards `length` [m] and holds it (NaN clears it)")
+      .def("set_param", &TetherView::setParam, py::arg("name"), py::arg("value"),
+           "Changes one model parameter between steps, as rov_tether_run --set name=value does")
+      .def_property_readonly("vehicle", &TetherView::vehicle,
+                             "The dynamic vehicle's state, or None for a kinematic end: position [m] and orientation "
+                             "[x, y, z, w] (body to world), velocity [u, v, w, p, q, r] in the body frame [m/s, rad/s], "
+                             "thrust applied [N, N m] (body frame, within its limits)")
+      .def("set_vehicle_thrust", &TetherView::setVehicleThrust, py::arg("wrench"),
+           "The dynamic vehicle's body-frame thrust command [Fx, Fy, Fz, Mx, My, Mz] [N, N m], held until changed; "
+           "from the first call on it replaces the scenario's controller or thrust schedule")
       .def("__repr__", [](const TetherView& t)
            { return "<rov_tether.Tether '" + t.session->world.name(t.index) + "'>"; });
 

@@ -25,7 +25,11 @@ std::vector<PathDriver> driversOf(const std::vector<ScenarioTether>& tethers)
 }  // namespace
 
 ScenarioStepper::ScenarioStepper(const Scenario& scenario, World& world)
-    : named_(!scenario.tethers.empty()), tethers_(scenario.tetherList()), world_(world), drivers_(driversOf(tethers_))
+    : named_(!scenario.tethers.empty()),
+      tethers_(scenario.tetherList()),
+      world_(world),
+      drivers_(driversOf(tethers_)),
+      released_(tethers_.size(), false)
 {
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
@@ -34,6 +38,16 @@ ScenarioStepper::ScenarioStepper(const Scenario& scenario, World& world)
       vehicles_.emplace_back(i, VehicleDriver(tethers_[i]));
     }
   }
+}
+
+bool ScenarioStepper::releaseVehicle(std::size_t i)
+{
+  if (i >= tethers_.size() || !tethers_[i].dynamic)
+  {
+    return false;
+  }
+  released_[i] = true;
+  return true;
 }
 
 bool ScenarioStepper::advance(double t)
@@ -122,7 +136,7 @@ bool ScenarioStepper::advanceStepByStep(double t)
     for (auto& [i, driver] : vehicles_)
     {
       Tether& sim = world_.tether(i);
-      if (sim.stepFits(next))
+      if (!released_[i] && sim.stepFits(next))
       {
         const Status set = driver.beforeStep(sim);
         if (!set.ok)

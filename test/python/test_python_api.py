@@ -99,6 +99,77 @@ def test_a_vehicle_driven_from_python_pulls_its_tether():
     assert tether.tension_vehicle > 10.0 * 5.0
 
 
+# A speed-mode winch pays out at |winch_speed| towards its target and holds it there, reaching the speed at
+# max_winch_acceleration (1 m/s^2, the default): from 5 m at 0.5 m/s it has paid out 0.5 t - 0.5^2 / 2 m after
+# t >= 0.5 s (0.875 m at 2 s, within one step's pay-out at full speed, 0.5 m/s x 5 ms, for the discrete ramp),
+# and it stops at the 7 m target.
+def test_the_winch_pays_out_to_a_target_set_from_python():
+    world = rov_tether.World({"spool": [0.0, 0.0, 0.0], "params": {"cable_length": 10.0, "initial_deployed_length": 5.0,
+                                                                   "winch_mode": "speed", "winch_speed": 0.5}})
+    (tether,) = world.tethers
+    tether.set_target_length(7.0)
+    world.advance_to(2.0)
+    winch = tether.winch
+    assert winch["mode"] == "speed" and winch["target_length"] == 7.0 and not winch["outrun"]
+    assert winch["speed"] == pytest.approx(0.5)
+    assert winch["deployed_length"] == pytest.approx(5.0 + 0.5 * 2.0 - 0.125, abs=2.5e-3) == tether.deployed_length
+    world.advance_to(6.0)
+    assert tether.deployed_length == pytest.approx(7.0, abs=1e-9)
+    assert tether.winch["speed"] == 0.0
+    with pytest.raises(ValueError):
+        tether.set_target_length(50.0)  # beyond cable_length
+
+
+# The hanging chain of test_arrays_...: doubling its weight in water between steps doubles what the spool holds.
+def test_a_parameter_set_from_python_changes_the_physics(tmp_path):
+    world = hanging_world()
+    (tether,) = world.tethers
+    world.advance_to(20.0)
+    tether.set_param("weight_in_water", 2.0)
+    world.advance_to(60.0)
+    assert tether.tension_spool == pytest.approx(2.0 * (5.0 - 0.125), rel=0.01)
+    path = tmp_path / "ok.yaml"
+    path.write_text("spool: [0, 0, 0]\nduration: 0.1\n")
+    done = subprocess.run([RUNNER, str(path), "--out", str(tmp_path / "out"), "--set", "no_such_parameter=1"],
+                          capture_output=True, text=True)
+    assert done.returncode != 0
+    with pytest.raises(ValueError) as raised:
+        tether.set_param("no_such_parameter", 1)
+    assert str(raised.value) in done.stdout + done.stderr
+    with pytest.raises(ValueError):
+        tether.set_param("iterations", 0)
+
+
+# The BlueROV2 Heavy (config/vehicles/bluerov2_heavy.yaml: Xu 13.7 N s/m, Xuu 141 N s^2/m^2) pushed by 20 N of surge
+# from Python, its tether paying out through a 1 N brake: its speed approaches U0 with 20 N = Xu U0 + Xuu U0^2
+# (0.331 m/s) from below, the brake and the cable's drag holding it back by a few percent (within 20% after 20 s).
+# The scenario's thrust schedule (zero) no longer applies once Python commands the thrust.
+def test_a_dynamic_vehicle_takes_its_thrust_from_python():
+    world = rov_tether.World({
+        "spool": [0.0, 0.0, -1.0],
+        "params": {"solver": "direct", "cable_length": 40.0, "initial_deployed_length": 3.0, "winch_mode": "brake",
+                   "brake_tension": 1.0},
+        "vehicle": {"model": "dynamic", "params": str(ROOT / "config" / "vehicles" / "bluerov2_heavy.yaml"),
+                    "start": [3.0, 0.0, -1.0, 0.0], "wrench": [[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]}})
+    (tether,) = world.tethers
+    assert rov_tether.World({"spool": [0, 0, 0]}).tethers[0].vehicle is None
+    world.advance_to(1.0)
+    assert abs(tether.vehicle["velocity"][0]) < 0.05 and tether.vehicle["thrust"] == [0.0] * 6
+    tether.set_vehicle_thrust([20.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    world.advance_to(21.0)
+    state = tether.vehicle
+    u0 = (-13.7 + math.sqrt(13.7 ** 2 + 4.0 * 141.0 * 20.0)) / (2.0 * 141.0)
+    assert 0.8 * u0 < state["velocity"][0] <= u0 * 1.001
+    assert state["thrust"] == [20.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    assert math.fsum(q * q for q in state["orientation"]) == pytest.approx(1.0)
+    assert state["position"][0] > 3.0 + 0.8 * u0 * 15.0
+    np.testing.assert_allclose(tether.positions[-1], state["position"], atol=1e-9)  # attached at its origin
+    with pytest.raises(ValueError, match="Fx"):
+        tether.set_vehicle_thrust([1.0, 2.0])
+    with pytest.raises(ValueError, match="no dynamic vehicle"):
+        hanging_world().tethers[0].set_vehicle_thrust([0.0] * 6)
+
+
 def runner_error(tmp_path, text):
     path = tmp_path / "bad.yaml"
     path.write_text(text)

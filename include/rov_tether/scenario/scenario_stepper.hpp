@@ -49,6 +49,10 @@ class ScenarioStepper
   /// Lets the observers look at every time of theirs up to `until` [s], in time order.
   void observe(const std::vector<RunObserver*>& observers, double until);
 
+  /// Stops driving tether i's dynamic vehicle (its thrust schedule or controller): from now on its thrust is the
+  /// caller's (Tether::setVehicleThrust, held until changed). False when the scenario gives it no dynamic vehicle.
+  bool releaseVehicle(std::size_t i);
+
   /// The scenario's tethers (Scenario::tetherList), in World order.
   const std::vector<ScenarioTether>& tethers() const { return tethers_; }
   /// The dynamic vehicles' drivers with their tethers' indices, in scenario order.
@@ -76,6 +80,7 @@ class ScenarioStepper
   World& world_;
   std::vector<PathDriver> drivers_;
   std::vector<std::pair<std::size_t, VehicleDriver>> vehicles_;
+  std::vector<bool> released_;  ///< Per tether: its dynamic vehicle's thrust is the caller's (releaseVehicle).
   double cpu_ = 0.0;
   std::string run_error_;
   std::string observer_error_;
