@@ -7,8 +7,8 @@
 #      (SANITIZERS=0 skips it);
 #   3. each libFuzzer target (clang) for FUZZ_SECONDS seconds (default 60) on its corpus in test/fuzz
 #      (FUZZ=0 skips it).
-# Ends with the line "N passed, N failed": gtest and rostest cases of both builds, plus one case per
-# fuzz target. Exit code 0 only when everything passed.
+# Ends with the line "N passed, N failed": gtest and rostest cases of both builds, the checks and pytest
+# cases (once), plus one case per fuzz target. Exit code 0 only when everything passed.
 set -euo pipefail
 SANITIZERS="${SANITIZERS:-1}"
 FUZZ="${FUZZ:-1}"
