@@ -118,7 +118,7 @@ class CoreWithPlainCMake(unittest.TestCase):
 
     def test_the_python_module_imports_from_the_build_and_from_the_prefix(self):
         # The S = 8 catenary's weight, held at the supports' segments as in test/consumer: the module steps the
-        # same core. Run with `python3 -I` (no user site, no PYTHONPATH but ours) from an empty directory.
+        # same core. Run in ENV with PYTHONPATH alone added, from an empty directory.
         program = textwrap.dedent("""\
             import math, sys
             import rov_tether

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,19 +51,24 @@ class Camera
     Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
     world_from_camera.linear() = q.normalized().toRotationMatrix();
     world_from_camera.translation() = p;
+    const int h = model_.height(), w = model_.width();
+    py::array_t<std::uint8_t> mask({h, w});
+    py::array_t<float> depth({h, w});
+    std::uint8_t* const mask_out = mask.mutable_data();
+    float* const depth_out = depth.mutable_data();
     {
-      py::gil_scoped_release released;
-      const std::lock_guard<std::mutex> lock(session.mutex);
+      // The camera's lock, then the world's (withWorld releases the GIL): one camera renders for one thread at
+      // a time, and the arrays are filled before either lock is let go.
+      const py::gil_scoped_release released;
+      const std::lock_guard<std::mutex> camera_lock(mutex_);
+      const std::lock_guard<std::mutex> world_lock(session.mutex);
       camera::CameraScene scene(session.world);
       scene.record();
       scene.tubesAt(session.world.time(), tubes_);
       renderer_.render(model_, world_from_camera, tubes_, scene.occluders());
+      std::copy_n(renderer_.mask().ptr<std::uint8_t>(), static_cast<std::size_t>(h) * w, mask_out);
+      std::copy_n(renderer_.depth().ptr<float>(), static_cast<std::size_t>(h) * w, depth_out);
     }
-    const int h = model_.height(), w = model_.width();
-    py::array_t<std::uint8_t> mask({h, w});
-    py::array_t<float> depth({h, w});
-    std::copy_n(renderer_.mask().ptr<std::uint8_t>(), static_cast<std::size_t>(h) * w, mask.mutable_data());
-    std::copy_n(renderer_.depth().ptr<float>(), static_cast<std::size_t>(h) * w, depth.mutable_data());
     return py::make_tuple(mask, depth);
   }
 
@@ -95,6 +101,7 @@ class Camera
   }
 
   camera::CameraModel model_;
+  std::mutex mutex_;  ///< Held while it renders: renderer_ and tubes_ are its working storage.
   camera::TetherRenderer renderer_;
   std::vector<camera::Tube> tubes_;
 };

@@ -2,19 +2,21 @@
 // description of a world (a scenario file, or the same as a dict) by the same reader and builder as the runner
 // (loadScenario / parseScenario, buildWorld), and stepped by the same loop (ScenarioStepper), so a scenario run
 // from Python and by rov_tether_run gives the same numbers. Bad input raises ValueError with the reader's
-// message; a refused advance raises RuntimeError with the runner's. The GIL is released while stepping; a
-// mutex keeps readers in other threads off a world that is stepping.
+// message; a refused advance raises RuntimeError with the runner's. Every read, change and step of a world
+// holds its lock with the GIL released (withWorld, session.hpp), so other threads run Python meanwhile.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "rov_tether/scenario/scenario_yaml.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
 #include "session.hpp"
 
@@ -49,45 +51,78 @@ std::shared_ptr<Session> fromScenario(const std::string& path)
   return build(error, std::move(scenario));
 }
 
-/// A dict in the runner's scenario format, as JSON (a subset of YAML that the reader takes as it is). A dict
-/// without `duration` steps as far as it is advanced: the reader is given the longest it accepts.
+/// A dict in the runner's scenario format, as JSON (a subset of YAML that the reader takes as it is; numpy
+/// arrays and numbers as lists and numbers). A dict without `duration` steps as far as it is advanced: the reader
+/// is given 1e4 s (with one output a second unless `output_rate` says otherwise), which nothing here reads.
 std::shared_ptr<Session> fromDict(const py::dict& description)
 {
   py::dict copy(description);
   if (!copy.contains("duration"))
   {
     copy["duration"] = 1.0e4;
-    copy["output_rate"] = 1.0;
+    if (!copy.contains("output_rate"))
+    {
+      copy["output_rate"] = 1.0;
+    }
   }
-  const std::string text = py::module_::import("json").attr("dumps")(copy).cast<std::string>();
+  std::string text;
+  try
+  {
+    const py::cpp_function plain(
+        [](const py::object& value) -> py::object
+        {
+          if (py::hasattr(value, "tolist"))
+          {
+            return value.attr("tolist")();  // numpy arrays and scalars
+          }
+          throw py::type_error("not a number, string, list or dict: " + py::repr(value).cast<std::string>());
+        });
+    text = py::module_::import("json").attr("dumps")(copy, py::arg("default") = plain).cast<std::string>();
+  }
+  catch (const py::error_already_set& error)
+  {
+    throw py::value_error(std::string("World: the description is not plain data: ") + error.what());
+  }
   Scenario scenario;
   const std::string error = parseScenario(text, &scenario);
   return build(error, std::move(scenario));
 }
 
-void advanceTo(Session& session, double t)
+/// advance_to(t), or step(t) with `relative`: the target is taken under the lock, so two threads' steps add up.
+/// A target the world refuses is refused here, as ValueError, before the world sees it; a refused advance
+/// (RuntimeError) stops the world for good, as it stops the runner.
+void advance(Session& session, double t, bool relative)
 {
-  if (!std::isfinite(t))
+  const char* call = relative ? "step: dt" : "advance_to: t";
+  if (!std::isfinite(t) || std::abs(t) > Tether::kMaxTime || (relative && t < 0.0))
   {
-    throw py::value_error("advance_to: t must be finite (got " + std::to_string(t) + ")");
+    throw py::value_error(std::string(call) + " must be finite, within +-1e10 s" + (relative ? " and not negative" : "") +
+                          " (got " + std::to_string(t) + ")");
   }
   std::string error;
+  bool refused_argument = false;
+  withWorld(session,
+            [&]
+            {
+              const double target = relative ? session.world.time() + t : t;
+              if (target < session.world.time() || target > Tether::kMaxTime)
+              {
+                refused_argument = true;
+                error = std::string(call) + " = " + std::to_string(t) + " s: the world is at " +
+                        std::to_string(session.world.time()) + " s (it does not step back, nor beyond 1e10 s)";
+              }
+              else if (!session.stepper->runError().empty())
+              {
+                error = "the world stopped at an earlier error: " + session.stepper->runError();
+              }
+              else if (!session.stepper->advance(target))
+              {
+                error = session.stepper->runError();
+              }
+            });
+  if (refused_argument)
   {
-    py::gil_scoped_release released;
-    const std::lock_guard<std::mutex> lock(session.mutex);
-    if (t < session.world.time())
-    {
-      error = "advance_to: t = " + std::to_string(t) + " s is before the world's time " +
-              std::to_string(session.world.time()) + " s (a world does not step back)";
-    }
-    else if (!session.stepper->runError().empty())
-    {
-      error = "advance_to: the world stopped at an earlier error: " + session.stepper->runError();
-    }
-    else if (!session.stepper->advance(t))
-    {
-      error = session.stepper->runError();
-    }
+    throw py::value_error(error);
   }
   if (!error.empty())
   {
@@ -95,43 +130,87 @@ void advanceTo(Session& session, double t)
   }
 }
 
-/// One tether of a world: a view that keeps the world alive.
+void throwIfRefused(const Status& status)
+{
+  if (!status.ok)
+  {
+    throw py::value_error(status.message);
+  }
+}
+
+/// What a dynamic vehicle's state is at one moment (TetherView::vehicle).
+struct VehicleState
+{
+  Eigen::Vector3d position;
+  Eigen::Quaterniond attitude;
+  Twist velocity;
+  Wrench thrust;
+};
+
+/// One topology record, as plain data (World::topology with the names resolved).
+struct TopologyRecord
+{
+  std::string tether, object, kind;
+  bool object_is_tether = false;
+  double value = 0.0;
+};
+
+/// One tether of a world: a view that keeps the world alive. Its name and scenario entry do not change after
+/// the world is built; everything else is read under the world's lock (withWorld).
 struct TetherView
 {
   std::shared_ptr<Session> session;
   std::size_t index = 0;
 
-  const Tether& tether() const { return session->world.tether(index); }
+  Tether& tether() const { return session->world.tether(index); }
+  const std::string& name() const { return session->world.name(index); }
 
   py::array_t<double> positions() const
   {
-    const std::lock_guard<std::mutex> lock(session->mutex);
-    const Tether& sim = tether();
-    const std::size_t n = sim.deployedParticleCount();
-    py::array_t<double> out({n, std::size_t{3}});
+    const std::vector<Position> points = withWorld(*session,
+                                                   [&]
+                                                   {
+                                                     std::vector<Position> copy;
+                                                     tether().copyPositions(copy);
+                                                     return copy;
+                                                   });
+    py::array_t<double> out({points.size(), std::size_t{3}});
     auto view = out.mutable_unchecked<2>();
-    for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t k = 0; k < points.size(); ++k)
     {
-      const Position p = sim.particle(k);
-      view(k, 0) = p.x(), view(k, 1) = p.y(), view(k, 2) = p.z();
+      view(k, 0) = points[k].x(), view(k, 1) = points[k].y(), view(k, 2) = points[k].z();
     }
     return out;
   }
 
-  std::vector<double> tensions() const
+  py::array_t<double> tensions() const
   {
-    const std::lock_guard<std::mutex> lock(session->mutex);
-    std::vector<double> tensions;
-    tether().computeSegmentTensions(tensions);
-    return tensions;
+    const std::vector<double> tensions = withWorld(*session,
+                                                   [&]
+                                                   {
+                                                     std::vector<double> copy;
+                                                     tether().computeSegmentTensions(copy);
+                                                     return copy;
+                                                   });
+    py::array_t<double> out(tensions.size());
+    std::copy(tensions.begin(), tensions.end(), out.mutable_data());
+    return out;
   }
 
   TetherSummary summary() const
   {
-    const std::lock_guard<std::mutex> lock(session->mutex);
-    std::vector<double> tensions;
-    tether().computeSegmentTensions(tensions);
-    return tether().summarize(tensions);
+    return withWorld(*session,
+                     [&]
+                     {
+                       std::vector<double> tensions;
+                       tether().computeSegmentTensions(tensions);
+                       return tether().summarize(tensions);
+                     });
+  }
+
+  double time() const
+  {
+    return withWorld(*session, [&] { return tether().time(); });
   }
 
   bool hasPath() const
@@ -149,116 +228,163 @@ struct TetherView
     }
     if (hasPath())
     {
-      throw py::value_error("add_vehicle_sample: tether '" + session->world.name(index) +
+      throw py::value_error("add_vehicle_sample: tether '" + name() +
                             "' follows its scenario's vehicle path; give it no `vehicle` to drive it from Python");
     }
-    const std::lock_guard<std::mutex> lock(session->mutex);
-    const Status added =
-        session->world.tether(index).addVehicleSample(t, Position(position[0], position[1], position[2]));
-    if (!added.ok)
+    const Position p(position[0], position[1], position[2]);
+    throwIfRefused(withWorld(*session, [&] { return tether().addVehicleSample(t, p); }));
+  }
+
+  py::dict winch() const
+  {
+    struct State
     {
-      throw py::value_error(added.message);
+      WinchMode mode;
+      double deployed, speed, target;
+      bool outrun;
+    };
+    const State state = withWorld(*session,
+                                  [&]
+                                  {
+                                    const Tether& sim = tether();
+                                    return State{sim.params().winch_mode, sim.deployedLength(), sim.winchSpeed(),
+                                                 sim.targetLength(), sim.winchOutrun()};
+                                  });
+    py::dict out;
+    out["mode"] = toString(state.mode);
+    out["deployed_length"] = state.deployed;
+    out["speed"] = state.speed;
+    out["target_length"] = state.target;
+    out["outrun"] = state.outrun;
+    return out;
+  }
+
+  void setTargetLength(double length)
+  {
+    throwIfRefused(withWorld(*session, [&] { return tether().setTargetLength(length); }));
+  }
+
+  /// As rov_tether_run --set name=value: the value as JSON (YAML reads it as it is), on one line.
+  void setParam(const std::string& parameter, const py::object& value)
+  {
+    const py::object plain = py::hasattr(value, "tolist") ? value.attr("tolist")() : value;
+    std::string text;
+    try
+    {
+      text = py::module_::import("json").attr("dumps")(plain).cast<std::string>();
+    }
+    catch (const py::error_already_set& error)
+    {
+      throw py::value_error("set_param: " + parameter + ": the value is not plain data: " + error.what());
+    }
+    if (parameter.find_first_of("=\n\r") != std::string::npos || text.find_first_of("\n\r") != std::string::npos)
+    {
+      throw py::value_error("set_param: one parameter name and one value, on one line");
+    }
+    const std::string assignment = parameter + "=" + text;
+    const std::string error = withWorld(*session,
+                                        [&]
+                                        {
+                                          TetherParams params = tether().params();
+                                          const std::string read = applyAssignment(assignment, &params);
+                                          return read.empty() ? tether().setParams(params).message : read;
+                                        });
+    if (!error.empty())
+    {
+      throw py::value_error(error);
     }
   }
 
-  py::dict winch() const;
-  void setTargetLength(double length);
-  void setParam(const std::string& name, const py::handle& value);
-  py::object vehicle() const;
-  void setVehicleThrust(const std::vector<double>& wrench);
+  py::object vehicle() const
+  {
+    const std::optional<VehicleState> state =
+        withWorld(*session,
+                  [&]() -> std::optional<VehicleState>
+                  {
+                    const VehicleBody* body = tether().vehicleBody();
+                    if (body == nullptr)
+                    {
+                      return std::nullopt;
+                    }
+                    return VehicleState{body->position(), body->attitude(), body->velocity(),
+                                        tether().vehicleThrustUsed()->applied};
+                  });
+    if (!state)
+    {
+      return py::none();
+    }
+    const Eigen::Quaterniond& q = state->attitude;
+    py::dict out;
+    out["position"] = std::vector<double>{state->position.x(), state->position.y(), state->position.z()};
+    out["orientation"] = std::vector<double>{q.x(), q.y(), q.z(), q.w()};
+    out["velocity"] = std::vector<double>(state->velocity.data(), state->velocity.data() + 6);
+    out["thrust"] = std::vector<double>(state->thrust.data(), state->thrust.data() + 6);
+    return std::move(out);
+  }
+
+  void setVehicleThrust(const std::vector<double>& wrench)
+  {
+    if (wrench.size() != 6)
+    {
+      throw py::value_error("set_vehicle_thrust: [Fx, Fy, Fz, Mx, My, Mz] in the body frame (got " +
+                            std::to_string(wrench.size()) + " numbers)");
+    }
+    const Wrench command(wrench.data());
+    const std::string error =
+        withWorld(*session,
+                  [&]() -> std::string
+                  {
+                    if (!tether().vehicleDynamic())
+                    {
+                      return "set_vehicle_thrust: tether '" + name() +
+                             "' has no dynamic vehicle (vehicle: {model: dynamic, ...} in its description)";
+                    }
+                    const Status set = tether().setVehicleThrust(command);
+                    if (set.ok)
+                    {
+                      session->stepper->releaseVehicle(index);  // the command is the caller's from now on
+                    }
+                    return set.message;
+                  });
+    if (!error.empty())
+    {
+      throw py::value_error(error);
+    }
+  }
 };
 
-py::dict TetherView::winch() const
+py::list topology(Session& session)
 {
-  const std::lock_guard<std::mutex> lock(session->mutex);
-  const Tether& sim = tether();
-  py::dict state;
-  state["mode"] = toString(sim.params().winch_mode);
-  state["deployed_length"] = sim.deployedLength();
-  state["speed"] = sim.winchSpeed();
-  state["target_length"] = sim.targetLength();
-  state["outrun"] = sim.winchOutrun();
-  return state;
-}
-
-void TetherView::setTargetLength(double length)
-{
-  const std::lock_guard<std::mutex> lock(session->mutex);
-  const Status set = session->world.tether(index).setTargetLength(length);
-  if (!set.ok)
+  const std::vector<TopologyRecord> records = withWorld(session,
+                                                        [&]
+                                                        {
+                                                          std::vector<TopologyEntry> entries;
+                                                          session.world.topology(entries);
+                                                          std::vector<TopologyRecord> out;
+                                                          for (const TopologyEntry& e : entries)
+                                                          {
+                                                            const World& w = session.world;
+                                                            out.push_back({w.name(e.tether),
+                                                                           e.object_is_tether
+                                                                               ? w.name(e.object)
+                                                                               : w.obstacle(e.object).name(),
+                                                                           topologyKindName(e.kind), e.object_is_tether,
+                                                                           e.value});
+                                                          }
+                                                          return out;
+                                                        });
+  py::list out;
+  for (const TopologyRecord& r : records)
   {
-    throw py::value_error(set.message);
+    py::dict record;
+    record["tether"] = r.tether;
+    record["object"] = r.object;
+    record["object_is_tether"] = r.object_is_tether;
+    record["kind"] = r.kind;
+    record["value"] = r.value;
+    out.append(record);
   }
-}
-
-void TetherView::setParam(const std::string& name, const py::handle& value)
-{
-  const std::string assignment = name + "=" + py::str(value).cast<std::string>();
-  const std::lock_guard<std::mutex> lock(session->mutex);
-  Tether& sim = session->world.tether(index);
-  TetherParams params = sim.params();
-  const std::string error = applyAssignment(assignment, &params);
-  if (!error.empty())
-  {
-    throw py::value_error(error);
-  }
-  const Status set = sim.setParams(params);
-  if (!set.ok)
-  {
-    throw py::value_error(set.message);
-  }
-}
-
-py::object TetherView::vehicle() const
-{
-  const std::lock_guard<std::mutex> lock(session->mutex);
-  const VehicleBody* body = tether().vehicleBody();
-  if (body == nullptr)
-  {
-    return py::none();
-  }
-  const Eigen::Quaterniond& q = body->attitude();
-  const Twist& v = body->velocity();
-  const Wrench& applied = tether().vehicleThrustUsed()->applied;
-  py::dict state;
-  state["position"] = std::vector<double>{body->position().x(), body->position().y(), body->position().z()};
-  state["orientation"] = std::vector<double>{q.x(), q.y(), q.z(), q.w()};
-  state["velocity"] = std::vector<double>(v.data(), v.data() + 6);
-  state["thrust"] = std::vector<double>(applied.data(), applied.data() + 6);
-  return std::move(state);
-}
-
-void TetherView::setVehicleThrust(const std::vector<double>& wrench)
-{
-  if (wrench.size() != 6)
-  {
-    throw py::value_error("set_vehicle_thrust: [Fx, Fy, Fz, Mx, My, Mz] in the body frame (got " +
-                          std::to_string(wrench.size()) + " numbers)");
-  }
-  const std::lock_guard<std::mutex> lock(session->mutex);
-  Tether& sim = session->world.tether(index);
-  if (!sim.vehicleDynamic())
-  {
-    throw py::value_error("set_vehicle_thrust: tether '" + session->world.name(index) +
-                          "' has no dynamic vehicle (vehicle: {model: dynamic, ...} in its description)");
-  }
-  const Status set = sim.setVehicleThrust(Wrench(wrench.data()));
-  if (!set.ok)
-  {
-    throw py::value_error(set.message);
-  }
-  session->stepper->releaseVehicle(index);  // the command is the caller's from now on
-}
-
-py::dict topologyRecord(const World& world, const TopologyEntry& e)
-{
-  py::dict record;
-  record["tether"] = world.name(e.tether);
-  record["object"] = e.object_is_tether ? world.name(e.object) : world.obstacle(e.object).name();
-  record["object_is_tether"] = e.object_is_tether;
-  record["kind"] = topologyKindName(e.kind);
-  record["value"] = e.value;
-  return record;
+  return out;
 }
 
 }  // namespace
@@ -271,18 +397,18 @@ PYBIND11_MODULE(_core, m)
   m.doc() = "rov_tether's core: tethers, winches, obstacles and vehicles in one world (docs/python.md)";
 
   py::class_<TetherView>(m, "Tether", "One tether of a World (a view: it keeps the world alive)")
-      .def_property_readonly("name", [](const TetherView& t) { return t.session->world.name(t.index); })
+      .def_property_readonly("name", &TetherView::name)
       .def_property_readonly("positions", &TetherView::positions,
                              "Deployed particles, spool first: an N x 3 array [m] in the world frame (z up), a copy")
       .def_property_readonly("segment_tension", &TetherView::tensions,
-                             "Axial force of each deployed segment, spool first [N] (N - 1 of them)")
+                             "Axial force of each deployed segment, spool first [N]: an array of N - 1")
       .def_property_readonly("tension_spool", [](const TetherView& t) { return t.summary().tension_spool; },
                              "Tension in the segment at the spool [N]")
       .def_property_readonly("tension_vehicle", [](const TetherView& t) { return t.summary().tension_vehicle; },
                              "Tension in the segment at the vehicle (or the free end) [N]")
       .def_property_readonly("deployed_length", [](const TetherView& t) { return t.summary().deployed_length; },
                              "Cable off the spool [m]")
-      .def_property_readonly("time", [](const TetherView& t) { return t.tether().time(); }, "Its time [s]")
+      .def_property_readonly("time", &TetherView::time, "Its time [s]")
       .def("add_vehicle_sample", &TetherView::addVehicleSample, py::arg("t"), py::arg("position"),
            "Where the vehicle end is at time t [s]: [x, y, z] [m] (only for a tether without a scenario path)")
       .def_property_readonly("winch", &TetherView::winch,
@@ -300,7 +426,7 @@ PYBIND11_MODULE(_core, m)
            "The dynamic vehicle's body-frame thrust command [Fx, Fy, Fz, Mx, My, Mz] [N, N m], held until changed; "
            "from the first call on it replaces the scenario's controller or thrust schedule")
       .def("__repr__", [](const TetherView& t)
-           { return "<rov_tether.Tether '" + t.session->world.name(t.index) + "'>"; });
+           { return "<rov_tether.Tether '" + t.name() + "'>"; });
 
   py::class_<Session, std::shared_ptr<Session>>(m, "World",
                                                 "Tethers, obstacles and vehicles, built from the runner's "
@@ -308,12 +434,13 @@ PYBIND11_MODULE(_core, m)
       .def(py::init(&fromDict), py::arg("description"))
       .def_static("from_scenario", &fromScenario, py::arg("path"),
                   "A runner scenario file (YAML), its vehicle paths included")
-      .def("advance_to", &advanceTo, py::arg("t"),
-           "Steps every tether to time t [s] along the scenario's paths (the GIL released meanwhile)")
       .def(
-          "step", [](Session& s, double dt) { advanceTo(s, s.world.time() + dt); }, py::arg("dt"),
-          "advance_to(time + dt)")
-      .def_property_readonly("time", [](Session& s) { return s.world.time(); }, "The world's time [s]")
+          "advance_to", [](Session& s, double t) { advance(s, t, false); }, py::arg("t"),
+          "Steps every tether to time t [s] along the scenario's paths (the GIL released meanwhile)")
+      .def(
+          "step", [](Session& s, double dt) { advance(s, dt, true); }, py::arg("dt"), "advance_to(time + dt)")
+      .def_property_readonly(
+          "time", [](Session& s) { return withWorld(s, [&] { return s.world.time(); }); }, "The world's time [s]")
       .def_property_readonly("tethers",
                              [](const std::shared_ptr<Session>& s)
                              {
@@ -336,21 +463,6 @@ PYBIND11_MODULE(_core, m)
             return TetherView{s, i};
           },
           py::arg("name"))
-      .def(
-          "topology",
-          [](Session& s)
-          {
-            std::vector<TopologyEntry> entries;
-            {
-              const std::lock_guard<std::mutex> lock(s.mutex);
-              s.world.topology(entries);
-            }
-            py::list records;
-            for (const TopologyEntry& e : entries)
-            {
-              records.append(topologyRecord(s.world, e));
-            }
-            return records;
-          },
-          "Wrap turns and angles, contact angles, capstan ratios and linking numbers: the ~topology fields");
+      .def("topology", &topology,
+           "Wrap turns and angles, contact angles, capstan ratios and linking numbers: the ~topology fields");
 }

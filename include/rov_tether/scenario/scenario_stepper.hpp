@@ -31,9 +31,9 @@ class RunObserver
  * Advances a World that buildWorld built from worldSpecOf(scenario) along the scenario's tethers: each
  * kinematic vehicle path fed as samples a little ahead of the simulation (PathDriver), each dynamic vehicle's
  * thrust set before every step of its tether (VehicleDriver: a thrust schedule, or its controller following
- * the path), and observers let look at their own times. Keeps the first error of each kind. The scenario and
- * the world must outlive it; it keeps its own copy of the tether list (the drivers refer into it), so it can
- * be neither copied nor moved.
+ * the path), and observers let look at their own times. Keeps the first error of each kind. The world must
+ * outlive it; it keeps its own copy of the scenario's tether list (the drivers refer into it), so it can be
+ * neither copied nor moved.
  */
 class ScenarioStepper
 {
