@@ -46,8 +46,6 @@ Matrix6 massPlusCoriolis(const Matrix6& mass, const Vector6& momentum, double a)
   return sum;
 }
 
-
-
 Vector6 coriolisTimes(const Vector6& momentum, const Vector6& b)
 {
   Vector6 product;

@@ -76,7 +76,8 @@ class Camera
   int height() const { return model_.height(); }
 
  private:
-  static camera::CameraIntrinsics intrinsics(int width, int height, const std::vector<double>& k, const std::vector<double>& d)
+  static camera::CameraIntrinsics intrinsics(int width, int height, const std::vector<double>& k,
+                                             const std::vector<double>& d)
   {
     if (k.size() != 9)
     {

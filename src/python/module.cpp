@@ -96,8 +96,8 @@ void advance(Session& session, double t, bool relative)
   const char* call = relative ? "step: dt" : "advance_to: t";
   if (!std::isfinite(t) || std::abs(t) > Tether::kMaxTime || (relative && t < 0.0))
   {
-    throw py::value_error(std::string(call) + " must be finite, within +-1e10 s" + (relative ? " and not negative" : "") +
-                          " (got " + std::to_string(t) + ")");
+    throw py::value_error(std::string(call) + " must be finite, within +-1e10 s" +
+                          (relative ? " and not negative" : "") + " (got " + std::to_string(t) + ")");
   }
   std::string error;
   bool refused_argument = false;
@@ -355,24 +355,21 @@ struct TetherView
 
 py::list topology(Session& session)
 {
-  const std::vector<TopologyRecord> records = withWorld(session,
-                                                        [&]
-                                                        {
-                                                          std::vector<TopologyEntry> entries;
-                                                          session.world.topology(entries);
-                                                          std::vector<TopologyRecord> out;
-                                                          for (const TopologyEntry& e : entries)
-                                                          {
-                                                            const World& w = session.world;
-                                                            out.push_back({w.name(e.tether),
-                                                                           e.object_is_tether
-                                                                               ? w.name(e.object)
-                                                                               : w.obstacle(e.object).name(),
-                                                                           topologyKindName(e.kind), e.object_is_tether,
-                                                                           e.value});
-                                                          }
-                                                          return out;
-                                                        });
+  const std::vector<TopologyRecord> records = withWorld(
+      session,
+      [&]
+      {
+        std::vector<TopologyEntry> entries;
+        session.world.topology(entries);
+        std::vector<TopologyRecord> out;
+        for (const TopologyEntry& e : entries)
+        {
+          const World& w = session.world;
+          out.push_back({w.name(e.tether), e.object_is_tether ? w.name(e.object) : w.obstacle(e.object).name(),
+                         topologyKindName(e.kind), e.object_is_tether, e.value});
+        }
+        return out;
+      });
   py::list out;
   for (const TopologyRecord& r : records)
   {
@@ -402,12 +399,14 @@ PYBIND11_MODULE(_core, m)
                              "Deployed particles, spool first: an N x 3 array [m] in the world frame (z up), a copy")
       .def_property_readonly("segment_tension", &TetherView::tensions,
                              "Axial force of each deployed segment, spool first [N]: an array of N - 1")
-      .def_property_readonly("tension_spool", [](const TetherView& t) { return t.summary().tension_spool; },
-                             "Tension in the segment at the spool [N]")
-      .def_property_readonly("tension_vehicle", [](const TetherView& t) { return t.summary().tension_vehicle; },
-                             "Tension in the segment at the vehicle (or the free end) [N]")
-      .def_property_readonly("deployed_length", [](const TetherView& t) { return t.summary().deployed_length; },
-                             "Cable off the spool [m]")
+      .def_property_readonly(
+          "tension_spool", [](const TetherView& t) { return t.summary().tension_spool; },
+          "Tension in the segment at the spool [N]")
+      .def_property_readonly(
+          "tension_vehicle", [](const TetherView& t) { return t.summary().tension_vehicle; },
+          "Tension in the segment at the vehicle (or the free end) [N]")
+      .def_property_readonly(
+          "deployed_length", [](const TetherView& t) { return t.summary().deployed_length; }, "Cable off the spool [m]")
       .def_property_readonly("time", &TetherView::time, "Its time [s]")
       .def("add_vehicle_sample", &TetherView::addVehicleSample, py::arg("t"), py::arg("position"),
            "Where the vehicle end is at time t [s]: [x, y, z] [m] (only for a tether without a scenario path)")
@@ -418,15 +417,15 @@ PYBIND11_MODULE(_core, m)
            "In speed mode, pays out or reels in towards `length` [m] and holds it (NaN clears it)")
       .def("set_param", &TetherView::setParam, py::arg("name"), py::arg("value"),
            "Changes one model parameter between steps, as rov_tether_run --set name=value does")
-      .def_property_readonly("vehicle", &TetherView::vehicle,
-                             "The dynamic vehicle's state, or None for a kinematic end: position [m] and orientation "
-                             "[x, y, z, w] (body to world), velocity [u, v, w, p, q, r] in the body frame [m/s, rad/s], "
-                             "thrust applied [N, N m] (body frame, within its limits)")
+      .def_property_readonly(
+          "vehicle", &TetherView::vehicle,
+          "The dynamic vehicle's state, or None for a kinematic end: position [m] and orientation "
+          "[x, y, z, w] (body to world), velocity [u, v, w, p, q, r] in the body frame [m/s, rad/s], "
+          "thrust applied [N, N m] (body frame, within its limits)")
       .def("set_vehicle_thrust", &TetherView::setVehicleThrust, py::arg("wrench"),
            "The dynamic vehicle's body-frame thrust command [Fx, Fy, Fz, Mx, My, Mz] [N, N m], held until changed; "
            "from the first call on it replaces the scenario's controller or thrust schedule")
-      .def("__repr__", [](const TetherView& t)
-           { return "<rov_tether.Tether '" + t.name() + "'>"; });
+      .def("__repr__", [](const TetherView& t) { return "<rov_tether.Tether '" + t.name() + "'>"; });
 
   py::class_<Session, std::shared_ptr<Session>>(m, "World",
                                                 "Tethers, obstacles and vehicles, built from the runner's "

@@ -44,8 +44,9 @@ int main()
   const double weight = kWeight * (kLength - kLength / kSegments);
   const double spread = (h_max - h_min) / h_max;
   const double weight_error = std::abs(held - weight) / weight;
-  std::printf("segments %zu, horizontal tension %.4f to %.4f N (spread %.2e), supports hold %.4f N of %.4f N "
-              "(error %.2e)\n",
-              n - 1, h_min, h_max, spread, held, weight, weight_error);
+  std::printf(
+      "segments %zu, horizontal tension %.4f to %.4f N (spread %.2e), supports hold %.4f N of %.4f N "
+      "(error %.2e)\n",
+      n - 1, h_min, h_max, spread, held, weight, weight_error);
   return spread < 0.01 && weight_error < 0.01 ? 0 : 1;
 }

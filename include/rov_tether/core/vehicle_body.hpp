@@ -168,7 +168,7 @@ class VehicleBody
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
-  bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
+  bool diagonal_mass_ = true;                                             ///< M is diagonal (r_G = 0)
   Eigen::Vector3d inverse_translational_mass_ = Eigen::Vector3d::Ones();  ///< M's diagonal's head, inverted
   double stable_step_ = 0.0;
 
