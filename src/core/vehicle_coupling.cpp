@@ -90,18 +90,19 @@ double VehicleCoupling::inverseMass(const Position& neighbour, const Position& p
   }
   const VehicleStepStart& start = started_ && start_.dt == h ? start_ : fallback;  // predict()'s factorisation
   const Position along = predicted - neighbour;
-  const double length = along.norm();
-  if (!(length > 0.0))
+  const double length_squared = along.squaredNorm();
+  if (!(length_squared > 0.0))
   {
     return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(pointMobility(start), Eigen::EigenvaluesOnly)
         .eigenvalues()
         .maxCoeff();
   }
-  // n^T W_p n = (G^T n)^T (M + h D)^-1 (G^T n), G^T n = [n; r x n]: one solve along n, not W_p's three.
-  const Eigen::Vector3d n = body_.attitude().conjugate() * (along / length);
+  // n^T W_p n = (G^T n)^T (M + h D)^-1 (G^T n), G^T n = [n; r x n]: one solve along n, not W_p's three; taken
+  // along the unnormalised a = |a| n and divided by |a|^2 (one division, no square root).
+  const Eigen::Vector3d a = body_.attitude().conjugate() * along;
   Vector6 wrench;
-  wrench << n, offset_.cross(n);
-  return wrench.dot(start.damped.solve(wrench));
+  wrench << a, offset_.cross(a);
+  return wrench.dot(start.damped.solve(wrench)) / length_squared;
 }
 
 Status VehicleCoupling::finish(double h, const Force& pull, Position* attachment_point)
