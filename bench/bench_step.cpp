@@ -10,6 +10,7 @@
 #include "banded.hpp"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/core/vehicle_coupling.hpp"
 
 namespace
 {
@@ -491,6 +492,41 @@ void BM_VehicleBodyStep(benchmark::State& state)
   }
 }
 
+/// The dynamic vehicle end's own calls in one sub-step of 5 ms, apart from the chain (VehicleCoupling: predict(),
+/// inverseMass() along a last segment, finish() under a pull): the BlueROV2 Heavy moving and turning slowly
+/// under a steady pull of 10 N, the state carried from sub-step to sub-step as in a run, so each sub-step waits
+/// for the last (their serial latency, which is what a step pays). scripts/vehicle_overhead.sh prints it.
+void BM_VehicleCouplingSubStep(benchmark::State& state)
+{
+  rov_tether::VehicleBody body;
+  rov_tether::Twist velocity;
+  velocity << 0.05, -0.01, 0.02, 0.01, -0.01, 0.02;
+  const rov_tether::Status setup = body.setState(
+      Position(1.0, 2.0, -3.0), Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())), velocity);
+  if (!setup.ok)
+  {
+    state.SkipWithError(("setting up the body: " + setup.message).c_str());
+    return;
+  }
+  rov_tether::VehicleCoupling coupling(body, Eigen::Vector3d(0.2, 0.0, 0.05));
+  const rov_tether::Force pull(-10.0, 1.0, 0.0);
+  constexpr double kSubStep = 0.005;
+  Position predicted, reached;
+  for (auto _ : state)
+  {
+    const rov_tether::Status predicting = coupling.predict(kSubStep, &predicted);
+    const double inverse_mass = coupling.inverseMass(predicted - Position(0.1, 0.0, 0.0), predicted, kSubStep);
+    benchmark::DoNotOptimize(inverse_mass);
+    const rov_tether::Status finishing = coupling.finish(kSubStep, pull, &reached);
+    if (!predicting.ok || !finishing.ok)
+    {
+      state.SkipWithError("the coupling refused a sub-step");
+      return;
+    }
+    benchmark::DoNotOptimize(reached.data());
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_StepPbd)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
@@ -508,5 +544,6 @@ BENCHMARK(BM_TridiagonalSolve)->ArgsProduct({{100, 1000, 10000}, {0, 1}})->Unit(
 BENCHMARK(BM_BandedSolve)->ArgsProduct({{303, 3003}, {0, 1}, {5, 8}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scene)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VehicleBodyStep)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_VehicleCouplingSubStep)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -10,7 +10,8 @@
 # (VehicleCoupling::predict, inverseMass, finish) take per sub-step. WALL=1 adds one timed run (REPETITIONS, 15,
 # repetitions interleaved at random, pinned to one core, --benchmark_min_time=0.2) and its CPU-time ratios, of
 # the medians and of the minima, for the record: a loaded machine moves them, and they are higher than the
-# instruction ratios (the chain's loops run as AVX2 clones, the body's 6x6 algebra as scalar code).
+# instruction ratios (the chain's loops run as AVX2 clones, the body's 6x6 algebra as scalar code), and the
+# coupling's calls alone in one sub-step (BM_VehicleCouplingSubStep) beside one whole body step.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/callgrind_bench.sh"
 segments="${SEGMENTS:-100}"
@@ -45,7 +46,7 @@ PYTHON
 if [ "${WALL:-0}" = 1 ]; then
   # Pinned to one core where taskset exists (the benchmark is single-threaded; a migration costs it caches).
   pin=(); command -v taskset >/dev/null && pin=(taskset -c 0)
-  "${pin[@]}" "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$" \
+  "${pin[@]}" "$BENCH" --benchmark_filter="^BM_StepDirectDynamicVehicle/$segments/|^BM_VehicleBodyStep\$|^BM_VehicleCouplingSubStep\$" \
     --benchmark_min_time=0.2 --benchmark_repetitions="${REPETITIONS:-15}" --benchmark_enable_random_interleaving=true \
     --benchmark_format=json >"$work/wall.json" 2>/dev/null
   /usr/bin/python3 - "$work/wall.json" <<'PYTHON'
@@ -66,5 +67,7 @@ for name in sorted(k for k in times if k.endswith("/0")):
               "same path %.2f us; dynamic / pinned = %.3f, dynamic / same path = %.3f"
               % (name, label, n, k, d, p, d / k, d / p))
 print("BM_VehicleBodyStep: one body step %.3f us CPU (median of %d)" % (statistics.median(times["BM_VehicleBodyStep"]), n))
+print("BM_VehicleCouplingSubStep: the coupling's calls in one sub-step %.3f us CPU (median of %d)"
+      % (statistics.median(times["BM_VehicleCouplingSubStep"]), n))
 PYTHON
 fi
