@@ -235,6 +235,33 @@ TEST(Direct, TeleportAndFourteenMetresPerSecondStayBounded)
   EXPECT_LT(final_residual, 1.0);  // below the divergence limit, or re-laid
 }
 
+// A fine cable with bending at a sharp turn (docs/limitations.md): scenarios/spool_payout.yaml at 0.05 m and
+// 0.02 m segments, whose Newton at the dive's turn (t = 26.1-26.4 s) is still a whole segment length off after
+// the default 10 iterations. That is the divergence limit (kDivergenceLimit), where the tether re-lays the cable
+// at rest; `direct` goes on past its budget instead (DirectSolver::kRescueBudget) and brings the step back:
+// through the turn to 30 s, no sub-step ends at the limit, the cable is never re-laid, and the rescues are
+// counted (SolverEffort::rescued; at least one, or the turn was not met). Fails with kRescueBudget 0: the
+// cable is re-laid at t = 26.33 s.
+TEST(Direct, FineCableWithBendingComesBackFromADivergedTurn)
+{
+  for (const double segment : {0.05, 0.02})
+  {
+    Scenario scenario = shippedScenario("spool_payout");
+    scenario.params.segment_length = segment;
+    PathDriver driver(scenario);
+    Tether sim = driver.makeSimulation();
+    ASSERT_TRUE(sim.params().bending);
+    ASSERT_TRUE(succeeded(driver.advanceTo(sim, 30.0)));
+    const SolverEffort effort = sim.solverEffort();
+    std::printf("[ measured ] %.2f m segments: %llu sub-steps rescued, at most %d iterations, residual at most %.3g\n",
+                segment, static_cast<unsigned long long>(effort.rescued), effort.max_iterations, effort.max_residual);
+    EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+    EXPECT_LT(effort.max_residual, kDivergenceLimit);
+    EXPECT_GE(effort.rescued, 1u) << "the turn no longer diverges within the budget: this test tests nothing";
+    EXPECT_LE(effort.max_iterations, (1 + DirectSolver::kRescueBudget) * scenario.params.iterations);
+  }
+}
+
 // A heavy clump at the end of a light chain: the last particle's mass is 1e4 times a segment's. The
 // solve is exact whatever the mass ratio: every segment at L (1 + T / EA) to 1e-6, and the top tension
 // carries the clump's weight (static, within 0.1%).

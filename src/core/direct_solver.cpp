@@ -47,6 +47,7 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   const std::size_t n = cable.size();
   dual_iterations_ = primal_iterations_ = active_set_rounds_ = 0;
   residual_ = 0.0;
+  rescued_ = false;
   if (n < f + 2)
   {
     workspace.tension_ratio = 0.0;
@@ -84,6 +85,20 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     primal_iterations_ = result.iterations;
     active_set_rounds_ += result.rounds;
     residual_ = result.residual;
+  }
+  if (residual_ >= kDivergenceLimit)  // (not NaN: a non-finite cable fails as it is)
+  {
+    // Diverged within the budget: a constraint still violated by a whole segment length, which the tether would
+    // answer by re-laying the cable at rest. Newton with its line search brings such a step back when given
+    // more iterations (a sharp turn of a fine cable with bending, docs/limitations.md), so it goes on, on the
+    // primal path from where it stopped, for up to kRescueBudget times the budget more; counted, and re-laid
+    // after all if that is not enough.
+    rescued_ = true;
+    const PrimalNewton::Result more =
+        methods_->primal.solve(cable, lam, tolerance, kRescueBudget * std::max(settings.iterations, 1));
+    primal_iterations_ += more.iterations;
+    active_set_rounds_ += more.rounds;
+    residual_ = more.residual;
   }
   workspace.end(cable, lam);
 }

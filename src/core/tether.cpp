@@ -17,8 +17,8 @@ namespace rov_tether
 namespace
 {
 
-/// A segment strain beyond this is a blow-up (a real cable breaks long before) [-].
-constexpr double kDivergenceStrain = 1.0;
+/// A segment strain or residual beyond this is a blow-up (a real cable breaks long before) [-].
+constexpr double kDivergenceStrain = kDivergenceLimit;
 
 std::string joinErrors(const std::vector<std::string>& errors)
 {
@@ -481,8 +481,8 @@ void Tether::subStep(double h, double t)
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
-  effort_.add(solver_->lastIterations(), solver_->lastResidual());
-  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual());
+  effort_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
+  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceStrain))
   {
@@ -504,8 +504,9 @@ void Tether::subStep(double h, double t)
   }
 }
 
-void SolverEffort::add(int sub_step_iterations, double residual)
+void SolverEffort::add(int sub_step_iterations, double residual, bool rescue)
 {
+  rescued += rescue ? 1 : 0;
   if (sub_step_iterations >= 0)
   {
     ++substeps;

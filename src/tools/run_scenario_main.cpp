@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/direct_solver.hpp"
 #include "rov_tether/scenario/camera_dataset.hpp"
 #include "rov_tether/scenario/scenario_runner.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
@@ -160,6 +161,14 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
     std::printf(
         "newton          %.2f iterations per sub-step, at most %d (of %d); residual at most %.3g of a segment\n",
         s.solver.meanIterations(), s.solver.max_iterations, p.iterations, s.solver.max_residual);
+    if (s.solver.rescued > 0)
+    {
+      std::printf(
+          "                %llu sub-step%s diverged within the %d iterations and went on for up to %dx "
+          "as many more\n",
+          static_cast<unsigned long long>(s.solver.rescued), s.solver.rescued == 1 ? " had" : "s had", p.iterations,
+          rov_tether::DirectSolver::kRescueBudget);
+    }
   }
   if (s.jumps > 0)
   {

@@ -68,6 +68,11 @@ struct Multipliers
  * step, so tension is read after the step the same way whatever the method (tension.hpp). Methods: the
  * paper's pbd (red-black or sequential), xpbd (compliant), lumped_mass (explicit springs); see makeSolver.
  */
+/// A constraint residual or a segment strain of a whole segment length [-]: the solve has diverged (a chain folded
+/// by a teleport or a violent pull; a real cable breaks long before). A sub-step that ends beyond it fails and the
+/// cable is re-laid (Tether); `direct` first iterates past its budget to bring it back (DirectSolver::project).
+inline constexpr double kDivergenceLimit = 1.0;
+
 class ConstraintSolver
 {
  public:
@@ -101,6 +106,9 @@ class ConstraintSolver
   virtual double lastResidual() const { return std::numeric_limits<double>::quiet_NaN(); }
   /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
   virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
+  /// Whether the last solve() went past its iterations to bring back a diverged solve (direct), counted in
+  /// SolverEffort::rescued.
+  virtual bool lastRescued() const { return false; }
   const Multipliers& multipliers() const { return multipliers_; }
   /// For the tether: sized with the cable, cleared when the cable is re-laid or a particle is released.
   Multipliers& multipliers() { return multipliers_; }

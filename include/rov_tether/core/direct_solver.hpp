@@ -68,6 +68,11 @@ class DirectSolver : public ConstraintSolver
   int lastActiveSetRounds() const { return active_set_rounds_; }
   /// Largest relative residual when the last solve stopped [-].
   double lastResidual() const override { return residual_; }
+  /// The last sub-step's Newton had diverged after `iterations` (a residual of kDivergenceLimit or more) and went
+  /// on for up to kRescueBudget times `iterations` more (project()); its iterations count them.
+  bool lastRescued() const override { return rescued_; }
+  /// A diverged sub-step's extra iterations, in multiples of `iterations`.
+  static constexpr int kRescueBudget = 2;
   bool takesDrum() const override { return true; }
   void forget() override;
 
@@ -94,6 +99,7 @@ class DirectSolver : public ConstraintSolver
   int primal_iterations_ = 0;
   int active_set_rounds_ = 0;
   double residual_ = 0.0;
+  bool rescued_ = false;
   std::unique_ptr<Methods> methods_;
 };
 

@@ -32,14 +32,18 @@ struct SolverEffort
   std::uint64_t iterations = 0;  ///< Their iterations, summed.
   int max_iterations = -1;       ///< The most one took; -1: none reported.
   double max_residual = 0.0;     ///< The largest relative residual one stopped at [-].
+  /// Sub-steps whose solve had diverged within `iterations` and went on past them
+  /// (ConstraintSolver::lastRescued).
+  std::uint64_t rescued = 0;
   /// Mean iterations per sub-step; NaN when none reported.
   double meanIterations() const
   {
     return substeps > 0 ? static_cast<double>(iterations) / static_cast<double>(substeps)
                         : std::numeric_limits<double>::quiet_NaN();
   }
-  /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none).
-  void add(int iterations, double residual);
+  /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none), and whether it
+  /// was `rescued`.
+  void add(int iterations, double residual, bool rescued = false);
 };
 
 /**
