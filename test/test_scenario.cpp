@@ -487,7 +487,8 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
 // The run's Newton effort (issue 24): by definition the sum, the largest and the worst residual of what the
 // solver reported after each sub-step. A direct tether stepped by hand, reading solverIterations() and
 // solverResidual() after every step (one sub-step each: no contact), gives exactly what solverEffort() summed;
-// each sub-step takes at least one iteration and at most `iterations`. The runner's summary carries it and
+// each sub-step takes at least one iteration and at most `iterations` (none diverges here, so none is rescued past
+// them: SolverEffort::rescued 0). The runner's summary carries it and
 // prints its "newton" line for direct, and neither for pbd (which reports no iterations).
 TEST(Runner, ReportsTheNewtonEffortTheSolverTook)
 {
@@ -514,6 +515,7 @@ TEST(Runner, ReportsTheNewtonEffortTheSolverTook)
   EXPECT_EQ(effort.max_residual, worst);
   EXPECT_GE(effort.meanIterations(), 1.0);
   EXPECT_LE(effort.max_iterations, scenario.params.iterations);
+  EXPECT_EQ(effort.rescued, 0u);
 
   const std::string dir = temporaryDirectory("newton");
   RunSummary summary;

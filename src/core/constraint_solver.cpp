@@ -44,6 +44,8 @@ void ConstraintSolver::solve(Cable& cable, const SolverSettings& settings, const
                              std::size_t free_end)
 {
   const std::size_t f = cable.first;
+  rescued_ = false;
+  rescue_strain_ = 0.0;
   bool passes = false;
   for (Contact* contact : contacts)
   {

@@ -3,6 +3,7 @@
 #include "rov_tether/core/direct_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "direct_dual.hpp"
 #include "direct_end_stiffness.hpp"
@@ -21,6 +22,18 @@ namespace
 constexpr double kDualTensionRatio = 0.25;
 /// Dual iterations before the primal takes over (the dual converges in 1-3 where it should).
 constexpr int kMaxDualIterations = 10;
+
+/// The largest strain |x_k+1 - x_k| / L_k - 1 of the deployed segments [-].
+double largestStrain(const Cable& cable)
+{
+  double largest = 0.0;
+  for (std::size_t k = cable.first; k + 1 < cable.size(); ++k)
+  {
+    const double dx = cable.x[k + 1] - cable.x[k], dy = cable.y[k + 1] - cable.y[k], dz = cable.z[k + 1] - cable.z[k];
+    largest = std::max(largest, std::sqrt(dx * dx + dy * dy + dz * dz) / cable.rest[k] - 1.0);
+  }
+  return largest;
+}
 
 }  // namespace
 
@@ -47,7 +60,6 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
   const std::size_t n = cable.size();
   dual_iterations_ = primal_iterations_ = active_set_rounds_ = 0;
   residual_ = 0.0;
-  rescued_ = false;
   if (n < f + 2)
   {
     workspace.tension_ratio = 0.0;
@@ -86,19 +98,22 @@ void DirectSolver::project(Cable& cable, Multipliers& lambda, const SolverSettin
     active_set_rounds_ += result.rounds;
     residual_ = result.residual;
   }
-  if (residual_ >= kDivergenceLimit)  // (not NaN: a non-finite cable fails as it is)
+  // Diverged within the budget: a constraint still violated by a whole segment length, which the tether would
+  // answer by re-laying the cable at rest. Newton with its line search brings such a step back when given more
+  // iterations (a sharp turn of a fine cable with bending, docs/limitations.md), so it goes on, on the primal
+  // path from the positions and multipliers it reached, for up to kRescueBudget times the budget more (at most
+  // kMaxRescueIterations); counted, and re-laid after all if that is not enough or if it ends with a segment
+  // stretched by kDivergenceLimit or more (a blow-up the residual alone would not show; ConstraintSolver::
+  // lastRescueStrain). Not for an infinite residual (a system that is not definite: more iterations would
+  // meet it again) nor NaN (a non-finite cable).
+  if (std::isfinite(residual_) && residual_ >= kDivergenceLimit)
   {
-    // Diverged within the budget: a constraint still violated by a whole segment length, which the tether would
-    // answer by re-laying the cable at rest. Newton with its line search brings such a step back when given
-    // more iterations (a sharp turn of a fine cable with bending, docs/limitations.md), so it goes on, on the
-    // primal path from where it stopped, for up to kRescueBudget times the budget more; counted, and re-laid
-    // after all if that is not enough.
-    rescued_ = true;
-    const PrimalNewton::Result more =
-        methods_->primal.solve(cable, lam, tolerance, kRescueBudget * std::max(settings.iterations, 1));
+    const int budget = std::min(kRescueBudget * std::max(settings.iterations, 1), kMaxRescueIterations);
+    const PrimalNewton::Result more = methods_->primal.solve(cable, lam, tolerance, budget);
     primal_iterations_ += more.iterations;
     active_set_rounds_ += more.rounds;
     residual_ = more.residual;
+    noteRescue(largestStrain(cable));
   }
   workspace.end(cable, lam);
 }

@@ -123,7 +123,8 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"solver", "string", "-", kNone, kNone, kClosed, kClosed, "", "method (see The model)", kLive},
       {"substeps", "int", "-", 1, 10000, kClosed, kClosed, "", "sub-steps per `time_step`", kLive},
       {"iterations", "int or `auto`", "-", 1, 1000, kClosed, kClosed, "",
-       "constraint sweeps per sub-step (`direct`: the most Newton iterations); `auto`: from `stretch_tolerance` "
+       "constraint sweeps per sub-step (`direct`: the most Newton iterations, but for a diverged sub-step's rescue); "
+       "`auto`: from `stretch_tolerance` "
        "(`direct`: 10; `lumped_mass`: chooses substeps)",
        kLive},
       {"over_relaxation", "double", "-", 0.5, 1.95, kClosed, kClosed, "",

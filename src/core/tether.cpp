@@ -492,11 +492,21 @@ void Tether::subStep(double h, double t)
         << " s = segment_length / sqrt(EA / mu) (shorter with axial_damping)";
     fail(why.str());
   }
+  if (solver_->lastRescued() && !(solver_->lastRescueStrain() < kDivergenceStrain))
+  {
+    std::ostringstream why;
+    why << "direct solver diverged: after " << solver_->lastIterations()
+        << " iterations (past `iterations`, to bring the step back) a segment ends at strain "
+        << solver_->lastRescueStrain() << " (100% or more: a blow-up)";
+    fail(why.str());
+    return;
+  }
   const double residual = solver_->lastResidual();
   if (!std::isnan(residual) && !(residual < kDivergenceStrain))
   {
-    // A constraint still violated by its own length after `iterations` Newton steps: the chain has
-    // folded (a teleport, a violent pull) and would not unfold by itself.
+    // A constraint still violated by its own length after `iterations` Newton steps and the rescue's more
+    // (DirectSolver::kRescueBudget): the chain has folded (a teleport, a violent pull) and would not unfold by
+    // itself.
     std::ostringstream why;
     why << "direct solver did not converge (residual " << residual << " of a segment's length after "
         << solver_->lastIterations() << " iterations)";

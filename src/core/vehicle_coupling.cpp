@@ -1,6 +1,7 @@
 #include "rov_tether/core/vehicle_coupling.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <limits>
 
 namespace rov_tether
 {
@@ -91,7 +92,7 @@ double VehicleCoupling::inverseMass(const Position& neighbour, const Position& p
   const VehicleStepStart& start = started_ && start_.dt == h ? start_ : fallback;  // predict()'s factorisation
   const Position along = predicted - neighbour;
   const double length_squared = along.squaredNorm();
-  if (!(length_squared > 0.0))
+  if (!(length_squared >= std::numeric_limits<double>::min()))  // (not subnormal: 1 / |a|^2 stays finite)
   {
     return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(pointMobility(start), Eigen::EigenvaluesOnly)
         .eigenvalues()

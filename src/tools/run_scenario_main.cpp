@@ -164,10 +164,10 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
     if (s.solver.rescued > 0)
     {
       std::printf(
-          "                %llu sub-step%s diverged within the %d iterations and went on for up to %dx "
-          "as many more\n",
+          "                %llu sub-step%s diverged within the %d iterations and went on past them (rescue: up "
+          "to %dx as many more, at most %d)\n",
           static_cast<unsigned long long>(s.solver.rescued), s.solver.rescued == 1 ? " had" : "s had", p.iterations,
-          rov_tether::DirectSolver::kRescueBudget);
+          rov_tether::DirectSolver::kRescueBudget, rov_tether::DirectSolver::kMaxRescueIterations);
     }
   }
   if (s.jumps > 0)

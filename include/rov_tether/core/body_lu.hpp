@@ -62,8 +62,7 @@ class BodyLu
   /// x with A x = b, for each column of b. Always inlined: GCC left it out of line, a call through the shared
   /// library's PLT for each of a dynamic vehicle end's solves (docs/benchmarks.md, "A dynamic vehicle end").
   template <int Cols>
-  inline __attribute__((always_inline)) Eigen::Matrix<double, 6, Cols> solve(
-      const Eigen::Matrix<double, 6, Cols>& b) const
+  [[gnu::always_inline]] Eigen::Matrix<double, 6, Cols> solve(const Eigen::Matrix<double, 6, Cols>& b) const
   {
     if (diagonal_)
     {

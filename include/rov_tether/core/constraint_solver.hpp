@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -60,6 +61,11 @@ struct Multipliers
   }
 };
 
+/// A constraint residual or a segment strain of a whole segment length [-]: the solve has diverged (a chain folded
+/// by a teleport or a violent pull; a real cable breaks long before). A sub-step that ends beyond it fails and the
+/// cable is re-laid (Tether); `direct` first iterates past its budget to bring it back (DirectSolver::project).
+inline constexpr double kDivergenceLimit = 1.0;
+
 /**
  * Projects the distance and bending constraints of the deployed particles [first, size()), and the
  * contacts, once per step.
@@ -68,11 +74,6 @@ struct Multipliers
  * step, so tension is read after the step the same way whatever the method (tension.hpp). Methods: the
  * paper's pbd (red-black or sequential), xpbd (compliant), lumped_mass (explicit springs); see makeSolver.
  */
-/// A constraint residual or a segment strain of a whole segment length [-]: the solve has diverged (a chain folded
-/// by a teleport or a violent pull; a real cable breaks long before). A sub-step that ends beyond it fails and the
-/// cable is re-laid (Tether); `direct` first iterates past its budget to bring it back (DirectSolver::project).
-inline constexpr double kDivergenceLimit = 1.0;
-
 class ConstraintSolver
 {
  public:
@@ -106,9 +107,12 @@ class ConstraintSolver
   virtual double lastResidual() const { return std::numeric_limits<double>::quiet_NaN(); }
   /// Largest segment strain seen by the last solve() when the method measures it (lumped_mass), else NaN.
   virtual double lastMaxStrain() const { return std::numeric_limits<double>::quiet_NaN(); }
-  /// Whether the last solve() went past its iterations to bring back a diverged solve (direct), counted in
-  /// SolverEffort::rescued.
-  virtual bool lastRescued() const { return false; }
+  /// Whether a projection of the last solve() (any of its friction passes) went past its iterations to bring
+  /// back a diverged solve (direct), counted in SolverEffort::rescued.
+  bool lastRescued() const { return rescued_; }
+  /// The largest segment strain such a projection ended with [-] (0 without one): kDivergenceLimit or more is
+  /// a blow-up, which the tether answers as one (re-laid, counted, reported).
+  double lastRescueStrain() const { return rescue_strain_; }
   const Multipliers& multipliers() const { return multipliers_; }
   /// For the tether: sized with the cable, cleared when the cable is re-laid or a particle is released.
   Multipliers& multipliers() { return multipliers_; }
@@ -116,8 +120,16 @@ class ConstraintSolver
  protected:
   /// The method's constraint projection; resets and accumulates `lambda`.
   virtual void project(Cable& cable, Multipliers& lambda, const SolverSettings& settings) = 0;
+  /// For project(): it went past its iterations to bring back a diverged solve, ending at segment strain `strain`.
+  void noteRescue(double strain)
+  {
+    rescued_ = true;
+    rescue_strain_ = std::max(rescue_strain_, strain);
+  }
 
  private:
+  bool rescued_ = false;        ///< lastRescued(), reset by solve()
+  double rescue_strain_ = 0.0;  ///< lastRescueStrain(), reset by solve()
   Multipliers multipliers_;
   std::vector<double> predicted_x_, predicted_y_, predicted_z_;  ///< The step's prediction, for the passes.
 };

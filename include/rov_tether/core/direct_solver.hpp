@@ -68,11 +68,11 @@ class DirectSolver : public ConstraintSolver
   int lastActiveSetRounds() const { return active_set_rounds_; }
   /// Largest relative residual when the last solve stopped [-].
   double lastResidual() const override { return residual_; }
-  /// The last sub-step's Newton had diverged after `iterations` (a residual of kDivergenceLimit or more) and went
-  /// on for up to kRescueBudget times `iterations` more (project()); its iterations count them.
-  bool lastRescued() const override { return rescued_; }
-  /// A diverged sub-step's extra iterations, in multiples of `iterations`.
+  /// A sub-step whose Newton has diverged after `iterations` (a residual of kDivergenceLimit or more) goes on for
+  /// up to kRescueBudget times `iterations` more, at most kMaxRescueIterations (project(); lastRescued(), and
+  /// lastIterations() counts them).
   static constexpr int kRescueBudget = 2;
+  static constexpr int kMaxRescueIterations = 100;
   bool takesDrum() const override { return true; }
   void forget() override;
 
@@ -99,7 +99,6 @@ class DirectSolver : public ConstraintSolver
   int primal_iterations_ = 0;
   int active_set_rounds_ = 0;
   double residual_ = 0.0;
-  bool rescued_ = false;
   std::unique_ptr<Methods> methods_;
 };
 

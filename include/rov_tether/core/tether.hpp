@@ -43,7 +43,7 @@ struct SolverEffort
   }
   /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none), and whether it
   /// was `rescued`.
-  void add(int iterations, double residual, bool rescued = false);
+  void add(int iterations, double residual, bool rescue = false);
 };
 
 /**
