@@ -114,6 +114,9 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"params: {iterations: 3, iterations: 700}\nspool: [0, 0, 0]\nduration: 1", "duplicate key 'params.iterations'"},
       {"spool: [0, 0, 0]\nduration: 1\ntethers:\n  - {name: a, spool: [0, 0, 0], name: b}",
        "duplicate key 'tethers[0].name'"},
+      // An alias inside its own anchor's node: a cycle every walk would follow for ever (fuzz_scenario's stack
+      // overflow; corpus crash-alias-cycle).
+      {"params: &p\n  noise: 0.001\n  more: *p\nspool: [0, 0, 0]\nduration: 1", "levels deep: an alias that refers"},
       // A cable's sections and attachments (issue 22): each problem named by its place.
       {"params: {sections: 3}\nspool: [0, 0, 0]\nduration: 1", "params.sections: expected a list of maps"},
       {"params: {sections: [{length: x}]}\nspool: [0, 0, 0]\nduration: 1",

@@ -369,15 +369,26 @@ std::string parseFile(const std::string& path, Parse parse)
   return parse_error.empty() ? "" : path + ": " + parse_error;
 }
 
+/// Deeper nesting than any scenario has (a `tethers` entry's sections are 4 levels deep) is refused: an alias
+/// inside the node its anchor names (`params: &p {a: *p}`) makes yaml-cpp's node graph a cycle, which every walk
+/// of it would follow for ever (fuzz_scenario: a stack overflow here).
+constexpr int kMaxYamlDepth = 64;
+
 /// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
-/// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)".
-std::string findDuplicateKey(const YAML::Node& node, const std::string& path)
+/// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)", or, nested deeper
+/// than kMaxYamlDepth, a message saying so.
+std::string findDuplicateKey(const YAML::Node& node, const std::string& path, int depth = 0)
 {
+  if (depth > kMaxYamlDepth)
+  {
+    return "'" + path.substr(0, 200) + "...' is nested more than " + std::to_string(kMaxYamlDepth) +
+           " levels deep: an alias that refers to its own anchor's node?";
+  }
   if (node.IsSequence())
   {
     for (std::size_t i = 0; i < node.size(); ++i)
     {
-      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]");
+      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]", depth + 1);
       if (!error.empty())
       {
         return error;
@@ -403,7 +414,7 @@ std::string findDuplicateKey(const YAML::Node& node, const std::string& path)
       }
     }
     seen.emplace_back(key, line);
-    const std::string error = findDuplicateKey(entry.second, name);
+    const std::string error = findDuplicateKey(entry.second, name, depth + 1);
     if (!error.empty())
     {
       return error;
