@@ -187,7 +187,7 @@ TEST(Direct, HangingChainPeriod)
 // Abuse: the vehicle teleports 5 m sideways in one step (not treated as a jump), then runs away at 14 m/s
 // with the winch locked, to 1.3 m beyond the cable's 10 m. Newton may not converge in such steps, and says
 // so (a residual above the tolerance); where a constraint stays violated by a whole segment length (the
-// divergence limit the other methods use, kDivergenceStrain in tether.cpp) the cable is re-laid at rest
+// divergence limit the other methods use, kDivergenceLimit in constraint_solver.hpp) the cable is re-laid at rest
 // and the failure is counted and described. The cable stays finite and within 2 L of the spool, and a
 // second after the pull it is exact again (a residual below the divergence limit; measured 4e-12).
 TEST(Direct, TeleportAndFourteenMetresPerSecondStayBounded)

@@ -29,8 +29,7 @@ double largestStrain(const Cable& cable)
   double largest = 0.0;
   for (std::size_t k = cable.first; k + 1 < cable.size(); ++k)
   {
-    const double dx = cable.x[k + 1] - cable.x[k], dy = cable.y[k + 1] - cable.y[k], dz = cable.z[k + 1] - cable.z[k];
-    largest = std::max(largest, std::sqrt(dx * dx + dy * dy + dz * dz) / cable.rest[k] - 1.0);
+    largest = std::max(largest, cable.strain(k));
   }
   return largest;
 }

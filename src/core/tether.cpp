@@ -17,9 +17,6 @@ namespace rov_tether
 namespace
 {
 
-/// A segment strain or residual beyond this is a blow-up (a real cable breaks long before) [-].
-constexpr double kDivergenceStrain = kDivergenceLimit;
-
 std::string joinErrors(const std::vector<std::string>& errors)
 {
   std::ostringstream out;
@@ -484,7 +481,7 @@ void Tether::subStep(double h, double t)
   effort_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
   effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
   const double strain = solver_->lastMaxStrain();
-  if (!std::isnan(strain) && !(strain < kDivergenceStrain))
+  if (!std::isnan(strain) && !(strain < kDivergenceLimit))
   {
     std::ostringstream why;
     why << "lumped_mass diverged (segment strain " << strain << "): the sub-step " << h
@@ -492,7 +489,7 @@ void Tether::subStep(double h, double t)
         << " s = segment_length / sqrt(EA / mu) (shorter with axial_damping)";
     fail(why.str());
   }
-  if (solver_->lastRescued() && !(solver_->lastRescueStrain() < kDivergenceStrain))
+  if (solver_->lastRescued() && !(solver_->lastRescueStrain() < kDivergenceLimit))
   {
     std::ostringstream why;
     why << "direct solver diverged: after " << solver_->lastIterations()
@@ -502,7 +499,7 @@ void Tether::subStep(double h, double t)
     return;
   }
   const double residual = solver_->lastResidual();
-  if (!std::isnan(residual) && !(residual < kDivergenceStrain))
+  if (!std::isnan(residual) && !(residual < kDivergenceLimit))
   {
     // A constraint still violated by its own length after `iterations` Newton steps and the rescue's more
     // (DirectSolver::kRescueBudget): the chain has folded (a teleport, a violent pull) and would not unfold by
