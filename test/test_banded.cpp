@@ -114,9 +114,9 @@ TEST(Banded, TridiagonalSweepRefusesIndefiniteMatrices)
   }
 }
 
-/// A random SPD matrix of 3x3 blocks with block bandwidth 1 or 2: B^T B plus a multiple of the identity,
-/// B random block-banded, so the product has the bandwidth 2 x that of B... here built directly: symmetric
-/// random blocks, then a diagonal that dominates the row sums.
+/// A random SPD matrix of 3x3 blocks with block bandwidth 1 or 2, built directly: symmetric random blocks,
+/// second blocks random multiples of the identity (as the bending joints make them), then a diagonal that
+/// dominates the row sums.
 struct BlockSystem
 {
   std::vector<double> diag, first, second, b;
@@ -126,11 +126,14 @@ struct BlockSystem
   {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    diag.assign(9 * n, 0.0), first.assign(9 * n, 0.0), second.assign(9 * n, 0.0), b.assign(3 * n, 0.0);
+    diag.assign(9 * n, 0.0), first.assign(9 * n, 0.0), second.assign(n, 0.0), b.assign(3 * n, 0.0);
     for (std::size_t i = 0; i < 9 * n; ++i)
     {
       first[i] = u(rng);
-      second[i] = two ? 0.5 * u(rng) : 0.0;
+    }
+    for (std::size_t l = 0; l < n; ++l)
+    {
+      second[l] = two ? 0.5 * u(rng) : 0.0;
     }
     for (std::size_t l = 0; l < n; ++l)
     {
@@ -169,7 +172,7 @@ struct BlockSystem
     }
     if (two && hi == lo + 2 && hi < n)
     {
-      return second[9 * lo + 3 * a + k];
+      return a == k ? second[lo] : 0.0;
     }
     return 0.0;
   }

@@ -369,6 +369,31 @@ inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, doubl
   }
 }
 
+/// Y2 = c L^-T for the unit-lower L of `row` (solveTransposed of c I, its zeros left out: the same
+/// roundings), upper triangular: y[0], y[1], y[2], y[4], y[5], y[8] are set, the rest is 0.
+inline void scaledTransposedInverse(double c, const BlockRow& row, double* y)
+{
+  const double y01 = -(row.l10 * c);
+  y[0] = c, y[1] = y01, y[2] = -(row.l20 * c) - row.l21 * y01;
+  y[3] = 0.0, y[4] = c, y[5] = -(row.l21 * c);
+  y[6] = 0.0, y[7] = 0.0, y[8] = c;
+}
+
+/// schurUpdate for the upper-triangular y of scaledTransposedInverse (its zero products left out).
+inline void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, double* below)
+{
+  const double* inv = pivot.inv;
+  below[0] = y[0] * inv[0], below[1] = y[1] * inv[1], below[2] = y[2] * inv[2];
+  below[3] = 0.0, below[4] = y[4] * inv[1], below[5] = y[5] * inv[2];
+  below[6] = 0.0, below[7] = 0.0, below[8] = y[8] * inv[2];
+  s[0] -= below[0] * y[0] + below[1] * y[1] + below[2] * y[2];
+  s[3] -= below[4] * y[1] + below[5] * y[2];
+  s[4] -= below[4] * y[4] + below[5] * y[5];
+  s[6] -= below[8] * y[2];
+  s[7] -= below[8] * y[5];
+  s[8] -= below[8] * y[8];
+}
+
 /// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
 template <bool kSecond>
 bool factorBlocks(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
@@ -380,6 +405,7 @@ bool factorBlocks(const double* __restrict diag, const double* __restrict first,
   //   Y2 = A(l, l-2) L_l-2^-T,                       L(l, l-2) = Y2 D_l-2^-1,
   //   Y1 = (A(l, l-1) - Y2 L(l-1, l-2)^T) L_l-1^-T,  L(l, l-1) = Y1 D_l-1^-1,
   //   S_l = A(l, l) - Y1 D_l-1^-1 Y1^T - Y2 D_l-2^-1 Y2^T = L_l D_l L_l^T.
+  // A(l, l-2) = c I (second[l - 2] = c), so Y2 is c L_l-2^-T: upper triangular, its zeros skipped.
   auto* rows = reinterpret_cast<BlockRow*>(work);
   for (std::size_t l = 0; l < n; ++l)
   {
@@ -393,14 +419,20 @@ bool factorBlocks(const double* __restrict diag, const double* __restrict first,
     if (kSecond && l >= 2)
     {
       double y2[9];
-      solveTransposed(second + 9 * (l - 2), rows[l - 2], y2);
-      schurUpdate(y2, rows[l - 2], s, rows[l].below2);
+      scaledTransposedInverse(second[l - 2], rows[l - 2], y2);
+      schurUpdateUpper(y2, rows[l - 2], s, rows[l].below2);
       const double* prev = rows[l - 1].below1;  // L(l-1, l-2)
       for (std::size_t r = 0; r < 3; ++r)
       {
         for (std::size_t c = 0; c < 3; ++c)
         {
-          a1[3 * r + c] -= y2[3 * r] * prev[3 * c] + y2[3 * r + 1] * prev[3 * c + 1] + y2[3 * r + 2] * prev[3 * c + 2];
+          // y2's row r is zero left of column r.
+          double sum = y2[4 * r] * prev[3 * c + r];
+          for (std::size_t q = r + 1; q < 3; ++q)
+          {
+            sum += y2[3 * r + q] * prev[3 * c + q];
+          }
+          a1[3 * r + c] -= sum;
         }
       }
     }
@@ -535,7 +567,9 @@ bool solveBlockBandedLapack(const double* diag, const double* first, const doubl
     }
     if (second != nullptr && l + 2 < n)
     {
-      put(l + 2, l, second + 9 * l);
+      const double c = second[l];
+      const double block[9] = {c, 0, 0, 0, c, 0, 0, 0, c};
+      put(l + 2, l, block);
     }
   }
   return solveBandedLapack(band, kd, b, rows);

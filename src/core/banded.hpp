@@ -25,8 +25,10 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  * SPD systems of 3x3 blocks with block bandwidth 1 (block tridiagonal: a cable's positions) or 2 (block
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
  * pivots in a chain. Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for l < n, first[l] =
- * A(l + 1, l) for l < n - 1, second[l] = A(l + 2, l) for l < n - 2 (nullptr for bandwidth 1). b holds 3 n
- * values and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite.
+ * A(l + 1, l) for l < n - 1. The second blocks are multiples of the identity (the direct solver's bending
+ * joints, whose curvature is linear in the positions and the same on each axis): second[l] is the one number
+ * c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values and is overwritten with
+ * the solution; `work` needs 36 n doubles. False when not positive definite.
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work);

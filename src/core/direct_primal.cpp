@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "banded.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {
@@ -26,23 +27,22 @@ constexpr int kMaxModelRounds = 30;
 /// particles as [1 -1; -1 1], eigenvalue 2).
 constexpr double kCompressedShare = 0.125;
 
-/// Joint curvature C_b = a x_p - (a + b) x_p+1 + b x_p+2 at the joint after particle p (each axis; a and b
-/// the inverse rest lengths of its two segments, given), and its weights g = (a, -(a + b), b): linear in the
-/// positions. The energy, its gradient and Hessian, and the force residual all read it from here.
-struct JointCurvature
+/// The curvature C_j = a x_j - (a + b) x_j+1 + b x_j+2 of each of `joints` joints (each axis; a and b the
+/// inverse rest lengths of its two segments): linear in the positions. The energy, its gradient and
+/// Hessian, and the force residual all read it from here.
+ROV_TETHER_TARGET_CLONES void jointCurvatures(const double* __restrict x, const double* __restrict y,
+                                              const double* __restrict z, const double* __restrict inv_rest,
+                                              double* __restrict cx, double* __restrict cy, double* __restrict cz,
+                                              std::size_t joints)
 {
-  double g[3];
-  double c[3];
-};
-
-JointCurvature jointCurvature(const Cable& cable, std::size_t p, const double* inv_rest)
-{
-  const double a = inv_rest[0];  // 1 / L of the segment before the joint (DirectWorkspace::inv_rest)
-  const double b = inv_rest[1];
-  return {{a, -(a + b), b},
-          {a * cable.x[p] - (a + b) * cable.x[p + 1] + b * cable.x[p + 2],
-           a * cable.y[p] - (a + b) * cable.y[p + 1] + b * cable.y[p + 2],
-           a * cable.z[p] - (a + b) * cable.z[p + 1] + b * cable.z[p + 2]}};
+  for (std::size_t j = 0; j < joints; ++j)
+  {
+    const double a = inv_rest[j];
+    const double b = inv_rest[j + 1];
+    cx[j] = a * x[j] - (a + b) * x[j + 1] + b * x[j + 2];
+    cy[j] = a * y[j] - (a + b) * y[j + 1] + b * y[j + 2];
+    cz[j] = a * z[j] - (a + b) * z[j + 1] + b * z[j + 2];
+  }
 }
 
 /// Adds v times the 3x3 block `b` (row-major) to `target`.
@@ -62,11 +62,20 @@ void PrimalNewton::reserve(std::size_t n)
   {
     return;
   }
-  for (auto* v : {&lambda_, &lambda_step_, &middle_})
+  for (auto* v : {&lambda_, &lambda_step_, &middle_, &hessian_second_, &mass_, &mass_less_, &stiffness_})
   {
     v->assign(n, 0.0);
   }
-  for (auto* v : {&hessian_diag_, &hessian_first_, &hessian_second_})
+  for (auto* v : {&curve_x_, &curve_y_, &curve_z_})
+  {
+    v->assign(n + 4, 0.0);  // offset by 2, zeros on either side
+  }
+  for (auto* v : {&bend_diag_, &bend_weight_, &bend_inv_})
+  {
+    v->assign(3 * n, 0.0);
+  }
+  bend_first_.assign(2 * n, 0.0);
+  for (auto* v : {&hessian_diag_, &hessian_first_})
   {
     v->assign(9 * n, 0.0);
   }
@@ -98,6 +107,8 @@ PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double to
 {
   const std::size_t m = ws_.m;
   std::copy(lambda, lambda + m, lambda_.begin());
+  prepare(cable);
+  energy_known_ = false;
   Result result;
   result.residual = std::numeric_limits<double>::infinity();
   model_unsettled_ = false;
@@ -122,6 +133,7 @@ bool PrimalNewton::solveHessian(const Cable& cable, const double* lambda, double
   const std::size_t m = ws_.m;
   const std::size_t rows = 3 * (m + 1);
   std::copy(lambda, lambda + m, lambda_.begin());
+  prepare(cable);
   assemble(cable);
   const double* second = ws_.bending ? hessian_second_.data() : nullptr;
   for (std::size_t column = 0; column < count; ++column)
@@ -162,12 +174,12 @@ double PrimalNewton::energy(const Cable& cable) const
       const double dx = cable.x[f + l] - ws_.xt[l];
       const double dy = cable.y[f + l] - ws_.yt[l];
       const double dz = cable.z[f + l] - ws_.zt[l];
-      kinetic += (dx * dx + dy * dy + dz * dz) / w;
+      kinetic += (dx * dx + dy * dy + dz * dz) * mass_[l];
       if (cable.anisotropic)
       {
         // M = m_across I + (m_along - m_across) t t^T.
         const double along = dx * cable.tx[f + l] + dy * cable.ty[f + l] + dz * cable.tz[f + l];
-        kinetic += (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * along * along;
+        kinetic += mass_less_[l] * along * along;
       }
     }
   }
@@ -184,9 +196,8 @@ double PrimalNewton::energy(const Cable& cable) const
   }
   for (std::size_t j = 0; ws_.bending && j + 1 < ws_.m; ++j)
   {
-    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
-    const double* cb = joint.c;
-    elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) / ws_.gamma[j];
+    const double cb[3] = {curve_x_[j + 2], curve_y_[j + 2], curve_z_[j + 2]};
+    elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) * ws_.inv_gamma[j];
   }
   return 0.5 * (kinetic + elastic) + drum;
 }
@@ -229,175 +240,247 @@ double PrimalNewton::middleEnergy(std::size_t k, double c) const
   return 0.5 * force * force / ws_.dashpot[k];
 }
 
-void PrimalNewton::assemble(const Cable& cable)
+void PrimalNewton::prepare(const Cable& cable)
 {
-  // The Hessian by 3x3 blocks of particles: diagonal (l, l), first below (l + 1, l), second below (l + 2, l,
-  // with bending). A pinned particle's row is the identity, and nothing couples to it.
-  const std::size_t blocks = ws_.m + 1;
-  std::fill(hessian_diag_.begin(), hessian_diag_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
-  std::fill(hessian_first_.begin(), hessian_first_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
-  std::fill(hessian_second_.begin(), hessian_second_.begin() + static_cast<std::ptrdiff_t>(9 * blocks), 0.0);
-  std::fill(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(3 * blocks), 0.0);
-  assembleMass(cable);
-  assembleSegments(cable);
-  if (ws_.bending)
-  {
-    assembleBending(cable);
-  }
-  const double* w = cable.inv_mass.data() + ws_.first;
-  for (std::size_t l = 0; l < blocks; ++l)
-  {
-    if (w[l] == 0.0)
-    {
-      grad_[3 * l] = grad_[3 * l + 1] = grad_[3 * l + 2] = 0.0;
-    }
-  }
-}
-
-[[gnu::always_inline]] inline void PrimalNewton::assembleMass(const Cable& cable)
-{
+  // Each particle's mass (0 pinned) and its extra along the cable (m_along - m_across, with added mass), and
+  // each segment's axial stiffness 1 / alpha: one division each a step, not one an iteration.
   const std::size_t f = ws_.first;
-  const double* w = cable.inv_mass.data() + f;
-  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (std::size_t l = 0; l <= ws_.m; ++l)
   {
-    if (w[l] == 0.0)
-    {
-      addTo(&hessian_diag_[9 * l], kIdentity);  // pinned
-      continue;
-    }
-    // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
-    const double mass = 1.0 / w[l];
-    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
-    if (!cable.anisotropic)
-    {
-      double* diagonal = &hessian_diag_[9 * l];  // m I: its three diagonals
-      diagonal[0] += mass, diagonal[4] += mass, diagonal[8] += mass;
-      grad_[3 * l] = mass * d[0], grad_[3 * l + 1] = mass * d[1], grad_[3 * l + 2] = mass * d[2];
-      continue;
-    }
-    double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
-    const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
-    const double less = 1.0 / cable.inv_mass_along[f + l] - mass;
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      for (std::size_t c = 0; c < 3; ++c)
-      {
-        block[3 * a + c] += less * t[a] * t[c];
-      }
-    }
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      grad_[3 * l + a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
-    }
-    addTo(&hessian_diag_[9 * l], block);
+    const double w = cable.inv_mass[f + l];
+    mass_[l] = w > 0.0 ? 1.0 / w : 0.0;
+    mass_less_[l] = w > 0.0 && cable.anisotropic ? 1.0 / cable.inv_mass_along[f + l] - mass_[l] : 0.0;
   }
-}
-
-[[gnu::always_inline]] inline void PrimalNewton::assembleSegments(const Cable& cable)
-{
-  const std::size_t f = ws_.first;
-  const double* w = cable.inv_mass.data() + f;
-  auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
-  // A particle's largest inverse mass (along the cable, where added mass does not act).
-  auto mobility = [&](std::size_t l) { return cable.anisotropic ? std::max(w[l], cable.inv_mass_along[f + l]) : w[l]; };
-  const double* model = ws_.on();
   for (std::size_t k = 0; k < ws_.m; ++k)
   {
-    // The segments of the model: all of a rod's; of a cable's, those the step stretches (solveModel); the
-    // spool segment on the drum's piece.
-    double lam = ws_.c[k] / ws_.alpha[k];
-    double axial = 1.0 / ws_.alpha[k];
-    if (k == 0 && ws_.drum != nullptr)
+    stiffness_[k] = 1.0 / ws_.alpha[k];
+  }
+  if (ws_.bending)
+  {
+    prepareBending(cable);
+  }
+  curvature(cable);
+}
+
+void PrimalNewton::curvature(const Cable& cable)
+{
+  if (ws_.bending)
+  {
+    jointCurvatures(cable.x.data() + ws_.first, cable.y.data() + ws_.first, cable.z.data() + ws_.first,
+                    ws_.inv_rest.data(), curve_x_.data() + 2, curve_y_.data() + 2, curve_z_.data() + 2, ws_.m - 1);
+  }
+}
+
+[[gnu::always_inline]] inline bool PrimalNewton::segmentTerm(const Cable& cable, std::size_t k, double* lam,
+                                                             double* block) const
+{
+  // The segments of the model: all of a rod's; of a cable's, those the step stretches (solveModel); the
+  // spool segment on the drum's piece.
+  const std::size_t f = ws_.first;
+  const double* w = cable.inv_mass.data() + f;
+  // A particle's largest inverse mass (along the cable, where added mass does not act).
+  auto mobility = [&](std::size_t l) { return cable.anisotropic ? std::max(w[l], cable.inv_mass_along[f + l]) : w[l]; };
+  *lam = ws_.c[k] / ws_.alpha[k];
+  double axial = stiffness_[k];
+  if (k == 0 && ws_.drum != nullptr)
+  {
+    // The spool segment's force is the drum's law, solved for in solveModel: here only its geometric
+    // stiffness.
+    *lam = 0.0;
+    axial = 0.0;
+  }
+  else if (inMiddle(k))
+  {
+    // The dashpot's middle piece of a slack segment: its force and slope (DirectWorkspace::begin).
+    *lam = ws_.middleForce(k, ws_.c[k]);
+    axial = ws_.dashpot[k];
+  }
+  else if (!(ws_.on()[k] > 0.0))
+  {
+    return false;
+  }
+  const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
+  // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
+  // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
+  // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
+  // the mass of either end (then each particle's two segments take at most half its mass off the
+  // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
+  // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
+  double geometric = ws_.len[k] > 0.0 ? lambda_[k] / ws_.len[k] : 0.0;
+  if (geometric < 0.0 && !(-geometric * std::max(mobility(k), mobility(k + 1)) <= kCompressedShare))
+  {
+    geometric = 0.0;
+  }
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
     {
-      // The spool segment's force is the drum's law, solved for in solveModel: here only its geometric
-      // stiffness.
-      lam = 0.0;
-      axial = 0.0;
+      block[3 * a + c] = (axial - geometric) * n[a] * n[c] + (a == c ? geometric : 0.0);
     }
-    else if (inMiddle(k))
+  }
+  return true;
+}
+
+void PrimalNewton::assemble(const Cable& cable)
+{
+  // The Hessian by 3x3 blocks of particles, a block row at a time: diagonal (l, l), first below (l + 1, l),
+  // second below (l + 2, l, with bending: a multiple of the identity). A pinned particle's row is the
+  // identity, and nothing couples to it. Each block is written whole (no clearing pass), its terms added in
+  // a fixed order: the mass, segment l - 1, segment l, then the bending joints l - 2, l - 1, l.
+  const std::size_t f = ws_.first;
+  const std::size_t m = ws_.m;
+  const double* w = cable.inv_mass.data() + f;
+  auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
+  double blocks[2][9];  // segments l - 1 and l (alternating), when in the model
+  double before_lam = 0.0;
+  bool before_on = false;
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    double* diagonal = &hessian_diag_[9 * l];
+    double* g = &grad_[3 * l];
+    double* here = blocks[l % 2];
+    const double* before = blocks[(l + 1) % 2];
+    double here_lam = 0.0;
+    const bool here_on = l < m && segmentTerm(cable, l, &here_lam, here);
+    if (pinned(l))
     {
-      // The dashpot's middle piece of a slack segment: its force and slope (DirectWorkspace::begin).
-      lam = ws_.middleForce(k, ws_.c[k]);
-      axial = ws_.dashpot[k];
+      static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+      std::copy(kIdentity, kIdentity + 9, diagonal);
+      g[0] = g[1] = g[2] = 0.0;
     }
-    else if (!(model[k] > 0.0))
+    else
     {
-      continue;
-    }
-    const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
-    // dC/dx_k = -n, dC/dx_k+1 = +n: the gradient gets J^T lambda.
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      grad_[3 * k + a] -= lam * n[a];
-      grad_[3 * (k + 1) + a] += lam * n[a];
-    }
-    // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
-    // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
-    // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
-    // the mass of either end (then each particle's two segments take at most half its mass off the
-    // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
-    // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
-    double geometric = ws_.len[k] > 0.0 ? lambda_[k] / ws_.len[k] : 0.0;
-    if (geometric < 0.0 && !(-geometric * std::max(mobility(k), mobility(k + 1)) <= kCompressedShare))
-    {
-      geometric = 0.0;
-    }
-    double block[9];
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      for (std::size_t c = 0; c < 3; ++c)
+      massTerm(cable, l, diagonal, g);
+      if (before_on)
       {
-        block[3 * a + c] = (axial - geometric) * n[a] * n[c] + (a == c ? geometric : 0.0);
+        // dC/dx_k+1 = +n_k: the gradient gets J^T lambda.
+        addTo(diagonal, before);
+        g[0] += before_lam * ws_.nx[l - 1], g[1] += before_lam * ws_.ny[l - 1], g[2] += before_lam * ws_.nz[l - 1];
+      }
+      if (here_on)
+      {
+        addTo(diagonal, here);
+        g[0] -= here_lam * ws_.nx[l], g[1] -= here_lam * ws_.ny[l], g[2] -= here_lam * ws_.nz[l];
       }
     }
-    if (!pinned(k))
+    if (l < m)
     {
-      addTo(&hessian_diag_[9 * k], block);
+      double* below = &hessian_first_[9 * l];
+      if (here_on && !pinned(l) && !pinned(l + 1))
+      {
+        for (std::size_t i = 0; i < 9; ++i)
+        {
+          below[i] = 0.0 + -1.0 * here[i];
+        }
+      }
+      else
+      {
+        std::fill(below, below + 9, 0.0);
+      }
     }
-    if (!pinned(k + 1))
+    if (ws_.bending && !pinned(l))
     {
-      addTo(&hessian_diag_[9 * (k + 1)], block);
+      bendingTerms(l, diagonal, g);
     }
-    if (!pinned(k) && !pinned(k + 1))
+    before_on = here_on;
+    before_lam = here_lam;
+  }
+}
+
+[[gnu::always_inline]] inline void PrimalNewton::massTerm(const Cable& cable, std::size_t l, double* diagonal,
+                                                          double* g) const
+{
+  // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
+  const std::size_t f = ws_.first;
+  const double mass = mass_[l];
+  const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
+  double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
+  if (!cable.anisotropic)
+  {
+    std::copy(block, block + 9, diagonal);
+    g[0] = mass * d[0], g[1] = mass * d[1], g[2] = mass * d[2];
+    return;
+  }
+  const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
+  const double less = mass_less_[l];
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
     {
-      addTo(&hessian_first_[9 * k], block, -1.0);
+      block[3 * a + c] += less * t[a] * t[c];
+    }
+  }
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    g[a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
+  }
+  std::copy(block, block + 9, diagonal);
+}
+
+void PrimalNewton::prepareBending(const Cable& cable)
+{
+  // Joint j (after particle j) has the curvature C_j = a x_j - (a + b) x_j+1 + b x_j+2 (curvature()), linear
+  // in the positions with weights (a, -(a + b), b), so its Hessian is constant within a step: g_r g_s / gamma
+  // times the identity. Particle l is the r-th of joint l - r; its terms are laid out in the order assemble
+  // adds them (joints l - 2, l - 1, l), 0 where there is no such joint or the particle is pinned (adding 0
+  // changes nothing). The curvature arrays are offset by 2, with zeros for the joints -2, -1, m - 1 and m.
+  const std::size_t m = ws_.m;
+  const double* w = cable.inv_mass.data() + ws_.first;
+  auto weight = [this](std::size_t j, std::size_t r)
+  {
+    const double a = ws_.inv_rest[j], b = ws_.inv_rest[j + 1];
+    return r == 0 ? a : r == 1 ? -(a + b) : b;
+  };
+  auto joint = [m](std::size_t l, std::size_t r) { return l >= r && l - r + 1 < m; };  // joint l - r exists
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    const bool free_l = w[l] != 0.0;
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+      const std::size_t r = 2 - i;
+      const bool on = free_l && joint(l, r);
+      const double gr = on ? weight(l - r, r) : 0.0;
+      const double inv = on ? ws_.inv_gamma[l - r] : 0.0;
+      bend_weight_[3 * l + i] = gr;
+      bend_inv_[3 * l + i] = inv;
+      bend_diag_[3 * l + i] = gr * gr * inv;
+    }
+    const bool pair = l + 1 <= m && free_l && w[l + 1] != 0.0;  // the block (l + 1, l) couples two free ones
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+      const std::size_t s = 1 - i;
+      bend_first_[2 * l + i] =
+          pair && joint(l, s) ? weight(l - s, s + 1) * weight(l - s, s) * ws_.inv_gamma[l - s] : 0.0;
+    }
+    if (l + 2 <= m)
+    {
+      hessian_second_[l] =
+          l + 1 < m && free_l && w[l + 2] != 0.0 ? weight(l, 2) * weight(l, 0) * ws_.inv_gamma[l] : 0.0;
     }
   }
 }
 
-[[gnu::always_inline]] inline void PrimalNewton::assembleBending(const Cable& cable)
+[[gnu::always_inline]] inline void PrimalNewton::bendingTerms(std::size_t l, double* diagonal, double* g)
 {
-  const std::size_t f = ws_.first;
-  const double* w = cable.inv_mass.data() + f;
-  for (std::size_t j = 0; j + 1 < ws_.m; ++j)
+  // prepareBending's terms of row l, each added in its order (particle l's joints l - 2, l - 1, l).
+  const double* v = &bend_diag_[3 * l];
+  const double* weight = &bend_weight_[3 * l];
+  const double* inv = &bend_inv_[3 * l];
+  const double* cx = &curve_x_[l];  // joint l - 2 (the arrays are offset by 2)
+  const double* cy = &curve_y_[l];
+  const double* cz = &curve_z_[l];
+  for (std::size_t i = 0; i < 3; ++i)
   {
-    // C_b is linear in the positions, so its Hessian is constant: g_r g_s / gamma times the identity, added
-    // on the three diagonals of each 3x3 block (its zeros left alone).
-    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
-    const double* g = joint.g;
-    const double* cb = joint.c;
-    const double inv = ws_.inv_gamma[j];
-    for (std::size_t r = 0; r < 3; ++r)
+    diagonal[0] += v[i], diagonal[4] += v[i], diagonal[8] += v[i];
+    g[0] += weight[i] * cx[i] * inv[i], g[1] += weight[i] * cy[i] * inv[i], g[2] += weight[i] * cz[i] * inv[i];
+  }
+  if (l < ws_.m)
+  {
+    double* below = &hessian_first_[9 * l];
+    const double* u = &bend_first_[2 * l];
+    for (std::size_t i = 0; i < 2; ++i)
     {
-      if (w[j + r] == 0.0)
-      {
-        continue;  // pinned
-      }
-      for (std::size_t axis = 0; axis < 3; ++axis)
-      {
-        grad_[3 * (j + r) + axis] += g[r] * cb[axis] * inv;
-      }
-      for (std::size_t s = 0; s <= r; ++s)
-      {
-        if (w[j + s] == 0.0)
-        {
-          continue;
-        }
-        double* block = &(r == s ? hessian_diag_ : r == s + 1 ? hessian_first_ : hessian_second_)[9 * (j + s)];
-        const double v = g[r] * g[s] * inv;
-        block[0] += v, block[4] += v, block[8] += v;
-      }
+      below[0] += u[i], below[4] += u[i], below[8] += u[i];
     }
   }
 }
@@ -566,7 +649,9 @@ double PrimalNewton::step(Cable& cable, int* rounds)
   const double along_step = slope(&largest);
   const std::size_t f = ws_.first;
   const double move = largest / ws_.nominal;
-  const double before = move > kGlobalMove ? energy(cable) : 0.0;
+  // The energy here is the last accepted trial's when the line search computed it there.
+  const double before = move > kGlobalMove ? (energy_known_ ? known_energy_ : energy(cable)) : 0.0;
+  energy_known_ = false;
   ws_.save(cable);
   double t = 1.0;
   for (int halving = 0;; ++halving)
@@ -578,10 +663,17 @@ double PrimalNewton::step(Cable& cable, int* rounds)
       cable.z[f + l] = ws_.sz[l] + t * step_[3 * l + 2];
     }
     ws_.geometry(cable);
+    curvature(cable);
     // Near the solution Newton's step is taken whole (quadratic convergence); far from it, the step is
     // halved until the energy falls as the slope promises (Armijo).
-    if (move <= kGlobalMove || halving == kMaxHalvings || !(along_step < 0.0) ||
-        energy(cable) <= before + kArmijo * t * along_step)
+    bool accept = move <= kGlobalMove || halving == kMaxHalvings || !(along_step < 0.0);
+    if (!accept)
+    {
+      known_energy_ = energy(cable);
+      accept = known_energy_ <= before + kArmijo * t * along_step;
+      energy_known_ = accept;
+    }
+    if (accept)
     {
       for (std::size_t k = 0; k < ws_.m; ++k)
       {
@@ -608,12 +700,12 @@ double PrimalNewton::residual(const Cable& cable)
     const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
     for (std::size_t a = 0; a < 3; ++a)
     {
-      force[3 * l + a] = w > 0.0 ? d[a] / w : 0.0;
+      force[3 * l + a] = d[a] * mass_[l];  // 0 for a pinned particle
     }
     if (w > 0.0 && cable.anisotropic)
     {
       const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
-      const double along = (1.0 / cable.inv_mass_along[f + l] - 1.0 / w) * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]);
+      const double along = mass_less_[l] * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]);
       for (std::size_t a = 0; a < 3; ++a)
       {
         force[3 * l + a] += along * t[a];
@@ -652,14 +744,14 @@ double PrimalNewton::residual(const Cable& cable)
   }
   for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
   {
-    const JointCurvature joint = jointCurvature(cable, f + j, &ws_.inv_rest[j]);
-    const double* g = joint.g;
-    const double* cb = joint.c;
+    const double a = ws_.inv_rest[j], b = ws_.inv_rest[j + 1];
+    const double g[3] = {a, -(a + b), b};
+    const double cb[3] = {curve_x_[j + 2], curve_y_[j + 2], curve_z_[j + 2]};
     for (std::size_t r = 0; r < 3; ++r)
     {
       for (std::size_t axis = 0; axis < 3; ++axis)
       {
-        force[3 * (j + r) + axis] += g[r] * cb[axis] / ws_.gamma[j];
+        force[3 * (j + r) + axis] += g[r] * cb[axis] * ws_.inv_gamma[j];
       }
     }
   }

@@ -51,12 +51,26 @@ class PrimalNewton
   }
   /// Segment k is in the model on its law's middle piece (this step has one for it).
   bool inMiddle(std::size_t k) const { return ws_.dashpot[k] > 0.0 && middle_[k] > 0.0; }
+  /// What stays the same through a step's Newton iterations (prepareBending), and the curvature.
+  void prepare(const Cable& cable);
+  /// The bending joints' constant terms of each block row into bend_diag_, bend_weight_, bend_inv_,
+  /// bend_first_ and the second blocks below (hessian_second_).
+  void prepareBending(const Cable& cable);
+  /// The bending joints' curvatures at the current positions into curve_x_, curve_y_, curve_z_ (with
+  /// bending): after every change of the positions, before energy(), residual() or assemble() read them.
+  void curvature(const Cable& cable);
   /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass
-  /// (assembleMass), the segments' axial and geometric stiffness (assembleSegments), the joints' bending.
+  /// (massTerm), the segments' axial and geometric stiffness (segmentTerm), the joints' bending
+  /// (bendingTerms), a block row at a time.
   void assemble(const Cable& cable);
-  void assembleMass(const Cable& cable);
-  void assembleSegments(const Cable& cable);
-  void assembleBending(const Cable& cable);
+  /// Segment k's Hessian block (row-major 3x3) and its force `lam` in the gradient; false when it is not in
+  /// the model.
+  bool segmentTerm(const Cable& cable, std::size_t k, double* lam, double* block) const;
+  /// Free particle l's mass block into `diagonal` and its inertia term into the gradient `g`.
+  void massTerm(const Cable& cable, std::size_t l, double* diagonal, double* g) const;
+  /// The bending joints' terms of free particle l's block row (prepareBending's) added to its diagonal
+  /// block, its gradient and the first block below.
+  void bendingTerms(std::size_t l, double* diagonal, double* g);
   /// Solves for the model's Newton step into step_, the model's active set (the workspace's on()) with it,
   /// counting the linear solves into `rounds`; false if a system is not definite.
   bool solveModel(const Cable& cable, int* rounds);
@@ -82,14 +96,26 @@ class PrimalNewton
 
   DirectWorkspace& ws_;
   DirectSolver::LinearSolve linear_;
-  /// The Hessian's 3x3 blocks (diagonal, first and second below), 9 a particle; the Newton step and the
-  /// gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
+  /// The Hessian's 3x3 blocks (diagonal and first below), 9 a particle, and the second below (c I: c, one a
+  /// particle); the Newton step and the gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
   std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;
+  /// Each particle's mass (0 pinned), its extra mass along the cable (m_along - m_across), each
+  /// segment's 1 / alpha: constant through a step (prepare()).
+  std::vector<double> mass_, mass_less_, stiffness_;
+  /// Each bending joint's curvature at the current positions, by axis (curvature()): joint j at j + 2, the
+  /// two entries on either side 0.
+  std::vector<double> curve_x_, curve_y_, curve_z_;
+  /// A block row's bending terms (prepareBending), in the order they are added: 3 a particle for its joints
+  /// l - 2, l - 1, l (the diagonal's g_r^2 / gamma, the weight g_r, 1 / gamma), 2 for the first block below.
+  std::vector<double> bend_diag_, bend_weight_, bend_inv_, bend_first_;
   /// The multipliers as unknowns of their own (Newton on positions and multipliers together, the
   /// multipliers eliminated from each linear solve), and their change over a Newton step.
   std::vector<double> lambda_, lambda_step_;
   /// The model's segments on their law's middle piece, 1 or 0 (only read where the step has one).
   std::vector<double> middle_;
+  /// The energy at the current positions, when the last line search computed it there (energy_known_).
+  double known_energy_ = 0.0;
+  bool energy_known_ = false;
   /// The last Newton iteration's model had not settled in kMaxModelRounds: the next starts from it.
   bool model_unsettled_ = false;
 };
