@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "rov_tether/core/direct_solver.hpp"
@@ -235,17 +236,19 @@ TEST(Direct, TeleportAndFourteenMetresPerSecondStayBounded)
   EXPECT_LT(final_residual, 1.0);  // below the divergence limit, or re-laid
 }
 
-// A fine cable with bending at a sharp turn (docs/limitations.md): scenarios/spool_payout.yaml at 0.05 m and
-// 0.02 m segments, whose Newton at the dive's turn (t = 26.1-26.4 s) is still a whole segment length off after
-// the default 10 iterations. That is the divergence limit (kDivergenceLimit), where the tether re-lays the cable
-// at rest; `direct` goes on past its budget instead (DirectSolver::kRescueBudget) and brings the step back:
-// through the turn to 30 s the cable is never re-laid, and the rescues are counted (SolverEffort::rescued; at
-// least one, or the turn was not met). The rescued cable is a physical one: no segment at any step stretched
-// by 1% (a stated bound, far above the scene's tension / EA and far below the 100% of a blow-up, which a rescue
-// that converged onto a folded chain would show). Fails with kRescueBudget 0: the cable is re-laid at
-// t = 26.33 s.
+// A fine cable with bending at a sharp turn (docs/limitations.md): scenarios/spool_payout.yaml at 0.02 m
+// segments, whose Newton at the dive's turn (t = 26.1-26.4 s) is still a whole segment length off after the
+// default 10 iterations. That is the divergence limit (kDivergenceLimit), where the tether re-lays the cable at
+// rest; `direct` goes on past its budget instead (DirectSolver::kRescueBudget) and brings the step back: through
+// the turn to 30 s the cable is never re-laid, and the rescues are counted (SolverEffort::rescued; at least one
+// over the two runs, or the turn was not met). At 0.05 m the turn diverged too while the joint next to the
+// spool's hinge took its whole stiffness at each release; it no longer does, and the run checks the rest. The rescued
+// cable is a physical one: no segment at any step stretched by 1% (a stated bound, far above the scene's tension / EA
+// and far below the 100% of a blow-up, which a rescue that converged onto a folded chain would show). Fails with
+// kRescueBudget 0: the cable is re-laid at t = 26.33 s.
 TEST(Direct, FineCableWithBendingComesBackFromADivergedTurn)
 {
+  std::uint64_t rescued = 0;
   for (const double segment : {0.05, 0.02})
   {
     Scenario scenario = shippedScenario("spool_payout");
@@ -266,9 +269,10 @@ TEST(Direct, FineCableWithBendingComesBackFromADivergedTurn)
         segment, static_cast<unsigned long long>(effort.rescued), effort.max_iterations, effort.max_residual,
         largest_strain);
     EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
-    EXPECT_GE(effort.rescued, 1u) << "the turn no longer diverges within the budget: this test tests nothing";
     EXPECT_LT(largest_strain, 0.01);
+    rescued += effort.rescued;
   }
+  EXPECT_GE(rescued, 1u) << "the turn no longer diverges within the budget: this test tests nothing";
 }
 
 // A rescue that converges onto an impossible cable is still a blow-up. scenarios/lazy_wave.yaml as the golden

@@ -104,6 +104,60 @@ TEST(Spool, ReleaseDoesNotSpikeTension)
   EXPECT_LT(release_max, 10.0);
 }
 
+// The default solver (direct, with the drum's law in the step, and bending) with an auto-tension winch on the
+// shipped dive. The joint next to the spool's hinge used to take its full stiffness at once when a particle was
+// released, at whatever angle the hinge had let the cable take: each release kicked the spool tension past the
+// motor's stall pull (1.25 x 6 N), the drum slipped out at max_winch_speed, and with the cable pushed back
+// towards the spool the winch paid out all 20 m. Bounds: a winch that pays out only above target + deadband
+// tension pays out no more cable than the vehicle has pulled straight, so the deployed length stays within the
+// going-out test's 3% of the farthest the vehicle has been, plus the spool segment's own 1.5 segments (or the
+// length laid out at the start); and a
+// release step's spool tension is no larger on average than the other steps' (as Spool.ReleaseDoesNotSpikeTension
+// asks of pbd).
+TEST(Spool, AutoTensionWinchWithBendingPaysOutNoMoreThanTheDiveNeeds)
+{
+  Scenario scenario = shippedScenario("spool_payout");
+  scenario.params.winch_mode = WinchMode::kConstantTension;
+  ASSERT_EQ(scenario.params.solver, SolverType::kDirect);
+  ASSERT_GT(scenario.params.bending_stiffness, 0.0);
+  PathDriver driver(scenario);
+  Tether sim = driver.makeSimulation();
+  const double dt = scenario.params.time_step;
+  std::vector<double> tensions;
+  double farthest = 0.0;
+  double worst_excess = -1e9;
+  double release_sum = 0.0, other_sum = 0.0;
+  int releases = 0, others = 0;
+  std::size_t previous_first = sim.state().first;
+  for (int k = 1; k * dt <= 50.0; ++k)
+  {
+    ASSERT_TRUE(succeeded(driver.advanceTo(sim, k * dt)));
+    const Position vehicle = sim.particle(sim.deployedParticleCount() - 1);
+    farthest = std::max(farthest, (vehicle - scenario.spool).norm());
+    // The 2 m laid out at the start (an arc, the vehicle 1.6 m away) is slack the winch did not pay out.
+    const double allowed =
+        std::max(scenario.params.initial_deployed_length, 1.03 * farthest + 1.5 * scenario.params.segment_length);
+    worst_excess = std::max(worst_excess, sim.deployedLength() - allowed);
+    sim.computeSegmentTensions(tensions);
+    const bool released = sim.state().first < previous_first;
+    previous_first = sim.state().first;
+    if (sim.time() > 2.0 && sim.deployedLength() > scenario.params.initial_deployed_length)
+    {
+      (released ? release_sum : other_sum) += tensions.front();
+      ++(released ? releases : others);
+    }
+  }
+  ASSERT_GT(releases, 50);
+  const double release_mean = release_sum / releases;
+  const double other_mean = other_sum / others;
+  std::printf(
+      "[ measured ] deployed beyond 1.03 x the farthest %.2f m + 1.5 segments: at most %.3f m; %d releases: "
+      "spool tension mean %.3f N, other steps %.3f N\n",
+      farthest, worst_excess, releases, release_mean, other_mean);
+  EXPECT_LE(worst_excess, 0.0);
+  EXPECT_LT(release_mean, 1.5 * other_mean + 0.05);
+}
+
 TEST(Spool, ReleasedParticleAppearsOnTheCableWithItsVelocity)
 {
   TetherParams params;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rov_tether/core/spool.hpp"
 #include "simd.hpp"
 
 namespace rov_tether
@@ -126,6 +127,16 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
       // know: the joint's curvature a x_0 - (a + b) x_1 + b x_2 would read that as a kink and pull along the
       // cable (2 N at 1 m/s with EI 0.2). The cable leaves the spool over a sheave: a hinge there.
       gamma[0] = std::numeric_limits<double>::infinity();
+      if (m >= 3)
+      {
+        // The joint after it was that hinge until the last particle left the spool, at whatever angle the
+        // hinge let the cable take there; at full stiffness at once it would kick the cable (a spike above
+        // an auto-tension winch's stall pull at each release, and the drum slipping out). Its stiffness comes
+        // in as the spool segment grows from half a segment (just after a release) to one and a half (the
+        // next release), so it is continuous through releases and take-backs alike.
+        const double grown = cable.rest[f] / cable.rest[f + 1] - Spool::kMinFirst;
+        gamma[1] /= std::clamp(grown, 0.0, 1.0);  // infinite (a hinge) at 0
+      }
     }
   }
   for (std::size_t k = 0; bending && k + 1 < m; ++k)
