@@ -875,14 +875,15 @@ TEST(Runner, ShippedWorldScenariosWrapTwiceAndLinkOnce)
   fs::remove_all(dir);
 }
 
-// Two runs of a world's scenario with noise, from the same seed, write the same bytes in every file.
+// Two runs of a world's scenario with noise, from the same seed, write the same bytes in every file. The second
+// spells its options with '=' (--out=DIR, --set=name=value), which the runner takes as the same options.
 TEST(Runner, WorldRunsAreByteIdenticalFromTheSameSeed)
 {
   const std::string dir = temporaryDirectory("seed");
   const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
   std::ofstream(scenario_path) << kWorld;
   ASSERT_EQ(runRunner(scenario_path.string() + " --out " + dir + "/1 --set noise=0.002"), 0);
-  ASSERT_EQ(runRunner(scenario_path.string() + " --out " + dir + "/2 --set noise=0.002"), 0);
+  ASSERT_EQ(runRunner(scenario_path.string() + " --out=" + dir + "/2 --set=noise=0.002"), 0);
   for (const char* file : {"a/state.csv", "a/shape.csv", "b/state.csv", "b/shape.csv", "topology.csv"})
   {
     const std::string first = fileText(fs::path(dir) / "1" / file);

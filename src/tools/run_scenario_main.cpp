@@ -18,20 +18,21 @@ namespace
 
 void usage(std::FILE* out)
 {
-  std::fprintf(out,
-               "usage: rov_tether_run SCENARIO.yaml --out DIR [--set name=value]...\n"
-               "       rov_tether_run --parameters[=markdown|yaml|cfg]   (prints the README's parameter table,\n"
-               "         config/default.yaml or cfg/Tether.cfg as the parameter table generates them)\n"
-               "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
-               "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
-               "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
-               "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv; with a dynamic vehicle\n"
-               "  (`vehicle: {model: dynamic, ...}`), DIR/vehicle.csv.\n"
-               "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
-               "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's), for\n"
-               "                          each tether that does not set its own max_tension_warning.\n"
-               "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
-               "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
+  std::fprintf(
+      out,
+      "usage: rov_tether_run SCENARIO.yaml --out DIR [--set name=value]...   (or --out=DIR, --set=name=value)\n"
+      "       rov_tether_run --parameters[=markdown|yaml|cfg]   (prints the README's parameter table,\n"
+      "         config/default.yaml or cfg/Tether.cfg as the parameter table generates them)\n"
+      "  Runs the scenario and writes DIR/state.csv and DIR/shape.csv, and with `cameras:` the\n"
+      "  dataset DIR/cameras/<name>/mask_NNNNNN.png, depth_NNNNNN.png (mm) and index.csv.\n"
+      "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
+      "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv; with a dynamic vehicle\n"
+      "  (`vehicle: {model: dynamic, ...}`), DIR/vehicle.csv.\n"
+      "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
+      "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's), for\n"
+      "                          each tether that does not set its own max_tension_warning.\n"
+      "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
+      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
 
 /// The command line's choices.
@@ -66,7 +67,22 @@ int parseArguments(int argc, char** argv, Options* options)
 {
   for (int i = 1; i < argc; ++i)
   {
-    const std::string arg = argv[i];
+    std::string arg = argv[i];
+    // An option's value after it (`--set name=value`) or joined by '=' (`--set=name=value`).
+    std::string joined;
+    bool is_joined = false;
+    for (const char* name : {"--out", "--set", "--max-tension-warning"})
+    {
+      const std::string prefix = std::string(name) + "=";
+      if (arg.rfind(prefix, 0) == 0 && arg.size() > prefix.size())
+      {
+        joined = arg.substr(prefix.size());
+        arg = name;
+        is_joined = true;
+      }
+    }
+    const bool has_value = is_joined || i + 1 < argc;
+    auto value = [&]() -> std::string { return is_joined ? joined : argv[++i]; };
     if (arg == "-h" || arg == "--help")
     {
       usage(stdout);
@@ -76,19 +92,20 @@ int parseArguments(int argc, char** argv, Options* options)
     {
       return printParameters(arg);
     }
-    if (arg == "--max-tension-warning" && i + 1 < argc)
+    if (arg == "--max-tension-warning" && has_value)
     {
+      const std::string text = value();
       char* end = nullptr;
-      options->max_tension_warning = std::strtod(argv[++i], &end);
-      if (end == argv[i] || *end != '\0' || !(options->max_tension_warning >= 0.0))
+      options->max_tension_warning = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !(options->max_tension_warning >= 0.0))
       {
-        std::fprintf(stderr, "rov_tether_run: --max-tension-warning '%s': expected a number >= 0 [N]\n", argv[i]);
+        std::fprintf(stderr, "rov_tether_run: --max-tension-warning '%s': expected a number >= 0 [N]\n", text.c_str());
         return 2;
       }
     }
-    else if ((arg == "--out" || arg == "--set") && i + 1 < argc)
+    else if ((arg == "--out" || arg == "--set") && has_value)
     {
-      (arg == "--out" ? options->out_dir : options->assignments.emplace_back()) = argv[++i];
+      (arg == "--out" ? options->out_dir : options->assignments.emplace_back()) = value();
     }
     else if (!arg.empty() && arg[0] != '-' && options->scenario_path.empty())
     {
