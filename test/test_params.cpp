@@ -100,6 +100,13 @@ TEST(Params, SetParameterChecksNamesAndTypes)
   TetherParams params;
   EXPECT_NE(setParameter(params, "iteratons", std::int64_t{3}).find("unknown parameter 'iteratons'"),
             std::string::npos);
+  // A typo one or two edits from a name suggests it; a name far from every one, or as near two, suggests none.
+  EXPECT_NE(setParameter(params, "brake_tenson", 5.0).find("(did you mean 'brake_tension'?)"), std::string::npos);
+  EXPECT_NE(setParameter(params, "drag_modle", std::string("morison")).find("(did you mean 'drag_model'?)"),
+            std::string::npos);
+  EXPECT_EQ(setParameter(params, "colour", 1.0), "unknown parameter 'colour'");
+  EXPECT_EQ(closestName("ab", {"ac", "ad"}), "");  // a tie: no guess
+  EXPECT_EQ(closestName("segment_lenght", {"segment_length", "seed"}), "segment_length");
   EXPECT_NE(setParameter(params, "iterations", 2.5).find("iterations"), std::string::npos);
   EXPECT_NE(setParameter(params, "iterations", std::string("ten")).find("iterations"), std::string::npos);
   EXPECT_NE(setParameter(params, "bending", 1.0).find("bending"), std::string::npos);

@@ -500,12 +500,50 @@ const std::vector<std::string>& parameterNames()
   return names;
 }
 
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates)
+{
+  const std::size_t limit = name.size() < 6 ? 1 : 2;
+  std::string best;
+  std::size_t best_distance = limit + 1;
+  bool tie = false;
+  std::vector<std::size_t> row(name.size() + 1), next(name.size() + 1);
+  for (const std::string& candidate : candidates)
+  {
+    // Levenshtein distance, one row at a time.
+    for (std::size_t i = 0; i <= name.size(); ++i)
+    {
+      row[i] = i;
+    }
+    for (std::size_t j = 1; j <= candidate.size(); ++j)
+    {
+      next[0] = j;
+      for (std::size_t i = 1; i <= name.size(); ++i)
+      {
+        const std::size_t substitute = row[i - 1] + (name[i - 1] == candidate[j - 1] ? 0 : 1);
+        next[i] = std::min({row[i] + 1, next[i - 1] + 1, substitute});
+      }
+      std::swap(row, next);
+    }
+    const std::size_t distance = row[name.size()];
+    if (distance < best_distance)
+    {
+      best = candidate, best_distance = distance, tie = false;
+    }
+    else if (distance == best_distance)
+    {
+      tie = true;
+    }
+  }
+  return best_distance <= limit && !tie ? best : "";
+}
+
 std::string setParameter(TetherParams& params, const std::string& name, const ParamValue& value)
 {
   const Member* member = findMember(name);
   if (member == nullptr)
   {
-    return "unknown parameter '" + name + "'";
+    const std::string guess = closestName(name, parameterNames());
+    return "unknown parameter '" + name + "'" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)");
   }
   if (bool TetherParams::*flag = autoFlag(name))
   {

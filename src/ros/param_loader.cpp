@@ -303,7 +303,10 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
                        name == "attachments" || tether_name;
     if (!known)
     {
-      unknown += (unknown.empty() ? "" : ", ") + name;
+      std::vector<std::string> names = model;
+      names.insert(names.end(), node.begin(), node.end());
+      const std::string guess = closestName(name, names);
+      unknown += (unknown.empty() ? "" : ", ") + name + (guess.empty() ? "" : " (did you mean " + guess + "?)");
     }
   }
   return unknown;

@@ -815,7 +815,9 @@ TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
   typos["iteratons"] = 3;
   typos["drag"] = 0.9;
   typos["world_frame"] = std::string("map");
-  EXPECT_EQ(unknownParameters(typos), "iteratons");
+  EXPECT_EQ(unknownParameters(typos), "iteratons (did you mean iterations?)");
+  typos["world_fram"] = std::string("map");  // a node option's typo is matched against the node options too
+  EXPECT_EQ(unknownParameters(typos), "iteratons (did you mean iterations?), world_fram (did you mean world_frame?)");
 }
 
 // Every shipped configuration file loads through the node's loaders, with no unknown key, and

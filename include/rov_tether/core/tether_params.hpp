@@ -271,6 +271,11 @@ std::string formatParamValue(const ParamValue& value);
 /// Names of all parameters, in documentation order.
 const std::vector<std::string>& parameterNames();
 
+/// The candidate nearest to `name` by edit distance (insertions, deletions, substitutions), for a "did you
+/// mean" after a typo: "" unless it is within 2 edits (1 for names under 6 characters) and nearer than
+/// any other.
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
+
 /// Sets one parameter by name with type checking (integers are accepted for doubles).
 /// Returns an empty string on success, otherwise a message naming the parameter. Range checks are
 /// left to TetherParams::validate() so that contradictions between fields are reported together.
