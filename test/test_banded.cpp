@@ -202,6 +202,26 @@ TEST(Banded, BlockSolveSolvesTheSystem)
         EXPECT_NEAR(ax, system.b[r], 1e-12) << "bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
         EXPECT_NEAR(x[r], xl[r], 1e-10) << "bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
       }
+      // A second right-hand side through the factors each left (the drum's second solve, the end's columns).
+      std::vector<double> b2(3 * n);
+      for (std::size_t r = 0; r < 3 * n; ++r)
+      {
+        b2[r] = std::cos(static_cast<double>(r));
+      }
+      std::vector<double> y = b2, yl = b2;
+      banded::solveBlockBandedAgain(two, y.data(), n, work.data());
+      ASSERT_TRUE(banded::solveBlockBandedLapackAgain(two, yl.data(), n, band.data()));
+      for (std::size_t r = 0; r < 3 * n; ++r)
+      {
+        double ay = 0.0, ayl = 0.0;
+        for (std::size_t c = 0; c < 3 * n; ++c)
+        {
+          ay += system.at(r, c) * y[c];
+          ayl += system.at(r, c) * yl[c];
+        }
+        EXPECT_NEAR(ay, b2[r], 1e-12) << "again, bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
+        EXPECT_NEAR(ayl, b2[r], 1e-12) << "LAPACK again, bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
+      }
     }
   }
 }
@@ -213,6 +233,22 @@ TEST(Banded, BlockSolveRefusesIndefiniteMatrices)
   system.diag[9 * 2 + 4] = -10.0;  // the middle diagonal entry of block 2
   std::vector<double> x = system.b, work(36 * 5);
   EXPECT_FALSE(banded::solveBlockBanded(system.diag.data(), system.first.data(), nullptr, x.data(), 5, work.data()));
+  std::vector<double> band(9 * 3 * 5);
+  x = system.b;
+  EXPECT_FALSE(
+      banded::solveBlockBandedLapack(system.diag.data(), system.first.data(), nullptr, x.data(), 5, band.data()));
+  // Every diagonal block positive definite (the identity), the whole not: blocks 0 and 2 coupled by 2 I make
+  // [I 2I; 2I I], whose eigenvalues are 3 and -1; the second block row's pivots find it, through both solves.
+  const std::vector<double> identity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  std::vector<double> diag, first(9 * 3, 0.0), second = {2.0, 0.0, 0.0};
+  for (int l = 0; l < 3; ++l)
+  {
+    diag.insert(diag.end(), identity.begin(), identity.end());
+  }
+  std::vector<double> y(9, 1.0);
+  EXPECT_FALSE(banded::solveBlockBanded(diag.data(), first.data(), second.data(), y.data(), 3, work.data()));
+  y.assign(9, 1.0);
+  EXPECT_FALSE(banded::solveBlockBandedLapack(diag.data(), first.data(), second.data(), y.data(), 3, band.data()));
 }
 
 /// A rows x cols matrix of entries uniform in [-1, 1].
