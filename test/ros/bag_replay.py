@@ -177,7 +177,7 @@ class BagReplay(unittest.TestCase):
         # The node restarts a replay at the first tick of the new clock (rosbag play sets its phase) and takes
         # or refuses the poses that came just before it by their arrival, so two replays do not start alike to
         # the bit, and a brake, which never reels in, keeps what each start paid out. They were asserted equal
-        # to the bit: 1 run in 3 here differed by 1.6-24 mm, and 3 in 3 before the last change to the spool's
+        # to the bit: 4 runs in 5 here differed, by 1.6-24 mm, and 3 in 3 before the last change to the spool's
         # joint (docs/limitations.md). The stated tolerance: 1% of the largest deployed length.
         bound = 0.01 * max(a.values())
         print("[ measured ] two replays: %d and %d states, %d at common stamps, max |difference| %.3g m (bound "
