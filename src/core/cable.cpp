@@ -1,5 +1,7 @@
 #include "rov_tether/core/cable.hpp"
 
+#include <cmath>
+
 namespace rov_tether
 {
 
@@ -39,9 +41,10 @@ void Cable::placeMoving(std::size_t i, const Position& p, const Position& moved)
 
 Position Cable::direction(std::size_t a, std::size_t b) const
 {
-  const Position d = position(b) - position(a);
-  const double length = d.norm();
-  return length > 0.0 ? Position(d / length) : Position::Zero();
+  // In scalars (Eigen's small vectors are slow under the sanitizers), rounding as Eigen's norm() and division.
+  const double d[3] = {x[b] - x[a], y[b] - y[a], z[b] - z[a]};
+  const double length = std::sqrt((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]);
+  return length > 0.0 ? Position(d[0] / length, d[1] / length, d[2] / length) : Position::Zero();
 }
 
 void Cable::updateMasses(std::size_t lo, std::size_t hi, const LineMass& mass_per_length, bool last_pinned)
