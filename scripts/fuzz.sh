@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time on its corpus
-# in test/fuzz/corpus/<target>. New inputs go to a scratch corpus in catkin_build/fuzz unless
+# in test/fuzz/corpus/<target>, one per core at a time. New inputs go to a scratch corpus in catkin_build/fuzz unless
 # --update-corpus merges them into the repository's (then commit them).
 #
 #   scripts/fuzz.sh [--seconds N] [--junit DIR] [--update-corpus] [target...]
@@ -53,33 +53,45 @@ export OBJ ROOT
 printf '%s\n' "${CORE[@]}" | xargs -P "$(nproc)" -I{} bash -c \
   'src="{}"; rel="${src#$ROOT/src/}"; obj="$OBJ/${rel//\//_}.o"; clang++ "$@" -c "$src" -o "$obj"' _ "${FLAGS[@]}"
 OBJECTS=("$OBJ"/*.o)
-status=0
-cases=""
 for target in "${TARGETS[@]}"; do
   echo "== $target: building"
   clang++ "${FLAGS[@]}" "$ROOT/test/fuzz/$target.cpp" "${OBJECTS[@]}" -lyaml-cpp -llapacke -lfcl -lccd -lassimp -rdynamic \
     -o "$OUT/$target"
-  corpus="$ROOT/test/fuzz/corpus/$target"
-  scratch="$OUT/corpus_$target"
+done
+# Each fuzzer runs on one core: as many at a time as there are cores, each for SECONDS_EACH, its log and
+# result into files of its own; read back in the targets' order below.
+run_one() {
+  local target="$1" corpus="$ROOT/test/fuzz/corpus/$1" scratch="$OUT/corpus_$1" start
   mkdir -p "$corpus" "$scratch"
   echo "== $target: ${SECONDS_EACH} s on $(find "$corpus" -type f | wc -l) corpus inputs"
   start=$(date +%s)
   if UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 "$OUT/$target" -max_total_time="$SECONDS_EACH" \
       -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$OUT/artifacts/$target-" -print_final_stats=1 \
       "$scratch" "$corpus" >"$OUT/$target.log" 2>&1; then
-    result="passed"
-    failure=""
+    echo "passed $(($(date +%s) - start))" >"$OUT/$target.result"
   else
-    result="FAILED"
+    echo "FAILED $(($(date +%s) - start))" >"$OUT/$target.result"
+  fi
+}
+export -f run_one
+export OUT SECONDS_EACH
+rm -f "$OUT"/*.result
+printf '%s\n' "${TARGETS[@]}" | xargs -P "$(nproc)" -I{} bash -c 'run_one "$1"' _ {}
+status=0
+cases=""
+for target in "${TARGETS[@]}"; do
+  read -r result took <"$OUT/$target.result" || { result="FAILED"; took=0; }
+  failure=""
+  if [ "$result" != passed ]; then
     status=1
     failure="<failure message=\"crash, see $OUT/$target.log\"/>"
     tail -30 "$OUT/$target.log"
   fi
   grep -E "stat::number_of_executed_units|stat::peak_rss_mb|cov:" "$OUT/$target.log" | tail -3 || true
-  echo "== $target: $result ($(($(date +%s) - start)) s)"
-  cases+="<testcase classname=\"fuzz\" name=\"$target\" time=\"$(($(date +%s) - start))\">$failure</testcase>"
+  echo "== $target: $result ($took s)"
+  cases+="<testcase classname=\"fuzz\" name=\"$target\" time=\"$took\">$failure</testcase>"
   if [ "$UPDATE" = 1 ]; then
-    "$OUT/$target" -merge=1 "$corpus" "$scratch" >/dev/null 2>&1
+    "$OUT/$target" -merge=1 "$ROOT/test/fuzz/corpus/$target" "$OUT/corpus_$target" >/dev/null 2>&1
   fi
 done
 if [ -n "$JUNIT" ]; then
