@@ -42,8 +42,9 @@ ROV_TETHER_INLINE void projectJoint(double& ax, double& ay, double& az, double w
 /// W_i = w_i I + dw_i t_i t_i^T, so the projection solves (sum g_i^2 W_i + gamma I) dmu = -(C + gamma mu)
 /// and moves x_i by g_i W_i dmu. Joint j of the cable's own arrays; mu holds its three multipliers.
 /// The 3x3 system is solved by its Cholesky factor in scalars, in the operations and order of Eigen's
-/// LLT (unblocked, then the two triangular solves), so it rounds as that did; written out because the
-/// Eigen version cost 80% of an xpbd step with bending and added mass, and 35x that under the sanitizers.
+/// LLT (unblocked, then the two triangular solves), so it rounds as that did. Written out because Eigen's
+/// took 80% of an xpbd step with bending and added mass, and made such a step 35x slower under the
+/// sanitizers (docs/benchmarks.md).
 inline void projectJointAnisotropic(Cable& cable, std::size_t j, double inv_ei_h2, double* mu)
 {
   const std::size_t p[3] = {j, j + 1, j + 2};
