@@ -4,6 +4,7 @@
 // tether within one of its own steps of the target.)
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <memory>
 
 #include "rov_tether/core/world.hpp"
@@ -55,6 +56,51 @@ TEST(World, ATetherInAWorldMovesExactlyAsAlone)
   EXPECT_EQ(world.tether(1).stepCount(), alone_b->stepCount());
   EXPECT_EQ(total, alone_a->stepCount() + alone_b->stepCount());  // the steps the world reports
   EXPECT_EQ(world.time(), std::min(world.tether(0).time(), world.tether(1).time()));
+}
+
+/// Records, around each step, which tether stepped and its step count then (World::advanceTo's observer).
+struct StepLog : StepObserver
+{
+  explicit StepLog(const World& w) : world(w) {}
+  void beforeStep(std::size_t i) override
+  {
+    EXPECT_EQ(open, World::npos) << "a step began inside another";
+    open = i;
+    before = world.tether(i).stepCount();
+  }
+  void afterStep(std::size_t i) override
+  {
+    EXPECT_EQ(open, i) << "a step ended that had not begun";
+    EXPECT_EQ(world.tether(i).stepCount(), before + 1) << "told around exactly one step of that tether";
+    open = World::npos;
+    ++told[i];
+  }
+  const World& world;
+  std::size_t open = World::npos;
+  std::uint64_t before = 0;
+  std::uint64_t told[2] = {0, 0};
+};
+
+TEST(World, AnObserverIsToldAroundEachStepOfTheTetherThatTakesIt)
+{
+  // The node charges each tether the wall time of its own steps with this (Scheduler); a step told to the
+  // wrong tether, or not told, would charge one tether for another's work.
+  World world;
+  ASSERT_TRUE(world.add("a", pulledTether(0.005, 0.0)).ok);
+  ASSERT_TRUE(world.add("b", pulledTether(0.004, 3.0)).ok);
+  StepLog log(world);
+  std::size_t total = 0;
+  for (int k = 1; k <= 10; ++k)
+  {
+    std::size_t steps = 0;
+    ASSERT_TRUE(world.advanceTo(0.1 * k, &steps, &log).ok);
+    total += steps;
+  }
+  EXPECT_EQ(log.open, World::npos);
+  EXPECT_EQ(log.told[0], world.tether(0).stepCount());  // 200 steps of 5 ms
+  EXPECT_EQ(log.told[1], world.tether(1).stepCount());  // 250 of 4 ms
+  EXPECT_EQ(log.told[0] + log.told[1], total);
+  EXPECT_GT(log.told[1], log.told[0]);
 }
 
 TEST(World, NamesAreUniqueAndBadTimesAreRefused)

@@ -44,7 +44,7 @@ std::size_t World::find(const std::string& name) const
   return npos;
 }
 
-Status World::advanceTo(double t, std::size_t* steps)
+Status World::advanceTo(double t, std::size_t* steps, StepObserver* observer)
 {
   if (!std::isfinite(t) || std::abs(t) > Tether::kMaxTime)
   {
@@ -69,6 +69,10 @@ Status World::advanceTo(double t, std::size_t* steps)
       break;
     }
     Tether& stepping = *tethers_[next].tether;
+    if (observer != nullptr)
+    {
+      observer->beforeStep(next);
+    }
     // Once a round (when a tether steps from another time than the last check: the first of the next round,
     // or any after a clock that went back) the scene takes the tethers' live parameters, and the grid is
     // filed again unless every segment is still within its skin of where it was filed. A tether that has
@@ -90,6 +94,10 @@ Status World::advanceTo(double t, std::size_t* steps)
       loadCarrier(tethers_[next].carrier);
     }
     grid_stale_ = grid_stale_ || (contact_on_ && scene_.between_tethers && !scene_.grid.holds(next, stepping.state()));
+    if (observer != nullptr)
+    {
+      observer->afterStep(next);
+    }
     ++taken;
   }
   for (auto& entry : tethers_)

@@ -13,15 +13,6 @@
 namespace rov_tether
 {
 
-/**
- * Several tethers in one scene, stepped in lockstep: advanceTo(t) takes the step that comes first in time
- * among all tethers, then the next, so no tether runs ahead of another by more than its own step. Tethers
- * with the same time_step (the usual case) step in turn, in the order they were added, at the same time.
- * This is where what tethers share goes: the obstacles they touch, and contact between them and of each with
- * itself (WorldContact; the latter off by default, setContactBetweenTethers). A world of one tether that touches
- * neither an obstacle nor itself moves as that tether alone, though it may take more sub-steps (see
- * Tether::setWorldContact); without obstacles and with contact between tethers off, it is that tether alone.
- */
 /// One line of the topology report (World::topology; README "Topology").
 struct TopologyEntry
 {
@@ -41,6 +32,26 @@ struct TopologyEntry
 };
 const char* topologyKindName(TopologyEntry::Kind kind);
 
+/// Told around each step World::advanceTo takes, with the index of the tether that steps (the node times
+/// each tether's steps with it, for its load governor). The step includes what the world does for it: the
+/// contact grid filed again, a mounted spool placed, the carrier loaded.
+class StepObserver
+{
+ public:
+  virtual ~StepObserver() = default;
+  virtual void beforeStep(std::size_t tether) = 0;
+  virtual void afterStep(std::size_t tether) = 0;
+};
+
+/**
+ * Several tethers in one scene, stepped in lockstep: advanceTo(t) takes the step that comes first in time
+ * among all tethers, then the next, so no tether runs ahead of another by more than its own step. Tethers
+ * with the same time_step (the usual case) step in turn, in the order they were added, at the same time.
+ * This is where what tethers share goes: the obstacles they touch, and contact between them and of each with
+ * itself (WorldContact; the latter off by default, setContactBetweenTethers). A world of one tether that touches
+ * neither an obstacle nor itself moves as that tether alone, though it may take more sub-steps (see
+ * Tether::setWorldContact); without obstacles and with contact between tethers off, it is that tether alone.
+ */
 class World
 {
  public:
@@ -76,8 +87,8 @@ class World
 
   /// Advances every tether until its time is within one of its steps of t [s], in lockstep (see above).
   /// Returns the steps taken, all tethers together, through `steps` when given. Refuses a non-finite t
-  /// or one beyond Tether::kMaxTime, and changes nothing then.
-  Status advanceTo(double t, std::size_t* steps = nullptr);
+  /// or one beyond Tether::kMaxTime, and changes nothing then. `observer`, when given, is told around each step.
+  Status advanceTo(double t, std::size_t* steps = nullptr, StepObserver* observer = nullptr);
   /// The earliest time among the tethers [s]; 0 for an empty world.
   double time() const;
 
