@@ -14,13 +14,6 @@ namespace
 /// Exponential smoothing of diagnostics figures.
 double smooth(double previous, double sample) { return previous <= 0.0 ? sample : 0.95 * previous + 0.05 * sample; }
 
-/// Relative cost of one internal step of `tether`: its deployed particles times its solver passes.
-double stepWork(const Tether& tether)
-{
-  const TetherParams& p = tether.params();
-  return static_cast<double>(tether.deployedParticleCount()) * std::max(1, p.iterations) * std::max(1, p.substeps);
-}
-
 }  // namespace
 
 Scheduler::Scheduler(World& world, double interpolation_delay, WallClock wall_clock)
@@ -36,6 +29,7 @@ std::size_t Scheduler::add(const NodeOptions& options, TetherHooks& hooks, const
 {
   const std::size_t i = tethers_.size();
   tethers_.emplace_back(hooks, options, world_.tether(i).params().iterations, label);
+  charged_.push_back(0.0);
   hold_limit_ = std::max(hold_limit_, options.stale_pose_timeout);
   return i;
 }
@@ -123,16 +117,18 @@ void Scheduler::tick(const ros::Time& now)
         "the physics catches up, or skips ahead beyond max_lag",
         wall_gap);
   }
-  for (auto& tether : tethers_)
+  std::fill(charged_.begin(), charged_.end(), 0.0);
+  for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
-    tether.hooks->beforeAdvance(now);
+    timed(i, [&] { tethers_[i].hooks->beforeAdvance(now); });
   }
   const double target = physicsTarget(now);
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     prepare(i, target, now);
   }
-  std::vector<std::uint64_t> steps_before(tethers_.size());
+  std::vector<std::uint64_t>& steps_before = ticked_before_;
+  steps_before.resize(tethers_.size());
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     steps_before[i] = world_.tether(i).stepCount();
@@ -239,7 +235,7 @@ void Scheduler::advance(double target)
       steps_before[i] = world_.tether(i).stepCount();
     }
     std::size_t taken = 0;
-    const Status status = world_.advanceTo(stop, &taken);
+    const Status status = world_.advanceTo(stop, &taken, this);
     if (!status.ok)
     {
       // A target from ROS time is finite and far below Tether::kMaxTime; were one refused, nothing is
@@ -251,15 +247,16 @@ void Scheduler::advance(double target)
     {
       if (tethers_[i].hooks->watchesSteps() && world_.tether(i).stepCount() != steps_before[i])
       {
-        tethers_[i].hooks->stepped(delay_);
+        timed(i, [&] { tethers_[i].hooks->stepped(delay_); });
       }
     }
     bool state_due = false;
-    for (auto& s : tethers_)
+    for (std::size_t i = 0; i < tethers_.size(); ++i)
     {
+      TetherSchedule& s = tethers_[i];
       if (s.next_state <= stop)
       {
-        s.hooks->publishState();
+        timed(i, [&] { s.hooks->publishState(); });
         s.next_state += s.state_period;
         state_due = true;
       }
@@ -273,23 +270,32 @@ void Scheduler::advance(double target)
   }
 }
 
+template <class Call>
+void Scheduler::timed(std::size_t i, Call&& call)
+{
+  const ros::WallTime start = wall_clock_();
+  call();
+  charged_[i] += (wall_clock_() - start).toSec();
+}
+
+void Scheduler::beforeStep(std::size_t /*tether*/) { step_start_ = wall_clock_(); }
+
+void Scheduler::afterStep(std::size_t tether) { charged_[tether] += (wall_clock_() - step_start_).toSec(); }
+
 void Scheduler::account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before)
 {
-  std::vector<double> work(tethers_.size());
-  double total = 0.0;
-  for (std::size_t i = 0; i < tethers_.size(); ++i)
+  double measured = 0.0;
+  for (const double seconds : charged_)
   {
-    const Tether& tether = world_.tether(i);
-    work[i] = static_cast<double>(tether.stepCount() - steps_before[i]) * stepWork(tether);
-    total += work[i];
+    measured += seconds;
   }
+  // What no tether's own calls took (scheduling, skips, re-lays) is shared evenly.
+  const double rest = std::max(0.0, wall - measured) / static_cast<double>(tethers_.size());
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     TetherSchedule& s = tethers_[i];
     Tether& tether = world_.tether(i);
-    // Alone, a tether's share is all of it; with no step taken, the overhead is shared evenly.
-    const double share = total > 0.0 ? work[i] / total : 1.0 / static_cast<double>(tethers_.size());
-    const double tether_wall = wall * share;
+    const double tether_wall = charged_[i] + rest;
     s.governor.update(tether_wall, wall_end, tether);
     const std::uint64_t steps = tether.stepCount() - steps_before[i];
     if (steps > 0 && tether_wall > 0.0)

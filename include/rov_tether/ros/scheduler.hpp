@@ -92,11 +92,12 @@ struct TetherSchedule
  * restarts its ~state grid there, so a node that cannot hold real time still publishes at least once a
  * skip. A tether whose hooks watch its steps (~coupling subscribed) is told after each of its internal steps
  * (the world still steps in lockstep; unwatched, it advances to the next stop in one call, as before). After
- * the physics, the wall time it
- * took is shared among the tethers by their work (steps x particles x iterations x substeps; exact for
- * one tether) and fed to each tether's LoadGovernor. Needs no ROS master: the wall clock is injected.
+ * the physics, each tether is charged the wall time of its own steps (the world tells the scheduler around
+ * each) and of its hooks' calls (poses taken, ~state published), plus an even share of the rest of the tick,
+ * and that is fed to its LoadGovernor: measured, not estimated, so a tether that gives up iterations does
+ * not pass its cost on to the others. Needs no ROS master: the wall clock is injected.
  */
-class Scheduler
+class Scheduler : private StepObserver
 {
  public:
   using WallClock = std::function<ros::WallTime()>;
@@ -145,8 +146,14 @@ class Scheduler
   /// Where advance() stops next on its way to `target`: the earliest due ~state point, or the end of the
   /// next step of a tether whose steps are watched, or `target`.
   double nextStop(double target) const;
-  /// Shares `wall` [s] among the tethers by work and updates their statistics and governors.
+  /// Charges each tether what was measured for it on this tick, plus an even share of the rest of `wall` [s],
+  /// and updates their statistics and governors.
   void account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before);
+  /// Runs `call` and charges its wall time to tether i.
+  template <class Call>
+  void timed(std::size_t i, Call&& call);
+  void beforeStep(std::size_t tether) override;
+  void afterStep(std::size_t tether) override;
 
   World& world_;
   double interpolation_delay_;
@@ -156,6 +163,9 @@ class Scheduler
   WallClock wall_clock_;
   std::vector<TetherSchedule> tethers_;
   std::vector<std::uint64_t> stepped_before_;  ///< advance(): each tether's step count before a stop (reused).
+  std::vector<std::uint64_t> ticked_before_;   ///< tick(): each tether's step count before the tick (reused).
+  std::vector<double> charged_;                ///< Each tether's measured wall time on this tick [s].
+  ros::WallTime step_start_;                   ///< Wall time the world's current step began.
   bool started_ = false;
   ros::Time last_time_;      ///< ROS time of the last tick (or reset).
   ros::WallTime last_wall_;  ///< Wall time of the last tick's start; zero before the first.
