@@ -86,7 +86,7 @@ void LoadGovernor::degrade(Tether& tether)
     degraded_ = markersText(marker_rate_);
   }
   ROS_WARN_THROTTLE(
-      5.0, "tether_node%s: physics and markers use %.1f%% + %.1f%% of the wall time (cpu_budget %.0f%%): %s",
+      5.0, "tether_node%s: physics and markers use %.1f%% + %.1f%% of the wall time (cpu_budget %.3g%%): %s",
       label_.c_str(), 100 * physics_load_, 100 * marker_load_, 100 * options_.cpu_budget,
       degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
 }

@@ -154,7 +154,7 @@ void TetherDiagnostics::mergeAlarms(const TetherSummary& summary, diagnostic_upd
   if (governor.overloaded())
   {
     // Given up what it could, or nothing: either way the budget is not held, and it says so.
-    status.mergeSummaryf(DiagnosticStatus::WARN, "over cpu_budget: physics %.1f%% + markers %.1f%% of %.0f%%",
+    status.mergeSummaryf(DiagnosticStatus::WARN, "over cpu_budget: physics %.1f%% + markers %.1f%% of %.3g%%",
                          100.0 * governor.physicsLoad(), 100.0 * governor.markerLoad(), 100.0 * options_.cpu_budget);
   }
   if (!schedule.last_skip_time.isZero() && (now - schedule.last_skip_time).toSec() < kFailureReportTime)
