@@ -69,10 +69,6 @@ Status World::advanceTo(double t, std::size_t* steps, StepObserver* observer)
       break;
     }
     Tether& stepping = *tethers_[next].tether;
-    if (observer != nullptr)
-    {
-      observer->beforeStep(next);
-    }
     // Once a round (when a tether steps from another time than the last check: the first of the next round,
     // or any after a clock that went back) the scene takes the tethers' live parameters, and the grid is
     // filed again unless every segment is still within its skin of where it was filed. A tether that has
@@ -83,6 +79,10 @@ Status World::advanceTo(double t, std::size_t* steps, StepObserver* observer)
       refreshContact(grid_stale_);
       grid_time_ = stepping.time();
       grid_stale_ = false;
+    }
+    if (observer != nullptr)
+    {
+      observer->beforeStep(next);  // after the grid, which is every tether's
     }
     if (tethers_[next].carrier != npos)
     {

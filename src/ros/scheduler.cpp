@@ -25,6 +25,14 @@ Scheduler::Scheduler(World& world, double interpolation_delay, WallClock wall_cl
 {
 }
 
+template <class Call>
+void Scheduler::timed(std::size_t i, Call&& call)
+{
+  const ros::WallTime start = wall_clock_();
+  call();
+  charged_[i] += std::max(0.0, (wall_clock_() - start).toSec());  // a wall clock set back charges nothing
+}
+
 std::size_t Scheduler::add(const NodeOptions& options, TetherHooks& hooks, const std::string& label)
 {
   const std::size_t i = tethers_.size();
@@ -68,7 +76,7 @@ void Scheduler::resetAll(const ros::Time& now, const std::string& why)
   delay_ = interpolation_delay_;  // the poses' timing starts over with the tethers
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
-    reset(i, now, why);
+    timed(i, [&] { reset(i, now, why); });  // re-laying a long cable is its own work
   }
 }
 
@@ -78,6 +86,7 @@ void Scheduler::tick(const ros::Time& now)
   {
     return;  // simulated time has not started
   }
+  std::fill(charged_.begin(), charged_.end(), 0.0);
   const ros::WallTime wall_now = wall_clock_();
   // The wall time since the last tick: ROS time that passed with it is the node's own stall (a render too
   // big, a slow machine), not a clock that leapt.
@@ -88,7 +97,7 @@ void Scheduler::tick(const ros::Time& now)
     started_ = true;
     for (std::size_t i = 0; i < tethers_.size(); ++i)
     {
-      restart(i, now);
+      timed(i, [&] { restart(i, now); });
     }
     last_time_ = now;
   }
@@ -117,7 +126,6 @@ void Scheduler::tick(const ros::Time& now)
         "the physics catches up, or skips ahead beyond max_lag",
         wall_gap);
   }
-  std::fill(charged_.begin(), charged_.end(), 0.0);
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
     timed(i, [&] { tethers_[i].hooks->beforeAdvance(now); });
@@ -125,7 +133,7 @@ void Scheduler::tick(const ros::Time& now)
   const double target = physicsTarget(now);
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
-    prepare(i, target, now);
+    timed(i, [&] { prepare(i, target, now); });  // a skip ahead holds the cable: its work too
   }
   std::vector<std::uint64_t>& steps_before = ticked_before_;
   steps_before.resize(tethers_.size());
@@ -270,20 +278,22 @@ void Scheduler::advance(double target)
   }
 }
 
-template <class Call>
-void Scheduler::timed(std::size_t i, Call&& call)
-{
-  const ros::WallTime start = wall_clock_();
-  call();
-  charged_[i] += (wall_clock_() - start).toSec();
-}
-
 void Scheduler::beforeStep(std::size_t /*tether*/) { step_start_ = wall_clock_(); }
 
-void Scheduler::afterStep(std::size_t tether) { charged_[tether] += (wall_clock_() - step_start_).toSec(); }
+void Scheduler::afterStep(std::size_t tether)
+{
+  if (tether < charged_.size())  // a tether of the world not (yet) scheduled is charged to none
+  {
+    charged_[tether] += std::max(0.0, (wall_clock_() - step_start_).toSec());
+  }
+}
 
 void Scheduler::account(double wall, const ros::WallTime& wall_end, const std::vector<std::uint64_t>& steps_before)
 {
+  if (tethers_.empty())
+  {
+    return;
+  }
   double measured = 0.0;
   for (const double seconds : charged_)
   {

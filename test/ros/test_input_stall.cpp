@@ -66,7 +66,8 @@ double value(const std::string& name, const std::string& key)
 }
 
 /// How long each physics tick of the world took on average over the last diagnostics window [s]: the slow
-/// tether's share of the wall time (nearly all the work is its) times the tick period (physics_rate 2 Hz).
+/// tether's share of the wall time (measured for it, and nearly all the work is its) times the tick period
+/// (physics_rate 2 Hz).
 double tickSeconds() { return value("tether slow", "physics load [% of wall time]") / 100.0 * 0.5; }
 
 TEST(InputStall, PosesAt1kHzSurviveAStalledPhysics)

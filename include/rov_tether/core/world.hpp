@@ -33,8 +33,9 @@ struct TopologyEntry
 const char* topologyKindName(TopologyEntry::Kind kind);
 
 /// Told around each step World::advanceTo takes, with the index of the tether that steps (the node times
-/// each tether's steps with it, for its load governor). The step includes what the world does for it: the
-/// contact grid filed again, a mounted spool placed, the carrier loaded.
+/// each tether's steps with it, for its load governor). The step includes what the world does for that
+/// tether alone (its mounted spool placed, its carrier loaded), not the contact grid filed again before
+/// it, which is every tether's.
 class StepObserver
 {
  public:

@@ -93,7 +93,8 @@ struct TetherSchedule
  * skip. A tether whose hooks watch its steps (~coupling subscribed) is told after each of its internal steps
  * (the world still steps in lockstep; unwatched, it advances to the next stop in one call, as before). After
  * the physics, each tether is charged the wall time of its own steps (the world tells the scheduler around
- * each) and of its hooks' calls (poses taken, ~state published), plus an even share of the rest of the tick,
+ * each) and of its hooks' calls (poses taken, ~state published), re-lays and skips, plus an even share of the
+ * rest of the tick (the contact grid, which is every tether's, and the scheduling itself),
  * and that is fed to its LoadGovernor: measured, not estimated, so a tether that gives up iterations does
  * not pass its cost on to the others. Needs no ROS master: the wall clock is injected.
  */
