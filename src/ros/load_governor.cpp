@@ -3,6 +3,7 @@
 #include <ros/console.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace rov_tether::ros_layer
 {
@@ -14,7 +15,12 @@ std::string iterationsText(int iterations, int configured)
   return "iterations " + std::to_string(iterations) + " of " + std::to_string(configured);
 }
 
-std::string markersText(double rate) { return "markers at " + std::to_string(rate).substr(0, 4) + " Hz"; }
+std::string markersText(double rate)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "markers at %.3g Hz", rate);  // 100, 12.5, 6.25
+  return text;
+}
 
 }  // namespace
 

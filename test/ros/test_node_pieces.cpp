@@ -973,11 +973,17 @@ TEST(LoadGovernor, GivesUpOneNotchPerSecondAndUndoesItWhenTheLoadFalls)
   second(0.9, markers, 0.1);
   second(0.9, markers, 0.1);
   EXPECT_DOUBLE_EQ(markers.markerRate(), 7.5);
-  EXPECT_EQ(markers.degraded(), "markers at 7.50 Hz");
+  EXPECT_EQ(markers.degraded(), "markers at 7.5 Hz");
   EXPECT_EQ(tether.params().iterations, 10) << "reduce_markers keeps the iterations";
   markers.reconfigured(10);
   EXPECT_DOUBLE_EQ(markers.markerRate(), 30.0);
   EXPECT_EQ(markers.degraded(), "");
+
+  // The rate as a number reads: from 200 Hz, 100 Hz (it read "100. Hz", cut to four characters).
+  options.marker_rate = 200.0;
+  LoadGovernor fast(options, 10, "t");
+  second(0.9, fast, 0.1);
+  EXPECT_EQ(fast.degraded(), "markers at 100 Hz");
 }
 
 // reduce_markers gives up what the markers cost, and that relieves the load: markers costing 10 ms each
@@ -1016,7 +1022,7 @@ TEST(LoadGovernor, ReduceMarkersRelievesWhatTheMarkersCost)
   EXPECT_NEAR(loads.back(), 0.1 + 0.075, 1e-9);  // at 7.5 Hz: relieved
   EXPECT_LE(loads.back(), options.cpu_budget);
   EXPECT_FALSE(governor.overloaded());
-  EXPECT_EQ(governor.degraded(), "markers at 7.50 Hz");
+  EXPECT_EQ(governor.degraded(), "markers at 7.5 Hz");
   EXPECT_EQ(tether.params().iterations, 10) << "reduce_markers keeps the iterations";
 
   LoadGovernor unwatched(options, 10, "t");
