@@ -36,7 +36,7 @@ for i in $(seq 1 "$runs"); do
     result=FAIL
     failed=$((failed + 1))
   fi
-  measured="$(grep -rhoa "\[ measured \][^&<]*" "$ROS_HOME/test_results" 2>/dev/null | head -10 | tr '\n' ' ')"
+  measured="$(grep -rhoa "\[ measured \][^&<]*" "$ROS_HOME/test_results" 2>/dev/null | head -20 | tr '\n' ' ')"
   echo "run $i: $result $measured"
 done
 echo "$((runs - failed)) of $runs runs passed"

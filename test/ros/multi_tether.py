@@ -16,7 +16,7 @@ from geometry_msgs.msg import PoseStamped
 from rov_tether.msg import TetherState
 
 TETHERS = 8
-BUDGET_T6 = 0.025  # t6/cpu_budget in multi_tether.test
+BUDGET_T6 = 0.02  # t6/cpu_budget in multi_tether.test
 SPACING = 4.0  # [m] spool i at (4 i, 0, 0), config/eight_tethers.yaml
 
 
@@ -91,15 +91,15 @@ class MultiTether(unittest.TestCase):
         self.assertGreaterEqual(degraded.iterations, 3)  # min_iterations
         self.assertGreaterEqual(status.level, DiagnosticStatus.WARN)
         self.assertIn("degraded", status.message)
-        # t6: the markers were over its 2.5% budget, the physics under it. Giving markers up must relieve it:
+        # t6: the markers were over its 2% budget, the physics under it. Giving markers up must relieve it:
         # the load measured once they are reduced (physics + markers) is within the budget, and the
         # markers' share fell from what it was at 200 Hz. (Before the markers were measured, t6 gave up
         # markers nobody watched, which relieved nothing, and this test took the message as success.)
         history = self.t6_history
         reduced = [h for h in history if "markers at" in h[2]]
-        print("[ measured ] t6 (reduce_markers, budget 2.5%%): %d iterations; loads (physics + markers): %s"
+        print("[ measured ] t6 (reduce_markers, budget 2%%): %d iterations; loads (physics + markers): %s"
               % (self.states[6].iterations,
-                 ", ".join("%.1f%% + %.1f%%" % (100 * p, 100 * m) for p, m, _ in history[:8])), file=sys.stderr)
+                 ", ".join("%.1f%% + %.1f%%" % (100 * p, 100 * m) for p, m, _ in history)), file=sys.stderr)
         print("[ measured ] t6 last diagnostics: '%s'" % history[-1][2], file=sys.stderr)
         self.assertEqual(self.states[6].iterations, 1, "reduce_markers keeps the iterations")
         self.assertTrue(reduced, "markers were never reduced")
