@@ -30,6 +30,11 @@ void Scheduler::timed(std::size_t i, Call&& call)
 {
   const ros::WallTime start = wall_clock_();
   call();
+  charge(i, start);
+}
+
+void Scheduler::charge(std::size_t i, const ros::WallTime& start)
+{
   charged_[i] += std::max(0.0, (wall_clock_() - start).toSec());  // a wall clock set back charges nothing
 }
 
@@ -284,7 +289,7 @@ void Scheduler::afterStep(std::size_t tether)
 {
   if (tether < charged_.size())  // a tether of the world not (yet) scheduled is charged to none
   {
-    charged_[tether] += std::max(0.0, (wall_clock_() - step_start_).toSec());
+    charge(tether, step_start_);
   }
 }
 

@@ -153,6 +153,8 @@ class Scheduler : private StepObserver
   /// Runs `call` and charges its wall time to tether i.
   template <class Call>
   void timed(std::size_t i, Call&& call);
+  /// Charges tether i the wall time since `start` (none when the clock went back).
+  void charge(std::size_t i, const ros::WallTime& start);
   void beforeStep(std::size_t tether) override;
   void afterStep(std::size_t tether) override;
 
