@@ -318,7 +318,7 @@ struct BlockRow
 static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
 
 /// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
-inline bool factorBlock(const double* s, BlockRow& row)
+ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
 {
   row.d0 = s[0];
   if (!(row.d0 > 0.0))
@@ -339,7 +339,7 @@ inline bool factorBlock(const double* s, BlockRow& row)
 }
 
 /// y = a L^-T for the unit-lower L of `row` (each row of a, forward substitution): y L^T = a.
-inline void solveTransposed(const double* a, const BlockRow& row, double* y)
+ROV_TETHER_INLINE void solveTransposed(const double* a, const BlockRow& row, double* y)
 {
   for (std::size_t r = 0; r < 3; ++r)
   {
@@ -350,7 +350,7 @@ inline void solveTransposed(const double* a, const BlockRow& row, double* y)
 }
 
 /// s -= y D^-1 y^T (lower triangle) and stores L(l, k) = y D^-1 into `below`.
-inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
+ROV_TETHER_INLINE void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
 {
   const double* inv = pivot.inv;
   for (std::size_t r = 0; r < 3; ++r)
@@ -371,7 +371,7 @@ inline void schurUpdate(const double* y, const BlockRow& pivot, double* s, doubl
 
 /// Y2 = c L^-T for the unit-lower L of `row` (solveTransposed of c I, its zeros left out: the same
 /// roundings), upper triangular: y[0], y[1], y[2], y[4], y[5], y[8] are set, the rest is 0.
-inline void scaledTransposedInverse(double c, const BlockRow& row, double* y)
+ROV_TETHER_INLINE void scaledTransposedInverse(double c, const BlockRow& row, double* y)
 {
   const double y01 = -(row.l10 * c);
   y[0] = c, y[1] = y01, y[2] = -(row.l20 * c) - row.l21 * y01;
@@ -380,7 +380,7 @@ inline void scaledTransposedInverse(double c, const BlockRow& row, double* y)
 }
 
 /// schurUpdate for the upper-triangular y of scaledTransposedInverse (its zero products left out).
-inline void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, double* below)
+ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, double* below)
 {
   const double* inv = pivot.inv;
   below[0] = y[0] * inv[0], below[1] = y[1] * inv[1], below[2] = y[2] * inv[2];
@@ -396,7 +396,7 @@ inline void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, 
 
 /// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
 template <bool kSecond>
-bool factorBlocks(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
+ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
                   std::size_t n, double* __restrict work)
 {
   // A = L D L^T, L unit block-lower with 3x3 unit-lower diagonal blocks L_l and D diagonal; it is the
@@ -452,7 +452,7 @@ bool factorBlocks(const double* __restrict diag, const double* __restrict first,
 
 /// L u = b (block forward), then D and L^T (block backward), with the factors in work.
 template <bool kSecond>
-void substituteBlocks(double* __restrict b, std::size_t n, const double* __restrict work)
+ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t n, const double* __restrict work)
 {
   const auto* rows = reinterpret_cast<const BlockRow*>(work);
   auto multiply = [](const double* m, const double* v, double* out)  // out -= m v
@@ -478,7 +478,12 @@ void substituteBlocks(double* __restrict b, std::size_t n, const double* __restr
     }
     if (kSecond && l >= 2)
     {
-      multiply(rows[l].below2, b + 3 * (l - 2), u);
+      // L(l, l-2) is upper triangular (schurUpdateUpper): its zeros left out, the same roundings.
+      const double* m = rows[l].below2;
+      const double* v = b + 3 * (l - 2);
+      u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+      u[1] -= m[4] * v[1] + m[5] * v[2];
+      u[2] -= m[8] * v[2];
     }
     const BlockRow& row = rows[l];
     u[1] -= row.l10 * u[0];
@@ -495,7 +500,11 @@ void substituteBlocks(double* __restrict b, std::size_t n, const double* __restr
     }
     if (kSecond && l + 2 < n)
     {
-      multiplyTransposed(rows[l + 2].below2, b + 3 * (l + 2), x);
+      const double* m = rows[l + 2].below2;  // upper triangular, as above
+      const double* v = b + 3 * (l + 2);
+      x[0] -= m[0] * v[0];
+      x[1] -= m[1] * v[0] + m[4] * v[1];
+      x[2] -= m[2] * v[0] + m[5] * v[1] + m[8] * v[2];
     }
     x[1] -= row.l21 * x[2];
     x[0] -= row.l10 * x[1] + row.l20 * x[2];
