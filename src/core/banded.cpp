@@ -396,8 +396,8 @@ ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, 
 
 /// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
 template <bool kSecond>
-ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const double* __restrict first, const double* __restrict second,
-                  std::size_t n, double* __restrict work)
+ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const double* __restrict first,
+                                           const double* __restrict second, std::size_t n, double* __restrict work)
 {
   // A = L D L^T, L unit block-lower with 3x3 unit-lower diagonal blocks L_l and D diagonal; it is the
   // scalar L D L^T of the band in the same order, computed a block row at a time with triangular solves (no
