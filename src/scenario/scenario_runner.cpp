@@ -1,6 +1,7 @@
 #include "rov_tether/scenario/scenario_runner.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -113,15 +114,32 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
     std::fputs("nan,nan,nan\n", state_file);  // no sub-step since the last row, or a solver without Newton
   }
   sim.markSolverEffort();
+  // The shape rows are most of what a run writes: formatted by std::to_chars, whose fixed and general
+  // formats with a precision are printf's "%.6f" and "%.6g" to the byte, at a fraction of fprintf's cost
+  // (7% of scenarios/spool_payout.yaml's CPU time went to printf's number formatting).
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    std::fprintf(shape_file, "%.6f,%zu,%.6f,%.6f,%.6f,", t_out, i, positions[i].x(), positions[i].y(),
-                 positions[i].z());
+    char row[2048];  // room for the five fixed fields at the largest double (309 digits each)
+    char* end = row + sizeof row;
+    char* p = row;
+    auto put = [&](double v, std::chars_format format)
+    {
+      p = std::to_chars(p, end, v, format, 6).ptr;
+      *p++ = ',';
+    };
+    put(t_out, std::chars_format::fixed);
+    p = std::to_chars(p, end, i).ptr;
+    *p++ = ',';
+    put(positions[i].x(), std::chars_format::fixed);
+    put(positions[i].y(), std::chars_format::fixed);
+    put(positions[i].z(), std::chars_format::fixed);
     if (i < tensions.size())
     {
-      std::fprintf(shape_file, "%.6g", tensions[i]);
+      put(tensions[i], std::chars_format::general);
+      --p;  // the last field has no comma after it
     }
-    std::fputc('\n', shape_file);
+    *p++ = '\n';
+    std::fwrite(row, 1, static_cast<std::size_t>(p - row), shape_file);
   }
   ++result->state_rows;
   result->shape_rows += positions.size();
