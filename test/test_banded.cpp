@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "banded.hpp"
@@ -222,6 +223,67 @@ TEST(Banded, BlockSolveSolvesTheSystem)
         EXPECT_NEAR(ay, b2[r], 1e-12) << "again, bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
         EXPECT_NEAR(ayl, b2[r], 1e-12) << "LAPACK again, bandwidth " << (two ? 2 : 1) << " n " << n << " row " << r;
       }
+    }
+  }
+}
+
+/// A spring on block row 1's unknowns along P: stretch s0 + P . x_1, force k times it. Given the response
+/// without the pull (`along`) and P . A^-1_11 P (`compliance`), the force that meets the law at the solution is
+/// k (s0 + along) / (1 + k compliance). It records what it was given.
+class SpringLaw : public banded::EndLaw
+{
+ public:
+  SpringLaw(double k, double s0) : k_(k), s0_(s0) {}
+  double force(double along, double compliance) const override
+  {
+    along_ = along, compliance_ = compliance;
+    return k_ * (s0_ + along) / (1.0 + k_ * compliance);
+  }
+  double k_, s0_;
+  mutable double along_ = 0.0, compliance_ = 0.0;
+};
+
+// The drum's solve in one pass (one factorisation, eliminating from the last block row, one substitution)
+// against its definition: x = A^-1 (b - f P e_1) with the law met at x (a spring: f = k (s0 + P . x_1)), and
+// the law handed P . x_1 without the pull and P . A^-1_11 P, each checked against two plain solves. Block row
+// 0 is uncoupled (the pinned spool particle); the systems' first blocks are not symmetric, so A(l, l+1) must
+// be read as the transpose of the stored A(l+1, l). Rounding-level bounds, as BlockSolveSolvesTheSystem's.
+TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
+{
+  for (bool two : {false, true})
+  {
+    for (std::size_t n : {2u, 3u, 4u, 10u, 101u})
+    {
+      BlockSystem system(n, two, static_cast<unsigned>(7 * n + (two ? 1 : 0)));
+      std::fill(system.first.begin(), system.first.begin() + 9, 0.0);  // block row 0 uncoupled
+      system.second[0] = 0.0;
+      const double* second = two ? system.second.data() : nullptr;
+      const double pull[3] = {0.6, -0.48, 0.64};  // unit
+      SpringLaw law(3.0, 0.2);
+      std::vector<double> x = system.b, work(36 * n);
+      double force = 0.0;
+      ASSERT_TRUE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), second, x.data(), n,
+                                                 work.data(), pull, law, &force));
+      const std::string where = std::string("bandwidth ") + (two ? "2" : "1") + " n " + std::to_string(n);
+      for (std::size_t r = 0; r < 3 * n; ++r)
+      {
+        double ax = 0.0;
+        for (std::size_t c = 0; c < 3 * n; ++c)
+        {
+          ax += system.at(r, c) * x[c];
+        }
+        const double rhs = system.b[r] - (r / 3 == 1 ? force * pull[r % 3] : 0.0);
+        EXPECT_NEAR(ax, rhs, 1e-12) << where << " row " << r;
+      }
+      const double stretch = law.s0_ + pull[0] * x[3] + pull[1] * x[4] + pull[2] * x[5];
+      EXPECT_NEAR(force, law.k_ * stretch, 1e-12 * std::max(1.0, std::abs(force))) << where;
+      // What the law was given, from two plain solves: b, and a unit pull P on block row 1.
+      std::vector<double> p = system.b, q(3 * n, 0.0), work2(36 * n);
+      q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
+      ASSERT_TRUE(banded::solveBlockBanded(system.diag.data(), system.first.data(), second, p.data(), n, work2.data()));
+      banded::solveBlockBandedAgain(two, q.data(), n, work2.data());
+      EXPECT_NEAR(law.along_, pull[0] * p[3] + pull[1] * p[4] + pull[2] * p[5], 1e-12) << where;
+      EXPECT_NEAR(law.compliance_, pull[0] * q[3] + pull[1] * q[4] + pull[2] * q[5], 1e-12) << where;
     }
   }
 }

@@ -395,7 +395,9 @@ ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, 
 }
 
 /// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
-template <bool kSecond>
+/// kReverse eliminates the block rows from the last to the first (elimination row l is block row n - 1 - l):
+/// the same system, with the first block row's pivot last (solveBlockBandedPulled).
+template <bool kSecond, bool kReverse = false>
 ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const double* __restrict first,
                                            const double* __restrict second, std::size_t n, double* __restrict work)
 {
@@ -406,20 +408,27 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
   //   Y1 = (A(l, l-1) - Y2 L(l-1, l-2)^T) L_l-1^-T,  L(l, l-1) = Y1 D_l-1^-1,
   //   S_l = A(l, l) - Y1 D_l-1^-1 Y1^T - Y2 D_l-2^-1 Y2^T = L_l D_l L_l^T.
   // A(l, l-2) = c I (second[l - 2] = c), so Y2 is c L_l-2^-T: upper triangular, its zeros skipped.
+  // Reversed, A(l, l-1) of the elimination order is the block above the diagonal, the transpose of the one
+  // stored below it, and A(l, l-2) the same c I.
   auto* rows = reinterpret_cast<BlockRow*>(work);
   for (std::size_t l = 0; l < n; ++l)
   {
+    const std::size_t p = kReverse ? n - 1 - l : l;  // the block row eliminated l-th
     double s[9];
-    std::copy(diag + 9 * l, diag + 9 * l + 9, s);
+    std::copy(diag + 9 * p, diag + 9 * p + 9, s);
     double a1[9];
     if (l >= 1)
     {
-      std::copy(first + 9 * (l - 1), first + 9 * l, a1);
+      const double* stored = first + 9 * (kReverse ? p : p - 1);
+      for (std::size_t i = 0; i < 9; ++i)
+      {
+        a1[i] = kReverse ? stored[3 * (i % 3) + i / 3] : stored[i];
+      }
     }
     if (kSecond && l >= 2)
     {
       double y2[9];
-      scaledTransposedInverse(second[l - 2], rows[l - 2], y2);
+      scaledTransposedInverse(second[kReverse ? p : p - 2], rows[l - 2], y2);
       schurUpdateUpper(y2, rows[l - 2], s, rows[l].below2);
       const double* prev = rows[l - 1].below1;  // L(l-1, l-2)
       for (std::size_t r = 0; r < 3; ++r)
@@ -450,58 +459,85 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
   return true;
 }
 
-/// L u = b (block forward), then D and L^T (block backward), with the factors in work.
-template <bool kSecond>
-ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t n, const double* __restrict work)
+/// out -= m v and out -= m^T v for row-major 3x3 m.
+ROV_TETHER_INLINE void multiplySubtract(const double* m, const double* v, double* out)
 {
-  const auto* rows = reinterpret_cast<const BlockRow*>(work);
-  auto multiply = [](const double* m, const double* v, double* out)  // out -= m v
+  for (std::size_t r = 0; r < 3; ++r)
   {
-    for (std::size_t r = 0; r < 3; ++r)
-    {
-      out[r] -= m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
-    }
-  };
-  auto multiplyTransposed = [](const double* m, const double* v, double* out)  // out -= m^T v
+    out[r] -= m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
+  }
+}
+ROV_TETHER_INLINE void multiplyTransposedSubtract(const double* m, const double* v, double* out)
+{
+  for (std::size_t c = 0; c < 3; ++c)
   {
-    for (std::size_t c = 0; c < 3; ++c)
-    {
-      out[c] -= m[c] * v[0] + m[3 + c] * v[1] + m[6 + c] * v[2];
-    }
-  };
+    out[c] -= m[c] * v[0] + m[3 + c] * v[1] + m[6 + c] * v[2];
+  }
+}
+
+/// Block row r's values of b in the elimination order (factorBlocks' kReverse).
+template <bool kReverse>
+ROV_TETHER_INLINE double* at(double* b, std::size_t n, std::size_t r)
+{
+  return b + 3 * (kReverse ? n - 1 - r : r);
+}
+
+/// u_l = L_l^-1 v for the unit-lower L_l of `row`.
+ROV_TETHER_INLINE void ownForward(const BlockRow& row, double* u)
+{
+  u[1] -= row.l10 * u[0];
+  u[2] -= row.l20 * u[0] + row.l21 * u[1];
+}
+
+/// x = L_l^-T D_l^-1 x for `row`'s own factors.
+ROV_TETHER_INLINE void ownBackward(const BlockRow& row, double* x)
+{
+  x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
+  x[1] -= row.l21 * x[2];
+  x[0] -= row.l10 * x[1] + row.l20 * x[2];
+}
+
+/// L u = b (block forward), with the factors in work.
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void forwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
+{
   for (std::size_t l = 0; l < n; ++l)
   {
-    double* u = b + 3 * l;
+    double* u = at<kReverse>(b, n, l);
     if (l >= 1)
     {
-      multiply(rows[l].below1, b + 3 * (l - 1), u);
+      multiplySubtract(rows[l].below1, at<kReverse>(b, n, l - 1), u);
     }
     if (kSecond && l >= 2)
     {
       // L(l, l-2) is upper triangular (schurUpdateUpper): its zeros left out, the same roundings.
       const double* m = rows[l].below2;
-      const double* v = b + 3 * (l - 2);
+      const double* v = at<kReverse>(b, n, l - 2);
       u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
       u[1] -= m[4] * v[1] + m[5] * v[2];
       u[2] -= m[8] * v[2];
     }
-    const BlockRow& row = rows[l];
-    u[1] -= row.l10 * u[0];
-    u[2] -= row.l20 * u[0] + row.l21 * u[1];
+    ownForward(rows[l], u);
   }
+}
+
+/// D and L^T (block backward), with the factors in work.
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void backwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
+{
   for (std::size_t l = n; l-- > 0;)
   {
-    double* x = b + 3 * l;
+    double* x = at<kReverse>(b, n, l);
     const BlockRow& row = rows[l];
     x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
     if (l + 1 < n)
     {
-      multiplyTransposed(rows[l + 1].below1, b + 3 * (l + 1), x);
+      multiplyTransposedSubtract(rows[l + 1].below1, at<kReverse>(b, n, l + 1), x);
     }
     if (kSecond && l + 2 < n)
     {
       const double* m = rows[l + 2].below2;  // upper triangular, as above
-      const double* v = b + 3 * (l + 2);
+      const double* v = at<kReverse>(b, n, l + 2);
       x[0] -= m[0] * v[0];
       x[1] -= m[1] * v[0] + m[4] * v[1];
       x[2] -= m[2] * v[0] + m[5] * v[1] + m[8] * v[2];
@@ -509,6 +545,41 @@ ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t
     x[1] -= row.l21 * x[2];
     x[0] -= row.l10 * x[1] + row.l20 * x[2];
   }
+}
+
+/// L u = b (block forward), then D and L^T (block backward), with the factors in work.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t n, const double* __restrict work)
+{
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
+  forwardBlocks<kSecond, false>(b, n, rows);
+  backwardBlocks<kSecond, false>(b, n, rows);
+}
+
+/// solveBlockBandedPulled's solve, after factorBlocks<kSecond, true>.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substitutePulled(double* __restrict b, std::size_t n, const double* __restrict work,
+                                               const double* pull, const EndLaw& law, double* force)
+{
+  // Block row 1 is eliminated last but one, and block row 0 (eliminated last) does not couple to it, so
+  // after the forward pass row 1's own factors S_1 = L_1 D_1 L_1^T hold all of A: its unknowns without the
+  // pull are x_1 = S_1^-1 ... = L_1^-T D_1^-1 u_1, and A^-1 restricted to it is S_1^-1.
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
+  forwardBlocks<kSecond, true>(b, n, rows);
+  const BlockRow& row = rows[n - 2];
+  const double* u = b + 3;
+  double x[3] = {u[0], u[1], u[2]};
+  ownBackward(row, x);
+  double w[3] = {pull[0], pull[1], pull[2]};
+  ownForward(row, w);  // L_1^-1 P
+  double z[3] = {w[0], w[1], w[2]};
+  ownBackward(row, z);  // S_1^-1 P
+  const double along = pull[0] * x[0] + pull[1] * x[1] + pull[2] * x[2];
+  const double compliance = pull[0] * z[0] + pull[1] * z[1] + pull[2] * z[2];
+  *force = law.force(along, compliance);
+  double* v = b + 3;  // b_1 - f P, in the forward pass's terms: u_1 - f L_1^-1 P
+  v[0] -= *force * w[0], v[1] -= *force * w[1], v[2] -= *force * w[2];
+  backwardBlocks<kSecond, true>(b, n, rows);
 }
 
 }  // namespace
@@ -530,6 +601,26 @@ bool solveBlockBanded(const double* diag, const double* first, const double* sec
     return false;
   }
   substituteBlocks<false>(b, n, work);
+  return true;
+}
+
+bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                            double* work, const double* pull, const EndLaw& law, double* force)
+{
+  if (second != nullptr)
+  {
+    if (!factorBlocks<true, true>(diag, first, second, n, work))
+    {
+      return false;
+    }
+    substitutePulled<true>(b, n, work, pull, law, force);
+    return true;
+  }
+  if (!factorBlocks<false, true>(diag, first, nullptr, n, work))
+  {
+    return false;
+  }
+  substitutePulled<false>(b, n, work, pull, law, force);
   return true;
 }
 

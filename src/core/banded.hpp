@@ -32,6 +32,21 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work);
+/// The law that sets a pull's size from the response of the unknowns it acts on (solveBlockBandedPulled).
+class EndLaw
+{
+ public:
+  virtual ~EndLaw() = default;
+  /// The pull f, given P . x_1 of the solution without it (`along`) and P . A^-1_11 P (`compliance`): with
+  /// it, P . x_1 becomes along - f compliance.
+  virtual double force(double along, double compliance) const = 0;
+};
+/// solveBlockBanded of A x = b - f P on block row 1 (P the 3 values of `pull`), with the pull f that `law`
+/// sets (into `force`): one factorisation and one substitution. It eliminates from the last block row to the
+/// first, so that block row 1's last pivot holds A^-1_11; block row 0 must not couple to the others (a pinned
+/// particle's), and n >= 2. The direct solver's spool segment on a drum (PrimalNewton::drumStep).
+bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
+                            double* work, const double* pull, const EndLaw& law, double* force);
 /// Solves the system solveBlockBanded last factored into `work` again, for another right-hand side b.
 void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* work);
 /// The same system through LAPACK's band Cholesky (dpbtrf/dpbtrs): the blocks are copied into a band of

@@ -230,17 +230,30 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
     std::transform(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(rows), step_.begin(),
                    [](double g) { return -g; });
     const double* second = ws_.bending ? hessian_second_.data() : nullptr;
-    const bool ok = linear_ == DirectSolver::LinearSolve::kLapack
-                        ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second,
-                                                         step_.data(), m + 1, band_.data())
-                        : banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, step_.data(),
-                                                   m + 1, work_.data());
+    // The drum's law sets the spool segment's force from how particle 1 answers it. With the sweep and the
+    // spool's particle pinned, one solve finds both (banded::solveBlockBandedPulled); otherwise a second
+    // solve for a unit pull does (drumStep).
+    const bool pulled = ws_.drum != nullptr && cable.inv_mass[ws_.first + 1] > 0.0;
+    const bool in_one = pulled && linear_ == DirectSolver::LinearSolve::kSweep && cable.inv_mass[ws_.first] == 0.0;
+    bool ok = false;
+    if (in_one)
+    {
+      ok = pulledSolve(second);
+    }
+    else
+    {
+      ok = linear_ == DirectSolver::LinearSolve::kLapack
+               ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, step_.data(),
+                                                m + 1, band_.data())
+               : banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, step_.data(), m + 1,
+                                          work_.data());
+    }
     ++*rounds;
     if (!ok)
     {
       return false;
     }
-    if (ws_.drum != nullptr && cable.inv_mass[ws_.first + 1] > 0.0 && !drumStep(second != nullptr))
+    if (pulled && !in_one && !drumStep(second != nullptr))
     {
       return false;
     }
@@ -262,6 +275,42 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
       return true;
     }
   }
+}
+
+namespace
+{
+
+/// The drum's law as the pulled solve asks for it: particle 1 moving `along` n_0 stretches the spool segment
+/// to c_0 + along, and its pull f takes compliance f off that.
+class DrumLaw : public banded::EndLaw
+{
+ public:
+  DrumLaw(const SpoolDrum& drum, double stretch) : drum_(drum), stretch_(stretch) {}
+  double force(double along, double compliance) const override
+  {
+    return drum_.forceAgainst(stretch_ + along, std::max(compliance, 0.0));
+  }
+
+ private:
+  const SpoolDrum& drum_;
+  double stretch_;
+};
+
+}  // namespace
+
+bool PrimalNewton::pulledSolve(const double* second)
+{
+  // The spool segment's force f pulls particle 1 along -n_0: the right-hand side gets -f n_0 there.
+  const double pull[3] = {ws_.nx[0], ws_.ny[0], ws_.nz[0]};
+  const DrumLaw law(*ws_.drum, ws_.c[0]);
+  double drum_force = 0.0;
+  if (!banded::solveBlockBandedPulled(hessian_diag_.data(), hessian_first_.data(), second, step_.data(), ws_.m + 1,
+                                      work_.data(), pull, law, &drum_force))
+  {
+    return false;
+  }
+  lambda_step_[0] = drum_force - lambda_[0];
+  return true;
 }
 
 bool PrimalNewton::drumStep(bool second)

@@ -74,10 +74,15 @@ class PrimalNewton
   /// Solves for the model's Newton step into step_, the model's active set (the workspace's on()) with it,
   /// counting the linear solves into `rounds`; false if a system is not definite.
   bool solveModel(const Cable& cable, int* rounds);
-  /// With the drum: step_ (the solve without the spool segment's force) becomes the step that meets the
-  /// drum's law, and lambda_step_[0] its force's change; false if the second solve is not definite.
+  /// With the drum, where pulledSolve does not apply (LAPACK, or a spool particle that is not pinned): step_
+  /// (the solve without the spool segment's force) becomes the step that meets the drum's law, through a second
+  /// solve for a unit pull, and lambda_step_[0] its force's change; false if that solve is not definite.
   /// `second`: the Hessian has a second band (bending).
   bool drumStep(bool second);
+  /// The model's solve with the drum's law in it (banded::solveBlockBandedPulled: the spool's particle
+  /// pinned, the sweep), into step_ and lambda_step_[0]; false if not definite. `second`: the second band or
+  /// nullptr.
+  bool pulledSolve(const double* second);
   /// Segment k's stretch C_k + n_k . (dx_k+1 - dx_k) after step_, and the change n_k . (dx_k+1 - dx_k).
   double linearStretch(std::size_t k) const;
   double alongSegment(std::size_t k) const;
