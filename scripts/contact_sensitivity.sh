@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# How much the wrap scenarios' outcomes depend on rounding: runs scenarios/pillar_wrap.yaml and
+# scenarios/pillar_wrap_dynamic.yaml (the latter written at every step) with `drag` moved by a few parts in
+# 1e7 (0.9 as shipped), and prints each run's deployed length at the end, its largest tension at the vehicle
+# and, for the dynamic vehicle, the largest single-step pull on it. A change that only rounds differently
+# (another order of operations in the solver) moves these runs as much as such a nudge does: a cable wound
+# round a pillar with friction, held by a constant-tension winch, is chaotic.
+#   bash scripts/contact_sensitivity.sh        (builds the runner if needed)
+#   RUN=path/to/rov_tether_run bash scripts/contact_sensitivity.sh   (another build's runner, as it is)
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$here/.." && pwd)"
+if [ -z "${RUN:-}" ]; then
+  source "$here/setup.sh" >/dev/null
+  build_target rov_tether_run >/dev/null
+  RUN="$BUILD_DIR/devel/lib/rov_tether/rov_tether_run"
+fi
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+sed -e 's/^output_rate:.*/output_rate: 200.0/' -e "s|\.\./config/|$ROOT/config/|" \
+  "$ROOT/scenarios/pillar_wrap_dynamic.yaml" >"$work/dynamic.yaml"
+for drag in 0.8999998 0.8999999 0.9 0.9000001 0.9000002; do
+  "$RUN" "$ROOT/scenarios/pillar_wrap.yaml" --set drag=$drag --out "$work/kinematic" >"$work/kinematic.txt"
+  "$RUN" "$work/dynamic.yaml" --set drag=$drag --out "$work/dynamic" >"$work/dynamic.txt"
+  /usr/bin/python3 - "$drag" "$work" <<'PYTHON'
+import csv, re, sys
+drag, work = sys.argv[1], sys.argv[2]
+def summary(name):
+    text = open("%s/%s.txt" % (work, name)).read()
+    end = re.search(r"deployed length start [\d.]+ m, end ([\d.]+) m", text).group(1)
+    at_vehicle = re.search(r"max (\S+) N at the vehicle", text).group(1)
+    return end, at_vehicle
+k_end, k_pull = summary("kinematic")
+d_end, d_pull = summary("dynamic")
+pulls = [float(r["tether_tension"]) for r in csv.DictReader(open(work + "/dynamic/vehicle.csv"))]
+print("drag %s: pillar_wrap %s m out at the end, max %s N at the vehicle; pillar_wrap_dynamic %s m out, "
+      "max %s N at the vehicle (output rows), largest single-step pull %.0f N" % (drag, k_end, k_pull, d_end, d_pull,
+                                                                                 max(pulls)))
+PYTHON
+done
