@@ -2,7 +2,9 @@
 call from a given caller. Shared by scripts/vehicle_overhead.sh and scripts/sections_overhead.sh."""
 import re
 
-ARC = re.compile(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+([<*])\s+(.*?)(?: \(([\d,]+)x\))? \[")
+# A function compiled as clones (target_clones) is named once a clone, "... [clone .avx2]": the tag stays in
+# the name, so that the clones do not overwrite each other.
+ARC = re.compile(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+([<*])\s+(.*?(?: \[clone [^\]]*\])?)(?: \(([\d,]+)x\))? \[")
 
 
 def functions(path):
