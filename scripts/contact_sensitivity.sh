@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # How much the wrap scenarios' outcomes depend on rounding: runs scenarios/pillar_wrap.yaml and
 # scenarios/pillar_wrap_dynamic.yaml (the latter written at every step) with `drag` moved by a few parts in
-# 1e7 (0.9 as shipped), and prints each run's deployed length at the end, its largest tension at the vehicle
-# and, for the dynamic vehicle, the largest single-step pull on it. A change that only rounds differently
+# 1e7 (0.9 as shipped), and prints each run's deployed length at the end, its largest tension at the vehicle,
+# the steps at which pillar_wrap's spool segment pulled harder than the winch's stall pull (7.5 N: each
+# back-drives the drum to max_winch_speed at once) and, for the dynamic vehicle, the largest single-step pull
+# on it. Both are written at every step (output_rate 200 Hz, copies of the scenarios). A change that only rounds differently
 # (another order of operations in the solver) moves these runs as much as such a nudge does: a cable wound
 # round a pillar with friction, held by a constant-tension winch, is chaotic.
 #   bash scripts/contact_sensitivity.sh        (builds the runner if needed)
@@ -17,11 +19,13 @@ if [ -z "${RUN:-}" ]; then
 fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-sed -e 's/^output_rate:.*/output_rate: 200.0/' -e "s|\.\./config/|$ROOT/config/|" \
-  "$ROOT/scenarios/pillar_wrap_dynamic.yaml" >"$work/dynamic.yaml"
+for name in pillar_wrap pillar_wrap_dynamic; do
+  sed -e 's/^output_rate:.*/output_rate: 200.0/' -e "s|\.\./config/|$ROOT/config/|" \
+    "$ROOT/scenarios/$name.yaml" >"$work/$name.yaml"
+done
 for drag in 0.8999998 0.8999999 0.9 0.9000001 0.9000002; do
-  "$RUN" "$ROOT/scenarios/pillar_wrap.yaml" --set drag=$drag --out "$work/kinematic" >"$work/kinematic.txt"
-  "$RUN" "$work/dynamic.yaml" --set drag=$drag --out "$work/dynamic" >"$work/dynamic.txt"
+  "$RUN" "$work/pillar_wrap.yaml" --set drag=$drag --out "$work/kinematic" >"$work/kinematic.txt"
+  "$RUN" "$work/pillar_wrap_dynamic.yaml" --set drag=$drag --out "$work/dynamic" >"$work/dynamic.txt"
   /usr/bin/python3 - "$drag" "$work" <<'PYTHON'
 import csv, re, sys
 drag, work = sys.argv[1], sys.argv[2]
@@ -32,9 +36,11 @@ def summary(name):
     return end, at_vehicle
 k_end, k_pull = summary("kinematic")
 d_end, d_pull = summary("dynamic")
+spool = [float(r["tension_spool"]) for r in csv.DictReader(open(work + "/kinematic/state.csv"))]
+stalls = [t for t in spool if t > 7.5]
 pulls = [float(r["tether_tension"]) for r in csv.DictReader(open(work + "/dynamic/vehicle.csv"))]
-print("drag %s: pillar_wrap %s m out at the end, max %s N at the vehicle; pillar_wrap_dynamic %s m out, "
-      "max %s N at the vehicle (output rows), largest single-step pull %.0f N" % (drag, k_end, k_pull, d_end, d_pull,
-                                                                                 max(pulls)))
+print("drag %s: pillar_wrap %s m out at the end, max %s N at the vehicle, spool segment above the stall pull at "
+      "%d steps (at most %.1f N); pillar_wrap_dynamic %s m out, max %s N at the vehicle, largest single-step pull "
+      "%.0f N" % (drag, k_end, k_pull, len(stalls), max(spool), d_end, d_pull, max(pulls)))
 PYTHON
 done
