@@ -19,11 +19,21 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 pin=()
 command -v taskset >/dev/null && pin=(taskset -c 0)
+paths() {  # the base's libraries (when given) before the environment's own paths
+  local list="$1"
+  if [ -n "${LD_LIBRARY_PATH:-}" ]; then
+    list="${list:+$list:}$LD_LIBRARY_PATH"
+  fi
+  echo "$list"
+}
 cpu() {  # prints the runner's CPU seconds for one run ($1: base or this)
   local lib=""
   [ "$1" = base ] && lib="$base"
-  LD_LIBRARY_PATH="$lib" "${pin[@]}" "$RUN" "$scenario" --out "$work/$1" |
-    sed -n 's/^simulated .*steps, \([0-9.]*\) s CPU.*/\1/p'
+  local seconds
+  seconds="$(LD_LIBRARY_PATH="$(paths "$lib")" "${pin[@]}" "$RUN" "$scenario" --out "$work/$1" |
+    sed -n 's/^simulated .*steps, \([0-9.]*\) s CPU.*/\1/p')"
+  [ -n "$seconds" ] || { echo "no 'simulated' line from $RUN on $scenario" >&2; exit 1; }
+  echo "$seconds"
 }
 for ((i = 0; i < rounds; ++i)); do
   echo "base $(cpu base) s, this $(cpu this) s"
@@ -39,7 +49,7 @@ command -v valgrind >/dev/null || { echo "(valgrind is missing: no instruction c
 for which in base this; do
   lib=""
   [ "$which" = base ] && lib="$base"
-  LD_LIBRARY_PATH="$lib" valgrind --tool=callgrind --callgrind-out-file="$work/$which.cg" "$RUN" "$scenario" \
+  LD_LIBRARY_PATH="$(paths "$lib")" valgrind --tool=callgrind --callgrind-out-file="$work/$which.cg" "$RUN" "$scenario" \
     --out "$work/$which" >/dev/null 2>"$work/$which.log"
   echo "$which: $(sed -n 's/.*I *refs: *//p' "$work/$which.log") instructions"
 done

@@ -286,6 +286,27 @@ TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
       EXPECT_NEAR(law.compliance_, pull[0] * q[3] + pull[1] * q[4] + pull[2] * q[5], 1e-12) << where;
     }
   }
+  // Refused where block row 1's pivot would not hold A^-1_11: block row 0 coupled to row 1 or row 2; one block.
+  for (int coupled : {1, 2})
+  {
+    BlockSystem system(6, true, 99);
+    std::fill(system.first.begin(), system.first.begin() + 9, 0.0);
+    system.second[0] = coupled == 2 ? 0.3 : 0.0;
+    system.first[4] = coupled == 1 ? 0.3 : 0.0;
+    std::vector<double> x = system.b, work(36 * 6);
+    double force = 0.0;
+    SpringLaw law(3.0, 0.2);
+    const double pull[3] = {1.0, 0.0, 0.0};
+    EXPECT_FALSE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), system.second.data(), x.data(),
+                                                6, work.data(), pull, law, &force))
+        << "block row 0 coupled to row " << coupled;
+  }
+  BlockSystem one(1, false, 5);
+  std::vector<double> x = one.b, work(36);
+  double force = 0.0;
+  const double pull[3] = {1.0, 0.0, 0.0};
+  EXPECT_FALSE(banded::solveBlockBandedPulled(one.diag.data(), one.first.data(), nullptr, x.data(), 1, work.data(),
+                                              pull, SpringLaw(3.0, 0.2), &force));
 }
 
 // A block that is not positive definite is refused.

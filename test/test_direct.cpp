@@ -418,6 +418,92 @@ TEST(Direct, TenThousandToOneMassRatio)
   }
 }
 
+// The drum's law in the step, two ways: with the sweep the block solve eliminates from the vehicle end and
+// sets the drum's force at the spool's particle in one pass (banded::solveBlockBandedPulled); with LAPACK's band
+// Cholesky it takes a second solve for a unit pull (PrimalNewton::drumStep). Both meet the same equations, so
+// on the same cable they must agree to the solve's tolerance: a hanging rod (EI 0.2 N m^2, the primal path) of
+// 20 segments swinging from a brake drum (let go straight at 30 degrees off the vertical), its weight (1.96 N) over a 1
+// N brake (the drum slips), and a 20 N brake that the swing (up to a few newtons) never reaches (it holds). Tolerance
+// 1e-12 of a segment: positions agree to 1e-9 m and the pay-out to 1e-10 m over 200 steps (rounding, amplified by a
+// swinging chain, is far below either).
+TEST(Direct, TheDrumSolvedInOnePassAgreesWithTheTwoSolves)
+{
+  const std::size_t n = 21;
+  const double dl = 0.1, segment_mass = 0.01, g = 9.81;
+  for (double brake : {1.0, 20.0})
+  {
+    Cable cables[2];
+    for (Cable& cable : cables)
+    {
+      cable.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double s = dl * static_cast<double>(i);
+        cable.place(i, Position(0.5 * s, 0.0, -std::sqrt(0.75) * s));  // 30 degrees off the vertical: it swings
+      }
+      std::fill(cable.rest.begin(), cable.rest.end(), dl);
+      cable.updateMasses(0, n - 1, {segment_mass / dl, segment_mass / dl}, false);
+    }
+    DirectSolver sweep(DirectSolver::LinearSolve::kSweep), lapack(DirectSolver::LinearSolve::kLapack);
+    DirectSolver* solvers[2] = {&sweep, &lapack};
+    SolverSettings settings;
+    settings.axial_stiffness = 1e5;
+    settings.bending = true;
+    settings.bending_stiffness = 0.2;
+    settings.tolerance = 1e-12;
+    settings.iterations = 30;
+    const double h = settings.time_step;
+    double paid[2] = {0.0, 0.0}, worst_position = 0.0, worst_payout = 0.0;
+    for (int step = 0; step < 200; ++step)
+    {
+      double payout[2] = {0.0, 0.0};
+      for (int k = 0; k < 2; ++k)
+      {
+        Cable& cable = cables[k];
+        for (std::size_t i = 1; i < n; ++i)  // damped Verlet with gravity
+        {
+          const double x = cable.x[i], z = cable.z[i];
+          cable.x[i] += 0.99 * (x - cable.px[i]);
+          cable.z[i] += 0.99 * (z - cable.pz[i]) - g * h * h;
+          cable.px[i] = x, cable.pz[i] = z, cable.py[i] = cable.y[i];
+        }
+        SpoolDrum drum;
+        drum.brake = brake * h * h;
+        drum.floor = -1.0;  // a brake: it never reels in
+        drum.max_payout = 1.0 * h;
+        settings.drum = &drum;
+        if (step == 0)
+        {
+          solvers[k]->multipliers().resize(n);
+        }
+        solvers[k]->solve(cable, settings, Contacts{}, n);
+        payout[k] = drum.payout;
+        cable.rest[0] += drum.payout;  // the spool segment is longer by what the drum paid out
+        paid[k] += drum.payout;
+      }
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        worst_position = std::max(worst_position, (cables[0].position(i) - cables[1].position(i)).norm());
+      }
+      worst_payout = std::max(worst_payout, std::abs(payout[0] - payout[1]));
+    }
+    std::printf(
+        "[ measured ] brake %.0f N: paid out %.6f m (one pass) and %.6f m (two solves); positions %.2e m and "
+        "a step's pay-out %.2e m apart at most\n",
+        brake, paid[0], paid[1], worst_position, worst_payout);
+    EXPECT_LT(worst_position, 1e-9) << brake;
+    EXPECT_LT(worst_payout, 1e-10) << brake;
+    if (brake < 1.96)
+    {
+      EXPECT_GT(paid[0], 0.05);  // it slipped: the comparison covers the brake's paying-out piece
+    }
+    else
+    {
+      EXPECT_LT(paid[0], 1e-9);  // it held: the stretching piece
+    }
+  }
+}
+
 // Kelvin-Voigt axial damping (axial_damping, BA): one free particle of mass m between two pinned ones, on two
 // segments of rest length L along x, moved along them and let go, is a damped oscillator as long as both
 // segments pull or push (one-sided paths: taut, moved by less than their pre-stretch; a rod: either way):

@@ -607,6 +607,13 @@ bool solveBlockBanded(const double* diag, const double* first, const double* sec
 bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                             double* work, const double* pull, const EndLaw& law, double* force)
 {
+  // Block row 0 must not couple to the others (A(1, 0) = 0 and A(2, 0) = 0), or block row 1's last pivot would
+  // not hold A^-1_11.
+  if (n < 2 || !std::all_of(first, first + 9, [](double v) { return v == 0.0; }) ||
+      (second != nullptr && n > 2 && second[0] != 0.0))
+  {
+    return false;
+  }
   if (second != nullptr)
   {
     if (!factorBlocks<true, true>(diag, first, second, n, work))

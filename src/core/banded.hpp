@@ -43,8 +43,9 @@ class EndLaw
 };
 /// solveBlockBanded of A x = b - f P on block row 1 (P the 3 values of `pull`), with the pull f that `law`
 /// sets (into `force`): one factorisation and one substitution. It eliminates from the last block row to the
-/// first, so that block row 1's last pivot holds A^-1_11; block row 0 must not couple to the others (a pinned
-/// particle's), and n >= 2. The direct solver's spool segment on a drum (PrimalNewton::drumStep).
+/// first, so that block row 1's last pivot holds A^-1_11. False when it is not positive definite, and when
+/// n < 2 or block row 0 couples to the others (it must be a pinned particle's). The direct solver's spool
+/// segment on a drum (PrimalNewton::pulledSolve).
 bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                             double* work, const double* pull, const EndLaw& law, double* force);
 /// Solves the system solveBlockBanded last factored into `work` again, for another right-hand side b.

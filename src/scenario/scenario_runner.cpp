@@ -119,7 +119,7 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   // (7% of scenarios/spool_payout.yaml's CPU time went to printf's number formatting).
   for (std::size_t i = 0; i < positions.size(); ++i)
   {
-    char row[2048];  // room for the five fixed fields at the largest double (309 digits each)
+    char row[2048];  // room for the four fixed fields at the largest double (309 digits each), i and tension
     char* end = row + sizeof row;
     char* p = row;
     auto put = [&](double v, std::chars_format format)
