@@ -63,7 +63,8 @@ class PrimalNewton
   /// (massTerm), the segments' axial and geometric stiffness (segmentTerm), the joints' bending
   /// (bendingTerms), a block row at a time.
   void assemble(const Cable& cable);
-  /// Segment k's Hessian block (row-major 3x3) and its force `lam` in the gradient; false when it is not in
+  /// Segment k's Hessian block (axial - geometric) n n^T + geometric I, as the five numbers axial - geometric,
+  /// geometric, n (segmentEntry expands them), and its force `lam` in the gradient; false when it is not in
   /// the model.
   bool segmentTerm(const Cable& cable, std::size_t k, double* lam, double* block) const;
   /// Free particle l's mass block into `diagonal` and its inertia term into the gradient `g`.

@@ -34,12 +34,20 @@ ROV_TETHER_TARGET_CLONES void jointCurvatures(const double* __restrict x, const 
   }
 }
 
-/// Adds v times the 3x3 block `b` (row-major) to `target`.
-inline void addTo(double* target, const double* b, double v = 1.0)
+/// Entry i (row-major) of a segment's 3x3 block (axial - geometric) n n^T + geometric I, from segmentTerm's
+/// five numbers: computed where it is used rather than stored as a block, whose scalar stores the vectorised
+/// sums read back as 16-byte loads (a store-forwarding stall each).
+[[gnu::always_inline]] inline double segmentEntry(const double* b, std::size_t i)
+{
+  return b[0] * b[2 + i / 3] * b[2 + i % 3] + (i % 4 == 0 ? b[1] : 0.0);
+}
+
+/// Adds segmentTerm's block `b` to `target`.
+[[gnu::always_inline]] inline void addTo(double* target, const double* b)
 {
   for (std::size_t i = 0; i < 9; ++i)
   {
-    target[i] += v * b[i];
+    target[i] += segmentEntry(b, i);
   }
 }
 
@@ -116,13 +124,8 @@ void PrimalNewton::curvature(const Cable& cable)
   {
     geometric = 0.0;
   }
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    for (std::size_t c = 0; c < 3; ++c)
-    {
-      block[3 * a + c] = (axial - geometric) * n[a] * n[c] + (a == c ? geometric : 0.0);
-    }
-  }
+  block[0] = axial - geometric, block[1] = geometric;
+  block[2] = n[0], block[3] = n[1], block[4] = n[2];
   return true;
 }
 
@@ -136,13 +139,15 @@ void PrimalNewton::assemble(const Cable& cable)
   const std::size_t m = ws_.m;
   const double* w = cable.inv_mass.data() + f;
   auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
-  double blocks[2][9];  // segments l - 1 and l (alternating), when in the model
+  double blocks[2][5];  // segments l - 1 and l (alternating), when in the model
   double before_lam = 0.0;
   bool before_on = false;
   for (std::size_t l = 0; l <= m; ++l)
   {
-    double* diagonal = &hessian_diag_[9 * l];
-    double* g = &grad_[3 * l];
+    // The row's diagonal block and gradient are summed in locals and stored once: built in place, their
+    // scalar stores were read back by the vectorised sums as 16-byte loads (a store-forwarding stall each).
+    double diagonal[9];
+    double g[3];
     double* here = blocks[l % 2];
     const double* before = blocks[(l + 1) % 2];
     double here_lam = 0.0;
@@ -175,7 +180,7 @@ void PrimalNewton::assemble(const Cable& cable)
       {
         for (std::size_t i = 0; i < 9; ++i)
         {
-          below[i] = 0.0 + -1.0 * here[i];
+          below[i] = 0.0 + -1.0 * segmentEntry(here, i);
         }
       }
       else
@@ -187,6 +192,8 @@ void PrimalNewton::assemble(const Cable& cable)
     {
       bendingTerms(l, diagonal, g);
     }
+    std::copy(diagonal, diagonal + 9, &hessian_diag_[9 * l]);
+    std::copy(g, g + 3, &grad_[3 * l]);
     before_on = here_on;
     before_lam = here_lam;
   }
@@ -199,10 +206,12 @@ void PrimalNewton::assemble(const Cable& cable)
   const std::size_t f = ws_.first;
   const double mass = mass_[l];
   const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
-  double block[9] = {mass, 0, 0, 0, mass, 0, 0, 0, mass};
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    diagonal[i] = i % 4 == 0 ? mass : 0.0;
+  }
   if (!cable.anisotropic)
   {
-    std::copy(block, block + 9, diagonal);
     g[0] = mass * d[0], g[1] = mass * d[1], g[2] = mass * d[2];
     return;
   }
@@ -212,14 +221,13 @@ void PrimalNewton::assemble(const Cable& cable)
   {
     for (std::size_t c = 0; c < 3; ++c)
     {
-      block[3 * a + c] += less * t[a] * t[c];
+      diagonal[3 * a + c] += less * t[a] * t[c];
     }
   }
   for (std::size_t a = 0; a < 3; ++a)
   {
-    g[a] = block[3 * a] * d[0] + block[3 * a + 1] * d[1] + block[3 * a + 2] * d[2];
+    g[a] = diagonal[3 * a] * d[0] + diagonal[3 * a + 1] * d[1] + diagonal[3 * a + 2] * d[2];
   }
-  std::copy(block, block + 9, diagonal);
 }
 
 void PrimalNewton::prepareBending(const Cable& cable)
