@@ -180,12 +180,14 @@ struct BlockSystem
 };
 
 // The block L D L^T (one 3x3 inverse a block row) solves the block tridiagonal and pentadiagonal systems of
-// the direct solver's primal path as LAPACK's band Cholesky does, and with a residual at rounding level.
+// the direct solver's primal path as LAPACK's band Cholesky does, and with a residual at rounding level. From
+// 8 block rows on it is twisted (two chains meeting at rows (n - 2) / 2 and the one after): 8 and 10 give the
+// chains as many rows each, 9 and 11 the bottom one more.
 TEST(Banded, BlockSolveSolvesTheSystem)
 {
   for (bool two : {false, true})
   {
-    for (std::size_t n : {1u, 2u, 3u, 4u, 10u, 101u})
+    for (std::size_t n : {1u, 2u, 3u, 4u, 7u, 8u, 9u, 10u, 11u, 101u})
     {
       const BlockSystem system(n, two, static_cast<unsigned>(n + (two ? 100 : 0)));
       std::vector<double> x = system.b, xl = system.b, work(36 * n), band(9 * 3 * n);
@@ -312,6 +314,24 @@ TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
 // A block that is not positive definite is refused.
 TEST(Banded, BlockSolveRefusesIndefiniteMatrices)
 {
+  // A negative diagonal entry in any block row of a twisted solve: in the top chain, the bottom chain or a
+  // meeting row (rows 3 and 4 of 9 and 10), the matrix is indefinite and some pivot is not positive.
+  for (bool two : {false, true})
+  {
+    for (std::size_t n : {9u, 10u})
+    {
+      for (std::size_t p = 0; p < n; ++p)
+      {
+        BlockSystem system(n, two, static_cast<unsigned>(11 * n + p));
+        system.diag[9 * p + 4] = -10.0;
+        std::vector<double> x = system.b, work(36 * n);
+        EXPECT_FALSE(banded::solveBlockBanded(system.diag.data(), system.first.data(),
+                                              two ? system.second.data() : nullptr, x.data(), n, work.data()))
+            << "bandwidth " << (two ? 2 : 1) << " n " << n << " block row " << p;
+      }
+    }
+  }
+
   BlockSystem system(5, false, 3);
   system.diag[9 * 2 + 4] = -10.0;  // the middle diagonal entry of block 2
   std::vector<double> x = system.b, work(36 * 5);

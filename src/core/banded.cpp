@@ -318,24 +318,18 @@ struct BlockRow
 static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
 
 /// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
+/// Without branches (a pivot that is not positive leaves the later values meaningless, and the result false),
+/// so that two chains' blocks factored one after the other overlap (factorTwisted).
 ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
 {
   row.d0 = s[0];
-  if (!(row.d0 > 0.0))
-  {
-    return false;
-  }
   row.l10 = s[3] / row.d0;
   row.l20 = s[6] / row.d0;
   row.d1 = s[4] - row.l10 * s[3];
-  if (!(row.d1 > 0.0))
-  {
-    return false;
-  }
   row.l21 = (s[7] - row.l20 * s[3]) / row.d1;
   row.d2 = s[8] - row.l20 * s[6] - row.l21 * row.l21 * row.d1;
   row.inv[0] = 1.0 / row.d0, row.inv[1] = 1.0 / row.d1, row.inv[2] = 1.0 / row.d2;
-  return row.d2 > 0.0;
+  return row.d0 > 0.0 && row.d1 > 0.0 && row.d2 > 0.0;
 }
 
 /// y = a L^-T for the unit-lower L of `row` (each row of a, forward substitution): y L^T = a.
@@ -394,6 +388,103 @@ ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, 
   s[8] -= below[8] * y[8];
 }
 
+/// A block row's elimination against the two rows eliminated before it in its chain (prev1 the last, prev2
+/// the one before), in two parts: eliminateSecond against prev2 (A(row, prev2) = c I), then eliminateFirst
+/// against prev1 (a1 = A(row, prev1)), which leave s = S_row for factorBlock:
+/// s -= Y2 D^-1 Y2^T + Y1 D^-1 Y1^T, with L(row, prev2) into out.below2 and L(row, prev1) into out.below1.
+ROV_TETHER_INLINE void eliminateSecond(double* s, double* a1, double c, const BlockRow& prev1, const BlockRow& prev2,
+                                       BlockRow& out)
+{
+  double y2[9];
+  scaledTransposedInverse(c, prev2, y2);
+  schurUpdateUpper(y2, prev2, s, out.below2);
+  const double* prev = prev1.below1;  // L(prev1, prev2)
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t col = 0; col < 3; ++col)
+    {
+      // y2's row r is zero left of column r.
+      double sum = y2[4 * r] * prev[3 * col + r];
+      for (std::size_t q = r + 1; q < 3; ++q)
+      {
+        sum += y2[3 * r + q] * prev[3 * col + q];
+      }
+      a1[3 * r + col] -= sum;
+    }
+  }
+}
+ROV_TETHER_INLINE void eliminateFirst(double* s, const double* a1, const BlockRow& prev1, BlockRow& out)
+{
+  double y1[9];
+  solveTransposed(a1, prev1, y1);
+  schurUpdate(y1, prev1, s, out.below1);
+}
+
+/// Block row p's inputs in a chain running down the rows (kReverse false: its last row eliminated is p - 1)
+/// or up them (true: p + 1): s = A(p, p), a1 = its coupling to the last row (up the rows, A(p, p + 1), the
+/// transpose of the stored A(p + 1, p)) and the c of its coupling c I to the row before (0 without one).
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void loadRow(const double* __restrict diag, const double* __restrict first,
+                               const double* __restrict second, std::size_t p, bool has1, bool has2, double* s,
+                               double* a1, double* c)
+{
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    s[i] = diag[9 * p + i];
+  }
+  if (has1)
+  {
+    const double* stored = first + 9 * (kReverse ? p : p - 1);
+    for (std::size_t i = 0; i < 9; ++i)
+    {
+      a1[i] = kReverse ? stored[3 * (i % 3) + i / 3] : stored[i];
+    }
+  }
+  *c = kSecond && has2 ? second[kReverse ? p : p - 2] : 0.0;
+}
+
+/// Block row p eliminated against prev1 and prev2 (nullptr where there is none) and factored, in a chain
+/// running down the rows or up them (loadRow).
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __restrict first,
+                                const double* __restrict second, std::size_t p, const BlockRow* prev1,
+                                const BlockRow* prev2, BlockRow& out)
+{
+  double s[9], a1[9], c = 0.0;
+  loadRow<kSecond, kReverse>(diag, first, second, p, prev1 != nullptr, prev2 != nullptr, s, a1, &c);
+  if (kSecond && prev2 != nullptr)
+  {
+    eliminateSecond(s, a1, c, *prev1, *prev2, out);
+  }
+  if (prev1 != nullptr)
+  {
+    eliminateFirst(s, a1, *prev1, out);
+  }
+  return factorBlock(s, out);
+}
+
+/// chainRow for row t of the chain down the rows and row p of the chain up them, each step of the one
+/// followed by the same step of the other, so that the processor overlaps the two chains' dependent
+/// divisions. Both rows have both predecessors (t >= 2, p + 2 < n).
+template <bool kSecond>
+ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __restrict first,
+                                 const double* __restrict second, std::size_t t, std::size_t p, BlockRow* rows)
+{
+  double s[2][9], a1[2][9], c[2];
+  loadRow<kSecond, false>(diag, first, second, t, true, true, s[0], a1[0], &c[0]);
+  loadRow<kSecond, true>(diag, first, second, p, true, true, s[1], a1[1], &c[1]);
+  if (kSecond)
+  {
+    eliminateSecond(s[0], a1[0], c[0], rows[t - 1], rows[t - 2], rows[t]);
+    eliminateSecond(s[1], a1[1], c[1], rows[p + 1], rows[p + 2], rows[p]);
+  }
+  eliminateFirst(s[0], a1[0], rows[t - 1], rows[t]);
+  eliminateFirst(s[1], a1[1], rows[p + 1], rows[p]);
+  const bool top = factorBlock(s[0], rows[t]);
+  const bool bottom = factorBlock(s[1], rows[p]);
+  return top && bottom;
+}
+
 /// Block L D L^T with block bandwidth 1 or 2 (kSecond): the factors into work; false if not definite.
 /// kReverse eliminates the block rows from the last to the first (elimination row l is block row n - 1 - l):
 /// the same system, with the first block row's pivot last (solveBlockBandedPulled).
@@ -414,49 +505,127 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
   for (std::size_t l = 0; l < n; ++l)
   {
     const std::size_t p = kReverse ? n - 1 - l : l;  // the block row eliminated l-th
-    double s[9];
-    std::copy(diag + 9 * p, diag + 9 * p + 9, s);
-    double a1[9];
-    if (l >= 1)
-    {
-      const double* stored = first + 9 * (kReverse ? p : p - 1);
-      for (std::size_t i = 0; i < 9; ++i)
-      {
-        a1[i] = kReverse ? stored[3 * (i % 3) + i / 3] : stored[i];
-      }
-    }
-    if (kSecond && l >= 2)
-    {
-      double y2[9];
-      scaledTransposedInverse(second[kReverse ? p : p - 2], rows[l - 2], y2);
-      schurUpdateUpper(y2, rows[l - 2], s, rows[l].below2);
-      const double* prev = rows[l - 1].below1;  // L(l-1, l-2)
-      for (std::size_t r = 0; r < 3; ++r)
-      {
-        for (std::size_t c = 0; c < 3; ++c)
-        {
-          // y2's row r is zero left of column r.
-          double sum = y2[4 * r] * prev[3 * c + r];
-          for (std::size_t q = r + 1; q < 3; ++q)
-          {
-            sum += y2[3 * r + q] * prev[3 * c + q];
-          }
-          a1[3 * r + c] -= sum;
-        }
-      }
-    }
-    if (l >= 1)
-    {
-      double y1[9];
-      solveTransposed(a1, rows[l - 1], y1);
-      schurUpdate(y1, rows[l - 1], s, rows[l].below1);
-    }
-    if (!factorBlock(s, rows[l]))
+    if (!chainRow<kSecond, kReverse>(diag, first, second, p, l >= 1 ? &rows[l - 1] : nullptr,
+                                     kSecond && l >= 2 ? &rows[l - 2] : nullptr, rows[l]))
     {
       return false;
     }
   }
   return true;
+}
+
+/// The twisted factorisation (factorTwisted) from this many block rows on; below it, factorBlocks.
+constexpr std::size_t kTwistedFrom = 8;
+
+/// Where factorTwisted's two chains meet: block rows k and k + 1.
+inline std::size_t meeting(std::size_t n) { return (n - 2) / 2; }
+
+/// factorTwisted's factors of the meeting rows besides their own BlockRows: L(k, k+2), L(k+1, k-1) (both
+/// upper triangular, as every second-band factor) and L(k+1, k). They follow the n BlockRows in work.
+struct Meeting
+{
+  double k_k2[9], k1_km1[9], k1_k[9];
+};
+// Each further row adds 36 doubles of work and a BlockRow's fewer.
+static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * 36 * sizeof(double),
+              "factorTwisted's factors fit the 36 n doubles of work");
+
+/// out -= y m^T for y upper triangular (scaledTransposedInverse's) and m full: the coupling a row eliminated
+/// in one chain leaves between the two meeting rows.
+ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const double* m, double* out)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t col = 0; col < 3; ++col)
+    {
+      double sum = y[4 * r] * m[3 * col + r];
+      for (std::size_t q = r + 1; q < 3; ++q)
+      {
+        sum += y[3 * r + q] * m[3 * col + q];
+      }
+      out[3 * r + col] -= sum;
+    }
+  }
+}
+
+/// factorBlocks in the twisted order: rows 0 .. k-1 eliminated down from the top and rows n-1 .. k+2 up from
+/// the bottom, a row of each chain in every pass of one loop (two independent chains of dependent divisions,
+/// which the processor overlaps: each alone is latency-bound), then the meeting rows k and k + 1. Neither
+/// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k (and row k + 1
+/// through the second band), the bottom's rows k+2 and k+3 reach row k + 1 (and row k through the second
+/// band). The same L D L^T, of the matrix with its rows in that order. n >= kTwistedFrom.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const double* __restrict first,
+                                            const double* __restrict second, std::size_t n, double* __restrict work)
+{
+  auto* rows = reinterpret_cast<BlockRow*>(work);
+  auto& meet = *reinterpret_cast<Meeting*>(rows + n);
+  const std::size_t k = meeting(n);
+  const std::size_t bottom = n - 2 - k;  // rows in the bottom chain: k or k + 1
+  for (std::size_t i = 0; i < bottom; ++i)
+  {
+    const std::size_t p = n - 1 - i;
+    if (i >= 2 && i < k)
+    {
+      if (!chainPair<kSecond>(diag, first, second, i, p, rows))
+      {
+        return false;
+      }
+      continue;
+    }
+    const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, i, i >= 1 ? &rows[i - 1] : nullptr,
+                                                        kSecond && i >= 2 ? &rows[i - 2] : nullptr, rows[i]);
+    if (!top || !chainRow<kSecond, true>(diag, first, second, p, i >= 1 ? &rows[p + 1] : nullptr,
+                                         kSecond && i >= 2 ? &rows[p + 2] : nullptr, rows[p]))
+    {
+      return false;
+    }
+  }
+  // Row k against the top chain, row k + 1 against the bottom chain, as each chain's next row would be.
+  double sk[9], sk1[9], a1[9], x[9], c = 0.0;
+  loadRow<kSecond, false>(diag, first, second, k, true, true, sk, a1, &c);
+  if (kSecond)
+  {
+    eliminateSecond(sk, a1, c, rows[k - 1], rows[k - 2], rows[k]);
+  }
+  eliminateFirst(sk, a1, rows[k - 1], rows[k]);
+  loadRow<kSecond, true>(diag, first, second, k + 1, true, true, sk1, a1, &c);
+  if (kSecond)
+  {
+    eliminateSecond(sk1, a1, c, rows[k + 2], rows[k + 3], rows[k + 1]);
+  }
+  eliminateFirst(sk1, a1, rows[k + 2], rows[k + 1]);
+  // A(k + 1, k) and what each chain's rows that reach both meeting rows take off it: the bottom's row k + 2
+  // reaches row k through the second band, the top's row k - 1 reaches row k + 1 through it.
+  std::copy(first + 9 * k, first + 9 * k + 9, x);
+  if (kSecond)
+  {
+    double y[9];
+    scaledTransposedInverse(second[k], rows[k + 2], y);  // A(k, k+2) L_k+2^-T
+    schurUpdateUpper(y, rows[k + 2], sk, meet.k_k2);
+    // x -= L(k+1, k+2) D y^T D^-1 ... = (y L(k+1, k+2)^T)^T: the transpose of subtractUpperTimesTransposed's.
+    double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    subtractUpperTimesTransposed(y, rows[k + 1].below1, t);
+    for (std::size_t r = 0; r < 3; ++r)
+    {
+      for (std::size_t col = 0; col < 3; ++col)
+      {
+        x[3 * r + col] += t[3 * col + r];
+      }
+    }
+    double z[9];
+    scaledTransposedInverse(second[k - 1], rows[k - 1], z);  // A(k+1, k-1) L_k-1^-T
+    schurUpdateUpper(z, rows[k - 1], sk1, meet.k1_km1);
+    subtractUpperTimesTransposed(z, rows[k].below1, x);
+  }
+  if (!factorBlock(sk, rows[k]))
+  {
+    return false;
+  }
+  double y1[9];
+  solveTransposed(x, rows[k], y1);
+  schurUpdate(y1, rows[k], sk1, meet.k1_k);
+  return factorBlock(sk1, rows[k + 1]);
 }
 
 /// out -= m v and out -= m^T v for row-major 3x3 m.
@@ -473,6 +642,31 @@ ROV_TETHER_INLINE void multiplyTransposedSubtract(const double* m, const double*
   {
     out[c] -= m[c] * v[0] + m[3 + c] * v[1] + m[6 + c] * v[2];
   }
+}
+
+/// u -= m v and x -= m^T v for m upper triangular (a second-band factor: its zeros left out, the same
+/// roundings as forwardBlocks' and backwardBlocks').
+ROV_TETHER_INLINE void upperSubtract(const double* m, const double* v, double* u)
+{
+  u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+  u[1] -= m[4] * v[1] + m[5] * v[2];
+  u[2] -= m[8] * v[2];
+}
+ROV_TETHER_INLINE void upperTransposedSubtract(const double* m, const double* v, double* x)
+{
+  x[0] -= m[0] * v[0];
+  x[1] -= m[1] * v[0] + m[4] * v[1];
+  x[2] -= m[2] * v[0] + m[5] * v[1] + m[8] * v[2];
+}
+
+/// x = D_l^-1 x (the backward pass's first move on a row).
+ROV_TETHER_INLINE void divide(const BlockRow& row, double* x) { x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2; }
+
+/// x = L_l^-T x for row l's own unit-lower L_l.
+ROV_TETHER_INLINE void ownTransposed(const BlockRow& row, double* x)
+{
+  x[1] -= row.l21 * x[2];
+  x[0] -= row.l10 * x[1] + row.l20 * x[2];
 }
 
 /// Block row r's values of b in the elimination order (factorBlocks' kReverse).
@@ -492,9 +686,8 @@ ROV_TETHER_INLINE void ownForward(const BlockRow& row, double* u)
 /// x = L_l^-T D_l^-1 x for `row`'s own factors.
 ROV_TETHER_INLINE void ownBackward(const BlockRow& row, double* x)
 {
-  x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
-  x[1] -= row.l21 * x[2];
-  x[0] -= row.l10 * x[1] + row.l20 * x[2];
+  divide(row, x);
+  ownTransposed(row, x);
 }
 
 /// L u = b (block forward), with the factors in work.
@@ -510,12 +703,7 @@ ROV_TETHER_INLINE void forwardBlocks(double* __restrict b, std::size_t n, const 
     }
     if (kSecond && l >= 2)
     {
-      // L(l, l-2) is upper triangular (schurUpdateUpper): its zeros left out, the same roundings.
-      const double* m = rows[l].below2;
-      const double* v = at<kReverse>(b, n, l - 2);
-      u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
-      u[1] -= m[4] * v[1] + m[5] * v[2];
-      u[2] -= m[8] * v[2];
+      upperSubtract(rows[l].below2, at<kReverse>(b, n, l - 2), u);  // L(l, l-2): upper triangular
     }
     ownForward(rows[l], u);
   }
@@ -529,21 +717,16 @@ ROV_TETHER_INLINE void backwardBlocks(double* __restrict b, std::size_t n, const
   {
     double* x = at<kReverse>(b, n, l);
     const BlockRow& row = rows[l];
-    x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
+    divide(row, x);
     if (l + 1 < n)
     {
       multiplyTransposedSubtract(rows[l + 1].below1, at<kReverse>(b, n, l + 1), x);
     }
     if (kSecond && l + 2 < n)
     {
-      const double* m = rows[l + 2].below2;  // upper triangular, as above
-      const double* v = at<kReverse>(b, n, l + 2);
-      x[0] -= m[0] * v[0];
-      x[1] -= m[1] * v[0] + m[4] * v[1];
-      x[2] -= m[2] * v[0] + m[5] * v[1] + m[8] * v[2];
+      upperTransposedSubtract(rows[l + 2].below2, at<kReverse>(b, n, l + 2), x);
     }
-    x[1] -= row.l21 * x[2];
-    x[0] -= row.l10 * x[1] + row.l20 * x[2];
+    ownTransposed(row, x);
   }
 }
 
@@ -554,6 +737,84 @@ ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t
   const auto* rows = reinterpret_cast<const BlockRow*>(work);
   forwardBlocks<kSecond, false>(b, n, rows);
   backwardBlocks<kSecond, false>(b, n, rows);
+}
+
+/// substituteBlocks after factorTwisted: forward down the top chain and up the bottom chain together, the
+/// meeting rows, then backward from the meeting rows out along both chains together.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_t n, const double* __restrict work)
+{
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
+  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
+  const std::size_t k = meeting(n);
+  const std::size_t bottom = n - 2 - k;
+  auto v = [b](std::size_t p) { return b + 3 * p; };
+  for (std::size_t i = 0; i < bottom; ++i)
+  {
+    if (i < k)
+    {
+      if (i >= 1)
+      {
+        multiplySubtract(rows[i].below1, v(i - 1), v(i));
+      }
+      if (kSecond && i >= 2)
+      {
+        upperSubtract(rows[i].below2, v(i - 2), v(i));
+      }
+      ownForward(rows[i], v(i));
+    }
+    const std::size_t p = n - 1 - i;
+    if (i >= 1)
+    {
+      multiplySubtract(rows[p].below1, v(p + 1), v(p));
+    }
+    if (kSecond && i >= 2)
+    {
+      upperSubtract(rows[p].below2, v(p + 2), v(p));
+    }
+    ownForward(rows[p], v(p));
+  }
+  multiplySubtract(rows[k].below1, v(k - 1), v(k));
+  multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
+  if (kSecond)
+  {
+    upperSubtract(rows[k].below2, v(k - 2), v(k));
+    upperSubtract(meet.k_k2, v(k + 2), v(k));
+    upperSubtract(rows[k + 1].below2, v(k + 3), v(k + 1));
+    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
+  }
+  ownForward(rows[k], v(k));
+  multiplySubtract(meet.k1_k, v(k), v(k + 1));
+  ownForward(rows[k + 1], v(k + 1));
+  divide(rows[k + 1], v(k + 1));
+  ownTransposed(rows[k + 1], v(k + 1));
+  divide(rows[k], v(k));
+  multiplyTransposedSubtract(meet.k1_k, v(k + 1), v(k));
+  ownTransposed(rows[k], v(k));
+  for (std::size_t i = bottom; i-- > 0;)
+  {
+    // Top row l = i and bottom row p = n - 1 - i, the meeting's neighbours first.
+    if (i < k)
+    {
+      double* x = v(i);
+      divide(rows[i], x);
+      multiplyTransposedSubtract(rows[i + 1].below1, v(i + 1), x);
+      if (kSecond)
+      {
+        upperTransposedSubtract(i + 1 == k ? meet.k1_km1 : rows[i + 2].below2, v(i + 2), x);
+      }
+      ownTransposed(rows[i], x);
+    }
+    const std::size_t p = n - 1 - i;
+    double* x = v(p);
+    divide(rows[p], x);
+    multiplyTransposedSubtract(rows[p - 1].below1, v(p - 1), x);
+    if (kSecond)
+    {
+      upperTransposedSubtract(p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2), x);
+    }
+    ownTransposed(rows[p], x);
+  }
 }
 
 /// solveBlockBandedPulled's solve, after factorBlocks<kSecond, true>.
@@ -587,20 +848,23 @@ ROV_TETHER_TARGET_CLONES void substitutePulled(double* __restrict b, std::size_t
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work)
 {
+  const bool twisted = n >= kTwistedFrom;
   if (second != nullptr)
   {
-    if (!factorBlocks<true>(diag, first, second, n, work))
+    if (!(twisted ? factorTwisted<true>(diag, first, second, n, work)
+                  : factorBlocks<true>(diag, first, second, n, work)))
     {
       return false;
     }
-    substituteBlocks<true>(b, n, work);
+    solveBlockBandedAgain(true, b, n, work);
     return true;
   }
-  if (!factorBlocks<false>(diag, first, nullptr, n, work))
+  if (!(twisted ? factorTwisted<false>(diag, first, nullptr, n, work)
+                : factorBlocks<false>(diag, first, nullptr, n, work)))
   {
     return false;
   }
-  substituteBlocks<false>(b, n, work);
+  solveBlockBandedAgain(false, b, n, work);
   return true;
 }
 
@@ -633,13 +897,13 @@ bool solveBlockBandedPulled(const double* diag, const double* first, const doubl
 
 void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* work)
 {
-  if (second)
+  if (n >= kTwistedFrom)
   {
-    substituteBlocks<true>(b, n, work);
+    second ? substituteTwisted<true>(b, n, work) : substituteTwisted<false>(b, n, work);
   }
   else
   {
-    substituteBlocks<false>(b, n, work);
+    second ? substituteBlocks<true>(b, n, work) : substituteBlocks<false>(b, n, work);
   }
 }
 
