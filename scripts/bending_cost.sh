@@ -8,7 +8,7 @@
 # assembly, block factorisation, substitution, residual and energy). WALL=1 adds one timed run (REPETITIONS, 9,
 # repetitions interleaved at random, pinned to one core) and its CPU-time ratios, of the medians and of the
 # minima: a loaded machine moves them, and time does not follow instructions one for one (the block
-# factorisation is a chain of dependent divisions, one block row after the other).
+# factorisation is two chains of dependent divisions, one block row after the other in each).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/callgrind_bench.sh"
 segments="${SEGMENTS:-100 1000}"
@@ -24,16 +24,17 @@ from callgrind_tree import functions, per_step
 
 # Each part is every function whose name holds the pattern: the block solve's loops are compiled as clones
 # (AVX-512, AVX2, baseline), and callgrind names each clone on its own.
-PARTS = (("assembly", "PrimalNewton::assemble("), ("factorisation", "factorBlocks<true"),
-         ("substitution", "substituteBlocks<true"), ("residual", "PrimalNewton::residual("),
-         ("energy", "PrimalNewton::energy("))
+# From 8 block rows on the factorisation and substitution are the twisted ones (factorTwisted, substituteTwisted).
+PARTS = (("assembly", ("PrimalNewton::assemble(",)), ("factorisation", ("factorBlocks<true", "factorTwisted<true")),
+         ("substitution", ("substituteBlocks<true", "substituteTwisted<true")),
+         ("residual", ("PrimalNewton::residual(",)), ("energy", ("PrimalNewton::energy(",)))
 for n in sys.argv[3:]:
     chain, bending = functions("%s/chain%s.txt" % (work, n)), functions("%s/bending%s.txt" % (work, n))
     (c, c_calls), (b, b_calls) = per_step(chain, "BM_StepDirect("), per_step(bending, "BM_StepDirectBending(")
     step_total = sum(v[0] for k, v in bending.items() if k.endswith("rov_tether::Tether::step()"))
     shares = []
-    for label, part in PARTS:
-        found = [v[0] for k, v in bending.items() if part in k]
+    for label, names in PARTS:
+        found = [v[0] for k, v in bending.items() if any(name in k for name in names)]
         if found:
             shares.append("%s %.0f%%" % (label, 100.0 * sum(found) / step_total))
     print("BM_StepDirectBending/%s against BM_StepDirect/%s: instructions per step %.0f and %.0f (%d, %d steps); "
