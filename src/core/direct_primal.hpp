@@ -33,6 +33,16 @@ class PrimalNewton
   /// linearisation (direct_end_stiffness.hpp); allocation-free once reserved.
   bool solveHessian(const Cable& cable, const double* lambda, double* columns, std::size_t count);
 
+  /// A segment's Hessian block (axial - geometric) n n^T + geometric I as its five numbers (segmentTerm's),
+  /// each entry computed where it is used.
+  struct SegmentBlock
+  {
+    double scale = 0.0, geometric = 0.0;  ///< axial - geometric, geometric
+    double n[3] = {0.0, 0.0, 0.0};
+    /// Entry i, row-major.
+    double entry(std::size_t i) const { return scale * n[i / 3] * n[i % 3] + (i % 4 == 0 ? geometric : 0.0); }
+  };
+
  private:
   /// The step's energy Phi(x) at the current positions.
   double energy(const Cable& cable) const;
@@ -63,10 +73,8 @@ class PrimalNewton
   /// (massTerm), the segments' axial and geometric stiffness (segmentTerm), the joints' bending
   /// (bendingTerms), a block row at a time.
   void assemble(const Cable& cable);
-  /// Segment k's Hessian block (axial - geometric) n n^T + geometric I, as the five numbers axial - geometric,
-  /// geometric, n (segmentEntry expands them), and its force `lam` in the gradient; false when it is not in
-  /// the model.
-  bool segmentTerm(const Cable& cable, std::size_t k, double* lam, double* block) const;
+  /// Segment k's Hessian block and its force `lam` in the gradient; false when it is not in the model.
+  bool segmentTerm(const Cable& cable, std::size_t k, double* lam, SegmentBlock* block) const;
   /// Free particle l's mass block into `diagonal` and its inertia term into the gradient `g`.
   void massTerm(const Cable& cable, std::size_t l, double* diagonal, double* g) const;
   /// The bending joints' terms of free particle l's block row (prepareBending's) added to its diagonal
