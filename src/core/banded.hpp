@@ -24,7 +24,9 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
 /**
  * SPD systems of 3x3 blocks with block bandwidth 1 (block tridiagonal: a cable's positions) or 2 (block
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
- * pivots in a chain. Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for l < n, first[l] =
+ * pivots in a chain. From 8 block rows on it is twisted: one chain of block rows eliminated down from the
+ * first, one up from the last, a row of each in turn, meeting in the middle (each chain is a sequence of
+ * dependent divisions, and the processor overlaps the two). Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for l < n, first[l] =
  * A(l + 1, l) for l < n - 1. The second blocks are multiples of the identity (the direct solver's bending
  * joints, whose curvature is linear in the positions and the same on each axis): second[l] is the one number
  * c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values and is overwritten with
