@@ -187,7 +187,7 @@ TEST(Banded, BlockSolveSolvesTheSystem)
 {
   for (bool two : {false, true})
   {
-    for (std::size_t n : {1u, 2u, 3u, 4u, 7u, 8u, 9u, 10u, 11u, 101u})
+    for (std::size_t n : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 101u})
     {
       const BlockSystem system(n, two, static_cast<unsigned>(n + (two ? 100 : 0)));
       std::vector<double> x = system.b, xl = system.b, work(36 * n), band(9 * 3 * n);
@@ -314,20 +314,22 @@ TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
 // A block that is not positive definite is refused.
 TEST(Banded, BlockSolveRefusesIndefiniteMatrices)
 {
-  // A negative diagonal entry in any block row of a twisted solve: in the top chain, the bottom chain or a
-  // meeting row (rows 3 and 4 of 9 and 10), the matrix is indefinite and some pivot is not positive.
+  // A negative diagonal entry in any block row of a twisted solve, in the top chain, the bottom chain or a
+  // meeting row (rows 3 and 4 of 9, 4 and 5 of 10): the matrix is indefinite (one negative eigenvalue: a
+  // rank-one change of an SPD matrix), so that row's pivots must refuse it. On each of the three axes, so that
+  // each of the block's three pivots is the one that goes negative.
   for (bool two : {false, true})
   {
     for (std::size_t n : {9u, 10u})
     {
-      for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t p = 0; p < 3 * n; ++p)
       {
         BlockSystem system(n, two, static_cast<unsigned>(11 * n + p));
-        system.diag[9 * p + 4] = -10.0;
+        system.diag[9 * (p / 3) + 4 * (p % 3)] = -10.0;
         std::vector<double> x = system.b, work(36 * n);
         EXPECT_FALSE(banded::solveBlockBanded(system.diag.data(), system.first.data(),
                                               two ? system.second.data() : nullptr, x.data(), n, work.data()))
-            << "bandwidth " << (two ? 2 : 1) << " n " << n << " block row " << p;
+            << "bandwidth " << (two ? 2 : 1) << " n " << n << " block row " << p / 3 << " axis " << p % 3;
       }
     }
   }

@@ -307,7 +307,8 @@ namespace
 {
 
 /// One block row's factors: the diagonal block's own unit-lower L (l10, l20, l21) and D (d0, d1, d2), and
-/// the factors L(l, l-1), L(l, l-2) of the whole matrix (row-major 3x3).
+/// the factors of the whole matrix that tie it to the two rows eliminated before it in its chain (row-major
+/// 3x3): L(l, l-1) and L(l, l-2) in a chain down the rows, L(p, p+1) and L(p, p+2) in one up them.
 struct BlockRow
 {
   double l10, l20, l21, d0, d1, d2;
@@ -319,7 +320,7 @@ static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work 
 
 /// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
 /// Without branches (a pivot that is not positive leaves the later values meaningless, and the result false),
-/// so that two chains' blocks factored one after the other overlap (factorTwisted).
+/// so that two chains' blocks factored one after the other overlap (chainPair).
 ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
 {
   row.d0 = s[0];
@@ -516,6 +517,8 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
 
 /// The twisted factorisation (factorTwisted) from this many block rows on; below it, factorBlocks.
 constexpr std::size_t kTwistedFrom = 8;
+// factorTwisted reads rows k-2 and k+3 around its meeting (k = (n - 2) / 2): n >= 6 for bandwidth 2.
+static_assert(kTwistedFrom >= 6, "the twisted factorisation needs two rows in each chain");
 
 /// Where factorTwisted's two chains meet: block rows k and k + 1.
 inline std::size_t meeting(std::size_t n) { return (n - 2) / 2; }
@@ -551,9 +554,10 @@ ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const doubl
 /// factorBlocks in the twisted order: rows 0 .. k-1 eliminated down from the top and rows n-1 .. k+2 up from
 /// the bottom, a row of each chain in every pass of one loop (two independent chains of dependent divisions,
 /// which the processor overlaps: each alone is latency-bound), then the meeting rows k and k + 1. Neither
-/// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k (and row k + 1
-/// through the second band), the bottom's rows k+2 and k+3 reach row k + 1 (and row k through the second
-/// band). The same L D L^T, of the matrix with its rows in that order. n >= kTwistedFrom.
+/// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k, and row k-1
+/// also reaches row k + 1 through the second band; the bottom's rows k+2 and k+3 reach row k + 1, and row
+/// k+2 also reaches row k through the second band. The same L D L^T, of the matrix with its rows in that
+/// order. n >= kTwistedFrom.
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const double* __restrict first,
                                             const double* __restrict second, std::size_t n, double* __restrict work)
@@ -603,7 +607,8 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
     double y[9];
     scaledTransposedInverse(second[k], rows[k + 2], y);  // A(k, k+2) L_k+2^-T
     schurUpdateUpper(y, rows[k + 2], sk, meet.k_k2);
-    // x -= L(k+1, k+2) D y^T D^-1 ... = (y L(k+1, k+2)^T)^T: the transpose of subtractUpperTimesTransposed's.
+    // x -= L(k+1, k+2) D (y D^-1)^T = L(k+1, k+2) y^T = (y L(k+1, k+2)^T)^T: subtractUpperTimesTransposed's,
+    // transposed.
     double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     subtractUpperTimesTransposed(y, rows[k + 1].below1, t);
     for (std::size_t r = 0; r < 3; ++r)

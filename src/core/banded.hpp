@@ -26,11 +26,11 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
  * pivots in a chain. From 8 block rows on it is twisted: one chain of block rows eliminated down from the
  * first, one up from the last, a row of each in turn, meeting in the middle (each chain is a sequence of
- * dependent divisions, and the processor overlaps the two). Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for l < n, first[l] =
- * A(l + 1, l) for l < n - 1. The second blocks are multiples of the identity (the direct solver's bending
- * joints, whose curvature is linear in the positions and the same on each axis): second[l] is the one number
- * c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values and is overwritten with
- * the solution; `work` needs 36 n doubles. False when not positive definite.
+ * dependent divisions, and the processor overlaps the two). Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for
+ * l < n, first[l] = A(l + 1, l) for l < n - 1. The second blocks are multiples of the identity (the direct solver's
+ * bending joints, whose curvature is linear in the positions and the same on each axis): second[l] is the one number c
+ * of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values and is overwritten with the
+ * solution; `work` needs 36 n doubles. False when not positive definite.
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work);
