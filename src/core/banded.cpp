@@ -389,6 +389,24 @@ ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, 
   s[8] -= below[8] * y[8];
 }
 
+/// out -= y m^T for y upper triangular (scaledTransposedInverse's) and m full: a row's coupling to the row
+/// after the one it is eliminated against (and, twisted, what a chain's row leaves between the meeting rows).
+ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const double* m, double* out)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t col = 0; col < 3; ++col)
+    {
+      double sum = y[4 * r] * m[3 * col + r];
+      for (std::size_t q = r + 1; q < 3; ++q)
+      {
+        sum += y[3 * r + q] * m[3 * col + q];
+      }
+      out[3 * r + col] -= sum;
+    }
+  }
+}
+
 /// A block row's elimination against the two rows eliminated before it in its chain (prev1 the last, prev2
 /// the one before), in two parts: eliminateSecond against prev2 (A(row, prev2) = c I), then eliminateFirst
 /// against prev1 (a1 = A(row, prev1)), which leave s = S_row for factorBlock:
@@ -399,20 +417,7 @@ ROV_TETHER_INLINE void eliminateSecond(double* s, double* a1, double c, const Bl
   double y2[9];
   scaledTransposedInverse(c, prev2, y2);
   schurUpdateUpper(y2, prev2, s, out.below2);
-  const double* prev = prev1.below1;  // L(prev1, prev2)
-  for (std::size_t r = 0; r < 3; ++r)
-  {
-    for (std::size_t col = 0; col < 3; ++col)
-    {
-      // y2's row r is zero left of column r.
-      double sum = y2[4 * r] * prev[3 * col + r];
-      for (std::size_t q = r + 1; q < 3; ++q)
-      {
-        sum += y2[3 * r + q] * prev[3 * col + q];
-      }
-      a1[3 * r + col] -= sum;
-    }
-  }
+  subtractUpperTimesTransposed(y2, prev1.below1, a1);  // a1 -= Y2 L(prev1, prev2)^T
 }
 ROV_TETHER_INLINE void eliminateFirst(double* s, const double* a1, const BlockRow& prev1, BlockRow& out)
 {
@@ -532,24 +537,6 @@ struct Meeting
 // Each further row adds 36 doubles of work and a BlockRow's fewer.
 static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * 36 * sizeof(double),
               "factorTwisted's factors fit the 36 n doubles of work");
-
-/// out -= y m^T for y upper triangular (scaledTransposedInverse's) and m full: the coupling a row eliminated
-/// in one chain leaves between the two meeting rows.
-ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const double* m, double* out)
-{
-  for (std::size_t r = 0; r < 3; ++r)
-  {
-    for (std::size_t col = 0; col < 3; ++col)
-    {
-      double sum = y[4 * r] * m[3 * col + r];
-      for (std::size_t q = r + 1; q < 3; ++q)
-      {
-        sum += y[3 * r + q] * m[3 * col + q];
-      }
-      out[3 * r + col] -= sum;
-    }
-  }
-}
 
 /// factorBlocks in the twisted order: rows 0 .. k-1 eliminated down from the top and rows n-1 .. k+2 up from
 /// the bottom, a row of each chain in every pass of one loop (two independent chains of dependent divisions,
