@@ -527,17 +527,20 @@ double PrimalNewton::residual(const Cable& cable)
       }
     }
   }
+  // As a displacement: times the largest inverse mass (along the cable, where added mass does not act), over
+  // the nominal segment, divided once after the largest is found (dividing by a positive number keeps the
+  // order, so this is the largest of the quotients, bit for bit).
+  double worst_move = 0.0;
   for (std::size_t l = 0; l <= m; ++l)
   {
-    // As a displacement: times the largest inverse mass (along the cable, where added mass does not act).
     const double w = std::max(cable.inv_mass[f + l], cable.anisotropic ? cable.inv_mass_along[f + l] : 0.0);
     if (w > 0.0)
     {
       const double* r = &force[3 * l];
-      worst = std::max(worst, w * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) / ws_.nominal);
+      worst_move = std::max(worst_move, w * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]));
     }
   }
-  return worst;
+  return std::max(worst, worst_move / ws_.nominal);
 }
 
 }  // namespace rov_tether
