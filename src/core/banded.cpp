@@ -682,22 +682,48 @@ ROV_TETHER_INLINE void ownBackward(const BlockRow& row, double* x)
   ownTransposed(row, x);
 }
 
+/// A row's forward step in its chain: u -= L(row, prev1) u1 + L(row, prev2) u2 (u1, u2 nullptr where there is
+/// no such row; L(row, prev2) is upper triangular), then u = L_row^-1 u.
+template <bool kSecond>
+ROV_TETHER_INLINE void forwardRow(const BlockRow& row, const double* u1, const double* u2, double* u)
+{
+  if (u1 != nullptr)
+  {
+    multiplySubtract(row.below1, u1, u);
+  }
+  if (kSecond && u2 != nullptr)
+  {
+    upperSubtract(row.below2, u2, u);
+  }
+  ownForward(row, u);
+}
+
+/// A row's backward step: x = L_row^-T (D_row^-1 x - m1^T x1 - m2^T x2), m1 and m2 the factors that tie the
+/// rows eliminated after it (their unknowns x1 and x2, nullptr where there is none) to it; m2 upper triangular.
+template <bool kSecond>
+ROV_TETHER_INLINE void backwardRow(const BlockRow& row, const double* m1, const double* x1, const double* m2,
+                                   const double* x2, double* x)
+{
+  divide(row, x);
+  if (x1 != nullptr)
+  {
+    multiplyTransposedSubtract(m1, x1, x);
+  }
+  if (kSecond && x2 != nullptr)
+  {
+    upperTransposedSubtract(m2, x2, x);
+  }
+  ownTransposed(row, x);
+}
+
 /// L u = b (block forward), with the factors in work.
 template <bool kSecond, bool kReverse>
 ROV_TETHER_INLINE void forwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
 {
   for (std::size_t l = 0; l < n; ++l)
   {
-    double* u = at<kReverse>(b, n, l);
-    if (l >= 1)
-    {
-      multiplySubtract(rows[l].below1, at<kReverse>(b, n, l - 1), u);
-    }
-    if (kSecond && l >= 2)
-    {
-      upperSubtract(rows[l].below2, at<kReverse>(b, n, l - 2), u);  // L(l, l-2): upper triangular
-    }
-    ownForward(rows[l], u);
+    forwardRow<kSecond>(rows[l], l >= 1 ? at<kReverse>(b, n, l - 1) : nullptr,
+                        l >= 2 ? at<kReverse>(b, n, l - 2) : nullptr, at<kReverse>(b, n, l));
   }
 }
 
@@ -707,18 +733,10 @@ ROV_TETHER_INLINE void backwardBlocks(double* __restrict b, std::size_t n, const
 {
   for (std::size_t l = n; l-- > 0;)
   {
-    double* x = at<kReverse>(b, n, l);
-    const BlockRow& row = rows[l];
-    divide(row, x);
-    if (l + 1 < n)
-    {
-      multiplyTransposedSubtract(rows[l + 1].below1, at<kReverse>(b, n, l + 1), x);
-    }
-    if (kSecond && l + 2 < n)
-    {
-      upperTransposedSubtract(rows[l + 2].below2, at<kReverse>(b, n, l + 2), x);
-    }
-    ownTransposed(row, x);
+    const bool one = l + 1 < n, two = l + 2 < n;
+    backwardRow<kSecond>(rows[l], one ? rows[l + 1].below1 : nullptr, one ? at<kReverse>(b, n, l + 1) : nullptr,
+                         two ? rows[l + 2].below2 : nullptr, two ? at<kReverse>(b, n, l + 2) : nullptr,
+                         at<kReverse>(b, n, l));
   }
 }
 
@@ -745,26 +763,10 @@ ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_
   {
     if (i < k)
     {
-      if (i >= 1)
-      {
-        multiplySubtract(rows[i].below1, v(i - 1), v(i));
-      }
-      if (kSecond && i >= 2)
-      {
-        upperSubtract(rows[i].below2, v(i - 2), v(i));
-      }
-      ownForward(rows[i], v(i));
+      forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
     }
     const std::size_t p = n - 1 - i;
-    if (i >= 1)
-    {
-      multiplySubtract(rows[p].below1, v(p + 1), v(p));
-    }
-    if (kSecond && i >= 2)
-    {
-      upperSubtract(rows[p].below2, v(p + 2), v(p));
-    }
-    ownForward(rows[p], v(p));
+    forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
   }
   multiplySubtract(rows[k].below1, v(k - 1), v(k));
   multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
@@ -788,24 +790,12 @@ ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_
     // Top row l = i and bottom row p = n - 1 - i, the meeting's neighbours first.
     if (i < k)
     {
-      double* x = v(i);
-      divide(rows[i], x);
-      multiplyTransposedSubtract(rows[i + 1].below1, v(i + 1), x);
-      if (kSecond)
-      {
-        upperTransposedSubtract(i + 1 == k ? meet.k1_km1 : rows[i + 2].below2, v(i + 2), x);
-      }
-      ownTransposed(rows[i], x);
+      backwardRow<kSecond>(rows[i], rows[i + 1].below1, v(i + 1), i + 1 == k ? meet.k1_km1 : rows[i + 2].below2,
+                           v(i + 2), v(i));
     }
     const std::size_t p = n - 1 - i;
-    double* x = v(p);
-    divide(rows[p], x);
-    multiplyTransposedSubtract(rows[p - 1].below1, v(p - 1), x);
-    if (kSecond)
-    {
-      upperTransposedSubtract(p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2), x);
-    }
-    ownTransposed(rows[p], x);
+    backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2),
+                         v(p));
   }
 }
 
