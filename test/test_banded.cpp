@@ -311,6 +311,69 @@ TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
                                               pull, SpringLaw(3.0, 0.2), &force));
 }
 
+/// `blocks` (9 doubles a block, one after the other) as one array an entry, each `stride` long.
+std::vector<double> entryArrays(const std::vector<double>& blocks, std::size_t stride)
+{
+  std::vector<double> arrays(9 * stride, std::nan(""));  // what no block fills is never read
+  for (std::size_t l = 0; 9 * l < blocks.size() && l < stride; ++l)
+  {
+    for (std::size_t i = 0; i < 9; ++i)
+    {
+      arrays[i * stride + l] = blocks[9 * l + i];
+    }
+  }
+  return arrays;
+}
+
+// The direct solver's assembly stores the blocks one array an entry (BlockLayout{1, stride}): every solve reads
+// the same matrix there as from blocks one after the other, so it gives the same answer to the bit (the same
+// operations on the same numbers); the pulled solve's check that block row 0 is uncoupled reads it there too.
+// A stride longer than the rows, as the solver's (its particles reserved), and sizes on both sides of the twist.
+TEST(Banded, OneArrayAnEntryIsTheSameSystem)
+{
+  for (bool two : {false, true})
+  {
+    for (std::size_t n : {3u, 9u, 101u})
+    {
+      BlockSystem system(n, two, static_cast<unsigned>(3 * n + (two ? 1 : 0)));
+      std::fill(system.first.begin(), system.first.begin() + 9, 0.0);  // block row 0 uncoupled, for the pull
+      system.second[0] = 0.0;
+      const std::size_t stride = n + 3;
+      const banded::BlockLayout layout{1, stride};
+      const std::vector<double> diag = entryArrays(system.diag, stride), first = entryArrays(system.first, stride);
+      const double* second = two ? system.second.data() : nullptr;
+      const std::string where = std::string("bandwidth ") + (two ? "2" : "1") + " n " + std::to_string(n);
+      std::vector<double> work(36 * n), band(9 * 3 * n);
+      std::vector<double> x = system.b, y = system.b;
+      ASSERT_TRUE(banded::solveBlockBanded(system.diag.data(), system.first.data(), second, x.data(), n, work.data()));
+      ASSERT_TRUE(banded::solveBlockBanded(diag.data(), first.data(), second, y.data(), n, work.data(), layout));
+      EXPECT_EQ(x, y) << where;
+      x = system.b, y = system.b;
+      ASSERT_TRUE(
+          banded::solveBlockBandedLapack(system.diag.data(), system.first.data(), second, x.data(), n, band.data()));
+      ASSERT_TRUE(banded::solveBlockBandedLapack(diag.data(), first.data(), second, y.data(), n, band.data(), layout));
+      EXPECT_EQ(x, y) << "LAPACK, " << where;
+      x = system.b, y = system.b;
+      const double pull[3] = {0.6, -0.48, 0.64};
+      double fx = 0.0, fy = 0.0;
+      ASSERT_TRUE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), second, x.data(), n,
+                                                 work.data(), pull, SpringLaw(3.0, 0.2), &fx));
+      ASSERT_TRUE(banded::solveBlockBandedPulled(diag.data(), first.data(), second, y.data(), n, work.data(), pull,
+                                                 SpringLaw(3.0, 0.2), &fy, layout));
+      EXPECT_EQ(x, y) << "pulled, " << where;
+      EXPECT_EQ(fx, fy) << "pulled, " << where;
+      for (std::size_t entry : {1u, 5u})
+      {
+        std::vector<double> coupled = first;
+        coupled[entry * stride] = 0.3;  // entry `entry` of A(1, 0)
+        EXPECT_FALSE(banded::solveBlockBandedPulled(diag.data(), coupled.data(), second, y.data(), n, work.data(), pull,
+                                                    SpringLaw(3.0, 0.2), &fy, layout))
+            << "block row 0 coupled through entry " << entry << ", " << where;
+      }
+    }
+  }
+}
+
 // A block that is not positive definite is refused.
 TEST(Banded, BlockSolveRefusesIndefiniteMatrices)
 {

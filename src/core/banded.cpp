@@ -431,19 +431,19 @@ ROV_TETHER_INLINE void eliminateFirst(double* s, const double* a1, const BlockRo
 /// transpose of the stored A(p + 1, p)) and the c of its coupling c I to the row before (0 without one).
 template <bool kSecond, bool kReverse>
 ROV_TETHER_INLINE void loadRow(const double* __restrict diag, const double* __restrict first,
-                               const double* __restrict second, std::size_t p, bool has1, bool has2, double* s,
-                               double* a1, double* c)
+                               const double* __restrict second, const BlockLayout& layout, std::size_t p, bool has1,
+                               bool has2, double* s, double* a1, double* c)
 {
   for (std::size_t i = 0; i < 9; ++i)
   {
-    s[i] = diag[9 * p + i];
+    s[i] = diag[p * layout.row + i * layout.entry];
   }
   if (has1)
   {
-    const double* stored = first + 9 * (kReverse ? p : p - 1);
+    const double* stored = first + (kReverse ? p : p - 1) * layout.row;
     for (std::size_t i = 0; i < 9; ++i)
     {
-      a1[i] = kReverse ? stored[3 * (i % 3) + i / 3] : stored[i];
+      a1[i] = stored[(kReverse ? 3 * (i % 3) + i / 3 : i) * layout.entry];
     }
   }
   *c = kSecond && has2 ? second[kReverse ? p : p - 2] : 0.0;
@@ -453,11 +453,11 @@ ROV_TETHER_INLINE void loadRow(const double* __restrict diag, const double* __re
 /// running down the rows or up them (loadRow).
 template <bool kSecond, bool kReverse>
 ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __restrict first,
-                                const double* __restrict second, std::size_t p, const BlockRow* prev1,
-                                const BlockRow* prev2, BlockRow& out)
+                                const double* __restrict second, const BlockLayout& layout, std::size_t p,
+                                const BlockRow* prev1, const BlockRow* prev2, BlockRow& out)
 {
   double s[9], a1[9], c = 0.0;
-  loadRow<kSecond, kReverse>(diag, first, second, p, prev1 != nullptr, prev2 != nullptr, s, a1, &c);
+  loadRow<kSecond, kReverse>(diag, first, second, layout, p, prev1 != nullptr, prev2 != nullptr, s, a1, &c);
   if (kSecond && prev2 != nullptr)
   {
     eliminateSecond(s, a1, c, *prev1, *prev2, out);
@@ -474,11 +474,12 @@ ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __r
 /// divisions. Both rows have both predecessors (t >= 2, p + 2 < n).
 template <bool kSecond>
 ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __restrict first,
-                                 const double* __restrict second, std::size_t t, std::size_t p, BlockRow* rows)
+                                 const double* __restrict second, const BlockLayout& layout, std::size_t t,
+                                 std::size_t p, BlockRow* rows)
 {
   double s[2][9], a1[2][9], c[2];
-  loadRow<kSecond, false>(diag, first, second, t, true, true, s[0], a1[0], &c[0]);
-  loadRow<kSecond, true>(diag, first, second, p, true, true, s[1], a1[1], &c[1]);
+  loadRow<kSecond, false>(diag, first, second, layout, t, true, true, s[0], a1[0], &c[0]);
+  loadRow<kSecond, true>(diag, first, second, layout, p, true, true, s[1], a1[1], &c[1]);
   if (kSecond)
   {
     eliminateSecond(s[0], a1[0], c[0], rows[t - 1], rows[t - 2], rows[t]);
@@ -496,7 +497,8 @@ ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __
 /// the same system, with the first block row's pivot last (solveBlockBandedPulled).
 template <bool kSecond, bool kReverse = false>
 ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const double* __restrict first,
-                                           const double* __restrict second, std::size_t n, double* __restrict work)
+                                           const double* __restrict second, const BlockLayout& layout, std::size_t n,
+                                           double* __restrict work)
 {
   // A = L D L^T, L unit block-lower with 3x3 unit-lower diagonal blocks L_l and D diagonal; it is the
   // scalar L D L^T of the band in the same order, computed a block row at a time with triangular solves (no
@@ -511,7 +513,7 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
   for (std::size_t l = 0; l < n; ++l)
   {
     const std::size_t p = kReverse ? n - 1 - l : l;  // the block row eliminated l-th
-    if (!chainRow<kSecond, kReverse>(diag, first, second, p, l >= 1 ? &rows[l - 1] : nullptr,
+    if (!chainRow<kSecond, kReverse>(diag, first, second, layout, p, l >= 1 ? &rows[l - 1] : nullptr,
                                      kSecond && l >= 2 ? &rows[l - 2] : nullptr, rows[l]))
     {
       return false;
@@ -547,7 +549,8 @@ static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom 
 /// order. n >= kTwistedFrom.
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const double* __restrict first,
-                                            const double* __restrict second, std::size_t n, double* __restrict work)
+                                            const double* __restrict second, const BlockLayout& layout, std::size_t n,
+                                            double* __restrict work)
 {
   auto* rows = reinterpret_cast<BlockRow*>(work);
   auto& meet = *reinterpret_cast<Meeting*>(rows + n);
@@ -558,15 +561,15 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
     const std::size_t p = n - 1 - i;
     if (i >= 2 && i < k)
     {
-      if (!chainPair<kSecond>(diag, first, second, i, p, rows))
+      if (!chainPair<kSecond>(diag, first, second, layout, i, p, rows))
       {
         return false;
       }
       continue;
     }
-    const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, i, i >= 1 ? &rows[i - 1] : nullptr,
+    const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, layout, i, i >= 1 ? &rows[i - 1] : nullptr,
                                                         kSecond && i >= 2 ? &rows[i - 2] : nullptr, rows[i]);
-    if (!top || !chainRow<kSecond, true>(diag, first, second, p, i >= 1 ? &rows[p + 1] : nullptr,
+    if (!top || !chainRow<kSecond, true>(diag, first, second, layout, p, i >= 1 ? &rows[p + 1] : nullptr,
                                          kSecond && i >= 2 ? &rows[p + 2] : nullptr, rows[p]))
     {
       return false;
@@ -574,13 +577,13 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   }
   // Row k against the top chain, row k + 1 against the bottom chain, as each chain's next row would be.
   double sk[9], sk1[9], a1[9], x[9], c = 0.0;
-  loadRow<kSecond, false>(diag, first, second, k, true, true, sk, a1, &c);
+  loadRow<kSecond, false>(diag, first, second, layout, k, true, true, sk, a1, &c);
   if (kSecond)
   {
     eliminateSecond(sk, a1, c, rows[k - 1], rows[k - 2], rows[k]);
   }
   eliminateFirst(sk, a1, rows[k - 1], rows[k]);
-  loadRow<kSecond, true>(diag, first, second, k + 1, true, true, sk1, a1, &c);
+  loadRow<kSecond, true>(diag, first, second, layout, k + 1, true, true, sk1, a1, &c);
   if (kSecond)
   {
     eliminateSecond(sk1, a1, c, rows[k + 2], rows[k + 3], rows[k + 1]);
@@ -588,7 +591,10 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   eliminateFirst(sk1, a1, rows[k + 2], rows[k + 1]);
   // A(k + 1, k) and what each chain's rows that reach both meeting rows take off it: the bottom's row k + 2
   // reaches row k through the second band, the top's row k - 1 reaches row k + 1 through it.
-  std::copy(first + 9 * k, first + 9 * k + 9, x);
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    x[i] = first[k * layout.row + i * layout.entry];
+  }
   if (kSecond)
   {
     double y[9];
@@ -828,21 +834,21 @@ ROV_TETHER_TARGET_CLONES void substitutePulled(double* __restrict b, std::size_t
 }  // namespace
 
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                      double* work)
+                      double* work, const BlockLayout& layout)
 {
   const bool twisted = n >= kTwistedFrom;
   if (second != nullptr)
   {
-    if (!(twisted ? factorTwisted<true>(diag, first, second, n, work)
-                  : factorBlocks<true>(diag, first, second, n, work)))
+    if (!(twisted ? factorTwisted<true>(diag, first, second, layout, n, work)
+                  : factorBlocks<true>(diag, first, second, layout, n, work)))
     {
       return false;
     }
     solveBlockBandedAgain(true, b, n, work);
     return true;
   }
-  if (!(twisted ? factorTwisted<false>(diag, first, nullptr, n, work)
-                : factorBlocks<false>(diag, first, nullptr, n, work)))
+  if (!(twisted ? factorTwisted<false>(diag, first, nullptr, layout, n, work)
+                : factorBlocks<false>(diag, first, nullptr, layout, n, work)))
   {
     return false;
   }
@@ -851,25 +857,30 @@ bool solveBlockBanded(const double* diag, const double* first, const double* sec
 }
 
 bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                            double* work, const double* pull, const EndLaw& law, double* force)
+                            double* work, const double* pull, const EndLaw& law, double* force,
+                            const BlockLayout& layout)
 {
   // Block row 0 must not couple to the others (A(1, 0) = 0 and A(2, 0) = 0), or block row 1's last pivot would
   // not hold A^-1_11.
-  if (n < 2 || !std::all_of(first, first + 9, [](double v) { return v == 0.0; }) ||
-      (second != nullptr && n > 2 && second[0] != 0.0))
+  bool uncoupled = true;
+  for (std::size_t i = 0; i < 9 && n >= 2; ++i)
+  {
+    uncoupled = uncoupled && first[i * layout.entry] == 0.0;
+  }
+  if (n < 2 || !uncoupled || (second != nullptr && n > 2 && second[0] != 0.0))
   {
     return false;
   }
   if (second != nullptr)
   {
-    if (!factorBlocks<true, true>(diag, first, second, n, work))
+    if (!factorBlocks<true, true>(diag, first, second, layout, n, work))
     {
       return false;
     }
     substitutePulled<true>(b, n, work, pull, law, force);
     return true;
   }
-  if (!factorBlocks<false, true>(diag, first, nullptr, n, work))
+  if (!factorBlocks<false, true>(diag, first, nullptr, layout, n, work))
   {
     return false;
   }
@@ -890,13 +901,13 @@ void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* 
 }
 
 bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                            double* band)
+                            double* band, const BlockLayout& layout)
 {
   const std::size_t kd = second != nullptr ? 8 : 5;
   const std::size_t ld = kd + 1;
   const std::size_t rows = 3 * n;
   std::fill(band, band + ld * rows, 0.0);
-  auto put = [band, ld](std::size_t p, std::size_t q, const double* block)
+  auto put = [band, ld](std::size_t p, std::size_t q, const double* block, std::size_t entry)
   {
     for (std::size_t a = 0; a < 3; ++a)
     {
@@ -906,23 +917,23 @@ bool solveBlockBandedLapack(const double* diag, const double* first, const doubl
         const std::size_t j = 3 * q + c;
         if (i >= j)
         {
-          band[(i - j) + j * ld] = block[3 * a + c];
+          band[(i - j) + j * ld] = block[(3 * a + c) * entry];
         }
       }
     }
   };
   for (std::size_t l = 0; l < n; ++l)
   {
-    put(l, l, diag + 9 * l);
+    put(l, l, diag + l * layout.row, layout.entry);
     if (l + 1 < n)
     {
-      put(l + 1, l, first + 9 * l);
+      put(l + 1, l, first + l * layout.row, layout.entry);
     }
     if (second != nullptr && l + 2 < n)
     {
       const double c = second[l];
       const double block[9] = {c, 0, 0, 0, c, 0, 0, 0, c};
-      put(l + 2, l, block);
+      put(l + 2, l, block, 1);
     }
   }
   return solveBandedLapack(band, kd, b, rows);

@@ -26,14 +26,22 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
  * pivots in a chain. From 8 block rows on it is twisted: one chain of block rows eliminated down from the
  * first, one up from the last, a row of each in turn, meeting in the middle (each chain is a sequence of
- * dependent divisions, and the processor overlaps the two). Blocks are row-major, 9 doubles each: diag[l] = A(l, l) for
- * l < n, first[l] = A(l + 1, l) for l < n - 1. The second blocks are multiples of the identity (the direct solver's
- * bending joints, whose curvature is linear in the positions and the same on each axis): second[l] is the one number c
- * of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values and is overwritten with the
- * solution; `work` needs 36 n doubles. False when not positive definite.
+ * dependent divisions, and the processor overlaps the two). Blocks are row-major 3x3: diag's block l is A(l, l) for l <
+ * n, first's block l is A(l + 1, l) for l < n - 1 (where their entries are: `layout`). The second blocks are multiples
+ * of the identity (the direct solver's bending joints, whose curvature is linear in the positions and the same on each
+ * axis): second[l] is the one number c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values
+ * and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite.
  */
+/// Where the blocks' entries are: entry i (row-major) of block l at l * row + i * entry. The default is a block
+/// after the other (row 9, entry 1); one array an entry is row 1, entry the arrays' length (the direct solver's
+/// assembly, which fills them in vectorised loops).
+struct BlockLayout
+{
+  std::size_t row = 9;
+  std::size_t entry = 1;
+};
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                      double* work);
+                      double* work, const BlockLayout& layout = {});
 /// The law that sets a pull's size from the response of the unknowns it acts on (solveBlockBandedPulled).
 class EndLaw
 {
@@ -49,13 +57,14 @@ class EndLaw
 /// n < 2 or block row 0 couples to the others (it must be a pinned particle's). The direct solver's spool
 /// segment on a drum (PrimalNewton::pulledSolve).
 bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                            double* work, const double* pull, const EndLaw& law, double* force);
+                            double* work, const double* pull, const EndLaw& law, double* force,
+                            const BlockLayout& layout = {});
 /// Solves the system solveBlockBanded last factored into `work` again, for another right-hand side b.
 void solveBlockBandedAgain(bool second, double* b, std::size_t n, const double* work);
 /// The same system through LAPACK's band Cholesky (dpbtrf/dpbtrs): the blocks are copied into a band of
 /// half-bandwidth 5 (or 8), which `band` must hold ((kd + 1) 3 n doubles).
 bool solveBlockBandedLapack(const double* diag, const double* first, const double* second, double* b, std::size_t n,
-                            double* band);
+                            double* band, const BlockLayout& layout = {});
 /// Solves with the factor solveBlockBandedLapack left in `band` again, for another right-hand side b.
 bool solveBlockBandedLapackAgain(bool second, double* b, std::size_t n, const double* band);
 

@@ -43,6 +43,7 @@ void PrimalNewton::reserve(std::size_t n)
     v->assign(3 * n, 0.0);
   }
   bend_first_.assign(2 * n, 0.0);
+  segment_.assign(7 * (n + 1), 0.0);
   for (auto* v : {&hessian_diag_, &hessian_first_})
   {
     v->assign(9 * n, 0.0);
@@ -111,12 +112,13 @@ bool PrimalNewton::solveHessian(const Cable& cable, const double* lambda, double
     if (linear_ == DirectSolver::LinearSolve::kLapack)
     {
       ok = column == 0 ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1,
-                                                        band_.data())
+                                                        band_.data(), layout())
                        : banded::solveBlockBandedLapackAgain(second != nullptr, b, m + 1, band_.data());
     }
     else if (column == 0)
     {
-      ok = banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1, work_.data());
+      ok = banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, b, m + 1, work_.data(),
+                                    layout());
     }
     else
     {
@@ -244,9 +246,9 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
     {
       ok = linear_ == DirectSolver::LinearSolve::kLapack
                ? banded::solveBlockBandedLapack(hessian_diag_.data(), hessian_first_.data(), second, step_.data(),
-                                                m + 1, band_.data())
+                                                m + 1, band_.data(), layout())
                : banded::solveBlockBanded(hessian_diag_.data(), hessian_first_.data(), second, step_.data(), m + 1,
-                                          work_.data());
+                                          work_.data(), layout());
     }
     ++*rounds;
     if (!ok)
@@ -305,7 +307,7 @@ bool PrimalNewton::pulledSolve(const double* second)
   const DrumLaw law(*ws_.drum, ws_.c[0]);
   double drum_force = 0.0;
   if (!banded::solveBlockBandedPulled(hessian_diag_.data(), hessian_first_.data(), second, step_.data(), ws_.m + 1,
-                                      work_.data(), pull, law, &drum_force))
+                                      work_.data(), pull, law, &drum_force, layout()))
   {
     return false;
   }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "banded.hpp"
 #include "direct_workspace.hpp"
 #include "rov_tether/core/direct_solver.hpp"
 
@@ -33,16 +34,6 @@ class PrimalNewton
   /// linearisation (direct_end_stiffness.hpp); allocation-free once reserved.
   bool solveHessian(const Cable& cable, const double* lambda, double* columns, std::size_t count);
 
-  /// A segment's Hessian block (axial - geometric) n n^T + geometric I as its five numbers (segmentTerm's),
-  /// each entry computed where it is used.
-  struct SegmentBlock
-  {
-    double scale = 0.0, geometric = 0.0;  ///< axial - geometric, geometric
-    double n[3] = {0.0, 0.0, 0.0};
-    /// Entry i, row-major.
-    double entry(std::size_t i) const { return scale * n[i / 3] * n[i % 3] + (i % 4 == 0 ? geometric : 0.0); }
-  };
-
  private:
   /// The step's energy Phi(x) at the current positions.
   double energy(const Cable& cable) const;
@@ -69,17 +60,10 @@ class PrimalNewton
   /// The bending joints' curvatures at the current positions into curve_x_, curve_y_, curve_z_ (with
   /// bending): after every change of the positions, before energy(), residual() or assemble() read them.
   void curvature(const Cable& cable);
-  /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass
-  /// (massTerm), the segments' axial and geometric stiffness (segmentTerm), the joints' bending
-  /// (bendingTerms), a block row at a time.
+  /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass, the
+  /// segments' axial and geometric stiffness, the joints' bending. Each segment's terms first, into segment_,
+  /// then the rows from them, in loops that vectorise (direct_primal_assembly.cpp).
   void assemble(const Cable& cable);
-  /// Segment k's Hessian block and its force `lam` in the gradient; false when it is not in the model.
-  bool segmentTerm(const Cable& cable, std::size_t k, double* lam, SegmentBlock* block) const;
-  /// Free particle l's mass block into `diagonal` and its inertia term into the gradient `g`.
-  void massTerm(const Cable& cable, std::size_t l, double* diagonal, double* g) const;
-  /// The bending joints' terms of free particle l's block row (prepareBending's) added to its diagonal
-  /// block, its gradient and the first block below.
-  void bendingTerms(std::size_t l, double* diagonal, double* g);
   /// Solves for the model's Newton step into step_, the model's active set (the workspace's on()) with it,
   /// counting the linear solves into `rounds`; false if a system is not definite.
   bool solveModel(const Cable& cable, int* rounds);
@@ -108,10 +92,14 @@ class PrimalNewton
   /// out of the model; lambda against the law for the drum's).
   double residual(const Cable& cable);
 
+  /// Where assemble() puts the Hessian's blocks: one array an entry, n long (n the particles reserved).
+  banded::BlockLayout layout() const { return {1, lambda_.size()}; }
+
   DirectWorkspace& ws_;
   DirectSolver::LinearSolve linear_;
-  /// The Hessian's 3x3 blocks (diagonal and first below), 9 a particle, and the second below (c I: c, one a
-  /// particle); the Newton step and the gradient, 3 a particle; the block solve's workspace, and LAPACK's band.
+  /// The Hessian's 3x3 blocks (diagonal and first below), 9 a particle (layout()), and the second below (c I: c,
+  /// one a particle); the Newton step and the gradient, 3 a particle; the block solve's workspace, and LAPACK's
+  /// band.
   std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;
   /// Each particle's mass (0 pinned), its extra mass along the cable (m_along - m_across), each
   /// segment's 1 / alpha: constant through a step (prepare()).
@@ -119,9 +107,13 @@ class PrimalNewton
   /// Each bending joint's curvature at the current positions, by axis (curvature()): joint j at j + 2, the
   /// two entries on either side 0.
   std::vector<double> curve_x_, curve_y_, curve_z_;
-  /// A block row's bending terms (prepareBending), in the order they are added: 3 a particle for its joints
-  /// l - 2, l - 1, l (the diagonal's g_r^2 / gamma, the weight g_r, 1 / gamma), 2 for the first block below.
+  /// A block row's bending terms (prepareBending), in the order they are added: for its joints l - 2, l - 1, l
+  /// (i = 0, 1, 2) the diagonal's g_r^2 / gamma, the weight g_r and 1 / gamma, and two for the first block
+  /// below, term i of row l at i n + l (n the particles reserved: each term's own array, for the vectorised rows).
   std::vector<double> bend_diag_, bend_weight_, bend_inv_, bend_first_;
+  /// Each segment's terms of an assembly (on, force, scale, geometric stiffness, n_x, n_y, n_z: seven arrays of
+  /// n + 1, segment k at k + 1 of each, 0 before the first and after the last).
+  std::vector<double> segment_;
   /// The multipliers as unknowns of their own (Newton on positions and multipliers together, the
   /// multipliers eliminated from each linear solve), and their change over a Newton step.
   std::vector<double> lambda_, lambda_step_;

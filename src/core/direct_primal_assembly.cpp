@@ -34,12 +34,204 @@ ROV_TETHER_TARGET_CLONES void jointCurvatures(const double* __restrict x, const 
   }
 }
 
-/// Adds segmentTerm's block `b` to `target`.
-[[gnu::always_inline]] inline void addTo(double* target, const PrimalNewton::SegmentBlock& b)
+/// What segmentTerms reads: each segment's stretch, law and geometry, and its particles' inverse masses.
+struct SegmentInputs
 {
-  for (std::size_t i = 0; i < 9; ++i)
+  const double *c, *alpha, *stiffness, *dashpot, *middle, *kink, *model, *lambda, *len, *w, *w_along, *nx, *ny, *nz;
+};
+/// segmentTerms' results, segment k at entry k + 1 (entries 0 and m + 1 stay 0: no segment before the first
+/// particle nor after the last): in the model (1 or 0), its force, its block's scale and geometric stiffness, n.
+struct SegmentTerms
+{
+  double *on, *lam, *scale, *geometric, *nx, *ny, *nz;
+};
+
+/// Each of `count` segments' Hessian block (axial - geometric) n n^T + geometric I as its scale and geometric
+/// stiffness, and its force in the gradient, and whether it is in the model: the segments of the model are
+/// all of a rod's; of a cable's, those the step stretches (solveModel), or on their law's middle piece (a
+/// slack segment's dashpot: its force and slope). `along`: the cable's added mass makes it anisotropic
+/// (w_along). The drum's spool segment is set by the caller.
+ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const SegmentTerms& out, std::size_t count,
+                                           bool along)
+{
+  // Every value is computed and the law's pieces selected, with no branch, so that the loop vectorises; the
+  // pointers are copied out of the structs, which the stores could otherwise alias.
+  const double* __restrict c = in.c, * __restrict alpha = in.alpha, * __restrict stiffness = in.stiffness;
+  const double* __restrict dashpot = in.dashpot, * __restrict middle = in.middle, * __restrict kink = in.kink;
+  const double* __restrict model = in.model, * __restrict lambda = in.lambda, * __restrict len = in.len;
+  const double* __restrict w = in.w, * __restrict w_along = along ? in.w_along : in.w;
+  const double* __restrict nx = in.nx, * __restrict ny = in.ny, * __restrict nz = in.nz;
+  double* __restrict on = out.on + 1, * __restrict lam = out.lam + 1, * __restrict scale = out.scale + 1;
+  double* __restrict geometric = out.geometric + 1;
+  double* __restrict ox = out.nx + 1, * __restrict oy = out.ny + 1, * __restrict oz = out.nz + 1;
+#pragma omp simd
+  for (std::size_t k = 0; k < count; ++k)
   {
-    target[i] += b.entry(i);
+    // Every load unconditional (a load behind && could trap, which keeps the loop from vectorising).
+    const double slope = dashpot[k], piece = middle[k], wa = w[k], wb = w[k + 1], va = w_along[k], vb = w_along[k + 1];
+    const bool in_middle = (slope > 0.0) & (piece > 0.0);
+    const double middle_force = kink[k] / alpha[k] + slope * (c[k] - kink[k]);
+    const double taut_force = c[k] / alpha[k];
+    // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
+    // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
+    // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
+    // the mass of either end (then each particle's two segments take at most half its mass off the
+    // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
+    // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
+    const double quotient = lambda[k] / (len[k] > 0.0 ? len[k] : 1.0);
+    const double g = len[k] > 0.0 ? quotient : 0.0;
+    // A particle's largest inverse mass (along the cable, where added mass does not act).
+    const double mobility = std::max(std::max(wa, va), std::max(wb, vb));
+    const double kept = g < 0.0 && !(-g * mobility <= kCompressedShare) ? 0.0 : g;
+    on[k] = in_middle || model[k] > 0.0 ? 1.0 : 0.0;
+    lam[k] = in_middle ? middle_force : taut_force;
+    scale[k] = (in_middle ? slope : stiffness[k]) - kept;
+    geometric[k] = kept;
+    ox[k] = nx[k], oy[k] = ny[k], oz[k] = nz[k];
+  }
+}
+
+/// What the rows' assembly reads, by particle l of the deployed ones: its inverse mass (0 pinned), mass and extra
+/// mass along the cable, position and prediction, tangent (with added mass), segmentTerms' terms (segment l - 1 at
+/// entry l, segment l at l + 1) and prepareBending's (each of a row's three joints' its own array, the
+/// curvatures offset by 2: joint l - 2 + i at entry l + i).
+struct RowInputs
+{
+  const double *w, *mass, *less, *x, *y, *z, *xt, *yt, *zt, *tx, *ty, *tz;
+  SegmentTerms segment;
+  const double *bend_diag[3], *bend_weight[3], *bend_inv[3], *bend_first[2], *cx, *cy, *cz;
+};
+
+/// A diagonal block and its row of the gradient, as named numbers (arrays in the rows' loop kept it from
+/// vectorising).
+struct RowSums
+{
+  double b0, b1, b2, b3, b4, b5, b6, b7, b8, g0, g1, g2;
+};
+
+/// Adds a segment's block scale n n^T + geometric I to the diagonal block and its force f n to the gradient.
+/// kAllOn: the segment is in the model (a rod's always are); else it is added when `on` is 1, and selected out,
+/// not added as 0, when not (the same roundings as not adding it).
+template <bool kAllOn>
+ROV_TETHER_INLINE void addSegment(double on, double a, double q, double n0, double n1, double n2, double f, RowSums& r)
+{
+  const bool in_model = kAllOn || on > 0.0;
+  r.b0 = in_model ? r.b0 + (a * n0 * n0 + q) : r.b0;
+  r.b1 = in_model ? r.b1 + (a * n0 * n1 + 0.0) : r.b1;
+  r.b2 = in_model ? r.b2 + (a * n0 * n2 + 0.0) : r.b2;
+  r.b3 = in_model ? r.b3 + (a * n1 * n0 + 0.0) : r.b3;
+  r.b4 = in_model ? r.b4 + (a * n1 * n1 + q) : r.b4;
+  r.b5 = in_model ? r.b5 + (a * n1 * n2 + 0.0) : r.b5;
+  r.b6 = in_model ? r.b6 + (a * n2 * n0 + 0.0) : r.b6;
+  r.b7 = in_model ? r.b7 + (a * n2 * n1 + 0.0) : r.b7;
+  r.b8 = in_model ? r.b8 + (a * n2 * n2 + q) : r.b8;
+  r.g0 = in_model ? r.g0 + f * n0 : r.g0;
+  r.g1 = in_model ? r.g1 + f * n1 : r.g1;
+  r.g2 = in_model ? r.g2 + f * n2 : r.g2;
+}
+
+/// The Hessian's diagonal blocks and the gradient of rows [0, rows), a row at a time, written whole (no
+/// clearing pass), each entry's terms added in a fixed order: the mass, segment l - 1, segment l, then the
+/// bending joints l - 2, l - 1, l. A pinned particle's row is the identity. Branch-free within a row, so
+/// that the rows vectorise. With bending (a rod) every segment is in the model.
+template <bool kAlong, bool kBending>
+ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restrict diag, double* __restrict grad,
+                                           std::size_t rows, std::size_t stride)
+{
+  const double* __restrict w = in.w, * __restrict mass = in.mass, * __restrict less = in.less;
+  const double* __restrict x = in.x, * __restrict y = in.y, * __restrict z = in.z;
+  const double* __restrict xt = in.xt, * __restrict yt = in.yt, * __restrict zt = in.zt;
+  const double* __restrict tx = in.tx, * __restrict ty = in.ty, * __restrict tz = in.tz;
+  const double* __restrict on = in.segment.on, * __restrict lam = in.segment.lam;
+  const double* __restrict scale = in.segment.scale, * __restrict geometric = in.segment.geometric;
+  const double* __restrict nx = in.segment.nx, * __restrict ny = in.segment.ny, * __restrict nz = in.segment.nz;
+  const double* __restrict v0 = in.bend_diag[0], * __restrict v1 = in.bend_diag[1], * __restrict v2 = in.bend_diag[2];
+  const double* __restrict g0 = in.bend_weight[0], * __restrict g1 = in.bend_weight[1];
+  const double* __restrict g2 = in.bend_weight[2];
+  const double* __restrict i0 = in.bend_inv[0], * __restrict i1 = in.bend_inv[1], * __restrict i2 = in.bend_inv[2];
+  const double* __restrict cx = in.cx, * __restrict cy = in.cy, * __restrict cz = in.cz;
+#pragma omp simd
+  for (std::size_t l = 0; l < rows; ++l)
+  {
+    const double m = mass[l];
+    const double d0 = x[l] - xt[l], d1 = y[l] - yt[l], d2 = z[l] - zt[l];
+    RowSums r{m, 0.0, 0.0, 0.0, m, 0.0, 0.0, 0.0, m, 0.0, 0.0, 0.0};
+    if (kAlong)
+    {
+      // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T.
+      const double t0 = tx[l], t1 = ty[l], t2 = tz[l];
+      const double e = less[l];
+      r.b0 += e * t0 * t0, r.b1 += e * t0 * t1, r.b2 += e * t0 * t2;
+      r.b3 += e * t1 * t0, r.b4 += e * t1 * t1, r.b5 += e * t1 * t2;
+      r.b6 += e * t2 * t0, r.b7 += e * t2 * t1, r.b8 += e * t2 * t2;
+      r.g0 = r.b0 * d0 + r.b1 * d1 + r.b2 * d2;
+      r.g1 = r.b3 * d0 + r.b4 * d1 + r.b5 * d2;
+      r.g2 = r.b6 * d0 + r.b7 * d1 + r.b8 * d2;
+    }
+    else
+    {
+      r.g0 = m * d0, r.g1 = m * d1, r.g2 = m * d2;
+    }
+    // Segment l - 1 (entry l; dC/dx_l = +n) and segment l (entry l + 1; -n): the gradient gets J^T lambda.
+    addSegment<kBending>(on[l], scale[l], geometric[l], nx[l], ny[l], nz[l], lam[l], r);
+    addSegment<kBending>(on[l + 1], scale[l + 1], geometric[l + 1], nx[l + 1], ny[l + 1], nz[l + 1], -lam[l + 1], r);
+    if (kBending)
+    {
+      // The joints l - 2, l - 1, l, in that order (the curvatures' entry l + i is joint l - 2 + i).
+      r.b0 += v0[l], r.b4 += v0[l], r.b8 += v0[l];
+      r.g0 += g0[l] * cx[l] * i0[l], r.g1 += g0[l] * cy[l] * i0[l], r.g2 += g0[l] * cz[l] * i0[l];
+      r.b0 += v1[l], r.b4 += v1[l], r.b8 += v1[l];
+      r.g0 += g1[l] * cx[l + 1] * i1[l], r.g1 += g1[l] * cy[l + 1] * i1[l], r.g2 += g1[l] * cz[l + 1] * i1[l];
+      r.b0 += v2[l], r.b4 += v2[l], r.b8 += v2[l];
+      r.g0 += g2[l] * cx[l + 2] * i2[l], r.g1 += g2[l] * cy[l + 2] * i2[l], r.g2 += g2[l] * cz[l + 2] * i2[l];
+    }
+    const bool pinned = w[l] == 0.0;
+    // One array an entry (banded::BlockLayout{1, stride}): a block a row would be 9 stores apart, which
+    // keeps the loop from vectorising.
+    double* out = diag + l;
+    out[0] = pinned ? 1.0 : r.b0, out[stride] = pinned ? 0.0 : r.b1, out[2 * stride] = pinned ? 0.0 : r.b2;
+    out[3 * stride] = pinned ? 0.0 : r.b3, out[4 * stride] = pinned ? 1.0 : r.b4;
+    out[5 * stride] = pinned ? 0.0 : r.b5, out[6 * stride] = pinned ? 0.0 : r.b6;
+    out[7 * stride] = pinned ? 0.0 : r.b7, out[8 * stride] = pinned ? 1.0 : r.b8;
+    grad[l] = pinned ? 0.0 : r.g0, grad[stride + l] = pinned ? 0.0 : r.g1, grad[2 * stride + l] = pinned ? 0.0 : r.g2;
+  }
+}
+
+/// The Hessian's first blocks below the diagonal, (l + 1, l) for l < rows: segment l's block, negated, where it
+/// couples two free particles, plus the bending joints' terms of a free particle l.
+template <bool kBending>
+ROV_TETHER_TARGET_CLONES void assembleBelow(const RowInputs& in, double* __restrict below, std::size_t rows,
+                                            std::size_t stride)
+{
+  const double* __restrict w = in.w;
+  const double* __restrict on = in.segment.on + 1, * __restrict scale = in.segment.scale + 1;
+  const double* __restrict geometric = in.segment.geometric + 1;
+  const double* __restrict nx = in.segment.nx + 1, * __restrict ny = in.segment.ny + 1;
+  const double* __restrict nz = in.segment.nz + 1;
+  const double* __restrict u0 = in.bend_first[0], * __restrict u1 = in.bend_first[1];
+#pragma omp simd
+  for (std::size_t l = 0; l < rows; ++l)
+  {
+    // Segment l (entry l + 1 of segmentTerms', l of these pointers).
+    const bool free = w[l] != 0.0;
+    const bool coupled = (on[l] > 0.0) & free & (w[l + 1] != 0.0);
+    const double a = scale[l], q = geometric[l], n0 = nx[l], n1 = ny[l], n2 = nz[l];
+    RowSums r{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    addSegment<true>(1.0, a, q, n0, n1, n2, 0.0, r);  // 0.0 + entry: the entry (0.0 + -0.0 is 0.0, negated below)
+    // The block negated where the segment couples two free particles: 0.0 + -1.0 entry.
+    const double block[9] = {0.0 + -1.0 * r.b0, 0.0 + -1.0 * r.b1, 0.0 + -1.0 * r.b2,
+                             0.0 + -1.0 * r.b3, 0.0 + -1.0 * r.b4, 0.0 + -1.0 * r.b5,
+                             0.0 + -1.0 * r.b6, 0.0 + -1.0 * r.b7, 0.0 + -1.0 * r.b8};
+    double e0 = coupled ? block[0] : 0.0, e4 = coupled ? block[4] : 0.0, e8 = coupled ? block[8] : 0.0;
+    if (kBending)
+    {
+      e0 = free ? e0 + u0[l] : e0, e4 = free ? e4 + u0[l] : e4, e8 = free ? e8 + u0[l] : e8;
+      e0 = free ? e0 + u1[l] : e0, e4 = free ? e4 + u1[l] : e4, e8 = free ? e8 + u1[l] : e8;
+    }
+    below[l] = e0, below[4 * stride + l] = e4, below[8 * stride + l] = e8;
+    below[stride + l] = coupled ? block[1] : 0.0, below[2 * stride + l] = coupled ? block[2] : 0.0;
+    below[3 * stride + l] = coupled ? block[3] : 0.0, below[5 * stride + l] = coupled ? block[5] : 0.0;
+    below[6 * stride + l] = coupled ? block[6] : 0.0, below[7 * stride + l] = coupled ? block[7] : 0.0;
   }
 }
 
@@ -76,156 +268,85 @@ void PrimalNewton::curvature(const Cable& cable)
   }
 }
 
-[[gnu::always_inline]] inline bool PrimalNewton::segmentTerm(const Cable& cable, std::size_t k, double* lam,
-                                                             SegmentBlock* block) const
+void PrimalNewton::assemble(const Cable& cable)
 {
-  // The segments of the model: all of a rod's; of a cable's, those the step stretches (solveModel); the
-  // spool segment on the drum's piece.
+  // The Hessian by 3x3 blocks of particles: diagonal (l, l), first below (l + 1, l), second below (l + 2, l,
+  // with bending: a multiple of the identity, prepareBending's). First each segment's terms, then the rows.
   const std::size_t f = ws_.first;
+  const std::size_t m = ws_.m;
+  const std::size_t stride = lambda_.size();
+  const bool along = cable.anisotropic;
   const double* w = cable.inv_mass.data() + f;
-  // A particle's largest inverse mass (along the cable, where added mass does not act).
-  auto mobility = [&](std::size_t l) { return cable.anisotropic ? std::max(w[l], cable.inv_mass_along[f + l]) : w[l]; };
-  *lam = ws_.c[k] / ws_.alpha[k];
-  double axial = stiffness_[k];
-  if (k == 0 && ws_.drum != nullptr)
+  const SegmentTerms terms{&segment_[0],
+                           &segment_[stride + 1],
+                           &segment_[2 * (stride + 1)],
+                           &segment_[3 * (stride + 1)],
+                           &segment_[4 * (stride + 1)],
+                           &segment_[5 * (stride + 1)],
+                           &segment_[6 * (stride + 1)]};
+  const SegmentInputs in{ws_.c.data(),
+                         ws_.alpha.data(),
+                         stiffness_.data(),
+                         ws_.dashpot.data(),
+                         middle_.data(),
+                         ws_.kink.data(),
+                         ws_.on(),
+                         lambda_.data(),
+                         ws_.len.data(),
+                         w,
+                         along ? cable.inv_mass_along.data() + f : w,
+                         ws_.nx.data(),
+                         ws_.ny.data(),
+                         ws_.nz.data()};
+  segmentTerms(in, terms, m, along);
+  for (double* v : {terms.on, terms.lam, terms.scale, terms.geometric, terms.nx, terms.ny, terms.nz})
+  {
+    v[0] = v[m + 1] = 0.0;  // no segment before the first particle nor after the last
+  }
+  if (ws_.drum != nullptr)
   {
     // The spool segment's force is the drum's law, solved for in solveModel: here only its geometric
     // stiffness.
-    *lam = 0.0;
-    axial = 0.0;
+    terms.on[1] = 1.0;
+    terms.lam[1] = 0.0;
+    terms.scale[1] = 0.0 - terms.geometric[1];
   }
-  else if (inMiddle(k))
+  RowInputs rows{w,
+                 mass_.data(),
+                 mass_less_.data(),
+                 cable.x.data() + f,
+                 cable.y.data() + f,
+                 cable.z.data() + f,
+                 ws_.xt.data(),
+                 ws_.yt.data(),
+                 ws_.zt.data(),
+                 along ? cable.tx.data() + f : nullptr,
+                 along ? cable.ty.data() + f : nullptr,
+                 along ? cable.tz.data() + f : nullptr,
+                 terms,
+                 {&bend_diag_[0], &bend_diag_[stride], &bend_diag_[2 * stride]},
+                 {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
+                 {&bend_inv_[0], &bend_inv_[stride], &bend_inv_[2 * stride]},
+                 {&bend_first_[0], &bend_first_[stride]},
+                 curve_x_.data(),
+                 curve_y_.data(),
+                 curve_z_.data()};
+  double* gradient = grad_step_.data();  // by axis, one array each; free here (drumStep refills it before use)
+  if (ws_.bending)
   {
-    // The dashpot's middle piece of a slack segment: its force and slope (DirectWorkspace::begin).
-    *lam = ws_.middleForce(k, ws_.c[k]);
-    axial = ws_.dashpot[k];
+    along ? assembleRows<true, true>(rows, hessian_diag_.data(), gradient, m + 1, stride)
+          : assembleRows<false, true>(rows, hessian_diag_.data(), gradient, m + 1, stride);
+    assembleBelow<true>(rows, hessian_first_.data(), m, stride);
   }
-  else if (!(ws_.on()[k] > 0.0))
+  else
   {
-    return false;
+    along ? assembleRows<true, false>(rows, hessian_diag_.data(), gradient, m + 1, stride)
+          : assembleRows<false, false>(rows, hessian_diag_.data(), gradient, m + 1, stride);
+    assembleBelow<false>(rows, hessian_first_.data(), m, stride);
   }
-  const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
-  // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
-  // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
-  // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
-  // the mass of either end (then each particle's two segments take at most half its mass off the
-  // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
-  // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
-  double geometric = ws_.len[k] > 0.0 ? lambda_[k] / ws_.len[k] : 0.0;
-  if (geometric < 0.0 && !(-geometric * std::max(mobility(k), mobility(k + 1)) <= kCompressedShare))
-  {
-    geometric = 0.0;
-  }
-  block->scale = axial - geometric, block->geometric = geometric;
-  block->n[0] = n[0], block->n[1] = n[1], block->n[2] = n[2];
-  return true;
-}
-
-void PrimalNewton::assemble(const Cable& cable)
-{
-  // The Hessian by 3x3 blocks of particles, a block row at a time: diagonal (l, l), first below (l + 1, l),
-  // second below (l + 2, l, with bending: a multiple of the identity). A pinned particle's row is the
-  // identity, and nothing couples to it. Each block is written whole (no clearing pass), its terms added in
-  // a fixed order: the mass, segment l - 1, segment l, then the bending joints l - 2, l - 1, l.
-  const std::size_t f = ws_.first;
-  const std::size_t m = ws_.m;
-  const double* w = cable.inv_mass.data() + f;
-  auto pinned = [w](std::size_t l) { return w[l] == 0.0; };
-  SegmentBlock before;  // segment l - 1's, when in the model
-  double before_lam = 0.0;
-  bool before_on = false;
   for (std::size_t l = 0; l <= m; ++l)
   {
-    // The row's diagonal block and gradient are summed in locals and stored once, and the segments' blocks
-    // are values, not arrays indexed by the row: in memory, their scalar stores were read back by vectorised
-    // sums as 16-byte loads, a store-forwarding stall each (a fifth of the assembly's time).
-    double diagonal[9];
-    double g[3];
-    SegmentBlock here;
-    double here_lam = 0.0;
-    const bool here_on = l < m && segmentTerm(cable, l, &here_lam, &here);
-    if (pinned(l))
-    {
-      static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-      std::copy(kIdentity, kIdentity + 9, diagonal);
-      g[0] = g[1] = g[2] = 0.0;
-    }
-    else
-    {
-      massTerm(cable, l, diagonal, g);
-      if (before_on)
-      {
-        // dC/dx_k+1 = +n_k: the gradient gets J^T lambda.
-        addTo(diagonal, before);
-        g[0] += before_lam * ws_.nx[l - 1], g[1] += before_lam * ws_.ny[l - 1], g[2] += before_lam * ws_.nz[l - 1];
-      }
-      if (here_on)
-      {
-        addTo(diagonal, here);
-        g[0] -= here_lam * ws_.nx[l], g[1] -= here_lam * ws_.ny[l], g[2] -= here_lam * ws_.nz[l];
-      }
-    }
-    if (l < m)
-    {
-      double* below = &hessian_first_[9 * l];
-      if (here_on && !pinned(l) && !pinned(l + 1))
-      {
-        for (std::size_t i = 0; i < 9; ++i)
-        {
-          below[i] = 0.0 + -1.0 * here.entry(i);
-        }
-      }
-      else
-      {
-        std::fill(below, below + 9, 0.0);
-      }
-    }
-    if (ws_.bending && !pinned(l))
-    {
-      bendingTerms(l, diagonal, g);
-    }
-    for (std::size_t i = 0; i < 9; ++i)
-    {
-      hessian_diag_[9 * l + i] = diagonal[i];
-    }
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      grad_[3 * l + a] = g[a];
-    }
-    before = here;
-    before_on = here_on;
-    before_lam = here_lam;
-  }
-}
-
-[[gnu::always_inline]] inline void PrimalNewton::massTerm(const Cable& cable, std::size_t l, double* diagonal,
-                                                          double* g) const
-{
-  // The particle's mass matrix: m_across I, plus (m_along - m_across) t t^T with added mass.
-  const std::size_t f = ws_.first;
-  const double mass = mass_[l];
-  const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
-  for (std::size_t i = 0; i < 9; ++i)
-  {
-    diagonal[i] = i % 4 == 0 ? mass : 0.0;
-  }
-  if (!cable.anisotropic)
-  {
-    g[0] = mass * d[0], g[1] = mass * d[1], g[2] = mass * d[2];
-    return;
-  }
-  const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
-  const double less = mass_less_[l];
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    for (std::size_t c = 0; c < 3; ++c)
-    {
-      diagonal[3 * a + c] += less * t[a] * t[c];
-    }
-  }
-  for (std::size_t a = 0; a < 3; ++a)
-  {
-    g[a] = diagonal[3 * a] * d[0] + diagonal[3 * a + 1] * d[1] + diagonal[3 * a + 2] * d[2];
+    grad_[3 * l] = gradient[l], grad_[3 * l + 1] = gradient[stride + l], grad_[3 * l + 2] = gradient[2 * stride + l];
   }
 }
 
@@ -237,6 +358,7 @@ void PrimalNewton::prepareBending(const Cable& cable)
   // adds them (joints l - 2, l - 1, l), 0 where there is no such joint or the particle is pinned (adding 0
   // changes nothing). The curvature arrays are offset by 2, with zeros for the joints -2, -1, m - 1 and m.
   const std::size_t m = ws_.m;
+  const std::size_t stride = lambda_.size();  // each of a row's terms has its own array
   const double* w = cable.inv_mass.data() + ws_.first;
   auto weight = [this](std::size_t j, std::size_t r)
   {
@@ -253,46 +375,21 @@ void PrimalNewton::prepareBending(const Cable& cable)
       const bool on = free_l && joint(l, r);
       const double gr = on ? weight(l - r, r) : 0.0;
       const double inv = on ? ws_.inv_gamma[l - r] : 0.0;
-      bend_weight_[3 * l + i] = gr;
-      bend_inv_[3 * l + i] = inv;
-      bend_diag_[3 * l + i] = gr * gr * inv;
+      bend_weight_[i * stride + l] = gr;
+      bend_inv_[i * stride + l] = inv;
+      bend_diag_[i * stride + l] = gr * gr * inv;
     }
     const bool pair = l + 1 <= m && free_l && w[l + 1] != 0.0;  // the block (l + 1, l) couples two free ones
     for (std::size_t i = 0; i < 2; ++i)
     {
       const std::size_t s = 1 - i;
-      bend_first_[2 * l + i] =
+      bend_first_[i * stride + l] =
           pair && joint(l, s) ? weight(l - s, s + 1) * weight(l - s, s) * ws_.inv_gamma[l - s] : 0.0;
     }
     if (l + 2 <= m)
     {
       hessian_second_[l] =
           l + 1 < m && free_l && w[l + 2] != 0.0 ? weight(l, 2) * weight(l, 0) * ws_.inv_gamma[l] : 0.0;
-    }
-  }
-}
-
-[[gnu::always_inline]] inline void PrimalNewton::bendingTerms(std::size_t l, double* diagonal, double* g)
-{
-  // prepareBending's terms of row l, each added in its order (particle l's joints l - 2, l - 1, l).
-  const double* v = &bend_diag_[3 * l];
-  const double* weight = &bend_weight_[3 * l];
-  const double* inv = &bend_inv_[3 * l];
-  const double* cx = &curve_x_[l];  // joint l - 2 (the arrays are offset by 2)
-  const double* cy = &curve_y_[l];
-  const double* cz = &curve_z_[l];
-  for (std::size_t i = 0; i < 3; ++i)
-  {
-    diagonal[0] += v[i], diagonal[4] += v[i], diagonal[8] += v[i];
-    g[0] += weight[i] * cx[i] * inv[i], g[1] += weight[i] * cy[i] * inv[i], g[2] += weight[i] * cz[i] * inv[i];
-  }
-  if (l < ws_.m)
-  {
-    double* below = &hessian_first_[9 * l];
-    const double* u = &bend_first_[2 * l];
-    for (std::size_t i = 0; i < 2; ++i)
-    {
-      below[0] += u[i], below[4] += u[i], below[8] += u[i];
     }
   }
 }
