@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "banded.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {
@@ -459,89 +460,151 @@ double PrimalNewton::step(Cable& cable, int* rounds)
   }
 }
 
+namespace
+{
+
+/// What segmentResiduals reads: each segment's stretch, law and multiplier, whether it is in the model, and its
+/// particles' inverse masses and direction.
+struct SegmentLaw
+{
+  const double *c, *alpha, *kink, *zero, *dashpot, *inv_rest, *model, *lambda, *w, *nx, *ny, *nz;
+};
+
+/// Each of `count` segments' pull lambda n into `pull` (segment k at k + 1), and the largest residual of the
+/// segments from `from` on, relative to their rest length: C - alpha lambda of one in the model (a rod's are all
+/// in it); of a cable's out of it, max(C, 0) (or, with the dashpot's middle piece, how far past the kink) plus
+/// the move lambda against its law would make. Branch-free, so that it vectorises.
+ROV_TETHER_TARGET_CLONES double segmentResiduals(const SegmentLaw& in, double* const* pull, std::size_t count,
+                                                 bool unilateral, std::size_t from)
+{
+  const double* __restrict c = in.c, * __restrict alpha = in.alpha, * __restrict kink = in.kink;
+  const double* __restrict zero = in.zero, * __restrict dashpot = in.dashpot, * __restrict inv_rest = in.inv_rest;
+  const double* __restrict model = in.model, * __restrict lambda = in.lambda, * __restrict w = in.w;
+  const double* __restrict nx = in.nx, * __restrict ny = in.ny, * __restrict nz = in.nz;
+  double* __restrict px = pull[0] + 1, * __restrict py = pull[1] + 1, * __restrict pz = pull[2] + 1;
+  double worst = 0.0;
+#pragma omp simd reduction(max : worst)
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const double lam = lambda[k], stretch = c[k], a = alpha[k], bend = kink[k], slope = dashpot[k];
+    px[k] = lam * nx[k], py[k] = lam * ny[k], pz[k] = lam * nz[k];
+    const double mobility = w[k] + w[k + 1];
+    // The law's force at C (DirectWorkspace::law, a cable's): above the kink max(C, 0) / alpha, then the
+    // middle piece down to where it is 0, then 0.
+    const double middle = bend / a + slope * (stretch - bend);
+    const double force = stretch >= bend ? std::max(stretch, 0.0) / a : (stretch > zero[k] ? middle : 0.0);
+    const double in_model = std::abs(stretch - a * lam);
+    const double damped = std::max(stretch - bend, 0.0) + std::abs(lam - force) * mobility;
+    const double slack = std::max(stretch, 0.0) + std::abs(lam) * mobility;
+    const double r = !unilateral || model[k] > 0.0 ? in_model : (slope > 0.0 ? damped : slack);
+    const double relative = k >= from ? r * inv_rest[k] : 0.0;
+    worst = std::max(worst, relative);
+  }
+  return worst;
+}
+
+/// What largestMove reads, by particle: inverse masses (across, and along the cable), masses, positions and
+/// predictions, tangents (with added mass), the segments' pulls (segmentResiduals', segment l - 1 at l) and the
+/// bending joints' terms (prepareBending's, as the assembly reads them).
+struct ParticleForces
+{
+  const double *w, *w_along, *mass, *less, *x, *y, *z, *xt, *yt, *zt, *tx, *ty, *tz;
+  const double* pull[3];
+  const double *bend_weight[3], *bend_inv[3], *curve[3];
+};
+
+/// The largest move a free particle's force balance M (x - x~) + J^T lambda + the bending terms would make: the
+/// force times the particle's largest inverse mass. Its terms in the order the step's equations add them: the
+/// mass, segment l - 1's pull, segment l's, then the joints l - 2, l - 1, l.
+ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_t rows, bool along, bool bending)
+{
+  const double* __restrict w = in.w, * __restrict w_along = in.w_along, * __restrict mass = in.mass;
+  const double* __restrict less = in.less, * __restrict x = in.x, * __restrict y = in.y, * __restrict z = in.z;
+  const double* __restrict xt = in.xt, * __restrict yt = in.yt, * __restrict zt = in.zt;
+  const double* __restrict tx = along ? in.tx : in.x, * __restrict ty = along ? in.ty : in.y;
+  const double* __restrict tz = along ? in.tz : in.z;
+  const double* __restrict px = in.pull[0], * __restrict py = in.pull[1], * __restrict pz = in.pull[2];
+  const double* __restrict g0 = in.bend_weight[0], * __restrict g1 = in.bend_weight[1];
+  const double* __restrict g2 = in.bend_weight[2], * __restrict i0 = in.bend_inv[0];
+  const double* __restrict i1 = in.bend_inv[1], * __restrict i2 = in.bend_inv[2];
+  const double* __restrict cx = in.curve[0], * __restrict cy = in.curve[1], * __restrict cz = in.curve[2];
+  double worst = 0.0;
+#pragma omp simd reduction(max : worst)
+  for (std::size_t l = 0; l < rows; ++l)
+  {
+    const double d0 = x[l] - xt[l], d1 = y[l] - yt[l], d2 = z[l] - zt[l];
+    const double m = mass[l];
+    double f0 = d0 * m, f1 = d1 * m, f2 = d2 * m;
+    if (along)
+    {
+      const double t0 = tx[l], t1 = ty[l], t2 = tz[l];
+      const double a = less[l] * (d0 * t0 + d1 * t1 + d2 * t2);
+      f0 += a * t0, f1 += a * t1, f2 += a * t2;
+    }
+    f0 += px[l], f1 += py[l], f2 += pz[l];
+    f0 -= px[l + 1], f1 -= py[l + 1], f2 -= pz[l + 1];
+    if (bending)
+    {
+      f0 += g0[l] * cx[l] * i0[l], f1 += g0[l] * cy[l] * i0[l], f2 += g0[l] * cz[l] * i0[l];
+      f0 += g1[l] * cx[l + 1] * i1[l], f1 += g1[l] * cy[l + 1] * i1[l], f2 += g1[l] * cz[l + 1] * i1[l];
+      f0 += g2[l] * cx[l + 2] * i2[l], f1 += g2[l] * cy[l + 2] * i2[l], f2 += g2[l] * cz[l + 2] * i2[l];
+    }
+    const double inverse = std::max(w[l], w_along[l]);
+    const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
+    worst = std::max(worst, move);
+  }
+  return worst;
+}
+
+}  // namespace
+
 double PrimalNewton::residual(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const std::size_t m = ws_.m;
-  const double* model = ws_.on();
-  // Each free particle's force balance M (x - x~) + J^T lambda + the bending terms, accumulated per axis in
-  // grad_step_ (free here: drumStep refills it before use).
-  double* force = grad_step_.data();
-  double worst = 0.0;
-  for (std::size_t l = 0; l <= m; ++l)
+  const std::size_t stride = lambda_.size();
+  // Each segment's equation, and its pull lambda n, into segment_'s first three arrays (segment k at k + 1, 0
+  // before the first and after the last): segment_ is free between assemblies.
+  const bool drum = ws_.drum != nullptr;
+  double* pull[3] = {&segment_[0], &segment_[stride + 1], &segment_[2 * (stride + 1)]};
+  const double* w = cable.inv_mass.data() + f;
+  const SegmentLaw law{ws_.c.data(),    ws_.alpha.data(),   ws_.kink.data(),
+                       ws_.zero.data(), ws_.dashpot.data(), ws_.inv_rest.data(),
+                       ws_.on(),        lambda_.data(),     w,
+                       ws_.nx.data(),   ws_.ny.data(),      ws_.nz.data()};
+  double worst = segmentResiduals(law, pull, m, ws_.unilateral, drum ? 1 : 0);
+  if (drum)
   {
-    const double w = cable.inv_mass[f + l];
-    const double d[3] = {cable.x[f + l] - ws_.xt[l], cable.y[f + l] - ws_.yt[l], cable.z[f + l] - ws_.zt[l]};
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      force[3 * l + a] = d[a] * mass_[l];  // 0 for a pinned particle
-    }
-    if (w > 0.0 && cable.anisotropic)
-    {
-      const double t[3] = {cable.tx[f + l], cable.ty[f + l], cable.tz[f + l]};
-      const double along = mass_less_[l] * (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]);
-      for (std::size_t a = 0; a < 3; ++a)
-      {
-        force[3 * l + a] += along * t[a];
-      }
-    }
+    // The spool segment against the drum's law (left out above).
+    const double r = std::abs(lambda_[0] - ws_.drum->force(ws_.c[0])) * (w[0] + w[1]);
+    worst = std::max(worst, r * ws_.inv_rest[0]);
   }
-  for (std::size_t k = 0; k < m; ++k)
+  for (double* v : pull)
   {
-    const double lam = lambda_[k];
-    const double n[3] = {ws_.nx[k], ws_.ny[k], ws_.nz[k]};
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      force[3 * k + a] -= lam * n[a];
-      force[3 * (k + 1) + a] += lam * n[a];
-    }
-    double r = 0.0;
-    if (k == 0 && ws_.drum != nullptr)
-    {
-      r = std::abs(lam - ws_.drum->force(ws_.c[0])) * (cable.inv_mass[f] + cable.inv_mass[f + 1]);
-    }
-    else if (!ws_.unilateral || model[k] > 0.0)
-    {
-      r = std::abs(ws_.c[k] - ws_.alpha[k] * lam);
-    }
-    else if (ws_.dashpot[k] > 0.0)
-    {
-      // Against the law's force (the middle piece's or 0), as the move it would make; and past the kink.
-      r = std::max(ws_.c[k] - ws_.kink[k], 0.0) +
-          std::abs(lam - ws_.law(k, ws_.c[k])) * (cable.inv_mass[f + k] + cable.inv_mass[f + k + 1]);
-    }
-    else
-    {
-      r = std::max(ws_.c[k], 0.0) + std::abs(lam) * (cable.inv_mass[f + k] + cable.inv_mass[f + k + 1]);
-    }
-    worst = std::max(worst, r * ws_.inv_rest[k]);
+    v[0] = v[m + 1] = 0.0;
   }
-  for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
-  {
-    const double a = ws_.inv_rest[j], b = ws_.inv_rest[j + 1];
-    const double g[3] = {a, -(a + b), b};
-    const double cb[3] = {curve_x_[j + 2], curve_y_[j + 2], curve_z_[j + 2]};
-    for (std::size_t r = 0; r < 3; ++r)
-    {
-      for (std::size_t axis = 0; axis < 3; ++axis)
-      {
-        force[3 * (j + r) + axis] += g[r] * cb[axis] * ws_.inv_gamma[j];
-      }
-    }
-  }
-  // As a displacement: times the largest inverse mass (along the cable, where added mass does not act), over
-  // the nominal segment, divided once after the largest is found (dividing by a positive number keeps the
-  // order, so this is the largest of the quotients, bit for bit).
-  double worst_move = 0.0;
-  for (std::size_t l = 0; l <= m; ++l)
-  {
-    const double w = std::max(cable.inv_mass[f + l], cable.anisotropic ? cable.inv_mass_along[f + l] : 0.0);
-    if (w > 0.0)
-    {
-      const double* r = &force[3 * l];
-      worst_move = std::max(worst_move, w * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]));
-    }
-  }
+  // Each free particle's force balance M (x - x~) + J^T lambda + the bending terms, as a displacement: times
+  // its largest inverse mass (along the cable, where added mass does not act), over the nominal segment,
+  // divided once after the largest is found (dividing by a positive number keeps the order, so this is the
+  // largest of the quotients, bit for bit).
+  const ParticleForces forces{w,
+                              cable.anisotropic ? cable.inv_mass_along.data() + f : w,
+                              mass_.data(),
+                              mass_less_.data(),
+                              cable.x.data() + f,
+                              cable.y.data() + f,
+                              cable.z.data() + f,
+                              ws_.xt.data(),
+                              ws_.yt.data(),
+                              ws_.zt.data(),
+                              cable.anisotropic ? cable.tx.data() + f : nullptr,
+                              cable.anisotropic ? cable.ty.data() + f : nullptr,
+                              cable.anisotropic ? cable.tz.data() + f : nullptr,
+                              {pull[0], pull[1], pull[2]},
+                              {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
+                              {&bend_inv_[0], &bend_inv_[stride], &bend_inv_[2 * stride]},
+                              {curve_x_.data(), curve_y_.data(), curve_z_.data()}};
+  const double worst_move = largestMove(forces, m + 1, cable.anisotropic, ws_.bending);
   return std::max(worst, worst_move / ws_.nominal);
 }
 
