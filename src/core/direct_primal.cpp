@@ -508,7 +508,8 @@ ROV_TETHER_TARGET_CLONES double segmentResiduals(const SegmentLaw& in, double* c
 /// bending joints' terms (prepareBending's, as the assembly reads them).
 struct ParticleForces
 {
-  const double *w, *w_along, *mass, *less, *x, *y, *z, *xt, *yt, *zt, *tx, *ty, *tz;
+  PrimalNewton::Particles p;
+  const double* w_along;
   const double* pull[3];
   const double *bend_weight[3], *bend_inv[3], *curve[3];
 };
@@ -518,11 +519,11 @@ struct ParticleForces
 /// mass, segment l - 1's pull, segment l's, then the joints l - 2, l - 1, l.
 ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_t rows, bool along, bool bending)
 {
-  const double* __restrict w = in.w, * __restrict w_along = in.w_along, * __restrict mass = in.mass;
-  const double* __restrict less = in.less, * __restrict x = in.x, * __restrict y = in.y, * __restrict z = in.z;
-  const double* __restrict xt = in.xt, * __restrict yt = in.yt, * __restrict zt = in.zt;
-  const double* __restrict tx = along ? in.tx : in.x, * __restrict ty = along ? in.ty : in.y;
-  const double* __restrict tz = along ? in.tz : in.z;
+  const double* __restrict w = in.p.w, * __restrict w_along = in.w_along, * __restrict mass = in.p.mass;
+  const double* __restrict less = in.p.less, * __restrict x = in.p.x, * __restrict y = in.p.y;
+  const double* __restrict z = in.p.z, * __restrict xt = in.p.xt, * __restrict yt = in.p.yt, * __restrict zt = in.p.zt;
+  const double* __restrict tx = along ? in.p.tx : in.p.x, * __restrict ty = along ? in.p.ty : in.p.y;
+  const double* __restrict tz = along ? in.p.tz : in.p.z;
   const double* __restrict px = in.pull[0], * __restrict py = in.pull[1], * __restrict pz = in.pull[2];
   const double* __restrict g0 = in.bend_weight[0], * __restrict g1 = in.bend_weight[1];
   const double* __restrict g2 = in.bend_weight[2], * __restrict i0 = in.bend_inv[0];
@@ -587,19 +588,8 @@ double PrimalNewton::residual(const Cable& cable)
   // its largest inverse mass (along the cable, where added mass does not act), over the nominal segment,
   // divided once after the largest is found (dividing by a positive number keeps the order, so this is the
   // largest of the quotients, bit for bit).
-  const ParticleForces forces{w,
+  const ParticleForces forces{particles(cable),
                               cable.anisotropic ? cable.inv_mass_along.data() + f : w,
-                              mass_.data(),
-                              mass_less_.data(),
-                              cable.x.data() + f,
-                              cable.y.data() + f,
-                              cable.z.data() + f,
-                              ws_.xt.data(),
-                              ws_.yt.data(),
-                              ws_.zt.data(),
-                              cable.anisotropic ? cable.tx.data() + f : nullptr,
-                              cable.anisotropic ? cable.ty.data() + f : nullptr,
-                              cable.anisotropic ? cable.tz.data() + f : nullptr,
                               {pull[0], pull[1], pull[2]},
                               {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
                               {&bend_inv_[0], &bend_inv_[stride], &bend_inv_[2 * stride]},

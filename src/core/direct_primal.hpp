@@ -34,7 +34,15 @@ class PrimalNewton
   /// linearisation (direct_end_stiffness.hpp); allocation-free once reserved.
   bool solveHessian(const Cable& cable, const double* lambda, double* columns, std::size_t count);
 
+  /// The deployed particles' arrays the assembly and the residual read, by particle l: inverse mass (0 pinned),
+  /// mass, extra mass along the cable, position, prediction x~, tangent (null without added mass).
+  struct Particles
+  {
+    const double *w, *mass, *less, *x, *y, *z, *xt, *yt, *zt, *tx, *ty, *tz;
+  };
+
  private:
+  Particles particles(const Cable& cable) const;
   /// The step's energy Phi(x) at the current positions.
   double energy(const Cable& cable) const;
   /// The force (multiplier) segment k carries at stretch c: its law (one-sided for a cable; the drum's for

@@ -97,7 +97,7 @@ ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const Segmen
 /// curvatures offset by 2: joint l - 2 + i at entry l + i).
 struct RowInputs
 {
-  const double *w, *mass, *less, *x, *y, *z, *xt, *yt, *zt, *tx, *ty, *tz;
+  PrimalNewton::Particles p;
   SegmentTerms segment;
   const double *bend_diag[3], *bend_weight[3], *bend_inv[3], *bend_first[2], *cx, *cy, *cz;
 };
@@ -138,10 +138,10 @@ template <bool kAlong, bool kBending>
 ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restrict diag, double* __restrict grad,
                                            std::size_t rows, std::size_t stride)
 {
-  const double* __restrict w = in.w, * __restrict mass = in.mass, * __restrict less = in.less;
-  const double* __restrict x = in.x, * __restrict y = in.y, * __restrict z = in.z;
-  const double* __restrict xt = in.xt, * __restrict yt = in.yt, * __restrict zt = in.zt;
-  const double* __restrict tx = in.tx, * __restrict ty = in.ty, * __restrict tz = in.tz;
+  const double* __restrict w = in.p.w, * __restrict mass = in.p.mass, * __restrict less = in.p.less;
+  const double* __restrict x = in.p.x, * __restrict y = in.p.y, * __restrict z = in.p.z;
+  const double* __restrict xt = in.p.xt, * __restrict yt = in.p.yt, * __restrict zt = in.p.zt;
+  const double* __restrict tx = in.p.tx, * __restrict ty = in.p.ty, * __restrict tz = in.p.tz;
   const double* __restrict on = in.segment.on, * __restrict lam = in.segment.lam;
   const double* __restrict scale = in.segment.scale, * __restrict geometric = in.segment.geometric;
   const double* __restrict nx = in.segment.nx, * __restrict ny = in.segment.ny, * __restrict nz = in.segment.nz;
@@ -203,7 +203,7 @@ template <bool kBending>
 ROV_TETHER_TARGET_CLONES void assembleBelow(const RowInputs& in, double* __restrict below, std::size_t rows,
                                             std::size_t stride)
 {
-  const double* __restrict w = in.w;
+  const double* __restrict w = in.p.w;
   const double* __restrict on = in.segment.on + 1, * __restrict scale = in.segment.scale + 1;
   const double* __restrict geometric = in.segment.geometric + 1;
   const double* __restrict nx = in.segment.nx + 1, * __restrict ny = in.segment.ny + 1;
@@ -236,6 +236,24 @@ ROV_TETHER_TARGET_CLONES void assembleBelow(const RowInputs& in, double* __restr
 }
 
 }  // namespace
+
+PrimalNewton::Particles PrimalNewton::particles(const Cable& cable) const
+{
+  const std::size_t f = ws_.first;
+  const bool along = cable.anisotropic;
+  return {cable.inv_mass.data() + f,
+          mass_.data(),
+          mass_less_.data(),
+          cable.x.data() + f,
+          cable.y.data() + f,
+          cable.z.data() + f,
+          ws_.xt.data(),
+          ws_.yt.data(),
+          ws_.zt.data(),
+          along ? cable.tx.data() + f : nullptr,
+          along ? cable.ty.data() + f : nullptr,
+          along ? cable.tz.data() + f : nullptr};
+}
 
 void PrimalNewton::prepare(const Cable& cable)
 {
@@ -311,18 +329,7 @@ void PrimalNewton::assemble(const Cable& cable)
     terms.lam[1] = 0.0;
     terms.scale[1] = 0.0 - terms.geometric[1];
   }
-  RowInputs rows{w,
-                 mass_.data(),
-                 mass_less_.data(),
-                 cable.x.data() + f,
-                 cable.y.data() + f,
-                 cable.z.data() + f,
-                 ws_.xt.data(),
-                 ws_.yt.data(),
-                 ws_.zt.data(),
-                 along ? cable.tx.data() + f : nullptr,
-                 along ? cable.ty.data() + f : nullptr,
-                 along ? cable.tz.data() + f : nullptr,
+  RowInputs rows{particles(cable),
                  terms,
                  {&bend_diag_[0], &bend_diag_[stride], &bend_diag_[2 * stride]},
                  {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
