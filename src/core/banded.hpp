@@ -21,6 +21,14 @@ bool solveTridiagonalLapack(double* d, double* e, double* b, std::size_t n);
 bool solveBandedSweep(double* ab, std::size_t kd, double* b, std::size_t n);
 bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
 
+/// Where the blocks' entries are: entry i (row-major) of block l at l * row + i * entry. The default is a block
+/// after the other (row 9, entry 1); one array an entry is row 1, entry the arrays' length (the direct solver's
+/// assembly, which fills them in vectorised loops).
+struct BlockLayout
+{
+  std::size_t row = 9;
+  std::size_t entry = 1;
+};
 /**
  * SPD systems of 3x3 blocks with block bandwidth 1 (block tridiagonal: a cable's positions) or 2 (block
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
@@ -32,14 +40,6 @@ bool solveBandedLapack(double* ab, std::size_t kd, double* b, std::size_t n);
  * axis): second[l] is the one number c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values
  * and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite.
  */
-/// Where the blocks' entries are: entry i (row-major) of block l at l * row + i * entry. The default is a block
-/// after the other (row 9, entry 1); one array an entry is row 1, entry the arrays' length (the direct solver's
-/// assembly, which fills them in vectorised loops).
-struct BlockLayout
-{
-  std::size_t row = 9;
-  std::size_t entry = 1;
-};
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work, const BlockLayout& layout = {});
 /// The law that sets a pull's size from the response of the unknowns it acts on (solveBlockBandedPulled).

@@ -67,7 +67,7 @@ bool EndStiffness::compute(const Cable& cable, const Multipliers& multipliers, c
     model[k] = !ws.unilateral || lambda[k] > 0.0 ? 1.0 : 0.0;
   }
   // B: the last segment's Hessian block, axial 1 / alpha along n and the geometric stiffness lambda / |d|
-  // across it (as PrimalNewton::assembleSegments; lambda > 0 here).
+  // across it (as PrimalNewton::assemble's segmentTerms; lambda > 0 here).
   const Eigen::Vector3d along(ws.nx[m - 1], ws.ny[m - 1], ws.nz[m - 1]);
   const double axial = 1.0 / ws.alpha[m - 1];
   const double geometric = ws.len[m - 1] > 0.0 ? end_lambda / ws.len[m - 1] : 0.0;

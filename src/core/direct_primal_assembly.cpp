@@ -133,7 +133,9 @@ ROV_TETHER_INLINE void addSegment(double on, double a, double q, double n0, doub
 /// The Hessian's diagonal blocks and the gradient of rows [0, rows), a row at a time, written whole (no
 /// clearing pass), each entry's terms added in a fixed order: the mass, segment l - 1, segment l, then the
 /// bending joints l - 2, l - 1, l. A pinned particle's row is the identity. Branch-free within a row, so
-/// that the rows vectorise. With bending (a rod) every segment is in the model.
+/// that the rows vectorise. With bending (a rod) every segment is in the model, and rows 0 and m add the empty
+/// entries before the first segment and after the last as well: exact zeros, which change at most the sign of a
+/// zero in the gradient (-0.0 + 0.0 is 0.0), which no sum with a nonzero number sees.
 template <bool kAlong, bool kBending>
 ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restrict diag, double* __restrict grad,
                                            std::size_t rows, std::size_t stride)
@@ -283,6 +285,11 @@ void PrimalNewton::curvature(const Cable& cable)
   {
     jointCurvatures(cable.x.data() + ws_.first, cable.y.data() + ws_.first, cable.z.data() + ws_.first,
                     ws_.inv_rest.data(), curve_x_.data() + 2, curve_y_.data() + 2, curve_z_.data() + 2, ws_.m - 1);
+    for (auto* curve : {&curve_x_, &curve_y_, &curve_z_})
+    {
+      // Joints m - 1 and m do not exist: 0 (a reel-in that merged a segment would have left them its last values).
+      (*curve)[ws_.m + 1] = (*curve)[ws_.m + 2] = 0.0;
+    }
   }
 }
 
