@@ -254,7 +254,7 @@ TEST(Banded, PulledSolveMeetsItsLawInOneFactorisation)
 {
   for (bool two : {false, true})
   {
-    for (std::size_t n : {2u, 3u, 4u, 10u, 101u})
+    for (std::size_t n : {2u, 3u, 4u, 8u, 9u, 10u, 101u})
     {
       BlockSystem system(n, two, static_cast<unsigned>(7 * n + (two ? 1 : 0)));
       std::fill(system.first.begin(), system.first.begin() + 9, 0.0);  // block row 0 uncoupled

@@ -539,6 +539,15 @@ struct Meeting
 // Each further row adds 36 doubles of work and a BlockRow's fewer.
 static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * 36 * sizeof(double),
               "factorTwisted's factors fit the 36 n doubles of work");
+/// The twisted pulled solve keeps the pull's forward pass (3 (k + 2) <= 3 n doubles) in work from kPulledScratch n
+/// doubles on, after factorTwisted's factors (n BlockRows and a Meeting).
+constexpr std::size_t kPulledScratch = 32;
+// From kTwistedFrom rows on (and so on for every larger n, a BlockRow being at most kPulledScratch doubles), the
+// factors end before the scratch, and the scratch's 3 n doubles end within the work.
+static_assert(sizeof(BlockRow) <= kPulledScratch * sizeof(double) &&
+                  kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * kPulledScratch * sizeof(double) &&
+                  kPulledScratch + 3 <= 36,
+              "the pulled solve's scratch follows the factors within the 36 n doubles of work");
 
 /// factorBlocks in the twisted order: rows 0 .. k-1 eliminated down from the top and rows n-1 .. k+2 up from
 /// the bottom, a row of each chain in every pass of one loop (two independent chains of dependent divisions,
@@ -755,21 +764,26 @@ ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t
   backwardBlocks<kSecond, false>(b, n, rows);
 }
 
-/// substituteBlocks after factorTwisted: forward down the top chain and up the bottom chain together, the
-/// meeting rows, then backward from the meeting rows out along both chains together.
+/// The forward pass after factorTwisted (u = L^-1 b in place): down the top chain and up the bottom chain
+/// together, then the meeting rows.
 template <bool kSecond>
-ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_t n, const double* __restrict work)
+ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
+                                      const Meeting& meet, double* __restrict q = nullptr)
 {
-  const auto* rows = reinterpret_cast<const BlockRow*>(work);
-  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
   const std::size_t k = meeting(n);
   const std::size_t bottom = n - 2 - k;
   auto v = [b](std::size_t p) { return b + 3 * p; };
+  auto w = [q](std::size_t p) { return q + 3 * p; };
   for (std::size_t i = 0; i < bottom; ++i)
   {
     if (i < k)
     {
       forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
+      if (q != nullptr && i >= 1)
+      {
+        // The pull's pass (substituteTwistedPulled) beside b's, in the same top chain: its steps overlap.
+        forwardRow<kSecond>(rows[i], w(i - 1), i >= 2 ? w(i - 2) : nullptr, w(i));
+      }
     }
     const std::size_t p = n - 1 - i;
     forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
@@ -786,6 +800,17 @@ ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_
   ownForward(rows[k], v(k));
   multiplySubtract(meet.k1_k, v(k), v(k + 1));
   ownForward(rows[k + 1], v(k + 1));
+}
+
+/// The backward pass after forwardTwisted (x = L^-T D^-1 u in place): the meeting rows, then out along both
+/// chains together.
+template <bool kSecond>
+ROV_TETHER_INLINE void backwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
+                                       const Meeting& meet)
+{
+  const std::size_t k = meeting(n);
+  const std::size_t bottom = n - 2 - k;
+  auto v = [b](std::size_t p) { return b + 3 * p; };
   divide(rows[k + 1], v(k + 1));
   ownTransposed(rows[k + 1], v(k + 1));
   divide(rows[k], v(k));
@@ -803,6 +828,63 @@ ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_
     backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2),
                          v(p));
   }
+}
+
+/// substituteBlocks after factorTwisted: forward down the top chain and up the bottom chain together, the
+/// meeting rows, then backward from the meeting rows out along both chains together.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_t n, const double* __restrict work)
+{
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
+  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
+  forwardTwisted<kSecond>(b, n, rows, meet);
+  backwardTwisted<kSecond>(b, n, rows, meet);
+}
+
+/// solveBlockBandedPulled's solve after factorTwisted, for a pull f P on block row 1 (in the top chain, as
+/// n >= kTwistedFrom makes it): with u = L^-1 b and q = L^-1 P e_1 (forward passes; q is 0 outside block rows
+/// 1 .. k + 1, the top chain's and the meeting's), P . x_1 without the pull is q . D^-1 u and P . A^-1_11 P is
+/// q . D^-1 q (A^-1 = L^-T D^-1 L^-1); the law sets f from them, and one backward pass of u - f q finishes.
+/// `q` holds 3 (k + 2) doubles.
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std::size_t n,
+                                                      const double* __restrict work, double* __restrict q,
+                                                      const double* pull, const EndLaw& law, double* force)
+{
+  const auto* rows = reinterpret_cast<const BlockRow*>(work);
+  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
+  const std::size_t k = meeting(n);
+  // q = L^-1 P e_1: down the top chain from row 1 beside b's pass, then the meeting rows (the bottom chain's
+  // rows are 0).
+  auto v = [q](std::size_t p) { return q + 3 * p; };
+  std::fill(q, q + 3 * (k + 2), 0.0);
+  q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
+  forwardTwisted<kSecond>(b, n, rows, meet, q);
+  multiplySubtract(rows[k].below1, v(k - 1), v(k));
+  if (kSecond)
+  {
+    upperSubtract(rows[k].below2, v(k - 2), v(k));
+    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
+  }
+  ownForward(rows[k], v(k));
+  multiplySubtract(meet.k1_k, v(k), v(k + 1));
+  ownForward(rows[k + 1], v(k + 1));
+  double along = 0.0, compliance = 0.0;
+  for (std::size_t p = 1; p <= k + 1; ++p)
+  {
+    const BlockRow& row = rows[p];
+    const double* u = b + 3 * p;
+    const double* w = v(p);
+    const double scaled[3] = {w[0] / row.d0, w[1] / row.d1, w[2] / row.d2};
+    along += scaled[0] * u[0] + scaled[1] * u[1] + scaled[2] * u[2];
+    compliance += scaled[0] * w[0] + scaled[1] * w[1] + scaled[2] * w[2];
+  }
+  *force = law.force(along, compliance);
+  for (std::size_t i = 3; i < 3 * (k + 2); ++i)
+  {
+    b[i] -= *force * q[i];
+  }
+  backwardTwisted<kSecond>(b, n, rows, meet);
 }
 
 /// solveBlockBandedPulled's solve, after factorBlocks<kSecond, true>.
@@ -870,6 +952,27 @@ bool solveBlockBandedPulled(const double* diag, const double* first, const doubl
   if (n < 2 || !uncoupled || (second != nullptr && n > 2 && second[0] != 0.0))
   {
     return false;
+  }
+  if (n >= kTwistedFrom)
+  {
+    // Twisted, as solveBlockBanded: block row 1 is in the top chain. The pull's forward pass is kept in the
+    // work after the factors.
+    double* q = work + kPulledScratch * n;
+    if (second != nullptr)
+    {
+      if (!factorTwisted<true>(diag, first, second, layout, n, work))
+      {
+        return false;
+      }
+      substituteTwistedPulled<true>(b, n, work, q, pull, law, force);
+      return true;
+    }
+    if (!factorTwisted<false>(diag, first, nullptr, layout, n, work))
+    {
+      return false;
+    }
+    substituteTwistedPulled<false>(b, n, work, q, pull, law, force);
+    return true;
   }
   if (second != nullptr)
   {
