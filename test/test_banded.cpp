@@ -245,7 +245,8 @@ class SpringLaw : public banded::EndLaw
   mutable double along_ = 0.0, compliance_ = 0.0;
 };
 
-// The drum's solve in one pass (one factorisation, eliminating from the last block row, one substitution)
+// The drum's solve in one pass (one factorisation, one substitution; eliminating from the last block row below 8
+// rows, twisted from 8 on)
 // against its definition: x = A^-1 (b - f P e_1) with the law met at x (a spring: f = k (s0 + P . x_1)), and
 // the law handed P . x_1 without the pull and P . A^-1_11 P, each checked against two plain solves. Block row
 // 0 is uncoupled (the pinned spool particle); the systems' first blocks are not symmetric, so A(l, l+1) must

@@ -879,10 +879,11 @@ ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std:
     along += scaled[0] * u[0] + scaled[1] * u[1] + scaled[2] * u[2];
     compliance += scaled[0] * w[0] + scaled[1] * w[1] + scaled[2] * w[2];
   }
-  *force = law.force(along, compliance);
+  const double f = law.force(along, compliance);
+  *force = f;
   for (std::size_t i = 3; i < 3 * (k + 2); ++i)
   {
-    b[i] -= *force * q[i];
+    b[i] -= f * q[i];
   }
   backwardTwisted<kSecond>(b, n, rows, meet);
 }
@@ -943,7 +944,7 @@ bool solveBlockBandedPulled(const double* diag, const double* first, const doubl
                             const BlockLayout& layout)
 {
   // Block row 0 must not couple to the others (A(1, 0) = 0 and A(2, 0) = 0), or block row 1's last pivot would
-  // not hold A^-1_11.
+  // not hold A^-1_11 in the single chain (the twisted solve does not need it; the contract is the same for both).
   bool uncoupled = true;
   for (std::size_t i = 0; i < 9 && n >= 2; ++i)
   {
