@@ -764,6 +764,31 @@ ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t
   backwardBlocks<kSecond, false>(b, n, rows);
 }
 
+/// The forward pass's meeting rows k and k + 1 (v(p): block row p's values), after both chains. kBottom false:
+/// the bottom chain's rows are 0 (the pull's pass of substituteTwistedPulled), and their terms are left out.
+template <bool kSecond, bool kBottom, typename Rows>
+ROV_TETHER_INLINE void forwardMeeting(std::size_t k, const BlockRow* __restrict rows, const Meeting& meet, Rows v)
+{
+  multiplySubtract(rows[k].below1, v(k - 1), v(k));
+  if (kBottom)
+  {
+    multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
+  }
+  if (kSecond)
+  {
+    upperSubtract(rows[k].below2, v(k - 2), v(k));
+    if (kBottom)
+    {
+      upperSubtract(meet.k_k2, v(k + 2), v(k));
+      upperSubtract(rows[k + 1].below2, v(k + 3), v(k + 1));
+    }
+    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
+  }
+  ownForward(rows[k], v(k));
+  multiplySubtract(meet.k1_k, v(k), v(k + 1));
+  ownForward(rows[k + 1], v(k + 1));
+}
+
 /// The forward pass after factorTwisted (u = L^-1 b in place): down the top chain and up the bottom chain
 /// together, then the meeting rows.
 template <bool kSecond>
@@ -788,18 +813,7 @@ ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, std::size_t n, const
     const std::size_t p = n - 1 - i;
     forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
   }
-  multiplySubtract(rows[k].below1, v(k - 1), v(k));
-  multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
-  if (kSecond)
-  {
-    upperSubtract(rows[k].below2, v(k - 2), v(k));
-    upperSubtract(meet.k_k2, v(k + 2), v(k));
-    upperSubtract(rows[k + 1].below2, v(k + 3), v(k + 1));
-    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
-  }
-  ownForward(rows[k], v(k));
-  multiplySubtract(meet.k1_k, v(k), v(k + 1));
-  ownForward(rows[k + 1], v(k + 1));
+  forwardMeeting<kSecond, true>(k, rows, meet, v);
 }
 
 /// The backward pass after forwardTwisted (x = L^-T D^-1 u in place): the meeting rows, then out along both
@@ -860,15 +874,7 @@ ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std:
   std::fill(q, q + 3 * (k + 2), 0.0);
   q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
   forwardTwisted<kSecond>(b, n, rows, meet, q);
-  multiplySubtract(rows[k].below1, v(k - 1), v(k));
-  if (kSecond)
-  {
-    upperSubtract(rows[k].below2, v(k - 2), v(k));
-    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
-  }
-  ownForward(rows[k], v(k));
-  multiplySubtract(meet.k1_k, v(k), v(k + 1));
-  ownForward(rows[k + 1], v(k + 1));
+  forwardMeeting<kSecond, false>(k, rows, meet, v);
   double along = 0.0, compliance = 0.0;
   for (std::size_t p = 1; p <= k + 1; ++p)
   {

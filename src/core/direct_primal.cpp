@@ -563,11 +563,10 @@ double PrimalNewton::residual(const Cable& cable)
 {
   const std::size_t f = ws_.first;
   const std::size_t m = ws_.m;
-  const std::size_t stride = lambda_.size();
   // Each segment's equation, and its pull lambda n, into segment_'s first three arrays (segment k at k + 1, 0
   // before the first and after the last): segment_ is free between assemblies.
   const bool drum = ws_.drum != nullptr;
-  double* pull[3] = {&segment_[0], &segment_[stride + 1], &segment_[2 * (stride + 1)]};
+  double* pull[3] = {segmentArray(0), segmentArray(1), segmentArray(2)};
   const double* w = cable.inv_mass.data() + f;
   const SegmentLaw law{ws_.c.data(),    ws_.alpha.data(),   ws_.kink.data(),
                        ws_.zero.data(), ws_.dashpot.data(), ws_.inv_rest.data(),
@@ -591,8 +590,8 @@ double PrimalNewton::residual(const Cable& cable)
   const ParticleForces forces{particles(cable),
                               cable.anisotropic ? cable.inv_mass_along.data() + f : w,
                               {pull[0], pull[1], pull[2]},
-                              {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
-                              {&bend_inv_[0], &bend_inv_[stride], &bend_inv_[2 * stride]},
+                              {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
+                              {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
                               {curve_x_.data(), curve_y_.data(), curve_z_.data()}};
   const double worst_move = largestMove(forces, m + 1, cable.anisotropic, ws_.bending);
   return std::max(worst, worst_move / ws_.nominal);

@@ -102,6 +102,10 @@ class PrimalNewton
 
   /// Where assemble() puts the Hessian's blocks: one array an entry, n long (n the particles reserved).
   banded::BlockLayout layout() const { return {1, lambda_.size()}; }
+  /// Term i's array of a vector of per-row terms stored one array a term, n long (bend_diag_ and the like).
+  double* term(std::vector<double>& terms, std::size_t i) { return terms.data() + i * lambda_.size(); }
+  /// segment_'s i-th array (n + 1 long).
+  double* segmentArray(std::size_t i) { return segment_.data() + i * (lambda_.size() + 1); }
 
   DirectWorkspace& ws_;
   DirectSolver::LinearSolve linear_;

@@ -302,13 +302,8 @@ void PrimalNewton::assemble(const Cable& cable)
   const std::size_t stride = lambda_.size();
   const bool along = cable.anisotropic;
   const double* w = cable.inv_mass.data() + f;
-  const SegmentTerms terms{&segment_[0],
-                           &segment_[stride + 1],
-                           &segment_[2 * (stride + 1)],
-                           &segment_[3 * (stride + 1)],
-                           &segment_[4 * (stride + 1)],
-                           &segment_[5 * (stride + 1)],
-                           &segment_[6 * (stride + 1)]};
+  const SegmentTerms terms{segmentArray(0), segmentArray(1), segmentArray(2), segmentArray(3),
+                           segmentArray(4), segmentArray(5), segmentArray(6)};
   const SegmentInputs in{ws_.c.data(),
                          ws_.alpha.data(),
                          stiffness_.data(),
@@ -338,10 +333,10 @@ void PrimalNewton::assemble(const Cable& cable)
   }
   RowInputs rows{particles(cable),
                  terms,
-                 {&bend_diag_[0], &bend_diag_[stride], &bend_diag_[2 * stride]},
-                 {&bend_weight_[0], &bend_weight_[stride], &bend_weight_[2 * stride]},
-                 {&bend_inv_[0], &bend_inv_[stride], &bend_inv_[2 * stride]},
-                 {&bend_first_[0], &bend_first_[stride]},
+                 {term(bend_diag_, 0), term(bend_diag_, 1), term(bend_diag_, 2)},
+                 {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
+                 {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
+                 {term(bend_first_, 0), term(bend_first_, 1)},
                  curve_x_.data(),
                  curve_y_.data(),
                  curve_z_.data()};
@@ -372,7 +367,6 @@ void PrimalNewton::prepareBending(const Cable& cable)
   // adds them (joints l - 2, l - 1, l), 0 where there is no such joint or the particle is pinned (adding 0
   // changes nothing). The curvature arrays are offset by 2, with zeros for the joints -2, -1, m - 1 and m.
   const std::size_t m = ws_.m;
-  const std::size_t stride = lambda_.size();  // each of a row's terms has its own array
   const double* w = cable.inv_mass.data() + ws_.first;
   auto weight = [this](std::size_t j, std::size_t r)
   {
@@ -389,15 +383,15 @@ void PrimalNewton::prepareBending(const Cable& cable)
       const bool on = free_l && joint(l, r);
       const double gr = on ? weight(l - r, r) : 0.0;
       const double inv = on ? ws_.inv_gamma[l - r] : 0.0;
-      bend_weight_[i * stride + l] = gr;
-      bend_inv_[i * stride + l] = inv;
-      bend_diag_[i * stride + l] = gr * gr * inv;
+      term(bend_weight_, i)[l] = gr;  // each of a row's terms has its own array
+      term(bend_inv_, i)[l] = inv;
+      term(bend_diag_, i)[l] = gr * gr * inv;
     }
     const bool pair = l + 1 <= m && free_l && w[l + 1] != 0.0;  // the block (l + 1, l) couples two free ones
     for (std::size_t i = 0; i < 2; ++i)
     {
       const std::size_t s = 1 - i;
-      bend_first_[i * stride + l] =
+      term(bend_first_, i)[l] =
           pair && joint(l, s) ? weight(l - s, s + 1) * weight(l - s, s) * ws_.inv_gamma[l - s] : 0.0;
     }
     if (l + 2 <= m)
