@@ -23,6 +23,18 @@ constexpr double kArmijo = 1e-4;
 /// Rounds of the model's active set in one Newton step.
 constexpr int kMaxModelRounds = 30;
 
+/// The largest magnitude of `count` numbers (0 for none).
+ROV_TETHER_TARGET_CLONES double largestComponent(const double* __restrict v, std::size_t count)
+{
+  double largest = 0.0;
+#pragma omp simd reduction(max : largest)
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    largest = std::max(largest, std::abs(v[i]));
+  }
+  return largest;
+}
+
 }  // namespace
 
 void PrimalNewton::reserve(std::size_t n)
@@ -52,6 +64,7 @@ void PrimalNewton::reserve(std::size_t n)
   step_.assign(3 * n, 0.0);
   grad_.assign(3 * n, 0.0);
   grad_step_.assign(3 * n, 0.0);
+  energy_terms_.assign(4 * (n + 1), 0.0);
   work_.assign(36 * n, 0.0);
   band_.assign(9 * 3 * n, 0.0);  // LAPACK's band, up to half-bandwidth 8
 }
@@ -133,42 +146,110 @@ bool PrimalNewton::solveHessian(const Cable& cable, const double* lambda, double
   return true;
 }
 
+namespace
+{
+
+/// energyTerms, compiled for each instruction set (the header's declaration cannot carry the clones: a caller
+/// would make a resolver of its own).
+ROV_TETHER_TARGET_CLONES void energyTermsCloned(const PrimalNewton::Particles& p, const EnergyLaw& law, std::size_t m,
+                                                bool along, bool unilateral, bool bending, double* __restrict terms,
+                                                std::size_t stride)
+{
+  const double* __restrict w = p.w, * __restrict mass = p.mass, * __restrict less = p.less;
+  const double* __restrict x = p.x, * __restrict y = p.y, * __restrict z = p.z;
+  const double* __restrict xt = p.xt, * __restrict yt = p.yt, * __restrict zt = p.zt;
+  const double* __restrict tx = along ? p.tx : p.x, * __restrict ty = along ? p.ty : p.y;
+  const double* __restrict tz = along ? p.tz : p.z;
+  double* __restrict across = terms, * __restrict lengthwise = terms + stride;
+  double* __restrict elastic = terms + 2 * stride, * __restrict bent = terms + 3 * stride;
+#pragma omp simd
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    const double dx = x[l] - xt[l], dy = y[l] - yt[l], dz = z[l] - zt[l];
+    const bool free = w[l] > 0.0;
+    const double a = dx * tx[l] + dy * ty[l] + dz * tz[l];
+    const double kinetic = (dx * dx + dy * dy + dz * dz) * mass[l], extra = less[l] * a * a;
+    across[l] = free ? kinetic : 0.0;
+    lengthwise[l] = free ? extra : 0.0;  // read only along a cable with added mass
+  }
+  const double* __restrict c = law.c, * __restrict alpha = law.alpha, * __restrict kink = law.kink;
+  const double* __restrict zero = law.zero, * __restrict dashpot = law.dashpot;
+  if (!unilateral)
+  {
+#pragma omp simd
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      elastic[k] = 2.0 * (0.5 * c[k] * c[k] / alpha[k]);  // a rod's: C^2 / (2 alpha)
+    }
+  }
+  else
+  {
+#pragma omp simd
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      // The integral of the law from where it is 0: max(C, 0)^2 / (2 alpha); with a middle piece
+      // f(C) = kink / alpha + slope (C - kink), zero at z, the integral f(C)^2 / (2 slope) from z, and above
+      // the kink that at the kink plus (C^2 - kink^2) / (2 alpha): continuous, as the line search needs.
+      const double ck = c[k], a = alpha[k], bend = kink[k], d = dashpot[k], z = zero[k];
+      const double taut = std::max(ck, 0.0);
+      const bool damped = d > 0.0;
+      const double slope = damped ? d : 1.0;  // kept from dividing by 0 where the piece is not used
+      const bool above = ck >= bend;
+      const double on_middle = above ? bend : std::max(ck, z);
+      const double force = bend / a + slope * (on_middle - bend);
+      const double middle = 0.5 * force * force / slope;
+      const double line = 0.5 * (ck * ck - bend * bend) / a + middle;
+      const double cable = 0.5 * taut * taut / a;
+      const double damped_energy = above ? line : middle;
+      elastic[k] = 2.0 * (damped ? damped_energy : cable);
+    }
+  }
+  const double* __restrict cx = law.curve[0] + 2, * __restrict cy = law.curve[1] + 2;
+  const double* __restrict cz = law.curve[2] + 2, * __restrict inv_gamma = law.inv_gamma;
+  const std::size_t joints = bending && m > 0 ? m - 1 : 0;
+#pragma omp simd
+  for (std::size_t j = 0; j < joints; ++j)
+  {
+    bent[j] = (cx[j] * cx[j] + cy[j] * cy[j] + cz[j] * cz[j]) * inv_gamma[j];
+  }
+}
+
+}  // namespace
+
+void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::size_t m, bool along, bool unilateral,
+                 bool bending, double* terms, std::size_t stride)
+{
+  energyTermsCloned(p, law, m, along, unilateral, bending, terms, stride);
+}
+
 double PrimalNewton::energy(const Cable& cable) const
 {
-  const std::size_t f = ws_.first;
+  const std::size_t m = ws_.m;
+  const std::size_t stride = energy_terms_.size() / 4;
+  double* terms = energy_terms_.data();
+  const EnergyLaw law{ws_.c.data(),        ws_.alpha.data(),   ws_.kink.data(),
+                      ws_.zero.data(),     ws_.dashpot.data(), {curve_x_.data(), curve_y_.data(), curve_z_.data()},
+                      ws_.inv_gamma.data()};
+  energyTerms(particles(cable), law, m, cable.anisotropic, ws_.unilateral, ws_.bending, terms, stride);
+  // Summed in order (a fixed order, whatever the vector width).
   double kinetic = 0.0;
-  for (std::size_t l = 0; l <= ws_.m; ++l)
+  for (std::size_t l = 0; l <= m; ++l)
   {
-    const double w = cable.inv_mass[f + l];
-    if (w > 0.0)
+    kinetic += terms[l];
+    if (cable.anisotropic)
     {
-      const double dx = cable.x[f + l] - ws_.xt[l];
-      const double dy = cable.y[f + l] - ws_.yt[l];
-      const double dz = cable.z[f + l] - ws_.zt[l];
-      kinetic += (dx * dx + dy * dy + dz * dz) * mass_[l];
-      if (cable.anisotropic)
-      {
-        // M = m_across I + (m_along - m_across) t t^T.
-        const double along = dx * cable.tx[f + l] + dy * cable.ty[f + l] + dz * cable.tz[f + l];
-        kinetic += mass_less_[l] * along * along;
-      }
+      kinetic += terms[stride + l];
     }
   }
   double elastic = 0.0;
-  double drum = 0.0;
-  for (std::size_t k = 0; k < ws_.m; ++k)
+  const double drum = ws_.drum != nullptr ? ws_.drum->energy(ws_.c[0]) : 0.0;  // the spool segment and the drum
+  for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < m; ++k)
   {
-    if (k == 0 && ws_.drum != nullptr)
-    {
-      drum = ws_.drum->energy(ws_.c[0]);  // the spool segment and the drum in series
-      continue;
-    }
-    elastic += 2.0 * potential(k, ws_.c[k]);
+    elastic += terms[2 * stride + k];
   }
-  for (std::size_t j = 0; ws_.bending && j + 1 < ws_.m; ++j)
+  for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
   {
-    const double cb[3] = {curve_x_[j + 2], curve_y_[j + 2], curve_z_[j + 2]};
-    elastic += (cb[0] * cb[0] + cb[1] * cb[1] + cb[2] * cb[2]) * ws_.inv_gamma[j];
+    elastic += terms[3 * stride + j];
   }
   return 0.5 * (kinetic + elastic) + drum;
 }
@@ -180,35 +261,6 @@ double PrimalNewton::segmentForce(std::size_t k, double c) const
     return ws_.drum->force(c);
   }
   return ws_.law(k, c);
-}
-
-double PrimalNewton::potential(std::size_t k, double c) const
-{
-  // The integral of the law from where it is 0: C^2 / (2 alpha) (max(C, 0) for a cable); with a middle
-  // piece f(C) = kink / alpha + slope (C - kink), zero at z, the integral f(C)^2 / (2 slope) from z, and above
-  // the kink that at the kink plus (C^2 - kink^2) / (2 alpha): continuous, as the line search needs.
-  const double a = ws_.alpha[k];
-  if (!ws_.unilateral)
-  {
-    return 0.5 * c * c / a;
-  }
-  if (!(ws_.dashpot[k] > 0.0))
-  {
-    const double taut = std::max(c, 0.0);
-    return 0.5 * taut * taut / a;
-  }
-  const double kink = ws_.kink[k];
-  if (c >= kink)
-  {
-    return 0.5 * (c * c - kink * kink) / a + middleEnergy(k, kink);
-  }
-  return middleEnergy(k, std::max(c, ws_.zero[k]));
-}
-
-double PrimalNewton::middleEnergy(std::size_t k, double c) const
-{
-  const double force = ws_.middleForce(k, c);
-  return 0.5 * force * force / ws_.dashpot[k];
 }
 
 bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
@@ -376,18 +428,16 @@ void PrimalNewton::multiplierStep(const Cable& cable)
   }
 }
 
-double PrimalNewton::slope(double* largest) const
+double PrimalNewton::slope() const
 {
   // The energy's slope along the step: the model's gradient, corrected where the model's force differs
   // from the energy's (a segment not stretched yet, whose energy is flat at 0; the drum's piece).
   const std::size_t rows = 3 * (ws_.m + 1);
   const double* model = ws_.on();
   double slope = 0.0;
-  *largest = 0.0;
   for (std::size_t i = 0; i < rows; ++i)
   {
     slope += grad_[i] * step_[i];
-    *largest = std::max(*largest, std::abs(step_[i]));
   }
   for (std::size_t k = 0; k < ws_.m; ++k)
   {
@@ -420,12 +470,13 @@ double PrimalNewton::step(Cable& cable, int* rounds)
     return std::numeric_limits<double>::infinity();
   }
   multiplierStep(cable);
-  double largest = 0.0;
-  const double along_step = slope(&largest);
   const std::size_t f = ws_.first;
-  const double move = largest / ws_.nominal;
-  // The energy here is the last accepted trial's when the line search computed it there.
-  const double before = move > kGlobalMove ? (energy_known_ ? known_energy_ : energy(cable)) : 0.0;
+  const double move = largestComponent(step_.data(), 3 * (ws_.m + 1)) / ws_.nominal;
+  // The slope and the energy are for the line search, which a small move does without. The energy here is the
+  // last accepted trial's when the line search computed it there.
+  const bool search = move > kGlobalMove;
+  const double along_step = search ? slope() : 0.0;
+  const double before = search ? (energy_known_ ? known_energy_ : energy(cable)) : 0.0;
   energy_known_ = false;
   ws_.save(cable);
   double t = 1.0;
@@ -441,7 +492,7 @@ double PrimalNewton::step(Cable& cable, int* rounds)
     curvature(cable);
     // Near the solution Newton's step is taken whole (quadratic convergence); far from it, the step is
     // halved until the energy falls as the slope promises (Armijo).
-    bool accept = move <= kGlobalMove || halving == kMaxHalvings || !(along_step < 0.0);
+    bool accept = !search || halving == kMaxHalvings || !(along_step < 0.0);
     if (!accept)
     {
       known_energy_ = energy(cable);

@@ -8,6 +8,7 @@
 #include "banded.hpp"
 #include "direct_workspace.hpp"
 #include "rov_tether/core/direct_solver.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {
@@ -48,11 +49,6 @@ class PrimalNewton
   /// The force (multiplier) segment k carries at stretch c: its law (one-sided for a cable; the drum's for
   /// the spool segment when there is one).
   double segmentForce(std::size_t k, double c) const;
-  /// Segment k's energy at stretch c: the integral of its law (continuous across the law's pieces).
-  double potential(std::size_t k, double c) const;
-  /// The energy of the dashpot's middle piece of segment k's law (DirectWorkspace::kink) at c, from where its
-  /// force is 0.
-  double middleEnergy(std::size_t k, double c) const;
   /// 1 when segment k, off the taut branch (taut 0) at stretch c, is on its law's middle piece, else 0.
   double onMiddle(std::size_t k, double taut, double c) const
   {
@@ -89,8 +85,8 @@ class PrimalNewton
   double alongSegment(std::size_t k) const;
   /// Each multiplier's Newton step into lambda_step_.
   void multiplierStep(const Cable& cable);
-  /// The energy's slope along step_, and the largest component of step_ [m].
-  double slope(double* largest) const;
+  /// The energy's slope along step_.
+  double slope() const;
   /// One Newton step with line search; returns the largest relative move |dx| / L taken (infinite when a
   /// system was not definite).
   double step(Cable& cable, int* rounds);
@@ -131,11 +127,29 @@ class PrimalNewton
   std::vector<double> lambda_, lambda_step_;
   /// The model's segments on their law's middle piece, 1 or 0 (only read where the step has one).
   std::vector<double> middle_;
+  /// energy()'s terms (energyTerms): four arrays of n + 1.
+  mutable std::vector<double> energy_terms_;
   /// The energy at the current positions, when the last line search computed it there (energy_known_).
   double known_energy_ = 0.0;
   bool energy_known_ = false;
   /// The last Newton iteration's model had not settled in kMaxModelRounds: the next starts from it.
   bool model_unsettled_ = false;
 };
+
+/// What energyTerms reads besides the particles: each segment's stretch and law (DirectWorkspace's), and each
+/// bending joint's curvature (joint j at j + 2) and stiffness.
+struct EnergyLaw
+{
+  const double *c, *alpha, *kink, *zero, *dashpot, *curve[3], *inv_gamma;
+};
+
+/// The step energy's terms, each as PrimalNewton's energy adds them, into `terms` (four arrays of `stride`):
+/// each of the m + 1 particles' kinetic (M (x - x~)).(x - x~) across, then along the cable (0 for a pinned one;
+/// the second read only with added mass, `along`), each of the m segments' twice its potential (the integral
+/// of its law from where the law is 0; the caller adds a drum's apart), each joint's |kappa|^2 / gamma.
+/// Branch-free, so that it vectorises; each term the same operations in the same order whatever the vector
+/// width, so that the caller's sum in order is the same to the bit on every machine.
+void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::size_t m, bool along, bool unilateral,
+                 bool bending, double* terms, std::size_t stride);
 
 }  // namespace rov_tether
