@@ -410,18 +410,53 @@ bool PrimalNewton::drumStep(bool second)
   return ws_.nx[k] * (b[0] - a[0]) + ws_.ny[k] * (b[1] - a[1]) + ws_.nz[k] * (b[2] - a[2]);
 }
 
+namespace
+{
+
+/// What multiplierSteps reads: the Newton step (3 a particle), each segment's stretch, direction, compliance,
+/// law (kink, dashpot's slope) and whether it is in the model and on the middle piece, and its multiplier.
+struct MultiplierLaw
+{
+  const double *step, *c, *nx, *ny, *nz, *alpha, *kink, *dashpot, *model, *middle, *lambda;
+};
+
+/// Each multiplier's Newton step into `out`, segments `from` to `count` - 1 (PrimalNewton::multiplierStep):
+/// to the linearised force of its stretch C + n . (dx_k+1 - dx_k), by its law's piece in the model (the spring
+/// over alpha, or the dashpot's middle piece), 0 out of it. Branch-free, so that it vectorises; the same
+/// operations as linearStretch and middleForce.
+ROV_TETHER_TARGET_CLONES void multiplierSteps(const MultiplierLaw& in, std::size_t from, std::size_t count,
+                                              double* __restrict out)
+{
+  const double* __restrict step = in.step, * __restrict c = in.c, * __restrict nx = in.nx;
+  const double* __restrict ny = in.ny, * __restrict nz = in.nz, * __restrict alpha = in.alpha;
+  const double* __restrict kink = in.kink, * __restrict dashpot = in.dashpot, * __restrict model = in.model;
+  const double* __restrict middle = in.middle, * __restrict lambda = in.lambda;
+#pragma omp simd
+  for (std::size_t k = from; k < count; ++k)
+  {
+    const double* a = step + 3 * k;
+    const double* b = a + 3;
+    const double stretch = c[k] + nx[k] * (b[0] - a[0]) + ny[k] * (b[1] - a[1]) + nz[k] * (b[2] - a[2]);
+    const double a_k = alpha[k], bend = kink[k], slope = dashpot[k];
+    const double spring = stretch / a_k;
+    const double piece = bend / a_k + slope * (stretch - bend);
+    const bool on_middle = slope > 0.0 && middle[k] > 0.0;
+    const double off_model = on_middle ? piece : 0.0;
+    const double target = model[k] > 0.0 ? spring : off_model;
+    out[k] = target - lambda[k];
+  }
+}
+
+}  // namespace
+
 void PrimalNewton::multiplierStep(const Cable& cable)
 {
   // Each multiplier's Newton step: to the linearised force (C + n . (dx_k+1 - dx_k)) / alpha of a segment in
   // the model, to 0 for one out of it (the drum's was set with its solve).
-  const double* model = ws_.on();
-  for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < ws_.m; ++k)
-  {
-    const double target = model[k] > 0.0 ? linearStretch(k) / ws_.alpha[k]
-                          : inMiddle(k)  ? ws_.middleForce(k, linearStretch(k))
-                                         : 0.0;
-    lambda_step_[k] = target - lambda_[k];
-  }
+  const MultiplierLaw law{step_.data(),  ws_.c.data(),     ws_.nx.data(),   ws_.ny.data(),
+                          ws_.nz.data(), ws_.alpha.data(), ws_.kink.data(), ws_.dashpot.data(),
+                          ws_.on(),      middle_.data(),   lambda_.data()};
+  multiplierSteps(law, ws_.drum != nullptr ? 1 : 0, ws_.m, lambda_step_.data());
   if (ws_.drum != nullptr && !(cable.inv_mass[ws_.first + 1] > 0.0))
   {
     lambda_step_[0] = ws_.drum->force(ws_.c[0]) - lambda_[0];  // a segment nothing can move: the law alone

@@ -152,4 +152,18 @@ struct EnergyLaw
 void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::size_t m, bool along, bool unilateral,
                  bool bending, double* terms, std::size_t stride);
 
+/// What bendingRows reads and writes: the particles' inverse masses, the segments' inverse rest lengths and the
+/// joints' stiffness; each row's three joint terms (weight, 1 / gamma, diagonal: term i of row l at i n + l),
+/// its two first-below terms and its second-below coefficient.
+struct BendingRows
+{
+  const double *w, *inv_rest, *inv_gamma;
+  double *weight[3], *inv[3], *diag[3], *first[2], *second;
+};
+
+/// PrimalNewton::prepareBending's rows `from` to `to` - 1, each of which has all three of its joints (l - 2,
+/// l - 1, l), the particle after it and the one after that: 2 <= from, to <= m - 1. The same operations as the
+/// general rows, their conditions reduced to the particles being free; branch-free, so that it vectorises.
+void bendingRows(const BendingRows& rows, std::size_t from, std::size_t to);
+
 }  // namespace rov_tether

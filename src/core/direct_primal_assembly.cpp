@@ -34,6 +34,38 @@ ROV_TETHER_TARGET_CLONES void jointCurvatures(const double* __restrict x, const 
   }
 }
 
+/// bendingRows, compiled for each instruction set.
+ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size_t from, std::size_t to)
+{
+  const double* __restrict w = io.w, * __restrict ir = io.inv_rest, * __restrict ig = io.inv_gamma;
+  double* __restrict g0 = io.weight[0], * __restrict g1 = io.weight[1], * __restrict g2 = io.weight[2];
+  double* __restrict i0 = io.inv[0], * __restrict i1 = io.inv[1], * __restrict i2 = io.inv[2];
+  double* __restrict d0 = io.diag[0], * __restrict d1 = io.diag[1], * __restrict d2 = io.diag[2];
+  double* __restrict f0 = io.first[0], * __restrict f1 = io.first[1], * __restrict second = io.second;
+#pragma omp simd
+  for (std::size_t l = from; l < to; ++l)
+  {
+    const bool free_l = w[l] != 0.0;
+    // Particle l is weight 2 (b) of joint l - 2, weight 1 (-(a + b)) of joint l - 1, weight 0 (a) of joint l.
+    const double b2 = ir[l - 1], a1 = ir[l - 1], b1 = ir[l], a0 = ir[l], b0 = ir[l + 1];
+    const double w2 = b2, w1 = -(a1 + b1), w0 = a0;
+    const double inv2 = ig[l - 2], inv1 = ig[l - 1], inv0 = ig[l];
+    const double gr2 = free_l ? w2 : 0.0, gr1 = free_l ? w1 : 0.0, gr0 = free_l ? w0 : 0.0;
+    const double v2 = free_l ? inv2 : 0.0, v1 = free_l ? inv1 : 0.0, v0 = free_l ? inv0 : 0.0;
+    g0[l] = gr2, i0[l] = v2, d0[l] = gr2 * gr2 * v2;
+    g1[l] = gr1, i1[l] = v1, d1[l] = gr1 * gr1 * v1;
+    g2[l] = gr0, i2[l] = v0, d2[l] = gr0 * gr0 * v0;
+    // The block (l + 1, l): joint l - 1 (particle l its weight 1, l + 1 its weight 2), joint l (0 and 1).
+    const bool pair = free_l && w[l + 1] != 0.0;
+    const double first1 = b1 * w1 * inv1;          // joint l - 1's weights 2 and 1
+    const double first0 = -(a0 + b0) * a0 * inv0;  // joint l's weights 1 and 0
+    f0[l] = pair ? first1 : 0.0;
+    f1[l] = pair ? first0 : 0.0;
+    const double coupling = b0 * a0 * inv0;  // joint l: particle l its weight 0, l + 2 its weight 2
+    second[l] = free_l && w[l + 2] != 0.0 ? coupling : 0.0;
+  }
+}
+
 /// What segmentTerms reads: each segment's stretch, law and geometry, and its particles' inverse masses.
 struct SegmentInputs
 {
@@ -359,6 +391,8 @@ void PrimalNewton::assemble(const Cable& cable)
   }
 }
 
+void bendingRows(const BendingRows& rows, std::size_t from, std::size_t to) { bendingRowsCloned(rows, from, to); }
+
 void PrimalNewton::prepareBending(const Cable& cable)
 {
   // Joint j (after particle j) has the curvature C_j = a x_j - (a + b) x_j+1 + b x_j+2 (curvature()), linear
@@ -374,7 +408,8 @@ void PrimalNewton::prepareBending(const Cable& cable)
     return r == 0 ? a : r == 1 ? -(a + b) : b;
   };
   auto joint = [m](std::size_t l, std::size_t r) { return l >= r && l - r + 1 < m; };  // joint l - r exists
-  for (std::size_t l = 0; l <= m; ++l)
+  // The rows with all three joints and two particles after them vectorised (bendingRows); the rest here.
+  auto row = [&](std::size_t l)
   {
     const bool free_l = w[l] != 0.0;
     for (std::size_t i = 0; i < 3; ++i)
@@ -399,6 +434,24 @@ void PrimalNewton::prepareBending(const Cable& cable)
       hessian_second_[l] =
           l + 1 < m && free_l && w[l + 2] != 0.0 ? weight(l, 2) * weight(l, 0) * ws_.inv_gamma[l] : 0.0;
     }
+  };
+  const std::size_t from = 2, to = m >= 3 ? m - 1 : from;  // rows 2 to m - 2
+  const BendingRows rows{w,
+                         ws_.inv_rest.data(),
+                         ws_.inv_gamma.data(),
+                         {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
+                         {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
+                         {term(bend_diag_, 0), term(bend_diag_, 1), term(bend_diag_, 2)},
+                         {term(bend_first_, 0), term(bend_first_, 1)},
+                         hessian_second_.data()};
+  bendingRows(rows, from, to);
+  for (std::size_t l = 0; l < std::min(from, m + 1); ++l)
+  {
+    row(l);
+  }
+  for (std::size_t l = to; l <= m; ++l)
+  {
+    row(l);
   }
 }
 

@@ -1,11 +1,12 @@
-// The direct solver's step energy (energyTerms, src/core/direct_primal.hpp), which its Armijo line search
-// compares before and after a Newton step: each segment's term must be the integral of the force law the
-// step solves for, or the line search would accept steps that do not lower the true energy and halve
-// ones that do.
+// The direct solver's primal path, its terms against their definitions (src/core/direct_primal.hpp): the step
+// energy (energyTerms), which its Armijo line search compares before and after a Newton step: each segment's term
+// must be the integral of the force law the step solves for, or the line search would accept steps that do not
+// lower the true energy and halve ones that do; and the bending joints' constant Hessian terms (bendingRows).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "direct_primal.hpp"
@@ -183,6 +184,66 @@ TEST(StepEnergy, KineticAndBendingTermsAreTheirQuadraticForms)
   EXPECT_EQ(terms[stride + 1], 0.0) << "pinned";
   EXPECT_DOUBLE_EQ(terms[stride + 2], -0.25 * 1.0);
   EXPECT_DOUBLE_EQ(terms[3 * stride], (0.09 + 0.16 + 1.44) * 4.0);
+}
+
+// The bending joints' Hessian terms of the rows bendingRows writes (those with all three joints), against the
+// curvature's definition: joint j's curvature C_j = a x_j - (a + b) x_j+1 + b x_j+2 (a, b the inverse rest
+// lengths of its segments) is linear, so its energy |C_j|^2 / (2 gamma_j) has the constant Hessian
+// g_p g_q / gamma_j (times I) between its particles p, q with weights g. Rest lengths all different (with
+// equal ones, a and b of neighbouring joints could be swapped unseen), a hinge (1 / gamma = 0) and a pinned
+// particle (its rows and columns 0). Each product is a few roundings: 1e-14 relative.
+TEST(BendingRows, EachRowsTermsAreTheJointsHessian)
+{
+  const std::size_t m = 9;  // segments; particles 0..9, joints 0..7
+  const std::vector<double> rest = {0.07, 0.11, 0.09, 0.13, 0.08, 0.12, 0.1, 0.095, 0.105};
+  std::vector<double> inv_rest, inv_gamma = {3.0, 0.5, 2.0, 0.0, 1.5, 4.0, 0.75, 2.5};
+  for (double r : rest)
+  {
+    inv_rest.push_back(1.0 / r);
+  }
+  std::vector<double> w(m + 1, 1.0);
+  w[6] = 0.0;  // pinned
+  const std::size_t n = m + 1;
+  std::vector<double> weight(3 * n, NAN), inv(3 * n, NAN), diag(3 * n, NAN), first(2 * n, NAN), second(n, NAN);
+  const rov_tether::BendingRows rows{w.data(),
+                                     inv_rest.data(),
+                                     inv_gamma.data(),
+                                     {&weight[0], &weight[n], &weight[2 * n]},
+                                     {&inv[0], &inv[n], &inv[2 * n]},
+                                     {&diag[0], &diag[n], &diag[2 * n]},
+                                     {&first[0], &first[n]},
+                                     second.data()};
+  const std::size_t from = 2, to = m - 1;
+  rov_tether::bendingRows(rows, from, to);
+  // Particle p's weight in joint j (0 unless j <= p <= j + 2).
+  auto g = [&](std::size_t j, std::size_t p)
+  {
+    const double a = inv_rest[j], b = inv_rest[j + 1];
+    return p == j ? a : p == j + 1 ? -(a + b) : p == j + 2 ? b : 0.0;
+  };
+  auto near = [](double got, double want) { EXPECT_NEAR(got, want, 1e-14 * std::max(1.0, std::abs(want))); };
+  for (std::size_t l = 0; l <= m; ++l)
+  {
+    SCOPED_TRACE("row " + std::to_string(l));
+    if (l < from || l >= to)
+    {
+      EXPECT_TRUE(std::isnan(weight[l]) && std::isnan(first[l]) && std::isnan(second[l])) << "not its row";
+      continue;
+    }
+    const bool free_l = w[l] > 0.0;
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+      const std::size_t j = l - 2 + i;  // the row's joints in order: l - 2, l - 1, l
+      near(weight[i * n + l], free_l ? g(j, l) : 0.0);
+      near(inv[i * n + l], free_l ? inv_gamma[j] : 0.0);
+      near(diag[i * n + l], free_l ? g(j, l) * g(j, l) * inv_gamma[j] : 0.0);
+    }
+    // The block (l + 1, l): from joints l - 1 and l; the block (l + 2, l): from joint l.
+    const bool pair = free_l && w[l + 1] > 0.0;
+    near(first[l], pair ? g(l - 1, l + 1) * g(l - 1, l) * inv_gamma[l - 1] : 0.0);
+    near(first[n + l], pair ? g(l, l + 1) * g(l, l) * inv_gamma[l] : 0.0);
+    near(second[l], free_l && w[l + 2] > 0.0 ? g(l, l + 2) * g(l, l) * inv_gamma[l] : 0.0);
+  }
 }
 
 }  // namespace
