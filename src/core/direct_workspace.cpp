@@ -31,6 +31,47 @@ ROV_TETHER_TARGET_CLONES void segmentGeometry(const double* __restrict x, const 
   }
 }
 
+/// Each of m segments' compliance alpha = L / (EA h^2) (`stiffness` EA h^2), 1 / L and the length its law
+/// stops at (L: no dashpot shifts it), as DirectWorkspace::begin's general loop gives them without axial
+/// damping or sections: the same numbers (there EA h^2 + 0 and L + 0 x 0, which are EA h^2 and L exactly).
+ROV_TETHER_TARGET_CLONES void undampedSegments(const double* __restrict rest, double stiffness, std::size_t m,
+                                               double* __restrict alpha, double* __restrict inv_rest,
+                                               double* __restrict stop)
+{
+#pragma omp simd
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    alpha[k] = rest[k] / stiffness;
+    inv_rest[k] = 1.0 / rest[k];
+    stop[k] = rest[k];
+  }
+}
+
+/// The end of a step for each of m segments: a cable's multiplier clamped at 0 (a slack segment carries
+/// nothing, exactly: its multiplier can end a rounding below 0), whether it ended taut, and the largest
+/// multiplier over the weight of its length (lambda / (w L), for a segment with a weight and a length).
+/// Branch-free, so that it vectorises; the largest is exact in any order.
+ROV_TETHER_TARGET_CLONES double endSegments(double* __restrict lambda, unsigned char* __restrict taut,
+                                            const double* __restrict weight, const double* __restrict len,
+                                            std::size_t m, bool unilateral)
+{
+  double ratio = 0.0;
+#pragma omp simd reduction(max : ratio)
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const double own = lambda[k];
+    const double clamped = std::max(own, 0.0);
+    const double lam = unilateral ? clamped : own;
+    lambda[k] = lam;
+    taut[k] = lam > 0.0 ? 1 : 0;
+    const double pulled = weight[k] * len[k];
+    const double share = lam / (pulled > 0.0 ? pulled : 1.0);  // kept from dividing by 0 where it is not used
+    const double counted = weight[k] > 0.0 && len[k] > 0.0 ? share : 0.0;
+    ratio = std::max(ratio, counted);
+  }
+  return ratio;
+}
+
 }  // namespace
 
 void DirectWorkspace::reserve(std::size_t n)
@@ -82,7 +123,16 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   // Sections (CableLoading): each segment's own EA and BA, and each joint's EI.
   const CableLoading& load = cable.loading;
   const bool loaded = !load.empty();
-  for (std::size_t k = 0; k < m; ++k)
+  const double* rest_lengths = cable.rest.data() + f;
+  const bool undamped = !loaded && !(shift_share > 0.0);  // no dashpot anywhere: the loop below's zeros left out
+  if (undamped)
+  {
+    undampedSegments(rest_lengths, settings.axial_stiffness * h2, m, alpha.data(), inv_rest.data(), stop.data());
+    std::fill(kink.begin(), kink.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
+    std::fill(dashpot.begin(), dashpot.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
+    std::fill(zero.begin(), zero.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
+  }
+  for (std::size_t k = 0; !undamped && k < m; ++k)
   {
     const double rest = cable.rest[f + k];
     const double own_damping = loaded && shift_share > 0.0 ? load.axial_damping[f + k] : damping;
@@ -100,18 +150,20 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
     zero[k] = middle ? start * (1.0 - share) : 0.0;
     dashpots = dashpots || middle;
   }
-  for (std::size_t k = 0; bending && k + 1 < m; ++k)
+  const std::size_t joints = bending ? m - 1 : 0;  // m >= 2 with bending
+  for (std::size_t k = 0; loaded && k < joints; ++k)
   {
-    if (loaded)
-    {
-      // The joint's two half segments in series: each half's compliance L / (2 EI) (a segment of EI 0 is a
-      // hinge: infinite compliance).
-      gamma[k] = (0.5 * cable.rest[f + k] / load.bending_stiffness[f + k] +
-                  0.5 * cable.rest[f + k + 1] / load.bending_stiffness[f + k + 1]) /
-                 h2;
-      continue;
-    }
-    gamma[k] = 0.5 * (cable.rest[f + k] + cable.rest[f + k + 1]) / (settings.bending_stiffness * h2);
+    // The joint's two half segments in series: each half's compliance L / (2 EI) (a segment of EI 0 is a
+    // hinge: infinite compliance).
+    gamma[k] = (0.5 * cable.rest[f + k] / load.bending_stiffness[f + k] +
+                0.5 * cable.rest[f + k + 1] / load.bending_stiffness[f + k + 1]) /
+               h2;
+  }
+  const double bending_h2 = settings.bending_stiffness * h2;
+#pragma omp simd
+  for (std::size_t k = 0; k < (loaded ? 0 : joints); ++k)
+  {
+    gamma[k] = 0.5 * (rest_lengths[k] + rest_lengths[k + 1]) / bending_h2;
   }
   std::copy(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end(), xt.begin());
   std::copy(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end(), yt.begin());
@@ -139,7 +191,8 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
       }
     }
   }
-  for (std::size_t k = 0; bending && k + 1 < m; ++k)
+#pragma omp simd
+  for (std::size_t k = 0; k < joints; ++k)
   {
     inv_gamma[k] = 1.0 / gamma[k];  // 0 at a hinge
   }
@@ -162,19 +215,9 @@ void DirectWorkspace::end(const Cable& cable, double* lambda)
     correction_y[f + l] = cable.y[f + l] - yt[l];
     correction_z[f + l] = cable.z[f + l] - zt[l];
   }
-  std::fill(taut.begin(), taut.end(), 0);
-  tension_ratio = 0.0;
-  for (std::size_t k = 0; k < m; ++k)
-  {
-    // A slack cable segment carries nothing, exactly (its multiplier can end a rounding below 0).
-    lambda[k] = unilateral ? std::max(lambda[k], 0.0) : lambda[k];
-    taut[f + k] = lambda[k] > 0.0 ? 1 : 0;
-    const double weight = cable.stretch_weight[f + k];
-    if (weight > 0.0 && len[k] > 0.0)
-    {
-      tension_ratio = std::max(tension_ratio, lambda[k] / (weight * len[k]));
-    }
-  }
+  std::fill(taut.begin(), taut.begin() + static_cast<std::ptrdiff_t>(f), 0);
+  std::fill(taut.begin() + static_cast<std::ptrdiff_t>(f + m), taut.end(), 0);
+  tension_ratio = endSegments(lambda, taut.data() + f, cable.stretch_weight.data() + f, len.data(), m, unilateral);
 }
 
 void DirectWorkspace::forget()
