@@ -603,8 +603,12 @@ struct ParticleForces
 /// The largest move a free particle's force balance M (x - x~) + J^T lambda + the bending terms would make: the
 /// force times the particle's largest inverse mass. Its terms in the order the step's equations add them: the
 /// mass, segment l - 1's pull, segment l's, then the joints l - 2, l - 1, l.
-ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_t rows, bool along, bool bending)
+/// Along (added mass) and bending are template arguments: a loop-invariant test in the loop let GCC split it
+/// into versions, of which the bending one stayed scalar.
+template <bool kAlong, bool kBending>
+ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_t rows)
 {
+  constexpr bool along = kAlong;
   const double* __restrict w = in.p.w, * __restrict w_along = in.w_along, * __restrict mass = in.p.mass;
   const double* __restrict less = in.p.less, * __restrict x = in.p.x, * __restrict y = in.p.y;
   const double* __restrict z = in.p.z, * __restrict xt = in.p.xt, * __restrict yt = in.p.yt, * __restrict zt = in.p.zt;
@@ -622,7 +626,7 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     const double d0 = x[l] - xt[l], d1 = y[l] - yt[l], d2 = z[l] - zt[l];
     const double m = mass[l];
     double f0 = d0 * m, f1 = d1 * m, f2 = d2 * m;
-    if (along)
+    if constexpr (kAlong)
     {
       const double t0 = tx[l], t1 = ty[l], t2 = tz[l];
       const double a = less[l] * (d0 * t0 + d1 * t1 + d2 * t2);
@@ -630,7 +634,7 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     }
     f0 += px[l], f1 += py[l], f2 += pz[l];
     f0 -= px[l + 1], f1 -= py[l + 1], f2 -= pz[l + 1];
-    if (bending)
+    if constexpr (kBending)
     {
       f0 += g0[l] * cx[l] * i0[l], f1 += g0[l] * cy[l] * i0[l], f2 += g0[l] * cz[l] * i0[l];
       f0 += g1[l] * cx[l + 1] * i1[l], f1 += g1[l] * cy[l + 1] * i1[l], f2 += g1[l] * cz[l + 1] * i1[l];
@@ -679,7 +683,10 @@ double PrimalNewton::residual(const Cable& cable)
                               {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
                               {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
                               {curve_x_.data(), curve_y_.data(), curve_z_.data()}};
-  const double worst_move = largestMove(forces, m + 1, cable.anisotropic, ws_.bending);
+  const bool along = cable.anisotropic;
+  const double worst_move =
+      along ? (ws_.bending ? largestMove<true, true>(forces, m + 1) : largestMove<true, false>(forces, m + 1))
+            : (ws_.bending ? largestMove<false, true>(forces, m + 1) : largestMove<false, false>(forces, m + 1));
   return std::max(worst, worst_move / ws_.nominal);
 }
 
