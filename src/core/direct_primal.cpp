@@ -452,7 +452,8 @@ ROV_TETHER_TARGET_CLONES void multiplierSteps(const MultiplierLaw& in, std::size
 void PrimalNewton::multiplierStep(const Cable& cable)
 {
   // Each multiplier's Newton step: to the linearised force (C + n . (dx_k+1 - dx_k)) / alpha of a segment in
-  // the model, to 0 for one out of it (the drum's was set with its solve).
+  // the model, to its dashpot's middle piece at that stretch for one on it, to 0 for one out of the model (the
+  // drum's was set with its solve).
   const MultiplierLaw law{step_.data(),  ws_.c.data(),     ws_.nx.data(),   ws_.ny.data(),
                           ws_.nz.data(), ws_.alpha.data(), ws_.kink.data(), ws_.dashpot.data(),
                           ws_.on(),      middle_.data(),   lambda_.data()};

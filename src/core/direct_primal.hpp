@@ -8,7 +8,6 @@
 #include "banded.hpp"
 #include "direct_workspace.hpp"
 #include "rov_tether/core/direct_solver.hpp"
-#include "simd.hpp"
 
 namespace rov_tether
 {
@@ -125,7 +124,8 @@ class PrimalNewton
   /// The multipliers as unknowns of their own (Newton on positions and multipliers together, the
   /// multipliers eliminated from each linear solve), and their change over a Newton step.
   std::vector<double> lambda_, lambda_step_;
-  /// The model's segments on their law's middle piece, 1 or 0 (only read where the step has one).
+  /// The model's segments on their law's middle piece, 1 or 0 (its value counts only where the segment has a
+  /// dashpot's middle piece this step).
   std::vector<double> middle_;
   /// energy()'s terms (energyTerms): four arrays of n + 1.
   mutable std::vector<double> energy_terms_;
