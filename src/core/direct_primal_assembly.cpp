@@ -46,9 +46,11 @@ ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size
   for (std::size_t l = from; l < to; ++l)
   {
     const bool free_l = w[l] != 0.0;
-    // Particle l is weight 2 (b) of joint l - 2, weight 1 (-(a + b)) of joint l - 1, weight 0 (a) of joint l.
-    const double b2 = ir[l - 1], a1 = ir[l - 1], b1 = ir[l], a0 = ir[l], b0 = ir[l + 1];
-    const double w2 = b2, w1 = -(a1 + b1), w0 = a0;
+    // The inverse rest lengths of the segments before particle l, after it and after that: particle l is weight
+    // 2 (b = before) of joint l - 2, weight 1 (-(a + b) = -(before + own)) of joint l - 1, weight 0 (a = own) of
+    // joint l, whose weight 2 is after.
+    const double before = ir[l - 1], own = ir[l], after = ir[l + 1];
+    const double w2 = before, w1 = -(before + own), w0 = own;
     const double inv2 = ig[l - 2], inv1 = ig[l - 1], inv0 = ig[l];
     const double gr2 = free_l ? w2 : 0.0, gr1 = free_l ? w1 : 0.0, gr0 = free_l ? w0 : 0.0;
     const double v2 = free_l ? inv2 : 0.0, v1 = free_l ? inv1 : 0.0, v0 = free_l ? inv0 : 0.0;
@@ -57,11 +59,11 @@ ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size
     g2[l] = gr0, i2[l] = v0, d2[l] = gr0 * gr0 * v0;
     // The block (l + 1, l): joint l - 1 (particle l its weight 1, l + 1 its weight 2), joint l (0 and 1).
     const bool pair = free_l && w[l + 1] != 0.0;
-    const double first1 = b1 * w1 * inv1;          // joint l - 1's weights 2 and 1
-    const double first0 = -(a0 + b0) * a0 * inv0;  // joint l's weights 1 and 0
+    const double first1 = own * w1 * inv1;              // joint l - 1's weights 2 and 1
+    const double first0 = -(own + after) * own * inv0;  // joint l's weights 1 and 0
     f0[l] = pair ? first1 : 0.0;
     f1[l] = pair ? first0 : 0.0;
-    const double coupling = b0 * a0 * inv0;  // joint l: particle l its weight 0, l + 2 its weight 2
+    const double coupling = after * own * inv0;  // joint l: particle l its weight 0, l + 2 its weight 2
     second[l] = free_l && w[l + 2] != 0.0 ? coupling : 0.0;
   }
 }

@@ -124,7 +124,7 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   const CableLoading& load = cable.loading;
   const bool loaded = !load.empty();
   const double* rest_lengths = cable.rest.data() + f;
-  const bool undamped = !loaded && !(shift_share > 0.0);  // no dashpot anywhere: the loop below's zeros left out
+  const bool undamped = !loaded && !(shift_share > 0.0);  // no dashpot anywhere: the general loop's zeros left out
   if (undamped)
   {
     undampedSegments(rest_lengths, settings.axial_stiffness * h2, m, alpha.data(), inv_rest.data(), stop.data());
@@ -132,38 +132,47 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
     std::fill(dashpot.begin(), dashpot.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
     std::fill(zero.begin(), zero.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
   }
-  for (std::size_t k = 0; !undamped && k < m; ++k)
+  else
   {
-    const double rest = cable.rest[f + k];
-    const double own_damping = loaded && shift_share > 0.0 ? load.axial_damping[f + k] : damping;
-    const double own_stiffness = loaded ? load.axial_stiffness[f + k] : settings.axial_stiffness;
-    const double share =
-        loaded && own_damping > 0.0 ? own_damping / (h * own_stiffness + own_damping) : (loaded ? 0.0 : shift_share);
-    const bool damped = share > 0.0 && k > 0;
-    alpha[k] = rest / (own_stiffness * h2 + (damped ? own_damping * h : 0.0));
-    inv_rest[k] = 1.0 / rest;
-    const double start = damped ? cable.startLength(f + k) - rest : 0.0;
-    stop[k] = rest + share * start;
-    const bool middle = damped && unilateral && start < 0.0;
-    kink[k] = middle ? -share * start : 0.0;
-    dashpot[k] = middle ? own_damping * h / rest : 0.0;
-    zero[k] = middle ? start * (1.0 - share) : 0.0;
-    dashpots = dashpots || middle;
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      const double rest = cable.rest[f + k];
+      const double own_damping = loaded && shift_share > 0.0 ? load.axial_damping[f + k] : damping;
+      const double own_stiffness = loaded ? load.axial_stiffness[f + k] : settings.axial_stiffness;
+      const double share =
+          loaded && own_damping > 0.0 ? own_damping / (h * own_stiffness + own_damping) : (loaded ? 0.0 : shift_share);
+      const bool damped = share > 0.0 && k > 0;
+      alpha[k] = rest / (own_stiffness * h2 + (damped ? own_damping * h : 0.0));
+      inv_rest[k] = 1.0 / rest;
+      const double start = damped ? cable.startLength(f + k) - rest : 0.0;
+      stop[k] = rest + share * start;
+      const bool middle = damped && unilateral && start < 0.0;
+      kink[k] = middle ? -share * start : 0.0;
+      dashpot[k] = middle ? own_damping * h / rest : 0.0;
+      zero[k] = middle ? start * (1.0 - share) : 0.0;
+      dashpots = dashpots || middle;
+    }
   }
   const std::size_t joints = bending ? m - 1 : 0;  // m >= 2 with bending
-  for (std::size_t k = 0; loaded && k < joints; ++k)
+  if (loaded)
   {
-    // The joint's two half segments in series: each half's compliance L / (2 EI) (a segment of EI 0 is a
-    // hinge: infinite compliance).
-    gamma[k] = (0.5 * cable.rest[f + k] / load.bending_stiffness[f + k] +
-                0.5 * cable.rest[f + k + 1] / load.bending_stiffness[f + k + 1]) /
-               h2;
+    for (std::size_t k = 0; k < joints; ++k)
+    {
+      // The joint's two half segments in series: each half's compliance L / (2 EI) (a segment of EI 0 is a
+      // hinge: infinite compliance).
+      gamma[k] = (0.5 * cable.rest[f + k] / load.bending_stiffness[f + k] +
+                  0.5 * cable.rest[f + k + 1] / load.bending_stiffness[f + k + 1]) /
+                 h2;
+    }
   }
-  const double bending_h2 = settings.bending_stiffness * h2;
-#pragma omp simd
-  for (std::size_t k = 0; k < (loaded ? 0 : joints); ++k)
+  else
   {
-    gamma[k] = 0.5 * (rest_lengths[k] + rest_lengths[k + 1]) / bending_h2;
+    const double bending_h2 = settings.bending_stiffness * h2;
+#pragma omp simd
+    for (std::size_t k = 0; k < joints; ++k)
+    {
+      gamma[k] = 0.5 * (rest_lengths[k] + rest_lengths[k + 1]) / bending_h2;
+    }
   }
   std::copy(cable.x.begin() + static_cast<std::ptrdiff_t>(f), cable.x.end(), xt.begin());
   std::copy(cable.y.begin() + static_cast<std::ptrdiff_t>(f), cable.y.end(), yt.begin());
