@@ -29,7 +29,7 @@ run() {
   shift 2
   echo "== rov_tether_run scenarios/$name.yaml --out $out${*:+ $*}"
   "$RUN" "$ROOT/scenarios/$name.yaml" --out "$out" "$@" |
-    grep -E "^(simulated|deployed length|tension|max strain|newton|tether |warning|camera )" || true
+    grep -E "^(simulated|deployed length|tension|max strain|newton|tether |warning|camera | {16}[0-9])" || true
 }
 for name in "${names[@]}"; do
   run "$name" "$OUT/$name"

@@ -478,8 +478,9 @@ void Tether::subStep(double h, double t)
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
-  effort_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
-  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), solver_->lastRescued());
+  effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
+  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
+                         solver_->lastRescued());
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceLimit))
   {
@@ -511,9 +512,15 @@ void Tether::subStep(double h, double t)
   }
 }
 
-void SolverEffort::add(int sub_step_iterations, double residual, bool rescue)
+void SolverEffort::add(int sub_step_iterations, double residual, double tolerance, bool rescue)
 {
   rescued += rescue ? 1 : 0;
+  if (residual > tolerance)
+  {
+    ++unconverged;
+    unconverged_residual = residual;
+    unconverged_iterations = sub_step_iterations;
+  }
   if (sub_step_iterations >= 0)
   {
     ++substeps;

@@ -186,6 +186,14 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
           static_cast<unsigned long long>(s.solver.rescued), s.solver.rescued == 1 ? " had" : "s had", p.iterations,
           rov_tether::DirectSolver::kRescueBudget, rov_tether::DirectSolver::kMaxRescueIterations);
     }
+    if (s.solver.unconverged > 0)
+    {
+      std::printf(
+          "                %llu sub-step%s stopped short of solver_tolerance %.3g (state.csv's newton_residual "
+          "shows when)\n",
+          static_cast<unsigned long long>(s.solver.unconverged), s.solver.unconverged == 1 ? "" : "s",
+          p.solver_tolerance);
+    }
   }
   if (s.jumps > 0)
   {

@@ -35,15 +35,22 @@ struct SolverEffort
   /// Sub-steps whose solve had diverged within `iterations` and went on past them
   /// (ConstraintSolver::lastRescued).
   std::uint64_t rescued = 0;
+  /// Sub-steps that stopped with their residual above the solver's tolerance (`solver_tolerance`): at the
+  /// iteration limit (the rescue's too), or on a system that was not definite. Their state is kept, and the
+  /// tensions are those of an unconverged step.
+  std::uint64_t unconverged = 0;
+  /// The last of those: its residual [-] and iterations (NaN and -1 while there is none).
+  double unconverged_residual = std::numeric_limits<double>::quiet_NaN();
+  int unconverged_iterations = -1;
   /// Mean iterations per sub-step; NaN when none reported.
   double meanIterations() const
   {
     return substeps > 0 ? static_cast<double>(iterations) / static_cast<double>(substeps)
                         : std::numeric_limits<double>::quiet_NaN();
   }
-  /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none), and whether it
-  /// was `rescued`.
-  void add(int iterations, double residual, bool rescue = false);
+  /// Adds a sub-step's `iterations` (negative: not reported, ignored) and `residual` (NaN: none), whether it
+  /// was `rescued`, and counts it unconverged when its residual is above `tolerance`.
+  void add(int iterations, double residual, double tolerance, bool rescue = false);
 };
 
 /**
