@@ -7,8 +7,8 @@ namespace rov_tether::ros_layer
 namespace
 {
 
-/// Diagnostics stay ERROR (WARN for an outrun winch) for this long after a simulation failure, a skip or the
-/// vehicle outrunning the winch [s].
+/// Diagnostics stay ERROR (WARN for an outrun winch or a step short of the solver's tolerance) for this long
+/// after a simulation failure, a skip, the vehicle outrunning the winch or such a step [s].
 constexpr double kFailureReportTime = 5.0;
 
 }  // namespace
@@ -46,6 +46,23 @@ void TetherDiagnostics::report(const ros::Time& now)
                       "the cable stretches (spool tension above the %s)",
                       label_.c_str(), tether_.params().max_winch_speed,
                       tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+  }
+  const SolverEffort& effort = tether_.solverEffort();
+  if (effort.unconverged < reported_unconverged_)
+  {
+    reported_unconverged_ = 0;  // the tether was reset, and its count with it
+  }
+  if (effort.unconverged > reported_unconverged_)
+  {
+    reported_unconverged_ = effort.unconverged;
+    last_unconverged_time_ = now;
+    ROS_WARN_THROTTLE(5.0,
+                      "tether_node%s: a step stopped short of solver_tolerance %.3g (%llu so far): residual %.3g of "
+                      "a segment after %d iterations, so its tensions are not converged (raise iterations; "
+                      "docs/limitations.md)",
+                      label_.c_str(), tether_.params().solver_tolerance,
+                      static_cast<unsigned long long>(effort.unconverged), effort.unconverged_residual,
+                      effort.unconverged_iterations);
   }
   if (pose_input_.dropped() > reported_drops_)
   {
@@ -101,6 +118,26 @@ void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_upd
   status.add("physics load [% of wall time]", 100.0 * governor.physicsLoad());
   status.add("marker load [% of wall time]", 100.0 * governor.markerLoad());
   status.add("skips (fell behind)", schedule.skips);
+  const SolverEffort& effort = tether_.solverEffort();
+  if (effort.substeps > 0)
+  {
+    // The solver's effort (direct, which stops on solver_tolerance): the mean since the last report, and
+    // the counts and the largest residual since the start (or the last reset).
+    if (effort.substeps < period_start_.substeps)
+    {
+      period_start_ = SolverEffort{};  // the tether was reset, and its effort with it
+    }
+    const std::uint64_t substeps = effort.substeps - period_start_.substeps;
+    if (substeps > 0)
+    {
+      status.add("newton iterations per sub-step",
+                 static_cast<double>(effort.iterations - period_start_.iterations) / static_cast<double>(substeps));
+    }
+    status.add("newton residual, largest [of a segment]", effort.max_residual);
+    status.add("sub-steps short of solver_tolerance", effort.unconverged);
+    status.add("sub-steps rescued", effort.rescued);
+    period_start_ = effort;
+  }
   status.add("simulation failures", tether_.recoveryCount());
   if (!tether_.lastFailure().empty())
   {
@@ -140,6 +177,14 @@ void TetherDiagnostics::mergeAlarms(const TetherSummary& summary, diagnostic_upd
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "the vehicle outruns the winch (max_winch_speed %.2f m/s)",
                          tether_.params().max_winch_speed);
+  }
+  const SolverEffort& effort = tether_.solverEffort();
+  if (effort.unconverged > 0 && !last_unconverged_time_.isZero() &&
+      (now - last_unconverged_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN,
+                         "solver short of solver_tolerance: residual %.3g of a segment after %d iterations",
+                         effort.unconverged_residual, effort.unconverged_iterations);
   }
   if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
   {

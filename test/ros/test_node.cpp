@@ -127,8 +127,9 @@ class Harness
   std::map<std::string, geometry_msgs::TransformStamped> transforms_;  ///< Last /tf transform per child frame.
   bool started_ = false;
   bool saw_tether_diagnostics_ = false;
-  long rejected_poses_ = -1;    ///< "rejected poses" of the last tether diagnostics (-1: none yet).
-  std::string tether_summary_;  ///< Message of the last tether diagnostics.
+  long rejected_poses_ = -1;      ///< "rejected poses" of the last tether diagnostics (-1: none yet).
+  std::string tether_summary_;    ///< Message of the last tether diagnostics.
+  long short_of_tolerance_ = -1;  ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
   double sim_time_ = 1000.0;
 
  private:
@@ -195,6 +196,10 @@ class Harness
         if (kv.key == "rejected poses")
         {
           rejected_poses_ = std::stol(kv.value);
+        }
+        if (kv.key == "sub-steps short of solver_tolerance")
+        {
+          short_of_tolerance_ = std::stol(kv.value);
         }
       }
     }
@@ -683,6 +688,32 @@ TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
   const double stop = x0 + 1.5 * (h.sim_time_ - start);
   ASSERT_TRUE(h.drive(1.5, [&](double) { return poseAt(stop, 0.0, -0.5); }));
   EXPECT_NE(h.tether_summary_.find("the vehicle outruns the winch"), std::string::npos) << h.tether_summary_;
+}
+
+// A step the solver stops short of solver_tolerance is reported, not only counted by the runner: /diagnostics
+// counts such sub-steps and warns for 5 s after the last. With one Newton iteration a step, a moving cable's steps
+// stop short (Runner.CountsTheSubStepsThatStopShortOfTheTolerance: a Newton step leaves at least the segments'
+// second-order stretch); back at the default 10 with the vehicle holding still, none does, the count stays and
+// the warning goes.
+TEST(TetherNode, StepsShortOfTheSolverToleranceAreReported)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ros::ServiceClient client = h.nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  auto one = reconfigure({}, {{"iterations", 1}});
+  ASSERT_TRUE(client.call(one));
+  const double t0 = h.sim_time_;
+  ASSERT_TRUE(h.drive(2.5, [t0](double t) { return poseAt(1.5 + 0.4 * (t - t0), 0.0, -0.5); }));
+  EXPECT_GT(h.short_of_tolerance_, 0);
+  EXPECT_NE(h.tether_summary_.find("short of solver_tolerance"), std::string::npos) << h.tether_summary_;
+  const long counted = h.short_of_tolerance_;
+  auto ten = reconfigure({}, {{"iterations", 10}});
+  ASSERT_TRUE(client.call(ten));
+  const double x = 1.5 + 0.4 * (h.sim_time_ - t0);
+  ASSERT_TRUE(h.drive(7.0, [x](double) { return poseAt(x, 0.0, -0.5); }));
+  EXPECT_GE(h.short_of_tolerance_, counted);
+  EXPECT_EQ(h.tether_summary_.find("short of solver_tolerance"), std::string::npos) << h.tether_summary_;
 }
 
 TEST(TetherNode, TimeGoingBackwardsResetsTheTether)
