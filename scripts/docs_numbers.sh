@@ -30,6 +30,22 @@ run() {
   echo "== rov_tether_run scenarios/$name.yaml --out $out${*:+ $*}"
   "$RUN" "$ROOT/scenarios/$name.yaml" --out "$out" "$@" |
     grep -E "^(simulated|deployed length|tension|max strain|newton|tether |warning|camera | {16}[0-9])" || true
+  # Where the sub-steps short of solver_tolerance were (docs/runner.md): state.csv's rows that carry one.
+  if [ -f "$out/state.csv" ]; then
+    /usr/bin/python3 - "$out/state.csv" "$@" <<'PYTHON'
+import csv, sys
+tolerance = 1e-8
+for arg in sys.argv[2:]:
+    if arg.startswith("solver_tolerance="):
+        tolerance = float(arg.split("=", 1)[1])
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if "newton_residual" in r and r["newton_residual"] != "nan"]
+short = [r for r in rows if float(r["newton_residual"]) > tolerance]
+if short:
+    print("short of tolerance in the rows at " + ", ".join(
+        "t = %s s (residual %s, %s iterations)" % (r["t"].rstrip("0").rstrip("."), r["newton_residual"], r["newton_max"])
+        for r in short))
+PYTHON
+  fi
 }
 for name in "${names[@]}"; do
   run "$name" "$OUT/$name"

@@ -19,14 +19,39 @@ namespace
 
 const std::vector<std::string>& nodeOptionNames()
 {
-  static const std::vector<std::string> names = {
-      "world_frame",        "pose_source",        "rov_frame",           "attachment_offset",  "spool_frame",
-      "spool_position",     "physics_rate",       "interpolation_delay", "state_rate",         "marker_rate",
-      "marker_line_width",  "tension_full_scale", "stripe_segments",     "stale_pose_timeout", "max_tension_warning",
-      "pose_topic",         "overload_policy",    "min_iterations",      "cpu_budget",         "max_lag",
-      "spool_outlet_frame", "cable_end_frame",    "wrap_warning_turns",  "snag_ratio",         "world_frame_from_pose",
-      "max_pose_future",    "vehicle_model",      "vehicle_params",      "cmd_wrench_timeout", "vehicle_start",
-      "spool_on",           "spool_outlet_offset"};
+  static const std::vector<std::string> names = {"world_frame",
+                                                 "pose_source",
+                                                 "rov_frame",
+                                                 "attachment_offset",
+                                                 "spool_frame",
+                                                 "spool_position",
+                                                 "physics_rate",
+                                                 "interpolation_delay",
+                                                 "state_rate",
+                                                 "marker_rate",
+                                                 "marker_line_width",
+                                                 "tension_full_scale",
+                                                 "stripe_segments",
+                                                 "stale_pose_timeout",
+                                                 "max_tension_warning",
+                                                 "pose_topic",
+                                                 "overload_policy",
+                                                 "min_iterations",
+                                                 "cpu_budget",
+                                                 "max_lag",
+                                                 "spool_outlet_frame",
+                                                 "cable_end_frame",
+                                                 "wrap_warning_turns",
+                                                 "snag_ratio",
+                                                 "world_frame_from_pose",
+                                                 "max_pose_future",
+                                                 "vehicle_model",
+                                                 "vehicle_params",
+                                                 "cmd_wrench_timeout",
+                                                 "vehicle_start",
+                                                 "spool_on",
+                                                 "spool_outlet_offset",
+                                                 "solver_residual_warning"};
   return names;
 }
 
@@ -226,6 +251,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.number("stale_pose_timeout", &candidate.stale_pose_timeout, 0.01, 3600.0);
   read.number("max_pose_future", &candidate.max_pose_future, 0.0, 3600.0);
   read.number("max_tension_warning", &candidate.max_tension_warning, 0.0, 1e9);
+  read.number("solver_residual_warning", &candidate.solver_residual_warning, 0.0, 1.0);
   read.text("pose_topic", &candidate.pose_topic);
   read.text("overload_policy", &candidate.overload_policy);
   double min_iterations = candidate.min_iterations;

@@ -1,6 +1,7 @@
 #include "rov_tether/ros/tether_diagnostics.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace rov_tether::ros_layer
 {
@@ -50,19 +51,33 @@ void TetherDiagnostics::report(const ros::Time& now)
   const SolverEffort& effort = tether_.solverEffort();
   if (effort.unconverged < reported_unconverged_)
   {
-    reported_unconverged_ = 0;  // the tether was reset, and its count with it
+    reported_unconverged_ = 0;  // the tether was reset without restarted()
   }
   if (effort.unconverged > reported_unconverged_)
   {
+    // Of the sub-steps short of the tolerance since the last physics tick, the last one's residual is known:
+    // one that ended above solver_residual_warning is warned of, one a few times the tolerance (as a corner of
+    // the path can leave) only counted. Not while overload_policy has lowered the iterations: its own warning
+    // says so.
     reported_unconverged_ = effort.unconverged;
-    last_unconverged_time_ = now;
-    ROS_WARN_THROTTLE(5.0,
-                      "tether_node%s: a step stopped short of solver_tolerance %.3g (%llu so far): residual %.3g of "
-                      "a segment after %d iterations, so its tensions are not converged (raise iterations; "
-                      "docs/limitations.md)",
-                      label_.c_str(), tether_.params().solver_tolerance,
-                      static_cast<unsigned long long>(effort.unconverged), effort.unconverged_residual,
-                      effort.unconverged_iterations);
+    if (effort.unconverged_residual > options_.solver_residual_warning &&
+        scheduler_.schedule(index_).governor.degraded().empty())
+    {
+      last_unconverged_time_ = now;
+      last_unconverged_residual_ = effort.unconverged_residual;
+      last_unconverged_iterations_ = effort.unconverged_iterations;
+      // Throttled per tether (ROS_WARN_THROTTLE's is per line: one tether's would hide another's).
+      if (last_unconverged_log_.isZero() || (now - last_unconverged_log_).toSec() >= kFailureReportTime)
+      {
+        last_unconverged_log_ = now;
+        ROS_WARN(
+            "tether_node%s: a sub-step ended short of solver_tolerance %.3g, at a residual of %.3g of a segment "
+            "after %d iterations (%llu short so far): its tensions are not converged (raise iterations; "
+            "docs/limitations.md)",
+            label_.c_str(), tether_.params().solver_tolerance, last_unconverged_residual_, last_unconverged_iterations_,
+            static_cast<unsigned long long>(effort.unconverged));
+      }
+    }
   }
   if (pose_input_.dropped() > reported_drops_)
   {
@@ -77,6 +92,14 @@ void TetherDiagnostics::report(const ros::Time& now)
                       "x dt + max_vehicle_jump %.2f m): cable re-laid",
                       label_.c_str(), tether_.params().max_vehicle_speed, tether_.params().max_vehicle_jump);
   }
+}
+
+void TetherDiagnostics::restarted()
+{
+  // The tether's solver effort starts again from zero.
+  period_start_ = SolverEffort{};
+  reported_unconverged_ = 0;
+  last_unconverged_time_ = ros::Time();
 }
 
 void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
@@ -121,19 +144,15 @@ void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_upd
   const SolverEffort& effort = tether_.solverEffort();
   if (effort.substeps > 0)
   {
-    // The solver's effort (direct, which stops on solver_tolerance): the mean since the last report, and
-    // the counts and the largest residual since the start (or the last reset).
-    if (effort.substeps < period_start_.substeps)
-    {
-      period_start_ = SolverEffort{};  // the tether was reset, and its effort with it
-    }
-    const std::uint64_t substeps = effort.substeps - period_start_.substeps;
-    if (substeps > 0)
-    {
-      status.add("newton iterations per sub-step",
-                 static_cast<double>(effort.iterations - period_start_.iterations) / static_cast<double>(substeps));
-    }
-    status.add("newton residual, largest [of a segment]", effort.max_residual);
+    // The solver's effort (direct, which stops on solver_tolerance): the mean since the last report (NaN with
+    // no sub-step since), the last sub-step's residual, and the counts since the start or the last reset.
+    const bool counted_on = effort.substeps >= period_start_.substeps && effort.iterations >= period_start_.iterations;
+    const std::uint64_t substeps = counted_on ? effort.substeps - period_start_.substeps : 0;
+    status.add("newton iterations per sub-step",
+               substeps > 0
+                   ? static_cast<double>(effort.iterations - period_start_.iterations) / static_cast<double>(substeps)
+                   : std::numeric_limits<double>::quiet_NaN());
+    status.add("newton residual, last sub-step [of a segment]", tether_.solverResidual());
     status.add("sub-steps short of solver_tolerance", effort.unconverged);
     status.add("sub-steps rescued", effort.rescued);
     period_start_ = effort;
@@ -178,13 +197,11 @@ void TetherDiagnostics::mergeAlarms(const TetherSummary& summary, diagnostic_upd
     status.mergeSummaryf(DiagnosticStatus::WARN, "the vehicle outruns the winch (max_winch_speed %.2f m/s)",
                          tether_.params().max_winch_speed);
   }
-  const SolverEffort& effort = tether_.solverEffort();
-  if (effort.unconverged > 0 && !last_unconverged_time_.isZero() &&
-      (now - last_unconverged_time_).toSec() < kFailureReportTime)
+  if (!last_unconverged_time_.isZero() && (now - last_unconverged_time_).toSec() < kFailureReportTime)
   {
     status.mergeSummaryf(DiagnosticStatus::WARN,
                          "solver short of solver_tolerance: residual %.3g of a segment after %d iterations",
-                         effort.unconverged_residual, effort.unconverged_iterations);
+                         last_unconverged_residual_, last_unconverged_iterations_);
   }
   if (!last_failure_time_.isZero() && (now - last_failure_time_).toSec() < kFailureReportTime)
   {

@@ -140,6 +140,7 @@ void TetherNode::restarted(const ros::Time& now)
 {
   pose_input_.reset(now);
   publisher_.restart(tether_);
+  diagnostics_.restarted();
   if (vehicle_io_)
   {
     vehicle_io_->restarted();

@@ -865,8 +865,10 @@ TEST(ParameterServer, EveryShippedConfigFileLoads)
   }
   NodeOptions node_defaults;
   node_defaults.physics_rate = 1.0;
+  node_defaults.solver_residual_warning = 0.5;
   ASSERT_EQ(loadNodeOptions(loadYaml("config/node.yaml"), &node_defaults), "");
   EXPECT_EQ(node_defaults.physics_rate, NodeOptions{}.physics_rate);
+  EXPECT_EQ(node_defaults.solver_residual_warning, NodeOptions{}.solver_residual_warning);
   EXPECT_EQ(node_defaults.world_frame, NodeOptions{}.world_frame);
 }
 

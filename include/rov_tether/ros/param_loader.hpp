@@ -44,7 +44,10 @@ struct NodeOptions
   /// A pose stamped further ahead of ROS time than this is refused and counted: taken, it would have every
   /// later pose refused as older than it until ROS time caught up (a clock an hour ahead froze the tether) [s].
   double max_pose_future = 1.0;
-  double max_tension_warning = 500.0;   ///< Tension above this is a diagnostics warning [N].
+  double max_tension_warning = 500.0;  ///< Tension above this is a diagnostics warning [N].
+  /// A sub-step the solver (direct) ends short of solver_tolerance with its relative residual above this is a
+  /// diagnostics warning for 5 s, and logged; every one short of the tolerance is counted [-].
+  double solver_residual_warning = 1e-4;
   std::string pose_topic = "rov_pose";  ///< Vehicle pose topic (pose_source topic), relative to the node's namespace.
   /// What to give up when the physics cannot hold real time: "reduce_iterations" (down to
   /// min_iterations), "reduce_markers" (halve the marker rate, down to 1 Hz) or "none". Always reported.
