@@ -49,10 +49,6 @@ void TetherDiagnostics::report(const ros::Time& now)
                       tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
   }
   const SolverEffort& effort = tether_.solverEffort();
-  if (effort.unconverged < reported_unconverged_)
-  {
-    reported_unconverged_ = 0;  // the tether was reset without restarted()
-  }
   if (effort.unconverged > reported_unconverged_)
   {
     // Of the sub-steps short of the tolerance since the last physics tick, the last one's residual is known:
@@ -146,8 +142,7 @@ void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_upd
   {
     // The solver's effort (direct, which stops on solver_tolerance): the mean since the last report (NaN with
     // no sub-step since), the last sub-step's residual, and the counts since the start or the last reset.
-    const bool counted_on = effort.substeps >= period_start_.substeps && effort.iterations >= period_start_.iterations;
-    const std::uint64_t substeps = counted_on ? effort.substeps - period_start_.substeps : 0;
+    const std::uint64_t substeps = effort.substeps - period_start_.substeps;  // restarted() clears the start
     status.add("newton iterations per sub-step",
                substeps > 0
                    ? static_cast<double>(effort.iterations - period_start_.iterations) / static_cast<double>(substeps)

@@ -127,9 +127,9 @@ class Harness
   std::map<std::string, geometry_msgs::TransformStamped> transforms_;  ///< Last /tf transform per child frame.
   bool started_ = false;
   bool saw_tether_diagnostics_ = false;
-  long rejected_poses_ = -1;      ///< "rejected poses" of the last tether diagnostics (-1: none yet).
-  std::string tether_summary_;    ///< Message of the last tether diagnostics.
-  long short_of_tolerance_ = -1;  ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
+  long rejected_poses_ = -1;          ///< "rejected poses" of the last tether diagnostics (-1: none yet).
+  std::string tether_summary_;        ///< Message of the last tether diagnostics.
+  long short_of_tolerance_ = -1;      ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
   int tether_diagnostics_count_ = 0;  ///< Tether diagnostics statuses received.
   double sim_time_ = 1000.0;
 
