@@ -7,7 +7,9 @@ namespace rov_tether::banded
 
 /**
  * Symmetric positive definite solves of the direct solver, written out (the "sweep") and through LAPACK,
- * so the two can be measured against each other (bench: BM_TridiagonalSolve, BM_BandedSolve).
+ * so the two can be measured against each other (bench: BM_TridiagonalSolve, BM_BandedSolve). The scalar
+ * tridiagonal and band solves are in banded.cpp; the systems of 3x3 blocks in block_banded.cpp (its row
+ * steps: block_rows.hpp).
  *
  * Tridiagonal: diagonal d[0..n), off-diagonal e[0..n-1) (e[i] couples i and i+1); b[0..n) is
  * overwritten with the solution; d and e are overwritten with the factors.

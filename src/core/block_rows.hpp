@@ -1,0 +1,427 @@
+#pragma once
+// A block row of the direct solver's block L D L^T (banded::solveBlockBanded, block_banded.cpp): its factors,
+// the steps that eliminate and factor one block row, the twisted factorisation's meeting, and the steps of the
+// forward and backward substitutions on one row. Inline, for block_banded.cpp's loops (each compiled there for
+// every instruction set); private to the core.
+#include <cstddef>
+
+#include "banded.hpp"
+#include "simd.hpp"
+
+namespace rov_tether::banded::block
+{
+
+/// One block row's factors: the diagonal block's own unit-lower L (l10, l20, l21) and D (d0, d1, d2), and
+/// the factors of the whole matrix that tie it to the two rows eliminated before it in its chain (row-major
+/// 3x3): L(l, l-1) and L(l, l-2) in a chain down the rows, L(p, p+1) and L(p, p+2) in one up them.
+struct BlockRow
+{
+  double l10, l20, l21, d0, d1, d2;
+  double inv[3];  ///< 1 / d0, 1 / d1, 1 / d2: each pivot's reciprocal, taken once
+  double below1[9];
+  double below2[9];
+};
+static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
+
+/// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
+/// Without branches (a pivot that is not positive leaves the later values meaningless, and the result false),
+/// so that two chains' blocks factored one after the other overlap (chainPair).
+ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
+{
+  row.d0 = s[0];
+  row.l10 = s[3] / row.d0;
+  row.l20 = s[6] / row.d0;
+  row.d1 = s[4] - row.l10 * s[3];
+  row.l21 = (s[7] - row.l20 * s[3]) / row.d1;
+  row.d2 = s[8] - row.l20 * s[6] - row.l21 * row.l21 * row.d1;
+  row.inv[0] = 1.0 / row.d0, row.inv[1] = 1.0 / row.d1, row.inv[2] = 1.0 / row.d2;
+  return row.d0 > 0.0 && row.d1 > 0.0 && row.d2 > 0.0;
+}
+
+/// y = a L^-T for the unit-lower L of `row` (each row of a, forward substitution): y L^T = a.
+ROV_TETHER_INLINE void solveTransposed(const double* a, const BlockRow& row, double* y)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    y[3 * r] = a[3 * r];
+    y[3 * r + 1] = a[3 * r + 1] - row.l10 * y[3 * r];
+    y[3 * r + 2] = a[3 * r + 2] - row.l20 * y[3 * r] - row.l21 * y[3 * r + 1];
+  }
+}
+
+/// s -= y D^-1 y^T (lower triangle) and stores L(l, k) = y D^-1 into `below`.
+ROV_TETHER_INLINE void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
+{
+  const double* inv = pivot.inv;
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      below[3 * r + c] = y[3 * r + c] * inv[c];
+    }
+  }
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t c = 0; c <= r; ++c)
+    {
+      s[3 * r + c] -= below[3 * r] * y[3 * c] + below[3 * r + 1] * y[3 * c + 1] + below[3 * r + 2] * y[3 * c + 2];
+    }
+  }
+}
+
+/// Y2 = c L^-T for the unit-lower L of `row` (solveTransposed of c I, its zeros left out: the same
+/// roundings), upper triangular: y[0], y[1], y[2], y[4], y[5], y[8] are set, the rest is 0.
+ROV_TETHER_INLINE void scaledTransposedInverse(double c, const BlockRow& row, double* y)
+{
+  const double y01 = -(row.l10 * c);
+  y[0] = c, y[1] = y01, y[2] = -(row.l20 * c) - row.l21 * y01;
+  y[3] = 0.0, y[4] = c, y[5] = -(row.l21 * c);
+  y[6] = 0.0, y[7] = 0.0, y[8] = c;
+}
+
+/// schurUpdate for the upper-triangular y of scaledTransposedInverse (its zero products left out).
+ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, double* below)
+{
+  const double* inv = pivot.inv;
+  below[0] = y[0] * inv[0], below[1] = y[1] * inv[1], below[2] = y[2] * inv[2];
+  below[3] = 0.0, below[4] = y[4] * inv[1], below[5] = y[5] * inv[2];
+  below[6] = 0.0, below[7] = 0.0, below[8] = y[8] * inv[2];
+  s[0] -= below[0] * y[0] + below[1] * y[1] + below[2] * y[2];
+  s[3] -= below[4] * y[1] + below[5] * y[2];
+  s[4] -= below[4] * y[4] + below[5] * y[5];
+  s[6] -= below[8] * y[2];
+  s[7] -= below[8] * y[5];
+  s[8] -= below[8] * y[8];
+}
+
+/// out -= y m^T for y upper triangular (scaledTransposedInverse's) and m full: a row's coupling to the row
+/// after the one it is eliminated against (and, twisted, what a chain's row leaves between the meeting rows).
+ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const double* m, double* out)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    for (std::size_t col = 0; col < 3; ++col)
+    {
+      double sum = y[4 * r] * m[3 * col + r];
+      for (std::size_t q = r + 1; q < 3; ++q)
+      {
+        sum += y[3 * r + q] * m[3 * col + q];
+      }
+      out[3 * r + col] -= sum;
+    }
+  }
+}
+
+/// A block row's elimination against the two rows eliminated before it in its chain (prev1 the last, prev2
+/// the one before), in two parts: eliminateSecond against prev2 (A(row, prev2) = c I), then eliminateFirst
+/// against prev1 (a1 = A(row, prev1)), which leave s = S_row for factorBlock:
+/// s -= Y2 D^-1 Y2^T + Y1 D^-1 Y1^T, with L(row, prev2) into out.below2 and L(row, prev1) into out.below1.
+ROV_TETHER_INLINE void eliminateSecond(double* s, double* a1, double c, const BlockRow& prev1, const BlockRow& prev2,
+                                       BlockRow& out)
+{
+  double y2[9];
+  scaledTransposedInverse(c, prev2, y2);
+  schurUpdateUpper(y2, prev2, s, out.below2);
+  subtractUpperTimesTransposed(y2, prev1.below1, a1);  // a1 -= Y2 L(prev1, prev2)^T
+}
+ROV_TETHER_INLINE void eliminateFirst(double* s, const double* a1, const BlockRow& prev1, BlockRow& out)
+{
+  double y1[9];
+  solveTransposed(a1, prev1, y1);
+  schurUpdate(y1, prev1, s, out.below1);
+}
+
+/// Block row p's inputs in a chain running down the rows (kReverse false: its last row eliminated is p - 1)
+/// or up them (true: p + 1): s = A(p, p), a1 = its coupling to the last row (up the rows, A(p, p + 1), the
+/// transpose of the stored A(p + 1, p)) and the c of its coupling c I to the row before (0 without one).
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void loadRow(const double* __restrict diag, const double* __restrict first,
+                               const double* __restrict second, const BlockLayout& layout, std::size_t p, bool has1,
+                               bool has2, double* s, double* a1, double* c)
+{
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    s[i] = diag[p * layout.row + i * layout.entry];
+  }
+  if (has1)
+  {
+    const double* stored = first + (kReverse ? p : p - 1) * layout.row;
+    for (std::size_t i = 0; i < 9; ++i)
+    {
+      a1[i] = stored[(kReverse ? 3 * (i % 3) + i / 3 : i) * layout.entry];
+    }
+  }
+  *c = kSecond && has2 ? second[kReverse ? p : p - 2] : 0.0;
+}
+
+/// Block row p eliminated against prev1 and prev2 (nullptr where there is none) and factored, in a chain
+/// running down the rows or up them (loadRow).
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __restrict first,
+                                const double* __restrict second, const BlockLayout& layout, std::size_t p,
+                                const BlockRow* prev1, const BlockRow* prev2, BlockRow& out)
+{
+  double s[9], a1[9], c = 0.0;
+  loadRow<kSecond, kReverse>(diag, first, second, layout, p, prev1 != nullptr, prev2 != nullptr, s, a1, &c);
+  if (kSecond && prev2 != nullptr)
+  {
+    eliminateSecond(s, a1, c, *prev1, *prev2, out);
+  }
+  if (prev1 != nullptr)
+  {
+    eliminateFirst(s, a1, *prev1, out);
+  }
+  return factorBlock(s, out);
+}
+
+/// chainRow for row t of the chain down the rows and row p of the chain up them, each step of the one
+/// followed by the same step of the other, so that the processor overlaps the two chains' dependent
+/// divisions. Both rows have both predecessors (t >= 2, p + 2 < n).
+template <bool kSecond>
+ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __restrict first,
+                                 const double* __restrict second, const BlockLayout& layout, std::size_t t,
+                                 std::size_t p, BlockRow* rows)
+{
+  double s[2][9], a1[2][9], c[2];
+  loadRow<kSecond, false>(diag, first, second, layout, t, true, true, s[0], a1[0], &c[0]);
+  loadRow<kSecond, true>(diag, first, second, layout, p, true, true, s[1], a1[1], &c[1]);
+  if (kSecond)
+  {
+    eliminateSecond(s[0], a1[0], c[0], rows[t - 1], rows[t - 2], rows[t]);
+    eliminateSecond(s[1], a1[1], c[1], rows[p + 1], rows[p + 2], rows[p]);
+  }
+  eliminateFirst(s[0], a1[0], rows[t - 1], rows[t]);
+  eliminateFirst(s[1], a1[1], rows[p + 1], rows[p]);
+  const bool top = factorBlock(s[0], rows[t]);
+  const bool bottom = factorBlock(s[1], rows[p]);
+  return top && bottom;
+}
+
+/// The twisted factorisation (factorTwisted) from this many block rows on; below it, factorBlocks.
+constexpr std::size_t kTwistedFrom = 8;
+// factorTwisted reads rows k-2 and k+3 around its meeting (k = (n - 2) / 2): n >= 6 for bandwidth 2.
+static_assert(kTwistedFrom >= 6, "the twisted factorisation needs two rows in each chain");
+
+/// Where factorTwisted's two chains meet: block rows k and k + 1.
+inline std::size_t meeting(std::size_t n) { return (n - 2) / 2; }
+
+/// factorTwisted's factors of the meeting rows besides their own BlockRows: L(k, k+2), L(k+1, k-1) (both
+/// upper triangular, as every second-band factor) and L(k+1, k). They follow the n BlockRows in work.
+struct Meeting
+{
+  double k_k2[9], k1_km1[9], k1_k[9];
+};
+// Each further row adds 36 doubles of work and a BlockRow's fewer.
+static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * 36 * sizeof(double),
+              "factorTwisted's factors fit the 36 n doubles of work");
+/// The twisted pulled solve keeps the pull's forward pass (3 (k + 2) <= 3 n doubles) in work from kPulledScratch n
+/// doubles on, after factorTwisted's factors (n BlockRows and a Meeting).
+constexpr std::size_t kPulledScratch = 32;
+// From kTwistedFrom rows on (and so on for every larger n, a BlockRow being at most kPulledScratch doubles), the
+// factors end before the scratch, and the scratch's 3 n doubles end within the work.
+static_assert(sizeof(BlockRow) <= kPulledScratch * sizeof(double) &&
+                  kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * kPulledScratch * sizeof(double) &&
+                  kPulledScratch + 3 <= 36,
+              "the pulled solve's scratch follows the factors within the 36 n doubles of work");
+
+/// out -= m v and out -= m^T v for row-major 3x3 m.
+ROV_TETHER_INLINE void multiplySubtract(const double* m, const double* v, double* out)
+{
+  for (std::size_t r = 0; r < 3; ++r)
+  {
+    out[r] -= m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
+  }
+}
+ROV_TETHER_INLINE void multiplyTransposedSubtract(const double* m, const double* v, double* out)
+{
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    out[c] -= m[c] * v[0] + m[3 + c] * v[1] + m[6 + c] * v[2];
+  }
+}
+
+/// u -= m v and x -= m^T v for m upper triangular (a second-band factor: its zeros left out, the same
+/// roundings as forwardBlocks' and backwardBlocks').
+ROV_TETHER_INLINE void upperSubtract(const double* m, const double* v, double* u)
+{
+  u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+  u[1] -= m[4] * v[1] + m[5] * v[2];
+  u[2] -= m[8] * v[2];
+}
+ROV_TETHER_INLINE void upperTransposedSubtract(const double* m, const double* v, double* x)
+{
+  x[0] -= m[0] * v[0];
+  x[1] -= m[1] * v[0] + m[4] * v[1];
+  x[2] -= m[2] * v[0] + m[5] * v[1] + m[8] * v[2];
+}
+
+/// x = D_l^-1 x (the backward pass's first move on a row).
+ROV_TETHER_INLINE void divide(const BlockRow& row, double* x) { x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2; }
+
+/// x = L_l^-T x for row l's own unit-lower L_l.
+ROV_TETHER_INLINE void ownTransposed(const BlockRow& row, double* x)
+{
+  x[1] -= row.l21 * x[2];
+  x[0] -= row.l10 * x[1] + row.l20 * x[2];
+}
+
+/// Block row r's values of b in the elimination order (factorBlocks' kReverse).
+template <bool kReverse>
+ROV_TETHER_INLINE double* at(double* b, std::size_t n, std::size_t r)
+{
+  return b + 3 * (kReverse ? n - 1 - r : r);
+}
+
+/// u_l = L_l^-1 v for the unit-lower L_l of `row`.
+ROV_TETHER_INLINE void ownForward(const BlockRow& row, double* u)
+{
+  u[1] -= row.l10 * u[0];
+  u[2] -= row.l20 * u[0] + row.l21 * u[1];
+}
+
+/// x = L_l^-T D_l^-1 x for `row`'s own factors.
+ROV_TETHER_INLINE void ownBackward(const BlockRow& row, double* x)
+{
+  divide(row, x);
+  ownTransposed(row, x);
+}
+
+/// A row's forward step in its chain: u -= L(row, prev1) u1 + L(row, prev2) u2 (u1, u2 nullptr where there is
+/// no such row; L(row, prev2) is upper triangular), then u = L_row^-1 u.
+template <bool kSecond>
+ROV_TETHER_INLINE void forwardRow(const BlockRow& row, const double* u1, const double* u2, double* u)
+{
+  if (u1 != nullptr)
+  {
+    multiplySubtract(row.below1, u1, u);
+  }
+  if (kSecond && u2 != nullptr)
+  {
+    upperSubtract(row.below2, u2, u);
+  }
+  ownForward(row, u);
+}
+
+/// A row's backward step: x = L_row^-T (D_row^-1 x - m1^T x1 - m2^T x2), m1 and m2 the factors that tie the
+/// rows eliminated after it (their unknowns x1 and x2, nullptr where there is none) to it; m2 upper triangular.
+template <bool kSecond>
+ROV_TETHER_INLINE void backwardRow(const BlockRow& row, const double* m1, const double* x1, const double* m2,
+                                   const double* x2, double* x)
+{
+  divide(row, x);
+  if (x1 != nullptr)
+  {
+    multiplyTransposedSubtract(m1, x1, x);
+  }
+  if (kSecond && x2 != nullptr)
+  {
+    upperTransposedSubtract(m2, x2, x);
+  }
+  ownTransposed(row, x);
+}
+
+/// L u = b (block forward), with the factors in work.
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void forwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
+{
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    forwardRow<kSecond>(rows[l], l >= 1 ? at<kReverse>(b, n, l - 1) : nullptr,
+                        l >= 2 ? at<kReverse>(b, n, l - 2) : nullptr, at<kReverse>(b, n, l));
+  }
+}
+
+/// D and L^T (block backward), with the factors in work.
+template <bool kSecond, bool kReverse>
+ROV_TETHER_INLINE void backwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
+{
+  for (std::size_t l = n; l-- > 0;)
+  {
+    const bool one = l + 1 < n, two = l + 2 < n;
+    backwardRow<kSecond>(rows[l], one ? rows[l + 1].below1 : nullptr, one ? at<kReverse>(b, n, l + 1) : nullptr,
+                         two ? rows[l + 2].below2 : nullptr, two ? at<kReverse>(b, n, l + 2) : nullptr,
+                         at<kReverse>(b, n, l));
+  }
+}
+
+/// The forward pass's meeting rows k and k + 1 (v(p): block row p's values), after both chains. kBottom false:
+/// the bottom chain's rows are 0 (the pull's pass of substituteTwistedPulled), and their terms are left out.
+template <bool kSecond, bool kBottom, typename Rows>
+ROV_TETHER_INLINE void forwardMeeting(std::size_t k, const BlockRow* __restrict rows, const Meeting& meet, Rows v)
+{
+  multiplySubtract(rows[k].below1, v(k - 1), v(k));
+  if (kBottom)
+  {
+    multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
+  }
+  if (kSecond)
+  {
+    upperSubtract(rows[k].below2, v(k - 2), v(k));
+    if (kBottom)
+    {
+      upperSubtract(meet.k_k2, v(k + 2), v(k));
+      upperSubtract(rows[k + 1].below2, v(k + 3), v(k + 1));
+    }
+    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
+  }
+  ownForward(rows[k], v(k));
+  multiplySubtract(meet.k1_k, v(k), v(k + 1));
+  ownForward(rows[k + 1], v(k + 1));
+}
+
+/// The forward pass after factorTwisted (u = L^-1 b in place): down the top chain and up the bottom chain
+/// together, then the meeting rows.
+template <bool kSecond>
+ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
+                                      const Meeting& meet, double* __restrict q = nullptr)
+{
+  const std::size_t k = meeting(n);
+  const std::size_t bottom = n - 2 - k;
+  auto v = [b](std::size_t p) { return b + 3 * p; };
+  auto w = [q](std::size_t p) { return q + 3 * p; };
+  for (std::size_t i = 0; i < bottom; ++i)
+  {
+    if (i < k)
+    {
+      forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
+      if (q != nullptr && i >= 1)
+      {
+        // The pull's pass (substituteTwistedPulled) beside b's, in the same top chain: its steps overlap.
+        forwardRow<kSecond>(rows[i], w(i - 1), i >= 2 ? w(i - 2) : nullptr, w(i));
+      }
+    }
+    const std::size_t p = n - 1 - i;
+    forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
+  }
+  forwardMeeting<kSecond, true>(k, rows, meet, v);
+}
+
+/// The backward pass after forwardTwisted (x = L^-T D^-1 u in place): the meeting rows, then out along both
+/// chains together.
+template <bool kSecond>
+ROV_TETHER_INLINE void backwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
+                                       const Meeting& meet)
+{
+  const std::size_t k = meeting(n);
+  const std::size_t bottom = n - 2 - k;
+  auto v = [b](std::size_t p) { return b + 3 * p; };
+  divide(rows[k + 1], v(k + 1));
+  ownTransposed(rows[k + 1], v(k + 1));
+  divide(rows[k], v(k));
+  multiplyTransposedSubtract(meet.k1_k, v(k + 1), v(k));
+  ownTransposed(rows[k], v(k));
+  for (std::size_t i = bottom; i-- > 0;)
+  {
+    // Top row l = i and bottom row p = n - 1 - i, the meeting's neighbours first.
+    if (i < k)
+    {
+      backwardRow<kSecond>(rows[i], rows[i + 1].below1, v(i + 1), i + 1 == k ? meet.k1_km1 : rows[i + 2].below2,
+                           v(i + 2), v(i));
+    }
+    const std::size_t p = n - 1 - i;
+    backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2),
+                         v(p));
+  }
+}
+
+}  // namespace rov_tether::banded::block
