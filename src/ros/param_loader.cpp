@@ -123,6 +123,24 @@ class OptionReader
     *out = v;
   }
 
+  /// A whole number in [min, max] (2 or 2.0; 2.7 is refused, not truncated).
+  void integer(const std::string& name, int* out, int min, int max)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    double v = 0.0;
+    if (!readNumber(dict_[name], &v) || !std::isfinite(v) || v != std::floor(v) || v < min || v > max)
+    {
+      std::ostringstream message;
+      message << name << ": expected a whole number in [" << min << ", " << max << "]";
+      errors_.push_back(message.str());
+      return;
+    }
+    *out = static_cast<int>(v);
+  }
+
   /// A number in (above, max].
   void numberAbove(const std::string& name, double* out, double above, double max)
   {
@@ -245,18 +263,14 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   read.number("marker_rate", &candidate.marker_rate, 0.1, 1000.0);
   read.number("marker_line_width", &candidate.marker_line_width, 1e-4, 10.0);
   read.number("tension_full_scale", &candidate.tension_full_scale, 1e-6, 1e9);
-  double stripes = candidate.stripe_segments;
-  read.number("stripe_segments", &stripes, 1.0, 1000.0);
-  candidate.stripe_segments = static_cast<int>(stripes);
+  read.integer("stripe_segments", &candidate.stripe_segments, 1, 1000);
   read.number("stale_pose_timeout", &candidate.stale_pose_timeout, 0.01, 3600.0);
   read.number("max_pose_future", &candidate.max_pose_future, 0.0, 3600.0);
   read.number("max_tension_warning", &candidate.max_tension_warning, 0.0, 1e9);
   read.number("solver_residual_warning", &candidate.solver_residual_warning, 0.0, 1.0);
   read.text("pose_topic", &candidate.pose_topic);
   read.text("overload_policy", &candidate.overload_policy);
-  double min_iterations = candidate.min_iterations;
-  read.number("min_iterations", &min_iterations, 1.0, 1000.0);
-  candidate.min_iterations = static_cast<int>(min_iterations);
+  read.integer("min_iterations", &candidate.min_iterations, 1, 1000);
   read.number("cpu_budget", &candidate.cpu_budget, 0.01, 1.0);
   read.number("max_lag", &candidate.max_lag, 0.01, 3600.0);
   read.text("spool_outlet_frame", &candidate.spool_outlet_frame);

@@ -820,6 +820,34 @@ TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
   EXPECT_EQ(unknownParameters(typos), "iteratons (did you mean iterations?), world_fram (did you mean world_frame?)");
 }
 
+// The node's counts (stripe_segments, min_iterations) take whole numbers, written 3 or 3.0; a fraction is
+// refused with the option's name, not truncated to the count below it (which a user would not see).
+TEST(ParameterServer, WholeNumberOptionsRefuseFractions)
+{
+  XmlRpc::XmlRpcValue dict;
+  dict["stripe_segments"] = 3;
+  dict["min_iterations"] = 4.0;
+  NodeOptions options;
+  ASSERT_EQ(loadNodeOptions(dict, &options), "");
+  EXPECT_EQ(options.stripe_segments, 3);
+  EXPECT_EQ(options.min_iterations, 4);
+
+  for (const char* name : {"stripe_segments", "min_iterations"})
+  {
+    for (const double bad : {2.7, 0.0, 1001.0})
+    {
+      XmlRpc::XmlRpcValue one;
+      one[name] = bad;
+      NodeOptions unchanged;
+      const std::string error = loadNodeOptions(one, &unchanged);
+      EXPECT_NE(error.find(std::string(name) + ": expected a whole number in [1, 1000]"), std::string::npos)
+          << name << " = " << bad << ": " << error;
+      EXPECT_EQ(unchanged.stripe_segments, NodeOptions().stripe_segments);
+      EXPECT_EQ(unchanged.min_iterations, NodeOptions().min_iterations);
+    }
+  }
+}
+
 // Every shipped configuration file loads through the node's loaders, with no unknown key, and
 // default.yaml gives exactly the core's defaults.
 TEST(ParameterServer, EveryShippedConfigFileLoads)
