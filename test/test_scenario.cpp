@@ -8,6 +8,9 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "test_helpers.hpp"
 
@@ -485,6 +488,40 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   {
     fs::remove_all(d);
   }
+  fs::remove(scenario_path);
+  fs::remove(err);
+}
+
+// An option or a --set parameter given twice on the runner's command line is refused naming it and both values
+// (the rule for duplicate keys, as a scenario file's), not the first dropped without a word; two different
+// parameters are two assignments.
+TEST(Runner, RefusesAnOptionOrAParameterGivenTwice)
+{
+  const std::string dir = temporaryDirectory("twice");
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::ofstream(scenario_path) << "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [1, 2.0, 0, 0]]\nduration: 0.1\n";
+  const std::string err = dir + "_stderr.txt";
+  const std::string run = std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir;
+  const auto runKeepingStderr = [&](const std::string& more)
+  {
+    const int status = std::system((run + more + " >/dev/null 2> " + err).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {" --set noise=0.001 --set=noise=0.002", "--set noise given twice ('noise=0.001' and 'noise=0.002')"},
+      {" --out " + dir + "_other", "--out given twice ('" + dir + "' and '" + dir + "_other')"},
+      {" --max-tension-warning 5 --max-tension-warning=6", "--max-tension-warning given twice ('5' and '6')"}};
+  for (const auto& [twice, named] : cases)
+  {
+    EXPECT_EQ(runKeepingStderr(twice), 2) << twice;
+    const std::vector<std::string> lines = readLines(err);
+    ASSERT_FALSE(lines.empty()) << twice;
+    EXPECT_NE(lines.front().find(named), std::string::npos) << lines.front();
+  }
+  EXPECT_FALSE(fs::exists(dir));  // refused before anything ran
+  EXPECT_EQ(runKeepingStderr(" --set noise=0.001 --set drag=0.8"), 0);
+  EXPECT_TRUE(fs::exists(dir + "/state.csv"));
+  fs::remove_all(dir);
   fs::remove(scenario_path);
   fs::remove(err);
 }

@@ -2,6 +2,7 @@
 // topology.csv, for a scenario with obstacles or several tethers).
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -28,7 +29,8 @@ void usage(std::FILE* out)
       "  With `tethers:`, DIR/<name>/state.csv and shape.csv per tether; with `tethers:`,\n"
       "  `obstacles:` or `tether_contact: true`, also DIR/topology.csv; with a dynamic vehicle\n"
       "  (`vehicle: {model: dynamic, ...}`), DIR/vehicle.csv.\n"
-      "  --set overrides a model parameter after the scenario's own params (every tether's).\n"
+      "  --set overrides a model parameter after the scenario's own params (every tether's); each\n"
+      "  parameter and each option once.\n"
       "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's), for\n"
       "                          each tether that does not set its own max_tension_warning.\n"
       "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch.\n"
@@ -65,6 +67,19 @@ int printParameters(const std::string& arg)
 /// Reads the command line into options; -1 to go on, else the exit code (help, --parameters or a bad argument).
 int parseArguments(int argc, char** argv, Options* options)
 {
+  // What each option and each --set parameter was given as, so that a second one is refused rather than the
+  // first dropped without a word.
+  std::map<std::string, std::string> given;
+  const auto once = [&given](const std::string& key, const std::string& text)
+  {
+    const auto [where, first] = given.emplace(key, text);
+    if (!first)
+    {
+      std::fprintf(stderr, "rov_tether_run: %s given twice ('%s' and '%s'): give it once\n", key.c_str(),
+                   where->second.c_str(), text.c_str());
+    }
+    return first;
+  };
   for (int i = 1; i < argc; ++i)
   {
     std::string arg = argv[i];
@@ -95,6 +110,10 @@ int parseArguments(int argc, char** argv, Options* options)
     if (arg == "--max-tension-warning" && has_value)
     {
       const std::string text = value();
+      if (!once(arg, text))
+      {
+        return 2;
+      }
       char* end = nullptr;
       options->max_tension_warning = std::strtod(text.c_str(), &end);
       if (end == text.c_str() || *end != '\0' || !(options->max_tension_warning >= 0.0))
@@ -105,7 +124,13 @@ int parseArguments(int argc, char** argv, Options* options)
     }
     else if ((arg == "--out" || arg == "--set") && has_value)
     {
-      (arg == "--out" ? options->out_dir : options->assignments.emplace_back()) = value();
+      const std::string text = value();
+      // A parameter's name is what comes before its '=' (a malformed assignment is applyAssignment's to refuse).
+      if (!once(arg == "--out" ? arg : "--set " + text.substr(0, text.find('=')), text))
+      {
+        return 2;
+      }
+      (arg == "--out" ? options->out_dir : options->assignments.emplace_back()) = text;
     }
     else if (!arg.empty() && arg[0] != '-' && options->scenario_path.empty())
     {
