@@ -11,6 +11,7 @@
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
 #include "rov_tether/spec/vehicle_reader.hpp"
+#include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -51,7 +52,8 @@ const std::vector<std::string>& nodeOptionNames()
                                                  "vehicle_start",
                                                  "spool_on",
                                                  "spool_outlet_offset",
-                                                 "solver_residual_warning"};
+                                                 "solver_residual_warning",
+                                                 "param_files"};
   return names;
 }
 
@@ -121,6 +123,32 @@ class OptionReader
       return;
     }
     *out = v;
+  }
+
+  /// A list of strings ("" entries kept).
+  void textList(const std::string& name, std::vector<std::string>* out)
+  {
+    if (!has(name))
+    {
+      return;
+    }
+    const auto& value = dict_[name];
+    bool ok = value.getType() == XmlRpc::XmlRpcValue::TypeArray;
+    std::vector<std::string> read;
+    for (int i = 0; ok && i < value.size(); ++i)
+    {
+      ok = value[i].getType() == XmlRpc::XmlRpcValue::TypeString;
+      if (ok)
+      {
+        read.push_back(static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(value[i])));
+      }
+    }
+    if (!ok)
+    {
+      errors_.push_back(name + ": expected a list of strings");
+      return;
+    }
+    *out = read;
   }
 
   /// A whole number in [min, max] (2 or 2.0; 2.7 is refused, not truncated).
@@ -302,6 +330,15 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   if (candidate.world_frame.empty())
   {
     read.fail("world_frame: must not be empty");
+  }
+  read.textList("param_files", &candidate.param_files);
+  for (const std::string& file : candidate.param_files)
+  {
+    const std::string problem = file.empty() ? "" : spec::checkYamlFile(file);
+    if (!problem.empty())
+    {
+      read.fail("param_files: " + problem);
+    }
   }
   if (candidate.pose_source == "tf" && candidate.rov_frame.empty())
   {

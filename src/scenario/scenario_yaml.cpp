@@ -369,67 +369,6 @@ std::string parseFile(const std::string& path, Parse parse)
   return parse_error.empty() ? "" : path + ": " + parse_error;
 }
 
-/// Deeper nesting than any scenario has (a `tethers` entry's sections are 4 levels deep) is refused: an alias
-/// inside the node its anchor names (`params: &p {a: *p}`) makes yaml-cpp's node graph a cycle, which every walk
-/// of it would follow for ever (fuzz_scenario: a stack overflow here).
-constexpr int kMaxYamlDepth = 64;
-
-/// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
-/// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)", or, nested deeper
-/// than kMaxYamlDepth, a message saying so.
-std::string findDuplicateKey(const YAML::Node& node, const std::string& path, int depth = 0)
-{
-  if (depth > kMaxYamlDepth)
-  {
-    return "'" + path.substr(0, 200) + "...' is nested more than " + std::to_string(kMaxYamlDepth) +
-           " levels deep: an alias that refers to its own anchor's node?";
-  }
-  if (node.IsSequence())
-  {
-    for (std::size_t i = 0; i < node.size(); ++i)
-    {
-      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]", depth + 1);
-      if (!error.empty())
-      {
-        return error;
-      }
-    }
-  }
-  if (!node.IsMap())
-  {
-    return "";
-  }
-  std::vector<std::pair<std::string, int>> seen;  // key and its line (1-based)
-  for (const auto& entry : node)
-  {
-    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : YAML::Dump(entry.first);
-    const std::string name = path.empty() ? key : path + "." + key;
-    const int line = entry.first.Mark().line + 1;
-    for (const auto& [other, other_line] : seen)
-    {
-      if (other == key)
-      {
-        return "duplicate key '" + name + "' (lines " + std::to_string(other_line) + " and " + std::to_string(line) +
-               "): give each key once";
-      }
-    }
-    seen.emplace_back(key, line);
-    const std::string error = findDuplicateKey(entry.second, name, depth + 1);
-    if (!error.empty())
-    {
-      return error;
-    }
-  }
-  return "";
-}
-
-/// Parses YAML text and refuses a repeated key. Returns "" or the message.
-std::string loadYaml(const std::string& text, YAML::Node* root)
-{
-  *root = YAML::Load(text);
-  return findDuplicateKey(*root, "");
-}
-
 template <typename Parse>
 std::string guardYaml(Parse parse)
 {
@@ -451,7 +390,7 @@ std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
       [&]
       {
         YAML::Node root;
-        const std::string error = loadYaml(yaml_text, &root);
+        const std::string error = spec::loadYamlText(yaml_text, &root);
         return error.empty() ? parseScenarioNode(root, "", scenario) : error;
       });
 }
@@ -466,7 +405,7 @@ std::string loadScenario(const std::string& path, Scenario* scenario)
                          [&]
                          {
                            YAML::Node root;
-                           const std::string error = loadYaml(text, &root);
+                           const std::string error = spec::loadYamlText(text, &root);
                            return error.empty() ? parseScenarioNode(root, base_dir, scenario) : error;
                          });
                    });
@@ -478,7 +417,7 @@ std::string parseParams(const std::string& yaml_text, TetherParams* params)
       [&]
       {
         YAML::Node root;
-        const std::string duplicate = loadYaml(yaml_text, &root);
+        const std::string duplicate = spec::loadYamlText(yaml_text, &root);
         if (!duplicate.empty())
         {
           return duplicate;

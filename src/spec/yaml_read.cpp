@@ -1,9 +1,99 @@
 #include "rov_tether/spec/yaml_read.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
 
 namespace rov_tether::spec
 {
+
+namespace
+{
+
+/// Deeper nesting than any scenario has (a `tethers` entry's sections are 4 levels deep) is refused: an alias
+/// inside the node its anchor names (`params: &p {a: *p}`) makes yaml-cpp's node graph a cycle, which every walk
+/// of it would follow for ever (fuzz_scenario: a stack overflow here).
+constexpr int kMaxYamlDepth = 64;
+
+/// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
+/// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)", or, nested deeper
+/// than kMaxYamlDepth, a message saying so.
+std::string findDuplicateKey(const YAML::Node& node, const std::string& path, int depth = 0)
+{
+  if (depth > kMaxYamlDepth)
+  {
+    return "'" + path.substr(0, 200) + "...' is nested more than " + std::to_string(kMaxYamlDepth) +
+           " levels deep: an alias that refers to its own anchor's node?";
+  }
+  if (node.IsSequence())
+  {
+    for (std::size_t i = 0; i < node.size(); ++i)
+    {
+      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]", depth + 1);
+      if (!error.empty())
+      {
+        return error;
+      }
+    }
+  }
+  if (!node.IsMap())
+  {
+    return "";
+  }
+  std::vector<std::pair<std::string, int>> seen;  // key and its line (1-based)
+  for (const auto& entry : node)
+  {
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : YAML::Dump(entry.first);
+    const std::string name = path.empty() ? key : path + "." + key;
+    const int line = entry.first.Mark().line + 1;
+    for (const auto& [other, other_line] : seen)
+    {
+      if (other == key)
+      {
+        return "duplicate key '" + name + "' (lines " + std::to_string(other_line) + " and " + std::to_string(line) +
+               "): give each key once";
+      }
+    }
+    seen.emplace_back(key, line);
+    const std::string error = findDuplicateKey(entry.second, name, depth + 1);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string loadYamlText(const std::string& text, YAML::Node* root)
+{
+  *root = YAML::Load(text);
+  return findDuplicateKey(*root, "");
+}
+
+std::string checkYamlFile(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    return "cannot read '" + path + "'";
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  try
+  {
+    YAML::Node root;
+    const std::string error = loadYamlText(text.str(), &root);
+    return error.empty() ? "" : path + ": " + error;
+  }
+  catch (const YAML::Exception& e)
+  {
+    return path + ": YAML error: " + e.what();
+  }
+}
 
 std::string readNumber(const YAML::Node& node, const std::string& field, double* value)
 {

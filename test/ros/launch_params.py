@@ -8,6 +8,7 @@ overrides file leaves its keys. The test puts exactly those on the master (what 
 simulate one tether (publishing ~state, not ~t0/state), with default.yaml's cable, and report no typo.
 
 An overrides file wins over the launch's own frame arguments (`world_frame` included), as its name says.
+A key given twice in a file the launch loads stops the node, naming the file, the key and its lines.
 
 A second launch checks that tether_node's start-up INFO line reaches a piped stdout while the node runs
 (stdout is line-buffered), not only at exit.
@@ -139,6 +140,23 @@ class LaunchParams(unittest.TestCase):
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
 
+
+    def test_4_a_key_given_twice_in_a_loaded_file_stops_the_node(self):
+        # roslaunch keeps the last of a repeated key without a word; tether.launch lists the files it loaded in
+        # ~param_files and the node refuses to start, naming the file, the key and its lines.
+        scratch = tempfile.mkdtemp(prefix="launch_params_")
+        try:
+            overrides = os.path.join(scratch, "twice.yaml")
+            with open(overrides, "w") as f:
+                f.write("cable_length: 30.0\niterations: 3\ncable_length: 40.0\n")
+            launch = subprocess.run(["roslaunch", "rov_tether", "tether.launch", "overrides:=" + overrides],
+                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                    timeout=TIMEOUT + 30.0)
+            self.assertIn("param_files: " + overrides + ": duplicate key 'cable_length' (lines 1 and 3)",
+                          launch.stdout)
+            self.assertIn("REQUIRED process [tether_node", launch.stdout, "the launch ends with the node")
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
 
 if __name__ == "__main__":
     rostest.rosrun("rov_tether", "launch_params", LaunchParams)

@@ -1,5 +1,6 @@
 // The ROS layer without a master: converters, colours, service answers, parameter loading.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -8,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "../test_helpers.hpp"
 #include "rov_tether/camera/camera_model.hpp"
@@ -22,6 +25,7 @@
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
+#include "rov_tether/spec/yaml_read.hpp"
 #include "yaml_xmlrpc.hpp"
 
 namespace rov_tether::ros_layer
@@ -846,6 +850,44 @@ TEST(ParameterServer, WholeNumberOptionsRefuseFractions)
       EXPECT_EQ(unchanged.min_iterations, NodeOptions().min_iterations);
     }
   }
+}
+
+// A key given twice in a YAML file the launch loaded: roslaunch keeps the last without a word, so the shipped
+// launch files list the files in param_files and the node reads each again (spec::checkYamlFile) and refuses a
+// repeated key, naming the file, the key and both lines; "" (an optional file not given) is skipped, a clean
+// file passes, and a param_files that is no list of strings is refused.
+TEST(ParameterServer, AKeyGivenTwiceInALoadedFileIsRefused)
+{
+  const std::string base =
+      (std::filesystem::temp_directory_path() / ("rov_tether_param_files_" + std::to_string(::getpid()))).string();
+  const std::string clean = base + "_clean.yaml", twice = base + "_twice.yaml";
+  std::ofstream(clean) << "iterations: 3\ndrag: 0.9\n";
+  std::ofstream(twice) << "iterations: 3\ndrag: 0.9\niterations: 700\n";
+  XmlRpc::XmlRpcValue files;
+  files[0] = clean;
+  files[1] = std::string();
+  XmlRpc::XmlRpcValue dict;
+  dict["param_files"] = files;
+  NodeOptions options;
+  ASSERT_EQ(loadNodeOptions(dict, &options), "");
+  EXPECT_EQ(options.param_files, (std::vector<std::string>{clean, ""}));
+
+  files[2] = twice;
+  dict["param_files"] = files;
+  NodeOptions refused;
+  const std::string error = loadNodeOptions(dict, &refused);
+  EXPECT_NE(error.find("param_files: " + twice + ": duplicate key 'iterations' (lines 1 and 3): give each key once"),
+            std::string::npos)
+      << error;
+  EXPECT_TRUE(refused.param_files.empty());  // nothing taken
+
+  dict["param_files"] = clean;  // one path, not a list
+  EXPECT_NE(loadNodeOptions(dict, &refused).find("param_files: expected a list of strings"), std::string::npos);
+  EXPECT_NE(rov_tether::spec::checkYamlFile(base + "_missing.yaml").find("cannot read"), std::string::npos);
+  std::ofstream(twice) << "a: [1, 2\n";  // YAML that does not parse
+  EXPECT_NE(rov_tether::spec::checkYamlFile(twice).find(twice + ": YAML error"), std::string::npos);
+  std::remove(clean.c_str());
+  std::remove(twice.c_str());
 }
 
 // Every shipped configuration file loads through the node's loaders, with no unknown key, and

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "rov_tether/core/tether_params.hpp"
 #include "rov_tether/core/vehicle_controller.hpp"
@@ -78,6 +79,10 @@ struct NodeOptions
   /// [rad], at rest. Without it (has_vehicle_start false) the vehicle starts at the first pose taken.
   bool has_vehicle_start = false;
   Eigen::Vector4d vehicle_start = Eigen::Vector4d::Zero();
+  /// The YAML files the launch loaded into the node's namespace (the shipped launch files set it): each is read
+  /// again and a key given twice in one is refused, naming the file, the key and its lines (roslaunch keeps the
+  /// last one without a word). "" entries (an optional file not given) are skipped.
+  std::vector<std::string> param_files;
 };
 
 /// One tether's parameters as loaded: the model's and the node's.

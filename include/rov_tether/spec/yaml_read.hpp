@@ -10,6 +10,16 @@
 namespace rov_tether::spec
 {
 
+/// Parses YAML text into `root` and refuses a key that a map holds twice (yaml-cpp keeps both and a lookup
+/// takes the first; roslaunch and PyYAML keep the last): returns "" or "duplicate key 'path.key' (lines A and
+/// B): give each key once" (or that the nesting is deeper than any file of ours, an alias naming its own
+/// anchor). Throws YAML::Exception on YAML that does not parse.
+[[nodiscard]] std::string loadYamlText(const std::string& text, YAML::Node* root);
+
+/// The file at `path` read as loadYamlText reads text: "" or the problem, prefixed with the path (a file that
+/// cannot be read, YAML that does not parse, a repeated key). The node's check of the files its launch loaded.
+[[nodiscard]] std::string checkYamlFile(const std::string& path);
+
 /// Reads a finite number from a plain (unquoted) scalar; returns "" or "<field>: expected a number" /
 /// "<field>: must be finite". A quoted scalar (tag "!", a string on the parameter server) is no number.
 [[nodiscard]] std::string readNumber(const YAML::Node& node, const std::string& field, double* value);
