@@ -184,9 +184,9 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"max_winch_acceleration", "double", "m/s^2", 0.0, 1000.0, kOpen, kClosed, "",
        "`speed` and `constant_tension`: limit", kLive},
       {"max_winch_pull", "double", "N", 0.0, 1e7, kClosed, kClosed, "",
-       "the motor's stall pull: no reel-in (any mode: `strain` reels in slack) goes on above it; in `speed` and "
-       "`constant_tension` the drum, pulled harder, pays out; 0 = 1.25 x the larger of `target_tension` + "
-       "`tension_deadband` and `brake_tension`",
+       "the motor's stall pull: no reel-in (any mode: `strain` reels in slack) goes on above it, and pulled harder "
+       "a reeling-in drum pays out (`constant_tension`: at any time); `speed` standing or paying out holds any pull "
+       "(its brake); 0 = 1.25 x the larger of `target_tension` + `tension_deadband` and `brake_tension`",
        kLive},
       {"payout_threshold", "double", "-", 0.0, 1.0, kOpen, kClosed, "",
        "`strain`: first-segment strain that starts a pay-out", kLive},
