@@ -158,5 +158,32 @@ class LaunchParams(unittest.TestCase):
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
 
+    def test_5_rosrun_finds_each_helper_node_once(self):
+        # The package is the repository root and holds its build directory: rosrun found the source, the devel
+        # relay, catkin's install copy and its configure scratch copy of each Python node, and asked which
+        # (without a terminal: "exec: : not found"). Only the relay is executable now.
+        for script in ("simulated_rov.py", "vehicle_sim.py", "tether_summary.py", "replay_bag.py"):
+            run = subprocess.Popen(["rosrun", "rov_tether", script, "__name:=rosrun_check"], stdin=subprocess.DEVNULL,
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                   start_new_session=True)
+            output = Output(run.stdout)
+            # The node registers with the master once rosrun has started it (replay_bag.py then stops: no ~bag).
+            wait_for(lambda: "rosrun_check" in "".join(rosnode_names()) or run.poll() is not None, 15.0)
+            try:
+                os.killpg(run.pid, signal.SIGINT)
+            except ProcessLookupError:
+                pass
+            run.wait(timeout=30.0)
+            output.thread.join(5.0)
+            self.assertNotIn("non-unique executable", output.text(), script)
+            self.assertNotIn("not found", output.text(), script)
+            self.assertNotIn("Couldn't find executable", output.text(), script)
+
+
+def rosnode_names():
+    """The nodes registered with the master."""
+    import rosnode
+    return rosnode.get_node_names()
+
 if __name__ == "__main__":
     rostest.rosrun("rov_tether", "launch_params", LaunchParams)
