@@ -69,6 +69,15 @@ class LaunchParams(unittest.TestCase):
         with open(os.path.join(self.package, "config", name)) as f:
             return yaml.safe_load(f)
 
+    def scratch_file(self, name, text):
+        """A file `name` holding `text` in a directory of its own, removed after the test; its path."""
+        scratch = tempfile.mkdtemp(prefix="launch_params_")
+        self.addCleanup(shutil.rmtree, scratch, True)
+        path = os.path.join(scratch, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
     def run_tether_launch(self):
         """Runs `roslaunch rov_tether tether.launch` against this master with stdout and stderr piped, until
         the node publishes ~state. Returns (the first state, the private parameters, the published topics,
@@ -121,43 +130,28 @@ class LaunchParams(unittest.TestCase):
     def test_3_an_overrides_file_sets_the_frames(self):
         # Item 2 of issue 26: tether.launch set world_frame from its argument after loading the overrides,
         # so the file's world_frame was silently replaced by "world".
-        scratch = tempfile.mkdtemp(prefix="launch_params_")
-        try:
-            overrides = os.path.join(scratch, "mine.yaml")
-            with open(overrides, "w") as f:
-                f.write("world_frame: map\nrov_frame: base_link\ncable_length: 30.0\n")
-            dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch",
-                                     "overrides:=" + overrides], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                    text=True, timeout=TIMEOUT)
-            self.assertEqual(dumped.returncode, 0, dumped.stderr)
-            parameters = yaml.safe_load(dumped.stdout)
-            self.assertEqual(parameters[NODE + "/world_frame"], "map")
-            self.assertEqual(parameters[NODE + "/rov_frame"], "base_link")
-            self.assertEqual(parameters[NODE + "/cable_length"], 30.0)
-            # Without an overrides file, the arguments set the frames.
-            dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch", "world_frame:=odom"],
-                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
-            self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/world_frame"], "odom", dumped.stderr)
-        finally:
-            shutil.rmtree(scratch, ignore_errors=True)
-
+        overrides = self.scratch_file("mine.yaml", "world_frame: map\nrov_frame: base_link\ncable_length: 30.0\n")
+        dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch",
+                                 "overrides:=" + overrides], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True, timeout=TIMEOUT)
+        self.assertEqual(dumped.returncode, 0, dumped.stderr)
+        parameters = yaml.safe_load(dumped.stdout)
+        self.assertEqual(parameters[NODE + "/world_frame"], "map")
+        self.assertEqual(parameters[NODE + "/rov_frame"], "base_link")
+        self.assertEqual(parameters[NODE + "/cable_length"], 30.0)
+        # Without an overrides file, the arguments set the frames.
+        dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch", "world_frame:=odom"],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
+        self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/world_frame"], "odom", dumped.stderr)
 
     def test_4_a_key_given_twice_in_a_loaded_file_stops_the_node(self):
         # roslaunch keeps the last of a repeated key without a word; tether.launch lists the files it loaded in
         # ~param_files and the node refuses to start, naming the file, the key and its lines.
-        scratch = tempfile.mkdtemp(prefix="launch_params_")
-        try:
-            overrides = os.path.join(scratch, "twice.yaml")
-            with open(overrides, "w") as f:
-                f.write("cable_length: 30.0\niterations: 3\ncable_length: 40.0\n")
-            launch = subprocess.run(["roslaunch", "rov_tether", "tether.launch", "overrides:=" + overrides],
-                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                    timeout=TIMEOUT + 30.0)
-            self.assertIn("param_files: " + overrides + ": duplicate key 'cable_length' (lines 1 and 3)",
-                          launch.stdout)
-            self.assertIn("REQUIRED process [tether_node", launch.stdout, "the launch ends with the node")
-        finally:
-            shutil.rmtree(scratch, ignore_errors=True)
+        overrides = self.scratch_file("twice.yaml", "cable_length: 30.0\niterations: 3\ncable_length: 40.0\n")
+        launch = subprocess.run(["roslaunch", "rov_tether", "tether.launch", "overrides:=" + overrides],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT + 30.0)
+        self.assertIn("param_files: " + overrides + ": duplicate key 'cable_length' (lines 1 and 3)", launch.stdout)
+        self.assertIn("REQUIRED process [tether_node", launch.stdout, "the launch ends with the node")
 
     def test_5_rosrun_finds_each_helper_node_once(self):
         # The package is the repository root and holds its build directory: rosrun found the source, the devel
