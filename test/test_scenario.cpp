@@ -526,6 +526,25 @@ TEST(Runner, RefusesAnOptionOrAParameterGivenTwice)
   fs::remove(err);
 }
 
+// rov_tether_study likewise refuses an option given twice (scripts/study.sh passes its own --out before the
+// user's arguments, where a second --out silently won), with the usage and exit code 2, before running anything.
+TEST(StudyTool, RefusesAnOptionGivenTwice)
+{
+  const std::string dir = temporaryDirectory("study_twice");
+  const std::string err = dir + "_stderr.txt";
+  for (const std::string& twice : {" --out " + dir + " --out " + dir + "_other", " --out " + dir + " --quick --quick"})
+  {
+    const int status = std::system((std::string(ROV_TETHER_STUDY) + twice + " >/dev/null 2> " + err).c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << twice;
+    const std::vector<std::string> lines = readLines(err);
+    ASSERT_FALSE(lines.empty()) << twice;
+    EXPECT_NE(lines.front().find(" given twice: give it once"), std::string::npos) << lines.front();
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  EXPECT_FALSE(fs::exists(dir + "_other"));
+  fs::remove(err);
+}
+
 // The run's Newton effort (issue 24): by definition the sum, the largest and the worst residual of what the
 // solver reported after each sub-step. A direct tether stepped by hand, reading solverIterations() and
 // solverResidual() after every step (one sub-step each: no contact), gives exactly what solverEffort() summed;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -127,9 +128,16 @@ struct Options
 /// Reads the command line; false (after printing the usage) when it is wrong.
 bool parseOptions(int argc, char** argv, Options* options)
 {
+  std::set<std::string> given;  // an option given twice is refused, not the first dropped without a word
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
+    if (!given.insert(arg).second && arg.rfind("--", 0) == 0)
+    {
+      std::fprintf(stderr, "rov_tether_study: %s given twice: give it once\n", arg.c_str());
+      usage();
+      return false;
+    }
     if (arg == "--out" && i + 1 < argc)
     {
       options->out_dir = argv[++i];
