@@ -18,6 +18,8 @@ import subprocess
 import unittest
 import xml.etree.ElementTree as ET
 
+import yaml
+
 import rosunit
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -41,6 +43,23 @@ class Repository(unittest.TestCase):
             for node in ET.parse(launch).getroot().iter("node"):
                 self.assertEqual(node.get("clear_params"), "true",
                                  "%s: node %s" % (launch.relative_to(ROOT), node.get("name")))
+
+    def test_every_tether_node_checks_the_files_it_loads(self):
+        # roslaunch keeps the last of a key given twice in a YAML file without a word; tether_node reads the files
+        # listed in its param_files again and refuses one. A file a launch loads but does not list goes unchecked.
+        checked = 0
+        for launch in sorted((ROOT / "launch").glob("*.launch")):
+            for node in ET.parse(launch).getroot().iter("node"):
+                if node.get("type") != "tether_node":
+                    continue
+                loads = [r.get("file") for r in node.iter("rosparam") if r.get("command") == "load"]
+                listed = [r for r in node.iter("rosparam") if r.get("param") == "param_files"]
+                where = "%s: node %s" % (launch.relative_to(ROOT), node.get("name"))
+                self.assertEqual(len(listed), 1, where + ": no param_files")
+                self.assertEqual(listed[0].get("subst_value"), "true", where)
+                self.assertEqual(yaml.safe_load(listed[0].text), loads, where)
+                checked += 1
+        self.assertGreaterEqual(checked, 4)
 
 
     def test_no_build_output_is_tracked_and_build_output_is_ignored(self):

@@ -509,6 +509,7 @@ TEST(Runner, RefusesAnOptionOrAParameterGivenTwice)
   };
   const std::vector<std::pair<std::string, std::string>> cases = {
       {" --set noise=0.001 --set=noise=0.002", "--set noise given twice ('noise=0.001' and 'noise=0.002')"},
+      {" --set 'noise =0.001' --set noise=0.002", "--set noise given twice ('noise =0.001' and 'noise=0.002')"},
       {" --out " + dir + "_other", "--out given twice ('" + dir + "' and '" + dir + "_other')"},
       {" --max-tension-warning 5 --max-tension-warning=6", "--max-tension-warning given twice ('5' and '6')"}};
   for (const auto& [twice, named] : cases)

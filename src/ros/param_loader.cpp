@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -331,15 +334,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
   {
     read.fail("world_frame: must not be empty");
   }
-  read.textList("param_files", &candidate.param_files);
-  for (const std::string& file : candidate.param_files)
-  {
-    const std::string problem = file.empty() ? "" : spec::checkYamlFile(file);
-    if (!problem.empty())
-    {
-      read.fail("param_files: " + problem);
-    }
-  }
+  read.textList("param_files", &candidate.param_files);  // checked by checkParamFiles
   if (candidate.pose_source == "tf" && candidate.rov_frame.empty())
   {
     read.fail("rov_frame: must not be empty when pose_source is tf");
@@ -350,6 +345,36 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
     *options = candidate;
   }
   return errors;
+}
+
+std::string checkParamFiles(const std::vector<std::string>& files)
+{
+  for (const std::string& file : files)
+  {
+    if (file.empty())
+    {
+      continue;  // an optional file not given
+    }
+    // roslaunch read a relative path from the directory it was started in, which it passes on to its nodes as
+    // PWD (the node itself runs in ROS_HOME).
+    const char* started_in = std::getenv("PWD");
+    const std::filesystem::path path = std::filesystem::path(file).is_relative() && started_in != nullptr
+                                           ? std::filesystem::path(started_in) / file
+                                           : std::filesystem::path(file);
+    if (!std::ifstream(path).good())
+    {
+      // roslaunch has read it (from another machine's disk, say): the node cannot check it, and says so.
+      ROS_WARN("tether_node: param_files: cannot read '%s' again to check it for a key given twice",
+               path.string().c_str());
+      continue;
+    }
+    const std::string problem = spec::checkYamlFile(path.string());
+    if (!problem.empty())
+    {
+      return "param_files: " + problem;
+    }
+  }
+  return "";
 }
 
 std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)

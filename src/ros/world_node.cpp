@@ -157,14 +157,26 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
   if (names.empty())
   {
     setups.push_back(loadTetherSetup(private_nh, XmlRpc::XmlRpcValue()));
+  }
+  else
+  {
+    XmlRpc::XmlRpcValue shared;
+    private_nh.getParam(private_nh.getNamespace(), shared);
+    for (const auto& name : names)
+    {
+      setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh, name), shared));
+    }
+  }
+  // The files the launch loaded into ~, once for all tethers (they share ~'s param_files).
+  const std::string repeated = checkParamFiles(setups.front().options.param_files);
+  if (!repeated.empty())
+  {
+    throw std::runtime_error("invalid parameters in " + private_nh.getNamespace() + ": " + repeated);
+  }
+  if (names.empty())
+  {
     checkSpoolMounts(names, setups);
     return setups;
-  }
-  XmlRpc::XmlRpcValue shared;
-  private_nh.getParam(private_nh.getNamespace(), shared);
-  for (const auto& name : names)
-  {
-    setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh, name), shared));
   }
   shareOneClock(names, &setups);
   checkVehicleFrames(names, setups);

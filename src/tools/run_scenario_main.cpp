@@ -125,8 +125,12 @@ int parseArguments(int argc, char** argv, Options* options)
     else if ((arg == "--out" || arg == "--set") && has_value)
     {
       const std::string text = value();
-      // A parameter's name is what comes before its '=' (a malformed assignment is applyAssignment's to refuse).
-      if (!once(arg == "--out" ? arg : "--set " + text.substr(0, text.find('=')), text))
+      // A parameter's name is what comes before its '=', without the spaces YAML would drop (a malformed
+      // assignment is applyAssignment's to refuse).
+      std::string name = text.substr(0, text.find('='));
+      name.erase(name.find_last_not_of(" \t") + 1);
+      name.erase(0, name.find_first_not_of(" \t"));
+      if (!once(arg == "--out" ? arg : "--set " + name, text))
       {
         return 2;
       }

@@ -152,6 +152,13 @@ class LaunchParams(unittest.TestCase):
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT + 30.0)
         self.assertIn("param_files: " + overrides + ": duplicate key 'cable_length' (lines 1 and 3)", launch.stdout)
         self.assertIn("REQUIRED process [tether_node", launch.stdout, "the launch ends with the node")
+        # A relative path, from where roslaunch starts (a shell's cd sets PWD too): roslaunch reads it from
+        # there, and so does the node, which itself runs in ROS_HOME.
+        scratch = os.path.dirname(overrides)
+        launch = subprocess.run(["roslaunch", "rov_tether", "tether.launch", "overrides:=twice.yaml"], cwd=scratch,
+                                env=dict(os.environ, PWD=scratch), stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT + 30.0)
+        self.assertIn("param_files: " + overrides + ": duplicate key 'cable_length' (lines 1 and 3)", launch.stdout)
 
     def test_5_rosrun_finds_each_helper_node_once(self):
         # The package is the repository root and holds its build directory: rosrun found the source, the devel

@@ -853,14 +853,17 @@ TEST(ParameterServer, WholeNumberOptionsRefuseFractions)
 }
 
 // A key given twice in a YAML file the launch loaded: roslaunch keeps the last without a word, so the shipped
-// launch files list the files in param_files and the node reads each again (spec::checkYamlFile) and refuses a
-// repeated key, naming the file, the key and both lines; "" (an optional file not given) is skipped, a clean
-// file passes, and a param_files that is no list of strings is refused.
+// launch files list the files in param_files and the node reads each again (checkParamFiles) and refuses a
+// repeated key, naming the file, the key and both lines. "" (an optional file not given) is skipped, a clean
+// file passes, a relative path is read from $PWD (where roslaunch read it; the node runs in ROS_HOME), a file
+// the node cannot read (roslaunch read it on another machine, say) is only warned of, and a param_files that
+// is no list of strings is refused when the options are read.
 TEST(ParameterServer, AKeyGivenTwiceInALoadedFileIsRefused)
 {
-  const std::string base =
-      (std::filesystem::temp_directory_path() / ("rov_tether_param_files_" + std::to_string(::getpid()))).string();
-  const std::string clean = base + "_clean.yaml", twice = base + "_twice.yaml";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("rov_tether_param_files_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string clean = (dir / "clean.yaml").string(), twice = (dir / "twice.yaml").string();
   std::ofstream(clean) << "iterations: 3\ndrag: 0.9\n";
   std::ofstream(twice) << "iterations: 3\ndrag: 0.9\niterations: 700\n";
   XmlRpc::XmlRpcValue files;
@@ -871,23 +874,25 @@ TEST(ParameterServer, AKeyGivenTwiceInALoadedFileIsRefused)
   NodeOptions options;
   ASSERT_EQ(loadNodeOptions(dict, &options), "");
   EXPECT_EQ(options.param_files, (std::vector<std::string>{clean, ""}));
+  EXPECT_EQ(checkParamFiles(options.param_files), "");
 
-  files[2] = twice;
-  dict["param_files"] = files;
-  NodeOptions refused;
-  const std::string error = loadNodeOptions(dict, &refused);
-  EXPECT_NE(error.find("param_files: " + twice + ": duplicate key 'iterations' (lines 1 and 3): give each key once"),
-            std::string::npos)
-      << error;
-  EXPECT_TRUE(refused.param_files.empty());  // nothing taken
+  EXPECT_EQ(checkParamFiles({clean, "", twice}),
+            "param_files: " + twice + ": duplicate key 'iterations' (lines 1 and 3): give each key once");
+  const char* pwd = std::getenv("PWD");
+  const std::string saved = pwd != nullptr ? pwd : "";
+  setenv("PWD", dir.c_str(), 1);
+  EXPECT_EQ(checkParamFiles({"twice.yaml"}),
+            "param_files: " + twice + ": duplicate key 'iterations' (lines 1 and 3): give each key once");
+  EXPECT_EQ(checkParamFiles({"missing.yaml", "/nowhere/missing.yaml"}), "");  // warned of, not refused
+  pwd != nullptr ? setenv("PWD", saved.c_str(), 1) : unsetenv("PWD");
 
   dict["param_files"] = clean;  // one path, not a list
+  NodeOptions refused;
   EXPECT_NE(loadNodeOptions(dict, &refused).find("param_files: expected a list of strings"), std::string::npos);
-  EXPECT_NE(rov_tether::spec::checkYamlFile(base + "_missing.yaml").find("cannot read"), std::string::npos);
   std::ofstream(twice) << "a: [1, 2\n";  // YAML that does not parse
-  EXPECT_NE(rov_tether::spec::checkYamlFile(twice).find(twice + ": YAML error"), std::string::npos);
-  std::remove(clean.c_str());
-  std::remove(twice.c_str());
+  EXPECT_NE(checkParamFiles({twice}).find(twice + ": YAML error"), std::string::npos);
+  EXPECT_NE(rov_tether::spec::checkYamlFile((dir / "missing.yaml").string()).find("cannot read"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 // Every shipped configuration file loads through the node's loaders, with no unknown key, and

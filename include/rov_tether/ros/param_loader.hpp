@@ -79,9 +79,8 @@ struct NodeOptions
   /// [rad], at rest. Without it (has_vehicle_start false) the vehicle starts at the first pose taken.
   bool has_vehicle_start = false;
   Eigen::Vector4d vehicle_start = Eigen::Vector4d::Zero();
-  /// The YAML files the launch loaded into the node's namespace (the shipped launch files set it): each is read
-  /// again and a key given twice in one is refused, naming the file, the key and its lines (roslaunch keeps the
-  /// last one without a word). "" entries (an optional file not given) are skipped.
+  /// The YAML files the launch loaded into the node's namespace (the shipped launch files set it), which
+  /// checkParamFiles reads again for a key given twice (roslaunch keeps the last one without a word).
   std::vector<std::string> param_files;
 };
 
@@ -100,6 +99,12 @@ struct TetherSetup
 /// `params` through the core's setParameter, then validates. Returns "" on success, otherwise every
 /// problem, each naming its parameter. `params` is changed only on success.
 std::string loadTetherParams(const XmlRpc::XmlRpcValue& dict, TetherParams* params);
+
+/// Reads each of `files` (NodeOptions::param_files: "" skipped; a relative path from $PWD, where roslaunch
+/// read it) again and refuses a key given twice in one, which roslaunch keeps the last of without a word:
+/// "" or "param_files: FILE: duplicate key 'k' (lines A and B): give each key once" (or YAML that does not
+/// parse). A file it cannot read is warned of and skipped: roslaunch has read it (on another machine, say).
+std::string checkParamFiles(const std::vector<std::string>& files);
 
 /// Reads the node options found in `dict` on top of `options` and checks them. Returns "" or every
 /// problem, each naming its parameter. `options` is changed only on success.
