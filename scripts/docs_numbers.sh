@@ -6,7 +6,8 @@
 # Where the numbers are quoted: spool_payout in the README's quick start; the shipped scenarios' table
 # (pillar_wrap's tension and deployed length, the "try" variants) and the camera dataset example in
 # docs/runner.md; heavy_dive and its strain-rule variant in docs/model.md (How the tension winches work);
-# pillar_wrap and pillar_wrap_dynamic with a slow winch (the snag) in docs/runner.md, "A dynamic vehicle".
+# pillar_wrap and pillar_wrap_dynamic with a slow winch (the snag) in docs/runner.md, "A dynamic vehicle";
+# spool_payout without noise in docs/benchmarks.md ("Why twice a step: the noise").
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh" >/dev/null
 RUN="$BUILD_DIR/devel/lib/rov_tether/rov_tether_run"
@@ -22,7 +23,8 @@ if ((${#names[@]} == 0)); then
             "heavy_dive --set winch_mode=strain --set solver=pbd"
             "datasets/forward_camera_dive"
             "pillar_wrap --set max_winch_speed=0.3"
-            "pillar_wrap_dynamic --set max_winch_speed=0.3")
+            "pillar_wrap_dynamic --set max_winch_speed=0.3"
+            "spool_payout --set noise=0")
 fi
 run() {
   local name="$1" out="$2"
