@@ -27,6 +27,53 @@ namespace rov_tether::python
 namespace
 {
 
+/// Python's json writes a float that is not finite as NaN, Infinity or -Infinity, which YAML reads as strings
+/// (a NaN was refused as "wrong type (a string)"); YAML's own spellings are .nan, .inf and -.inf, which the
+/// readers take as numbers and refuse as not finite, as the runner does. Outside the text's strings only.
+std::string yamlNonFinite(const std::string& json)
+{
+  std::string out;
+  out.reserve(json.size());
+  bool in_string = false;
+  for (std::size_t i = 0; i < json.size(); ++i)
+  {
+    const char c = json[i];
+    if (in_string)
+    {
+      out += c;
+      if (c == '\\' && i + 1 < json.size())
+      {
+        out += json[++i];  // an escaped character, a quote included
+      }
+      else if (c == '"')
+      {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"')
+    {
+      in_string = true;
+      out += c;
+    }
+    else if (json.compare(i, 3, "NaN") == 0)
+    {
+      out += ".nan";
+      i += 2;
+    }
+    else if (json.compare(i, 8, "Infinity") == 0)
+    {
+      out += ".inf";  // after a '-', -.inf
+      i += 7;
+    }
+    else
+    {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
 {
   if (!error.empty())
@@ -77,7 +124,8 @@ std::shared_ptr<Session> fromDict(const py::dict& description)
           }
           throw py::type_error("not a number, string, list or dict: " + py::repr(value).cast<std::string>());
         });
-    text = py::module_::import("json").attr("dumps")(copy, py::arg("default") = plain).cast<std::string>();
+    text =
+        yamlNonFinite(py::module_::import("json").attr("dumps")(copy, py::arg("default") = plain).cast<std::string>());
   }
   catch (const py::error_already_set& error)
   {
@@ -271,7 +319,7 @@ struct TetherView
     std::string text;
     try
     {
-      text = py::module_::import("json").attr("dumps")(plain).cast<std::string>();
+      text = yamlNonFinite(py::module_::import("json").attr("dumps")(plain).cast<std::string>());
     }
     catch (const py::error_already_set& error)
     {

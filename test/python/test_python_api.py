@@ -236,6 +236,28 @@ def test_bad_calls_raise():
     assert world.tether("tether").name == "tether"
 
 
+# A float that is not finite, passed from Python, is refused as the runner refuses `--set drag=.nan`: as not
+# finite, naming the value. Python's json writes NaN and Infinity, which YAML reads as strings, so it used to be
+# refused as "wrong type (a string)". A string "NaN" stays a string.
+def test_a_value_that_is_not_finite_is_refused_as_not_finite(tmp_path):
+    world = hanging_world()
+    (tether,) = world.tethers
+    for value in (math.nan, math.inf, np.float64(-np.inf)):
+        with pytest.raises(ValueError, match=r"drag = -?(nan|inf): must be a finite number in \(0, 1\]"):
+            tether.set_param("drag", value)
+    with pytest.raises(ValueError, match="wrong type"):
+        tether.set_param("drag", "NaN")
+    with pytest.raises(ValueError, match="finite"):
+        tether.set_param("current", [math.nan, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"spool\[1\]: must be finite"):
+        rov_tether.World({"spool": [0.0, math.nan, 0.0]})
+    with pytest.raises(ValueError) as raised:
+        rov_tether.World({"spool": [0.0, 0.0, 0.0], "params": {"drag": math.inf}})
+    path, output = runner_error(tmp_path, "spool: [0, 0, 0]\nduration: 1.0\nparams: {drag: .inf}\n")
+    assert str(raised.value) in output  # the runner's message for the same file
+    world.step(0.1)  # nothing was set: the world goes on
+
+
 # While one thread steps, another runs Python: with the GIL held through advance_to the second would stand
 # still for the whole call (a C++ call is never pre-empted for the switch interval), so its longest pause
 # would be the call's length. Released, its pauses are the scheduler's: a quarter of the call bounds them on
