@@ -186,7 +186,7 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
   {
     std::printf(
         "tethers         %zu in one world, %zu obstacles, contact between tethers %s; the lines up to "
-        "max strain are tether '%s''s (steps: all tethers')\n",
+        "max strain are the first tether's, '%s' (the steps: all tethers)\n",
         scenario.tethers.size(), scenario.obstacles.size(), scenario.tether_contact ? "on" : "off",
         scenario.tethers.front().name.c_str());
   }
