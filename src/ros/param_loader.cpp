@@ -113,19 +113,21 @@ class OptionReader
 
   void number(const std::string& name, double* out, double min, double max)
   {
-    if (!has(name))
-    {
-      return;
-    }
     double v = 0.0;
-    if (!readNumber(dict_[name], &v) || !std::isfinite(v) || v < min || v > max)
+    if (bounded(name, min, max, false, &v))
     {
-      std::ostringstream message;
-      message << name << ": expected a number in [" << min << ", " << max << "]";
-      errors_.push_back(message.str());
-      return;
+      *out = v;
     }
-    *out = v;
+  }
+
+  /// A whole number in [min, max] (2 or 2.0; 2.7 is refused, not truncated).
+  void integer(const std::string& name, int* out, int min, int max)
+  {
+    double v = 0.0;
+    if (bounded(name, min, max, true, &v))
+    {
+      *out = static_cast<int>(v);
+    }
   }
 
   /// A list of strings ("" entries kept).
@@ -152,24 +154,6 @@ class OptionReader
       return;
     }
     *out = read;
-  }
-
-  /// A whole number in [min, max] (2 or 2.0; 2.7 is refused, not truncated).
-  void integer(const std::string& name, int* out, int min, int max)
-  {
-    if (!has(name))
-    {
-      return;
-    }
-    double v = 0.0;
-    if (!readNumber(dict_[name], &v) || !std::isfinite(v) || v != std::floor(v) || v < min || v > max)
-    {
-      std::ostringstream message;
-      message << name << ": expected a whole number in [" << min << ", " << max << "]";
-      errors_.push_back(message.str());
-      return;
-    }
-    *out = static_cast<int>(v);
   }
 
   /// A number in (above, max].
@@ -247,6 +231,24 @@ class OptionReader
   }
 
  private:
+  /// Option `name`, when given, into v if it is a finite number in [min, max] (and `whole`, a whole one); false
+  /// when it is not given, or (the error kept) not such a number.
+  bool bounded(const std::string& name, double min, double max, bool whole, double* v)
+  {
+    if (!has(name))
+    {
+      return false;
+    }
+    if (!readNumber(dict_[name], v) || !std::isfinite(*v) || (whole && *v != std::floor(*v)) || *v < min || *v > max)
+    {
+      std::ostringstream message;
+      message << name << ": expected a " << (whole ? "whole " : "") << "number in [" << min << ", " << max << "]";
+      errors_.push_back(message.str());
+      return false;
+    }
+    return true;
+  }
+
   bool has(const std::string& name) const
   {
     return dict_.getType() == XmlRpc::XmlRpcValue::TypeStruct && dict_.hasMember(name);

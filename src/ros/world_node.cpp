@@ -173,13 +173,11 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
   {
     throw std::runtime_error("invalid parameters in " + private_nh.getNamespace() + ": " + repeated);
   }
-  if (names.empty())
+  if (!names.empty())
   {
-    checkSpoolMounts(names, setups);
-    return setups;
+    shareOneClock(names, &setups);
+    checkVehicleFrames(names, setups);
   }
-  shareOneClock(names, &setups);
-  checkVehicleFrames(names, setups);
   checkSpoolMounts(names, setups);
   return setups;
 }
