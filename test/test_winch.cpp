@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
+#include "rov_tether/core/spool_drum.hpp"
 #include "rov_tether/scenario/scenario.hpp"
 #include "test_helpers.hpp"
 
@@ -469,6 +471,42 @@ TEST(Winch, PassiveIsTheStrainRuleAndDeprecated)
   EXPECT_NE(warnings[0].find("strain"), std::string::npos);
   EXPECT_NE(warnings[0].find("brake"), std::string::npos);
   EXPECT_TRUE(parameterWarnings({{"winch_mode", std::string("brake")}}).empty());
+}
+
+// The direct solver measures the spool segment against the drum's law as it measures every other segment against
+// its own: by how far its stretch is from one at which the law gives its force (SpoolDrum::stretchOff). A
+// massless brake drum of compliance alpha, brake B and pay-out limit P has the law (spool_drum.hpp, c = s + alpha
+// lambda): slack (0) for c <= 0; lambda = c / alpha up to c = alpha B (the drum stands); B from there to
+// alpha B + P (it pays out at the brake); then B + (c - alpha B - P) / alpha (it pays out at its limit and the
+// segment stretches). Every distance below is that closed form's, to rounding.
+TEST(Winch, TheDrumsStretchOffItsLawIsTheDistanceToTheLaw)
+{
+  const double alpha = 0.04, brake = 0.5, limit = 0.005;
+  SpoolDrum drum;
+  drum.brake = brake;
+  drum.floor = -1.0;
+  drum.max_payout = limit;
+  drum.prepare(alpha);
+  const double standing = alpha * brake;  // where the drum starts paying out
+  const double top = standing + limit;    // where it reaches its limit
+  const double eps = 1e-15;
+  // The drum standing: the segment's own law, both ways.
+  EXPECT_NEAR(drum.stretchOff(0.01, 0.3), std::abs(0.01 - alpha * 0.3), eps);
+  EXPECT_NEAR(drum.stretchOff(0.014, 0.3), std::abs(0.014 - alpha * 0.3), eps);
+  // The brake's force is given over the whole pay-out piece: 0 inside it, the distance to its ends outside.
+  EXPECT_EQ(drum.stretchOff(standing + 0.5 * limit, brake), 0.0);
+  EXPECT_NEAR(drum.stretchOff(0.01, brake), standing - 0.01, eps);
+  EXPECT_NEAR(drum.stretchOff(top + 0.002, brake), 0.002, eps);
+  // A force off the brake's is found on the pieces either side of it.
+  EXPECT_NEAR(drum.stretchOff(standing + 0.5 * limit, brake + 0.1), 0.5 * limit + alpha * 0.1, eps);
+  EXPECT_NEAR(drum.stretchOff(standing + 0.5 * limit, brake - 0.1), 0.5 * limit + alpha * 0.1, eps);
+  EXPECT_NEAR(drum.stretchOff(top + 0.002, brake + 0.2), std::abs(0.002 - alpha * 0.2), eps);
+  // Slack: force 0 is given by every stretch up to 0; no stretch gives a force below 0.
+  EXPECT_EQ(drum.stretchOff(-0.3, 0.0), 0.0);
+  EXPECT_NEAR(drum.stretchOff(0.003, 0.0), 0.003, eps);
+  EXPECT_NEAR(drum.stretchOff(-0.3, 0.2), 0.3 + alpha * 0.2, eps);
+  EXPECT_EQ(drum.stretchOff(-0.3, -1e-9), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(drum.stretchOff(top + 0.002, -1e-9), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

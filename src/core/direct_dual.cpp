@@ -261,12 +261,11 @@ double DualNewton::residual(const Cable& cable, const double* lambda)
     return activeSet(cable.inv_mass.data() + f, ws_.inv_rest.data(), ws_.c.data(), ws_.alpha.data(), lambda, ws_.on(),
                      ws_.m);
   }
-  // The spool segment follows the drum's law, not C = alpha lambda (it lengthens by the pay-out): its
-  // residual is the force it carries against the law's, as a displacement. The others are as without a drum.
+  // The spool segment follows the drum's law, not C = alpha lambda (it lengthens by the pay-out): its residual is
+  // DirectWorkspace::drumResidual. The others are as without a drum.
   const double worst = activeSet(cable.inv_mass.data() + f + 1, ws_.inv_rest.data() + 1, ws_.c.data() + 1,
                                  ws_.alpha.data() + 1, lambda + 1, ws_.on() + 1, ws_.m - 1);
-  const double mobility = cable.inv_mass[f] + cable.inv_mass[f + 1];
-  return std::max(worst, std::abs(lambda[0] - ws_.drum->force(ws_.c[0])) * mobility * ws_.inv_rest[0]);
+  return std::max(worst, ws_.drumResidual(lambda[0], cable.inv_mass[f] + cable.inv_mass[f + 1]));
 }
 
 bool DualNewton::solveRows()

@@ -666,9 +666,7 @@ double PrimalNewton::residual(const Cable& cable)
   double worst = segmentResiduals(law, pull, m, ws_.unilateral, drum ? 1 : 0);
   if (drum)
   {
-    // The spool segment against the drum's law (left out above).
-    const double r = std::abs(lambda_[0] - ws_.drum->force(ws_.c[0])) * (w[0] + w[1]);
-    worst = std::max(worst, r * ws_.inv_rest[0]);
+    worst = std::max(worst, ws_.drumResidual(lambda_[0], w[0] + w[1]));  // the spool segment (left out above)
   }
   for (double* v : pull)
   {

@@ -4,10 +4,12 @@
 // DirectSolver's front (direct_solver.cpp) and the two methods see it. Sized once (reserve); a step never
 // allocates.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "rov_tether/core/constraint_solver.hpp"
+#include "rov_tether/core/spool_drum.hpp"
 
 namespace rov_tether
 {
@@ -70,6 +72,16 @@ struct DirectWorkspace
       return unilateral ? std::max(c, 0.0) / alpha[k] : c / alpha[k];
     }
     return c > zero[k] ? middleForce(k, c) : 0.0;
+  }
+  /// The spool segment's residual against the drum's law, relative to its rest length, for its force lambda0 and
+  /// `mobility` (the inverse masses of its two particles): as a rod's segment is measured against its law, how far
+  /// its stretch is from one at which the law gives lambda0 (C - alpha lambda, the rod's law inverted), or, as a
+  /// slack segment's, the move its force's error would make, whichever is less (no stretch gives a force below 0;
+  /// a slack segment's force off by little is far from the law's stretch).
+  double drumResidual(double lambda0, double mobility) const
+  {
+    const double move = std::abs(lambda0 - drum->force(c[0])) * mobility;
+    return std::min(move, drum->stretchOff(c[0], lambda0)) * inv_rest[0];
   }
   /// The law's middle piece of segment k (a slack segment's dashpot) at C = c: kink / alpha + slope (c - kink).
   double middleForce(std::size_t k, double c) const { return kink[k] / alpha[k] + dashpot[k] * (c - kink[k]); }

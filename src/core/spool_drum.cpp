@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rov_tether
 {
@@ -176,6 +177,41 @@ double SpoolDrum::energy(double c) const
     total += 0.5 * (force(from) + force(to)) * (to - from);
   }
   return total;
+}
+
+double SpoolDrum::stretchOff(double c, double lambda) const
+{
+  // The law is continuous and does not fall, so the stretches that give lambda are one interval, on the side of c
+  // where the force moves towards lambda: walk the pieces that way from c's own to the first sloped one that
+  // reaches lambda (a piece of a fixed force equal to lambda is entered from the sloped piece it meets).
+  const double here = force(c);
+  if (here == lambda)
+  {
+    return 0.0;
+  }
+  const std::size_t own = pieceOf(c);
+  for (std::size_t i = own; here < lambda && i < count_; ++i)
+  {
+    const Piece& p = pieces_[i];
+    const double end = i + 1 < count_ ? pieces_[i + 1].c0 : std::numeric_limits<double>::infinity();
+    const bool sloped = p.slope > 0.0;  // a piece of a fixed force below lambda never gives it
+    const double at = sloped ? p.c0 + (lambda - p.lambda0) / p.slope : 0.0;  // where it gives lambda
+    if (sloped && at <= end)
+    {
+      return std::max(at, c) - c;  // the last piece (the segment's own stiffness, 1 / alpha) always reaches it
+    }
+  }
+  for (std::size_t i = own + 1; here > lambda && i-- > 0;)
+  {
+    const Piece& p = pieces_[i];
+    const bool sloped = p.slope > 0.0;
+    const double at = sloped ? p.c0 + (lambda - p.lambda0) / p.slope : 0.0;
+    if (sloped && at >= p.c0)
+    {
+      return c - std::min(at, c);
+    }
+  }
+  return std::numeric_limits<double>::infinity();  // lambda below 0: the slack piece's force is 0
 }
 
 double SpoolDrum::forceAgainst(double a, double b) const

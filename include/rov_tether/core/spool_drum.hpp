@@ -69,6 +69,10 @@ class SpoolDrum
   /// The drum's pay-out over the step when the segment ends at stretch c: c - alpha force(c) where the
   /// segment pulls, s(0) where it is slack.
   double payoutAt(double c) const;
+  /// How far stretch c [m] is from the nearest stretch at which the law gives force lambda [kg m] (0 where it
+  /// does; the law's pieces of a fixed force give it over an interval); infinity for a lambda below 0, which
+  /// no stretch gives.
+  double stretchOff(double c, double lambda) const;
   /// The force lambda that meets the law when the rest of the chain answers it linearly: lambda =
   /// force(a - b lambda), b >= 0 (more force, less stretch). Unique (the law is monotone), found exactly
   /// on its piece.
