@@ -1,5 +1,6 @@
 #include "rov_tether/core/vehicle_track.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rov_tether
@@ -38,6 +39,14 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
     out << "vehicle sample rejected: " << samples_.size() << " samples already wait ahead of the simulation (at " << now
         << " s); advance it first";
     return Status::error(out.str());
+  }
+  if (attached_ && samples_.size() == 1 && now > samples_.back().time)
+  {
+    // The simulation went on past the last sample with the vehicle held there (poses that stopped): it is there
+    // until now, not only at the sample's time. Moving from the sample's time, the end would cover at once the
+    // share of the way the gap's time had already used, a leap of most of it (kN on a brake's tether); from now,
+    // it takes the time left to the new sample, and is a jump if it cannot in that time.
+    samples_.back().time = std::min(now, t);
   }
   // The sample before (none left when this one replaced the only one: then it is where the vehicle is).
   const Position& previous = samples_.empty() ? position_ : samples_.back().position;

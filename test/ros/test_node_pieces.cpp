@@ -667,6 +667,74 @@ TEST(PoseRates, SparsePosesMoveTheCableEndSmoothlyAndAsDensePosesDo)
   }
 }
 
+/// A vehicle moving along y at `speed` from t = 100 s, its poses at 20 Hz arriving 20 ms after their stamps, with
+/// none from 104 s to 114 s; from then on it is `away` further along than the constant speed puts it (where it went
+/// in the gap). Run through the node's pieces to 120 s.
+std::unique_ptr<NodeRig> gapInThePoses(double speed, double away)
+{
+  TetherParams params;
+  params.cable_length = 30.0;
+  params.max_winch_speed = 2.0;
+  auto rig = std::make_unique<NodeRig>(params);
+  const auto vehicle = [&](double t)
+  { return Position(2.0, -2.0 + speed * (t - 100.0) + (t > 110.0 ? away : 0.0), -1.0); };
+  const double latency = 0.02, rate = 20.0;
+  int next = 0;
+  for (int tick = 0; tick <= 20 * 200; ++tick)
+  {
+    const double now = 100.0 + tick * 0.005;
+    for (; 100.0 + next / rate + latency <= now + 1e-9; ++next)
+    {
+      const double stamp = 100.0 + next / rate;
+      if (stamp > 104.0 + 1e-9 && stamp < 114.0 - 1e-9)
+      {
+        continue;  // the gap
+      }
+      const Position p = vehicle(stamp);
+      rig->input->receive(shared(poseMsg(p.x(), p.y(), p.z(), stamp)), ros::Time(stamp + latency));
+    }
+    rig->scheduler.tick(ros::Time(now));
+  }
+  return rig;
+}
+
+// Poses that stop for longer than stale_pose_timeout (2 s): the physics goes on with the vehicle held where it was
+// last, up to 2 s behind ROS time. When they come back the end must go from where it was held, over the time the
+// physics has left to the new pose's stamp: at least stale_pose_timeout less the latency and a tick (1.975 s). A
+// vehicle at 0.3 m/s has gone 3 m in the 10 s gap, so the end moves at most 3 m / 1.975 s, within the 3 m/s that
+// is no jump: none is counted and nothing is re-laid. (It went from the pose's own stamp, 10 s before: it had
+// used most of that already, and leapt most of the 3 m in one step, 73 kN on the brake's tether in the node.) A
+// vehicle that turns up 8 m further than that could not have got there in the time left (3 m/s x 1.975 s + 1 m):
+// a jump, counted, and the cable re-laid to it.
+TEST(PoseRates, AfterAGapInThePosesTheEndGoesOnFromWhereItWasHeld)
+{
+  const auto run = gapInThePoses(0.3, 0.0);
+  const NodeRig& r = *run;
+  double fastest = 0.0, at = 0.0;
+  for (std::size_t k = 1; k < r.times.size(); ++k)
+  {
+    const double speed = (r.ends[k] - r.ends[k - 1]).norm() / (r.times[k] - r.times[k - 1]);
+    if (speed > fastest)
+    {
+      fastest = speed, at = r.times[k];
+    }
+  }
+  const double least_time = 2.0 - 0.02 - 0.005;
+  std::printf(
+      "[ measured ] 10 s without poses, then 3 m further on: the end at most %.3f m/s (at %.2f s), %zu "
+      "states, %llu jumps, peak tension at the vehicle %.1f N\n",
+      fastest, at, r.times.size(), static_cast<unsigned long long>(r.world.tether(0).jumpCount()),
+      *std::max_element(r.tensions.begin(), r.tensions.end()));
+  ASSERT_GT(r.times.size(), 150u);
+  EXPECT_LE(fastest, 3.0 / least_time * (1.0 + 1e-6));
+  EXPECT_EQ(r.world.tether(0).jumpCount(), 0u);
+  EXPECT_EQ(r.world.tether(0).recoveryCount(), 0u);
+  EXPECT_EQ(r.input->rejected(), 0u);
+  const auto far = gapInThePoses(0.3, 8.0);
+  EXPECT_EQ(far->world.tether(0).jumpCount(), 1u);
+  EXPECT_EQ(far->world.tether(0).recoveryCount(), 0u);
+}
+
 // A bag that loops: its last pose arrives after the last physics tick of its clock (the clock stops with
 // the bag), and then the clock goes back to the bag's start. That pose, from the old time line, must not
 // be taken after the reset: newer than every pose of the next loop, it would have every one refused. The
