@@ -122,6 +122,29 @@ TEST(BadInput, HugeTimesAreRefusedAndHugePositionsSurvived)
   EXPECT_TRUE(std::isfinite(sim.summary().max_tension));
 }
 
+// At a ROS time of today (1.8e9 s, a double's spacing 2.4e-7 s there) a step to the end of the next step, as the node
+// stops for a subscriber of every step (~coupling), takes that step: the end is nextStepTime() on both sides. With
+// stepFits reading time() + time_step, which rounds otherwise, half the steps did not fit their own end, so the node
+// took none and fell behind until it skipped ahead (a helper: 1 Hz of ~state instead of 30 with ~coupling watched).
+TEST(Time, AStepToItsOwnEndIsTakenAtAROSTimeOfToday)
+{
+  TetherParams params;
+  params.noise = 0.0;
+  Tether sim(params, Position::Zero(), 1.8e9);
+  ASSERT_TRUE(sim.addVehicleSample(1.8e9, Position(2.0, 0.0, -1.0)).ok);
+  int refused = 0;
+  for (int k = 0; k < 2000; ++k)
+  {
+    const double end = sim.nextStepTime();
+    std::size_t taken = 0;
+    ASSERT_TRUE(sim.advanceTo(end, &taken).ok);
+    refused += taken == 1 ? 0 : 1;
+    ASSERT_LE(taken, 1u) << k;
+  }
+  EXPECT_EQ(refused, 0);
+  EXPECT_EQ(sim.stepCount(), 2000u);
+}
+
 // skipTo (used by the node when it falls further than max_lag behind) moves time without stepping: the
 // cable holds its shape at rest, the vehicle end goes where the samples say, and stepping resumes.
 TEST(Skip, SkipAheadHoldsTheCableAndResumes)

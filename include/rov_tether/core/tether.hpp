@@ -164,8 +164,10 @@ class Tether
   void step();
   /// Time the next internal step ends at [s].
   double nextStepTime() const { return base_time_ + static_cast<double>(steps_ + 1 - base_steps_) * params_.time_step; }
-  /// True when one more internal step fits before t [s] (advanceTo takes steps while it does).
-  bool stepFits(double t) const { return time_ + params_.time_step <= t + 1e-9 * params_.time_step; }
+  /// True when one more internal step fits before t [s] (advanceTo takes steps while it does): its end,
+  /// nextStepTime(), rounded as a caller that asks to stop there has it (time() + time_step rounds otherwise at a
+  /// ROS time of 1.8e9 s, whose spacing is 2.4e-7 s: a step to its own end did not fit, half the time).
+  bool stepFits(double t) const { return nextStepTime() <= t + 1e-9 * params_.time_step; }
   /// Moves time forward to t [s] without stepping, for a caller that cannot keep up: the cable keeps its
   /// shape at rest, the vehicle end moves to where the samples put it at t. Refuses t before time().
   Status skipTo(double t);
