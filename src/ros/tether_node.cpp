@@ -68,7 +68,8 @@ TetherNode::TetherNode(const ros::NodeHandle& nh, const ros::NodeHandle& private
                       : nullptr),
       publisher_(private_nh_, withTetherFrames(setup.options, name), setup.vehicle.size),
       diagnostics_(nh_, private_nh_, setup.options, name, tether_, pose_input_, scheduler, index_, topology),
-      requested_params_(setup.params)
+      requested_params_(setup.params),
+      running_params_(setup.params)
 {
   warnAboutStability();
   get_tension_srv_ = private_nh_.advertiseService("get_tension", &TetherNode::onGetTension, this);
@@ -170,8 +171,28 @@ void TetherNode::applyPendingParams()
   const Status status = tether_.setParams(*pending);
   if (!status.ok)
   {
-    ROS_ERROR("tether_node: parameters refused: %s", status.message.c_str());
+    // Refused whole, as dynamic_reconfigure's own checks refuse: what was asked goes back to what runs, and
+    // `dynparam get` and the parameter server show it (else they kept the refused value, and every later change,
+    // made from it, was refused too). A change asked since was made from the refused one: it is checked in turn.
+    TetherConfig shown;
+    bool newer = false;
+    {
+      std::lock_guard<std::mutex> lock(pending_mutex_);
+      newer = pending_params_.has_value();
+      requested_params_ = newer ? requested_params_ : running_params_;
+      shown = paramsToConfig(requested_params_);
+    }
+    if (!newer)
+    {
+      reconfigure_server_->updateConfig(shown);
+    }
+    ROS_ERROR("tether_node%s: parameters refused whole, old values kept: %s",
+              name_.empty() ? "" : (" " + name_).c_str(), status.message.c_str());
     return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    running_params_ = *pending;
   }
   // A new configuration ends any reduction (iterations as resolved, `auto` included).
   scheduler_.governor(index_).reconfigured(tether_.params().iterations);
@@ -301,6 +322,10 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
     requested_params_.winch_speed = params.winch_speed;
     requested_params_.brake_tension = params.brake_tension;
     requested_params_.target_tension = params.target_tension;
+    running_params_.winch_mode = params.winch_mode;  // the tether runs them already
+    running_params_.winch_speed = params.winch_speed;
+    running_params_.brake_tension = params.brake_tension;
+    running_params_.target_tension = params.target_tension;
     shown = paramsToConfig(requested_params_);
   }
   reconfigure_server_->updateConfig(shown);

@@ -8,6 +8,8 @@ BlueROV2 Heavy) on a locked 10 m tether, 8 m out, driven by ~cmd_wrench under si
   net weight (13.5 kg against 0.0134 m^3 of fresh water) across it: |F| = sqrt(40^2 + 1^2) = 40.01 N, within
   the 2%. ~odom's twist is in the body frame (child_frame_id rov): surge u, the vehicle facing +x.
 - A NaN command is refused (a warning on /rosout, counted in /diagnostics) and the thrust goes on.
+- A solver change the dynamic vehicle cannot take is refused whole and rolled back (`dynparam get`), and a later
+  change is taken.
 - The commands stop: the last one holds the thrust for cmd_wrench_timeout (0.5 s of ROS time; the physics
   runs interpolation_delay 0.1 s behind, so to physics time last + 0.4 s), then the thrust is zero: the
   pull drops below 10% of 40 N, and the stretched tether pulls the vehicle back towards the spool.
@@ -17,6 +19,7 @@ import time
 import sys
 import unittest
 
+import dynamic_reconfigure.client
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
@@ -66,6 +69,7 @@ class DynamicVehicle(unittest.TestCase):
 
     def on_state(self, msg):
         self.state_stamp = msg.header.stamp.to_sec()
+        self.state_solver, self.state_drag = msg.solver, msg.drag
 
     def on_diagnostics(self, msg):
         for status in msg.status:
@@ -154,6 +158,23 @@ class DynamicVehicle(unittest.TestCase):
               (max(w[1] for w in released), back[-1][1], at_rest[-1][1]), file=sys.stderr)
         self.assertLess(back[-1][1], at_rest[-1][1], "drifts back towards the spool")
         self.assertTrue(any("stale" in m and "cmd_wrench" in m for m in self.logs), "the stale command is warned")
+
+        # A solver the vehicle cannot be coupled into passes dynamic_reconfigure's own checks but the tether's
+        # refuses it: refused whole, with an error, and what `dynparam get` and the parameter server show goes back
+        # to direct, so that a later change is taken (the refused solver stuck there, and every later change, made
+        # from it, was refused too).
+        client = dynamic_reconfigure.client.Client(NODE, timeout=30)
+        client.update_configuration({"solver": "pbd"})
+        self.drive(0.5)
+        self.assertTrue(self.wait_for(lambda: any("parameters refused whole" in m for m in self.logs), 10.0),
+                        "the refusal is logged")
+        self.assertTrue(self.wait_for(lambda: client.get_configuration(timeout=10)["solver"] == "direct", 10.0),
+                        "dynparam get shows the solver that runs")
+        self.assertEqual(rospy.get_param(NODE + "/solver"), "direct")
+        client.update_configuration({"drag": 0.8})
+        self.drive(0.5)
+        self.assertTrue(self.wait_for(lambda: abs(self.state_drag - 0.8) < 1e-12, 10.0), "a later change is taken")
+        self.assertEqual(self.state_solver, "direct")
 
 
 if __name__ == "__main__":

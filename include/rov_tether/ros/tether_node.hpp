@@ -99,6 +99,9 @@ class TetherNode : public TetherHooks
   /// The parameters as the user asked for them (`iterations: auto` kept; the tether runs them resolved), the
   /// start of every dynamic_reconfigure and set_winch change. Guarded by pending_mutex_.
   TetherParams requested_params_;
+  /// The request the tether runs: what requested_params_ goes back to when the tether refuses a change that passed
+  /// dynamic_reconfigure's checks (a dynamic vehicle's solver). Guarded by pending_mutex_.
+  TetherParams running_params_;
   std::vector<double> tensions_;
   Eigen::Isometry3d vehicle_pose_ = Eigen::Isometry3d::Identity();  ///< At the last ~state (for ~markers).
 };
