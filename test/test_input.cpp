@@ -62,7 +62,9 @@ TEST(BadInput, DuplicateStampReplacesTheSample)
 {
   Tether replaced = movingTether();
   Tether kept = movingTether();
-  EXPECT_TRUE(replaced.addVehicleSample(1.0, Position(2.0, -0.5, 0.0)).ok);  // same stamp as (2, 0.5, 0)
+  const Status again = replaced.addVehicleSample(1.0, Position(2.0, -0.5, 0.0));  // same stamp as (2, 0.5, 0)
+  EXPECT_TRUE(again.ok);
+  EXPECT_NE(again.message.find("again replaced the one before (1.000 m from it)"), std::string::npos) << again.message;
   ASSERT_TRUE(succeeded(replaced.advance(1.0)));
   ASSERT_TRUE(succeeded(kept.advance(1.0)));
   EXPECT_EQ(replaced.particle(replaced.deployedParticleCount() - 1), Position(2.0, -0.5, 0.0));

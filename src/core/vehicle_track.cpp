@@ -1,6 +1,7 @@
 #include "rov_tether/core/vehicle_track.hpp"
 
 #include <algorithm>
+#include <iomanip>
 #include <sstream>
 
 namespace rov_tether
@@ -23,13 +24,19 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
   if (!samples_.empty() && t < samples_.back().time)
   {
     std::ostringstream out;
-    out << "vehicle sample rejected: time " << t << " s is older than the last sample at " << samples_.back().time
-        << " s";
+    out << std::fixed << std::setprecision(6) << "vehicle sample rejected: time " << t
+        << " s is older than the last sample at " << samples_.back().time << " s";
     return Status::error(out.str());
   }
+  Status done = Status::success();
   if (!samples_.empty() && t == samples_.back().time)
   {
-    samples_.pop_back();  // a duplicate stamp replaces the sample it repeats
+    // A duplicate stamp replaces the sample it repeats (the later message is the better fix), and says so.
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(6) << "a sample stamped " << t << " s again replaced the one before ("
+        << std::setprecision(3) << (position - samples_.back().position).norm() << " m from it)";
+    done.message = out.str();
+    samples_.pop_back();
   }
   if (samples_.size() >= kMaxSamples)
   {
@@ -53,7 +60,7 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
   const double dt = samples_.empty() ? 0.0 : t - samples_.back().time;
   const bool jump = (position - previous).norm() > max_speed * dt + max_jump;
   samples_.push_back(Sample{t, position, jump});
-  return Status::success();
+  return done;
 }
 
 void VehicleTrack::detach()

@@ -4,6 +4,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -110,9 +111,9 @@ bool PoseInput::worldFrameInUse() const
 
 bool PoseInput::adoptFrame(const std::string& frame)
 {
-  if (!options_.world_frame_from_pose || !adopted_frame_.empty() || frame.empty())
+  if (!options_.world_frame_from_pose || !adopted_frame_.empty() || frame.empty() || accepted_ > 0)
   {
-    return false;
+    return false;  // only for the first poses: once poses were taken, one in another frame is refused, not adopted
   }
   if (worldFrameInUse() || tf_.canTransform(options_.world_frame, frame, ros::Time(0)))
   {
@@ -143,7 +144,51 @@ bool PoseInput::adoptFrame(const std::string& frame)
 void PoseInput::refuse(const std::string& why)
 {
   ++rejected_;
-  ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %s", label_.c_str(), why.c_str());
+  warnEach("rejected", why);
+}
+
+void PoseInput::warnEach(const char* what, const std::string& why)
+{
+  std::string kind = what;
+  for (const char c : why)
+  {
+    kind += std::isdigit(static_cast<unsigned char>(c)) ? '#' : c;
+  }
+  const double now = ros::WallTime::now().toSec();
+  {
+    std::lock_guard<std::mutex> lock(warn_mutex_);
+    auto it = std::find_if(warned_.begin(), warned_.end(), [&](const auto& w) { return w.first == kind; });
+    if (it != warned_.end() && now - it->second < 1.0)
+    {
+      return;
+    }
+    if (it == warned_.end())
+    {
+      if (warned_.size() >= 64)
+      {
+        warned_.clear();  // kinds with names in them (frames, types) could be many: forget, and warn again
+      }
+      warned_.emplace_back(kind, now);
+    }
+    else
+    {
+      it->second = now;
+    }
+  }
+  ROS_WARN("rov_pose %s%s: %s", what, label_.c_str(), why.c_str());
+}
+
+void PoseInput::noteOnce(const std::string& key, const std::string& text)
+{
+  {
+    std::lock_guard<std::mutex> lock(warn_mutex_);
+    if (std::find(noted_.begin(), noted_.end(), key) != noted_.end())
+    {
+      return;
+    }
+    noted_.push_back(key);
+  }
+  ROS_INFO("tether_node%s: %s", label_.c_str(), text.c_str());
 }
 
 void PoseInput::receiveAny(const topic_tools::ShapeShifter::ConstPtr& msg, const ros::Time& now)
@@ -162,6 +207,15 @@ void PoseInput::receiveAny(const topic_tools::ShapeShifter::ConstPtr& msg, const
       auto pose = boost::make_shared<geometry_msgs::PoseStamped>();
       pose->header = odometry->header;  // the pose is in header.frame_id; child_frame_id is the vehicle's
       pose->pose = odometry->pose.pose;
+      if (!odometry->child_frame_id.empty() && odometry->child_frame_id != options_.rov_frame)
+      {
+        noteOnce("child " + odometry->child_frame_id,
+                 "Odometry on " + topic_ + " is of '" + odometry->child_frame_id + "', not rov_frame '" +
+                     options_.rov_frame +
+                     "': its pose is taken as rov_frame's (attachment_offset is in that frame, "
+                     "and the node's frames are named rov_frame); set rov_frame to '" +
+                     odometry->child_frame_id + "' if that is the vehicle's body frame");
+      }
       receive(pose, now);
       return;
     }
@@ -200,6 +254,8 @@ void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const r
     auto stamped = boost::make_shared<geometry_msgs::PoseStamped>(*msg);
     stamped->header.stamp = now;  // a zero stamp means "now"
     pose = stamped;
+    noteOnce("zero stamp",
+             "a pose on " + topic_ + " has a zero stamp: taken as stamped when it arrived (its ROS time)");
   }
   const double ahead = (pose->header.stamp - now).toSec();
   if (ahead > options_.max_pose_future)
@@ -208,6 +264,11 @@ void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const r
     return;
   }
   const std::string& frame = pose->header.frame_id;
+  if (frame.empty())
+  {
+    noteOnce("empty frame",
+             "a pose on " + topic_ + " has an empty frame_id: taken in world_frame '" + options_.world_frame + "'");
+  }
   if (frame.empty() || frame == options_.world_frame || !filter_)
   {
     handOver(pose, now);
@@ -411,6 +472,10 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   {
     refuse(status.message);
     return false;
+  }
+  if (!status.message.empty())
+  {
+    warnEach("taken", status.message);  // taken, with something the core did about it (a duplicate stamp)
   }
   if (!last_pose_stamp_.isZero())
   {

@@ -906,6 +906,92 @@ TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
   EXPECT_EQ(kept.input->accepted(), 0u);
 }
 
+// A helper sent one pose in a frame nobody has (a typo) after 600 poses in world: the node took world as that
+// frame (the identity on /tf_static, for good), and refused the pose anyway. world_frame is taken as the poses'
+// frame only for the first poses: once some were taken, a pose in another frame is refused and counted, and the
+// poses in world go on.
+TEST(PoseInput, AStrayFrameAfterPosesWereTakenIsRefusedNotTakenAsTheWorld)
+{
+  NodeRig rig(quietParams());
+  feedPosesIn(rig, "world", 2.0);
+  const std::uint64_t taken = rig.input->accepted();
+  ASSERT_GT(taken, 30u);
+  rig.input->receive(shared(poseMsg(3.0, 1.0, -1.0, 102.02, "nosuchframe")), ros::Time(102.02));
+  for (int tick = 1; tick <= 600; ++tick)  // 3 s: the physics holds for stale_pose_timeout (2 s), then passes it
+  {
+    rig.scheduler.tick(ros::Time(102.0 + tick * 0.005));
+  }
+  EXPECT_EQ(rig.input->adoptedFrame(), "");
+  EXPECT_EQ(rig.input->rejected(), 1u);
+  std::string parent;
+  EXPECT_FALSE(rig.tf._getParent("world", ros::Time(0), parent)) << "world has no parent: " << parent;
+}
+
+/// Collects what rosconsole prints at WARN and INFO while it lives.
+struct LogCollector : ros::console::LogAppender
+{
+  LogCollector() { ros::console::register_appender(this); }
+  ~LogCollector() override { ros::console::deregister_appender(this); }
+  void log(ros::console::Level level, const char* str, const char*, const char*, int) override
+  {
+    (level == ros::console::levels::Warn ? warnings : notes).emplace_back(str);
+  }
+  std::size_t count(const std::vector<std::string>& lines, const std::string& part) const
+  {
+    return static_cast<std::size_t>(std::count_if(
+        lines.begin(), lines.end(), [&](const std::string& l) { return l.find(part) != std::string::npos; }));
+  }
+  std::vector<std::string> warnings, notes;
+};
+
+// Four different bad poses 0.3 s apart (a helper: only the first was ever logged, every reason sharing one
+// throttled call site): each is warned, for its own reason is throttled on its own (once a second). What the
+// node does with a pose it takes is said once: a zero stamp taken as the arrival time, an empty frame_id taken
+// as world_frame, and a duplicate stamp replacing the pose before (each time, throttled as a warning's kind).
+TEST(PoseInput, EachReasonForARefusalIsWarnedAndEachReadingOfAPoseIsSaid)
+{
+  LogCollector log;
+  NodeRig rig(quietParams());
+  double clock = 100.0;  // ROS time
+  const auto tick = [&](double until)
+  {
+    for (; clock <= until + 1e-9; clock += 0.005)
+    {
+      rig.scheduler.tick(ros::Time(clock));
+    }
+  };
+  rig.input->receive(shared(poseMsg(2.0, 0.0, -1.0, 100.0)), ros::Time(100.0));
+  tick(100.3);
+  auto future = poseMsg(2.0, 0.0, -1.0, 3700.0);
+  rig.input->receive(shared(future), ros::Time(100.3));
+  auto zero_quaternion = poseMsg(2.0, 0.0, -1.0, 100.6);
+  zero_quaternion.pose.orientation.w = 0.0;
+  rig.input->receive(shared(zero_quaternion), ros::Time(100.6));
+  rig.input->receive(shared(poseMsg(std::nan(""), 0.0, -1.0, 100.9)), ros::Time(100.9));
+  rig.input->receive(shared(poseMsg(2.0, 0.0, -1.0, 99.0)), ros::Time(101.2));  // older than the last
+  tick(101.5);
+  EXPECT_EQ(rig.input->rejected(), 4u);
+  EXPECT_EQ(log.count(log.warnings, "ahead of ROS time"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "not normalised"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "not finite"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "older than the last sample"), 1u);
+  // The same reason again within the second: counted, not warned again.
+  rig.input->receive(shared(poseMsg(std::nan(""), 0.0, -1.0, 101.5)), ros::Time(101.5));
+  EXPECT_EQ(rig.input->rejected(), 5u);
+  EXPECT_EQ(log.count(log.warnings, "not finite"), 1u);
+
+  auto unstamped = poseMsg(2.1, 0.0, -1.0, 0.0);
+  unstamped.header.frame_id = "";
+  rig.input->receive(shared(unstamped), ros::Time(101.6));
+  rig.input->receive(shared(poseMsg(2.2, 0.0, -1.0, 101.7, "")), ros::Time(101.7));
+  rig.input->receive(shared(poseMsg(2.3, 0.0, -1.0, 101.7)), ros::Time(101.75));  // the same stamp again
+  tick(102.5);
+  EXPECT_EQ(rig.input->rejected(), 5u);
+  EXPECT_EQ(log.count(log.notes, "zero stamp"), 1u);
+  EXPECT_EQ(log.count(log.notes, "empty frame_id"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "again replaced the one before (0.100 m from it)"), 1u);
+}
+
 // Item 5 of issue 26: one pose stamped an hour ahead (a publisher with a wrong clock) was taken; every real
 // pose after it was then refused as "older than the last sample" and the vehicle end stayed frozen for the
 // hour. A stamp further ahead of ROS time than max_pose_future (1 s) is refused and counted instead.

@@ -28,9 +28,10 @@ class VehicleTrack
   /// Attaches the vehicle at `position` now, with that sample at time t.
   void attachAt(double t, const Position& position);
   /// Queues a sample (finite values are the caller's check). Refuses times older than the last sample
-  /// (the same time replaces it) and more than kMaxSamples waiting. `now` [s] is the simulation's time: where
-  /// it has passed the last sample (the vehicle held there), the move starts from there at `now` (or at t, if
-  /// that is earlier). A move beyond max_speed [m/s] * dt + max_jump [m] from the sample dt before is a jump.
+  /// (the same time replaces it, and the success's message says so) and more than kMaxSamples waiting. `now` [s] is the
+  /// simulation's time: where it has passed the last sample (the vehicle held there), the move starts from there at
+  /// `now` (or at t, if that is earlier). A move beyond max_speed [m/s] * dt + max_jump [m] from the sample dt before
+  /// is a jump.
   Status add(double t, const Position& position, double max_jump, double max_speed, double now);
   /// Drops the samples and detaches: the last particle becomes a free end.
   void detach();

@@ -159,6 +159,11 @@ class PoseInput
   /// The vehicle at `vehicle` (world frame) at `stamp` into the tether; counts and logs a refusal.
   bool addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now);
   void refuse(const std::string& why);
+  /// Warns of `why` at most once a second for each kind of reason (its text without its numbers), so that one
+  /// problem arriving often does not hide another.
+  void warnEach(const char* what, const std::string& why);
+  /// Says once, at INFO, how a pose the node takes was read (`key` the case, `text` what it did).
+  void noteOnce(const std::string& key, const std::string& text);
   /// Refuses (counts) a pose stamped `ahead` [s] of ROS time, beyond max_pose_future.
   void refuseFuture(double ahead);
   /// What to do about a pose in `frame` that tf cannot bring into world_frame (for the warnings).
@@ -185,6 +190,9 @@ class PoseInput
   std::vector<HandOver> waiting_for_tf_;  ///< In the MessageFilter, with their arrival times.
   std::vector<HandOver> taking_;          ///< Physics thread: the poses being taken (swapped with hand_over_).
 
+  std::mutex warn_mutex_;                               ///< Guards the two below (input and physics threads).
+  std::vector<std::pair<std::string, double>> warned_;  ///< Each reason's kind and when it was last warned [s, wall].
+  std::vector<std::string> noted_;                      ///< The cases noteOnce has said.
   std::atomic<std::uint64_t> rejected_{0};
   std::atomic<std::uint64_t> dropped_{0};
   std::atomic<std::uint64_t> future_{0};
