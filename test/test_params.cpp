@@ -93,6 +93,18 @@ TEST(Params, ContradictionsBetweenFieldsAreNamed)
   errors = params.validate();
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_NE(errors[0].find("min_deployed_length = 0.05"), std::string::npos) << errors[0];
+
+  params = TetherParams{};  // a water surface below the seabed (a helper's typo): no water, the cable in air
+  params.seabed_z = -3.0;
+  params.water_surface_z = -5.0;
+  errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("water_surface_z = -5: must be above seabed_z = -3"), std::string::npos) << errors[0];
+  params.water_surface_z = -2.0;
+  EXPECT_TRUE(params.validate().empty());
+  params.seabed_z = std::nan("");  // no seabed: any surface
+  params.water_surface_z = -5.0;
+  EXPECT_TRUE(params.validate().empty());
 }
 
 TEST(Params, SetParameterChecksNamesAndTypes)

@@ -350,6 +350,11 @@ std::vector<std::string> TetherParams::validate() const
     relation("min_deployed_length = " + formatValue(min_deployed_length) + ": must be in [segment_length = " +
              formatValue(segment_length) + ", cable_length = " + formatValue(cable_length) + "]");
   }
+  if (water_surface_z <= seabed_z)  // both given (a NaN, absent, compares false)
+  {
+    relation("water_surface_z = " + formatValue(water_surface_z) + ": must be above seabed_z = " +
+             formatValue(seabed_z) + " (there would be no water: the cable would weigh as in air)");
+  }
   if (initial_deployed_length < min_deployed_length || initial_deployed_length > cable_length)
   {
     relation("initial_deployed_length = " + formatValue(initial_deployed_length) +

@@ -271,7 +271,7 @@ void TetherDiagnostics::diagnoseTopology(diagnostic_updater::DiagnosticStatusWra
         status.add("capstan ratio on " + other, value);
         if (value > options_.snag_ratio)
         {
-          status.mergeSummaryf(DiagnosticStatus::WARN, "%s snagged on %s: capstan ratio %.1f > snag_ratio %.1f",
+          status.mergeSummaryf(DiagnosticStatus::WARN, "%s snagged on %s: capstan ratio %.3f > snag_ratio %.3f",
                                who.c_str(), other.c_str(), value, options_.snag_ratio);
         }
         break;
