@@ -98,6 +98,12 @@ Eigen::Isometry3d startPose(const Eigen::Vector4d& xyz_yaw)
   return pose;
 }
 
+std::string WrenchCommand::refuse(const std::string& why)
+{
+  ++refused_;
+  return why;
+}
+
 std::string WrenchCommand::accept(const geometry_msgs::Wrench& command, const ros::Time& arrival)
 {
   const Wrench wrench = toWrenchVector(command);
@@ -178,7 +184,16 @@ void VehicleIo::receive(const geometry_msgs::WrenchStamped& msg, const ros::Time
   std::string why;
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
-    why = command_.accept(msg.wrench, now);
+    if (!msg.header.frame_id.empty() && msg.header.frame_id != options_.rov_frame)
+    {
+      // The thrust is the body's: a wrench in another frame (the world's) would push the wrong way.
+      why = command_.refuse("in frame '" + msg.header.frame_id + "': expected the body frame rov_frame '" +
+                            options_.rov_frame + "' (or none); refused, the last command stays");
+    }
+    else
+    {
+      why = command_.accept(msg.wrench, now);
+    }
   }
   if (!why.empty())
   {
@@ -218,6 +233,28 @@ Status VehicleIo::takePose(double t, const Eigen::Isometry3d& vehicle)
   return Status::success();
 }
 
+void VehicleIo::noteSaturation()
+{
+  // The last step's thrust as applied: an axis commanded beyond thrust_limit was held at it (never silently).
+  const ThrustUsed* used = tether_.vehicleThrustUsed();
+  if (used == nullptr || !used->saturated())
+  {
+    return;
+  }
+  static const char* const kAxes[6] = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
+  std::string axes;
+  for (int i = 0; i < 6; ++i)
+  {
+    axes += (used->saturated_axes >> i) & 1u ? std::string(axes.empty() ? "" : ", ") + kAxes[i] : "";
+  }
+  {
+    std::lock_guard<std::mutex> lock(command_mutex_);
+    ++saturated_ticks_;
+  }
+  ROS_WARN_THROTTLE(5.0, "tether_node%s: the thrust from %s is held at the vehicle's thrust_limit on %s",
+                    label_.c_str(), driver_, axes.c_str());
+}
+
 Wrench VehicleIo::controlledThrust()
 {
   const double now = tether_.time();
@@ -252,6 +289,7 @@ void VehicleIo::beforeAdvance(const ros::Time& now)
   {
     return;
   }
+  noteSaturation();
   bool went_stale = false;
   bool fresh = false;
   double age = 0.0;
@@ -326,7 +364,7 @@ Eigen::Isometry3d VehicleIo::pose() const
 
 void VehicleIo::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  std::uint64_t accepted = 0, refused = 0, stale = 0;
+  std::uint64_t accepted = 0, refused = 0, stale = 0, saturated = 0;
   bool fresh = false;
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
@@ -334,7 +372,10 @@ void VehicleIo::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
     refused = command_.refused();
     stale = command_.stalePeriods();
     fresh = command_.fresh(ros::Time::now());
+    saturated = saturated_ticks_;
   }
+  const bool held_since = saturated > saturated_reported_;  // since the last report
+  saturated_reported_ = saturated;
   status.add("vehicle model", "dynamic");
   status.add("cmd_wrench taken", accepted);
   status.add("cmd_wrench refused", refused);
@@ -342,6 +383,11 @@ void VehicleIo::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("cmd_wrench fresh", fresh ? "yes" : "no");
   status.add("setpoints taken (poses after the start)", setpoint_count_);
   status.add("thrust from", driver_);
+  status.add("ticks with the thrust held at thrust_limit", saturated);
+  if (held_since)
+  {
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "thrust held at thrust_limit (see the log)");
+  }
   if (const VehicleBody* body = tether_.vehicleBody())
   {
     status.addf("vehicle speed [m/s]", "%.4f", body->velocity().head<3>().norm());

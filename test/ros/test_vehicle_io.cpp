@@ -225,6 +225,67 @@ TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
   EXPECT_GT(io.pose().translation().x(), 2.5);
 }
 
+/// A /diagnostics value of `status` by its key ("" when there is none).
+std::string valueOf(const diagnostic_updater::DiagnosticStatusWrapper& status, const std::string& key)
+{
+  for (const auto& kv : status.values)
+  {
+    if (kv.key == key)
+    {
+      return kv.value;
+    }
+  }
+  return "";
+}
+
+// Two things a helper found the node did without a word. A command beyond the vehicle file's thrust_limit is held
+// at the limit by the step (model.md, "Vehicle body"), which ThrustUsed reports: the node counts the ticks, warns,
+// and /diagnostics says so (WARN). A command in a frame other than the body's (rov_frame, or none) is refused and
+// counted: applied as body thrust it would push the wrong way (a world-frame sway of 40 N moved the vehicle 2 m).
+TEST(VehicleIo, AThrustHeldAtItsLimitIsReportedAndACommandInAnotherFrameIsRefused)
+{
+  TetherSetup setup = setupFrom(
+      "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
+      "initial_deployed_length: 8.0, winch_mode: locked}");
+  Tether tether(setup.params, Position::Zero(), 0.0);
+  VehicleIo io(setup, tether, "");
+  io.beforeAdvance(ros::Time(1.0));
+  ASSERT_TRUE(tether.vehicleDynamic());
+  geometry_msgs::WrenchStamped world;
+  world.header.frame_id = "world";
+  world.wrench.force.y = 40.0;
+  for (int k = 1; k <= 5; ++k)
+  {
+    io.receive(world, ros::Time(1.0 + 0.1 * k));
+    io.beforeAdvance(ros::Time(1.0 + 0.1 * k));
+    ASSERT_TRUE(test::succeeded(tether.advanceTo(0.1 * k)));
+  }
+  diagnostic_updater::DiagnosticStatusWrapper refused;
+  io.diagnose(refused);
+  EXPECT_EQ(valueOf(refused, "cmd_wrench refused"), "5");
+  EXPECT_EQ(valueOf(refused, "cmd_wrench taken"), "0");
+  EXPECT_EQ(tether.vehicleThrustUsed()->applied.norm(), 0.0) << "no thrust from a refused command";
+
+  geometry_msgs::WrenchStamped huge;
+  huge.header.frame_id = "rov";  // rov_frame: taken
+  huge.wrench = surge(1e12);
+  for (int k = 6; k <= 10; ++k)
+  {
+    io.receive(huge, ros::Time(1.0 + 0.1 * k));
+    io.beforeAdvance(ros::Time(1.0 + 0.1 * k));
+    ASSERT_TRUE(test::succeeded(tether.advanceTo(0.1 * k)));
+  }
+  io.beforeAdvance(ros::Time(2.05));  // reads the last tick's steps
+  diagnostic_updater::DiagnosticStatusWrapper held;
+  held.summary(diagnostic_msgs::DiagnosticStatus::OK, "OK");
+  io.diagnose(held);
+  EXPECT_EQ(valueOf(held, "cmd_wrench taken"), "5");
+  EXPECT_EQ(valueOf(held, "ticks with the thrust held at thrust_limit"), "5");
+  EXPECT_EQ(held.level, diagnostic_msgs::DiagnosticStatus::WARN);
+  EXPECT_NE(held.message.find("thrust held at thrust_limit"), std::string::npos) << held.message;
+  EXPECT_NEAR(tether.vehicleThrustUsed()->applied[0], 113.7, 1e-9) << "held at the file's surge limit";
+}
+
 // Poses after the start are setpoints for the built-in controller, but a fresh ~cmd_wrench wins: while zero
 // thrust is commanded the vehicle stays; once the commands stop, the controller brings it to the setpoint.
 TEST(VehicleIo, PosesAfterTheStartAreSetpointsUnlessAFreshCommandWins)

@@ -59,6 +59,8 @@ class WrenchCommand
 
   /// Takes `command` [N, N m], body frame, arrived at `arrival`. Returns "" or why it was refused.
   std::string accept(const geometry_msgs::Wrench& command, const ros::Time& arrival);
+  /// Counts a command refused before its numbers were read; returns `why`.
+  std::string refuse(const std::string& why);
   /// Whether a command arrived no more than the timeout before `now`.
   bool fresh(const ros::Time& now) const;
   /// The thrust at `now`: the command while fresh, else zero. Sets `went_stale` true on the first call that
@@ -113,7 +115,8 @@ class VehicleIo
   void restarted();
   /// The body's pose in the world frame; identity before the start.
   Eigen::Isometry3d pose() const;
-  /// The /diagnostics values of the vehicle: commands taken, refused, stale periods, setpoints, what drives it.
+  /// The /diagnostics values of the vehicle: commands taken, refused, stale periods, setpoints, what drives it,
+  /// and the ticks with the thrust held at thrust_limit (WARN when there were some since the last report).
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   /// Any thread: a command message that arrived at `now` (the ~cmd_wrench callback).
@@ -124,6 +127,8 @@ class VehicleIo
   bool start(const Eigen::Isometry3d& pose);
   /// The controller's thrust towards the setpoint at the tether's time (zero when refused, logged).
   Wrench controlledThrust();
+  /// Physics thread: counts and warns (throttled) when the last step held the thrust at thrust_limit.
+  void noteSaturation();
 
   NodeOptions options_;
   VehicleParams vehicle_params_;
@@ -138,6 +143,10 @@ class VehicleIo
   std::uint64_t setpoint_count_ = 0;
   double last_control_time_ = 0.0;  ///< Tether time of the controller's last update [s]; NaN: none since it took over.
   const char* driver_ = "none";     ///< What set the last thrust: "cmd_wrench", "controller" or "none".
+  /// Physics thread: the ticks whose last step held the thrust at thrust_limit on some axis (under command_mutex_),
+  /// and how many of them the last /diagnostics report had seen (its thread).
+  std::uint64_t saturated_ticks_ = 0;
+  std::uint64_t saturated_reported_ = 0;
   ros::Subscriber command_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher tf_pub_;
