@@ -141,6 +141,27 @@ bool PoseInput::adoptFrame(const std::string& frame)
   return true;
 }
 
+void PoseInput::checkAdoption()
+{
+  // world_frame was taken as the poses' frame when tf had nothing to join them (a node started before the
+  // localisation): if tf now has that frame under world_frame from someone else, the node's identity closes a loop
+  // and the cable sits off by their transform. That cannot be undone here (a static transform stays): say so, once.
+  std::string parent;
+  if (adopted_frame_.empty() || adoption_conflict_said_ || !tf_._getParent(adopted_frame_, ros::Time(0), parent) ||
+      parent != options_.world_frame)
+  {
+    return;
+  }
+  adoption_conflict_said_ = true;
+  ROS_ERROR(
+      "tether_node%s: tf now has %s -> %s from elsewhere, but world_frame was taken as %s at the first pose, when tf "
+      "had no transform for it, and the node publishes the identity %s -> %s: a loop, and the cable is off by that "
+      "transform. Restart tether_node once the transform is published (or start it after the localisation), or set "
+      "world_frame_from_pose: false",
+      label_.c_str(), options_.world_frame.c_str(), adopted_frame_.c_str(), adopted_frame_.c_str(),
+      adopted_frame_.c_str(), options_.world_frame.c_str());
+}
+
 void PoseInput::refuse(const std::string& why)
 {
   ++rejected_;
@@ -386,6 +407,7 @@ void PoseInput::poll(const ros::Time& now)
   }
   taking_.clear();
   expireWaiting(now);
+  checkAdoption();
 
   Eigen::Isometry3d pose;
   if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))

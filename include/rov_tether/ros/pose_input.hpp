@@ -171,15 +171,18 @@ class PoseInput
   /// Physics side: when world_frame_from_pose allows it, takes world_frame as `frame` (see the class
   /// comment); true when it did.
   bool adoptFrame(const std::string& frame);
+  /// Physics side: logs an error (once) when tf has, from elsewhere, the adopted frame under world_frame.
+  void checkAdoption();
   /// Whether tf holds world_frame with a parent, or with children other than the node's own frames.
   bool worldFrameInUse() const;
 
   NodeOptions options_;
   tf2_ros::Buffer& tf_;
   Tether& tether_;
-  std::string label_;          ///< " name" for log messages, "" alone.
-  std::string topic_;          ///< The pose topic as resolved (for the warnings).
-  std::string adopted_frame_;  ///< The pose frame world_frame was taken as; "" none.
+  std::string label_;                    ///< " name" for log messages, "" alone.
+  std::string topic_;                    ///< The pose topic as resolved (for the warnings).
+  std::string adopted_frame_;            ///< The pose frame world_frame was taken as; "" none.
+  bool adoption_conflict_said_ = false;  ///< checkAdoption's error was logged.
   ros::Subscriber subscriber_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;  ///< Made by subscribe().
   std::unique_ptr<Filter> filter_;  ///< Poses in other frames wait here for their transform.
