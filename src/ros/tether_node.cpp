@@ -1,6 +1,7 @@
 #include "rov_tether/ros/tether_node.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <tuple>
 
@@ -256,7 +257,9 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
   }
   if (request.target_length < 0.0 || !std::isfinite(request.target_length))
   {
-    return "target_length must be > 0 m, or 0 for none";
+    char asked[32];
+    std::snprintf(asked, sizeof(asked), "%g", request.target_length);
+    return "target_length = " + std::string(asked) + ": must be a finite length > 0 m, or 0 for none";
   }
   // Check the target against the new limits before changing anything.
   *target = request.target_length > 0.0 ? request.target_length : std::nan("");
