@@ -490,7 +490,9 @@ TEST(VehicleCoupling, OnlyDirectTakesADynamicVehicleAndBadInputIsRefused)
   Tether tether(lockedTether(1e5), Position::Zero(), Position(kLength, 0.0, 0.0));
   EXPECT_FALSE(tether.setVehicleThrust(surge(kThrust)).ok);
   EXPECT_FALSE(tether.attachVehicleBody(bodyAt(blueRov(), kLength, 0.2), Eigen::Vector3d(NAN, 0.0, 0.0)).ok);
-  ASSERT_TRUE(tether.attachVehicleBody(bodyAt(blueRov(), kLength, 0.2), Eigen::Vector3d(-0.2, 0.0, 0.0)).ok);
+  const Status within = tether.attachVehicleBody(bodyAt(blueRov(), kLength, 0.2), Eigen::Vector3d(-0.2, 0.0, 0.0));
+  ASSERT_TRUE(within.ok);
+  EXPECT_EQ(within.message, "") << "within the cable's reach: nothing to say";
   EXPECT_TRUE(tether.vehicleDynamic());
   EXPECT_FALSE(tether.setVehicleThrust(surge(NAN)).ok);
   EXPECT_FALSE(tether.addVehicleSample(0.1, Position(kLength, 0.0, 0.0)).ok);
@@ -501,6 +503,14 @@ TEST(VehicleCoupling, OnlyDirectTakesADynamicVehicleAndBadInputIsRefused)
   tether.detachVehicle();
   EXPECT_FALSE(tether.vehicleDynamic());
   EXPECT_EQ(tether.vehicleBody(), nullptr);
+  // A start three times as far as the locked winch's cable reaches (a helper's vehicle_start of 30 m): taken, the
+  // cable laid stretched to it, and said (it was silent: 250 kN at the first step, only an over-tension warning).
+  Tether far(lockedTether(1e5), Position::Zero(), Position(kLength, 0.0, 0.0));
+  const Status beyond = far.attachVehicleBody(bodyAt(blueRov(), 3.0 * kLength, 0.0), Eigen::Vector3d::Zero());
+  ASSERT_TRUE(beyond.ok);
+  EXPECT_NE(beyond.message.find("beyond the 10 m of cable the locked winch has out"), std::string::npos)
+      << beyond.message;
+  EXPECT_NE(beyond.message.find("(strain 2)"), std::string::npos) << beyond.message;
 }
 
 // What the header promises around the steps: attaching to a tether with a free end lays the cable out to the

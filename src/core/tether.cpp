@@ -598,8 +598,20 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
   ++vehicle_starts_;
   track_.detach();
   track_.attachAt(time_, attachment);
-  layOut(lengthToReach(attachment));  // as when a first sample attaches: the cable reaches the vehicle
-  return Status::success();
+  const double laid = lengthToReach(attachment);
+  layOut(laid);  // as when a first sample attaches: the cable reaches the vehicle
+  Status done = Status::success();
+  const double distance = (attachment - spool_.outlet()).norm();
+  if (distance > laid)
+  {
+    // Out of the cable's reach (a locked winch, or all of it out): laid stretched to it, pulling hard at once.
+    std::ostringstream out;
+    out << "the vehicle's attachment is " << distance << " m from the spool, beyond the " << laid << " m of cable "
+        << (params_.winch_mode == WinchMode::kLocked ? "the locked winch has out" : "there is")
+        << ": the cable is laid stretched to it (strain " << (distance - laid) / laid << ")";
+    done.message = out.str();
+  }
+  return done;
 }
 
 Status Tether::setVehicleThrust(const Wrench& thrust)

@@ -216,6 +216,10 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
   start_due_ = false;
   ROS_INFO("tether_node%s: dynamic vehicle started at [%.3f, %.3f, %.3f] in %s", label_.c_str(), pose.translation().x(),
            pose.translation().y(), pose.translation().z(), options_.world_frame.c_str());
+  if (!status.message.empty())
+  {
+    ROS_WARN("tether_node%s: %s", label_.c_str(), status.message.c_str());  // out of the cable's reach
+  }
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "rov_tether/scenario/vehicle_driver.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 namespace rov_tether
@@ -39,6 +40,10 @@ std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim)
            toString(tether.params.solver) + " (set params.solver: direct)";
   }
   const Status attached = sim->attachVehicleBody(startBody(*tether.dynamic), tether.dynamic->attachment_offset);
+  if (attached.ok && !attached.message.empty())
+  {
+    std::fprintf(stderr, "rov_tether: warning: vehicle: %s\n", attached.message.c_str());  // out of reach
+  }
   return attached.ok ? "" : "vehicle: " + attached.message;
 }
 
