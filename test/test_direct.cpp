@@ -420,6 +420,23 @@ TEST(Direct, TenThousandToOneMassRatio)
   }
 }
 
+/// Two identical rods of n particles, dl apart, each segment of `segment_mass`, laid straight from the origin at
+/// 30 degrees off the vertical (let go, they swing).
+void layHangingRods(Cable (&cables)[2], std::size_t n, double dl, double segment_mass)
+{
+  for (Cable& cable : cables)
+  {
+    cable.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double s = dl * static_cast<double>(i);
+      cable.place(i, Position(0.5 * s, 0.0, -std::sqrt(0.75) * s));  // 30 degrees off the vertical: it swings
+    }
+    std::fill(cable.rest.begin(), cable.rest.end(), dl);
+    cable.updateMasses(0, n - 1, {segment_mass / dl, segment_mass / dl}, false);
+  }
+}
+
 // The drum's law in the step, two ways: with the sweep the block solve eliminates from the vehicle end and
 // sets the drum's force at the spool's particle in one pass (banded::solveBlockBandedPulled); with LAPACK's band
 // Cholesky it takes a second solve for a unit pull (PrimalNewton::drumStep). Both meet the same equations, so
@@ -435,17 +452,7 @@ TEST(Direct, TheDrumSolvedInOnePassAgreesWithTheTwoSolves)
   for (double brake : {1.0, 20.0})
   {
     Cable cables[2];
-    for (Cable& cable : cables)
-    {
-      cable.resize(n);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double s = dl * static_cast<double>(i);
-        cable.place(i, Position(0.5 * s, 0.0, -std::sqrt(0.75) * s));  // 30 degrees off the vertical: it swings
-      }
-      std::fill(cable.rest.begin(), cable.rest.end(), dl);
-      cable.updateMasses(0, n - 1, {segment_mass / dl, segment_mass / dl}, false);
-    }
+    layHangingRods(cables, n, dl, segment_mass);
     DirectSolver sweep(DirectSolver::LinearSolve::kSweep), lapack(DirectSolver::LinearSolve::kLapack);
     DirectSolver* solvers[2] = {&sweep, &lapack};
     SolverSettings settings;
@@ -521,17 +528,7 @@ TEST(Direct, ADrumThatHoldsConvergesAsThePlainSegment)
   const std::size_t n = 21;
   const double dl = 0.1, segment_mass = 0.01, g = 9.81, kick = 1e-3;
   Cable cables[2];
-  for (Cable& cable : cables)
-  {
-    cable.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const double s = dl * static_cast<double>(i);
-      cable.place(i, Position(0.5 * s, 0.0, -std::sqrt(0.75) * s));  // 30 degrees off the vertical: it swings
-    }
-    std::fill(cable.rest.begin(), cable.rest.end(), dl);
-    cable.updateMasses(0, n - 1, {segment_mass / dl, segment_mass / dl}, false);
-  }
+  layHangingRods(cables, n, dl, segment_mass);
   DirectSolver solvers[2];
   SolverSettings settings;
   settings.axial_stiffness = 1e5;

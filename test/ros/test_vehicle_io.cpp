@@ -189,16 +189,24 @@ TEST(VehicleIo, ConfigurationsADynamicVehicleCannotRunAreRefused)
   EXPECT_EQ(unknownParameters(keys), "");  // node options, not typos
 }
 
-// VehicleIo on a tether without a master: the vehicle starts at vehicle_start, a surge command drives it out,
-// and once the command is stale the thrust is zero and the water slows it.
-TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
+/// A dynamic vehicle started at vehicle_start, 2 m out on a locked tether of 8 m, at ROS time 1 s.
+struct StartedVehicle
 {
   TetherSetup setup = setupFrom(
       "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
       "initial_deployed_length: 8.0, winch_mode: locked}");
-  Tether tether(setup.params, Position::Zero(), 0.0);
-  VehicleIo io(setup, tether, "");
-  io.beforeAdvance(ros::Time(1.0));
+  Tether tether{setup.params, Position::Zero(), 0.0};
+  VehicleIo io{setup, tether, ""};
+  StartedVehicle() { io.beforeAdvance(ros::Time(1.0)); }
+};
+
+// VehicleIo on a tether without a master: the vehicle starts at vehicle_start, a surge command drives it out,
+// and once the command is stale the thrust is zero and the water slows it.
+TEST(VehicleIo, CommandsDriveTheTethersVehicleUntilTheyGoStale)
+{
+  StartedVehicle started;
+  Tether& tether = started.tether;
+  VehicleIo& io = started.io;
   ASSERT_TRUE(tether.vehicleDynamic());
   EXPECT_NEAR(io.pose().translation().x(), 2.0, 1e-12);
   geometry_msgs::WrenchStamped command;
@@ -244,12 +252,9 @@ std::string valueOf(const diagnostic_updater::DiagnosticStatusWrapper& status, c
 // counted: applied as body thrust it would push the wrong way (a world-frame sway of 40 N moved the vehicle 2 m).
 TEST(VehicleIo, AThrustHeldAtItsLimitIsReportedAndACommandInAnotherFrameIsRefused)
 {
-  TetherSetup setup = setupFrom(
-      "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
-      "initial_deployed_length: 8.0, winch_mode: locked}");
-  Tether tether(setup.params, Position::Zero(), 0.0);
-  VehicleIo io(setup, tether, "");
-  io.beforeAdvance(ros::Time(1.0));
+  StartedVehicle started;
+  Tether& tether = started.tether;
+  VehicleIo& io = started.io;
   ASSERT_TRUE(tether.vehicleDynamic());
   geometry_msgs::WrenchStamped world;
   world.header.frame_id = "world";
@@ -290,12 +295,9 @@ TEST(VehicleIo, AThrustHeldAtItsLimitIsReportedAndACommandInAnotherFrameIsRefuse
 // thrust is commanded the vehicle stays; once the commands stop, the controller brings it to the setpoint.
 TEST(VehicleIo, PosesAfterTheStartAreSetpointsUnlessAFreshCommandWins)
 {
-  TetherSetup setup = setupFrom(
-      "{vehicle_model: dynamic, vehicle_start: [2, 0, -1, 0], noise: 0.0, "
-      "initial_deployed_length: 8.0, winch_mode: locked}");
-  Tether tether(setup.params, Position::Zero(), 0.0);
-  VehicleIo io(setup, tether, "");
-  io.beforeAdvance(ros::Time(1.0));
+  StartedVehicle started;
+  Tether& tether = started.tether;
+  VehicleIo& io = started.io;
   ASSERT_TRUE(tether.vehicleDynamic());
   const Eigen::Isometry3d setpoint = startPose(Eigen::Vector4d(3.0, 0.5, -1.0, 0.3));
   geometry_msgs::WrenchStamped zero;  // a command of no thrust, fresh
