@@ -69,6 +69,19 @@ TEST(BadInput, DuplicateStampReplacesTheSample)
   ASSERT_TRUE(succeeded(kept.advance(1.0)));
   EXPECT_EQ(replaced.particle(replaced.deployedParticleCount() - 1), Position(2.0, -0.5, 0.0));
   EXPECT_EQ(kept.particle(kept.deployedParticleCount() - 1), Position(2.0, 0.5, 0.0));
+  // The same sample again while the end moves towards it (the simulation between the two samples): nothing moves
+  // otherwise than without it (a reviewer: the one sample left was taken for a held one, and the end leapt back).
+  Tether again_same = movingTether();
+  Tether plain = movingTether();
+  EXPECT_TRUE(again_same.addVehicleSample(1.0, Position(2.0, 0.5, 0.0)).ok);
+  for (int k = 0; k < 10; ++k)
+  {
+    ASSERT_TRUE(succeeded(again_same.advance(0.05)));
+    ASSERT_TRUE(succeeded(plain.advance(0.05)));
+    EXPECT_EQ(again_same.particle(again_same.deployedParticleCount() - 1),
+              plain.particle(plain.deployedParticleCount() - 1))
+        << k;
+  }
 }
 
 // Samples far ahead of the simulation: at most 4096 wait; more are refused (never silently dropped, which

@@ -507,6 +507,15 @@ TEST(Winch, TheDrumsStretchOffItsLawIsTheDistanceToTheLaw)
   EXPECT_NEAR(drum.stretchOff(-0.3, 0.2), 0.3 + alpha * 0.2, eps);
   EXPECT_EQ(drum.stretchOff(-0.3, -1e-9), std::numeric_limits<double>::infinity());
   EXPECT_EQ(drum.stretchOff(top + 0.002, -1e-9), std::numeric_limits<double>::infinity());
+  // The brake's force from below, where the standing piece's stretch for it rounds past the piece's end (a
+  // reviewer's case): the pay-out piece's start, not the next sloped piece's.
+  SpoolDrum rounding;
+  rounding.brake = 0.13;
+  rounding.floor = -1.0;
+  rounding.max_payout = 0.01;
+  rounding.prepare(0.031);
+  const double half = 0.5 * 0.031 * 0.13;
+  EXPECT_NEAR(rounding.stretchOff(half, 0.13), half, eps);
 }
 
 }  // namespace

@@ -194,7 +194,13 @@ double SpoolDrum::stretchOff(double c, double lambda) const
   {
     const Piece& p = pieces_[i];
     const double end = i + 1 < count_ ? pieces_[i + 1].c0 : std::numeric_limits<double>::infinity();
-    const bool sloped = p.slope > 0.0;  // a piece of a fixed force below lambda never gives it
+    const bool sloped = p.slope > 0.0;
+    if (!sloped && p.lambda0 >= lambda)
+    {
+      // A piece of a fixed force that gives lambda (the sloped piece before it reached lambda, by a rounding past
+      // its end): from its start.
+      return std::max(p.c0, c) - c;
+    }
     const double at = sloped ? p.c0 + (lambda - p.lambda0) / p.slope : 0.0;  // where it gives lambda
     if (sloped && at <= end)
     {

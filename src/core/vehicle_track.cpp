@@ -28,6 +28,9 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
         << " s is older than the last sample at " << samples_.back().time << " s";
     return Status::error(out.str());
   }
+  // Held: the simulation went on past the last sample with no newer one (poses that stopped). Decided before a
+  // duplicate below takes its sample out: with two queued and the simulation between them, the one left is not held.
+  const bool held = attached_ && samples_.size() == 1 && now > samples_.back().time;
   Status done = Status::success();
   if (!samples_.empty() && t == samples_.back().time)
   {
@@ -47,7 +50,7 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
         << " s); advance it first";
     return Status::error(out.str());
   }
-  if (attached_ && samples_.size() == 1 && now > samples_.back().time)
+  if (held && !samples_.empty())
   {
     // The simulation went on past the last sample with the vehicle held there (poses that stopped): it is there
     // until now, not only at the sample's time. Moving from the sample's time, the end would cover at once the

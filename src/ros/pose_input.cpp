@@ -146,16 +146,26 @@ void PoseInput::checkAdoption()
   // world_frame was taken as the poses' frame when tf had nothing to join them (a node started before the
   // localisation): if tf now has that frame under world_frame from someone else, the node's identity closes a loop
   // and the cable sits off by their transform. That cannot be undone here (a static transform stays): say so, once.
-  std::string parent;
-  if (adopted_frame_.empty() || adoption_conflict_said_ || !tf_._getParent(adopted_frame_, ros::Time(0), parent) ||
-      parent != options_.world_frame)
+  if (adopted_frame_.empty() || adoption_conflict_said_)
+  {
+    return;
+  }
+  // Up the adopted frame's parents (world_frame -> map -> odom with odom adopted is a loop too), a few at most.
+  std::string frame = adopted_frame_, parent;
+  bool loop = false;
+  for (int up = 0; up < 16 && !loop && tf_._getParent(frame, ros::Time(0), parent); ++up)
+  {
+    loop = parent == options_.world_frame;
+    frame = parent;
+  }
+  if (!loop)
   {
     return;
   }
   adoption_conflict_said_ = true;
   ROS_ERROR(
-      "tether_node%s: tf now has %s -> %s from elsewhere, but world_frame was taken as %s at the first pose, when tf "
-      "had no transform for it, and the node publishes the identity %s -> %s: a loop, and the cable is off by that "
+      "tether_node%s: tf now joins %s to %s from elsewhere, but world_frame was taken as %s at the first pose, when "
+      "tf had no transform for it, and the node publishes the identity %s -> %s: a loop, and the cable is off by that "
       "transform. Restart tether_node once the transform is published (or start it after the localisation), or set "
       "world_frame_from_pose: false",
       label_.c_str(), options_.world_frame.c_str(), adopted_frame_.c_str(), adopted_frame_.c_str(),
@@ -399,8 +409,9 @@ void PoseInput::poll(const ros::Time& now)
     taking_.swap(hand_over_);
   }
   // In stamp order: the MessageFilter releases the poses a new transform makes ready in no set order.
-  std::sort(taking_.begin(), taking_.end(),
-            [](const HandOver& a, const HandOver& b) { return a.msg->header.stamp < b.msg->header.stamp; });
+  // Stable: of two with the same stamp, the later to arrive replaces the other (VehicleTrack::add).
+  std::stable_sort(taking_.begin(), taking_.end(),
+                   [](const HandOver& a, const HandOver& b) { return a.msg->header.stamp < b.msg->header.stamp; });
   for (const HandOver& pose : taking_)
   {
     take(pose, now);
@@ -489,6 +500,11 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
     return false;
   }
   const Position attachment = vehicle * options_.attachment_offset;
+  // The physics went on past the last pose with the vehicle held there (poses that stopped): the core moves the end
+  // on from there and then (VehicleTrack::add), and the vehicle drawn and pulled follows it, not the poses' line.
+  const double physics = tether_.time();
+  const bool held =
+      !sink_ && !last_pose_stamp_.isZero() && physics > last_pose_stamp_.toSec() && physics < stamp.toSec();
   const Status status = sink_ ? sink_(stamp.toSec(), vehicle) : tether_.addVehicleSample(stamp.toSec(), attachment);
   if (!status.ok)
   {
@@ -505,6 +521,10 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
     ++gap_count_;
   }
   ++accepted_;
+  if (held)
+  {
+    history_.add(physics, last_vehicle_);
+  }
   history_.add(stamp.toSec(), vehicle);
   last_vehicle_ = vehicle;
   last_pose_time_ = now;

@@ -195,7 +195,11 @@ void VehicleIo::receive(const geometry_msgs::WrenchStamped& msg, const ros::Time
       why = command_.accept(msg.wrench, now);
     }
   }
-  if (!why.empty())
+  if (why.rfind("in frame", 0) == 0)
+  {
+    ROS_WARN_THROTTLE(1.0, "tether_node%s: ~cmd_wrench: %s", label_.c_str(), why.c_str());  // its own: hides no other
+  }
+  else if (!why.empty())
   {
     ROS_WARN_THROTTLE(1.0, "tether_node%s: ~cmd_wrench: %s", label_.c_str(), why.c_str());
   }

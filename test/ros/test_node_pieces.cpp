@@ -574,6 +574,7 @@ struct NodeRig : TetherHooks
     times.push_back(tether().time());
     tensions.push_back(tether().summary().tension_vehicle);
     ends.push_back(tether().particle(tether().deployedParticleCount() - 1));
+    vehicles.push_back(input->vehicleAt(tether().time()).translation());  // as ~markers and ~wrench place it
   }
   void restarted(const ros::Time& now) override { input->reset(now); }
   PoseTiming poseTiming() const override { return PoseTiming{input->latestStamp(), input->neededDelay()}; }
@@ -585,7 +586,7 @@ struct NodeRig : TetherHooks
   std::unique_ptr<PoseInput> input;
   Scheduler scheduler;
   std::vector<double> times, tensions;
-  std::vector<Position> ends;
+  std::vector<Position> ends, vehicles;
 };
 
 /// A vehicle passing the spool at 1.5 m/s for 14 s (then still), its poses at `rate`, each arriving
@@ -710,7 +711,11 @@ TEST(PoseRates, AfterAGapInThePosesTheEndGoesOnFromWhereItWasHeld)
 {
   const auto run = gapInThePoses(0.3, 0.0);
   const NodeRig& r = *run;
-  double fastest = 0.0, at = 0.0;
+  double fastest = 0.0, at = 0.0, apart = 0.0;
+  for (std::size_t k = 0; k < r.times.size(); ++k)
+  {
+    apart = std::max(apart, (r.vehicles[k] - r.ends[k]).norm());  // the vehicle drawn where the cable ends
+  }
   for (std::size_t k = 1; k < r.times.size(); ++k)
   {
     const double speed = (r.ends[k] - r.ends[k - 1]).norm() / (r.times[k] - r.times[k - 1]);
@@ -727,6 +732,7 @@ TEST(PoseRates, AfterAGapInThePosesTheEndGoesOnFromWhereItWasHeld)
       *std::max_element(r.tensions.begin(), r.tensions.end()));
   ASSERT_GT(r.times.size(), 150u);
   EXPECT_LE(fastest, 3.0 / least_time * (1.0 + 1e-6));
+  EXPECT_LT(apart, 1e-9) << "the vehicle ~markers and ~wrench place follows the end (no attachment offset)";
   EXPECT_EQ(r.world.tether(0).jumpCount(), 0u);
   EXPECT_EQ(r.world.tether(0).recoveryCount(), 0u);
   EXPECT_EQ(r.input->rejected(), 0u);
@@ -907,7 +913,20 @@ TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
     ASSERT_TRUE(rig.tf.setTransform(transform("world", "map", 0.0, Eigen::Isometry3d::Identity()), "loc", true));
     rig.scheduler.tick(ros::Time(103.005));
     rig.scheduler.tick(ros::Time(103.01));
-    EXPECT_EQ(log.count(log.errors, "tf now has world -> map from elsewhere"), 1u);
+    EXPECT_EQ(log.count(log.errors, "tf now joins world to map from elsewhere"), 1u);
+  }
+  {
+    // The same through another frame: world taken as odom, then world -> earth_map and earth_map -> odom.
+    LogCollector log;
+    NodeRig odom(quietParams());
+    feedPosesIn(odom, "odom", 1.0);
+    ASSERT_EQ(odom.input->adoptedFrame(), "odom");
+    ASSERT_TRUE(odom.tf.setTransform(transform("world", "earth_map", 0.0, Eigen::Isometry3d::Identity()), "s", true));
+    odom.scheduler.tick(ros::Time(101.005));
+    EXPECT_EQ(log.count(log.errors, "from elsewhere"), 0u) << "no loop yet";
+    ASSERT_TRUE(odom.tf.setTransform(transform("earth_map", "odom", 0.0, Eigen::Isometry3d::Identity()), "l", true));
+    odom.scheduler.tick(ros::Time(101.01));
+    EXPECT_EQ(log.count(log.errors, "tf now joins world to odom from elsewhere"), 1u);
   }
 
   // Someone places world (earth -> world): the node waits for world -> map, and refuses poses without it.
@@ -980,17 +999,16 @@ TEST(PoseInput, EachReasonForARefusalIsWarnedAndEachReadingOfAPoseIsSaid)
   zero_quaternion.pose.orientation.w = 0.0;
   rig.input->receive(shared(zero_quaternion), ros::Time(100.6));
   rig.input->receive(shared(poseMsg(std::nan(""), 0.0, -1.0, 100.9)), ros::Time(100.9));
+  // The same reason again at once (within the second of wall time the throttle counts): counted, not warned again.
+  rig.input->receive(shared(poseMsg(std::nan(""), 0.0, -1.0, 100.95)), ros::Time(100.95));
+  EXPECT_EQ(log.count(log.warnings, "not finite"), 1u);
   rig.input->receive(shared(poseMsg(2.0, 0.0, -1.0, 99.0)), ros::Time(101.2));  // older than the last
   tick(101.5);
-  EXPECT_EQ(rig.input->rejected(), 4u);
+  EXPECT_EQ(rig.input->rejected(), 5u);
   EXPECT_EQ(log.count(log.warnings, "ahead of ROS time"), 1u);
   EXPECT_EQ(log.count(log.warnings, "not normalised"), 1u);
   EXPECT_EQ(log.count(log.warnings, "not finite"), 1u);
   EXPECT_EQ(log.count(log.warnings, "older than the last sample"), 1u);
-  // The same reason again within the second: counted, not warned again.
-  rig.input->receive(shared(poseMsg(std::nan(""), 0.0, -1.0, 101.5)), ros::Time(101.5));
-  EXPECT_EQ(rig.input->rejected(), 5u);
-  EXPECT_EQ(log.count(log.warnings, "not finite"), 1u);
 
   auto unstamped = poseMsg(2.1, 0.0, -1.0, 0.0);
   unstamped.header.frame_id = "";
