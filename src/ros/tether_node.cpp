@@ -321,14 +321,13 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
   {
     // What the user asked changes in the winch's fields only (`iterations: auto` stays auto).
     std::lock_guard<std::mutex> lock(pending_mutex_);
-    requested_params_.winch_mode = params.winch_mode;
-    requested_params_.winch_speed = params.winch_speed;
-    requested_params_.brake_tension = params.brake_tension;
-    requested_params_.target_tension = params.target_tension;
-    running_params_.winch_mode = params.winch_mode;  // the tether runs them already
-    running_params_.winch_speed = params.winch_speed;
-    running_params_.brake_tension = params.brake_tension;
-    running_params_.target_tension = params.target_tension;
+    for (TetherParams* kept : {&requested_params_, &running_params_})  // the tether runs them already
+    {
+      kept->winch_mode = params.winch_mode;
+      kept->winch_speed = params.winch_speed;
+      kept->brake_tension = params.brake_tension;
+      kept->target_tension = params.target_tension;
+    }
     shown = paramsToConfig(requested_params_);
   }
   reconfigure_server_->updateConfig(shown);

@@ -249,18 +249,22 @@ void VehicleIo::noteSaturation()
   {
     return;
   }
-  static const char* const kAxes[6] = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
-  std::string axes;
-  for (int i = 0; i < 6; ++i)
-  {
-    axes += (used->saturated_axes >> i) & 1u ? std::string(axes.empty() ? "" : ", ") + kAxes[i] : "";
-  }
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
     ++saturated_ticks_;
   }
+  const auto axes = [bits = used->saturated_axes]  // named only when the warning is printed: no work a tick
+  {
+    static const char* const kAxes[6] = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
+    std::string names;
+    for (int i = 0; i < 6; ++i)
+    {
+      names += (bits >> i) & 1u ? std::string(names.empty() ? "" : ", ") + kAxes[i] : "";
+    }
+    return names;
+  };
   ROS_WARN_THROTTLE(5.0, "tether_node%s: the thrust from %s is held at the vehicle's thrust_limit on %s",
-                    label_.c_str(), driver_, axes.c_str());
+                    label_.c_str(), driver_, axes().c_str());
 }
 
 Wrench VehicleIo::controlledThrust()
