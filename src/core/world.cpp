@@ -411,10 +411,12 @@ void World::topology(std::vector<TopologyEntry>& out) const
                        topology::windingAngle(curve, obstacle.axisPoint(), obstacle.axisDirection())});
       }
     }
-    // The contact angle: the turn of the tangent at every joint one of whose segments touches the object.
+    // The contact angle: the turn of the tangent at every joint one of whose segments touches the object. A
+    // cable rebuilt since its last step (a record of another size) has touched nothing yet.
     std::fill(angle.begin(), angle.end(), 0.0);
     const ContactRecord& record = contacts_[t]->record();
-    for (std::size_t j = cable.first + 1; j + 1 < cable.size(); ++j)
+    const std::size_t recorded = record.obstacle.size() == cable.size() ? cable.size() : 0;
+    for (std::size_t j = cable.first + 1; j + 1 < recorded; ++j)
     {
       const Position before = cable.direction(j - 1, j), after = cable.direction(j, j + 1);
       const double turn = std::atan2(before.cross(after).norm(), before.dot(after));

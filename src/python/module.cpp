@@ -330,16 +330,21 @@ struct TetherView
       throw py::value_error("set_param: one parameter name and one value, on one line");
     }
     const std::string assignment = parameter + "=" + text;
-    const std::string error = withWorld(*session,
-                                        [&]
-                                        {
-                                          TetherParams params = tether().params();
-                                          const std::string read = applyAssignment(assignment, &params);
-                                          return read.empty() ? tether().setParams(params).message : read;
-                                        });
-    if (!error.empty())
+    const Status status = withWorld(*session,
+                                    [&]
+                                    {
+                                      TetherParams params = tether().params();
+                                      const std::string read = applyAssignment(assignment, &params);
+                                      return read.empty() ? tether().setParams(params) : Status::error(read);
+                                    });
+    if (!status.ok)
     {
-      throw py::value_error(error);
+      throw py::value_error(status.message);
+    }
+    if (!status.message.empty())
+    {
+      // Taken, with something to say (a cable_length or segment_length change lays the cable out anew).
+      py::module_::import("warnings").attr("warn")("set_param: " + parameter + ": " + status.message);
     }
   }
 

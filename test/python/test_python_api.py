@@ -142,6 +142,27 @@ def test_a_parameter_set_from_python_changes_the_physics(tmp_path):
         tether.set_param("iterations", 0)
 
 
+# A parameter that changes the cable's structure (segment_length 0.25 -> 0.125 m) is taken and lays the cable out
+# anew at its deployed length: twice the segments on the same 5 m, said as a warning, not raised as a refusal
+# (the refusal used to be raised after the change was made). The topology of the rebuilt cable reads before its
+# next step (it read the old cable's contact record past its end) and after it.
+def test_a_parameter_that_rebuilds_the_cable_is_taken_with_a_warning():
+    world = rov_tether.World({"spool": [0.0, 0.0, -1.0], "params": {"cable_length": 10.0, "initial_deployed_length": 5.0,
+                                                                     "segment_length": 0.25, "noise": 0.0},
+                              "obstacles": [{"name": "pillar", "type": "cylinder", "radius": 0.3, "length": 10,
+                                             "position": [3.0, 0.0, -1.0]}]})
+    (tether,) = world.tethers
+    world.advance_to(1.0)
+    assert len(tether.positions) == 5.0 / 0.25 + 1
+    with pytest.warns(UserWarning, match="segment_length: cable rebuilt"):
+        tether.set_param("segment_length", 0.125)
+    assert len(tether.positions) == 5.0 / 0.125 + 1
+    assert tether.deployed_length == pytest.approx(5.0)
+    assert {entry["kind"] for entry in world.topology()} >= {"wrap_turns", "wrap_angle"}
+    world.advance_to(2.0)
+    assert {entry["kind"] for entry in world.topology()} >= {"wrap_turns", "wrap_angle"}
+
+
 # The BlueROV2 Heavy (config/vehicles/bluerov2_heavy.yaml: Xu 13.7 N s/m, Xuu 141 N s^2/m^2) pushed by 20 N of surge
 # from Python, its tether paying out behind it through a 1 N brake. Its time constant m' / (Xu + 2 Xuu U) is
 # 0.2 s, so after 20 s it moves at the speed where the thrust less the tether's pull (the tension at the vehicle,
