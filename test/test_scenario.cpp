@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "rov_tether/scenario/earlier_outputs.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -440,6 +441,65 @@ TEST(Runner, ARefusedVehicleSampleStopsTheRunAndWritesNothing)
     written.insert(fs::relative(entry.path(), dir).string());
   }
   EXPECT_EQ(written, std::set<std::string>{});  // no state.csv, shape.csv, nor their partial files
+  fs::remove_all(dir);
+}
+
+// A run writes into a directory that may hold an earlier run's outputs, and replaces only the files it writes
+// (state.csv, shape.csv of kGood here). What it leaves of the earlier run is named in a warning, so that no one
+// reads a mixed directory as one run's: a topology.csv and a tether directory's state.csv it did not write, a
+// camera directory of a camera it does not have, and a camera's frame files past the frames it renders (a
+// camera at 1 Hz over kGood's 3 s renders frames 0 to 3; frame 7's three files are an earlier run's). Its own
+// files, index.csv and frames 0 to 3 are not named. A target that is a directory fails before the run, and leaves
+// no partial file.
+TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
+{
+  const fs::path dir = temporaryDirectory("earlier");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  ScenarioCamera forward;
+  forward.name = "forward";
+  forward.rate = 1.0;
+  scenario.cameras.push_back(forward);
+  ASSERT_EQ(scenario.cameraFrames(forward), 4u);
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "cameras" / "forward");
+  fs::create_directories(dir / "cameras" / "aft");
+  for (const fs::path& file :
+       {dir / "state.csv", dir / "topology.csv", dir / "a" / "state.csv", dir / "notes.txt",
+        dir / "cameras" / "forward" / "index.csv", dir / "cameras" / "forward" / "mask_000003.png",
+        dir / "cameras" / "forward" / "mask_000007.png", dir / "cameras" / "forward" / "depth_000007.png",
+        dir / "cameras" / "forward" / "depth_preview_000007.png", dir / "cameras" / "aft" / "mask_000000.png"})
+  {
+    std::ofstream(file) << "earlier\n";
+  }
+  const std::vector<std::string> expected = {"a/state.csv", "topology.csv",
+                                             "cameras/aft/ (1 file: a camera this scenario does not have)",
+                                             "cameras/forward/ (3 frame files past this run's 4 frames)"};
+  EXPECT_EQ(earlierOutputs(scenario, dir, {dir / "state.csv", dir / "shape.csv"}), expected);
+  EXPECT_TRUE(earlierOutputs(scenario, dir / "none", {}).empty());
+
+  scenario.cameras.clear();
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs.size(), 4u);  // forward's directory is now of a camera it does not have
+  const std::vector<std::string> warnings = runWarnings(scenario, summary, kDefaultMaxTensionWarning);
+  ASSERT_FALSE(warnings.empty());  // kGood's cable is also over-tensioned, said after
+  EXPECT_NE(warnings[0].find("earlier run's outputs that this run did not replace: a/state.csv; topology.csv; "
+                             "cameras/aft/"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(readLines(dir / "state.csv").at(0), "earlier");  // its own, replaced
+
+  fs::remove_all(dir);
+  fs::create_directories(dir / "shape.csv");
+  const std::string error = runScenario(scenario, dir.string(), &summary);
+  EXPECT_EQ(error, "cannot write '" + (dir / "shape.csv").string() + "': it is a directory");
+  std::set<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir))
+  {
+    left.insert(entry.path().filename().string());
+  }
+  EXPECT_EQ(left, std::set<std::string>{"shape.csv"});  // no state.csv, no partial file
   fs::remove_all(dir);
 }
 

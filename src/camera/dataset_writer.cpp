@@ -119,7 +119,7 @@ DatasetWriter::DatasetWriter(const Scenario& scenario, const std::string& out_di
 {
   for (const ScenarioCamera& spec : scenario_.cameras)
   {
-    const auto frames = static_cast<std::size_t>(std::floor(scenario_.duration * spec.rate + 1e-9)) + 1;
+    const std::size_t frames = scenario_.cameraFrames(spec);
     cameras_.push_back(Camera{&spec, CameraModel(spec.intrinsics), "", nullptr, 0, frames});
     summary_.push_back(CameraSummary{spec.name});
   }

@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "rov_tether/scenario/earlier_outputs.hpp"
 #include "rov_tether/scenario/scenario_stepper.hpp"
 #include "rov_tether/scenario/vehicle_driver.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
@@ -40,6 +41,13 @@ struct OutputFile
 std::string openAll(std::vector<OutputFile>& files)
 {
   std::error_code ec;
+  for (const OutputFile& out : files)
+  {
+    if (fs::is_directory(out.path, ec))
+    {
+      return "cannot write '" + out.path.string() + "': it is a directory";
+    }
+  }
   for (OutputFile& out : files)
   {
     fs::create_directories(out.path.parent_path(), ec);
@@ -83,12 +91,17 @@ std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::strin
     }
     return "error while writing in '" + out_dir + "'";
   }
-  for (OutputFile& out : files)
+  for (std::size_t i = 0; i < files.size(); ++i)
   {
-    fs::rename(out.partial, out.path, ec);
+    fs::rename(files[i].partial, files[i].path, ec);
     if (ec)
     {
-      return "cannot move the output into place in '" + out_dir + "': " + ec.message();
+      const std::string error = "cannot move '" + files[i].path.string() + "' into place: " + ec.message();
+      for (std::size_t j = i; j < files.size(); ++j)
+      {
+        fs::remove(files[j].partial, ec);
+      }
+      return error;
     }
   }
   return "";
@@ -307,6 +320,12 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   }
 
   std::vector<OutputFile> files = outputFilesOf(scenario, tethers, out_dir);
+  std::vector<fs::path> written;
+  for (const OutputFile& file : files)
+  {
+    written.push_back(file.path);
+  }
+  std::vector<std::string> earlier = earlierOutputs(scenario, out_dir, written);
   const std::string open_error = openAll(files);
   if (!open_error.empty())
   {
@@ -330,7 +349,8 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return close_error;
   }
-  const RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds());
+  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds());
+  result.earlier_outputs = std::move(earlier);
   if (summary != nullptr)
   {
     *summary = result;
@@ -341,6 +361,16 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning)
 {
   std::vector<std::string> warnings;
+  if (!summary.earlier_outputs.empty())
+  {
+    std::string list;
+    for (const std::string& item : summary.earlier_outputs)
+    {
+      list += (list.empty() ? "" : "; ") + item;
+    }
+    warnings.push_back("the output directory holds an earlier run's outputs that this run did not replace: " + list +
+                       ". They are left as they were: remove them, or write to an empty directory");
+  }
   const std::vector<ScenarioTether> tethers = scenario.tetherList();
   const std::vector<RunSummary>& each = summary.tethers.empty() ? std::vector<RunSummary>{summary} : summary.tethers;
   for (std::size_t i = 0; i < each.size() && i < tethers.size(); ++i)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -118,6 +119,11 @@ struct Scenario
   /// Vehicle position at time t [s]: piecewise-linear, held before the first and after the last
   /// waypoint; at two waypoints with the same time the later one wins from that time on (a jump).
   Position vehicleAt(double t) const;
+  /// The frames `camera` renders over the run: one at t = 0 and one every 1 / rate up to the duration.
+  std::size_t cameraFrames(const ScenarioCamera& camera) const
+  {
+    return static_cast<std::size_t>(std::floor(duration * camera.rate + 1e-9)) + 1;
+  }
 };
 
 /**

@@ -38,6 +38,8 @@ struct RunSummary
   std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
   std::size_t vehicle_rows = 0;      ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
   std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
+  /// The output directory's files of an earlier run that this run did not replace (earlierOutputs).
+  std::vector<std::string> earlier_outputs;
 };
 
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list
@@ -58,7 +60,8 @@ constexpr double kDefaultMaxTensionWarning = 500.0;
 
 /// What the node warns of, for a run (each tether's, named when there are several): simulation failures,
 /// a tension above `max_tension_warning` [N] (over-tension; a tether's own ScenarioTether::max_tension_warning
-/// instead, where it sets one) and the vehicle outrunning the winch. Empty when the run gave none.
+/// instead, where it sets one) and the vehicle outrunning the winch; and an earlier run's outputs left in the
+/// output directory. Empty when the run gave none.
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
 
 /// The CSV headers, part of the documented format.

@@ -1,0 +1,22 @@
+#pragma once
+// What an output directory holds of an earlier run that a new run will not replace (the runner writes into a
+// directory that may not be empty, and replaces only the files it writes).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rov_tether/scenario/scenario.hpp"
+
+namespace rov_tether
+{
+
+/// The runner's outputs in `out_dir` that a run of `scenario` writing the files `written` (and its cameras'
+/// frames) leaves as they are, one description each: a CSV file the runner writes (state.csv, shape.csv,
+/// vehicle.csv, topology.csv, in out_dir or a tether's directory one level down) that this run does not, a camera's
+/// directory cameras/<name>/ for a camera this scenario does not have, and a camera's frame files (mask_, depth_,
+/// depth_preview_ NNNNNN.png) past the frames this run renders. Empty for a directory that does not exist.
+std::vector<std::string> earlierOutputs(const Scenario& scenario, const std::filesystem::path& out_dir,
+                                        const std::vector<std::filesystem::path>& written);
+
+}  // namespace rov_tether
