@@ -503,6 +503,35 @@ TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
   fs::remove_all(dir);
 }
 
+// A state row is written at each output time from the last step before it: rows faster than the steps would
+// repeat a step's state under times that were never simulated (a helper's 50 rows per s on 0.1 s steps wrote four
+// copies of t = 0 at 0.02-0.08 s). So output_rate above 1 / time_step is refused, naming both, by the library and
+// by the runner (exit 2, a bad scenario, whether the file or a --set gives the step); at 1 / time_step it runs.
+TEST(Runner, RowsFasterThanTheStepsAreRefused)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  scenario.params.time_step = 0.1;
+  scenario.output_rate = 10.0;
+  EXPECT_EQ(scenario.checkOutputRate(), "");
+  scenario.output_rate = 50.0;
+  const std::string dir = temporaryDirectory("fast_rows");
+  RunSummary summary;
+  const std::string error = runScenario(scenario, dir, &summary);
+  EXPECT_NE(error.find("output_rate = 50 rows per s is faster than the tether's steps (time_step = 0.1 s: 10 per s)"),
+            std::string::npos)
+      << error;
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "state.csv"));
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::string text = kGood;
+  text.replace(text.find("output_rate: 4"), 14, "output_rate: 20");
+  std::ofstream(scenario_path) << text;
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir + " --set time_step=0.1"), 2);
+  EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir + " --set time_step=0.05"), 0);  // 20 per s
+  fs::remove_all(dir);
+  fs::remove(scenario_path);
+}
+
 // The runner warns as the node does (issue 26, item 14): a ROV diving 30 m straight away from a spool on a
 // 10 m cable, strain rule, pbd: the cable ends fully deployed and strained far beyond anything real (the
 // issue's run read 2.4e6 N at strain 24 without a word). Over-tension above the node's default

@@ -1,6 +1,7 @@
 #include "rov_tether/scenario/scenario.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "rov_tether/scenario/world_spec.hpp"
@@ -52,6 +53,25 @@ bool Scenario::hasDynamicVehicle() const
 {
   return dynamic.has_value() ||
          std::any_of(tethers.begin(), tethers.end(), [](const ScenarioTether& t) { return t.dynamic.has_value(); });
+}
+
+std::string Scenario::checkOutputRate() const
+{
+  for (const ScenarioTether& tether : tetherList())
+  {
+    const double step = tether.params.time_step;
+    if (output_rate * step > 1.0 + 1e-9)
+    {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "output_rate = %g rows per s is faster than %s's steps (time_step = %g s: %g per s); a row "
+                    "between two steps would repeat the last step's state: output_rate must be at most %g",
+                    output_rate, tethers.empty() ? "the tether" : ("tether '" + tether.name + "'").c_str(), step,
+                    1.0 / step, 1.0 / step);
+      return text;
+    }
+  }
+  return "";
 }
 
 std::vector<ScenarioTether> Scenario::tetherList() const

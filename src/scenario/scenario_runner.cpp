@@ -311,6 +311,11 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
 std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
                         const std::vector<RunObserver*>& observers)
 {
+  const std::string rate_error = scenario.checkOutputRate();
+  if (!rate_error.empty())
+  {
+    return rate_error;
+  }
   ScenarioStepper stepper(scenario, world);
   const std::vector<ScenarioTether>& tethers = stepper.tethers();
   if (world.size() != tethers.size())

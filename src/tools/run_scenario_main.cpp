@@ -171,7 +171,7 @@ std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenar
       error = error.empty() ? "" : "--set " + error;
     }
   }
-  return error;
+  return error.empty() ? scenario->checkOutputRate() : error;
 }
 
 /// Prints what ran: the scenario, its tethers, the model (the first tether's, `auto` resolved) and the figures.

@@ -113,6 +113,9 @@ struct Scenario
   bool usesWorld() const { return !tethers.empty() || !obstacles.empty() || tether_contact; }
   /// Whether any vehicle is dynamic: the top-level one or one of the `tethers`.
   bool hasDynamicVehicle() const;
+  /// "" when every tether steps at least as often as output_rate writes rows, else the error naming the
+  /// tether and its time_step (a row between two steps would repeat the last step's state).
+  std::string checkOutputRate() const;
   /// The tethers to run: `tethers`, or the one of params, spool and vehicle (named "tether").
   std::vector<ScenarioTether> tetherList() const;
 
