@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -226,6 +227,20 @@ TEST(ParamTable, ValidateUsesTheTableRanges)
     EXPECT_NE(errorsFor(outside_low).find(row.name), std::string::npos) << row.name << " = " << outside_low;
     EXPECT_NE(errorsFor(outside_high).find(row.name), std::string::npos) << row.name << " = " << outside_high;
   }
+}
+
+// A value is written as the YAML that reads back as it (the node's messages quote asked values this way): a
+// non-finite one as YAML's .nan, .inf and -.inf (an infinity was cast to an int exponent and printed as
+// 1e-2147483648 in a helper's dynparam refusal), short exponents, a whole double with its ".0".
+TEST(ParamTable, ValuesAreWrittenAsTheYamlThatReadsThem)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(formatParamValue(ParamValue{inf}), ".inf");
+  EXPECT_EQ(formatParamValue(ParamValue{-inf}), "-.inf");
+  EXPECT_EQ(formatParamValue(ParamValue{std::nan("")}), ".nan");
+  EXPECT_EQ(formatParamValue(ParamValue{1e-8}), "1e-8");
+  EXPECT_EQ(formatParamValue(ParamValue{2.0}), "2.0");
+  EXPECT_EQ(formatParamValue(ParamValue{std::vector<double>{inf, 0.5}}), "[.inf, 0.5]");
 }
 
 }  // namespace

@@ -17,12 +17,17 @@ constexpr bool kClosed = false;
 constexpr bool kLive = true;
 constexpr bool kAtStart = false;
 
-/// %g, with exponents written short (1e-08 -> 1e-8, 1e+05 -> 1e5) and a whole double keeping ".0".
+/// %g, with exponents written short (1e-08 -> 1e-8, 1e+05 -> 1e5) and a whole double keeping ".0"; NaN and
+/// infinities as YAML writes them (.nan, .inf, -.inf).
 std::string formatNumber(double value, bool integer)
 {
   if (std::isnan(value))
   {
     return ".nan";
+  }
+  if (std::isinf(value))
+  {
+    return value > 0.0 ? ".inf" : "-.inf";  // YAML's, as .nan (the exponent below would be no int)
   }
   const double exponent10 = value != 0.0 ? std::log10(std::abs(value)) : 0.0;
   if (value != 0.0 && std::abs(exponent10) >= 4.0 && exponent10 == std::round(exponent10))
