@@ -120,5 +120,44 @@ TEST(WorldSpec, AMeshFileIsReadOnceFromScenarioToRun)
   fs::remove_all(dir);
 }
 
+// A spool of its own (not carried by a vehicle) must be where a cable can start: the seabed holds the cable above
+// seabed_z, so a spool below it stretched the first segment up to it (a helper's 1 m under: 1780 N and strain
+// 9.5 from the start), and an obstacle pushes every particle out of it, so a spool inside a pillar pulled
+// 125 kN. Both are refused naming the spool, where it is and what it is in; on the seabed, or outside the
+// obstacle, it is built. Another tether's spool is named with its tether.
+TEST(WorldSpec, ASpoolBelowTheSeabedOrInsideAnObstacleIsRefused)
+{
+  WorldSpec spec;
+  spec.tethers.resize(1);
+  spec.tethers[0].name = "tether";
+  spec.tethers[0].spool = Position(0.0, 0.0, -1.0);
+  spec.tethers[0].params.seabed_z = -1.0;
+  ObstacleSpec pillar;
+  pillar.name = "pillar";
+  pillar.type = ShapeType::Cylinder;
+  pillar.radius = 0.3;
+  pillar.length = 10.0;
+  pillar.position = Position(0.5, 0.0, 0.0);
+  spec.obstacles = {pillar};
+  World on_the_seabed;
+  EXPECT_EQ(buildWorld(spec, &on_the_seabed), "");
+
+  WorldSpec below = spec;
+  below.tethers[0].params.seabed_z = 0.0;
+  World world;
+  EXPECT_EQ(buildWorld(below, &world), "spool [0, 0, -1] m is below the seabed (seabed_z = 0 m)");
+
+  WorldSpec inside = spec;
+  inside.obstacles[0].position = Position(0.2, 0.0, 0.0);
+  World pillared;
+  EXPECT_EQ(buildWorld(inside, &pillared), "spool [0, 0, -1] m is inside obstacle 'pillar'");
+
+  inside.tethers.push_back(spec.tethers[0]);
+  inside.tethers[0].spool = Position(-3.0, 0.0, -1.0);
+  inside.tethers[1].name = "b";
+  World two;
+  EXPECT_EQ(buildWorld(inside, &two), "tethers: b: spool [0, 0, -1] m is inside obstacle 'pillar'");
+}
+
 }  // namespace
 }  // namespace rov_tether::test

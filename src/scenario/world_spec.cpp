@@ -1,6 +1,7 @@
 #include "rov_tether/scenario/world_spec.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 
 #include "rov_tether/geometry/make_obstacle.hpp"
@@ -119,6 +120,46 @@ Tether makeTether(const ScenarioTether& tether)
   return Tether(tether.params, tether.spool, pathAt(tether.vehicle, 0.0), 0.0);
 }
 
+namespace
+{
+
+/// "" or the first tether whose own spool (not one a vehicle carries) is below its seabed or inside an obstacle.
+std::string checkSpools(const WorldSpec& spec, const World& world)
+{
+  for (std::size_t i = 0; i < spec.tethers.size(); ++i)
+  {
+    const ScenarioTether& tether = spec.tethers[i];
+    if (!tether.spool_on.empty())
+    {
+      continue;  // carried by a vehicle, which moves it
+    }
+    const std::string who = spec.tethers.size() == 1 ? "spool" : "tethers: " + tether.name + ": spool";
+    const Position& at = tether.spool;
+    char where[160];
+    std::snprintf(where, sizeof where, "[%g, %g, %g] m", at.x(), at.y(), at.z());
+    const double seabed = world.tether(i).params().seabed_z;
+    if (at.z() < seabed)
+    {
+      // The seabed holds the cable above it: the first segment would be stretched from the spool up to it.
+      char text[96];
+      std::snprintf(text, sizeof text, " is below the seabed (seabed_z = %g m)", seabed);
+      return who + " " + where + text;
+    }
+    for (std::size_t k = 0; k < world.obstacleCount(); ++k)
+    {
+      Push push;
+      if (world.obstacle(k).push(at, at, 0.0, &push))
+      {
+        // The cable would start inside a solid that pushes every particle out of it.
+        return who + " " + where + " is inside obstacle '" + world.obstacle(k).name() + "'";
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string buildWorld(const WorldSpec& spec, World* world)
 {
   const std::string invalid = validateWorldSpec(spec);
@@ -166,7 +207,7 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     }
   }
   const Status placed = world->setObstacles(std::move(obstacles));
-  return placed.ok ? "" : "obstacles: " + placed.message;
+  return placed.ok ? checkSpools(spec, *world) : "obstacles: " + placed.message;
 }
 
 }  // namespace rov_tether

@@ -70,6 +70,7 @@ Tether makeTether(const ScenarioTether& tether);
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
  * A spool that rides on another tether's vehicle (ScenarioTether::spool_on) starts at the outlet of that
  * vehicle's start pose and is mounted on it (mountSpool), unless spec.vehicles_attached_later.
+ * A spool of its own below its tether's seabed_z or inside an obstacle is refused, naming both.
  */
 [[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world);
 
