@@ -9,6 +9,7 @@ Each candidate is the same world (a pillar, a tether from a spool 4 m away) with
 the candidate's waypoints; the planner scores a candidate by the wrap turns left round the pillar (a tangle to
 undo later), then by the largest tension on the way.
 """
+import argparse
 import math
 
 import rov_tether
@@ -53,6 +54,7 @@ def simulate(path):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     scores = {}
     for name, tail in CANDIDATES.items():
         turns, largest = simulate(HISTORY + tail)

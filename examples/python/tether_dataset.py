@@ -25,7 +25,7 @@ ORIENTATION = [-math.sqrt(0.5), 0.0, 0.0, math.sqrt(0.5)]
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--out", default="tether_dataset", help="output directory")
     parser.add_argument("--seconds", type=float, default=50.0, help="how much of the dive [s]")
     arguments = parser.parse_args()

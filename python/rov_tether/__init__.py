@@ -29,3 +29,8 @@ def __getattr__(name):
 
         return getattr(_core, name)
     raise AttributeError("module 'rov_tether' has no attribute '%s'" % name)
+
+
+def __dir__():
+    # What tab completion and dir() list: the lazily loaded names too, and the message modules beside them.
+    return sorted(set(globals()) | set(__all__))

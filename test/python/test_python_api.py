@@ -326,3 +326,9 @@ def test_reading_while_another_thread_steps_neither_blocks_nor_breaks():
         assert positions.ndim == 2 and positions.shape[1] == 3 and positions.shape[0] >= 2
         assert np.isfinite(positions).all() and np.isfinite(tensions).all()
         assert {r["kind"] for r in topology} >= {"wrap_turns", "wrap_angle"}  # always reported, contact or not
+
+
+# The API's names are loaded on first use (module __getattr__), and listed before it: dir() and tab completion
+# show World, Tether and Camera (they showed none of them).
+def test_dir_lists_the_names_loaded_on_first_use():
+    assert {"Camera", "Tether", "World"} <= set(dir(rov_tether))
