@@ -908,6 +908,10 @@ TEST(ScenarioFile, BadTethersAndObstaclesNameTheEntryAndTheField)
       {head + "  - {name: tether, type: sphere, radius: 1}", "obstacles[0] 'tether' name: taken by a tether"},
       {head + "  - {type: sphere, radius: 1}", "obstacles[0] name: expected a non-empty string"},
       {head + "  - {name: p, type: sphere, radius: 1, colour: red}", "obstacles[0] 'p': unknown field 'colour'"},
+      // A field of another shape is read by nothing: named with what this shape takes.
+      {head + "  - {name: p, type: sphere, radius: 1, length: 3}", "obstacles[0] 'p' length: a sphere has no length"},
+      {head + "  - {name: p, type: box, size: [1, 1, 1], radius: 1}", "obstacles[0] 'p' radius: a box has no radius"},
+      {head + "  - {name: p, type: plane, scale: 2}", "obstacles[0] 'p' scale: a plane has no scale"},
       {head + "  - {name: p, type: sphere, radius: 1, position: [0, 0]}",
        "obstacles[0] 'p' position: expected [x, y, z] in m"},
       {head + "  - {name: p, type: sphere, radius: x}", "obstacles[0] 'p' radius: expected a number"},

@@ -49,6 +49,38 @@ std::string checkKeys(const YAML::Node& node, const std::string& who, bool frame
   return "";
 }
 
+/// The entry's shape fields (radius, length, size, file, scale): each must be one its type takes (a sphere's
+/// `length` would be read by nothing).
+std::string checkShapeFields(const YAML::Node& node, const std::string& who, ShapeType type)
+{
+  const auto takes = [type](const std::string& field)
+  {
+    switch (type)
+    {
+      case ShapeType::Sphere:
+        return field == "radius";
+      case ShapeType::Cylinder:
+      case ShapeType::Capsule:
+        return field == "radius" || field == "length";
+      case ShapeType::Box:
+        return field == "size";
+      case ShapeType::Mesh:
+        return field == "file" || field == "scale";
+      default:
+        return false;  // a plane: its position and orientation alone
+    }
+  };
+  for (const char* field : {"radius", "length", "size", "file", "scale"})
+  {
+    if (node[field] && !takes(field))
+    {
+      return who + " " + field + ": a " + shapeTypeName(type) + " has no " + field +
+             " (sphere: radius; cylinder, capsule: radius, length; box: size; mesh: file, scale; plane: none)";
+    }
+  }
+  return "";
+}
+
 /// The numbers and strings of the entry into `candidate`; "" or the first problem.
 std::string readFields(const YAML::Node& node, const std::string& who, const ObstacleReading& reading,
                        ObstacleSpec* candidate)
@@ -116,7 +148,8 @@ std::string readObstacle(const YAML::Node& node, std::size_t index, const Obstac
   {
     return who + " type: expected sphere, box, cylinder, capsule, plane or mesh";
   }
-  error = readFields(node, who, reading, &candidate);
+  error = checkShapeFields(node, who, candidate.type);
+  error = error.empty() ? readFields(node, who, reading, &candidate) : error;
   if (!error.empty())
   {
     return error;
