@@ -1,6 +1,7 @@
 #include "rov_tether/core/tether_params.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -181,7 +182,13 @@ std::string assignField(double& target, const ParamValue& value, const std::stri
     target = static_cast<double>(*i);
     return "";
   }
-  return wrong_type + "a number";
+  const auto* text = std::get_if<std::string>(&value);
+  std::string word = text != nullptr ? *text : "";
+  std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
+  const bool non_finite = word == "nan" || word == "inf" || word == "-inf" || word == "infinity";
+  // YAML reads nan and inf as text: its own words for them are .nan, .inf and -.inf (then refused as not finite
+  // where a parameter must be).
+  return wrong_type + "a number" + (non_finite ? " (YAML writes NaN and infinity as .nan, .inf and -.inf)" : "");
 }
 
 /// Sets an integer field from an integer or a whole number, within the field's range.

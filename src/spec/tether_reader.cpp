@@ -61,9 +61,12 @@ std::string readParamValue(const YAML::Node& node, const std::string& prefix, co
 std::string readTetherParams(const YAML::Node& map, const std::string& prefix, ParamKeys keys, TetherParams* params,
                              std::vector<std::string>* warnings)
 {
+  // "params." names the map as "params" and a field in it as "params.drag".
+  const std::string field_prefix = prefix.empty() || prefix.back() == '.' ? prefix : prefix + ".";
   if (!map.IsMap())
   {
-    return prefix.empty() ? "parameters: expected a map of name: value" : prefix + ": expected a map of name: value";
+    const std::string whole = prefix.empty() ? "parameters" : field_prefix.substr(0, field_prefix.size() - 1);
+    return whole + ": expected a map of name: value";
   }
   const std::vector<std::string>& model = parameterNames();
   std::vector<std::string> errors;
@@ -99,7 +102,13 @@ std::string readTetherParams(const YAML::Node& map, const std::string& prefix, P
   // The core's one loader of parameter values: types and ranges, and the whole set validated.
   for (const auto& error : applyParameters(values, &candidate))
   {
-    errors.push_back(prefix + error);
+    // The core's "parameter 'drag': ..." becomes "params.drag: ..." under a prefix.
+    const std::string quoted = "parameter '";
+    const std::size_t end =
+        error.compare(0, quoted.size(), quoted) == 0 ? error.find("':", quoted.size()) : std::string::npos;
+    errors.push_back(prefix.empty() || end == std::string::npos
+                         ? prefix + error
+                         : field_prefix + error.substr(quoted.size(), end - quoted.size()) + error.substr(end + 1));
   }
   for (const auto& warning : parameterWarnings(values))
   {

@@ -753,7 +753,15 @@ TEST(ParameterServer, TheNodeAndTheRunnerReadParametersWithOneReader)
     const std::string from_node = loadTetherParams(rov_tether::test::toXmlRpc(YAML::Load(entry)), &unchanged);
     const std::string from_runner = parseScenario("spool: [0, 0, 0]\nduration: 1\nparams: " + entry, &scenario);
     EXPECT_FALSE(from_node.empty()) << entry;
-    EXPECT_EQ("params." + from_node, from_runner) << entry;
+    // The same message, the node's "parameter 'drag': why" (or "drag = 0: why") under the scenario's "params.",
+    // where it reads "params.drag: why".
+    const std::string quoted = "parameter '";
+    const std::size_t end = from_node.rfind(quoted, 0) == 0 ? from_node.find("':") : std::string::npos;
+    const std::string expected =
+        end == std::string::npos
+            ? "params." + from_node
+            : "params." + from_node.substr(quoted.size(), end - quoted.size()) + from_node.substr(end + 1);
+    EXPECT_EQ(expected, from_runner) << entry;
     EXPECT_EQ(unchanged.iterations, TetherParams{}.iterations) << entry;  // nothing applied on error
   }
 }
