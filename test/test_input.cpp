@@ -367,6 +367,30 @@ TEST(LiveParameters, TimeStepChangeKeepsTheVelocities)
   EXPECT_NEAR(sim.time(), 1.2, 1e-9);
 }
 
+// Time is counted as a base time plus whole steps of time_step since it (Tether::nextStepTime), so the base
+// must move to the present whenever time_step changes, also when substeps changes with it and the sub-step
+// time_step / substeps stays the same (5 ms x 1 -> 10 ms x 2). Without that the next step ended at twice the
+// time run so far (1.01 s at 0.5 s) and time leapt ahead by the whole run. The bounds: the next step ends one
+// new time_step after time() (to rounding, 1e-12 s), and one second later the tether is one second on, in 100
+// steps of 10 ms.
+TEST(LiveParameters, TimeStepChangeWithTheSameSubStepKeepsTheTime)
+{
+  Tether sim = movingTether();  // 0.5 s at 5 ms x 1
+  const double before = sim.time();
+  ASSERT_NEAR(before, 0.5, 1e-12);
+  TetherParams params = sim.params();
+  params.time_step = 0.01;
+  params.substeps = 2;
+  ASSERT_EQ(params.subStep(), sim.params().subStep());
+  ASSERT_TRUE(sim.setParams(params).ok);
+  EXPECT_EQ(sim.time(), before);
+  EXPECT_NEAR(sim.nextStepTime(), before + 0.01, 1e-12);
+  std::size_t steps = 0;
+  ASSERT_TRUE(succeeded(sim.advance(1.0, &steps)));
+  EXPECT_EQ(steps, 100u);
+  EXPECT_NEAR(sim.time(), before + 1.0, 1e-12);
+}
+
 /// The paper's cable (pbd, its strain winch), without noise, after its vehicle went 6 m out at 0.5 m/s and
 /// stopped there.
 Tether tetherSixMetresOut()

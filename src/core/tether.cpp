@@ -143,6 +143,7 @@ Status Tether::setParams(const TetherParams& params)
   const bool rebuild = !sameStructure(params_, params.resolved());
   const bool new_solver = params.solver != params_.solver;
   const double old_step = params_.subStep();
+  const double old_time_step = params_.time_step;
   const bool new_mass = params.resolved().lineMass().along != params_.lineMass().along ||
                         params.resolved().lineMass().across != params_.lineMass().across;
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
@@ -169,6 +170,11 @@ Status Tether::setParams(const TetherParams& params)
       cable_.py[i] = cable_.y[i] - (cable_.y[i] - cable_.py[i]) * ratio;
       cable_.pz[i] = cable_.z[i] - (cable_.z[i] - cable_.pz[i]) * ratio;
     }
+  }
+  if (params_.time_step != old_time_step)
+  {
+    // Time is base_time_ + whole steps of time_step since base_steps_: counted from now in the new step. This
+    // is apart from the sub-step above: time_step and substeps may change together and keep time_step / substeps.
     base_time_ = time_;
     base_steps_ = steps_;
   }
