@@ -819,6 +819,36 @@ TEST(Runner, CountsTheSubStepsThatStopShortOfTheTolerance)
   EXPECT_LE(summary.solver.unconverged, summary.solver.substeps);
 }
 
+// A `speed` winch reeling in at 0.5 m/s against a ROV that holds still 9 m out on 10 m: once the slack is in, the
+// motor's stall pull (7.5 N, derived: 1.25 x (5 + 1)) holds it, and the runner says so as the node does, with the
+// first output time it was held (Tether::winchStalled, Winch.AReelInHeldAtTheStallPullIsSaid: from 2.04 s), the
+// speed and the pull. Paying out at 0.5 m/s to the same ROV is no stall.
+TEST(Runner, WarnsOfAReelInHeldAtTheStallPull)
+{
+  const std::string yaml =
+      "params: {cable_length: 40.0, initial_deployed_length: 10.0, winch_mode: speed, "
+      "winch_speed: -0.5, max_winch_speed: 3.0, bending_stiffness: 0.0, noise: 0.0}\n"
+      "spool: [0, 0, 0]\nvehicle: [[0, 9, 0, 0], [5, 9, 0, 0]]\nduration: 5\noutput_rate: 10\n";
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(yaml, &scenario), "");
+  const std::string dir = temporaryDirectory("stall");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  fs::remove_all(dir);
+  const std::vector<std::string> warnings = runWarnings(scenario, summary, kDefaultMaxTensionWarning);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("the winch cannot reel in at winch_speed = -0.5 m/s"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("from t = 2.10 s"), std::string::npos) << warnings[0];  // the first output time after
+  EXPECT_NE(warnings[0].find("stall pull of 7.5 N (max_winch_pull 0: 1.25 x"), std::string::npos) << warnings[0];
+  EXPECT_GE(summary.stall_rows, 29u);  // every output time from 2.1 s to 5 s
+  Scenario paying_out = scenario;
+  paying_out.params.winch_speed = 0.5;
+  ASSERT_EQ(runScenario(paying_out, dir, &summary), "");
+  fs::remove_all(dir);
+  EXPECT_EQ(summary.stall_rows, 0u);
+  EXPECT_TRUE(runWarnings(paying_out, summary, kDefaultMaxTensionWarning).empty());
+}
+
 // Every shipped scenario (scenarios/ and scenarios/datasets/, worlds included) loads without a deprecation
 // warning and runs without a simulation failure, over-tension (the node's default 500 N) or an outrun winch
 // (issue 26, item 15: forward_camera_dive used the deprecated `passive` and read 9.6 kN at 9.6% strain).

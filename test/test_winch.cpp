@@ -402,6 +402,64 @@ TEST(Winch, ASwitchFromSpeedToConstantTensionMakesNoSpike)
   EXPECT_LT(settled_high, 1.1 * (p.target_tension + p.tension_deadband));
 }
 
+// A `speed` winch reeling in at 0.5 m/s that the taut cable holds at the motor's stall pull (7.5 N) cannot reel in
+// at its speed: that is said (Tether::winchStalled), as an outrun winch is, once it has been held for kOutrunTime
+// (0.2 s) of sub-steps since it last ran at its speed. The ROV holds still 9 m out on 10 m: the winch reels the 1 m
+// of slack in at its speed (never said), the cable comes taut and the pull holds it (said from then on, until the ROV
+// moves); then the ROV comes in at 1 m/s, faster than the winch reels in, and once the drum is back at its speed it
+// is no longer said: at most v / a + a step (0.5 m/s at 1 m/s^2: 0.505 s) after the spool tension was last at the
+// pull (within 1%). With direct (the drum in the step: held on every sub-step, so said kOutrunTime after the spool
+// tension reached the pull, to a step) and xpbd (stopped on the last step's tension, which lags: it stops and
+// restarts, held on some sub-steps only, and is said later: printed).
+TEST(Winch, AReelInHeldAtTheStallPullIsSaid)
+{
+  for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
+  {
+    TetherParams p = pullParams();
+    p.solver = solver;
+    p.drag_model = DragModel::kDamping;
+    p.bending_stiffness = 0.0;  // limp: a rod the ROV comes in on would push the drum round (back-driven)
+    p.winch_mode = WinchMode::kSpeed;
+    p.winch_speed = -0.5;
+    p.initial_deployed_length = 10.0;
+    const double pull = p.winchPull();
+    const double back_to_speed = std::abs(p.winch_speed) / p.max_winch_acceleration + p.time_step;
+    Tether sim(p, Position::Zero(), Position(9.0, 0.0, 0.0));
+    auto x = [](double t) { return t < 6.0 ? 9.0 : std::max(7.0, 9.0 - (t - 6.0)); };
+    double taut = -1.0, at_pull = -1.0, first = -1.0;
+    int said_slack = 0, unsaid_held = 0, said_late = 0;
+    drive(sim, 0.0, 9.0, x,
+          [&]
+          {
+            const double t = sim.time();
+            const bool held = sim.summary().tension_spool > 0.99 * pull;
+            taut = taut < 0.0 && held ? t : taut;
+            at_pull = held ? t : at_pull;
+            first = first < 0.0 && sim.winchStalled() ? t : first;
+            said_slack += taut < 0.0 && sim.winchStalled();  // reeling in the slack at its speed
+            unsaid_held += first > 0.0 && t < 6.0 && !sim.winchStalled();
+            said_late += t > at_pull + back_to_speed && sim.winchStalled();
+          });
+    std::printf(
+        "[ measured ] %s: spool tension at the stall pull %.1f N from t = %.3f s to %.3f s, the stall said from "
+        "%.3f s\n",
+        toString(solver).c_str(), pull, taut, at_pull, first);
+    ASSERT_GT(taut, 1.0) << "the premise: the slack is reeled in first, then the pull holds the winch";
+    ASSERT_GT(at_pull, 6.0 - p.time_step) << "the premise: held until the ROV came in";
+    EXPECT_EQ(said_slack, 0) << toString(solver);
+    EXPECT_GT(first, taut) << toString(solver);
+    EXPECT_LT(first, 6.0) << toString(solver);
+    if (solver == SolverType::kDirect)
+    {
+      EXPECT_LE(first, taut + Tether::kOutrunTime + p.time_step);
+    }
+    EXPECT_EQ(unsaid_held, 0) << toString(solver);
+    EXPECT_EQ(said_late, 0) << toString(solver);
+    EXPECT_FALSE(sim.winchStalled()) << toString(solver);
+    EXPECT_NEAR(sim.winchSpeed(), p.winch_speed, 1e-9) << "the premise: reeling in at its speed again";
+  }
+}
+
 // "The vehicle outruns the winch" is a vehicle faster than the winch can pay out (issue 26, item 9). The
 // pillar demo's brake winch (2 N, max_winch_speed 1 m/s) was flagged from t = 0 while it turned at 0-0.59
 // m/s: a jerk of the cable (a pose that steps, a cable coming taut or slipping off a contact) drives the drum

@@ -481,9 +481,12 @@ void Tether::subStep(double h, double t)
   }
   if (settings.drum != nullptr)
   {
+    // Reeled in less than asked (by more than rounding): the stall pull held the drum.
+    held_at_pull_ = reel_in_asked_ < 0.0 && drum_.payout > reel_in_asked_ * (1.0 - 1e-9);
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
+  noteStall(h);
   effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
   effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
                          solver_->lastRescued());
@@ -645,6 +648,8 @@ void Tether::fail(const std::string& why)
 bool Tether::runWinch(double dt)
 {
   const std::size_t n = cable_.size();
+  held_at_pull_ = false;
+  commanded_speed_ = 0.0;
   if (cable_.first + 1 >= n)
   {
     winch_speed_ = 0.0;
@@ -657,14 +662,20 @@ bool Tether::runWinch(double dt)
                          target_length_, track_.attached(), spool_.outlet(),     track_.position(),
                          spool_tension,  winch_speed_,      solver_->takesDrum()};
   Winch& winch = winches_[params_.winch_mode];
+  commanded_speed_ = params_.winch_mode == WinchMode::kSpeed ? SpeedWinch::commandedSpeed(input) : 0.0;
   if (winch.drum(input, &drum_))
   {
+    // A speed winch's drum is given only to reel in, by exactly its min_payout = max_payout; the stall pull alone
+    // holds it back (spool_drum.hpp), which subStep reads from the pay-out the solve gives.
+    reel_in_asked_ = params_.winch_mode == WinchMode::kSpeed ? std::min(drum_.min_payout, 0.0) : 0.0;
     return true;  // the solver decides the pay-out (payOut after it)
   }
+  reel_in_asked_ = 0.0;
   double change = winch.lengthChange(input);
   if (change < 0.0 && spool_tension >= params_.winchPull())
   {
     change = 0.0;  // no reel-in pulls harder than the motor's stall pull: it stops there
+    held_at_pull_ = true;
   }
   payOut(change, dt);
   return false;
@@ -712,6 +723,8 @@ Status Tether::reset(double time)
   winches_.reset();
   winch_speed_ = 0.0;
   outrun_time_ = 0.0;
+  stall_time_ = 0.0;
+  held_at_pull_ = false;
   noise_.reseed(params_.seed);
   effort_ = SolverEffort{};
   effort_since_mark_ = SolverEffort{};
@@ -722,6 +735,21 @@ Status Tether::reset(double time)
 }
 
 double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
+
+void Tether::noteStall(double h)
+{
+  if (params_.winch_mode != WinchMode::kSpeed || !(commanded_speed_ < 0.0) ||
+      winch_speed_ <= commanded_speed_ * (1.0 - 1e-9))
+  {
+    stall_time_ = 0.0;  // not asked to reel in, or reeling in at its speed
+  }
+  else if (held_at_pull_)
+  {
+    // Only the sub-steps the pull held count; those it spends getting back to speed after one (a solver that
+    // stops the drum on the last step's tension restarts it, and is held again) neither count nor clear them.
+    stall_time_ += h;
+  }
+}
 
 bool Tether::winchAtItsLimit(double h) const
 {

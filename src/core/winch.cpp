@@ -121,18 +121,28 @@ double ConstantTensionWinch::lengthChange(const WinchInput& in)
   return accelerate(in.speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
 }
 
-double SpeedWinch::lengthChange(const WinchInput& in)
+double SpeedWinch::commandedSpeed(const WinchInput& in)
 {
   const TetherParams& p = in.params;
   if (std::isnan(in.target_length))
   {
-    return accelerate(in.speed, p.winch_speed, p.max_winch_acceleration, in.dt) * in.dt;
+    return p.winch_speed;
   }
-  // Towards the target: no faster than lets it stop there at max_winch_acceleration, and not past it.
+  // Towards the target: no faster than lets it stop there at max_winch_acceleration.
   const double distance = in.target_length - in.deployed;
   const double stopping = std::sqrt(2.0 * p.max_winch_acceleration * std::abs(distance));
-  const double wanted = std::copysign(std::min(std::abs(p.winch_speed), stopping), distance);
-  const double change = accelerate(in.speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
+  return std::copysign(std::min(std::abs(p.winch_speed), stopping), distance);
+}
+
+double SpeedWinch::lengthChange(const WinchInput& in)
+{
+  const TetherParams& p = in.params;
+  const double change = accelerate(in.speed, commandedSpeed(in), p.max_winch_acceleration, in.dt) * in.dt;
+  if (std::isnan(in.target_length))
+  {
+    return change;
+  }
+  const double distance = in.target_length - in.deployed;  // and not past the target
   return std::abs(change) > std::abs(distance) ? distance : change;
 }
 

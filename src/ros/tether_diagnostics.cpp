@@ -12,6 +12,14 @@ namespace
 /// after a simulation failure, a skip, the vehicle outrunning the winch or such a step [s].
 constexpr double kFailureReportTime = 5.0;
 
+/// Where the motor's stall pull comes from: max_winch_pull, or what 0 derives it from.
+std::string stallPullSource(const TetherParams& params)
+{
+  return params.max_winch_pull > 0.0 ? "max_winch_pull"
+                                     : "max_winch_pull 0: 1.25 x the larger of target_tension + tension_deadband and "
+                                       "brake_tension";
+}
+
 }  // namespace
 
 TetherDiagnostics::TetherDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const NodeOptions& options,
@@ -47,6 +55,16 @@ void TetherDiagnostics::report(const ros::Time& now)
                       "the cable stretches (spool tension above the %s)",
                       label_.c_str(), tether_.params().max_winch_speed,
                       tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+  }
+  if (tether_.winchStalled())
+  {
+    last_stall_time_ = now;
+    ROS_WARN_THROTTLE(
+        5.0,
+        "tether_node%s: the winch cannot reel in at winch_speed = %.2f m/s: the spool tension holds it at "
+        "the motor's stall pull of %.4g N (%s)",
+        label_.c_str(), tether_.params().winch_speed, tether_.params().winchPull(),
+        stallPullSource(tether_.params()).c_str());
   }
   const SolverEffort& effort = tether_.solverEffort();
   if (effort.unconverged > reported_unconverged_)
@@ -191,6 +209,11 @@ void TetherDiagnostics::mergeAlarms(const TetherSummary& summary, diagnostic_upd
   {
     status.mergeSummaryf(DiagnosticStatus::WARN, "the vehicle outruns the winch (max_winch_speed %.2f m/s)",
                          tether_.params().max_winch_speed);
+  }
+  if (!last_stall_time_.isZero() && (now - last_stall_time_).toSec() < kFailureReportTime)
+  {
+    status.mergeSummaryf(DiagnosticStatus::WARN, "the winch is held at its stall pull (%.4g N): it cannot reel in",
+                         tether_.params().winchPull());
   }
   if (!last_unconverged_time_.isZero() && (now - last_unconverged_time_).toSec() < kFailureReportTime)
   {

@@ -167,6 +167,11 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
     result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
     ++result->outrun_rows;
   }
+  if (sim.winchStalled())
+  {
+    result->first_stall_time = result->stall_rows == 0 ? t_out : result->first_stall_time;
+    ++result->stall_rows;
+  }
   result->max_tension_vehicle = std::max(result->max_tension_vehicle, s.tension_vehicle);
   result->max_strain = std::max(result->max_strain, s.max_strain);
 }
@@ -404,6 +409,17 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
                     "the vehicle outruns the winch at %zu output times from t = %.2f s: it pays out at "
                     "max_winch_speed = %.3g m/s and the cable stretches",
                     s.outrun_rows, s.first_outrun_time, p.max_winch_speed);
+      warnings.push_back(who + line);
+    }
+    if (s.stall_rows > 0)
+    {
+      std::snprintf(line, sizeof line,
+                    "the winch cannot reel in at winch_speed = %.3g m/s at %zu output times from t = %.2f s: the "
+                    "spool tension holds it at the motor's stall pull of %.4g N (max_winch_pull%s)",
+                    p.winch_speed, s.stall_rows, s.first_stall_time, p.winchPull(),
+                    p.max_winch_pull > 0.0 ? ""
+                                           : " 0: 1.25 x the larger of target_tension + tension_deadband and "
+                                             "brake_tension");
       warnings.push_back(who + line);
     }
   }

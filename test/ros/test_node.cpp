@@ -692,6 +692,32 @@ TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
   EXPECT_NE(h.tether_summary_.find("the vehicle outruns the winch"), std::string::npos) << h.tether_summary_;
 }
 
+// A `speed` winch reeling in at 0.5 m/s while the vehicle holds still 5.5 m out: once the slack is in, the motor's
+// stall pull (default.yaml: max_winch_pull 0, so 1.25 x (5 + 1) = 7.5 N) holds the drum, which cannot reel in at its
+// speed; /diagnostics warns of it (as of an outrun winch, for 5 s after: the updater's period is 1 s), and ~state
+// shows the drum stopped with the spool tension at the pull (1%).
+TEST(TetherNode, ASpeedWinchHeldAtItsStallPullIsReported)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
+  EXPECT_EQ(h.tether_summary_.find("stall pull"), std::string::npos) << h.tether_summary_;
+  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  rov_tether::SetWinch srv;
+  srv.request.mode = "speed";
+  srv.request.speed = -0.5;
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  // The slack (deployed less the 5.52 m to the vehicle) is in within a second; then 2.5 s held, past the diagnostics'
+  // period.
+  ASSERT_TRUE(h.drive(3.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_NEAR(h.state_.tension_spool, 7.5, 0.075);
+  EXPECT_NEAR(h.state_.winch_speed, 0.0, 1e-3);  // measured over the publishing period
+  EXPECT_NE(h.tether_summary_.find("the winch is held at its stall pull (7.5 N): it cannot reel in"), std::string::npos)
+      << h.tether_summary_;
+}
+
 // A sub-step the solver stops short of solver_tolerance is reported, not only counted by the runner: /diagnostics
 // counts such sub-steps, and warns for 5 s after one that ended above solver_residual_warning (node.yaml: 1e-4).
 // With one Newton iteration a step, a moving cable's sub-steps end far above both (residuals up to 0.6 of a

@@ -123,6 +123,11 @@ class Tether
   bool winchOutrun() const { return outrun_time_ >= kOutrunTime; }
   /// How long the winch must stay at its limit to be outrun [s].
   static constexpr double kOutrunTime = 0.2;
+  /// True when a `speed` winch asked to reel in has been held back at the motor's stall pull
+  /// (TetherParams::winchPull()) for kOutrunTime of sub-steps since it last reeled in at its commanded speed: it
+  /// cannot reel in at its speed, as an outrun winch cannot pay out at the vehicle's. A few steps at the pull (a
+  /// cable coming taut) are not.
+  bool winchStalled() const { return stall_time_ >= kOutrunTime; }
   /// Detaches the vehicle (kinematic or dynamic): the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }
@@ -283,6 +288,8 @@ class Tether
   /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
   /// segment pulled harder than its mode gives way at.
   bool winchAtItsLimit(double h) const;
+  /// Counts the sub-step of length h [s] towards winchStalled() when the stall pull held a speed winch's reel-in.
+  void noteStall(double h);
   /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
   /// a solver that takes it into the step (then returns true, and payOut follows the solve).
   bool runWinch(double dt);
@@ -305,9 +312,13 @@ class Tether
   ContactSubstepPolicy substep_policy_;    ///< How many sub-steps a step with contact takes.
   StepMotion step_motion_;                 ///< Where the step's motion is measured from, with contact.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
-  double winch_speed_ = 0.0;  ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
-  double outrun_time_ = 0.0;  ///< How long the winch has been at its limit, pulled past giving way [s].
-  SpoolDrum drum_;            ///< The brake drum as the solver takes it into a step.
+  double winch_speed_ = 0.0;      ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
+  double outrun_time_ = 0.0;      ///< How long the winch has been at its limit, pulled past giving way [s].
+  double stall_time_ = 0.0;       ///< Sub-steps a speed winch's reel-in was held at the stall pull, since at speed [s].
+  double commanded_speed_ = 0.0;  ///< A speed winch's commanded speed in the sub-step [m/s]; 0 in other modes.
+  double reel_in_asked_ = 0.0;    ///< The reel-in a speed winch's drum was asked for in the sub-step [m] (< 0).
+  bool held_at_pull_ = false;     ///< The sub-step's reel-in was held back at the stall pull.
+  SpoolDrum drum_;                ///< The brake drum as the solver takes it into a step.
 
   std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
   Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].

@@ -84,6 +84,9 @@ class SpeedWinch : public Winch
  public:
   double lengthChange(const WinchInput& in) override;
   bool drum(const WinchInput& in, SpoolDrum* drum) override;
+  /// The speed it heads for [m/s] (negative reeling in) before the acceleration limit: winch_speed, or towards
+  /// the target no faster than lets it stop there.
+  static double commandedSpeed(const WinchInput& in);
 };
 
 /// `locked`: the deployed length never changes.

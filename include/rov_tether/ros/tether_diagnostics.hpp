@@ -20,11 +20,11 @@ namespace rov_tether::ros_layer
 
 /**
  * One tether's /diagnostics status ("tether", or "tether <name>" among several) and its error reports:
- * simulation failures, vehicle jumps, a vehicle outrunning the winch and steps the solver stopped short of
- * solver_tolerance are logged (throttled) as the physics finds them. It reads the tether, its pose input (poses taken,
- * refused, dropped) and its schedule (resets, skips, load, what overload_policy gave up, the physics' delay behind ROS
- * time) and the world's topology report (wraps around obstacles, links with other tethers, snags: warnings at
- * wrap_warning_turns, any linking number, capstan ratios above snag_ratio).
+ * simulation failures, vehicle jumps, a vehicle outrunning the winch, a reel-in held at the stall pull and steps the
+ * solver stopped short of solver_tolerance are logged (throttled) as the physics finds them. It reads the tether, its
+ * pose input (poses taken, refused, dropped) and its schedule (resets, skips, load, what overload_policy gave up, the
+ * physics' delay behind ROS time) and the world's topology report (wraps around obstacles, links with other tethers,
+ * snags: warnings at wrap_warning_turns, any linking number, capstan ratios above snag_ratio).
  */
 class TetherDiagnostics
 {
@@ -65,6 +65,7 @@ class TetherDiagnostics
   std::uint64_t reported_failures_ = 0;     ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;             ///< When the last failure was seen; diagnostics show ERROR for a while.
   ros::Time last_outrun_time_;              ///< When the vehicle last outran the winch; diagnostics WARN for a while.
+  ros::Time last_stall_time_;               ///< When a reel-in was last held at the stall pull (WARN for a while).
   std::uint64_t reported_drops_ = 0;        ///< Dropped poses already seen.
   ros::Time last_drop_time_;                ///< When poses were last dropped; diagnostics show WARN for a while.
   std::uint64_t reported_unconverged_ = 0;  ///< Steps short of solver_tolerance already logged.
