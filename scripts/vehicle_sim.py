@@ -27,9 +27,13 @@ Parameters: ~rate [Hz] (100), ~mass [kg] (13.5), ~added_mass [kg] per world axis
 BlueROV2 Heavy's surge, sway and heave of von Benzon et al. 2022 (docs/references.md), ~thrust [N] a
 world-frame vector ([0, 0, 0]), ~start [m] ([0, 0, 0]), ~world_frame (world), ~pose_topic (rov_pose),
 ~coupling_topic (tether_node/coupling), ~slack_memory [s] (1.0), ~tether_force (coupling | wrench | none),
-~wrench_topic (tether_node/wrench).
+~wrench_topic (tether_node/wrench). A bad value (not a number, not finite, out of its range: ~rate in [0.5, 1000],
+~mass > 0, the masses and drags >= 0, ~start within +-1e6 m, ~slack_memory in [0, 3600]) stops it with an error
+naming the parameter, its value and its range (exit code 1). SIGTERM, SIGINT or a shutdown end it within 0.05 s
+of waiting at any rate.
 """
 import math
+import time
 
 import rospy
 from geometry_msgs.msg import PoseStamped, WrenchStamped
@@ -87,46 +91,92 @@ def diagonal(values):
     return [[values[i] if i == j else 0.0 for j in range(3)] for i in range(3)]
 
 
-def vector_param(name, default):
+# The private parameters' ranges: a bad value stops the simulator with an error naming it, its value and its range.
+# ~rate: a pose at least every 2 s, the node's default stale_pose_timeout (sparser poses go stale between steps and
+# the node stops waiting for them; a step as long as 1e6 s also slept through SIGTERM); at most 1 kHz, five times the
+# node's default physics rate (200 Hz, 5 ms steps), which interpolates between poses anyway: more only loads Python
+# (a step and its publish cost some 0.1 ms).
+RATE_RANGE = (0.5, 1000.0)  # [Hz]
+MAX_COORDINATE = 1e6  # [m] ~start: the node refuses poses beyond +-1e6 m (Tether::kMaxCoordinate)
+MAX_SLACK_MEMORY = 3600.0  # [s] ~slack_memory: the node's longest stale_pose_timeout
+SHUTDOWN_CHECK = 0.05  # [s] the longest a wait goes on without looking for shutdown
+
+
+def number(value):
+    """value as a float, or None when it is no number. A string that reads as one is one: `_rate:=1e3` on the
+    command line is the string '1e3' (YAML 1.1 wants 1.0e3), which roslaunch's <param> gives as 1000.0."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        return None
+
+
+def bad_parameter(name, value, allowed):
+    """The ValueError naming the parameter (resolved), the value it was given and what is allowed."""
+    return ValueError("%s = %r: must be %s" % (rospy.resolve_name(name), value, allowed))
+
+
+def scalar_param(name, default, ok, allowed):
+    """The private parameter `name` as a finite float for which ok(x) holds; `allowed` says which."""
     value = rospy.get_param(name, default)
-    if not (isinstance(value, (list, tuple)) and len(value) == 3 and
-            all(isinstance(a, (int, float)) and math.isfinite(a) for a in value)):
-        raise ValueError("%s must be a list of 3 finite numbers, got %r" % (rospy.resolve_name(name), value))
-    return [float(a) for a in value]
+    x = number(value)
+    if x is None or not math.isfinite(x) or not ok(x):
+        raise bad_parameter(name, value, "a finite number " + allowed)
+    return x
+
+
+def vector_param(name, default, ok=lambda x: True, allowed=""):
+    """The private parameter `name` as a list of 3 finite floats, each x with ok(x); `allowed` says which."""
+    value = rospy.get_param(name, default)
+    xs = [number(a) for a in value] if isinstance(value, (list, tuple)) and len(value) == 3 else None
+    if xs is None or not all(x is not None and math.isfinite(x) and ok(x) for x in xs):
+        raise bad_parameter(name, value, "a list of 3 finite numbers" + (", each " + allowed if allowed else ""))
+    return xs
+
+
+def text_param(name, default, choices=None):
+    """The private parameter `name` as a non-empty string (one of `choices` when given)."""
+    value = rospy.get_param(name, default)
+    if not isinstance(value, str) or not value or (choices and value not in choices):
+        raise bad_parameter(name, value, "one of " + ", ".join(choices) if choices else "a non-empty string")
+    return value
 
 
 class VehicleSim:
     """The vehicle, its latest tether message and its publisher."""
 
     def __init__(self):
-        self.rate = float(rospy.get_param("~rate", 100.0))
-        mass = float(rospy.get_param("~mass", 13.5))
-        added = vector_param("~added_mass", [6.36, 7.12, 18.68])
-        self.linear = vector_param("~linear_drag", [13.7, 0.0, 33.0])
-        self.quadratic = vector_param("~quadratic_drag", [141.0, 217.0, 190.0])
+        self.rate = scalar_param("~rate", 100.0, lambda x: RATE_RANGE[0] <= x <= RATE_RANGE[1],
+                                 "in [%g, %g] Hz (a pose at least every 2 s, the node's default stale_pose_timeout; "
+                                 "at most 5 x its default physics rate)" % RATE_RANGE)
+        mass = scalar_param("~mass", 13.5, lambda x: x > 0.0, "> 0 kg")
+        non_negative = lambda x: x >= 0.0  # noqa: E731
+        added = vector_param("~added_mass", [6.36, 7.12, 18.68], non_negative, ">= 0 kg")
+        self.linear = vector_param("~linear_drag", [13.7, 0.0, 33.0], non_negative, ">= 0 N s/m")
+        self.quadratic = vector_param("~quadratic_drag", [141.0, 217.0, 190.0], non_negative, ">= 0 N s^2/m^2")
         self.thrust = vector_param("~thrust", [0.0, 0.0, 0.0])
-        self.x = vector_param("~start", [0.0, 0.0, 0.0])
-        self.frame = rospy.get_param("~world_frame", "world")
-        self.tether_force = rospy.get_param("~tether_force", "coupling")
-        self.slack_memory = float(rospy.get_param("~slack_memory", 1.0))
-        if not (self.rate > 0.0 and math.isfinite(self.rate)) or not mass > 0.0 or min(added) < 0.0 or \
-                min(self.linear + self.quadratic) < 0.0 or not self.slack_memory >= 0.0:
-            raise ValueError("~rate and ~mass must be > 0, ~added_mass, the drags and ~slack_memory >= 0")
-        if self.tether_force not in ("coupling", "wrench", "none"):
-            raise ValueError("~tether_force must be coupling, wrench or none, got '%s'" % self.tether_force)
+        self.x = vector_param("~start", [0.0, 0.0, 0.0], lambda x: abs(x) <= MAX_COORDINATE,
+                              "within +-%g m (the node refuses poses beyond)" % MAX_COORDINATE)
+        self.frame = text_param("~world_frame", "world")
+        self.tether_force = text_param("~tether_force", "coupling", ("coupling", "wrench", "none"))
+        self.slack_memory = scalar_param("~slack_memory", 1.0, lambda x: 0.0 <= x <= MAX_SLACK_MEMORY,
+                                         "in [0, %g] s" % MAX_SLACK_MEMORY)
+        pose_topic = text_param("~pose_topic", "rov_pose")
+        coupling_topic = text_param("~coupling_topic", "tether_node/coupling")
+        wrench_topic = text_param("~wrench_topic", "tether_node/wrench")
         self.mass = diagonal([mass + a for a in added])
         self.v = [0.0, 0.0, 0.0]
         self.coupling = None  # (F0, x0, v0, K, C) the step applies: the latest ~coupling, or the last taut one
         self.last_taut = None  # (stamp [s], (F0, x0, v0, K, C)) of the last taut ~coupling
         self.wrench = None    # [N] the latest ~wrench's force (~tether_force: wrench)
         self.pull = [0.0, 0.0, 0.0]
-        self.pub = rospy.Publisher(rospy.get_param("~pose_topic", "rov_pose"), PoseStamped, queue_size=100)
+        self.pub = rospy.Publisher(pose_topic, PoseStamped, queue_size=100)
         if self.tether_force == "coupling":
-            rospy.Subscriber(rospy.get_param("~coupling_topic", "tether_node/coupling"), TetherCoupling,
-                             self.on_coupling, queue_size=1, tcp_nodelay=True)
+            rospy.Subscriber(coupling_topic, TetherCoupling, self.on_coupling, queue_size=1, tcp_nodelay=True)
         elif self.tether_force == "wrench":
-            rospy.Subscriber(rospy.get_param("~wrench_topic", "tether_node/wrench"), WrenchStamped,
-                             self.on_wrench, queue_size=1, tcp_nodelay=True)
+            rospy.Subscriber(wrench_topic, WrenchStamped, self.on_wrench, queue_size=1, tcp_nodelay=True)
 
     def on_coupling(self, msg):
         f, p, u = msg.force, msg.position, msg.velocity
@@ -170,17 +220,31 @@ class VehicleSim:
 
 
 def sleep_until(due):
-    """Until ROS time reaches due [s]. Under /clock this waits on the condition rospy.sleep waits on, against
-    due itself: rospy.sleep(due - now) counts from the time it reads itself, later than now when a /clock
-    message came between, and then sleeps past due, for good when the clock waits for this simulator (a
-    lockstep driver such as external_coupling.test)."""
+    """Until ROS time reaches due [s], or shutdown (SIGTERM, SIGINT, rosnode kill: rospy's handlers only set
+    its flag, and a sleep as long as a step at a low ~rate went on after it). Wall clock: in slices of at most
+    SHUTDOWN_CHECK. Under /clock this waits on the condition rospy.sleep waits on, against due itself:
+    rospy.sleep(due - now) counts from the time it reads itself, later than now when a /clock message came
+    between, and then sleeps past due, for good when the clock waits for this simulator (a lockstep driver such
+    as external_coupling.test)."""
     if rospy.rostime.is_wallclock():
-        rospy.sleep(max(0.0, due - rospy.Time.now().to_sec()))
+        while not rospy.is_shutdown():
+            left = due - rospy.Time.now().to_sec()
+            if left <= 0.0:
+                return
+            time.sleep(min(left, SHUTDOWN_CHECK))
         return
     cond = rospy.rostime.get_rostime_cond()
     with cond:
         while not rospy.is_shutdown() and rospy.Time.now().to_sec() < due - 1e-9:
-            cond.wait(0.5)
+            cond.wait(SHUTDOWN_CHECK)
+
+
+def wait_for_clock():
+    """Until simulated time has started (the first /clock), or shutdown. (rospy.sleep raises on shutdown.)"""
+    cond = rospy.rostime.get_rostime_cond()
+    with cond:
+        while not rospy.is_shutdown() and rospy.Time.now().is_zero():
+            cond.wait(SHUTDOWN_CHECK)
 
 
 def main():
@@ -191,19 +255,21 @@ def main():
         rospy.logfatal("vehicle_sim: %s", error)
         raise SystemExit(1)
     h = 1.0 / sim.rate
-    while not rospy.is_shutdown() and rospy.Time.now().is_zero():
-        rospy.sleep(0.01)  # simulated time has not started
+    wait_for_clock()
+    if rospy.is_shutdown():
+        return
     t = rospy.Time.now().to_sec()
     sim.publish(t)
     rospy.loginfo("vehicle_sim: %.0f Hz, thrust [%.1f, %.1f, %.1f] N, tether force from %s", sim.rate,
                   sim.thrust[0], sim.thrust[1], sim.thrust[2], sim.tether_force)
     while not rospy.is_shutdown():
         now = rospy.Time.now().to_sec()
-        while t + h <= now + 1e-9:  # catch up with ROS time in steps of exactly h
+        while t + h <= now + 1e-9 and not rospy.is_shutdown():  # catch up with ROS time in steps of exactly h
             sim.step(h)
             t += h
             sim.publish(t)
         sleep_until(t + h)
+
 
 if __name__ == "__main__":
     main()

@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""rostest (test/ros/vehicle_sim.test): scripts/vehicle_sim.py refuses bad private parameters and stops when told.
+
+Each bad value is started as a user would start it (`vehicle_sim.py _rate:=abc`, against the test's master): the
+simulator must exit with code 1 and a FATAL naming the parameter, the value it was given and the range. It took
+`_rate:=abc` as a crash, a list `[1, 2]` as a TypeError traceback, `_mass:=inf` as a mass (and then stepped NaN),
+and `_rate:=1e-6` as a step of 11 days, during which it slept through SIGTERM.
+
+At the lowest rate it allows (0.5 Hz: a step of 2 s), SIGTERM right after a pose (the start of its 2 s sleep) ends
+it within STOP_BOUND: its waits look for shutdown every 0.05 s (it slept out the whole step).
+"""
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import PoseStamped
+
+TIMEOUT = 20.0  # [s] rospy's start-up and the refusal; under 2 s on an idle machine
+# [s] SIGTERM to exit at 0.5 Hz: the 0.05 s shutdown check plus rospy's own shutdown (0.7 s measured), below the 2 s
+# step it slept out before (2.0 s measured without the check).
+STOP_BOUND = 1.5
+
+
+class VehicleSimParams(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("vehicle_sim_params_test")
+        cls.script = os.path.join(rospkg.RosPack().get_path("rov_tether"), "scripts", "vehicle_sim.py")
+
+    def start(self, name, *arguments):
+        return subprocess.Popen([sys.executable, self.script, "__name:=" + name] + list(arguments),
+                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+
+    def refused(self, argument, expected):
+        """vehicle_sim.py with `argument` exits with code 1, its output holding `expected` with {ns} its private
+        namespace (a node name of its own: what one run puts on the master stays there)."""
+        self.runs = getattr(self, "runs", 0) + 1
+        name = "bad%d" % self.runs
+        expected = expected.format(ns="/" + name)
+        run = self.start(name, argument)
+        try:
+            output, _ = run.communicate(timeout=TIMEOUT)
+        except subprocess.TimeoutExpired:
+            run.kill()
+            output, _ = run.communicate()
+            self.fail("%s: still running after %.0f s (not refused):\n%s" % (argument, TIMEOUT, output))
+        self.assertEqual(run.returncode, 1, argument + ":\n" + output)
+        self.assertNotIn("Traceback", output, argument)
+        self.assertIn(expected, output, argument)
+
+    def test_1_bad_parameters_are_refused_naming_them(self):
+        rate = "must be a finite number in [0.5, 1000] Hz"
+        self.refused("_rate:=abc", "{ns}/rate = 'abc': " + rate)
+        self.refused("_rate:=[1, 2]", "{ns}/rate = [1, 2]: " + rate)
+        self.refused("_rate:=1.0e-6", "{ns}/rate = 1e-06: " + rate)
+        self.refused("_rate:=.nan", "{ns}/rate = nan: " + rate)
+        self.refused("_mass:=inf", "{ns}/mass = 'inf': must be a finite number > 0 kg")
+        self.refused("_mass:=0", "{ns}/mass = 0: must be a finite number > 0 kg")
+        self.refused("_added_mass:=[1, 2]", "{ns}/added_mass = [1, 2]: must be a list of 3 finite numbers, each >= 0 kg")
+        self.refused("_linear_drag:=[1, -2, 3]", "{ns}/linear_drag = [1, -2, 3]: must be a list of 3 finite numbers")
+        self.refused("_thrust:=[1, 2, .inf]", "{ns}/thrust = [1, 2, inf]: must be a list of 3 finite numbers")
+        self.refused("_start:=[0, 0, 2000000.0]", "{ns}/start = [0, 0, 2000000.0]: must be a list of 3 finite numbers, "
+                     "each within +-1e+06 m")
+        self.refused("_slack_memory:=-1", "{ns}/slack_memory = -1: must be a finite number in [0, 3600] s")
+        self.refused("_tether_force:=spring", "{ns}/tether_force = 'spring': must be one of coupling, wrench, none")
+        self.refused("_world_frame:=3", "{ns}/world_frame = 3: must be a non-empty string")
+
+    def test_2_a_number_written_as_text_on_the_command_line_is_taken(self):
+        # `_rate:=1e3` is the string '1e3' to rospy (YAML 1.1): it is 1000 Hz, as roslaunch's <param> gives it.
+        poses = []
+        sub = rospy.Subscriber("/rov_pose", PoseStamped, poses.append, queue_size=10)
+        run = self.start("text_rate", "_rate:=1e3", "_tether_force:=none")
+        try:
+            end = time.monotonic() + TIMEOUT
+            while not poses and run.poll() is None and time.monotonic() < end:
+                time.sleep(0.05)
+            self.assertIsNone(run.poll(), run.stdout.read() if run.poll() is not None else "")
+            self.assertTrue(poses, "no pose from vehicle_sim.py _rate:=1e3")
+        finally:
+            sub.unregister()
+            run.send_signal(signal.SIGTERM)
+            run.communicate(timeout=TIMEOUT)
+
+    def test_3_sigterm_ends_it_promptly_at_its_lowest_rate(self):
+        posed = threading.Event()
+        sub = rospy.Subscriber("/slow/pose", PoseStamped, lambda _: posed.set(), queue_size=10)
+        run = self.start("slow", "_rate:=0.5", "_tether_force:=none", "_pose_topic:=/slow/pose")
+        try:
+            self.assertTrue(posed.wait(TIMEOUT), "no pose from vehicle_sim.py _rate:=0.5")
+            posed.clear()
+            self.assertTrue(posed.wait(TIMEOUT), "no second pose")  # its sleep of a whole step begins now
+            time.sleep(0.1)
+            sent = time.monotonic()
+            run.send_signal(signal.SIGTERM)
+            run.communicate(timeout=TIMEOUT)
+            took = time.monotonic() - sent
+        finally:
+            sub.unregister()
+            if run.poll() is None:
+                run.kill()
+                run.communicate()
+        print("[ measured ] vehicle_sim.py at 0.5 Hz ended %.3f s after SIGTERM (bound %.1f s)" % (took, STOP_BOUND))
+        self.assertLess(took, STOP_BOUND)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("rov_tether", "vehicle_sim_params", VehicleSimParams, sys.argv)
