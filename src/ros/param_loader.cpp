@@ -459,6 +459,17 @@ std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::Xml
   }
   if (error.empty())
   {
+    candidate.ignored.clear();
+    if (candidate.options.has_vehicle_start && candidate.options.vehicle_model != "dynamic")
+    {
+      const Eigen::Vector4d& start = candidate.options.vehicle_start;
+      std::ostringstream out;
+      out << "vehicle_start [" << start[0] << ", " << start[1] << ", " << start[2] << ", " << start[3]
+          << "] is ignored: vehicle_model is " << candidate.options.vehicle_model
+          << ", so the vehicle end is where its poses put it (the first attaches it); vehicle_start places a "
+             "dynamic vehicle (vehicle_model: dynamic)";
+      candidate.ignored.push_back(out.str());
+    }
     *setup = candidate;
   }
   return error;

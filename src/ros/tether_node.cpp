@@ -21,6 +21,10 @@ TetherSetup loadTetherSetup(const ros::NodeHandle& private_nh, const XmlRpc::Xml
   {
     throw std::runtime_error("invalid parameters in " + private_nh.getNamespace() + ": " + error);
   }
+  for (const std::string& ignored : setup.ignored)
+  {
+    ROS_WARN("tether_node: %s: %s", private_nh.getNamespace().c_str(), ignored.c_str());
+  }
   const std::string unknown = dict.valid() ? unknownParameters(dict) : "";
   if (!unknown.empty())
   {

@@ -189,6 +189,31 @@ TEST(VehicleIo, ConfigurationsADynamicVehicleCannotRunAreRefused)
   EXPECT_EQ(unknownParameters(keys), "");  // node options, not typos
 }
 
+// vehicle_start places a dynamic vehicle only: with a kinematic one (the default) the poses put the end where it is,
+// so the start is ignored, and the setup says so (the node warns of it, naming its namespace); it was dropped
+// without a word. A dynamic vehicle's start, or a kinematic vehicle without one, is nothing to say.
+TEST(VehicleIo, AVehicleStartForAKinematicVehicleIsSaidToBeIgnored)
+{
+  const TetherSetup kinematic = setupFrom("{vehicle_start: [1, 2, -3, 0.5]}");
+  ASSERT_EQ(kinematic.ignored.size(), 1u);
+  EXPECT_EQ(kinematic.ignored[0],
+            "vehicle_start [1, 2, -3, 0.5] is ignored: vehicle_model is kinematic, so the vehicle end is where its "
+            "poses put it (the first attaches it); vehicle_start places a dynamic vehicle (vehicle_model: dynamic)");
+  EXPECT_TRUE(setupFrom("{vehicle_model: dynamic, vehicle_start: [1, 2, -3, 0.5]}").ignored.empty());
+  EXPECT_TRUE(setupFrom("{vehicle_model: kinematic}").ignored.empty());
+  // Shared by several tethers (the map above each tether's own), the start is ignored by the kinematic one only.
+  TetherSetup setup;
+  ASSERT_EQ(loadTetherSetup(test::toXmlRpc(YAML::Load("{vehicle_start: [0, 0, -1, 0]}")),
+                            test::toXmlRpc(YAML::Load("{vehicle_model: dynamic}")), &setup),
+            "");
+  EXPECT_TRUE(setup.ignored.empty());
+  TetherSetup other;
+  ASSERT_EQ(loadTetherSetup(test::toXmlRpc(YAML::Load("{vehicle_start: [0, 0, -1, 0]}")),
+                            test::toXmlRpc(YAML::Load("{pose_topic: rov1/pose}")), &other),
+            "");
+  EXPECT_EQ(other.ignored.size(), 1u);
+}
+
 /// A dynamic vehicle started at vehicle_start, 2 m out on a locked tether of 8 m, at ROS time 1 s.
 struct StartedVehicle
 {

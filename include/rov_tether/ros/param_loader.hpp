@@ -93,6 +93,9 @@ struct TetherSetup
   /// The dynamic vehicle's controller (the file's `controller:` block, or the design for its vehicle; the
   /// defaults when vehicle_params is "").
   ControllerGains gains;
+  /// What the setup was given but does not use, each naming the parameter and why (the node warns of each):
+  /// vehicle_start with a kinematic vehicle.
+  std::vector<std::string> ignored;
 };
 
 /// Applies every model parameter found in `dict` (the node's private namespace as a map) on top of
@@ -113,7 +116,7 @@ std::string loadNodeOptions(const XmlRpc::XmlRpcValue& dict, NodeOptions* option
 /// A tether's parameters and options: `shared` (the parameters common to several tethers; invalid: none),
 /// then `own` (its namespace as a map; invalid: none) on top. Returns "" or every problem, each naming its
 /// parameter; `setup` is changed only on success. Reads the vehicle file (vehicle_params) and checks what a
-/// dynamic vehicle needs (checkVehicleModel).
+/// dynamic vehicle needs (checkVehicleModel); what the vehicle model does not use goes to setup->ignored.
 std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::XmlRpcValue& own, TetherSetup* setup);
 
 /// Why the setup cannot run its vehicle model ("" when it can): vehicle_model dynamic needs solver direct (the
