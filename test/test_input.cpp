@@ -272,6 +272,48 @@ TEST(VehicleTrack, AFirstSampleLeftBehindIsNotDraggedInOneStep)
   EXPECT_NEAR(late, on_time, 0.1 * on_time);
 }
 
+// A kinematic vehicle whose first position is out of the cable's reach (a path or a pose stream starting 30 m out on a
+// locked winch with 8 m out, or 12 m out on a 10 m cable) is taken, the cable laid stretched to it, and said, as a
+// dynamic vehicle's start is (VehicleCoupling.OnlyDirectTakesADynamicVehicleAndBadInputIsRefused): the distance,
+// the cable there is and the strain it is laid at, (30 - 8) / 8 = 2.75 and (12 - 10) / 10 = 0.2. It showed only as
+// an over-tension. Within reach (a brake winch pays out to it) nothing is said.
+TEST(VehicleTrack, AFirstPositionOutOfTheCablesReachIsSaid)
+{
+  TetherParams locked;
+  locked.noise = 0.0;
+  locked.winch_mode = WinchMode::kLocked;
+  locked.initial_deployed_length = 8.0;
+  const Tether given(locked, Position::Zero(), Position(30.0, 0.0, 0.0));  // a path's start, as the runner gives it
+  EXPECT_EQ(given.outOfReachCount(), 1u);
+  EXPECT_EQ(given.lastOutOfReach(),
+            "the vehicle's first position is 30 m from the spool, beyond the 8 m of cable the locked winch has out: "
+            "the cable is laid stretched to it (strain 2.75): its path starts out of the tether's reach");
+  Tether sampled(locked, Position::Zero());  // the node's: the first pose attaches it
+  ASSERT_TRUE(succeeded(sampled.addVehicleSample(0.1, Position(0.0, 30.0, 0.0))));
+  ASSERT_TRUE(succeeded(sampled.advance(0.05)));
+  EXPECT_EQ(sampled.outOfReachCount(), 0u) << "not attached before its time";
+  ASSERT_TRUE(succeeded(sampled.advance(0.1)));
+  EXPECT_EQ(sampled.outOfReachCount(), 1u);
+  EXPECT_EQ(sampled.lastOutOfReach(), given.lastOutOfReach());
+  ASSERT_TRUE(succeeded(sampled.reset(1.0)));  // attached again after a reset: said again
+  ASSERT_TRUE(succeeded(sampled.addVehicleSample(1.0, Position(0.0, 30.0, 0.0))));
+  ASSERT_TRUE(succeeded(sampled.advance(0.1)));
+  EXPECT_EQ(sampled.outOfReachCount(), 2u);
+
+  TetherParams brake;
+  brake.noise = 0.0;
+  brake.cable_length = 10.0;
+  const Tether beyond(brake, Position::Zero(), Position(12.0, 0.0, 0.0));
+  EXPECT_EQ(beyond.outOfReachCount(), 1u);
+  EXPECT_NE(beyond.lastOutOfReach().find("12 m from the spool, beyond the 10 m of cable there is"), std::string::npos)
+      << beyond.lastOutOfReach();
+  EXPECT_NE(beyond.lastOutOfReach().find("(strain 0.2)"), std::string::npos) << beyond.lastOutOfReach();
+  const Tether within(brake, Position::Zero(), Position(9.0, 0.0, 0.0));
+  EXPECT_EQ(within.outOfReachCount(), 0u);
+  EXPECT_EQ(within.lastOutOfReach(), "");
+  EXPECT_NEAR(within.deployedLength(), 9.0, 1e-9) << "the brake winch paid out to it";
+}
+
 TEST(VehicleJump, FiveMetreJumpIsSurvived)
 {
   for (SolverType solver : {SolverType::kPbd, SolverType::kPbdSequential})

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rov_tether/scenario/earlier_outputs.hpp"
+#include "rov_tether/scenario/world_spec.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -817,6 +818,41 @@ TEST(Runner, CountsTheSubStepsThatStopShortOfTheTolerance)
   ASSERT_EQ(runScenario(scenario, temporaryDirectory("short_of_tolerance"), &summary), "");
   EXPECT_GT(summary.solver.unconverged, 0u);
   EXPECT_LE(summary.solver.unconverged, summary.solver.substeps);
+}
+
+// A path that starts out of the tether's reach (30 m out on a locked winch with 8 m out) is said when the world is
+// built, as a dynamic vehicle's start out of reach is (VehicleCoupling.OnlyDirectTakesADynamicVehicle...): the
+// distance, the cable there is, the strain it is laid at, (30 - 8) / 8 = 2.75, and that the path starts out of
+// reach, named by its tether among several. It was said only as an over-tension. A path within reach says nothing.
+TEST(Runner, APathStartingOutOfTheTethersReachIsSaid)
+{
+  const std::string tether =
+      "params: {winch_mode: locked, initial_deployed_length: 8.0, noise: 0.0}\n"
+      "spool: [0, 0, 0]\nvehicle: [[0, 30, 0, 0], [1, 30, 0, 0]]\n";
+  const std::string message =
+      "vehicle: the vehicle's first position is 30 m from the spool, beyond the 8 m of cable "
+      "the locked winch has out: the cable is laid stretched to it (strain 2.75): its path "
+      "starts out of the tether's reach\n";
+  const auto said = [](const std::string& yaml)
+  {
+    Scenario scenario;
+    EXPECT_EQ(parseScenario(yaml, &scenario), "");
+    World world;
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(buildWorld(worldSpecOf(scenario), &world), "");
+    return testing::internal::GetCapturedStderr();
+  };
+  EXPECT_EQ(said(tether + "duration: 1\n"), "rov_tether: warning: " + message);
+  std::string two =
+      "duration: 1\ntethers:\n  - name: near\n    spool: [0, 0, 0]\n    vehicle: [[0, 1, 0, 0]]\n"
+      "  - name: far\n";
+  for (std::size_t line = 0, next = 0; line < tether.size(); line = next + 1)
+  {
+    next = tether.find('\n', line);
+    two += "    " + tether.substr(line, next - line + 1);
+  }
+  EXPECT_EQ(said(two), "rov_tether: warning: tether far: " + message);
+  EXPECT_EQ(said("spool: [0, 0, 0]\nvehicle: [[0, 7, 0, 0]]\nduration: 1\n"), "");
 }
 
 // A `speed` winch reeling in at 0.5 m/s against a ROV that holds still 9 m out on 10 m: once the slack is in, the

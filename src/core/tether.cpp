@@ -75,7 +75,7 @@ Tether::Tether(const TetherParams& params, const Position& spool, const Position
     throw std::invalid_argument("vehicle position must be finite and within +-1e6 m");
   }
   track_.attachAt(start_time, vehicle);
-  layOut(lengthToReach(vehicle));  // as when a first sample attaches: the cable reaches the vehicle
+  attachKinematic(vehicle);  // as when a first sample attaches: the cable reaches the vehicle
 }
 
 void Tether::applyParams(const TetherParams& requested)
@@ -295,7 +295,7 @@ Position Tether::vehicleAt(double t)
   // late under load).
   if (track_.attachIfDue(t, 1.5 * params_.subStep()))
   {
-    layOut(lengthToReach(track_.position()));
+    attachKinematic(track_.position());
   }
   if (!track_.attached())
   {
@@ -320,6 +320,33 @@ double Tether::lengthToReach(const Position& vehicle) const
   }
   return std::clamp(std::max(deployedLength(), (vehicle - spool_.outlet()).norm()), params_.min_deployed_length,
                     params_.cable_length);
+}
+
+std::string Tether::layOutToReach(const Position& attachment, const char* who)
+{
+  const double laid = lengthToReach(attachment);
+  layOut(laid);
+  const double distance = (attachment - spool_.outlet()).norm();
+  if (!(distance > laid))
+  {
+    return "";
+  }
+  // Out of the cable's reach (a locked winch, or all of it out): laid stretched to it, pulling hard at once.
+  std::ostringstream out;
+  out << who << " is " << distance << " m from the spool, beyond the " << laid << " m of cable "
+      << (params_.winch_mode == WinchMode::kLocked ? "the locked winch has out" : "there is")
+      << ": the cable is laid stretched to it (strain " << (distance - laid) / laid << ")";
+  return out.str();
+}
+
+void Tether::attachKinematic(const Position& attachment)
+{
+  const std::string note = layOutToReach(attachment, "the vehicle's first position");
+  if (!note.empty())
+  {
+    ++out_of_reach_;
+    last_out_of_reach_ = note + ": its path starts out of the tether's reach";
+  }
 }
 
 Status Tether::advance(double dt, std::size_t* steps)
@@ -607,19 +634,9 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
   ++vehicle_starts_;
   track_.detach();
   track_.attachAt(time_, attachment);
-  const double laid = lengthToReach(attachment);
-  layOut(laid);  // as when a first sample attaches: the cable reaches the vehicle
   Status done = Status::success();
-  const double distance = (attachment - spool_.outlet()).norm();
-  if (distance > laid)
-  {
-    // Out of the cable's reach (a locked winch, or all of it out): laid stretched to it, pulling hard at once.
-    std::ostringstream out;
-    out << "the vehicle's attachment is " << distance << " m from the spool, beyond the " << laid << " m of cable "
-        << (params_.winch_mode == WinchMode::kLocked ? "the locked winch has out" : "there is")
-        << ": the cable is laid stretched to it (strain " << (distance - laid) / laid << ")";
-    done.message = out.str();
-  }
+  // As when a first sample attaches: the cable reaches the vehicle, or is said not to.
+  done.message = layOutToReach(attachment, "the vehicle's attachment");
   return done;
 }
 

@@ -98,6 +98,11 @@ void TetherDiagnostics::report(const ros::Time& now)
     reported_drops_ = pose_input_.dropped();
     last_drop_time_ = now;
   }
+  if (tether_.outOfReachCount() > reported_out_of_reach_)
+  {
+    reported_out_of_reach_ = tether_.outOfReachCount();
+    ROS_WARN("tether_node%s: %s", label_.c_str(), tether_.lastOutOfReach().c_str());
+  }
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();

@@ -187,6 +187,13 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     {
       return (spec.tethers.size() == 1 ? "" : "tethers: " + tether.name + ": ") + attached;
     }
+    const std::string& out_of_reach = world->tether(world->size() - 1).lastOutOfReach();
+    if (!tether.dynamic && !out_of_reach.empty())
+    {
+      // Its path's start, as attachDynamicVehicle says a dynamic vehicle's (whose own attach lays it again).
+      std::fprintf(stderr, "rov_tether: warning: %svehicle: %s\n",
+                   spec.tethers.size() == 1 ? "" : ("tether " + tether.name + ": ").c_str(), out_of_reach.c_str());
+    }
   }
   for (std::size_t i = 0; i < spec.tethers.size() && !spec.vehicles_attached_later; ++i)
   {

@@ -9,11 +9,13 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
+#include <rosgraph_msgs/Log.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -43,6 +45,7 @@ class Harness
     vehicle_wrench_sub_ = nh_.subscribe("/tether_node/wrench_vehicle", 10, &Harness::onVehicleWrench, this);
     tf_sub_ = nh_.subscribe("/tf", 100, &Harness::onTf, this);
     diagnostics_sub_ = nh_.subscribe("/diagnostics", 10, &Harness::onDiagnostics, this);
+    rosout_sub_ = nh_.subscribe("/rosout", 100, &Harness::onLog, this);
   }
 
   /// Spins until `done` or the wall timeout [s]; returns whether `done` became true.
@@ -127,10 +130,11 @@ class Harness
   std::map<std::string, geometry_msgs::TransformStamped> transforms_;  ///< Last /tf transform per child frame.
   bool started_ = false;
   bool saw_tether_diagnostics_ = false;
-  long rejected_poses_ = -1;          ///< "rejected poses" of the last tether diagnostics (-1: none yet).
-  std::string tether_summary_;        ///< Message of the last tether diagnostics.
-  long short_of_tolerance_ = -1;      ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
-  int tether_diagnostics_count_ = 0;  ///< Tether diagnostics statuses received.
+  long rejected_poses_ = -1;                ///< "rejected poses" of the last tether diagnostics (-1: none yet).
+  std::string tether_summary_;              ///< Message of the last tether diagnostics.
+  long short_of_tolerance_ = -1;            ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
+  int tether_diagnostics_count_ = 0;        ///< Tether diagnostics statuses received.
+  std::vector<std::string> node_warnings_;  ///< The node's WARN lines on /rosout, in order.
   double sim_time_ = 1000.0;
 
  private:
@@ -183,6 +187,13 @@ class Harness
       transforms_[t.child_frame_id] = t;
     }
   }
+  void onLog(const rosgraph_msgs::Log& msg)
+  {
+    if (msg.name == "/tether_node" && msg.level == rosgraph_msgs::Log::WARN)
+    {
+      node_warnings_.push_back(msg.msg);
+    }
+  }
   void onDiagnostics(const diagnostic_msgs::DiagnosticArray& msg)
   {
     for (const auto& status : msg.status)
@@ -216,6 +227,7 @@ class Harness
   ros::Subscriber vehicle_wrench_sub_;
   ros::Subscriber tf_sub_;
   ros::Subscriber diagnostics_sub_;
+  ros::Subscriber rosout_sub_;
 };
 
 Harness* harness = nullptr;
@@ -796,6 +808,37 @@ TEST(TetherNode, TimeLeapingForwardResetsTheTether)
       20.0));
   EXPECT_EQ(h.state_.resets, resets + 1);
   EXPECT_TRUE(std::isfinite(h.state_.max_tension));
+}
+
+// After a reset the first pose attaches the vehicle; one 12 m from the spool is beyond the 10 m of cable there is
+// (default.yaml): the cable is laid stretched to it, and the node warns of it, with the distance, the cable and the
+// strain it is laid at, (12 - 10) / 10 = 0.2 (it was only an over-tension).
+TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  const auto said = [&]
+  {
+    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
+                         [](const std::string& line)
+                         { return line.find("out of the tether's reach") != std::string::npos; });
+  };
+  EXPECT_EQ(said(), 0) << "the vehicle at home, 1.58 m out on 2 m";
+  ros::ServiceClient client = h.nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  std_srvs::Trigger srv;
+  ASSERT_TRUE(client.call(srv) && srv.response.success);
+  ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(12.0, 0.0, 0.0); }));
+  ASSERT_TRUE(h.state_.vehicle_attached);
+  ASSERT_TRUE(h.waitFor([&] { return said() > 0; }, 10.0)) << "no warning on /rosout";
+  EXPECT_EQ(said(), 1);
+  const auto line =
+      std::find_if(h.node_warnings_.rbegin(), h.node_warnings_.rend(),
+                   [](const std::string& l) { return l.find("out of the tether's reach") != std::string::npos; });
+  EXPECT_NE(line->find("the vehicle's first position is 12 m from the spool, beyond the 10 m of cable there is: the "
+                       "cable is laid stretched to it (strain 0.2)"),
+            std::string::npos)
+      << *line;
 }
 
 TEST(TetherNode, ResetServiceResets)

@@ -251,6 +251,12 @@ class Tether
   double solverResidual() const { return solver_->lastResidual(); }
   /// Number of vehicle jumps handled by re-laying the cable.
   std::uint64_t jumpCount() const { return jumps_; }
+  /// Number of times a kinematic vehicle was attached (given at construction, or its first sample taken) beyond
+  /// the cable's reach: further from the spool than the deployed length a locked winch keeps, or than
+  /// cable_length. The cable is laid stretched to it, as attachVehicleBody does for a dynamic one (and says).
+  std::uint64_t outOfReachCount() const { return out_of_reach_; }
+  /// The last such attachment: the distance, the cable there is and the strain it is laid at ("" for none).
+  const std::string& lastOutOfReach() const { return last_out_of_reach_; }
   /// Number of failures detected (a non-finite state, or a lumped_mass strain blow-up beyond its
   /// critical step) after which the cable was re-laid at rest; 0 in a healthy run.
   std::uint64_t recoveryCount() const { return recoveries_; }
@@ -278,6 +284,12 @@ class Tether
   /// Deployed length to lay the cable out with when the vehicle appears at `vehicle` (attach, jump):
   /// the current length, grown to the spool-vehicle distance unless the winch is locked [m].
   double lengthToReach(const Position& vehicle) const;
+  /// Lays the cable out to a vehicle attaching at `attachment` (the deployed length that reaches it:
+  /// lengthToReach); "" when the cable reaches it, else what `who` ("the vehicle's attachment", ...) meets: its
+  /// distance from the spool, the cable there is, and the strain the cable is laid at.
+  std::string layOutToReach(const Position& attachment, const char* who);
+  /// A kinematic vehicle attaching at `attachment`: layOutToReach, an attachment out of reach counted and kept.
+  void attachKinematic(const Position& attachment);
   void subStep(double h, double t);
   /// The dynamic vehicle's part of a sub-step of h at time t before the solve: the body's own step puts the
   /// attachment particle at its prediction, with the body's mobility as its inverse mass. False on failure.
@@ -342,6 +354,8 @@ class Tether
   double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;
+  std::uint64_t out_of_reach_ = 0;
+  std::string last_out_of_reach_;
   std::uint64_t recoveries_ = 0;
   SolverEffort effort_;
   SolverEffort effort_since_mark_;

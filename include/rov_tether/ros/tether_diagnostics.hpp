@@ -61,16 +61,17 @@ class TetherDiagnostics
   std::size_t index_;
   TopologyReport& topology_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
-  std::uint64_t reported_jumps_ = 0;        ///< Vehicle jumps already logged.
-  std::uint64_t reported_failures_ = 0;     ///< Simulation failures (blow-ups) already logged.
-  ros::Time last_failure_time_;             ///< When the last failure was seen; diagnostics show ERROR for a while.
-  ros::Time last_outrun_time_;              ///< When the vehicle last outran the winch; diagnostics WARN for a while.
-  ros::Time last_stall_time_;               ///< When a reel-in was last held at the stall pull (WARN for a while).
-  std::uint64_t reported_drops_ = 0;        ///< Dropped poses already seen.
-  ros::Time last_drop_time_;                ///< When poses were last dropped; diagnostics show WARN for a while.
-  std::uint64_t reported_unconverged_ = 0;  ///< Steps short of solver_tolerance already logged.
-  ros::Time last_unconverged_time_;         ///< When the last above solver_residual_warning was seen (WARN).
-  double last_unconverged_residual_ = 0.0;  ///< Its residual [-] and iterations, for the WARN.
+  std::uint64_t reported_jumps_ = 0;         ///< Vehicle jumps already logged.
+  std::uint64_t reported_out_of_reach_ = 0;  ///< Attachments out of the cable's reach already logged.
+  std::uint64_t reported_failures_ = 0;      ///< Simulation failures (blow-ups) already logged.
+  ros::Time last_failure_time_;              ///< When the last failure was seen; diagnostics show ERROR for a while.
+  ros::Time last_outrun_time_;               ///< When the vehicle last outran the winch; diagnostics WARN for a while.
+  ros::Time last_stall_time_;                ///< When a reel-in was last held at the stall pull (WARN for a while).
+  std::uint64_t reported_drops_ = 0;         ///< Dropped poses already seen.
+  ros::Time last_drop_time_;                 ///< When poses were last dropped; diagnostics show WARN for a while.
+  std::uint64_t reported_unconverged_ = 0;   ///< Steps short of solver_tolerance already logged.
+  ros::Time last_unconverged_time_;          ///< When the last above solver_residual_warning was seen (WARN).
+  double last_unconverged_residual_ = 0.0;   ///< Its residual [-] and iterations, for the WARN.
   int last_unconverged_iterations_ = 0;
   ros::Time last_unconverged_log_;  ///< When it was last logged (once per kFailureReportTime a tether).
   SolverEffort period_start_;       ///< The solver's effort at the last report (for its mean since).
