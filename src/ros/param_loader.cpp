@@ -405,7 +405,14 @@ std::string unknownParameters(const XmlRpc::XmlRpcValue& dict)
                        std::find(node.begin(), node.end(), name) != node.end() || name == "tethers" ||
                        name == "cameras" || name == "obstacles" || name == "tether_contact" || name == "sections" ||
                        name == "attachments" || tether_name;
-    if (!known)
+    if (!known && entry.second.getType() == XmlRpc::XmlRpcValue::TypeStruct)
+    {
+      // A tether's map that `tethers` does not name (a typo in either, or one left out): no tether is made of it.
+      unknown += (unknown.empty() ? "" : ", ") + name + " (a map of parameters that `tethers` does not list: " +
+                 (dict.hasMember("tethers") ? "add it there" : "there is no `tethers` list") +
+                 " to simulate it as a tether)";
+    }
+    else if (!known)
     {
       std::vector<std::string> names = model;
       names.insert(names.end(), node.begin(), node.end());

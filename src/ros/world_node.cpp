@@ -166,6 +166,13 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
     {
       setups.push_back(loadTetherSetup(ros::NodeHandle(private_nh, name), shared));
     }
+    // The shared keys, as ~'s are checked with one tether (each tether's own map is checked by its loader).
+    const std::string unknown = shared.valid() ? unknownParameters(shared) : "";
+    if (!unknown.empty())
+    {
+      ROS_WARN("tether_node: ignoring unknown parameters in %s (typos?): %s", private_nh.getNamespace().c_str(),
+               unknown.c_str());
+    }
   }
   // The files the launch loaded into ~, once for all tethers (they share ~'s param_files).
   const std::string repeated = checkParamFiles(setups.front().options.param_files);

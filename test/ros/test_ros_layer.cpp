@@ -832,6 +832,24 @@ TEST(ParameterServer, NodeOptionsAreCheckedAndTyposReported)
   EXPECT_EQ(unknownParameters(typos), "iteratons (did you mean iterations?), world_fram (did you mean world_frame?)");
 }
 
+// A tether's map that `tethers` does not list (a typo in the list or in the map's name, or one left out) makes no
+// tether: it is named as such among the unknown keys, which the node warns of, in a file of several tethers (whose
+// shared keys went unchecked: the map, and a typo beside it, were ignored without a word) as with one; a listed map
+// is known.
+TEST(ParameterServer, ATethersMapThatTethersDoesNotListIsReported)
+{
+  const XmlRpc::XmlRpcValue several = rov_tether::test::toXmlRpc(
+      YAML::Load("{tethers: [t0, t1], t0: {pose_topic: rov0/pose}, t1: {pose_topic: rov1/pose}, "
+                 "t2: {pose_topic: rov2/pose}, iteratons: 3}"));
+  EXPECT_EQ(unknownParameters(several),
+            "iteratons (did you mean iterations?), t2 (a map of parameters that `tethers` does not list: add it there "
+            "to simulate it as a tether)");
+  const XmlRpc::XmlRpcValue one = rov_tether::test::toXmlRpc(YAML::Load("{cable_length: 20, t0: {pose_topic: a}}"));
+  EXPECT_EQ(unknownParameters(one),
+            "t0 (a map of parameters that `tethers` does not list: there is no `tethers` list to simulate it as a "
+            "tether)");
+}
+
 // The node's counts (stripe_segments, min_iterations) take whole numbers, written 3 or 3.0; a fraction is
 // refused with the option's name, not truncated to the count below it (which a user would not see).
 TEST(ParameterServer, WholeNumberOptionsRefuseFractions)

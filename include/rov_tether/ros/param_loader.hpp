@@ -124,9 +124,10 @@ std::string loadTetherSetup(const XmlRpc::XmlRpcValue& shared, const XmlRpc::Xml
 /// tf itself, and would read its own output back as its input).
 std::string checkVehicleModel(const TetherSetup& setup);
 
-/// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated.
-/// The keys `tethers`, `cameras`, `obstacles` and `tether_contact` and the maps `tethers` names (one tether each,
-/// see tether_node) are known.
+/// Keys of `dict` that are neither model parameters nor node options (likely typos), comma-separated, a close
+/// name suggested; a map that `tethers` does not list is named as one (a tether's map left out of the list, or
+/// misspelt). The keys `tethers`, `cameras`, `obstacles` and `tether_contact` and the maps `tethers` names (one
+/// tether each, see tether_node) are known.
 std::string unknownParameters(const XmlRpc::XmlRpcValue& dict);
 
 }  // namespace rov_tether::ros_layer
