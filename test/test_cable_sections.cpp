@@ -118,18 +118,36 @@ TEST(CableSections, ADescriptionThatDoesNotFitIsRefusedWithEveryReason)
   CableSection sliver;  // rounds to no segment at all: its material would be nowhere
   sliver.length = 1e-9;
   refused({sliver, CableSection{}}, "not a whole number of segments");
-  CableSection missing;  // a length left out before the last
-  refused({missing, CableSection{}}, "only the last section may leave it out");
+  // A length left out before the last is a missing key, said as one (it read "must be finite and positive (got
+  // nan)"), and what the sections add up to is not said of lengths that are not all known (it said 3 m of 10 m).
+  CableSection missing;
+  CableSection three;
+  three.length = 3.0;
+  refused({missing, three},
+          "sections: section 1 of 2: length: missing (only the last section may leave it out: it runs to the drum)");
+  const Status left_out = CableSections::make(params, {missing, three}, &sections);
+  EXPECT_EQ(left_out.message.find("nan"), std::string::npos) << left_out.message;
+  EXPECT_EQ(left_out.message.find("add up"), std::string::npos) << left_out.message;
+  EXPECT_EQ(CableSections::make(params, {missing, missing, CableSection{}}, &sections).message,
+            "sections: section 1 of 3: length: missing (only the last section may leave it out: it runs to the drum); "
+            "section 2 of 3: length: missing (only the last section may leave it out: it runs to the drum)");
+  // A length given but unusable is a bad value, named with its value.
   CableSection negative;
   negative.length = -1.0;
-  refused({negative, CableSection{}}, "finite and positive");
+  refused({negative, CableSection{}}, "sections: section 1 of 2: length = -1 m: must be finite and > 0");
+  CableSection zero;
+  zero.length = 0.0;
+  refused({zero, three}, "sections: section 1 of 2: length = 0 m: must be finite and > 0");
+  const Status bad_value = CableSections::make(params, {zero, three}, &sections);
+  EXPECT_EQ(bad_value.message.find("leave"), std::string::npos) << "no word of leaving it out: " << bad_value.message;
+  EXPECT_EQ(bad_value.message.find("add up"), std::string::npos) << bad_value.message;
   CableSection too_long;
   too_long.length = 12.0;
   refused({too_long, CableSection{}}, "beyond the cable's");
   CableSection short_total;
   short_total.length = 3.0;
   CableSection short_last = short_total;
-  refused({short_total, short_last}, "add up to 6 m");
+  refused({short_total, short_last}, "sections: their lengths add up to 6 m, not cable_length 10 m");
   CableSection unknown;
   unknown.length = 2.0;
   unknown.properties = {{"winch_speed", 1.0}};

@@ -88,16 +88,28 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
     return Status::success();
   }
   std::vector<std::string> errors;
-  double covered = 0.0;  // [m] by the sections before the one at hand
-  std::size_t end = 0;   // segments from the vehicle end
+  double covered = 0.0;       // [m] by the sections before the one at hand
+  std::size_t end = 0;        // segments from the vehicle end
+  bool lengths_given = true;  // every length before the one at hand is one (else `covered` means nothing)
   for (std::size_t s = 0; s < sections.size(); ++s)
   {
     const CableSection& section = sections[s];
     const std::string which = "section " + std::to_string(s + 1) + " of " + std::to_string(sections.size());
     const bool last = s + 1 == sections.size();
     double length = section.length;
-    if (std::isnan(length) && last)
+    if (std::isnan(length) && !last)
     {
+      // NaN is a length left out (CableSection::length): a missing key, not a bad value.
+      errors.push_back(which + ": length: missing (only the last section may leave it out: it runs to the drum)");
+      lengths_given = false;
+      continue;
+    }
+    if (std::isnan(length))
+    {
+      if (!lengths_given)
+      {
+        continue;  // what the sections before it cover is not known
+      }
       length = params.cable_length - covered;  // runs to the drum
       if (!(length > 0.0))
       {
@@ -108,17 +120,16 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
     }
     else if (!std::isfinite(length) || !(length > 0.0))
     {
-      errors.push_back(which + ": length must be finite and positive" +
-                       (last ? std::string() : std::string(" (only the last section may leave it out)")) + " (got " +
-                       number(length) + ")");
+      errors.push_back(which + ": length = " + number(length) + " m: must be finite and > 0");
+      lengths_given = false;
       continue;
     }
     covered += length;
     if (last)
     {
-      if (std::abs(covered - params.cable_length) > 1e-6 * params.segment_length)
+      if (lengths_given && std::abs(covered - params.cable_length) > 1e-6 * params.segment_length)
       {
-        errors.push_back("sections: their lengths add up to " + number(covered) + " m, not cable_length " +
+        errors.push_back("their lengths add up to " + number(covered) + " m, not cable_length " +
                          number(params.cable_length) +
                          " m (leave the last section's length out to run it to the drum)");
         continue;
@@ -135,7 +146,7 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
         continue;
       }
       end += static_cast<std::size_t>(std::round(count));
-      if (end >= segments)
+      if (lengths_given && end >= segments)
       {
         errors.push_back(which + ": ends " + number(covered) + " m from the vehicle, at or beyond the cable's " +
                          number(params.cable_length) + " m, and is not the last section");
