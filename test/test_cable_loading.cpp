@@ -12,6 +12,7 @@
 
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/water_surface.hpp"
+#include "test_helpers.hpp"
 
 namespace rov_tether
 {
@@ -634,6 +635,64 @@ TEST(Attachments, BadOnesAreRefusedByName)
   EXPECT_NE(all.find("attachments[2] 'negative': mass = -1: must be in [0, 1e7]"), std::string::npos) << all;
   EXPECT_NE(all.find("attachments[3]: name missing"), std::string::npos) << all;
   EXPECT_THROW(Tether(p, Position::Zero(), Position(8.0, 0.0, 0.0)), std::invalid_argument);
+}
+
+// An attachment whose net buoyancy alone would stretch the cable it is on by 100% or more, |F| >= EA (F / EA), is
+// refused, naming the EA and the stretch: no cable survives it and the solver takes a segment at 100% strain for a
+// blow-up (kDivergenceLimit). `scenarios/lazy_wave.yaml`'s 0.3 kg clump at -1e7 N on EA 1e5 N failed every step for
+// 5 s, the cable re-laid at rest 1000 times (measured; at -2 EA too, while -1.2 EA still ran). Just inside the bound
+// (-0.99 EA) the lazy wave runs 5 s without a re-lay (its strain near 99%, an over-tension the node warns of). The
+// EA is the cable's where the attachment is: a soft section there (EA 2e4 N) refuses -5e4 N that the tether's own
+// EA would take; lowering axial_stiffness live below the load is refused, the parameters kept.
+TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
+{
+  Scenario scenario = test::shippedScenario("lazy_wave");
+  TetherParams p = scenario.params;
+  ASSERT_EQ(p.attachments.at(0).name, "clump");
+  const double ea = p.axial_stiffness;  // the clump, 2 m from the vehicle, is on the first section: the tether's
+  p.attachments[0].net_buoyancy = -1e7;
+  std::string all;
+  for (const std::string& error : p.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_EQ(all,
+            "attachments[0] 'clump': net_buoyancy = -1e+07 N: its magnitude must be below the axial_stiffness of "
+            "the cable it is on, EA = 100000 N: alone it would stretch the cable by 10000%, which no cable survives "
+            "and the solver takes for a blow-up (a segment at 100% strain)\n");
+  p.attachments[0].net_buoyancy = -ea;
+  EXPECT_FALSE(p.validate().empty()) << "at the bound: 100%";
+
+  p.attachments[0].net_buoyancy = -0.99 * ea;
+  ASSERT_TRUE(p.validate().empty());
+  scenario.params = p;
+  PathDriver driver(scenario);
+  Tether sim = driver.makeSimulation();
+  ASSERT_TRUE(test::succeeded(driver.advanceTo(sim, 5.0)));
+  std::printf("[ measured ] lazy wave, clump at -0.99 EA: %llu re-lays in 5 s, max strain %.3f\n",
+              static_cast<unsigned long long>(sim.recoveryCount()), sim.summary().max_strain);
+  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+
+  TetherParams live = sim.params();
+  live.axial_stiffness = 0.5 * ea;
+  const Status lowered = sim.setParams(live);
+  EXPECT_FALSE(lowered.ok);
+  EXPECT_NE(lowered.message.find("EA = 50000 N: alone it would stretch the cable by 198%"), std::string::npos)
+      << lowered.message;
+  EXPECT_EQ(sim.params().axial_stiffness, ea);
+
+  TetherParams soft = scenario.params;
+  soft.sections.at(0).properties.emplace_back("axial_stiffness", 2e4);
+  soft.attachments[0].net_buoyancy = -5e4;
+  all.clear();
+  for (const std::string& error : soft.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_NE(all.find("'clump': net_buoyancy = -50000 N: its magnitude must be below the axial_stiffness of the "
+                     "cable it is on, EA = 20000 N: alone it would stretch the cable by 250%"),
+            std::string::npos)
+      << all;
 }
 
 }  // namespace

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {
@@ -298,6 +301,28 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
     {
       errors.push_back(which + ": net_buoyancy = " + number(attachment.net_buoyancy) +
                        " N: must be finite, within +-1e7 N (up positive)");
+    }
+    else if (!made.materials().empty() && arc > 0.0 && arc <= params.cable_length)
+    {
+      // Alone, a point load F stretches the cable it hangs on by F / EA. At F >= EA that is 100% or more: no cable
+      // survives it (tethers break at a few per cent), and the solver takes a segment at kDivergenceLimit (100%)
+      // for a blow-up. Above it a light attachment failed every step, the cable re-laid at rest each time (-1e7 N on
+      // EA 1e5 N: 1000 re-lays in 5 s). EA is the smallest of the segments its particles join.
+      const std::size_t segments = params.segmentCount();
+      const auto k = static_cast<std::size_t>(std::floor(arc / params.segment_length));
+      double stiffness = std::numeric_limits<double>::infinity();
+      for (std::size_t j = k > 0 ? k - 1 : 0; j <= k + 1 && j < segments; ++j)
+      {
+        stiffness = std::min(stiffness, made.materials()[made.sectionOf(j)].axial_stiffness);
+      }
+      if (!(std::abs(attachment.net_buoyancy) < kDivergenceLimit * stiffness))
+      {
+        errors.push_back(
+            which + ": net_buoyancy = " + number(attachment.net_buoyancy) +
+            " N: its magnitude must be below the axial_stiffness of the cable it is on, EA = " + number(stiffness) +
+            " N: alone it would stretch the cable by " + number(100.0 * std::abs(attachment.net_buoyancy) / stiffness) +
+            "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+      }
     }
   }
   return errors;
