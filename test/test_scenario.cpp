@@ -572,12 +572,31 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   EXPECT_GT(summary.max_tension, 500.0);
   EXPECT_GT(summary.outrun_rows, 0u);
   EXPECT_EQ(runWarnings(scenario, summary, 1e12).size(), 1u);  // above every tension: only the outrun
+  EXPECT_LT(summary.first_full_time, 0.0);  // 7 m of the 10 out at the end: the cable did not run out
+  // Running out of cable is said as such (it read as an outrun winch, or not at all): 3 m of cable, 2 m out, the
+  // vehicle driving away at 1 m/s from 1.5 m, its brake (5 N on a weightless cable) paying out as fast as it goes
+  // (max_winch_speed 2 m/s: never outrun). The cable, nearly straight, runs out when the vehicle is 3 m out
+  // plus the brake's stretch (3 m x 5 N / EA, a few mm): just after t = 1.5 s, so at the next output row (1.6 s),
+  // or up to a row sooner for its sag.
+  std::ofstream(scenario_path) << "params: {cable_length: 3.0, initial_deployed_length: 2.0, winch_mode: brake, "
+                                  "brake_tension: 5.0, max_winch_speed: 2.0, weight_in_water: 0.0, noise: 0.0}\n"
+                                  "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [3, 4.5, 0, 0]]\n"
+                                  "duration: 3\noutput_rate: 10\n";
+  ASSERT_EQ(loadScenario(scenario_path.string(), &scenario), "");
+  ASSERT_EQ(runScenario(scenario, dir + "_out", &summary), "");
+  EXPECT_GE(summary.first_full_time, 1.4 - 1e-9);
+  EXPECT_LE(summary.first_full_time, 1.6 + 1e-9);
+  EXPECT_EQ(summary.outrun_rows, 0u);
+  const std::vector<std::string> out = runWarnings(scenario, summary, 1e12);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].rfind("the cable runs out at t = 1.", 0), 0u) << out[0];
+  EXPECT_NE(out[0].find("all of cable_length = 3 m is paid out"), std::string::npos) << out[0];
   // A brake winch and a ROV that moves 1 m at 0.5 m/s is quiet.
   std::ofstream(scenario_path) << "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [2, 2.5, 0, 0]]\nduration: 3\n";
   EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir + "_quiet"), 0);
   EXPECT_TRUE(readLines(err).empty()) << readLines(err).front();
   EXPECT_EQ(runRunner(scenario_path.string() + " --out " + dir + "_quiet --max-tension-warning x"), 2);
-  for (const std::string& d : {dir, dir + "_lib", dir + "_quiet"})
+  for (const std::string& d : {dir, dir + "_lib", dir + "_quiet", dir + "_out"})
   {
     fs::remove_all(d);
   }

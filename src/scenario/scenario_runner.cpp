@@ -167,6 +167,12 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
     result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
     ++result->outrun_rows;
   }
+  const double on_the_spool = sim.params().cable_length - s.deployed_length;
+  if (result->first_full_time < 0.0 && on_the_spool <= 1e-9 &&
+      result->deployed_start < sim.params().cable_length - 1e-9)
+  {
+    result->first_full_time = t_out;
+  }
   if (sim.winchStalled())
   {
     result->first_stall_time = result->stall_rows == 0 ? t_out : result->first_stall_time;
@@ -409,6 +415,14 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
                     "the vehicle outruns the winch at %zu output times from t = %.2f s: it pays out at "
                     "max_winch_speed = %.3g m/s and the cable stretches",
                     s.outrun_rows, s.first_outrun_time, p.max_winch_speed);
+      warnings.push_back(who + line);
+    }
+    if (s.first_full_time >= 0.0)
+    {
+      std::snprintf(line, sizeof line,
+                    "the cable runs out at t = %.2f s: all of cable_length = %.4g m is paid out, and from then on "
+                    "the winch has no more to give (the cable stretches where the vehicle pulls on)",
+                    s.first_full_time, p.cable_length);
       warnings.push_back(who + line);
     }
     if (s.stall_rows > 0)

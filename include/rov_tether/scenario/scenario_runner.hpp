@@ -37,9 +37,12 @@ struct RunSummary
   double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
   std::size_t stall_rows = 0;        ///< Output times at which the stall pull held the reel-in (Tether::winchStalled).
   double first_stall_time = -1.0;    ///< The first of them [s]; negative: none.
-  std::size_t topology_rows = 0;     ///< Rows of topology.csv (0: not written).
-  std::size_t vehicle_rows = 0;      ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
-  std::vector<RunSummary> tethers;   ///< Each tether's own figures (steps: its own), in scenario order.
+  /// The first output time at which a cable that started with some on the spool had all of cable_length paid
+  /// out [s]; negative: never (or it started so).
+  double first_full_time = -1.0;
+  std::size_t topology_rows = 0;    ///< Rows of topology.csv (0: not written).
+  std::size_t vehicle_rows = 0;     ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
+  std::vector<RunSummary> tethers;  ///< Each tether's own figures (steps: its own), in scenario order.
   /// The output directory's files of an earlier run that this run did not replace (earlierOutputs).
   std::vector<std::string> earlier_outputs;
 };
@@ -62,8 +65,9 @@ constexpr double kDefaultMaxTensionWarning = 500.0;
 
 /// What the node warns of, for a run (each tether's, named when there are several): simulation failures,
 /// a tension above `max_tension_warning` [N] (over-tension; a tether's own ScenarioTether::max_tension_warning
-/// instead, where it sets one), the vehicle outrunning the winch and a `speed` winch's reel-in held at the motor's
-/// stall pull; and an earlier run's outputs left in the output directory. Empty when the run gave none.
+/// instead, where it sets one), the vehicle outrunning the winch, a `speed` winch's reel-in held at the motor's
+/// stall pull and the cable running out (all of cable_length paid out, where some was on the spool at the
+/// start); and an earlier run's outputs left in the output directory. Empty when the run gave none.
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
 
 /// The CSV headers, part of the documented format.
