@@ -124,7 +124,8 @@ TEST(WorldSpec, AMeshFileIsReadOnceFromScenarioToRun)
 // seabed_z, so a spool below it stretched the first segment up to it (a helper's 1 m under: 1780 N and strain
 // 9.5 from the start), and an obstacle pushes every particle out of it, so a spool inside a pillar pulled
 // 125 kN. Both are refused naming the spool, where it is and what it is in; on the seabed, or outside the
-// obstacle, it is built. Another tether's spool is named with its tether.
+// obstacle, it is built. Another tether's spool is named with its tether. A spool or an obstacle that a tf frame
+// will move (the node's) is not checked where its position puts it.
 TEST(WorldSpec, ASpoolBelowTheSeabedOrInsideAnObstacleIsRefused)
 {
   WorldSpec spec;
@@ -151,6 +152,15 @@ TEST(WorldSpec, ASpoolBelowTheSeabedOrInsideAnObstacleIsRefused)
   inside.obstacles[0].position = Position(0.2, 0.0, 0.0);
   World pillared;
   EXPECT_EQ(buildWorld(inside, &pillared), "spool [0, 0, -1] m is inside obstacle 'pillar'");
+  // The node's spool on a tf frame, and its obstacle on one, are not where their positions say yet: not checked.
+  WorldSpec moving = below;
+  moving.tethers[0].spool_moves = true;
+  World framed_spool;
+  EXPECT_EQ(buildWorld(moving, &framed_spool), "");
+  WorldSpec framed = inside;
+  framed.obstacles[0].frame = "ship";
+  World framed_obstacle;
+  EXPECT_EQ(buildWorld(framed, &framed_obstacle), "");
 
   inside.tethers.push_back(spec.tethers[0]);
   inside.tethers[0].spool = Position(-3.0, 0.0, -1.0);

@@ -79,6 +79,7 @@ std::string nodeWorldSpec(const std::vector<std::string>& names, const std::vect
     tether.params = setups[i].params;
     tether.spool = setups[i].options.spool_position;
     const NodeOptions& options = setups[i].options;
+    tether.spool_moves = !options.spool_frame.empty();
     const auto carrier = std::find(names.begin(), names.end(), options.spool_on);
     if (!options.spool_on.empty() && carrier != names.end())
     {

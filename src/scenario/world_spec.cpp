@@ -123,15 +123,16 @@ Tether makeTether(const ScenarioTether& tether)
 namespace
 {
 
-/// "" or the first tether whose own spool (not one a vehicle carries) is below its seabed or inside an obstacle.
+/// "" or the first tether whose own spool (not one a vehicle or a tf frame moves) is below its seabed or inside an
+/// obstacle (a primitive placed in the world: not one on a tf frame, nor a mesh).
 std::string checkSpools(const WorldSpec& spec, const World& world)
 {
   for (std::size_t i = 0; i < spec.tethers.size(); ++i)
   {
     const ScenarioTether& tether = spec.tethers[i];
-    if (!tether.spool_on.empty())
+    if (!tether.spool_on.empty() || tether.spool_moves)
     {
-      continue;  // carried by a vehicle, which moves it
+      continue;  // carried by a vehicle or a tf frame, which moves it
     }
     const std::string who = spec.tethers.size() == 1 ? "spool" : "tethers: " + tether.name + ": spool";
     const Position& at = tether.spool;
@@ -148,10 +149,14 @@ std::string checkSpools(const WorldSpec& spec, const World& world)
     for (std::size_t k = 0; k < world.obstacleCount(); ++k)
     {
       Push push;
-      if (world.obstacle(k).push(at, at, 0.0, &push))
+      // An obstacle on a tf frame (the node's) is not yet where its position says; a mesh is a surface, whose
+      // inside a point test does not see.
+      const Obstacle& obstacle = world.obstacle(k);
+      const bool placed = obstacle.spec().frame.empty() && obstacle.spec().type != ShapeType::Mesh;
+      if (placed && obstacle.push(at, at, 0.0, &push))
       {
         // The cable would start inside a solid that pushes every particle out of it.
-        return who + " " + where + " is inside obstacle '" + world.obstacle(k).name() + "'";
+        return who + " " + where + " is inside obstacle '" + obstacle.name() + "'";
       }
     }
   }

@@ -71,6 +71,8 @@ struct ScenarioTether
   /// outlet_offset: [x, y, z]}`), which is listed before this one; `spool` is then where the outlet starts.
   std::string spool_on;
   Eigen::Vector3d spool_outlet_offset = Eigen::Vector3d::Zero();  ///< The outlet on that body, body frame [m].
+  /// The spool follows a tf frame (the node's spool_frame): `spool` is not where it will be.
+  bool spool_moves = false;
   /// The tension above which the run warns of this tether [N] (the node's per-tether option of that name); NaN:
   /// the run's (rov_tether_run --max-tension-warning, 500 N by default).
   double max_tension_warning = std::numeric_limits<double>::quiet_NaN();

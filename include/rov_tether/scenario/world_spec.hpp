@@ -70,7 +70,8 @@ Tether makeTether(const ScenarioTether& tether);
  * naming the entry ("obstacles[0]: obstacle 'wreck': mesh file '...': cannot be read ...").
  * A spool that rides on another tether's vehicle (ScenarioTether::spool_on) starts at the outlet of that
  * vehicle's start pose and is mounted on it (mountSpool), unless spec.vehicles_attached_later.
- * A spool of its own below its tether's seabed_z or inside an obstacle is refused, naming both.
+ * A spool of its own (no vehicle or tf frame moves it) below its tether's seabed_z or inside a primitive obstacle
+ * placed in the world is refused, naming both.
  */
 [[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world);
 
