@@ -417,20 +417,24 @@ TEST(LiveParameters, TimeStepChangeKeepsTheVelocities)
 // steps of 10 ms.
 TEST(LiveParameters, TimeStepChangeWithTheSameSubStepKeepsTheTime)
 {
-  Tether sim = movingTether();  // 0.5 s at 5 ms x 1
-  const double before = sim.time();
-  ASSERT_NEAR(before, 0.5, 1e-12);
-  TetherParams params = sim.params();
-  params.time_step = 0.01;
-  params.substeps = 2;
-  ASSERT_EQ(params.subStep(), sim.params().subStep());
-  ASSERT_TRUE(sim.setParams(params).ok);
-  EXPECT_EQ(sim.time(), before);
-  EXPECT_NEAR(sim.nextStepTime(), before + 0.01, 1e-12);
-  std::size_t steps = 0;
-  ASSERT_TRUE(succeeded(sim.advance(1.0, &steps)));
-  EXPECT_EQ(steps, 100u);
-  EXPECT_NEAR(sim.time(), before + 1.0, 1e-12);
+  for (const bool rebuilt : {false, true})  // with the cable rebuilt in the same change (a new segment_length)
+  {
+    Tether sim = movingTether();  // 0.5 s at 5 ms x 1
+    const double before = sim.time();
+    ASSERT_NEAR(before, 0.5, 1e-12);
+    TetherParams params = sim.params();
+    params.time_step = 0.01;
+    params.substeps = 2;
+    params.segment_length = rebuilt ? 0.5 * params.segment_length : params.segment_length;
+    ASSERT_EQ(params.subStep(), sim.params().subStep());
+    ASSERT_TRUE(sim.setParams(params).ok);
+    EXPECT_EQ(sim.time(), before) << "rebuilt " << rebuilt;
+    EXPECT_NEAR(sim.nextStepTime(), before + 0.01, 1e-12) << "rebuilt " << rebuilt;
+    std::size_t steps = 0;
+    ASSERT_TRUE(succeeded(sim.advance(1.0, &steps)));
+    EXPECT_EQ(steps, 100u) << "rebuilt " << rebuilt;
+    EXPECT_NEAR(sim.time(), before + 1.0, 1e-12) << "rebuilt " << rebuilt;
+  }
 }
 
 /// The paper's cable (pbd, its strain winch), without noise, after its vehicle went 6 m out at 0.5 m/s and

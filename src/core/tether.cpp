@@ -149,6 +149,14 @@ Status Tether::setParams(const TetherParams& params)
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
   const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
+  if (params_.time_step != old_time_step)
+  {
+    // Time is base_time_ + whole steps of time_step since base_steps_: counted from now in the new step (a rebuilt
+    // cable's too). This is apart from the sub-step below: time_step and substeps may change together and keep
+    // time_step / substeps.
+    base_time_ = time_;
+    base_steps_ = steps_;
+  }
   if (rebuild)
   {
     noise_.reseed(params_.seed);
@@ -170,13 +178,6 @@ Status Tether::setParams(const TetherParams& params)
       cable_.py[i] = cable_.y[i] - (cable_.y[i] - cable_.py[i]) * ratio;
       cable_.pz[i] = cable_.z[i] - (cable_.z[i] - cable_.pz[i]) * ratio;
     }
-  }
-  if (params_.time_step != old_time_step)
-  {
-    // Time is base_time_ + whole steps of time_step since base_steps_: counted from now in the new step. This
-    // is apart from the sub-step above: time_step and substeps may change together and keep time_step / substeps.
-    base_time_ = time_;
-    base_steps_ = steps_;
   }
   // Sections and attachments take the tether's values where they set none: any change may change them.
   const bool was_loaded = !cable_.loading.empty();
