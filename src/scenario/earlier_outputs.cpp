@@ -50,30 +50,46 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
   }
   const auto writes = [&](const fs::path& file)
   { return std::find(written.begin(), written.end(), file) != written.end(); };
-  // The CSV files, in out_dir and one level down (a tethers list's directories), in name order.
+  // The CSV files, in out_dir and one level down (a tethers list's directories), in name order. An entry that
+  // cannot be read is passed over, not the rest with it.
   std::vector<fs::path> csv;
-  for (fs::recursive_directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec))
+  const auto take = [&](const fs::path& file)
   {
-    if (it.depth() >= 1)
+    std::error_code file_ec;
+    if (fs::is_regular_file(file, file_ec) && isCsvOutput(file) && !writes(file))
     {
-      it.disable_recursion_pending();
+      csv.push_back(file);
     }
-    if (it->is_regular_file(ec) && isCsvOutput(it->path()) && !writes(it->path()))
+  };
+  for (fs::directory_iterator it(out_dir, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
+       it.increment(ec))
+  {
+    take(it->path());
+    std::error_code dir_ec;
+    if (!fs::is_directory(it->path(), dir_ec) || it->path().filename() == "cameras")
     {
-      csv.push_back(it->path());
+      continue;
+    }
+    for (fs::directory_iterator sub(it->path(), fs::directory_options::skip_permission_denied, dir_ec), last;
+         !dir_ec && sub != last; sub.increment(dir_ec))
+    {
+      take(sub->path());
     }
   }
   std::sort(csv.begin(), csv.end());
   for (const fs::path& file : csv)
   {
-    found.push_back(fs::relative(file, out_dir, ec).string());
+    found.push_back(file.lexically_relative(out_dir).string());
   }
   // The cameras' directories and frames.
   const fs::path cameras = out_dir / "cameras";
   std::vector<fs::path> dirs;
-  for (fs::directory_iterator it(cameras, ec), end; !ec && it != end; it.increment(ec))
+  std::error_code cameras_ec;
+  for (fs::directory_iterator it(cameras, fs::directory_options::skip_permission_denied, cameras_ec), end;
+       !cameras_ec && it != end; it.increment(cameras_ec))
   {
-    if (it->is_directory(ec))
+    std::error_code dir_ec;
+    if (fs::is_directory(it->path(), dir_ec))
     {
       dirs.push_back(it->path());
     }
@@ -85,7 +101,9 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
                                      [&](const ScenarioCamera& c) { return c.name == dir.filename().string(); });
     const long frames = camera == scenario.cameras.end() ? 0 : static_cast<long>(scenario.cameraFrames(*camera));
     std::size_t past = 0, files = 0;
-    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    std::error_code dir_ec;
+    for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, dir_ec), end;
+         !dir_ec && it != end; it.increment(dir_ec))
     {
       const std::string name = it->path().filename().string();
       ++files;
