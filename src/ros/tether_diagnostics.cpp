@@ -61,9 +61,9 @@ void TetherDiagnostics::report(const ros::Time& now)
     last_stall_time_ = now;
     ROS_WARN_THROTTLE(
         5.0,
-        "tether_node%s: the winch cannot reel in at winch_speed = %.2f m/s: the spool tension holds it at "
+        "tether_node%s: the winch cannot reel in at its commanded %.2f m/s: the spool tension holds it at "
         "the motor's stall pull of %.4g N (%s)",
-        label_.c_str(), tether_.params().winch_speed, tether_.params().winchPull(),
+        label_.c_str(), tether_.winchCommandedSpeed(), tether_.params().winchPull(),
         stallPullSource(tether_.params()).c_str());
   }
   const SolverEffort& effort = tether_.solverEffort();

@@ -175,6 +175,7 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   }
   if (sim.winchStalled())
   {
+    result->first_stall_speed = result->stall_rows == 0 ? sim.winchCommandedSpeed() : result->first_stall_speed;
     result->first_stall_time = result->stall_rows == 0 ? t_out : result->first_stall_time;
     ++result->stall_rows;
   }
@@ -428,9 +429,9 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
     if (s.stall_rows > 0)
     {
       std::snprintf(line, sizeof line,
-                    "the winch cannot reel in at winch_speed = %.3g m/s at %zu output times from t = %.2f s: the "
+                    "the winch cannot reel in at its commanded %.3g m/s at %zu output times from t = %.2f s: the "
                     "spool tension holds it at the motor's stall pull of %.4g N (max_winch_pull%s)",
-                    p.winch_speed, s.stall_rows, s.first_stall_time, p.winchPull(),
+                    s.first_stall_speed, s.stall_rows, s.first_stall_time, p.winchPull(),
                     p.max_winch_pull > 0.0 ? ""
                                            : " 0: 1.25 x the larger of target_tension + tension_deadband and "
                                              "brake_tension");

@@ -128,6 +128,9 @@ class Tether
   /// cannot reel in at its speed, as an outrun winch cannot pay out at the vehicle's. A few steps at the pull (a
   /// cable coming taut) are not.
   bool winchStalled() const { return stall_time_ >= kOutrunTime; }
+  /// A `speed` winch's commanded speed in the last sub-step [m/s] (negative reeling in): winch_speed, or towards a
+  /// target length; 0 in the other modes.
+  double winchCommandedSpeed() const { return commanded_speed_; }
   /// Detaches the vehicle (kinematic or dynamic): the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }

@@ -37,6 +37,7 @@ struct RunSummary
   double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
   std::size_t stall_rows = 0;        ///< Output times at which the stall pull held the reel-in (Tether::winchStalled).
   double first_stall_time = -1.0;    ///< The first of them [s]; negative: none.
+  double first_stall_speed = 0.0;    ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
   /// The first output time at which a cable that started with some on the spool had all of cable_length paid
   /// out [s]; negative: never (or it started so).
   double first_full_time = -1.0;
