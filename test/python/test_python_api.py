@@ -145,7 +145,8 @@ def test_a_parameter_set_from_python_changes_the_physics(tmp_path):
 # A parameter that changes the cable's structure (segment_length 0.25 -> 0.125 m) is taken and lays the cable out
 # anew at its deployed length: twice the segments on the same 5 m, said as a warning, not raised as a refusal
 # (the refusal used to be raised after the change was made). The topology of the rebuilt cable reads before its
-# next step (it read the old cable's contact record past its end) and after it.
+# next step and after it (the over-read of the old contact record that crashed it is
+# Contact.ARebuiltCableHasTouchedNothingUntilItsNextStep's, which the sanitized build runs).
 def test_a_parameter_that_rebuilds_the_cable_is_taken_with_a_warning():
     world = rov_tether.World({"spool": [0.0, 0.0, -1.0], "params": {"cable_length": 10.0, "initial_deployed_length": 5.0,
                                                                      "segment_length": 0.25, "noise": 0.0},

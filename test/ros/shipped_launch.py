@@ -46,7 +46,7 @@ LAUNCHES = {
 # An ERROR the node logs when the machine cannot keep up: a property of the machine, not of the launch file.
 MACHINE_TOO_SLOW = re.compile(r"fell [0-9.]+ s behind real time|skipped ahead")
 BAD_OUTPUT = [re.compile(p) for p in (r"\[ERROR\]", r"\[FATAL\]", r"has died", r"Traceback", r"(?i)deprecated")]
-BAD_DIAGNOSTICS = re.compile(r"over-tension|outruns the winch|simulation failure|(?i:deprecated)")
+BAD_DIAGNOSTICS = re.compile(r"over-tension|outruns the winch|held at its stall pull|simulation failure|(?i:deprecated)")
 
 
 class ShippedLaunchFiles(unittest.TestCase):
