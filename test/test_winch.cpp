@@ -460,6 +460,75 @@ TEST(Winch, AReelInHeldAtTheStallPullIsSaid)
   }
 }
 
+// A massless drum back-driven past its motor's stall pull turns as the pull drives it; once the pull lets go, its drive
+// has it again at the drive's own speed (limits.md: the pillar wrap's drum coasted on at 3 m/s into slack cable,
+// slowing at max_winch_acceleration, because the drive's speed was taken to be the slip's). constant_tension
+// 5 N (stall pull 1.25 x 6 = 7.5 N), max_winch_speed 3 m/s, max_winch_acceleration 1 m/s^2: the ROV holds the
+// cable at its target, then jerks 0.5 m away in 50 ms (10 m/s: far past the stall pull, so the drum slips), then
+// comes 2 m back in (the cable goes slack) and holds. The drive cannot have sped up by more than
+// max_winch_acceleration x (t - t_jerk) since it last ran at v0 (its speed before the jerk), so after the jerk
+// every step whose spool tension is below the stall pull (1% off for the readout's bending cut) pays out no
+// faster than v0 + a (t - t_jerk) (+ a step's change). The premise checks that the drum did slip (faster than that
+// bound while at the pull).
+TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.cable_length = 40.0;
+  p.initial_deployed_length = 11.0;
+  p.winch_mode = WinchMode::kConstantTension;
+  p.target_tension = 5.0;
+  p.tension_deadband = 1.0;
+  p.max_winch_speed = 3.0;
+  p.max_winch_acceleration = 1.0;
+  const double pull = p.winchPull();
+  ASSERT_DOUBLE_EQ(pull, 7.5);
+  Tether sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
+  constexpr double kJerk = 10.0;
+  auto x = [](double t)
+  {
+    return t < kJerk          ? 10.0
+           : t < kJerk + 0.05 ? 10.0 + 10.0 * (t - kJerk)
+                              : std::max(8.5, 10.5 - 5.0 * (t - kJerk - 0.05));
+  };
+  double v0 = 0.0, slipped = 0.0, worst = -1e9, worst_at = 0.0, paid_slack = 0.0;
+  double last = 0.0;
+  const double a = p.max_winch_acceleration, h = p.time_step;
+  drive(sim, 0.0, kJerk + 6.0, x,
+        [&]
+        {
+          const double t = sim.time();
+          const double v = sim.winchSpeed();
+          if (t <= kJerk)
+          {
+            v0 = v;
+            last = sim.deployedLength();
+            return;
+          }
+          const double bound = v0 + a * (t - kJerk) + a * h;
+          if (sim.summary().tension_spool >= 0.99 * pull)
+          {
+            slipped = std::max(slipped, v - bound);
+          }
+          else
+          {
+            if (v - bound > worst)
+            {
+              worst = v - bound, worst_at = t;
+            }
+            paid_slack += std::max(sim.deployedLength() - last, 0.0);
+          }
+          last = sim.deployedLength();
+        });
+  std::printf(
+      "[ measured ] drum back-driven by a jerk: before it %.3f m/s; slipped up to %.3f m/s past the drive's bound; "
+      "below the stall pull at most %.3f m/s past it (at %.3f s), %.3f m paid out below the stall pull; %.3f m out\n",
+      v0, slipped, worst, worst_at, paid_slack, sim.deployedLength());
+  EXPECT_GT(slipped, 0.5) << "the premise: the jerk back-drives the drum well past its drive's speed";
+  EXPECT_LE(worst, 1e-9);
+  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
 // "The vehicle outruns the winch" is a vehicle faster than the winch can pay out (issue 26, item 9). The
 // pillar demo's brake winch (2 N, max_winch_speed 1 m/s) was flagged from t = 0 while it turned at 0-0.59
 // m/s: a jerk of the cable (a pose that steps, a cable coming taut or slipping off a contact) drives the drum

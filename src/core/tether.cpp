@@ -142,6 +142,7 @@ Status Tether::setParams(const TetherParams& params)
   }
   const bool rebuild = !sameStructure(params_, params.resolved());
   const bool new_solver = params.solver != params_.solver;
+  const bool new_mode = params.winch_mode != params_.winch_mode;
   const double old_step = params_.subStep();
   const double old_time_step = params_.time_step;
   const bool new_mass = params.resolved().lineMass().along != params_.lineMass().along ||
@@ -149,6 +150,10 @@ Status Tether::setParams(const TetherParams& params)
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
   const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
+  if (new_mode)
+  {
+    drive_speed_ = winch_speed_;  // the new mode's drive takes the drum as it turns (held at a stall pull: not turning)
+  }
   if (params_.time_step != old_time_step)
   {
     // Time is base_time_ + whole steps of time_step since base_steps_: counted from now in the new step (a rebuilt
@@ -512,6 +517,12 @@ void Tether::subStep(double h, double t)
     // Reeled in less than asked (by more than rounding): the stall pull held the drum.
     held_at_pull_ = reel_in_asked_ < 0.0 && drum_.payout > reel_in_asked_ * (1.0 - 1e-9);
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
+    // The drive turned within its limits; what the pull drove the drum past them (past the motor's stall pull) is a
+    // slip the drive does not take on. A massless drum has no speed of its own: once the pull lets go, it turns at
+    // its drive's speed again (not at the slip's, slowing at max_winch_acceleration, which paid metres out into
+    // slack cable: Winch.ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo).
+    drive_speed_ = std::clamp(winch_speed_, std::min(drum_.min_payout, drum_.max_payout) / h,
+                              std::max(drum_.min_payout, drum_.max_payout) / h);
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
   noteStall(h);
@@ -670,15 +681,15 @@ bool Tether::runWinch(double dt)
   commanded_speed_ = 0.0;
   if (cable_.first + 1 >= n)
   {
-    winch_speed_ = 0.0;
+    winch_speed_ = drive_speed_ = 0.0;
     return false;
   }
   // The spool segment's tension at the end of the last step, what a tension-driven winch reads.
   const double h = last_step_ > 0.0 ? last_step_ : dt;
   const double spool_tension = solver_->multipliers().stretch[cable_.first] / (h * h);
-  const WinchInput input{cable_,         params_,           deployedLength(),    dt,
-                         target_length_, track_.attached(), spool_.outlet(),     track_.position(),
-                         spool_tension,  winch_speed_,      solver_->takesDrum()};
+  const WinchInput input{cable_,         params_,           deployedLength(), dt,
+                         target_length_, track_.attached(), spool_.outlet(),  track_.position(),
+                         spool_tension,  winch_speed_,      drive_speed_,     solver_->takesDrum()};
   Winch& winch = winches_[params_.winch_mode];
   commanded_speed_ = params_.winch_mode == WinchMode::kSpeed ? SpeedWinch::commandedSpeed(input) : 0.0;
   if (winch.drum(input, &drum_))
@@ -710,7 +721,7 @@ void Tether::payOut(double change, double dt)
   change = std::clamp(change, -max_change, max_change);
   change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
                       std::max(0.0, params_.cable_length - deployed));
-  winch_speed_ = change / dt;
+  winch_speed_ = drive_speed_ = change / dt;
   if (change != 0.0)
   {
     spool_.payOut(cable_, solver_->multipliers(), change, params_.lineMass(), track_.attached());
@@ -739,7 +750,7 @@ Status Tether::reset(double time)
   vehicle_.reset();
   track_.detach();
   winches_.reset();
-  winch_speed_ = 0.0;
+  winch_speed_ = drive_speed_ = 0.0;
   outrun_time_ = 0.0;
   stall_time_ = 0.0;
   held_at_pull_ = false;

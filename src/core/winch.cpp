@@ -56,8 +56,8 @@ bool ConstantTensionWinch::drum(const WinchInput& in, SpoolDrum* drum)
   drum->floor = (p.target_tension - p.tension_deadband) * h2;  // not positive: it never reels in
   drum->inertia = 0.0;
   drum->coast = 0.0;
-  const double fastest_out = std::min(p.max_winch_speed, in.speed + change) * in.dt;
-  const double fastest_in = std::max(-p.max_winch_speed, in.speed - change) * in.dt;
+  const double fastest_out = std::min(p.max_winch_speed, in.drive_speed + change) * in.dt;
+  const double fastest_in = std::max(-p.max_winch_speed, in.drive_speed - change) * in.dt;
   drum->max_payout = std::min(fastest_out, p.cable_length - in.deployed);
   drum->min_payout = std::min(std::max(fastest_in, p.min_deployed_length - in.deployed), drum->max_payout);
   drum->stall = p.winchPull() * h2;  // the motor gives way at its pull, whatever the acceleration limit
@@ -118,7 +118,7 @@ double ConstantTensionWinch::lengthChange(const WinchInput& in)
   {
     wanted = std::copysign(p.max_winch_speed * std::min(1.0, (std::abs(error) - band) / ramp), error);
   }
-  return accelerate(in.speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
+  return accelerate(in.drive_speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
 }
 
 double SpeedWinch::commandedSpeed(const WinchInput& in)
@@ -137,7 +137,7 @@ double SpeedWinch::commandedSpeed(const WinchInput& in)
 double SpeedWinch::lengthChange(const WinchInput& in)
 {
   const TetherParams& p = in.params;
-  const double change = accelerate(in.speed, commandedSpeed(in), p.max_winch_acceleration, in.dt) * in.dt;
+  const double change = accelerate(in.drive_speed, commandedSpeed(in), p.max_winch_acceleration, in.dt) * in.dt;
   if (std::isnan(in.target_length))
   {
     return change;

@@ -328,6 +328,7 @@ class Tether
   StepMotion step_motion_;                 ///< Where the step's motion is measured from, with contact.
   double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
   double winch_speed_ = 0.0;      ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
+  double drive_speed_ = 0.0;      ///< The winch drive's own speed over it [m/s] (WinchInput::drive_speed).
   double outrun_time_ = 0.0;      ///< How long the winch has been at its limit, pulled past giving way [s].
   double stall_time_ = 0.0;       ///< Sub-steps a speed winch's reel-in was held at the stall pull, since at speed [s].
   double commanded_speed_ = 0.0;  ///< A speed winch's commanded speed in the sub-step [m/s]; 0 in other modes.

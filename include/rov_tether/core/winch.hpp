@@ -23,7 +23,11 @@ struct WinchInput
   Position vehicle;      ///< Attachment point [m] (when attached).
   double spool_tension;  ///< Tension of the spool segment at the end of the last step [N].
   double speed;          ///< The winch's pay-out speed over the last step [m/s], negative reeling in.
-  bool drum_in_solver;   ///< The solver meets a SpoolDrum's law within its step (direct).
+  /// Its drive's own speed over the last step [m/s]: `speed`, less what a pull past the motor's stall pull
+  /// back-drove the drum beyond it. The acceleration limit (max_winch_acceleration) ramps this, not the slip: a
+  /// massless drum turns at its drive's speed again as soon as the pull lets go.
+  double drive_speed;
+  bool drum_in_solver;  ///< The solver meets a SpoolDrum's law within its step (direct).
 };
 
 /**
@@ -76,9 +80,10 @@ class ConstantTensionWinch : public Winch
 };
 
 /// `speed`: pays out (positive) or reels in at winch_speed, or towards the target length, where it stops
-/// without overshoot; its speed changes by at most max_winch_acceleration. A reel-in stops (the motor gives
-/// way) when the spool tension reaches the motor's stall pull (TetherParams::winchPull()); with direct
-/// within the step (a SpoolDrum of that law), otherwise from the last step's tension.
+/// without overshoot; its drive's speed changes by at most max_winch_acceleration. A reel-in stops (the motor
+/// gives way) when the spool tension reaches the motor's stall pull (TetherParams::winchPull()); with direct
+/// within the step (a SpoolDrum of that law, the drive keeping its speed meanwhile), otherwise from the last
+/// step's tension.
 class SpeedWinch : public Winch
 {
  public:
