@@ -461,15 +461,18 @@ TEST(Winch, AReelInHeldAtTheStallPullIsSaid)
 }
 
 // A massless drum back-driven past its motor's stall pull turns as the pull drives it; once the pull lets go, its drive
-// has it again at the drive's own speed (limits.md: the pillar wrap's drum coasted on at 3 m/s into slack cable,
-// slowing at max_winch_acceleration, because the drive's speed was taken to be the slip's). constant_tension
+// has it again at the drive's own speed (docs/limitations.md: the pillar wrap's drum kept the slip's speed, up to
+// max_winch_speed, and paid out into slack cable slowing at max_winch_acceleration, because the drive's speed was
+// taken to be the slip's). constant_tension
 // 5 N (stall pull 1.25 x 6 = 7.5 N), max_winch_speed 3 m/s, max_winch_acceleration 1 m/s^2: the ROV holds the
 // cable at its target, then jerks 0.5 m away in 50 ms (10 m/s: far past the stall pull, so the drum slips), then
 // comes 2 m back in (the cable goes slack) and holds. The drive cannot have sped up by more than
 // max_winch_acceleration x (t - t_jerk) since it last ran at v0 (its speed before the jerk), so after the jerk
 // every step whose spool tension is below the stall pull (1% off for the readout's bending cut) pays out no
-// faster than v0 + a (t - t_jerk) (+ a step's change). The premise checks that the drum did slip (faster than that
-// bound while at the pull).
+// faster than v0 + a (t - t_jerk) (+ a step's change). The premises check that the drum did slip (faster than that
+// bound while at the pull) and that steps below the pull were checked. By the end (6 s; the 2 m of slack take under
+// 3 s at 3 m/s reached at 1 m/s^2) the winch has reeled the slack in and holds 5 N on a straight cable, whose stretch
+// T / EA is 5e-5: the deployed length is the vehicle's 8.5 m within 1% (the old drive ended 27.9 m out).
 TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
 {
   TetherParams p;
@@ -493,6 +496,7 @@ TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
   };
   double v0 = 0.0, slipped = 0.0, worst = -1e9, worst_at = 0.0, paid_slack = 0.0;
   double last = 0.0;
+  int below = 0;
   const double a = p.max_winch_acceleration, h = p.time_step;
   drive(sim, 0.0, kJerk + 6.0, x,
         [&]
@@ -512,6 +516,7 @@ TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
           }
           else
           {
+            ++below;
             if (v - bound > worst)
             {
               worst = v - bound, worst_at = t;
@@ -525,8 +530,87 @@ TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
       "below the stall pull at most %.3f m/s past it (at %.3f s), %.3f m paid out below the stall pull; %.3f m out\n",
       v0, slipped, worst, worst_at, paid_slack, sim.deployedLength());
   EXPECT_GT(slipped, 0.5) << "the premise: the jerk back-drives the drum well past its drive's speed";
+  ASSERT_GT(below, 100) << "the premise: the slack steps were checked";
   EXPECT_LE(worst, 1e-9);
+  EXPECT_NEAR(sim.deployedLength(), 8.5, 0.01 * 8.5);
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
+// A change of winch mode while the drum slips starts the new mode's drive from the drive, not from the slip (a
+// drive that took the slip's speed would pay out into slack cable as above). The jerk of the test above, and 30 ms
+// into it the winch is switched to `speed` at winch_speed 0 (standing: it holds any pull, as a brake). Its drive
+// starts no faster than the old drive had reached, v0 + a (t_switch - t_jerk) (a = max_winch_acceleration), and
+// slows to standing at a: it pays out at most that speed squared over 2 a, plus a step at it, after the switch
+// (0.6 mm from 0.035 m/s; a drive started at the slip's 2.65 m/s paid out 3.5 m).
+TEST(Winch, AModeChangeInASlipStartsFromTheDriveNotTheSlip)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.cable_length = 40.0;
+  p.initial_deployed_length = 11.0;
+  p.winch_mode = WinchMode::kConstantTension;
+  p.target_tension = 5.0;
+  p.max_winch_speed = 3.0;
+  p.max_winch_acceleration = 1.0;
+  Tether sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
+  constexpr double kJerk = 10.0, kSwitch = kJerk + 0.03;
+  auto x = [](double t)
+  {
+    return t < kJerk          ? 10.0
+           : t < kJerk + 0.05 ? 10.0 + 10.0 * (t - kJerk)
+                              : std::max(8.5, 10.5 - 5.0 * (t - kJerk - 0.05));
+  };
+  double v0 = 0.0;
+  drive(sim, 0.0, kSwitch, x, [&] { v0 = sim.time() <= kJerk ? sim.winchSpeed() : v0; });
+  const double slip = sim.winchSpeed(), at_switch = sim.deployedLength();
+  p.winch_mode = WinchMode::kSpeed;
+  p.winch_speed = 0.0;
+  ASSERT_TRUE(sim.setParams(p).ok);
+  drive(sim, kSwitch, kJerk + 4.0, x, [] {});
+  const double a = p.max_winch_acceleration, h = p.time_step;
+  const double start = std::abs(v0) + a * (kSwitch - kJerk) + a * h;
+  const double bound = start * start / (2.0 * a) + start * h;
+  std::printf(
+      "[ measured ] switched to speed 0 while slipping at %.3f m/s: %.4f m paid out after the switch (bound %.4f m)\n",
+      slip, sim.deployedLength() - at_switch, bound);
+  ASSERT_GT(slip, 1.0) << "the premise: the drum slips at the switch";
+  EXPECT_LE(sim.deployedLength() - at_switch, bound);
+  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
+// A `speed` winch reeling in stops at min_deployed_length without pulling and without being said to stall. The
+// vehicle holds the cable 1 mm inside min_deployed_length (5 m), so the reel-in comes taut at the end and is held at
+// the motor's stall pull (7.5 N) on its way there (said, rightly); at the limit the drum stands. Its drum was still
+// asked to reel in there, and held at the stall pull against the cable (7.5 N at every row from 7 s on), and the
+// stall stayed said at the limit. Standing, the drum holds only what the cable's release from the pull leaves
+// ringing, which by 10 s is under half the stall pull (a held drum reads the stall pull itself, within 1%).
+TEST(Winch, ASpeedWinchStopsAtTheShortestDeployedLengthWithoutPulling)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.cable_length = 40.0;
+  p.winch_mode = WinchMode::kSpeed;
+  p.winch_speed = -0.5;
+  p.initial_deployed_length = 8.0;
+  p.min_deployed_length = 5.0;
+  Tether sim(p, Position::Zero(), Position(4.999, 0.0, 0.0));
+  auto x = [](double) { return 4.999; };
+  double pulled = 0.0;
+  bool stalled = false;
+  drive(sim, 0.0, 15.0, x,
+        [&]
+        {
+          if (sim.time() > 10.0)
+          {
+            pulled = std::max({pulled, std::abs(sim.summary().tension_spool), std::abs(sim.summary().tension_vehicle)});
+            stalled = stalled || sim.winchStalled();
+          }
+        });
+  std::printf("[ measured ] speed winch at min_deployed_length: %.4f m out, at most %.4f N from 10 s on\n",
+              sim.deployedLength(), pulled);
+  ASSERT_NEAR(sim.deployedLength(), p.min_deployed_length, 1e-6) << "the premise: reeled in to the limit";
+  EXPECT_LT(pulled, 0.5 * p.winchPull());
+  EXPECT_FALSE(stalled);
 }
 
 // "The vehicle outruns the winch" is a vehicle faster than the winch can pay out (issue 26, item 9). The

@@ -30,6 +30,13 @@ std::string joinErrors(const std::vector<std::string>& errors)
 
 bool withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate; }
 
+/// Of a drum's speed and its drive's, the one nearer standing, and standing if they turn opposite ways [m/s]: where a
+/// drive starts again (a new winch mode or method, a re-laid cable) without taking on a slip past the old drive.
+double nearerStanding(double drum, double drive)
+{
+  return drum * drive <= 0.0 ? 0.0 : std::abs(drum) < std::abs(drive) ? drum : drive;
+}
+
 /// Whether a dynamic vehicle `body` can be coupled into the steps `params` take.
 Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
 {
@@ -150,9 +157,12 @@ Status Tether::setParams(const TetherParams& params)
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
   const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
-  if (new_mode)
+  if (new_mode || new_solver)
   {
-    drive_speed_ = winch_speed_;  // the new mode's drive takes the drum as it turns (held at a stall pull: not turning)
+    // The new mode's (or the new method's) drive starts from the drum as it turns, but not from a slip past the old
+    // drive (back-driven, it would pay out into slack): the one of the two nearer standing, and standing if they
+    // turn opposite ways.
+    drive_speed_ = nearerStanding(winch_speed_, drive_speed_);
   }
   if (params_.time_step != old_time_step)
   {
@@ -517,12 +527,16 @@ void Tether::subStep(double h, double t)
     // Reeled in less than asked (by more than rounding): the stall pull held the drum.
     held_at_pull_ = reel_in_asked_ < 0.0 && drum_.payout > reel_in_asked_ * (1.0 - 1e-9);
     payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
-    // The drive turned within its limits; what the pull drove the drum past them (past the motor's stall pull) is a
-    // slip the drive does not take on. A massless drum has no speed of its own: once the pull lets go, it turns at
-    // its drive's speed again (not at the slip's, slowing at max_winch_acceleration, which paid metres out into
-    // slack cable: Winch.ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo).
-    drive_speed_ = std::clamp(winch_speed_, std::min(drum_.min_payout, drum_.max_payout) / h,
-                              std::max(drum_.min_payout, drum_.max_payout) / h);
+    // The drive turned within its limits. A pull past the motor's stall pull stops a reel-in (the drive stops with
+    // its motor, as far as standing) and pulled harder back-drives the drum out: a slip the drive does not take on.
+    // A massless drum has no speed of its own: once the pull lets go, it turns at its drive's speed again (not at
+    // the slip's, slowing at max_winch_acceleration, which paid metres out into slack cable:
+    // Winch.ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo).
+    const double lowest = std::min(drum_.min_payout, drum_.max_payout) / h;
+    const double highest = std::max(drum_.min_payout, drum_.max_payout) / h;
+    drive_speed_ = std::isfinite(drum_.payout)
+                       ? std::clamp(winch_speed_, lowest, std::max(highest, std::min(winch_speed_, 0.0)))
+                       : winch_speed_;  // a diverged solve's drum: standing, as payOut left it
   }
   outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
   noteStall(h);
@@ -669,6 +683,7 @@ void Tether::fail(const std::string& why)
   message << "t = " << std::fixed << std::setprecision(3) << time_ << " s: " << why
           << "; the cable was re-laid at rest";
   last_failure_ = message.str();
+  drive_speed_ = nearerStanding(winch_speed_, drive_speed_);  // as after a change of mode: not from a slip
   const double deployed = deployedLength();
   layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
                                  : params_.initial_deployed_length);
@@ -768,9 +783,9 @@ double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
 void Tether::noteStall(double h)
 {
   if (params_.winch_mode != WinchMode::kSpeed || !(commanded_speed_ < 0.0) ||
-      winch_speed_ <= commanded_speed_ * (1.0 - 1e-9))
+      winch_speed_ <= commanded_speed_ * (1.0 - 1e-9) || deployedLength() <= params_.min_deployed_length + 1e-9)
   {
-    stall_time_ = 0.0;  // not asked to reel in, or reeling in at its speed
+    stall_time_ = 0.0;  // not asked to reel in, reeling in at its speed, or stopped by min_deployed_length
   }
   else if (held_at_pull_)
   {
