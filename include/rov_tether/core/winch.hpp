@@ -23,9 +23,10 @@ struct WinchInput
   Position vehicle;      ///< Attachment point [m] (when attached).
   double spool_tension;  ///< Tension of the spool segment at the end of the last step [N].
   double speed;          ///< The winch's pay-out speed over the last step [m/s], negative reeling in.
-  /// Its drive's own speed over the last step [m/s]: `speed`, less what a pull past the motor's stall pull
-  /// back-drove the drum beyond it. The acceleration limit (max_winch_acceleration) ramps this, not the slip: a
-  /// massless drum turns at its drive's speed again as soon as the pull lets go.
+  /// Its drive's own speed over the last step [m/s]: `speed`, except where a pull past the motor's stall pull
+  /// back-drove the drum out past its drive, a slip the drive does not take on (a stall that stops a reel-in
+  /// stops the drive with it). The acceleration limit (max_winch_acceleration) ramps this: a massless drum turns
+  /// at its drive's speed again as soon as the pull lets go.
   double drive_speed;
   bool drum_in_solver;  ///< The solver meets a SpoolDrum's law within its step (direct).
 };
@@ -82,8 +83,7 @@ class ConstantTensionWinch : public Winch
 /// `speed`: pays out (positive) or reels in at winch_speed, or towards the target length, where it stops
 /// without overshoot; its drive's speed changes by at most max_winch_acceleration. A reel-in stops (the motor
 /// gives way) when the spool tension reaches the motor's stall pull (TetherParams::winchPull()); with direct
-/// within the step (a SpoolDrum of that law, the drive keeping its speed meanwhile), otherwise from the last
-/// step's tension.
+/// within the step (a SpoolDrum of that law), otherwise from the last step's tension.
 class SpeedWinch : public Winch
 {
  public:
