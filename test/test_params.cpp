@@ -107,6 +107,53 @@ TEST(Params, ContradictionsBetweenFieldsAreNamed)
   EXPECT_TRUE(params.validate().empty());
 }
 
+// A constant_tension winch reels in while the spool tension is below target_tension - tension_deadband; its motor
+// gives way at max_winch_pull. A pull below that edge of the band stalls the winch before the tension reaches the
+// band: it can never hold its target, so it is refused naming both values, in a file and as a live change (the
+// parameters kept). At the edge itself the band is reached (accepted), as is the derived pull (0: 1.25 x (target +
+// deadband), above it). Elsewhere the same pull is no contradiction: a speed winch has no target, and a brake never
+// reels in (its drum has no stall pull), so a brake_tension above max_winch_pull is accepted too.
+TEST(Params, AWinchPullBelowTheTensionBandIsRefused)
+{
+  TetherParams params;
+  params.winch_mode = WinchMode::kConstantTension;
+  params.target_tension = 100.0;
+  params.tension_deadband = 10.0;
+  params.max_winch_pull = 50.0;
+  auto errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0],
+            "max_winch_pull = 50: in constant_tension mode must be 0 (derived) or at least target_tension - "
+            "tension_deadband = 100 - 10 = 90: the motor gives way before the winch reaches its band, so it "
+            "can never hold its target");
+  params.max_winch_pull = 90.0;  // the band's lower edge
+  EXPECT_TRUE(params.validate().empty());
+  params.max_winch_pull = 0.0;  // derived: 137.5 N
+  EXPECT_TRUE(params.validate().empty());
+  params.max_winch_pull = 50.0;
+  params.winch_mode = WinchMode::kSpeed;
+  EXPECT_TRUE(params.validate().empty());
+  params.winch_mode = WinchMode::kBrake;
+  params.brake_tension = 200.0;
+  EXPECT_TRUE(params.validate().empty());
+
+  // Live: the defaults' target 5 N and deadband 1 N; a pull of 3 N is below the 4 N edge.
+  TetherParams start;
+  start.winch_mode = WinchMode::kConstantTension;
+  Tether tether(start, Position::Zero(), Position(8.0, 0.0, 0.0));
+  TetherParams live = tether.params();
+  live.max_winch_pull = 3.0;
+  const Status refused = tether.setParams(live);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.message.find("max_winch_pull = 3: in constant_tension mode must be 0 (derived) or at least "
+                                 "target_tension - tension_deadband = 5 - 1 = 4"),
+            std::string::npos)
+      << refused.message;
+  EXPECT_EQ(tether.params().max_winch_pull, 0.0);
+  live.max_winch_pull = 4.0;
+  EXPECT_TRUE(tether.setParams(live).ok);
+}
+
 TEST(Params, SetParameterChecksNamesAndTypes)
 {
   TetherParams params;

@@ -188,7 +188,8 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"max_winch_speed", "double", "m/s", 0.0, 20.0, kOpen, kClosed, "", "limit in every mode", kLive},
       {"max_winch_acceleration", "double", "m/s^2", 0.0, 1000.0, kOpen, kClosed, "",
        "`speed` and `constant_tension`: the drive's limit (a drum pulled past `max_winch_pull` slips at once)", kLive},
-      {"max_winch_pull", "double", "N", 0.0, 1e7, kClosed, kClosed, "",
+      {"max_winch_pull", "double", "N", 0.0, 1e7, kClosed, kClosed,
+       "0, or [target_tension - tension_deadband, 1e7] in constant_tension",
        "the motor's stall pull: no reel-in (any mode: `strain` reels in slack) goes on above it, and pulled harder "
        "a reeling-in drum pays out (`constant_tension`: at any time); `speed` standing or paying out holds any pull "
        "(its brake); 0 = 1.25 x the larger of `target_tension` + `tension_deadband` and `brake_tension`",

@@ -384,6 +384,20 @@ std::vector<std::string> TetherParams::validate() const
     relation("winch_speed = " + formatValue(winch_speed) + ": must be in [-max_winch_speed, max_winch_speed] = [" +
              formatValue(-max_winch_speed) + ", " + formatValue(max_winch_speed) + "]");
   }
+  // A constant_tension winch reels in while the spool tension is below target_tension - tension_deadband, and its
+  // motor gives way at its stall pull: one that stalls below the band's lower edge stops (pulled harder, pays out)
+  // before the tension ever reaches the band, so it can never hold its target. The derived pull (0) is 1.25 x
+  // (target + deadband), always above it. brake_tension is left alone: the brake never reels in (its drum has no
+  // stall pull), so no brake_tension contradicts max_winch_pull.
+  if (winch_mode == WinchMode::kConstantTension && max_winch_pull > 0.0 &&
+      max_winch_pull < target_tension - tension_deadband)
+  {
+    relation("max_winch_pull = " + formatValue(max_winch_pull) +
+             ": in constant_tension mode must be 0 (derived) or at least target_tension - tension_deadband = " +
+             formatValue(target_tension) + " - " + formatValue(tension_deadband) + " = " +
+             formatValue(target_tension - tension_deadband) +
+             ": the motor gives way before the winch reaches its band, so it can never hold its target");
+  }
   if (errors.empty() && (!sections.empty() || !attachments.empty()))
   {
     const auto material = CableSections::check(*this);
