@@ -674,6 +674,41 @@ TEST(Contact, ARebuiltCableHasTouchedNothingUntilItsNextStep)
   EXPECT_FALSE(std::isnan(entry(world, TopologyEntry::Kind::WrapTurns, 0, 0)));
 }
 
+// The same with a rebuild that keeps the particle count (cable_length and segment_length doubled together): the
+// record is of the cable's size, so only its being dropped on the rebuild keeps the topology from reading the old
+// cable's contacts as the new one's (before, the contact angle on the pillar read on for joints of the re-laid cable,
+// which had touched nothing). The wrap, a property of the shape, is still reported.
+TEST(Contact, ACableRebuiltWithItsParticleCountHasTouchedNothingUntilItsNextStep)
+{
+  TetherParams p = tautParams(0.0);
+  p.winch_mode = WinchMode::kBrake;
+  p.brake_tension = 20.0;
+  p.initial_deployed_length = 7.0;
+  const double reach = 0.5 + 0.5 * p.diameter;
+  World world;
+  ASSERT_TRUE(
+      world.add("rov", std::make_unique<Tether>(p, Position(-reach, -5.0, 0.0), Position(-reach, 2.0, 0.0))).ok);
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.5, 4.0, 0.0));
+  ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
+  const Path path = [&](double t)
+  {
+    const double a = std::min(t, 3.0) / 3.0, v = 0.2 * std::max(t - 3.0, 0.0);
+    return Position(-reach + 2.0 * reach * a, 2.0 - v, 0.0);
+  };
+  drive(world, {path}, 0.0, 18.0);
+  ASSERT_NEAR(entry(world, TopologyEntry::Kind::ContactAngle, 0, 0), kPi, 0.1 * kPi);  // as in the capstan scene
+  const std::size_t particles = world.tether(0).state().size();
+  TetherParams scaled = world.tether(0).params();
+  scaled.cable_length = 2.0 * p.cable_length;
+  scaled.segment_length = 2.0 * p.segment_length;
+  ASSERT_TRUE(world.tether(0).setParams(scaled).ok);
+  ASSERT_EQ(world.tether(0).state().size(), particles) << "the rebuild was to keep the particle count";
+  EXPECT_TRUE(std::isnan(entry(world, TopologyEntry::Kind::ContactAngle, 0, 0)));
+  EXPECT_TRUE(std::isnan(entry(world, TopologyEntry::Kind::CapstanRatio, 0, 0)));
+  EXPECT_FALSE(std::isnan(entry(world, TopologyEntry::Kind::WrapTurns, 0, 0)));
+}
+
 // Several tethers and obstacles, with noise, run twice from the same seed: the same positions bit for bit.
 TEST(Contact, SeveralTethersAndObstaclesRunDeterministically)
 {

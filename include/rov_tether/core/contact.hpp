@@ -45,6 +45,9 @@ class Contact
   /// The cable was laid out anew (a reset, a recovery): forgets what the contact kept of it (holds, pending
   /// reactions).
   virtual void forget() {}
+  /// The cable was built anew (a parameter change: cable_length, segment_length): what the contact recorded it
+  /// touching belongs to the cable before, whatever its particle count, and is dropped.
+  virtual void cableRebuilt() {}
   /// Before a step's first solve: moves the predicted positions back by the holds of the last step (scaled
   /// to a step of `h` [s]), so a contact that sticks or slides as it did needs no further solve.
   virtual void warmStart(Cable& /*cable*/, double /*h*/) {}
