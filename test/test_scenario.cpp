@@ -386,6 +386,45 @@ TEST(Runner, WritesStateAndShapeCsv)
   fs::remove(scenario_path);
 }
 
+// The run simulates its whole duration, not only up to its last output time. kGood at time_step 0.005 s (the
+// default) for 3.1 s at 4 rows per second: rows at 0, 0.25, ..., 3 as before, and then the 0.1 s after the last row:
+// 3.1 / 0.005 = 620 steps (it stopped at 600, the world at t = 3). At 0.01 s, no whole output period, there is the
+// one row at t = 0 and 0.01 / 0.005 = 2 steps, which the summary says ("simulated 0.01 s in 0 steps" before: the
+// run stepped up to t = 0 only).
+TEST(Runner, SimulatesTheWholeDurationPastTheLastOutputTime)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  scenario.duration = 3.1;
+  const std::string dir = temporaryDirectory("whole_duration");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  EXPECT_EQ(summary.steps, 620u);
+  EXPECT_NEAR(summary.simulated, 3.1, 1e-9);
+  EXPECT_EQ(readLines(fs::path(dir) / "state.csv").size(), 1u + 13u);  // header + t = 0, 0.25, ..., 3
+  fs::remove_all(dir);
+
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::string text = kGood;
+  text.replace(text.find("duration: 3"), std::string("duration: 3").size(), "duration: 0.01");
+  std::ofstream(scenario_path) << text;
+  const std::string out = dir + "_summary.txt";
+  ASSERT_EQ(std::system((std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir + " > " + out +
+                         " 2>&1")
+                            .c_str()),
+            0);
+  std::string printed;
+  for (const std::string& line : readLines(out))
+  {
+    printed += line + "\n";
+  }
+  EXPECT_NE(printed.find("simulated       0.01 s in 2 steps"), std::string::npos) << printed;
+  EXPECT_EQ(readLines(fs::path(dir) / "state.csv").size(), 2u);  // header + t = 0
+  fs::remove(scenario_path);
+  fs::remove(out);
+  fs::remove_all(dir);
+}
+
 // A parameter file (config/*.yaml, --params) that gives a key twice is refused whole, naming the key: either
 // value could be the one meant (issue 26, item 13).
 TEST(ConfigFiles, ARepeatedKeyIsRefusedNamingIt)

@@ -284,6 +284,12 @@ std::size_t writeOutputs(const Scenario& scenario, World& world, ScenarioStepper
     }
   }
   stepper.observe(observers, scenario.duration);
+  // The whole duration, past the last output time (a duration that is no whole number of output periods: 0.01 s at
+  // 10 rows per second had its one row at t = 0 and simulated no step).
+  if (stepper.runError().empty() && stepper.observerError().empty())
+  {
+    (void)stepper.advance(scenario.duration);
+  }
   return topology_rows;
 }
 
@@ -303,6 +309,7 @@ RunSummary summaryOf(const World& world, std::vector<RunSummary> each, std::size
   }
   RunSummary result = each.front();
   result.steps = steps;
+  result.simulated = world.size() > 0 ? world.tether(0).time() : 0.0;
   result.cpu_seconds = cpu;
   result.topology_rows = topology_rows;
   result.tethers = std::move(each);

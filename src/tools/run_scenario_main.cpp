@@ -1,5 +1,6 @@
 // rov_tether_run: runs a scenario offline (no ROS master) and writes state.csv and shape.csv (per tether, and
 // topology.csv, for a scenario with obstacles or several tethers).
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -175,6 +176,17 @@ std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenar
   return error.empty() ? scenario->checkOutputRate() : error;
 }
 
+/// Decimals that print `seconds` as it is, 2 to 6 (50.00 s; a step of 0.005 s ends at 0.015 s, not "0.01").
+int decimals(double seconds)
+{
+  int d = 2;
+  while (d < 6 && std::abs(std::round(seconds * std::pow(10.0, d)) - seconds * std::pow(10.0, d)) > 1e-6)
+  {
+    ++d;
+  }
+  return d;
+}
+
 /// Prints what ran: the scenario, its tethers, the model (the first tether's, `auto` resolved) and the figures.
 void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_path, const rov_tether::RunSummary& s)
 {
@@ -196,9 +208,9 @@ void printRun(const rov_tether::Scenario& scenario, const std::string& scenario_
       "segment %.3g m\n",
       rov_tether::toString(p.solver).c_str(), p.iterations, p.bending ? "on" : "off", p.drag, p.noise, p.time_step,
       p.segment_length);
-  std::printf("simulated       %.2f s in %llu steps, %.3f s CPU (%.0fx real time)\n", scenario.duration,
-              static_cast<unsigned long long>(s.steps), s.cpu_seconds,
-              s.cpu_seconds > 0 ? scenario.duration / s.cpu_seconds : 0.0);
+  std::printf("simulated       %.*f s in %llu steps, %.3f s CPU (%.0fx real time)\n", decimals(s.simulated),
+              s.simulated, static_cast<unsigned long long>(s.steps), s.cpu_seconds,
+              s.cpu_seconds > 0 ? s.simulated / s.cpu_seconds : 0.0);
   std::printf("deployed length start %.3f m, end %.3f m, max %.3f m (cable %.3f m, winch %s)\n", s.deployed_start,
               s.deployed_end, s.deployed_max, p.cable_length, rov_tether::toString(p.winch_mode).c_str());
   std::printf("tension         max %.4g N anywhere, max %.4g N at the vehicle\n", s.max_tension, s.max_tension_vehicle);

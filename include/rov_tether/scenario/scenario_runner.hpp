@@ -20,6 +20,9 @@ struct RunSummary
   std::string name;  ///< The tether's ("tether" for a single-tether scenario).
   std::uint64_t steps = 0;
   double cpu_seconds = 0.0;  ///< Time spent in the simulation (output excluded) [s].
+  /// The time the run simulated to [s]: the duration, to a whole step of the first tether (a step that would end
+  /// past the duration is not taken).
+  double simulated = 0.0;
   std::size_t state_rows = 0;
   std::size_t shape_rows = 0;
   double deployed_start = 0.0;       ///< [m]
