@@ -170,5 +170,32 @@ TEST(CableSections, ADescriptionThatDoesNotFitIsRefusedWithEveryReason)
   EXPECT_NE(both.message.find("section 2 of 3"), std::string::npos) << both.message;
 }
 
+// Every error of every section is said in one message, whatever is wrong with a length: a section whose length is
+// missing still has its properties checked, and so has the last section when what the ones before it cover is not
+// known. Here section 1 misses its length and sets a property a section may not set, section 2 sets a negative
+// diameter, and the last (left to run to the drum) a negative EA: four errors. Before, a missing length ended the
+// section's checks, and the last section's too (only the first and the second's diameter were said).
+TEST(CableSections, EveryErrorOfEverySectionIsSaidInOneMessage)
+{
+  const TetherParams params = tenMetres();
+  CableSection missing;
+  missing.properties = {{"winch_speed", 1.0}};
+  CableSection second;
+  second.length = 3.0;
+  second.properties = {{"diameter", -1.0}};
+  CableSection last;
+  last.properties = {{"axial_stiffness", -5.0}};
+  CableSections sections;
+  const Status made = CableSections::make(params, {missing, second, last}, &sections);
+  EXPECT_FALSE(made.ok);
+  for (const char* error :
+       {"section 1 of 3: length: missing", "section 1 of 3: 'winch_speed' is not a property a section may set",
+        "section 2 of 3: diameter = -1", "section 3 of 3: axial_stiffness = -5"})
+  {
+    EXPECT_NE(made.message.find(error), std::string::npos) << error << " in: " << made.message;
+  }
+  EXPECT_TRUE(sections.uniform());  // unchanged
+}
+
 }  // namespace
 }  // namespace rov_tether

@@ -99,63 +99,69 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
     const CableSection& section = sections[s];
     const std::string which = "section " + std::to_string(s + 1) + " of " + std::to_string(sections.size());
     const bool last = s + 1 == sections.size();
-    double length = section.length;
-    if (std::isnan(length) && !last)
+    // Where the section ends. A length that is wrong ends only this part: the section's properties are checked
+    // whatever is wrong with its length, so that every error of every section is said in one message (a missing
+    // length hid those of its own properties and of every later section's left-out length).
+    [&]
     {
-      // NaN is a length left out (CableSection::length): a missing key, not a bad value.
-      errors.push_back(which + ": length: missing (only the last section may leave it out: it runs to the drum)");
-      lengths_given = false;
-      continue;
-    }
-    if (std::isnan(length))
-    {
-      if (!lengths_given)
+      double length = section.length;
+      if (std::isnan(length) && !last)
       {
-        continue;  // what the sections before it cover is not known
+        // NaN is a length left out (CableSection::length): a missing key, not a bad value.
+        errors.push_back(which + ": length: missing (only the last section may leave it out: it runs to the drum)");
+        lengths_given = false;
+        return;
       }
-      length = params.cable_length - covered;  // runs to the drum
-      if (!(length > 0.0))
+      if (std::isnan(length))
       {
-        errors.push_back(which + ": the sections before it cover " + number(covered) + " m of the " +
-                         number(params.cable_length) + " m cable, so none is left for it to run to the drum");
-        continue;
+        if (!lengths_given)
+        {
+          return;  // what the sections before it cover is not known
+        }
+        length = params.cable_length - covered;  // runs to the drum
+        if (!(length > 0.0))
+        {
+          errors.push_back(which + ": the sections before it cover " + number(covered) + " m of the " +
+                           number(params.cable_length) + " m cable, so none is left for it to run to the drum");
+          return;
+        }
       }
-    }
-    else if (!std::isfinite(length) || !(length > 0.0))
-    {
-      errors.push_back(which + ": length = " + number(length) + " m: must be finite and > 0");
-      lengths_given = false;
-      continue;
-    }
-    covered += length;
-    if (last)
-    {
-      if (lengths_given && std::abs(covered - params.cable_length) > 1e-6 * params.segment_length)
+      else if (!std::isfinite(length) || !(length > 0.0))
       {
-        errors.push_back("their lengths add up to " + number(covered) + " m, not cable_length " +
-                         number(params.cable_length) +
-                         " m (leave the last section's length out to run it to the drum)");
-        continue;
+        errors.push_back(which + ": length = " + number(length) + " m: must be finite and > 0");
+        lengths_given = false;
+        return;
       }
-      end = segments;  // what is left, a short last segment included
-    }
-    else
-    {
-      const double count = length / params.segment_length;
-      if (std::abs(count - std::round(count)) > 1e-6 || std::round(count) < 1.0)
+      covered += length;
+      if (last)
       {
-        errors.push_back(which + ": length " + number(length) + " m is not a whole number of segments of " +
-                         number(params.segment_length) + " m (segments never straddle a section boundary)");
-        continue;
+        if (lengths_given && std::abs(covered - params.cable_length) > 1e-6 * params.segment_length)
+        {
+          errors.push_back("their lengths add up to " + number(covered) + " m, not cable_length " +
+                           number(params.cable_length) +
+                           " m (leave the last section's length out to run it to the drum)");
+          return;
+        }
+        end = segments;  // what is left, a short last segment included
       }
-      end += static_cast<std::size_t>(std::round(count));
-      if (lengths_given && end >= segments)
+      else
       {
-        errors.push_back(which + ": ends " + number(covered) + " m from the vehicle, at or beyond the cable's " +
-                         number(params.cable_length) + " m, and is not the last section");
-        continue;
+        const double count = length / params.segment_length;
+        if (std::abs(count - std::round(count)) > 1e-6 || std::round(count) < 1.0)
+        {
+          errors.push_back(which + ": length " + number(length) + " m is not a whole number of segments of " +
+                           number(params.segment_length) + " m (segments never straddle a section boundary)");
+          return;
+        }
+        end += static_cast<std::size_t>(std::round(count));
+        if (lengths_given && end >= segments)
+        {
+          errors.push_back(which + ": ends " + number(covered) + " m from the vehicle, at or beyond the cable's " +
+                           number(params.cable_length) + " m, and is not the last section");
+          return;
+        }
       }
-    }
+    }();
     // The section's material is the tether's parameters with its properties set, checked by the parameter
     // table's own ranges (and TetherParams::validate's relations) so a section is held to what the tether is.
     TetherParams own = params;
