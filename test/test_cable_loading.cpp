@@ -695,5 +695,53 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
       << all;
 }
 
+// A cable hanging from one end carries at its top the weight in water of all of it below, w L (all of cable_length
+// paid out), which stretches its top segment by w L / EA. At 100% or more (w L >= EA) no cable survives and the
+// solver takes the segment for a blow-up (kDivergenceLimit), re-laying the cable every step as it did for an
+// attachment of EA or more: refused naming the weight, the length, EA and the stretch, buoyant cables (w < 0, floating
+// up from their lower end) alike, at load and as a live change (the parameters kept). In sections the weight of what
+// hangs below counts: a weightless section of EA 3e4 N carrying 4 m of 1e4 N/m below it (4e4 N) is refused, though
+// it weighs nothing itself, while the same section at the tether's EA 1e5 N is taken.
+TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
+{
+  TetherParams p = lockedString(10.0, 0.1);  // EA 1e5 N
+  p.weight_in_water = 1e4;                   // 10 m: 1e5 N at the top
+  auto errors = p.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0],
+            "weight_in_water = 10000 N/m: a hanging cable's top tension |weight_in_water| x cable_length = 10000 N/m "
+            "x 10 m = 100000 N must be below axial_stiffness EA = 100000 N: its own weight would stretch the cable by "
+            "w L / EA = 100%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+  p.weight_in_water = -1e4;
+  EXPECT_EQ(p.validate().size(), 1u) << "buoyant, floating up from its lower end";
+  p.weight_in_water = 9900.0;  // 99%
+  EXPECT_TRUE(p.validate().empty());
+
+  p.weight_in_water = 1000.0;  // 10%
+  Tether sim(p, Position::Zero(), Position(0.0, 0.0, -9.0));
+  TetherParams live = sim.params();
+  live.axial_stiffness = 1e4;  // 100%
+  const Status softer = sim.setParams(live);
+  EXPECT_FALSE(softer.ok);
+  EXPECT_NE(softer.message.find("= 10000 N must be below axial_stiffness EA = 10000 N"), std::string::npos)
+      << softer.message;
+  EXPECT_EQ(sim.params().axial_stiffness, p.axial_stiffness);
+
+  TetherParams sections = lockedString(10.0, 0.1);
+  sections.sections = {{4.0, {{"weight_in_water", 1e4}}}, {}};
+  EXPECT_TRUE(sections.validate().empty());  // 4e4 N on EA 1e5 N: 40%
+  sections.sections[1].properties = {{"axial_stiffness", 3e4}};
+  std::string all;
+  for (const std::string& error : sections.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_EQ(all,
+            "sections: the cable from 4 m to 10 m from the vehicle (weight_in_water = 0 N/m, axial_stiffness EA = "
+            "30000 N): the cable's own weight in water hanging from it, up to 40000 N (w L of the sections below it), "
+            "must be below its EA: it would stretch it by 133.333%, which no cable survives and the solver takes for a "
+            "blow-up (a segment at 100% strain)\n");
+}
+
 }  // namespace
 }  // namespace rov_tether

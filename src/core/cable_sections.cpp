@@ -195,7 +195,7 @@ Status CableSections::make(const TetherParams& params, const std::vector<CableSe
     {
       continue;
     }
-    for (const std::string& error : own.validate())
+    for (const std::string& error : own.validateMaterial())
     {
       errors.push_back(which + ": " + error);
     }
@@ -248,6 +248,42 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
             "compression (a bending cable is solved as a rod); give it a small bending_stiffness, or "
             "set bending false");
         break;
+      }
+    }
+  }
+  if (sections && !params.sections.empty())
+  {
+    // A hanging cable's tension at a point is the weight in water of what hangs below it: hung from the spool, the
+    // cable between the point and the vehicle end; hung from the vehicle (a spool below it, or buoyant material
+    // floating up from the spool), the rest. All of cable_length counts (any winch may pay it out). Along a section
+    // the weight grows linearly, so its most is at one of its ends; at its EA or more it stretches the segment there
+    // by 100% (kDivergenceLimit), which no cable survives and the solver takes for a blow-up (TetherParams::validate
+    // makes the same check of a uniform cable: w L < EA).
+    const auto& materials = made.materials();
+    const auto& ends = made.ends();
+    std::vector<double> below(materials.size() + 1, 0.0);  // weight from the vehicle end to each boundary [N]
+    std::vector<double> from(materials.size() + 1, 0.0);   // each boundary's distance from the vehicle end [m]
+    for (std::size_t s = 0; s < materials.size(); ++s)
+    {
+      from[s + 1] =
+          s + 1 == materials.size() ? params.cable_length : static_cast<double>(ends[s]) * params.segment_length;
+      below[s + 1] = below[s] + materials[s].weight_in_water * (from[s + 1] - from[s]);
+    }
+    const double total = below.back();
+    for (std::size_t s = 0; s < materials.size(); ++s)
+    {
+      const double pull = std::max(
+          {std::abs(below[s]), std::abs(below[s + 1]), std::abs(total - below[s]), std::abs(total - below[s + 1])});
+      const double stiffness = materials[s].axial_stiffness;
+      if (!(pull < kDivergenceLimit * stiffness))
+      {
+        errors.push_back("sections: the cable from " + number(from[s]) + " m to " + number(from[s + 1]) +
+                         " m from the vehicle (weight_in_water = " + number(materials[s].weight_in_water) +
+                         " N/m, axial_stiffness EA = " + number(stiffness) +
+                         " N): the cable's own weight in water hanging from it, up to " + number(pull) +
+                         " N (w L of the sections below it), must be below its EA: it would stretch it by " +
+                         number(100.0 * pull / stiffness) +
+                         "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
       }
     }
   }

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "rov_tether/core/cable_sections.hpp"
+#include "rov_tether/core/constraint_solver.hpp"
 
 namespace rov_tether
 {
@@ -310,6 +311,38 @@ double commonDivisor(double a, double b)
 
 std::vector<std::string> TetherParams::validate() const
 {
+  std::vector<std::string> errors = validateMaterial();
+  if (!errors.empty())
+  {
+    return errors;
+  }
+  const TetherParams whole = resolved();  // the relations hold for the values `auto` chooses
+  // A cable hanging from one end carries at its top the weight in water of all of it, w L (all of cable_length paid
+  // out: any winch may pay it out), and that stretches its top segment by w L / EA; a buoyant one (w < 0) floats up
+  // from its lower end the same way. At 100% (kDivergenceLimit) or more no cable survives it and the solver takes
+  // the segment for a blow-up: the cable was re-laid every step, as an attachment's load of EA or more was. A cable
+  // in sections: CableSections::check, section by section.
+  const double top = std::abs(whole.weight_in_water) * whole.cable_length;
+  if (whole.sections.empty() && !(top < kDivergenceLimit * whole.axial_stiffness))
+  {
+    errors.push_back(
+        "weight_in_water = " + formatValue(weight_in_water) +
+        " N/m: a hanging cable's top tension |weight_in_water| x cable_length = " +
+        formatValue(std::abs(whole.weight_in_water)) + " N/m x " + formatValue(whole.cable_length) +
+        " m = " + formatValue(top) + " N must be below axial_stiffness EA = " + formatValue(whole.axial_stiffness) +
+        " N: its own weight would stretch the cable by w L / EA = " + formatValue(100.0 * top / whole.axial_stiffness) +
+        "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+  }
+  if (errors.empty() && (!sections.empty() || !attachments.empty()))
+  {
+    const auto material = CableSections::check(whole);
+    errors.insert(errors.end(), material.begin(), material.end());
+  }
+  return errors;
+}
+
+std::vector<std::string> TetherParams::validateMaterial() const
+{
   std::vector<std::string> errors;
   // Each field's own range, from the parameter table (the README, default.yaml and the .cfg agree with it).
   const TetherParams defaults;
@@ -338,7 +371,7 @@ std::vector<std::string> TetherParams::validate() const
 
   if (segment_length_auto || iterations_auto)
   {
-    return resolved().validate();  // the relations hold for the values `auto` chooses
+    return resolved().validateMaterial();  // the relations hold for the values `auto` chooses
   }
   // Relations between fields, each named with the value it contradicts.
   auto relation = [&errors](const std::string& message) { errors.push_back(message); };
@@ -397,11 +430,6 @@ std::vector<std::string> TetherParams::validate() const
              formatValue(target_tension) + " - " + formatValue(tension_deadband) + " = " +
              formatValue(target_tension - tension_deadband) +
              ": the motor gives way before the winch reaches its band, so it can never hold its target");
-  }
-  if (errors.empty() && (!sections.empty() || !attachments.empty()))
-  {
-    const auto material = CableSections::check(*this);
-    errors.insert(errors.end(), material.begin(), material.end());
   }
   return errors;
 }

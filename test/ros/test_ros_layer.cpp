@@ -647,6 +647,7 @@ TEST(Reconfigure, ClampingNeverChangesAValidValue)
       params.max_winch_speed = 20.0;  // so winch_speed may span its whole range [-20, 20]
       params.segment_length = 2.0;    // so noise may span its whole range (a sub-step's share <= segment / 10)
       params.min_deployed_length = 2.0;
+      params.axial_stiffness = 1e7;  // so weight_in_water may span its whole range (w L < EA: 1e4 N/m x 10 m)
       ASSERT_EQ(
           setParameter(params, row.name, integer ? ParamValue(static_cast<std::int64_t>(bound)) : ParamValue(bound)),
           "");

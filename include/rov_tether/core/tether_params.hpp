@@ -187,6 +187,10 @@ struct TetherParams
 
   /// Returns one message per invalid field ("field = value: allowed range"); empty when valid.
   std::vector<std::string> validate() const;
+  /// validate() of one section's material (CableSections::make: the tether's parameters with a section's
+  /// properties set, its sections and attachments cleared): every check but those of the whole cable, its own weight
+  /// against its axial stiffness, which CableSections::check makes section by section.
+  std::vector<std::string> validateMaterial() const;
 
   /// Damping rate gamma [1/s] equivalent to `drag` at kReferenceStep.
   double dampingRate() const;
