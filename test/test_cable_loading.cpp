@@ -148,6 +148,8 @@ TEST(Attachments, AFloatOrAClumpWeightBendsAWeightlessCableIntoAV)
   {
     TetherParams p = lockedString(10.0, 0.1);
     p.attachments = {body(buoyancy > 0.0 ? "float" : "clump", 5.0, buoyancy)};
+    // A clump weighs at least as much in air as in water (20 N / g = 2.04 kg); the statics need no mass.
+    p.attachments[0].mass = buoyancy > 0.0 ? 1.0 : 2.5;
     Tether sim(p, Position::Zero(), Position(8.0, 0.0, 0.0));
     ASSERT_TRUE(sim.advance(60.0).ok);
     double apex = 0.0, tension = 0.0;
@@ -650,7 +652,14 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
   TetherParams p = scenario.params;
   ASSERT_EQ(p.attachments.at(0).name, "clump");
   const double ea = p.axial_stiffness;  // the clump, 2 m from the vehicle, is on the first section: the tether's
-  p.attachments[0].net_buoyancy = -1e7;
+  // Each weight is given the mass it takes in air (m g = |F|: it displaces nothing), as one heavier in water than in
+  // air is refused of its own (Attachments.AClumpHeavierInWaterThanInAirIsRefused).
+  const auto clump = [&p](double net_buoyancy)
+  {
+    p.attachments[0].net_buoyancy = net_buoyancy;
+    p.attachments[0].mass = -net_buoyancy / CableLoading::kGravity;
+  };
+  clump(-1e7);
   std::string all;
   for (const std::string& error : p.validate())
   {
@@ -660,10 +669,10 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
             "attachments[0] 'clump': net_buoyancy = -1e+07 N: its magnitude must be below the axial_stiffness of "
             "the cable it is on, EA = 100000 N: alone it would stretch the cable by 10000%, which no cable survives "
             "and the solver takes for a blow-up (a segment at 100% strain)\n");
-  p.attachments[0].net_buoyancy = -ea;
+  clump(-ea);
   EXPECT_FALSE(p.validate().empty()) << "at the bound: 100%";
 
-  p.attachments[0].net_buoyancy = -0.99 * ea;
+  clump(-0.99 * ea);
   ASSERT_TRUE(p.validate().empty());
   scenario.params = p;
   PathDriver driver(scenario);
@@ -684,6 +693,7 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
   TetherParams soft = scenario.params;
   soft.sections.at(0).properties.emplace_back("axial_stiffness", 2e4);
   soft.attachments[0].net_buoyancy = -5e4;
+  soft.attachments[0].mass = 5e4 / CableLoading::kGravity;
   all.clear();
   for (const std::string& error : soft.validate())
   {
@@ -693,6 +703,32 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
                      "cable it is on, EA = 20000 N: alone it would stretch the cable by 250%"),
             std::string::npos)
       << all;
+}
+
+// A point body's net buoyancy is rho g V - m g: never below -m g, its weight in air, unless the volume it displaces
+// is negative. One heavier in water than in air (a 1 kg clump of -20 N in water, where 1 kg weighs 9.81 N in air) is
+// refused naming both, and the mass it would take (20 / g = 2.04 kg); at exactly -m g (it displaces nothing) and for
+// a float of no mass it is taken. Above water_surface_z the model weighs it m g: it would be lighter in air than in
+// water, as no body is.
+TEST(Attachments, AClumpHeavierInWaterThanInAirIsRefused)
+{
+  TetherParams p = lockedString(10.0, 0.1);
+  p.attachments = {body("clump", 2.0, -20.0)};  // 1 kg
+  std::string all;
+  for (const std::string& error : p.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_EQ(all,
+            "attachments[0] 'clump': net_buoyancy = -20 N: it weighs more in water than in air, mass x g = 1 kg x "
+            "9.80665 m/s^2 = 9.80665 N (it would displace a negative volume): give its mass, at least 2.03943 kg, or "
+            "a smaller weight\n");
+  EXPECT_THROW(Tether(p, Position::Zero(), Position(8.0, 0.0, 0.0)), std::invalid_argument);
+  p.attachments[0].mass = 20.0 / CableLoading::kGravity;  // displaces nothing: its weight in water is its weight in air
+  EXPECT_TRUE(p.validate().empty());
+  p.attachments[0].mass = 0.0;
+  p.attachments[0].net_buoyancy = 5.0;  // a float of no mass
+  EXPECT_TRUE(p.validate().empty());
 }
 
 // A cable hanging from one end carries at its top the weight in water of all of it below, w L (all of cable_length

@@ -339,6 +339,18 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
         errors.push_back(which + ": " + field + " = " + number(value) + ": must be in [0, 1e7]");
       }
     }
+    if (attachment.mass >= 0.0 && std::abs(attachment.net_buoyancy) <= 1e7 &&
+        attachment.net_buoyancy < -attachment.mass * CableLoading::kGravity)
+    {
+      // Its buoyancy is rho g V, its weight m g: net_buoyancy = rho g V - m g is never below -m g, its weight in air,
+      // unless the volume it displaces is negative. Heavier in water than in air is no body (a clump given a weight
+      // and no mass, say), and in air (above water_surface_z) it would weigh only m g.
+      errors.push_back(which + ": net_buoyancy = " + number(attachment.net_buoyancy) +
+                       " N: it weighs more in water than in air, mass x g = " + number(attachment.mass) + " kg x " +
+                       number(CableLoading::kGravity) + " m/s^2 = " + number(attachment.mass * CableLoading::kGravity) +
+                       " N (it would displace a negative volume): give its mass, at least " +
+                       number(-attachment.net_buoyancy / CableLoading::kGravity) + " kg, or a smaller weight");
+    }
     if (!(std::abs(attachment.net_buoyancy) <= 1e7))
     {
       errors.push_back(which + ": net_buoyancy = " + number(attachment.net_buoyancy) +

@@ -242,6 +242,7 @@ TEST(Converters, MarkersDrawSectionsAndAttachments)
   clump.name = "clump";
   clump.arc_length_from_vehicle = 5.0;  // on the drum while 3 m are out
   clump.net_buoyancy = -20.0;
+  clump.mass = 2.5;  // at least its 20 N in water over g: no body weighs more in water than in air
   params.attachments = {float_on, clump};
   Tether sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
   ASSERT_TRUE(test::succeeded(sim.advance(1.0)));
