@@ -314,6 +314,32 @@ TEST(VehicleTrack, AFirstPositionOutOfTheCablesReachIsSaid)
   EXPECT_NEAR(within.deployedLength(), 9.0, 1e-9) << "the brake winch paid out to it";
 }
 
+// A jump (a pose farther than max_vehicle_speed x dt + max_vehicle_jump, after which the cable is re-laid to the
+// vehicle) that lands out of the cable's reach is said as a first position out of it is: counted, with the distance,
+// the cable there is and the strain it is laid at (30 m against the 8 m a locked winch has out: (30 - 8) / 8 = 2.75).
+// A jump within reach (6 m) is no such thing. The node warns of each (TetherDiagnostics), as of a start out of reach.
+TEST(VehicleJump, AJumpOutOfTheCablesReachIsSaid)
+{
+  TetherParams locked;
+  locked.noise = 0.0;
+  locked.winch_mode = WinchMode::kLocked;
+  locked.initial_deployed_length = 8.0;
+  Tether sim(locked, Position::Zero(), Position(5.0, 0.0, 0.0));
+  ASSERT_EQ(sim.outOfReachCount(), 0u);
+  ASSERT_TRUE(succeeded(sim.addVehicleSample(0.5, Position(5.0, 0.0, 0.0))));
+  ASSERT_TRUE(succeeded(sim.addVehicleSample(0.6, Position(0.0, 6.0, 0.0))));  // a jump within reach
+  ASSERT_TRUE(succeeded(sim.advance(0.6)));
+  ASSERT_EQ(sim.jumpCount(), 1u);
+  EXPECT_EQ(sim.outOfReachCount(), 0u);
+  ASSERT_TRUE(succeeded(sim.addVehicleSample(0.7, Position(0.0, 30.0, 0.0))));  // out of it
+  ASSERT_TRUE(succeeded(sim.advance(0.1)));
+  ASSERT_EQ(sim.jumpCount(), 2u);
+  EXPECT_EQ(sim.outOfReachCount(), 1u);
+  EXPECT_EQ(sim.lastOutOfReach(),
+            "the vehicle's pose after a jump is 30 m from the spool, beyond the 8 m of cable the locked winch has out: "
+            "the cable is laid stretched to it (strain 2.75): it jumped out of the tether's reach");
+}
+
 TEST(VehicleJump, FiveMetreJumpIsSurvived)
 {
   for (SolverType solver : {SolverType::kPbd, SolverType::kPbdSequential})

@@ -326,10 +326,16 @@ Position Tether::vehicleAt(double t)
   const VehicleTrack::Target target = track_.advance(t);
   if (target.jumped)
   {
-    // The cable cannot follow a jump physically: re-lay it, at rest, to the new attachment point.
+    // The cable cannot follow a jump physically: re-lay it, at rest, to the new attachment point. One that lands
+    // out of the cable's reach is said as a first position out of it is (attachKinematic).
     track_.setPosition(target.position);
-    layOut(lengthToReach(target.position));
+    const std::string note = layOutToReach(target.position, "the vehicle's pose after a jump");
     ++jumps_;
+    if (!note.empty())
+    {
+      ++out_of_reach_;
+      last_out_of_reach_ = note + ": it jumped out of the tether's reach";
+    }
   }
   return target.position;
 }
