@@ -117,6 +117,8 @@ class Harness
   void moveVehicleOut();
   /// ~set_winch to `mode` (brake, locked, ...), no speed, no target, default.yaml's brake and target tensions.
   void setWinch(const std::string& mode);
+  /// A client of ~set_winch, once the service is there (10 s at most).
+  void winchClient(ros::ServiceClient* client);
 
   ros::NodeHandle nh_;
   rov_tether::TetherState state_;
@@ -334,10 +336,16 @@ void Harness::startFresh()
   ASSERT_EQ(state_.solver, "direct");
 }
 
+void Harness::winchClient(ros::ServiceClient* client)
+{
+  *client = nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
+  ASSERT_TRUE(client->waitForExistence(ros::Duration(10.0)));
+}
+
 void Harness::setWinch(const std::string& mode)
 {
-  ros::ServiceClient winch = nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  ASSERT_TRUE(winch.waitForExistence(ros::Duration(10.0)));
+  ros::ServiceClient winch;
+  ASSERT_NO_FATAL_FAILURE(winchClient(&winch));
   rov_tether::SetWinch command;
   command.request.mode = mode;
   command.request.brake_tension = 5.0;  // default.yaml
@@ -624,8 +632,8 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
   Harness& h = *harness;
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
-  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  ros::ServiceClient client;
+  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
   rov_tether::SetWinch srv;
   srv.request.mode = "speed";
   srv.request.speed = 0.5;
@@ -665,8 +673,8 @@ TEST(TetherNode, SetWinchSetsTensionsAndTheVehicleOutrunningItIsReported)
   Harness& h = *harness;
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
-  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  ros::ServiceClient client;
+  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
   rov_tether::SetWinch srv;
   srv.request.mode = "brake";
   srv.request.brake_tension = -1.0;
@@ -714,8 +722,8 @@ TEST(TetherNode, ASpeedWinchHeldAtItsStallPullIsReported)
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   EXPECT_EQ(h.tether_summary_.find("stall pull"), std::string::npos) << h.tether_summary_;
-  ros::ServiceClient client = h.nh_.serviceClient<rov_tether::SetWinch>("/tether_node/set_winch");
-  ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
+  ros::ServiceClient client;
+  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
   rov_tether::SetWinch srv;
   srv.request.mode = "speed";
   srv.request.speed = -0.5;
