@@ -47,24 +47,37 @@ void TetherDiagnostics::report(const ros::Time& now)
     ROS_ERROR_THROTTLE(1.0, "tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
                        static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
   }
+  // Throttled per tether, as the unconverged sub-steps below (ROS_WARN_THROTTLE's is per line: one tether's would
+  // hide another's).
+  const auto due = [&now](ros::Time& last)
+  {
+    const bool is_due = last.isZero() || now < last || (now - last).toSec() >= kFailureReportTime;  // or time went back
+    last = is_due ? now : last;
+    return is_due;
+  };
   if (tether_.winchOutrun())
   {
     last_outrun_time_ = now;
-    ROS_WARN_THROTTLE(5.0,
-                      "tether_node%s: the vehicle outruns the winch: it pays out at max_winch_speed = %.2f m/s and "
-                      "the cable stretches (spool tension above the %s)",
-                      label_.c_str(), tether_.params().max_winch_speed,
-                      tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+    if (due(last_outrun_log_))
+    {
+      ROS_WARN(
+          "tether_node%s: the vehicle outruns the winch: it pays out at max_winch_speed = %.2f m/s and the cable "
+          "stretches (spool tension above the %s)",
+          label_.c_str(), tether_.params().max_winch_speed,
+          tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+    }
   }
   if (tether_.winchStalled())
   {
     last_stall_time_ = now;
-    ROS_WARN_THROTTLE(
-        5.0,
-        "tether_node%s: the winch cannot reel in at its commanded %.2f m/s: the spool tension holds it at "
-        "the motor's stall pull of %.4g N (%s)",
-        label_.c_str(), tether_.winchCommandedSpeed(), tether_.params().winchPull(),
-        stallPullSource(tether_.params()).c_str());
+    if (due(last_stall_log_))
+    {
+      ROS_WARN(
+          "tether_node%s: the winch cannot reel in at its commanded %.2f m/s: the spool tension holds it at the "
+          "motor's stall pull of %.4g N (%s)",
+          label_.c_str(), tether_.winchCommandedSpeed(), tether_.params().winchPull(),
+          stallPullSource(tether_.params()).c_str());
+    }
   }
   const SolverEffort& effort = tether_.solverEffort();
   if (effort.unconverged > reported_unconverged_)

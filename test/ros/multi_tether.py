@@ -3,7 +3,8 @@
 vehicle (its own pose topic and spool), each reports its own diagnostics, and the two over their
 cpu_budget degrade visibly as configured: fewer iterations in ~state (t7), with a WARN saying so; and
 fewer markers (t6), which must relieve it: the message alone is no success, the load measured after
-giving markers up must be within the budget."""
+giving markers up must be within the budget. Two tethers whose winches are held at their stall pull at once
+both warn of it: the warning is throttled per tether, not by one throttle for the whole node."""
 import sys
 import unittest
 
@@ -12,8 +13,10 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rospy import AnyMsg
 from geometry_msgs.msg import PoseStamped
+from rosgraph_msgs.msg import Log
 
 from rov_tether.msg import TetherState
+from rov_tether.srv import SetWinch
 
 TETHERS = 8
 BUDGET_T6 = 0.02  # t6/cpu_budget in multi_tether.test
@@ -40,6 +43,9 @@ class MultiTether(unittest.TestCase):
         # node something that reduce_markers can give up.
         cls.t6_markers = rospy.Subscriber("/tether_node/t6/markers", AnyMsg, lambda m: None, queue_size=1)
         cls.t6_history = []  # (physics load, marker load, message) of each report
+        cls.warnings = []  # the node's WARN lines on /rosout
+        rospy.Subscriber("/rosout", Log,
+                         lambda m: cls.warnings.append(m.msg) if m.level == Log.WARN else None, queue_size=1000)
 
     @classmethod
     def on_diagnostics(cls, msg):
@@ -113,6 +119,26 @@ class MultiTether(unittest.TestCase):
         self.assertNotIn("over cpu_budget", relieved[-1][2])
         # The markers' share fell (not in proportion to the rate: a message's fixed costs stay).
         self.assertLess(relieved[-1][1], first_markers)
+
+
+    def test_3_two_stalled_winches_both_warn(self):
+        # t0 and t1 reel in at 0.5 m/s (speed mode) while their vehicles hold still 2 m and 2.5 m out: the slack
+        # (deployed less the distance, under 0.5 m after test_1: deployed <= 1.25 x the distance) is in within a
+        # second, and then each motor's stall pull (default.yaml: 1.25 x (5 + 1) = 7.5 N) holds its drum: both are
+        # held at their stall pull within about a second of each other, and each is warned of within the 5 s a
+        # warning is throttled for. One throttle for the node (ROS_WARN_THROTTLE's, per line) let only the first
+        # through and hid the other for 5 s.
+        for i in (0, 1):
+            name = "/tether_node/t%d/set_winch" % i
+            rospy.wait_for_service(name, timeout=10.0)
+            answer = rospy.ServiceProxy(name, SetWinch)(mode="speed", speed=-0.5)
+            self.assertTrue(answer.success, answer.message)
+        self.publish_poses(4.0)
+        said = {i: [w for w in self.warnings if w.startswith("tether_node t%d: the winch cannot reel in" % i)]
+                for i in (0, 1)}
+        print("[ measured ] stall warnings: t0 %d, t1 %d" % (len(said[0]), len(said[1])), file=sys.stderr)
+        self.assertTrue(said[0], "t0's stall was not warned of: %s" % self.warnings[-10:])
+        self.assertTrue(said[1], "t1's stall was not warned of: %s" % self.warnings[-10:])
 
 
 if __name__ == "__main__":

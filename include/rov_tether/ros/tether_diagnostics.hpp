@@ -67,11 +67,14 @@ class TetherDiagnostics
   ros::Time last_failure_time_;              ///< When the last failure was seen; diagnostics show ERROR for a while.
   ros::Time last_outrun_time_;               ///< When the vehicle last outran the winch; diagnostics WARN for a while.
   ros::Time last_stall_time_;                ///< When a reel-in was last held at the stall pull (WARN for a while).
-  std::uint64_t reported_drops_ = 0;         ///< Dropped poses already seen.
-  ros::Time last_drop_time_;                 ///< When poses were last dropped; diagnostics show WARN for a while.
-  std::uint64_t reported_unconverged_ = 0;   ///< Steps short of solver_tolerance already logged.
-  ros::Time last_unconverged_time_;          ///< When the last above solver_residual_warning was seen (WARN).
-  double last_unconverged_residual_ = 0.0;   ///< Its residual [-] and iterations, for the WARN.
+  /// When this tether's outrun and stall warnings were last logged (each once per kFailureReportTime a tether:
+  /// ROS_WARN_THROTTLE's throttle is per line, so one tether's warning hid every other tether's).
+  ros::Time last_outrun_log_, last_stall_log_;
+  std::uint64_t reported_drops_ = 0;        ///< Dropped poses already seen.
+  ros::Time last_drop_time_;                ///< When poses were last dropped; diagnostics show WARN for a while.
+  std::uint64_t reported_unconverged_ = 0;  ///< Steps short of solver_tolerance already logged.
+  ros::Time last_unconverged_time_;         ///< When the last above solver_residual_warning was seen (WARN).
+  double last_unconverged_residual_ = 0.0;  ///< Its residual [-] and iterations, for the WARN.
   int last_unconverged_iterations_ = 0;
   ros::Time last_unconverged_log_;  ///< When it was last logged (once per kFailureReportTime a tether).
   SolverEffort period_start_;       ///< The solver's effort at the last report (for its mean since).
