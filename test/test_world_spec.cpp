@@ -19,6 +19,10 @@ namespace rov_tether::test
 namespace
 {
 
+/// buildWorld's warnings (a vehicle out of its cable's reach), which the tests here that build a world do not check
+/// (Runner.APathStartingOutOfTheTethersReachIsSaid does).
+std::vector<std::string> world_warnings;
+
 namespace fs = std::filesystem;
 
 TEST(WorldSpec, TetherNamesFollowOneRule)
@@ -79,7 +83,7 @@ TEST(WorldSpec, NamesAreCheckedAcrossTethersObstaclesAndCameras)
   World world;
   bad = spec;
   bad.tethers[1].name = "a";
-  EXPECT_EQ(buildWorld(bad, &world), "tethers[1].name = 'a': used twice");
+  EXPECT_EQ(buildWorld(bad, &world, &world_warnings), "tethers[1].name = 'a': used twice");
 }
 
 // Issue 21: the scenario path read each mesh to check it, threw it away and read it again to run. Now the
@@ -105,7 +109,7 @@ TEST(WorldSpec, AMeshFileIsReadOnceFromScenarioToRun)
 
   // As rov_tether_run does it: the world built first (a mesh that cannot be read is a bad scenario), then run.
   World world;
-  ASSERT_EQ(buildWorld(worldSpecOf(scenario), &world), "");
+  ASSERT_EQ(buildWorld(worldSpecOf(scenario), &world, &world_warnings), "");
   ASSERT_EQ(runScenario(scenario, world, (dir / "out2").string(), &summary), "");
   EXPECT_EQ(meshFilesRead(), before + 2);
   ASSERT_EQ(world.obstacleCount(), 1u);
@@ -114,7 +118,7 @@ TEST(WorldSpec, AMeshFileIsReadOnceFromScenarioToRun)
   // A file that is not there is found when the world is built, naming the obstacle and the file.
   scenario.obstacles[0].file = (dir / "missing.stl").string();
   World broken;
-  const std::string error = buildWorld(worldSpecOf(scenario), &broken);
+  const std::string error = buildWorld(worldSpecOf(scenario), &broken, &world_warnings);
   EXPECT_NE(error.find("obstacles[0]: obstacle 'wreck': mesh file '"), std::string::npos) << error;
   EXPECT_NE(error.find("cannot be read"), std::string::npos) << error;
   fs::remove_all(dir);
@@ -141,32 +145,32 @@ TEST(WorldSpec, ASpoolBelowTheSeabedOrInsideAnObstacleIsRefused)
   pillar.position = Position(0.5, 0.0, 0.0);
   spec.obstacles = {pillar};
   World on_the_seabed;
-  EXPECT_EQ(buildWorld(spec, &on_the_seabed), "");
+  EXPECT_EQ(buildWorld(spec, &on_the_seabed, &world_warnings), "");
 
   WorldSpec below = spec;
   below.tethers[0].params.seabed_z = 0.0;
   World world;
-  EXPECT_EQ(buildWorld(below, &world), "spool [0, 0, -1] m is below the seabed (seabed_z = 0 m)");
+  EXPECT_EQ(buildWorld(below, &world, &world_warnings), "spool [0, 0, -1] m is below the seabed (seabed_z = 0 m)");
 
   WorldSpec inside = spec;
   inside.obstacles[0].position = Position(0.2, 0.0, 0.0);
   World pillared;
-  EXPECT_EQ(buildWorld(inside, &pillared), "spool [0, 0, -1] m is inside obstacle 'pillar'");
+  EXPECT_EQ(buildWorld(inside, &pillared, &world_warnings), "spool [0, 0, -1] m is inside obstacle 'pillar'");
   // The node's spool on a tf frame, and its obstacle on one, are not where their positions say yet: not checked.
   WorldSpec moving = below;
   moving.tethers[0].spool_moves = true;
   World framed_spool;
-  EXPECT_EQ(buildWorld(moving, &framed_spool), "");
+  EXPECT_EQ(buildWorld(moving, &framed_spool, &world_warnings), "");
   WorldSpec framed = inside;
   framed.obstacles[0].frame = "ship";
   World framed_obstacle;
-  EXPECT_EQ(buildWorld(framed, &framed_obstacle), "");
+  EXPECT_EQ(buildWorld(framed, &framed_obstacle, &world_warnings), "");
 
   inside.tethers.push_back(spec.tethers[0]);
   inside.tethers[0].spool = Position(-3.0, 0.0, -1.0);
   inside.tethers[1].name = "b";
   World two;
-  EXPECT_EQ(buildWorld(inside, &two), "tethers: b: spool [0, 0, -1] m is inside obstacle 'pillar'");
+  EXPECT_EQ(buildWorld(inside, &two, &world_warnings), "tethers: b: spool [0, 0, -1] m is inside obstacle 'pillar'");
 }
 
 }  // namespace

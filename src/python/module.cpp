@@ -82,10 +82,15 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
   }
   auto session = std::make_shared<Session>();
   session->scenario = std::move(scenario);
-  const std::string built = buildWorld(worldSpecOf(session->scenario), &session->world);
+  std::vector<std::string> warnings;
+  const std::string built = buildWorld(worldSpecOf(session->scenario), &session->world, &warnings);
   if (!built.empty())
   {
     throw py::value_error(built);
+  }
+  for (const std::string& warning : warnings)
+  {
+    py::module_::import("warnings").attr("warn")(warning);  // a vehicle out of its cable's reach, as the runner says
   }
   session->stepper = std::make_unique<ScenarioStepper>(session->scenario, session->world);
   return session;

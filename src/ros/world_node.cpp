@@ -228,10 +228,15 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   world_spec_ = describeWorld(private_nh_, world_names, setups, &world_options);
   const WorldSpec& world_spec = world_spec_;
   const bool has_cameras = private_nh_.hasParam("cameras");
-  const std::string world_error = buildWorld(world_spec, &world_);
+  std::vector<std::string> world_warnings;
+  const std::string world_error = buildWorld(world_spec, &world_, &world_warnings);
   if (!world_error.empty())
   {
     throw std::runtime_error("invalid parameters in " + private_nh_.getNamespace() + ": " + world_error);
+  }
+  for (const std::string& warning : world_warnings)
+  {
+    ROS_WARN("tether_node: %s", warning.c_str());
   }
   const NodeOptions& clock = setups.front().options;
   double state_rate = 0.0;

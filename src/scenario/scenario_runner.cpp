@@ -323,8 +323,14 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
 {
   // The world: tethers in scenario order, then the obstacles (built before any file is opened).
   World world;
-  const std::string error = buildWorld(worldSpecOf(scenario), &world);
-  return error.empty() ? runScenario(scenario, world, out_dir, summary, observers) : error;
+  std::vector<std::string> world_warnings;
+  const std::string error = buildWorld(worldSpecOf(scenario), &world, &world_warnings);
+  const std::string run = error.empty() ? runScenario(scenario, world, out_dir, summary, observers) : error;
+  if (run.empty() && summary != nullptr)
+  {
+    summary->world_warnings = std::move(world_warnings);
+  }
+  return run;
 }
 
 std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
@@ -384,7 +390,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
 
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning)
 {
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings = summary.world_warnings;
   if (!summary.earlier_outputs.empty())
   {
     std::string list;

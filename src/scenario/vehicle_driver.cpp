@@ -28,8 +28,9 @@ Position startAttachment(const DynamicVehicle& vehicle)
   return vehicle.start + Eigen::AngleAxisd(vehicle.start_yaw, Eigen::Vector3d::UnitZ()) * vehicle.attachment_offset;
 }
 
-std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim)
+std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim, std::string* warning)
 {
+  warning->clear();
   if (!tether.dynamic)
   {
     return "";
@@ -42,7 +43,7 @@ std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim)
   const Status attached = sim->attachVehicleBody(startBody(*tether.dynamic), tether.dynamic->attachment_offset);
   if (attached.ok && !attached.message.empty())
   {
-    std::fprintf(stderr, "rov_tether: warning: vehicle: %s\n", attached.message.c_str());  // out of reach
+    *warning = "vehicle: " + attached.message;  // out of reach
   }
   return attached.ok ? "" : "vehicle: " + attached.message;
 }

@@ -165,7 +165,7 @@ std::string checkSpools(const WorldSpec& spec, const World& world)
 
 }  // namespace
 
-std::string buildWorld(const WorldSpec& spec, World* world)
+std::string buildWorld(const WorldSpec& spec, World* world, std::vector<std::string>* warnings)
 {
   const std::string invalid = validateWorldSpec(spec);
   if (!invalid.empty())
@@ -187,7 +187,8 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     {
       return "tethers: " + added.message;
     }
-    const std::string attached = attachDynamicVehicle(tether, &world->tether(world->size() - 1));
+    std::string warning;
+    const std::string attached = attachDynamicVehicle(tether, &world->tether(world->size() - 1), &warning);
     if (!attached.empty())
     {
       return (spec.tethers.size() == 1 ? "" : "tethers: " + tether.name + ": ") + attached;
@@ -195,9 +196,11 @@ std::string buildWorld(const WorldSpec& spec, World* world)
     const std::string& out_of_reach = world->tether(world->size() - 1).lastOutOfReach();
     if (!tether.dynamic && !out_of_reach.empty())
     {
-      // Its path's start, as attachDynamicVehicle says a dynamic vehicle's (whose own attach lays it again).
-      std::fprintf(stderr, "rov_tether: warning: %svehicle: %s\n",
-                   spec.tethers.size() == 1 ? "" : ("tether " + tether.name + ": ").c_str(), out_of_reach.c_str());
+      warning = "vehicle: " + out_of_reach;  // its path's start, as attachDynamicVehicle says a dynamic vehicle's
+    }
+    if (!warning.empty())
+    {
+      warnings->push_back((spec.tethers.size() == 1 ? "" : "tether " + tether.name + ": ") + warning);
     }
   }
   for (std::size_t i = 0; i < spec.tethers.size() && !spec.vehicles_attached_later; ++i)

@@ -302,7 +302,8 @@ int main(int argc, char** argv)
   // The world, built once from the scenario's description (each mesh file read here): one that cannot be
   // built is a bad scenario, as a field that cannot be read is.
   rov_tether::World world;
-  error = rov_tether::buildWorld(rov_tether::worldSpecOf(scenario), &world);
+  std::vector<std::string> world_warnings;
+  error = rov_tether::buildWorld(rov_tether::worldSpecOf(scenario), &world, &world_warnings);
   if (!error.empty())
   {
     std::fprintf(stderr, "rov_tether_run: %s: %s\n", scenario_path.c_str(), error.c_str());
@@ -328,9 +329,14 @@ int main(int argc, char** argv)
   error = error.empty() && dataset ? dataset->close() : error;
   if (!error.empty())
   {
+    for (const std::string& warning : world_warnings)
+    {
+      std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
+    }
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 1;
   }
+  s.world_warnings = std::move(world_warnings);  // said with the run's warnings, after the summary
   printRun(scenario, scenario_path, s);
   printWritten(scenario, out_dir, s, dataset.get());
   for (const std::string& warning : rov_tether::runWarnings(scenario, s, options.max_tension_warning))

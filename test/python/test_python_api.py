@@ -164,6 +164,17 @@ def test_a_parameter_that_rebuilds_the_cable_is_taken_with_a_warning():
     assert {entry["kind"] for entry in world.topology()} >= {"wrap_turns", "wrap_angle"}
 
 
+# A path that starts out of the tether's reach (30 m out on a locked winch with 8 m out: laid stretched, strain
+# (30 - 8) / 8 = 2.75) is said to Python as a UserWarning when the World is built, as the runner prints it, and
+# nothing reaches the process's stderr (the library printed it there: raw C stderr beside Python's own warnings).
+def test_a_path_out_of_the_tethers_reach_is_a_python_warning(capfd):
+    with pytest.warns(UserWarning, match=r"30 m from the spool, beyond the 8 m of cable .*\(strain 2.75\): its path "
+                                         r"starts out of the tether's reach"):
+        rov_tether.World({"spool": [0.0, 0.0, 0.0], "vehicle": [[0, 30, 0, 0], [1, 30, 0, 0]],
+                          "params": {"winch_mode": "locked", "initial_deployed_length": 8.0, "noise": 0.0}})
+    assert capfd.readouterr().err == ""
+
+
 # The BlueROV2 Heavy (config/vehicles/bluerov2_heavy.yaml: Xu 13.7 N s/m, Xuu 141 N s^2/m^2) pushed by 20 N of surge
 # from Python, its tether paying out behind it through a 1 N brake. Its time constant m' / (Xu + 2 Xuu U) is
 # 0.2 s, so after 20 s it moves at the speed where the thrust less the tether's pull (the tension at the vehicle,

@@ -47,6 +47,8 @@ struct RunSummary
   std::size_t topology_rows = 0;    ///< Rows of topology.csv (0: not written).
   std::size_t vehicle_rows = 0;     ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
   std::vector<RunSummary> tethers;  ///< Each tether's own figures (steps: its own), in scenario order.
+  /// What building the world said (buildWorld's warnings: a vehicle out of its cable's reach), for runWarnings.
+  std::vector<std::string> world_warnings;
   /// The output directory's files of an earlier run that this run did not replace (earlierOutputs).
   std::vector<std::string> earlier_outputs;
 };

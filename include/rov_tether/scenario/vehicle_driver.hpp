@@ -20,8 +20,9 @@ VehicleBody startBody(const DynamicVehicle& vehicle);
 Position startAttachment(const DynamicVehicle& vehicle);
 
 /// Attaches `tether.dynamic` to `sim` (a tether makeTether made for it: its end at startAttachment). Only the
-/// `direct` solver couples a vehicle: another is refused here, naming it. "" or the error.
-[[nodiscard]] std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim);
+/// `direct` solver couples a vehicle: another is refused here, naming it. "" or the error. A start out of the
+/// cable's reach is taken and said in `warning` ("" when there is nothing to say; printed nowhere: the caller says it).
+[[nodiscard]] std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim, std::string* warning);
 
 /**
  * Drives one tether's dynamic vehicle (ScenarioTether::dynamic) step by step. Before each step of `sim`,

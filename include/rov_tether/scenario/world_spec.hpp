@@ -72,7 +72,10 @@ Tether makeTether(const ScenarioTether& tether);
  * vehicle's start pose and is mounted on it (mountSpool), unless spec.vehicles_attached_later.
  * A spool of its own (no vehicle or tf frame moves it) below its tether's seabed_z or inside a primitive obstacle
  * placed in the world is refused, naming both.
+ * What is taken but must be said, a vehicle (a path's start, a dynamic vehicle's) out of its cable's reach, is
+ * appended to `warnings` (not null), named as an error is ("tether far: vehicle: ..." among several); nothing is
+ * printed: the runner prints them with its warnings, the node logs them, Python raises them with warnings.warn.
  */
-[[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world);
+[[nodiscard]] std::string buildWorld(const WorldSpec& spec, World* world, std::vector<std::string>* warnings);
 
 }  // namespace rov_tether
