@@ -642,19 +642,15 @@ TEST(Contact, CapstanRatioAtTwoWrapAngles)
   }
 }
 
-// What a tether touched is recorded per segment of the cable that touched it. A cable rebuilt (here with twice as
-// many segments, laid out anew at its deployed length) has touched nothing yet: until its next step the topology
-// reports no contact angle for it (it read the old record, half as long, past its end, for joints of another
-// cable), while its wrap, a property of its shape, is still reported. The scene is the capstan's above (the cable
-// drawn round a pillar, wrapped by half a turn).
-TEST(Contact, ARebuiltCableHasTouchedNothingUntilItsNextStep)
+/// The capstan scene above in a world (a brake-held cable drawn round a pillar, wrapped by half a turn), driven 18 s,
+/// so that the record of what the cable touched is full; `params` gets the tether's parameters.
+void wrapHalfATurn(World& world, TetherParams* params)
 {
   TetherParams p = tautParams(0.0);
   p.winch_mode = WinchMode::kBrake;
   p.brake_tension = 20.0;
   p.initial_deployed_length = 7.0;
   const double reach = 0.5 + 0.5 * p.diameter;
-  World world;
   ASSERT_TRUE(
       world.add("rov", std::make_unique<Tether>(p, Position(-reach, -5.0, 0.0), Position(-reach, 2.0, 0.0))).ok);
   std::vector<std::unique_ptr<Obstacle>> obstacles;
@@ -667,6 +663,19 @@ TEST(Contact, ARebuiltCableHasTouchedNothingUntilItsNextStep)
   };
   drive(world, {path}, 0.0, 18.0);
   ASSERT_NEAR(entry(world, TopologyEntry::Kind::ContactAngle, 0, 0), kPi, 0.1 * kPi);  // as in the capstan scene
+  *params = p;
+}
+
+// What a tether touched is recorded per segment of the cable that touched it. A cable rebuilt (here with twice as
+// many segments, laid out anew at its deployed length) has touched nothing yet: until its next step the topology
+// reports no contact angle for it (it read the old record, half as long, past its end, for joints of another
+// cable), while its wrap, a property of its shape, is still reported. The scene is the capstan's above (the cable
+// drawn round a pillar, wrapped by half a turn).
+TEST(Contact, ARebuiltCableHasTouchedNothingUntilItsNextStep)
+{
+  World world;
+  TetherParams p;
+  ASSERT_NO_FATAL_FAILURE(wrapHalfATurn(world, &p));
   TetherParams finer = world.tether(0).params();
   finer.segment_length = 0.5 * p.segment_length;
   ASSERT_TRUE(world.tether(0).setParams(finer).ok);
@@ -680,24 +689,9 @@ TEST(Contact, ARebuiltCableHasTouchedNothingUntilItsNextStep)
 // which had touched nothing). The wrap, a property of the shape, is still reported.
 TEST(Contact, ACableRebuiltWithItsParticleCountHasTouchedNothingUntilItsNextStep)
 {
-  TetherParams p = tautParams(0.0);
-  p.winch_mode = WinchMode::kBrake;
-  p.brake_tension = 20.0;
-  p.initial_deployed_length = 7.0;
-  const double reach = 0.5 + 0.5 * p.diameter;
   World world;
-  ASSERT_TRUE(
-      world.add("rov", std::make_unique<Tether>(p, Position(-reach, -5.0, 0.0), Position(-reach, 2.0, 0.0))).ok);
-  std::vector<std::unique_ptr<Obstacle>> obstacles;
-  obstacles.push_back(primitive("pillar", ShapeType::Cylinder, Position::Zero(), 0.5, 4.0, 0.0));
-  ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
-  const Path path = [&](double t)
-  {
-    const double a = std::min(t, 3.0) / 3.0, v = 0.2 * std::max(t - 3.0, 0.0);
-    return Position(-reach + 2.0 * reach * a, 2.0 - v, 0.0);
-  };
-  drive(world, {path}, 0.0, 18.0);
-  ASSERT_NEAR(entry(world, TopologyEntry::Kind::ContactAngle, 0, 0), kPi, 0.1 * kPi);  // as in the capstan scene
+  TetherParams p;
+  ASSERT_NO_FATAL_FAILURE(wrapHalfATurn(world, &p));
   const std::size_t particles = world.tether(0).state().size();
   TetherParams scaled = world.tether(0).params();
   scaled.cable_length = 2.0 * p.cable_length;

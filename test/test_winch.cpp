@@ -460,6 +460,33 @@ TEST(Winch, AReelInHeldAtTheStallPullIsSaid)
   }
 }
 
+/// The back-driving jerk's winch: constant_tension 5 N (deadband 1 N, so a stall pull of 1.25 x 6 = 7.5 N), 3 m/s,
+/// 1 m/s^2, 11 m of a 40 m cable out to a vehicle 10 m away.
+TetherParams jerkParams()
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.cable_length = 40.0;
+  p.initial_deployed_length = 11.0;
+  p.winch_mode = WinchMode::kConstantTension;
+  p.target_tension = 5.0;
+  p.tension_deadband = 1.0;
+  p.max_winch_speed = 3.0;
+  p.max_winch_acceleration = 1.0;
+  return p;
+}
+
+/// When the jerk starts [s].
+constexpr double kJerkTime = 10.0;
+
+/// The vehicle's x [m]: 10 m out until kJerkTime, 0.5 m further in 50 ms (10 m/s), then 2 m back in at 5 m/s, held.
+double jerkPath(double t)
+{
+  return t < kJerkTime          ? 10.0
+         : t < kJerkTime + 0.05 ? 10.0 + 10.0 * (t - kJerkTime)
+                                : std::max(8.5, 10.5 - 5.0 * (t - kJerkTime - 0.05));
+}
+
 // A massless drum back-driven past its motor's stall pull turns as the pull drives it; once the pull lets go, its drive
 // has it again at the drive's own speed (docs/limitations.md: the pillar wrap's drum kept the slip's speed, up to
 // max_winch_speed, and paid out into slack cable slowing at max_winch_acceleration, because the drive's speed was
@@ -475,41 +502,27 @@ TEST(Winch, AReelInHeldAtTheStallPullIsSaid)
 // T / EA is 5e-5: the deployed length is the vehicle's 8.5 m within 1% (the old drive ended 27.9 m out).
 TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
 {
-  TetherParams p;
-  p.noise = 0.0;
-  p.cable_length = 40.0;
-  p.initial_deployed_length = 11.0;
-  p.winch_mode = WinchMode::kConstantTension;
-  p.target_tension = 5.0;
-  p.tension_deadband = 1.0;
-  p.max_winch_speed = 3.0;
-  p.max_winch_acceleration = 1.0;
+  const TetherParams p = jerkParams();
   const double pull = p.winchPull();
   ASSERT_DOUBLE_EQ(pull, 7.5);
   Tether sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
-  constexpr double kJerk = 10.0;
-  auto x = [](double t)
-  {
-    return t < kJerk          ? 10.0
-           : t < kJerk + 0.05 ? 10.0 + 10.0 * (t - kJerk)
-                              : std::max(8.5, 10.5 - 5.0 * (t - kJerk - 0.05));
-  };
+  const auto x = jerkPath;
   double v0 = 0.0, slipped = 0.0, worst = -1e9, worst_at = 0.0, paid_slack = 0.0;
   double last = 0.0;
   int below = 0;
   const double a = p.max_winch_acceleration, h = p.time_step;
-  drive(sim, 0.0, kJerk + 6.0, x,
+  drive(sim, 0.0, kJerkTime + 6.0, x,
         [&]
         {
           const double t = sim.time();
           const double v = sim.winchSpeed();
-          if (t <= kJerk)
+          if (t <= kJerkTime)
           {
             v0 = v;
             last = sim.deployedLength();
             return;
           }
-          const double bound = v0 + a * (t - kJerk) + a * h;
+          const double bound = v0 + a * (t - kJerkTime) + a * h;
           if (sim.summary().tension_spool >= 0.99 * pull)
           {
             slipped = std::max(slipped, v - bound);
@@ -544,31 +557,19 @@ TEST(Winch, ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo)
 // (0.6 mm from 0.035 m/s; a drive started at the slip's 2.65 m/s paid out 3.5 m).
 TEST(Winch, AModeChangeInASlipStartsFromTheDriveNotTheSlip)
 {
-  TetherParams p;
-  p.noise = 0.0;
-  p.cable_length = 40.0;
-  p.initial_deployed_length = 11.0;
-  p.winch_mode = WinchMode::kConstantTension;
-  p.target_tension = 5.0;
-  p.max_winch_speed = 3.0;
-  p.max_winch_acceleration = 1.0;
+  TetherParams p = jerkParams();
   Tether sim(p, Position::Zero(), Position(10.0, 0.0, 0.0));
-  constexpr double kJerk = 10.0, kSwitch = kJerk + 0.03;
-  auto x = [](double t)
-  {
-    return t < kJerk          ? 10.0
-           : t < kJerk + 0.05 ? 10.0 + 10.0 * (t - kJerk)
-                              : std::max(8.5, 10.5 - 5.0 * (t - kJerk - 0.05));
-  };
+  constexpr double kSwitch = kJerkTime + 0.03;
+  const auto x = jerkPath;
   double v0 = 0.0;
-  drive(sim, 0.0, kSwitch, x, [&] { v0 = sim.time() <= kJerk ? sim.winchSpeed() : v0; });
+  drive(sim, 0.0, kSwitch, x, [&] { v0 = sim.time() <= kJerkTime ? sim.winchSpeed() : v0; });
   const double slip = sim.winchSpeed(), at_switch = sim.deployedLength();
   p.winch_mode = WinchMode::kSpeed;
   p.winch_speed = 0.0;
   ASSERT_TRUE(sim.setParams(p).ok);
-  drive(sim, kSwitch, kJerk + 4.0, x, [] {});
+  drive(sim, kSwitch, kJerkTime + 4.0, x, [] {});
   const double a = p.max_winch_acceleration, h = p.time_step;
-  const double start = std::abs(v0) + a * (kSwitch - kJerk) + a * h;
+  const double start = std::abs(v0) + a * (kSwitch - kJerkTime) + a * h;
   const double bound = start * start / (2.0 * a) + start * h;
   std::printf(
       "[ measured ] switched to speed 0 while slipping at %.3f m/s: %.4f m paid out after the switch (bound %.4f m)\n",
