@@ -579,6 +579,47 @@ TEST(Runner, RowsFasterThanTheStepsAreRefused)
   fs::remove(scenario_path);
 }
 
+// A row holds the state of the last step at or before its output time, and says that step's time: at 3 rows per s on
+// 5 ms steps the rows fall at 0, 0.33, 0.665 and 1 s (a whole number of steps each, within a step before k / 3 s),
+// in state.csv and shape.csv alike. They were labelled 0.333333 and 0.666667 s, times never simulated.
+TEST(Runner, ARowSaysTheTimeOfTheStateItHolds)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  scenario.params.time_step = 0.005;
+  scenario.output_rate = 3.0;
+  scenario.duration = 1.0;
+  const std::string dir = temporaryDirectory("row_times");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  const double h = scenario.params.time_step;
+  std::ifstream state(fs::path(dir) / "state.csv");
+  std::string line;
+  std::getline(state, line);  // the header
+  std::vector<double> times;
+  while (std::getline(state, line))
+  {
+    times.push_back(std::stod(line.substr(0, line.find(','))));
+  }
+  ASSERT_EQ(times.size(), 4u);
+  for (std::size_t k = 0; k < times.size(); ++k)
+  {
+    const double asked = static_cast<double>(k) / scenario.output_rate;
+    EXPECT_NEAR(times[k] / h, std::round(times[k] / h), 1e-3) << "row " << k << " at " << times[k] << " s";
+    EXPECT_LE(times[k], asked + 1e-9) << "row " << k;
+    EXPECT_GT(times[k], asked - h) << "row " << k;
+  }
+  std::ifstream shape(fs::path(dir) / "shape.csv");
+  std::getline(shape, line);
+  std::set<double> shape_times;
+  while (std::getline(shape, line))
+  {
+    shape_times.insert(std::stod(line.substr(0, line.find(','))));
+  }
+  EXPECT_EQ(shape_times, std::set<double>(times.begin(), times.end()));
+  fs::remove_all(dir);
+}
+
 // The runner warns as the node does (issue 26, item 14): a ROV diving 30 m straight away from a spool on a
 // 10 m cable, strain rule, pbd: the cable ends fully deployed and strained far beyond anything real (the
 // issue's run read 2.4e6 N at strain 24 without a word). Over-tension above the node's default

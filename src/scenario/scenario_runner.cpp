@@ -268,19 +268,25 @@ std::size_t writeOutputs(const Scenario& scenario, World& world, ScenarioStepper
     {
       break;
     }
+    // Each row holds the state of the last step at or before t_out and says that step's time (3 rows per s on 5 ms
+    // steps: 0.33 s, not 0.333333 s, which no step reached); t_out itself where a step lands on it (to rounding:
+    // 60 steps of 0.005 s are 0.30000000000000004 s).
+    const auto rowTime = [t_out](double state) { return std::abs(state - t_out) <= 1e-9 ? t_out : state; };
     for (std::size_t i = 0; i < each.size(); ++i)
     {
-      writeTether(world.tether(i), t_out, files[2 * i].file, files[2 * i + 1].file, tensions, positions, &each[i]);
+      Tether& tether = world.tether(i);
+      writeTether(tether, rowTime(tether.time()), files[2 * i].file, files[2 * i + 1].file, tensions, positions,
+                  &each[i]);
     }
     for (std::size_t j = 0; j < stepper.vehicles().size(); ++j)
     {
       const auto& [i, driver] = stepper.vehicles()[j];
-      writeVehicleRow(files[2 * each.size() + j].file, t_out, world.tether(i), driver);
+      writeVehicleRow(files[2 * each.size() + j].file, rowTime(world.tether(i).time()), world.tether(i), driver);
       ++each[i].vehicle_rows;
     }
     if (topology_file != nullptr)
     {
-      topology_rows += writeTopology(world, t_out, topology_file, entries);
+      topology_rows += writeTopology(world, rowTime(world.time()), topology_file, entries);
     }
   }
   stepper.observe(observers, scenario.duration);
