@@ -82,8 +82,11 @@ void LoadGovernor::degrade(Tether& tether)
     {
       // Only the iterations changed, to at least min_iterations, which is read within iterations' own
       // range [1, 1000]: not refused in practice. Were it, the tether keeps its iterations and the log says why.
-      ROS_WARN_THROTTLE(5.0, "tether_node%s: reducing iterations to %d refused: %s", label_.c_str(), params.iterations,
-                        status.message.c_str());
+      if (reduce_log_.due())
+      {
+        ROS_WARN("tether_node%s: reducing iterations to %d refused: %s", label_.c_str(), params.iterations,
+                 status.message.c_str());
+      }
     }
   }
   else if (options_.overload_policy == "reduce_markers" && marker_rate_ > 1.0 && marker_load_ > 0.0)
@@ -91,10 +94,12 @@ void LoadGovernor::degrade(Tether& tether)
     marker_rate_ = std::max(1.0, marker_rate_ / 2.0);
     degraded_ = markersText(marker_rate_);
   }
-  ROS_WARN_THROTTLE(
-      5.0, "tether_node%s: physics and markers use %.1f%% + %.1f%% of the wall time (cpu_budget %.3g%%): %s",
-      label_.c_str(), 100 * physics_load_, 100 * marker_load_, 100 * options_.cpu_budget,
-      degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
+  if (load_log_.due())
+  {
+    ROS_WARN("tether_node%s: physics and markers use %.1f%% + %.1f%% of the wall time (cpu_budget %.3g%%): %s",
+             label_.c_str(), 100 * physics_load_, 100 * marker_load_, 100 * options_.cpu_budget,
+             degraded_.empty() ? "nothing left to give up (overload_policy)" : ("degraded to " + degraded_).c_str());
+  }
 }
 
 void LoadGovernor::recover(Tether& tether)
@@ -112,8 +117,11 @@ void LoadGovernor::recover(Tether& tether)
     else
     {
       // Between the current and the configured iterations, both accepted before: not refused in practice.
-      ROS_WARN_THROTTLE(5.0, "tether_node%s: restoring iterations to %d refused: %s", label_.c_str(), params.iterations,
-                        status.message.c_str());
+      if (restore_log_.due())
+      {
+        ROS_WARN("tether_node%s: restoring iterations to %d refused: %s", label_.c_str(), params.iterations,
+                 status.message.c_str());
+      }
     }
   }
   else if (options_.overload_policy == "reduce_markers" && marker_rate_ < options_.marker_rate)

@@ -318,8 +318,11 @@ void PoseInput::handOver(const geometry_msgs::PoseStamped::ConstPtr& msg, const 
   if (hand_over_.size() >= kMaxHandOver)
   {
     ++dropped_;
-    ROS_WARN_THROTTLE(1.0, "rov_pose dropped%s: %zu poses already wait for the physics (it is stalled)", label_.c_str(),
-                      hand_over_.size());
+    if (drop_log_.due())
+    {
+      ROS_WARN("rov_pose dropped%s: %zu poses already wait for the physics (it is stalled)", label_.c_str(),
+               hand_over_.size());
+    }
     return;
   }
   hand_over_.push_back(HandOver{msg, arrival});
@@ -396,10 +399,13 @@ void PoseInput::expireWaiting(const ros::Time& now)
   }
   rejected_ += passed_poses.size();
   const std::string& late = passed_poses.front().msg->header.frame_id;
-  ROS_WARN_THROTTLE(1.0,
-                    "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it "
-                    "(the physics runs interpolation_delay behind ROS time: that is tf's slack); %s",
-                    label_.c_str(), options_.world_frame.c_str(), late.c_str(), noTransformAdvice(late).c_str());
+  if (expired_log_.due())
+  {
+    ROS_WARN(
+        "rov_pose rejected%s: no transform %s -> %s at its stamp before the physics reached it (the physics runs "
+        "interpolation_delay behind ROS time: that is tf's slack); %s",
+        label_.c_str(), options_.world_frame.c_str(), late.c_str(), noTransformAdvice(late).c_str());
+  }
 }
 
 void PoseInput::poll(const ros::Time& now)
@@ -427,8 +433,10 @@ void PoseInput::poll(const ros::Time& now)
     if (!status.ok)
     {
       // The spool stays where it was; tf gave a position that is not finite or beyond +-1e6 m.
-      ROS_WARN_THROTTLE(1.0, "spool_frame %s%s: %s", options_.spool_frame.c_str(), label_.c_str(),
-                        status.message.c_str());
+      if (spool_log_.due())
+      {
+        ROS_WARN("spool_frame %s%s: %s", options_.spool_frame.c_str(), label_.c_str(), status.message.c_str());
+      }
     }
   }
   ros::Time stamp;
@@ -482,8 +490,11 @@ bool PoseInput::lookup(const std::string& frame, const ros::Time& time, Eigen::I
   }
   catch (const tf2::TransformException& e)
   {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: no transform %s -> %s: %s", label_.c_str(), options_.world_frame.c_str(),
-                      frame.c_str(), e.what());
+    if (transform_log_.due())
+    {
+      ROS_WARN("tether_node%s: no transform %s -> %s: %s", label_.c_str(), options_.world_frame.c_str(), frame.c_str(),
+               e.what());
+    }
     return false;
   }
 }
@@ -493,10 +504,13 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   if (stamp < reset_cut_)
   {
     ++rejected_;
-    ROS_WARN_THROTTLE(1.0,
-                      "rov_pose rejected%s: a pose stamped %.3f s, %.3f s before the reset (it shows the vehicle "
-                      "before it)",
-                      label_.c_str(), stamp.toSec(), (reset_cut_ - stamp).toSec());
+    if (before_reset_log_.due())
+    {
+      ROS_WARN(
+          "rov_pose rejected%s: a pose stamped %.3f s, %.3f s before the reset (it shows the vehicle "
+          "before it)",
+          label_.c_str(), stamp.toSec(), (reset_cut_ - stamp).toSec());
+    }
     return false;
   }
   const Position attachment = vehicle * options_.attachment_offset;
@@ -551,8 +565,10 @@ void PoseInput::reset(const ros::Time& now)
   if (refused > 0)
   {
     rejected_ += refused;
-    ROS_WARN_THROTTLE(1.0, "rov_pose rejected%s: %zu poses that arrived before the clock went back", label_.c_str(),
-                      refused);
+    if (clock_back_log_.due())
+    {
+      ROS_WARN("rov_pose rejected%s: %zu poses that arrived before the clock went back", label_.c_str(), refused);
+    }
   }
 }
 

@@ -60,7 +60,10 @@ void Scheduler::restart(std::size_t i, const ros::Time& now)
   const Status status = world_.tether(i).reset(alignedPhysicsTime(i, now));
   if (!status.ok)
   {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: restart refused: %s", tethers_[i].label.c_str(), status.message.c_str());
+    if (tethers_[i].restart_log.due())
+    {
+      ROS_WARN("tether_node%s: restart refused: %s", tethers_[i].label.c_str(), status.message.c_str());
+    }
     return;
   }
   tethers_[i].next_state = 0.0;
@@ -200,7 +203,10 @@ void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)
     if (!skipped.ok)
     {
       // Only a time before the tether's own can be refused (max_lag shorter than a step): it catches up instead.
-      ROS_WARN_THROTTLE(1.0, "tether_node%s: skip ahead refused: %s", s.label.c_str(), skipped.message.c_str());
+      if (s.skip_refused_log.due())
+      {
+        ROS_WARN("tether_node%s: skip ahead refused: %s", s.label.c_str(), skipped.message.c_str());
+      }
       return;
     }
     // The held cable is published at once and the state grid restarts there. Resumed on the old grid,
@@ -210,10 +216,13 @@ void Scheduler::prepare(std::size_t i, double target, const ros::Time& now)
     s.next_state = tether.time();
     ++s.skips;
     s.last_skip_time = now;
-    ROS_ERROR_THROTTLE(1.0,
-                       "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): "
-                       "skipped ahead with the cable held",
-                       s.label.c_str(), behind, s.max_lag);
+    if (s.skip_log.due())
+    {
+      ROS_ERROR(
+          "tether_node%s: the physics fell %.2f s behind real time (more than max_lag = %.2f s): skipped ahead with "
+          "the cable held",
+          s.label.c_str(), behind, s.max_lag);
+    }
   }
 }
 

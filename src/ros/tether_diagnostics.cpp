@@ -44,21 +44,18 @@ void TetherDiagnostics::report(const ros::Time& now)
   {
     reported_failures_ = tether_.recoveryCount();
     last_failure_time_ = now;
-    ROS_ERROR_THROTTLE(1.0, "tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
-                       static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
+    if (failure_log_.due(now))
+    {
+      ROS_ERROR("tether_node%s: simulation failure (%llu so far): %s", label_.c_str(),
+                static_cast<unsigned long long>(reported_failures_), tether_.lastFailure().c_str());
+    }
   }
-  // Throttled per tether, as the unconverged sub-steps below (ROS_WARN_THROTTLE's is per line: one tether's would
-  // hide another's).
-  const auto due = [&now](ros::Time& last)
-  {
-    const bool is_due = last.isZero() || now < last || (now - last).toSec() >= kFailureReportTime;  // or time went back
-    last = is_due ? now : last;
-    return is_due;
-  };
+  // Each log below is throttled per tether (LogThrottle; ROS_WARN_THROTTLE's is per line: one tether's would hide
+  // another's).
   if (tether_.winchOutrun())
   {
     last_outrun_time_ = now;
-    if (due(last_outrun_log_))
+    if (outrun_log_.due(now))
     {
       ROS_WARN(
           "tether_node%s: the vehicle outruns the winch: it pays out at max_winch_speed = %.2f m/s and the cable "
@@ -70,7 +67,7 @@ void TetherDiagnostics::report(const ros::Time& now)
   if (tether_.winchStalled())
   {
     last_stall_time_ = now;
-    if (due(last_stall_log_))
+    if (stall_log_.due(now))
     {
       ROS_WARN(
           "tether_node%s: the winch cannot reel in at its commanded %.2f m/s: the spool tension holds it at the "
@@ -93,10 +90,8 @@ void TetherDiagnostics::report(const ros::Time& now)
       last_unconverged_time_ = now;
       last_unconverged_residual_ = effort.unconverged_residual;
       last_unconverged_iterations_ = effort.unconverged_iterations;
-      // Throttled per tether (ROS_WARN_THROTTLE's is per line: one tether's would hide another's).
-      if (last_unconverged_log_.isZero() || (now - last_unconverged_log_).toSec() >= kFailureReportTime)
+      if (unconverged_log_.due(now))
       {
-        last_unconverged_log_ = now;
         ROS_WARN(
             "tether_node%s: a sub-step ended short of solver_tolerance %.3g, at a residual of %.3g of a segment "
             "after %d iterations (%llu short so far): its tensions are not converged (raise iterations; "
@@ -119,10 +114,13 @@ void TetherDiagnostics::report(const ros::Time& now)
   if (tether_.jumpCount() > reported_jumps_)
   {
     reported_jumps_ = tether_.jumpCount();
-    ROS_WARN_THROTTLE(1.0,
-                      "tether_node%s: the vehicle pose jumped further than it could move (max_vehicle_speed %.2f m/s "
-                      "x dt + max_vehicle_jump %.2f m): cable re-laid",
-                      label_.c_str(), tether_.params().max_vehicle_speed, tether_.params().max_vehicle_jump);
+    if (jump_log_.due(now))
+    {
+      ROS_WARN(
+          "tether_node%s: the vehicle pose jumped further than it could move (max_vehicle_speed %.2f m/s x dt + "
+          "max_vehicle_jump %.2f m): cable re-laid",
+          label_.c_str(), tether_.params().max_vehicle_speed, tether_.params().max_vehicle_jump);
+    }
   }
 }
 

@@ -139,8 +139,10 @@ void TetherPublisher::publishCoupling(Tether& tether, double horizon)
   const Status status = tether.vehicleEndLinearisation(&linearisation_, horizon);
   if (!status.ok)
   {
-    ROS_WARN_THROTTLE(5.0, "tether_node: %s not published: %s", coupling_pub_.getTopic().c_str(),
-                      status.message.c_str());
+    if (coupling_log_.due())
+    {
+      ROS_WARN("tether_node: %s not published: %s", coupling_pub_.getTopic().c_str(), status.message.c_str());
+    }
     return;
   }
   toCouplingMessage(linearisation_, tether.vehicleForce(), options_.world_frame, &coupling_);

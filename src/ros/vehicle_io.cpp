@@ -182,6 +182,7 @@ void VehicleIo::advertise(const ros::NodeHandle& private_nh, ros::CallbackQueueI
 void VehicleIo::receive(const geometry_msgs::WrenchStamped& msg, const ros::Time& now)
 {
   std::string why;
+  bool log = false;
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
     if (!msg.header.frame_id.empty() && msg.header.frame_id != options_.rov_frame)
@@ -194,14 +195,12 @@ void VehicleIo::receive(const geometry_msgs::WrenchStamped& msg, const ros::Time
     {
       why = command_.accept(msg.wrench, now);
     }
+    // A command in another frame has its own throttle: it hides no other refusal.
+    log = !why.empty() && (why.rfind("in frame", 0) == 0 ? frame_log_ : command_log_).due(now);
   }
-  if (why.rfind("in frame", 0) == 0)
+  if (log)
   {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: ~cmd_wrench: %s", label_.c_str(), why.c_str());  // its own: hides no other
-  }
-  else if (!why.empty())
-  {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: ~cmd_wrench: %s", label_.c_str(), why.c_str());
+    ROS_WARN("tether_node%s: ~cmd_wrench: %s", label_.c_str(), why.c_str());
   }
 }
 
@@ -213,8 +212,11 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
   status = status ? tether_.attachVehicleBody(body, options_.attachment_offset) : status;
   if (!status)
   {
-    ROS_ERROR_THROTTLE(5.0, "tether_node%s: the dynamic vehicle cannot start at [%.3f, %.3f, %.3f]: %s", label_.c_str(),
-                       pose.translation().x(), pose.translation().y(), pose.translation().z(), status.message.c_str());
+    if (start_log_.due())
+    {
+      ROS_ERROR("tether_node%s: the dynamic vehicle cannot start at [%.3f, %.3f, %.3f]: %s", label_.c_str(),
+                pose.translation().x(), pose.translation().y(), pose.translation().z(), status.message.c_str());
+    }
     return false;
   }
   start_due_ = false;
@@ -263,8 +265,11 @@ void VehicleIo::noteSaturation()
     }
     return names;
   };
-  ROS_WARN_THROTTLE(5.0, "tether_node%s: the thrust from %s is held at the vehicle's thrust_limit on %s",
-                    label_.c_str(), driver_, axes().c_str());
+  if (saturation_log_.due())
+  {
+    ROS_WARN("tether_node%s: the thrust from %s is held at the vehicle's thrust_limit on %s", label_.c_str(), driver_,
+             axes().c_str());
+  }
 }
 
 Wrench VehicleIo::controlledThrust()
@@ -283,8 +288,10 @@ Wrench VehicleIo::controlledThrust()
   const Status status = controller_.update(dt, setpoint, *tether_.vehicleBody(), &output);
   if (!status)
   {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: vehicle controller: %s (zero thrust)", label_.c_str(),
-                      status.message.c_str());
+    if (controller_log_.due())
+    {
+      ROS_WARN("tether_node%s: vehicle controller: %s (zero thrust)", label_.c_str(), status.message.c_str());
+    }
     return Wrench::Zero();
   }
   last_control_time_ = now;
@@ -342,7 +349,10 @@ void VehicleIo::beforeAdvance(const ros::Time& now)
   const Status status = tether_.setVehicleThrust(thrust_);  // finite: refused on arrival otherwise
   if (!status)
   {
-    ROS_WARN_THROTTLE(1.0, "tether_node%s: thrust refused: %s", label_.c_str(), status.message.c_str());
+    if (thrust_log_.due())
+    {
+      ROS_WARN("tether_node%s: thrust refused: %s", label_.c_str(), status.message.c_str());
+    }
   }
 }
 

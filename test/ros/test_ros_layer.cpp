@@ -17,6 +17,7 @@
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
 #include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/tether_publisher.hpp"
@@ -49,6 +50,26 @@ Tether heavyTether()
   Tether sim(params, Position::Zero(), Position(2.0, 0.0, 0.0));
   EXPECT_TRUE(test::succeeded(sim.advance(10.0)));
   return sim;
+}
+
+// Each tether's warnings are throttled by throttles of its own (LogThrottle): ROS_WARN_THROTTLE's throttle belongs to
+// the line of code, so with several tethers in one node the first tether's message hid the others' for the period.
+// Two owners are each due at the same time; one is due again only a period later (at exactly the period too), at once
+// when the clock goes back (a replay started over), and once while the clock stands at 0 (no /clock yet).
+TEST(LogThrottle, EachOwnerIsDueOncePerPeriodOfItsOwn)
+{
+  LogThrottle first(1.0), second(1.0);
+  EXPECT_TRUE(first.due(ros::Time(10.0)));
+  EXPECT_TRUE(second.due(ros::Time(10.0))) << "another tether's message is not hidden by the first's";
+  EXPECT_FALSE(first.due(ros::Time(10.5)));
+  EXPECT_TRUE(first.due(ros::Time(11.0)));
+  EXPECT_FALSE(second.due(ros::Time(10.9)));
+  EXPECT_TRUE(first.due(ros::Time(3.0))) << "the clock went back";
+  EXPECT_FALSE(first.due(ros::Time(3.5)));
+  LogThrottle waiting(1.0);
+  EXPECT_TRUE(waiting.due(ros::Time(0.0)));
+  EXPECT_FALSE(waiting.due(ros::Time(0.0))) << "a clock standing at 0 is due once, not at every call";
+  EXPECT_TRUE(waiting.due(ros::Time(1.0)));
 }
 
 TEST(Colours, TensionScaleRunsFromBlueToRedAndCompressionIsGrey)

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 
 namespace rov_tether::ros_layer
@@ -61,6 +62,9 @@ class LoadGovernor
   double physics_load_ = 0.0;    ///< Fraction of wall time spent in physics, last window [-].
   double marker_load_ = 0.0;     ///< Fraction of wall time spent on ~markers, last window [-].
   std::string degraded_;
+  /// This tether's own log throttles (ROS_WARN_THROTTLE's belongs to the line: one tether's would hide another's):
+  /// the load, a refused reduction and a refused restoration of the iterations.
+  LogThrottle load_log_{5.0}, reduce_log_{5.0}, restore_log_{5.0};
 };
 
 }  // namespace rov_tether::ros_layer

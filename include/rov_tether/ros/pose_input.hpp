@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
 
@@ -207,6 +208,11 @@ class PoseInput
   VehicleHistory history_;
   std::array<double, kGaps> gaps_{};  ///< Ring of the last gaps (see neededDelay) [s].
   std::size_t gap_count_ = 0;
+  /// This tether's own log throttles, once a second each (ROS_WARN_THROTTLE's belongs to the line: one tether's
+  /// would hide another's): poses dropped, expired waiting for tf, the spool frame, a transform, poses from before
+  /// a reset, poses from before the clock went back.
+  LogThrottle drop_log_{1.0}, expired_log_{1.0}, spool_log_{1.0}, transform_log_{1.0}, before_reset_log_{1.0},
+      clock_back_log_{1.0};
 };
 
 }  // namespace rov_tether::ros_layer

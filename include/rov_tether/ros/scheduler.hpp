@@ -10,6 +10,7 @@
 
 #include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/load_governor.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 
 namespace rov_tether::ros_layer
@@ -72,6 +73,9 @@ struct TetherSchedule
   double step_seconds = 0.0;      ///< Smoothed wall time per internal step [s].
   double real_time_factor = 0.0;  ///< Smoothed simulated / wall time of the physics [-].
   LoadGovernor governor;
+  /// This tether's own log throttles, once a second each (ROS_WARN_THROTTLE's belongs to the line: one tether's
+  /// would hide another's): a restart refused, a skip ahead refused, a skip ahead.
+  LogThrottle restart_log{1.0}, skip_refused_log{1.0}, skip_log{1.0};
 };
 
 /**

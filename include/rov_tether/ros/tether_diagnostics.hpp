@@ -10,6 +10,7 @@
 #include <string>
 
 #include "rov_tether/core/tether.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/scheduler.hpp"
@@ -67,17 +68,17 @@ class TetherDiagnostics
   ros::Time last_failure_time_;              ///< When the last failure was seen; diagnostics show ERROR for a while.
   ros::Time last_outrun_time_;               ///< When the vehicle last outran the winch; diagnostics WARN for a while.
   ros::Time last_stall_time_;                ///< When a reel-in was last held at the stall pull (WARN for a while).
-  /// When this tether's outrun and stall warnings were last logged (each once per kFailureReportTime a tether:
-  /// ROS_WARN_THROTTLE's throttle is per line, so one tether's warning hid every other tether's).
-  ros::Time last_outrun_log_, last_stall_log_;
+  /// This tether's own log throttles (ROS_WARN_THROTTLE's belongs to the line, so one tether's warning hid every
+  /// other tether's): outrun, stall and unconverged once per 5 s (kFailureReportTime), failures and jumps once a
+  /// second.
+  LogThrottle outrun_log_{5.0}, stall_log_{5.0}, unconverged_log_{5.0}, failure_log_{1.0}, jump_log_{1.0};
   std::uint64_t reported_drops_ = 0;        ///< Dropped poses already seen.
   ros::Time last_drop_time_;                ///< When poses were last dropped; diagnostics show WARN for a while.
   std::uint64_t reported_unconverged_ = 0;  ///< Steps short of solver_tolerance already logged.
   ros::Time last_unconverged_time_;         ///< When the last above solver_residual_warning was seen (WARN).
   double last_unconverged_residual_ = 0.0;  ///< Its residual [-] and iterations, for the WARN.
   int last_unconverged_iterations_ = 0;
-  ros::Time last_unconverged_log_;  ///< When it was last logged (once per kFailureReportTime a tether).
-  SolverEffort period_start_;       ///< The solver's effort at the last report (for its mean since).
+  SolverEffort period_start_;  ///< The solver's effort at the last report (for its mean since).
   std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> extra_;  ///< addExtra's; empty: none.
 };
 

@@ -14,6 +14,7 @@
 #include "rov_tether/TetherState.h"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 
 namespace rov_tether::ros_layer
@@ -114,6 +115,7 @@ class TetherPublisher
   EndLinearisation linearisation_;   ///< Reused by publishCoupling().
   TetherCoupling coupling_;          ///< Reused by publishCoupling().
   bool coupling_explained_ = false;  ///< explainMissingCoupling() has warned for this subscription.
+  LogThrottle coupling_log_{5.0};    ///< ~coupling not published: this tether's own throttle.
   ros::Publisher tf_pub_;            ///< /tf: the spool outlet and the cable's vehicle end.
   tf2_msgs::TFMessage transforms_;
   ros::Publisher marker_pub_;

@@ -22,6 +22,7 @@
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
 #include "rov_tether/core/vehicle_controller.hpp"
+#include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 #include "rov_tether/ros/vehicle_history.hpp"
 
@@ -147,6 +148,11 @@ class VehicleIo
   /// and how many of them the last /diagnostics report had seen (its thread).
   std::uint64_t saturated_ticks_ = 0;
   std::uint64_t saturated_reported_ = 0;
+  /// This vehicle's own log throttles (ROS_WARN_THROTTLE's belongs to the line: one tether's would hide another's):
+  /// a command in another frame, another refused command (both under command_mutex_), a start refused, the thrust
+  /// held at its limit, the controller refused, the thrust refused.
+  LogThrottle frame_log_{1.0}, command_log_{1.0}, start_log_{5.0}, saturation_log_{5.0}, controller_log_{1.0},
+      thrust_log_{1.0};
   ros::Subscriber command_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher tf_pub_;
