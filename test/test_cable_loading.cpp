@@ -737,17 +737,30 @@ TEST(Attachments, AClumpHeavierInWaterThanInAirIsRefused)
 // attachment of EA or more: refused naming the weight, the length, EA and the stretch, buoyant cables (w < 0, floating
 // up from their lower end) alike, at load and as a live change (the parameters kept). In sections the weight of what
 // hangs below counts: a weightless section of EA 3e4 N carrying 4 m of 1e4 N/m below it (4e4 N) is refused, though
-// it weighs nothing itself, while the same section at the tether's EA 1e5 N is taken.
+// it weighs nothing itself, while the same section at the tether's EA 1e5 N is taken. Only with the solvers that
+// take a segment at 100% strain for a blow-up (direct, lumped_mass): pbd and xpbd project the lengths and re-lay
+// nothing, EA only scaling the strain a tension reads as, so they take such a cable (a reviewer found pbd cables
+// refused that had run), and a live change from pbd to direct is then refused.
 TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
 {
   TetherParams p = lockedString(10.0, 0.1);  // EA 1e5 N
   p.weight_in_water = 1e4;                   // 10 m: 1e5 N at the top
   auto errors = p.validate();
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0],
-            "weight_in_water = 10000 N/m: a hanging cable's top tension |weight_in_water| x cable_length = 10000 N/m "
-            "x 10 m = 100000 N must be below axial_stiffness EA = 100000 N: its own weight would stretch the cable by "
-            "w L / EA = 100%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+  EXPECT_EQ(
+      errors[0],
+      "weight_in_water = 10000 N/m: a hanging cable's top tension |weight_in_water| x cable_length = 10000 N/m "
+      "x 10 m = 100000 N must be below axial_stiffness EA = 100000 N: its own weight would stretch the cable by "
+      "w L / EA = 100%, which no cable survives and solver direct takes for a blow-up (a segment at 100% strain)");
+  for (const SolverType projected : {SolverType::kPbd, SolverType::kXpbd})
+  {
+    TetherParams other = p;
+    other.solver = projected;
+    EXPECT_TRUE(other.validate().empty()) << toString(projected);
+  }
+  p.solver = SolverType::kLumpedMass;
+  EXPECT_EQ(p.validate().size(), 1u) << "lumped_mass takes 100% strain for a blow-up too";
+  p.solver = SolverType::kDirect;
   p.weight_in_water = -1e4;
   EXPECT_EQ(p.validate().size(), 1u) << "buoyant, floating up from its lower end";
   p.weight_in_water = 9900.0;  // 99%
@@ -762,6 +775,14 @@ TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
   EXPECT_NE(softer.message.find("= 10000 N must be below axial_stiffness EA = 10000 N"), std::string::npos)
       << softer.message;
   EXPECT_EQ(sim.params().axial_stiffness, p.axial_stiffness);
+  TetherParams projected = p;
+  projected.solver = SolverType::kPbd;
+  projected.weight_in_water = 1e4;  // 100% on EA 1e5 N: taken by pbd
+  Tether pbd(projected, Position::Zero(), Position(0.0, 0.0, -9.0));
+  TetherParams to_direct = pbd.params();
+  to_direct.solver = SolverType::kDirect;
+  EXPECT_FALSE(pbd.setParams(to_direct).ok);
+  EXPECT_EQ(pbd.params().solver, SolverType::kPbd);
 
   TetherParams sections = lockedString(10.0, 0.1);
   sections.sections = {{4.0, {{"weight_in_water", 1e4}}}, {}};
@@ -777,6 +798,12 @@ TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
             "30000 N): the cable's own weight in water hanging from it, up to 40000 N (w L of the sections below it), "
             "must be below its EA: it would stretch it by 133.333%, which no cable survives and the solver takes for a "
             "blow-up (a segment at 100% strain)\n");
+  TetherParams heavy = lockedString(10.0, 0.1);  // sections of weight alone (pbd takes no EA of a section's own)
+  heavy.sections = {{5.0, {{"weight_in_water", 1e4}}}, {}};
+  heavy.sections[1].properties = {{"weight_in_water", 1e4}};
+  EXPECT_FALSE(heavy.validate().empty()) << "direct: 1e5 N on EA 1e5 N";
+  heavy.solver = SolverType::kPbd;
+  EXPECT_TRUE(heavy.validate().empty());
 }
 
 }  // namespace

@@ -251,7 +251,7 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
       }
     }
   }
-  if (sections && !params.sections.empty())
+  if (sections && !params.sections.empty() && failsAtFullStrain(params.solver))
   {
     // A hanging cable's tension at a point is the weight in water of what hangs below it: hung from the spool, the
     // cable between the point and the vehicle end; hung from the vehicle (a spool below it, or buoyant material
@@ -356,7 +356,7 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
       errors.push_back(which + ": net_buoyancy = " + number(attachment.net_buoyancy) +
                        " N: must be finite, within +-1e7 N (up positive)");
     }
-    else if (!made.materials().empty() && arc > 0.0 && arc <= params.cable_length)
+    else if (!made.materials().empty() && arc > 0.0 && arc <= params.cable_length && failsAtFullStrain(params.solver))
     {
       // Alone, a point load F stretches the cable it hangs on by F / EA. At F >= EA that is 100% or more: no cable
       // survives it (tethers break at a few per cent), and the solver takes a segment at kDivergenceLimit (100%)

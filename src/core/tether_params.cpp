@@ -323,7 +323,7 @@ std::vector<std::string> TetherParams::validate() const
   // the segment for a blow-up: the cable was re-laid every step, as an attachment's load of EA or more was. A cable
   // in sections: CableSections::check, section by section.
   const double top = std::abs(whole.weight_in_water) * whole.cable_length;
-  if (whole.sections.empty() && !(top < kDivergenceLimit * whole.axial_stiffness))
+  if (failsAtFullStrain(whole.solver) && whole.sections.empty() && !(top < kDivergenceLimit * whole.axial_stiffness))
   {
     errors.push_back(
         "weight_in_water = " + formatValue(weight_in_water) +
@@ -331,7 +331,8 @@ std::vector<std::string> TetherParams::validate() const
         formatValue(std::abs(whole.weight_in_water)) + " N/m x " + formatValue(whole.cable_length) +
         " m = " + formatValue(top) + " N must be below axial_stiffness EA = " + formatValue(whole.axial_stiffness) +
         " N: its own weight would stretch the cable by w L / EA = " + formatValue(100.0 * top / whole.axial_stiffness) +
-        "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+        "%, which no cable survives and solver " + toString(whole.solver) +
+        " takes for a blow-up (a segment at 100% strain)");
   }
   if (errors.empty() && (!sections.empty() || !attachments.empty()))
   {

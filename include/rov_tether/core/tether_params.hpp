@@ -26,6 +26,14 @@ enum class SolverType
                    ///< tension are exact to solver_tolerance at any length; EI bending; no compression.
 };
 
+/// Whether `solver` takes a segment at 100% strain (kDivergenceLimit) for a blow-up and re-lays the cable (direct,
+/// lumped_mass), so that a load of EA or more (a cable's own weight, an attachment's) is refused with it. pbd and
+/// xpbd project the lengths and report no blow-up: with them EA only scales the strain a tension reads as.
+inline bool failsAtFullStrain(SolverType solver)
+{
+  return solver == SolverType::kDirect || solver == SolverType::kLumpedMass;
+}
+
 /// How the water resists the cable's motion.
 enum class DragModel
 {
