@@ -210,13 +210,7 @@ void Tether::build(double deployed_length)
   CableSections::load(params_, &cable_);
   solver_->multipliers().resize(cable_.size());
   tension_scratch_.reserve(cable_.size());
-  if (world_contact_ != nullptr)
-  {
-    // The old cable's contact record: of the same size (a cable and segment length scaled together) it would be
-    // read as this cable's until its next step (World::topology: contact angles of joints that touched nothing).
-    world_contact_->cableRebuilt();
-  }
-  layOut(deployed_length);
+  layOut(deployed_length);  // which has the contact forget the old cable (its record too, whatever its size)
 }
 
 void Tether::layOut(double deployed_length)

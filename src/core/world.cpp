@@ -412,8 +412,8 @@ void World::topology(std::vector<TopologyEntry>& out) const
       }
     }
     // The contact angle: the turn of the tangent at every joint one of whose segments touches the object. A
-    // cable rebuilt since its last step has touched nothing yet: its record was cleared (Contact::cableRebuilt), and
-    // one of another size is not read.
+    // cable rebuilt since its last step has touched nothing yet: its record was cleared (Contact::forget, as every
+    // re-lay clears it), and one of another size is not read.
     std::fill(angle.begin(), angle.end(), 0.0);
     const ContactRecord& record = contacts_[t]->record();
     const std::size_t recorded = record.obstacle.size() == cable.size() ? cable.size() : 0;

@@ -68,6 +68,9 @@ void WorldContact::forget()
   state_.touched.clear();
   state_.warm.clear();
   state_.warm_h = 0.0;
+  // What the cable touched belongs to the cable before: read as this one's until its next step, it gave contact
+  // angles of joints that touched nothing (a rebuild of the same particle count, a reset, a re-lay).
+  record_.clear();
   clearSent();
   if (self_ < reaction_.size())
   {

@@ -42,12 +42,10 @@ class Contact
   virtual void takeReaction(Cable& /*cable*/, std::size_t /*begin*/, std::size_t /*end*/, double /*h*/) {}
   /// After a sub-step's solve: hands the reactions of its contacts on other bodies over to them.
   virtual void sendReaction() {}
-  /// The cable was laid out anew (a reset, a recovery): forgets what the contact kept of it (holds, pending
-  /// reactions).
+  /// The cable was laid out anew (built anew for a parameter change, a reset, a vehicle that jumped or attached, a
+  /// recovery): forgets what the contact kept of it (holds, pending reactions, and what it recorded touching, which
+  /// belongs to the cable before, whatever its particle count).
   virtual void forget() {}
-  /// The cable was built anew (a parameter change: cable_length, segment_length): what the contact recorded it
-  /// touching belongs to the cable before, whatever its particle count, and is dropped.
-  virtual void cableRebuilt() {}
   /// Before a step's first solve: moves the predicted positions back by the holds of the last step (scaled
   /// to a step of `h` [s]), so a contact that sticks or slides as it did needs no further solve.
   virtual void warmStart(Cable& /*cable*/, double /*h*/) {}

@@ -80,7 +80,6 @@ class WorldContact : public Contact
   void takeReaction(Cable& cable, std::size_t begin, std::size_t end, double h) override;
   void sendReaction() override;
   void forget() override;
-  void cableRebuilt() override { record_.clear(); }
   void friction(Cable& cable, const std::vector<double>& stretch) override;
   void limitRebound(Cable& cable, double h) const override;
   /// The fastest a contact sends a particle off its surface [m/s]: faster than the vehicles and moving
