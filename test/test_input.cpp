@@ -160,6 +160,24 @@ TEST(Time, AStepToItsOwnEndIsTakenAtAROSTimeOfToday)
   EXPECT_EQ(sim.stepCount(), 2000u);
 }
 
+// At long times the end of a step counted in steps from the base (n x time_step) and an output time counted by the
+// runner (k / output_rate) round apart by more than a billionth of a short step: at 1 ms steps and 10 rows per s, the
+// step to 17476.6 s ends 3.6e-12 s past it (from 17476.6 s on, 5047 of the 200,000 rows to 2e4 s held the step before
+// it, a reviewer counted). Within a few units of t's last place (4 eps |t|) the step fits; one that ends a thousandth
+// of a step later does not, nor one at a ROS time of today 1e-5 s past it (40 times the spacing there, 2.4e-7 s).
+TEST(Time, AStepThatEndsAtAnOutputTimeToRoundingFitsAtLongTimes)
+{
+  const double step = 0.001;
+  const double end = 17476600.0 * step, t = 174766.0 / 10.0;
+  ASSERT_GT(end, t) << "the premise: the two round apart";
+  ASSERT_GT(end - t, 1e-9 * step) << "the premise: by more than a billionth of the step";
+  EXPECT_TRUE(Tether::stepEndsBy(end, t, step));
+  EXPECT_FALSE(Tether::stepEndsBy(t + 1e-3 * step, t, step));
+  EXPECT_FALSE(Tether::stepEndsBy(1.8e9 + 1e-5, 1.8e9, 0.005));
+  EXPECT_TRUE(Tether::stepEndsBy(0.1 + 1e-13, 0.1, 0.005)) << "a billionth of the step, as before, at short times";
+  EXPECT_FALSE(Tether::stepEndsBy(0.1 + 1e-11, 0.1, 0.005));
+}
+
 // skipTo (used by the node when it falls further than max_lag behind) moves time without stepping: the
 // cable holds its shape at rest, the vehicle end goes where the samples say, and stepping resumes.
 TEST(Skip, SkipAheadHoldsTheCableAndResumes)

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -175,7 +177,15 @@ class Tether
   /// True when one more internal step fits before t [s] (advanceTo takes steps while it does): its end,
   /// nextStepTime(), rounded as a caller that asks to stop there has it (time() + time_step rounds otherwise at a
   /// ROS time of 1.8e9 s, whose spacing is 2.4e-7 s: a step to its own end did not fit, half the time).
-  bool stepFits(double t) const { return nextStepTime() <= t + 1e-9 * params_.time_step; }
+  bool stepFits(double t) const { return stepEndsBy(nextStepTime(), t, params_.time_step); }
+  /// Whether a step of `step` [s] ending at `end` ends by `t` [s], to rounding: within a billionth of the step, or
+  /// a few units of t's last place, whichever is more. At long times the step's end counted in steps from the base
+  /// and t counted by the caller (an output time k / rate) differ by their rounding, which outgrows a billionth of
+  /// a short step: 17,476,600 steps of 1 ms end 3.6e-12 s past 174,766 / 10 s, so that row held the step before.
+  static bool stepEndsBy(double end, double t, double step)
+  {
+    return end <= t + std::max(1e-9 * step, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t));
+  }
   /// Moves time forward to t [s] without stepping, for a caller that cannot keep up: the cable keeps its
   /// shape at rest, the vehicle end moves to where the samples put it at t. Refuses t before time().
   Status skipTo(double t);
