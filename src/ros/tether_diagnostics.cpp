@@ -57,11 +57,16 @@ void TetherDiagnostics::report(const ros::Time& now)
     last_outrun_time_ = now;
     if (outrun_log_.due(now))
     {
+      // What it gives way at (Tether::winchAtItsLimit): the brake, the auto-tension target, the strain rule's
+      // threshold.
+      const WinchMode mode = tether_.params().winch_mode;
       ROS_WARN(
           "tether_node%s: the vehicle outruns the winch: it pays out at max_winch_speed = %.2f m/s and the cable "
           "stretches (spool tension above the %s)",
           label_.c_str(), tether_.params().max_winch_speed,
-          tether_.params().winch_mode == WinchMode::kBrake ? "brake_tension" : "target_tension");
+          mode == WinchMode::kBrake             ? "brake_tension"
+          : mode == WinchMode::kConstantTension ? "target_tension"
+                                                : "strain rule's payout_threshold x axial_stiffness");
     }
   }
   if (tether_.winchStalled())
