@@ -671,6 +671,17 @@ TEST(Attachments, ALoadThatWouldStretchTheCableByItsLengthIsRefused)
             "and the solver takes for a blow-up (a segment at 100% strain)\n");
   clump(-ea);
   EXPECT_FALSE(p.validate().empty()) << "at the bound: 100%";
+  // Only with the solvers that take 100% strain for a blow-up: a uniform pbd or xpbd cable takes such a clump (their
+  // projection re-lays nothing; EA only scales the strain a tension reads as).
+  TetherParams uniform;
+  uniform.attachments = {p.attachments[0]};
+  uniform.solver = SolverType::kDirect;
+  EXPECT_FALSE(uniform.validate().empty());
+  for (const SolverType projected : {SolverType::kPbd, SolverType::kXpbd})
+  {
+    uniform.solver = projected;
+    EXPECT_TRUE(uniform.validate().empty()) << toString(projected);
+  }
 
   clump(-0.99 * ea);
   ASSERT_TRUE(p.validate().empty());
