@@ -30,13 +30,6 @@ std::string joinErrors(const std::vector<std::string>& errors)
 
 bool withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate; }
 
-/// Of a drum's speed and its drive's, the one nearer standing, and standing if they turn opposite ways [m/s]: where a
-/// drive starts again (a new winch mode or method, a re-laid cable) without taking on a slip past the old drive.
-double nearerStanding(double drum, double drive)
-{
-  return drum * drive <= 0.0 ? 0.0 : std::abs(drum) < std::abs(drive) ? drum : drive;
-}
-
 /// Whether a dynamic vehicle `body` can be coupled into the steps `params` take.
 Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
 {
@@ -162,7 +155,7 @@ Status Tether::setParams(const TetherParams& params)
     // The new mode's (or the new method's) drive starts from the drum as it turns, but not from a slip past the old
     // drive (back-driven, it would pay out into slack): the one of the two nearer standing, and standing if they
     // turn opposite ways.
-    drive_speed_ = nearerStanding(winch_speed_, drive_speed_);
+    winch_.restartDrive();
   }
   if (params_.time_step != old_time_step)
   {
@@ -292,7 +285,7 @@ Status Tether::setTargetLength(double length)
         << params_.min_deployed_length << ", " << params_.cable_length << "] m";
     return Status::error(out.str());
   }
-  target_length_ = length;
+  winch_.setTargetLength(length);
   return Status::success();
 }
 
@@ -511,7 +504,7 @@ void Tether::subStep(double h, double t)
     world_contact_->takeReaction(cable_, cable_.first + 1, freeEnd(), h);
   }
   SolverSettings settings = SolverSettings::from(params_, h);
-  settings.drum = runWinch(h) ? &drum_ : nullptr;
+  settings.drum = winch_.beforeSolve(winchScene(), h);
   if (vehicle_ != nullptr)
   {
     // After the winch, which may re-weigh the particles near the spool (the whole chain when it is short).
@@ -528,24 +521,7 @@ void Tether::subStep(double h, double t)
     world_contact_->limitRebound(cable_, h);
     substep_policy_.sawPullIn(world_contact_->lastPullIn());
   }
-  if (settings.drum != nullptr)
-  {
-    // Reeled in less than asked (by more than rounding): the stall pull held the drum.
-    held_at_pull_ = reel_in_asked_ < 0.0 && drum_.payout > reel_in_asked_ * (1.0 - 1e-9);
-    payOut(drum_.payout, h);  // the pay-out the drum's law gave within the solve
-    // The drive turned within its limits. A pull past the motor's stall pull stops a reel-in (the drive stops with
-    // its motor, as far as standing) and pulled harder back-drives the drum out: a slip the drive does not take on.
-    // A massless drum has no speed of its own: once the pull lets go, it turns at its drive's speed again (not at
-    // the slip's, slowing at max_winch_acceleration, which paid metres out into slack cable:
-    // Winch.ABackDrivenDrumTakesItsDrivesSpeedOnceThePullLetsGo).
-    const double lowest = std::min(drum_.min_payout, drum_.max_payout) / h;
-    const double highest = std::max(drum_.min_payout, drum_.max_payout) / h;
-    drive_speed_ = std::isfinite(drum_.payout)
-                       ? std::clamp(winch_speed_, lowest, std::max(highest, std::min(winch_speed_, 0.0)))
-                       : winch_speed_;  // a diverged solve's drum: standing, as payOut left it
-  }
-  outrun_time_ = winchAtItsLimit(h) ? outrun_time_ + h : 0.0;
-  noteStall(h);
+  winch_.afterSolve(winchScene(), settings.drum != nullptr, h);
   effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
   effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
                          solver_->lastRescued());
@@ -689,64 +665,15 @@ void Tether::fail(const std::string& why)
   message << "t = " << std::fixed << std::setprecision(3) << time_ << " s: " << why
           << "; the cable was re-laid at rest";
   last_failure_ = message.str();
-  drive_speed_ = nearerStanding(winch_speed_, drive_speed_);  // as after a change of mode: not from a slip
+  winch_.restartDrive();  // as after a change of mode: not from a slip
   const double deployed = deployedLength();
   layOut(std::isfinite(deployed) ? std::clamp(deployed, params_.min_deployed_length, params_.cable_length)
                                  : params_.initial_deployed_length);
 }
 
-bool Tether::runWinch(double dt)
+WinchDrive::Scene Tether::winchScene()
 {
-  const std::size_t n = cable_.size();
-  held_at_pull_ = false;
-  commanded_speed_ = 0.0;
-  if (cable_.first + 1 >= n)
-  {
-    winch_speed_ = drive_speed_ = 0.0;
-    return false;
-  }
-  // The spool segment's tension at the end of the last step, what a tension-driven winch reads.
-  const double h = last_step_ > 0.0 ? last_step_ : dt;
-  const double spool_tension = solver_->multipliers().stretch[cable_.first] / (h * h);
-  const WinchInput input{cable_,         params_,           deployedLength(), dt,
-                         target_length_, track_.attached(), spool_.outlet(),  track_.position(),
-                         spool_tension,  winch_speed_,      drive_speed_,     solver_->takesDrum()};
-  Winch& winch = winches_[params_.winch_mode];
-  commanded_speed_ = params_.winch_mode == WinchMode::kSpeed ? SpeedWinch::commandedSpeed(input) : 0.0;
-  if (winch.drum(input, &drum_))
-  {
-    // A speed winch's drum is given only to reel in, by exactly its min_payout = max_payout; the stall pull alone
-    // holds it back (spool_drum.hpp), which subStep reads from the pay-out the solve gives.
-    reel_in_asked_ = params_.winch_mode == WinchMode::kSpeed ? std::min(drum_.min_payout, 0.0) : 0.0;
-    return true;  // the solver decides the pay-out (payOut after it)
-  }
-  reel_in_asked_ = 0.0;
-  double change = winch.lengthChange(input);
-  if (change < 0.0 && spool_tension >= params_.winchPull())
-  {
-    change = 0.0;  // no reel-in pulls harder than the motor's stall pull: it stops there
-    held_at_pull_ = true;
-  }
-  payOut(change, dt);
-  return false;
-}
-
-void Tether::payOut(double change, double dt)
-{
-  const double deployed = deployedLength();
-  const double max_change = params_.max_winch_speed * dt;
-  if (!std::isfinite(change))
-  {
-    change = 0.0;  // a diverged solve's drum: subStep's checks re-lay the cable next, the spool stays as it was
-  }
-  change = std::clamp(change, -max_change, max_change);
-  change = std::clamp(change, std::min(0.0, params_.min_deployed_length - deployed),
-                      std::max(0.0, params_.cable_length - deployed));
-  winch_speed_ = drive_speed_ = change / dt;
-  if (change != 0.0)
-  {
-    spool_.payOut(cable_, solver_->multipliers(), change, params_.lineMass(), track_.attached());
-  }
+  return {cable_, spool_, params_, *solver_, track_.attached(), track_.position(), last_step_};
 }
 
 bool Tether::stateFinite() const
@@ -770,11 +697,7 @@ Status Tether::reset(double time)
   // Detached until the next sample: a replay after a reset starts exactly as the first run did.
   vehicle_.reset();
   track_.detach();
-  winches_.reset();
-  winch_speed_ = drive_speed_ = 0.0;
-  outrun_time_ = 0.0;
-  stall_time_ = 0.0;
-  held_at_pull_ = false;
+  winch_.reset();
   noise_.reseed(params_.seed);
   effort_ = SolverEffort{};
   effort_since_mark_ = SolverEffort{};
@@ -785,40 +708,6 @@ Status Tether::reset(double time)
 }
 
 double Tether::deployedLength() const { return spool_.deployedLength(cable_); }
-
-void Tether::noteStall(double h)
-{
-  if (params_.winch_mode != WinchMode::kSpeed || !(commanded_speed_ < 0.0) ||
-      winch_speed_ <= commanded_speed_ * (1.0 - 1e-9) || deployedLength() <= params_.min_deployed_length + 1e-9)
-  {
-    stall_time_ = 0.0;  // not asked to reel in, reeling in at its speed, or stopped by min_deployed_length
-  }
-  else if (held_at_pull_)
-  {
-    // Only the sub-steps the pull held count; those it spends getting back to speed after one (a solver that
-    // stops the drum on the last step's tension restarts it, and is held again) neither count nor clear them.
-    stall_time_ += h;
-  }
-}
-
-bool Tether::winchAtItsLimit(double h) const
-{
-  if (deployedParticleCount() < 2 || !(winch_speed_ >= params_.max_winch_speed * (1.0 - 1e-9)))
-  {
-    return false;
-  }
-  // The tension at which the mode gives way: the brake, the auto-tension target, the strain rule's threshold
-  // as a tension (its stretch payout_threshold x L under EA).
-  const double gives_way =
-      params_.winch_mode == WinchMode::kBrake             ? params_.brake_tension
-      : params_.winch_mode == WinchMode::kConstantTension ? params_.target_tension
-      : params_.winch_mode == WinchMode::kStrain
-          ? params_.payout_threshold *
-                (cable_.loading.empty() ? params_.axial_stiffness : cable_.loading.axial_stiffness[cable_.first])
-          : -1.0;
-  const double tension = solver_->multipliers().stretch[cable_.first] / (h * h);
-  return gives_way >= 0.0 && tension > gives_way;
-}
 
 void Tether::copyPositions(std::vector<Position>& out) const
 {

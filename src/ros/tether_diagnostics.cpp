@@ -57,7 +57,7 @@ void TetherDiagnostics::report(const ros::Time& now)
     last_outrun_time_ = now;
     if (outrun_log_.due(now))
     {
-      // What it gives way at (Tether::winchAtItsLimit): the brake, the auto-tension target, the strain rule's
+      // What it gives way at (WinchDrive::atItsLimit): the brake, the auto-tension target, the strain rule's
       // threshold.
       const WinchMode mode = tether_.params().winch_mode;
       ROS_WARN(

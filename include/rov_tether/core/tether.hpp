@@ -22,7 +22,7 @@
 #include "rov_tether/core/vehicle_coupling.hpp"
 #include "rov_tether/core/vehicle_track.hpp"
 #include "rov_tether/core/water.hpp"
-#include "rov_tether/core/winch.hpp"
+#include "rov_tether/core/winch_drive.hpp"
 
 namespace rov_tether
 {
@@ -115,24 +115,24 @@ class Tether
   /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length].
   Status setTargetLength(double length);
   /// The target length of `speed` mode [m], NaN when there is none.
-  double targetLength() const { return target_length_; }
+  double targetLength() const { return winch_.targetLength(); }
   /// The winch's pay-out speed over the last (sub-)step [m/s], negative reeling in.
-  double winchSpeed() const { return winch_speed_; }
+  double winchSpeed() const { return winch_.speed(); }
   /// True when the winch has paid out at max_winch_speed, the spool segment pulling harder than the winch
   /// gives way at (brake_tension, target_tension, strain: payout_threshold x EA), for every sub-step of the
   /// last kOutrunTime: the vehicle outruns the winch. One step at the limit (the jerk of a cable coming taut
   /// or slipping off a contact) is not an outrun.
-  bool winchOutrun() const { return outrun_time_ >= kOutrunTime; }
+  bool winchOutrun() const { return winch_.outrun(); }
   /// How long the winch must stay at its limit to be outrun [s].
-  static constexpr double kOutrunTime = 0.2;
+  static constexpr double kOutrunTime = WinchDrive::kOutrunTime;
   /// True when a `speed` winch asked to reel in has been held back at the motor's stall pull
   /// (TetherParams::winchPull()) for kOutrunTime of sub-steps since it last reeled in at its commanded speed: it
   /// cannot reel in at its speed, as an outrun winch cannot pay out at the vehicle's. A few steps at the pull (a
   /// cable coming taut) are not.
-  bool winchStalled() const { return stall_time_ >= kOutrunTime; }
+  bool winchStalled() const { return winch_.stalled(); }
   /// A `speed` winch's commanded speed in the last sub-step [m/s] (negative reeling in): winch_speed, or towards a
   /// target length; 0 in the other modes.
-  double winchCommandedSpeed() const { return commanded_speed_; }
+  double winchCommandedSpeed() const { return winch_.commandedSpeed(); }
   /// Detaches the vehicle (kinematic or dynamic): the last particle becomes a free end.
   void detachVehicle();
   bool vehicleAttached() const { return track_.attached(); }
@@ -310,23 +310,14 @@ class Tether
   /// After the solve: the body steps under the solved pull; the attachment particle goes where it lands.
   void finishVehicle(double h);
   void fail(const std::string& why);
-  /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
-  /// segment pulled harder than its mode gives way at.
-  bool winchAtItsLimit(double h) const;
-  /// Counts the sub-step of length h [s] towards winchStalled() when the stall pull held a speed winch's reel-in.
-  void noteStall(double h);
-  /// The winch's decision for a (sub-)step of dt: pays out or reels in before the solve, or fills drum_ for
-  /// a solver that takes it into the step (then returns true, and payOut follows the solve).
-  bool runWinch(double dt);
-  /// Pays out (positive) or reels in `change` [m] within the speed and length limits; sets the winch speed.
-  void payOut(double change, double dt);
+  /// What the winch reads and moves in this sub-step.
+  WinchDrive::Scene winchScene();
   bool stateFinite() const;
 
   TetherParams params_;
   Cable cable_;
   Spool spool_;
   VehicleTrack track_;
-  WinchModes winches_;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<Drag> drag_;
   CurrentField current_;
@@ -336,15 +327,7 @@ class Tether
   Contact* world_contact_ = nullptr;       ///< World's contact for this tether; not owned.
   ContactSubstepPolicy substep_policy_;    ///< How many sub-steps a step with contact takes.
   StepMotion step_motion_;                 ///< Where the step's motion is measured from, with contact.
-  double target_length_ = std::numeric_limits<double>::quiet_NaN();  ///< speed-mode target [m]
-  double winch_speed_ = 0.0;      ///< Pay-out speed over the last (sub-)step [m/s], negative reeling in.
-  double drive_speed_ = 0.0;      ///< The winch drive's own speed over it [m/s] (WinchInput::drive_speed).
-  double outrun_time_ = 0.0;      ///< How long the winch has been at its limit, pulled past giving way [s].
-  double stall_time_ = 0.0;       ///< Sub-steps a speed winch's reel-in was held at the stall pull, since at speed [s].
-  double commanded_speed_ = 0.0;  ///< A speed winch's commanded speed in the sub-step [m/s]; 0 in other modes.
-  double reel_in_asked_ = 0.0;    ///< The reel-in a speed winch's drum was asked for in the sub-step [m] (< 0).
-  bool held_at_pull_ = false;     ///< The sub-step's reel-in was held back at the stall pull.
-  SpoolDrum drum_;                ///< The brake drum as the solver takes it into a step.
+  WinchDrive winch_;                       ///< The winch: its mode's decisions, pay-out and drive.
 
   std::unique_ptr<VehicleCoupling> vehicle_;       ///< The dynamic vehicle, or none (kinematic end).
   Position vehicle_predicted_ = Position::Zero();  ///< The attachment particle's prediction in this sub-step [m].
