@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "rov_tether/ros/reconfigure.hpp"
+
 namespace rov_tether::ros_layer
 {
 

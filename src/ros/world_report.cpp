@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rov_tether/ros/converters.hpp"
+#include "rov_tether/ros/markers.hpp"
 
 namespace rov_tether::ros_layer
 {

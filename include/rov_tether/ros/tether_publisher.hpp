@@ -15,6 +15,7 @@
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/converters.hpp"
 #include "rov_tether/ros/log_throttle.hpp"
+#include "rov_tether/ros/markers.hpp"
 #include "rov_tether/ros/param_loader.hpp"
 
 namespace rov_tether::ros_layer
