@@ -49,7 +49,7 @@ class DirectSolver : public ConstraintSolver
  public:
   /// How the linear systems are solved: the plain sweeps written in banded.cpp, or LAPACK (dpttrf/dpttrs,
   /// dpbtrf/dpbtrs). Both give the same answer to rounding; BM_TridiagonalSolve and BM_BandedSolve measure
-  /// which is faster (README, Benchmarks).
+  /// which is faster (docs/benchmarks.md).
   enum class LinearSolve
   {
     kSweep,

@@ -34,7 +34,7 @@ enum class ShapeType
 const char* shapeTypeName(ShapeType type);
 bool parseShapeType(const std::string& name, ShapeType* type);
 
-/// One entry of the `obstacles` list (node, scenario and runner alike); README "Obstacles".
+/// One entry of the `obstacles` list (node, scenario and runner alike); docs/node.md "Obstacles and topology".
 struct ObstacleSpec
 {
   std::string name;

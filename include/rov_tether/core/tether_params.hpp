@@ -116,7 +116,7 @@ struct TetherParams
   double weight_in_water = 0.0;
   /// Mass per metre of cable [kg/m]; converts weight to acceleration and corrections to tension.
   double mass_per_length = 0.1;
-  /// Axial stiffness EA [N]. xpbd and lumped_mass use it; the pbd solvers do not (see README), for them it
+  /// Axial stiffness EA [N]. xpbd, lumped_mass and direct use it; pbd does not (docs/model.md), for it it
   /// is only the scale of the equivalent strain T / EA reported beside the geometric strain.
   double axial_stiffness = 1.0e5;
   /// Axial damping BA [N s] (Kelvin-Voigt: a taut segment's tension is EA e + BA de/dt, e its strain; MoorDyn's

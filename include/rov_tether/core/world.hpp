@@ -13,7 +13,7 @@
 namespace rov_tether
 {
 
-/// One line of the topology report (World::topology; README "Topology").
+/// One line of the topology report (World::topology; docs/node.md "Obstacles and topology").
 struct TopologyEntry
 {
   enum class Kind
@@ -102,7 +102,7 @@ class World
   /// Moves obstacle i (one that moves with a frame).
   void setObstaclePose(std::size_t i, const Position& position, const Eigen::Quaterniond& orientation);
   /// Contact between tethers and of a tether with itself (obstacles always collide); off by default
-  /// (README "Known limitations"). Each tether moves itself out of the others and sends them the reaction.
+  /// (docs/limitations.md). Each tether moves itself out of the others and sends them the reaction.
   void setContactBetweenTethers(bool on);
   /// What tether i touched in its last step, segment by segment.
   const ContactRecord& contacts(std::size_t i) const { return contacts_[i]->record(); }

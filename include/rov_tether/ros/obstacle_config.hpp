@@ -15,7 +15,7 @@ namespace rov_tether::ros_layer
 /// What tether_node shares among all its tethers (the private namespace `~` only, never `~name/`).
 struct WorldOptions
 {
-  std::vector<ObstacleSpec> obstacles;  ///< The list `obstacles` (README "Obstacles and topology").
+  std::vector<ObstacleSpec> obstacles;  ///< The list `obstacles` (docs/node.md "Obstacles and topology").
   bool tether_contact = false;          ///< World::setContactBetweenTethers: tethers touch each other and themselves.
 };
 
