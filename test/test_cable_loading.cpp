@@ -817,5 +817,74 @@ TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
   EXPECT_TRUE(heavy.validate().empty());
 }
 
+// The top of a hanging cable carries everything below it: the cable's weight and its attachments' loads, a clump
+// adding its weight and a float taking off its lift (the statics of a chain hung from its spool: T_top = w L - sum
+// of the net buoyancies). On EA 1e4 N, 10 m of 600 N/m (w L = 0.6 EA) with a clump of 0.6 EA 1 m from the vehicle
+// puts 1.2 EA on the top segment, a 120% stretch: refused with direct and lumped_mass, though each alone (0.6 EA) is
+// below the bound the cable's weight and an attachment are each held to (both were taken). At a clump of 0.4 EA the
+// top carries exactly EA (100%, refused), 1 N less is taken. A float of 0.6 EA takes its lift off: the most any
+// point carries is 0.54 EA (the 9 m above it, 5400 N, hung from the vehicle), taken. pbd and xpbd take the clump as
+// they take any load (they re-lay nothing). With water_surface_z set any of the cable may be in air, where it weighs
+// its mass g: a neutral cable of 0.6 EA of mass with the same clump (its mass g its weight) is refused, with no
+// surface taken (under water the cable weighs nothing, the top carries the clump's 0.6 EA).
+TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLoads)
+{
+  const double ea = 1e4;
+  const double length = 10.0;
+  TetherParams p = lockedString(length, 0.1);
+  p.axial_stiffness = ea;
+  p.weight_in_water = 0.6 * ea / length;  // 600 N/m: 0.6 EA
+  p.mass_per_length = p.weight_in_water / CableLoading::kGravity;
+  const auto clump = [](double load)
+  {
+    CableAttachment a = body("clump", 1.0, -load);
+    a.mass = load / CableLoading::kGravity;  // displaces nothing: m g = its weight in water
+    return a;
+  };
+  p.attachments = {clump(0.6 * ea)};
+  std::string all;
+  for (const std::string& error : p.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_EQ(all,
+            "the cable (weight_in_water = 600 N/m, axial_stiffness EA = 10000 N): the load hanging from it, up to "
+            "12000 N (the cable's weight below it with its attachments' net loads), must be below its EA: it would "
+            "stretch it by 120%, which no cable survives and the solver takes for a blow-up (a segment at 100% "
+            "strain)\n");
+  p.solver = SolverType::kLumpedMass;
+  EXPECT_FALSE(p.validate().empty()) << "lumped_mass takes 100% strain for a blow-up too";
+  for (const SolverType projected : {SolverType::kPbd, SolverType::kXpbd})
+  {
+    p.solver = projected;
+    EXPECT_TRUE(p.validate().empty()) << toString(projected);
+  }
+  p.solver = SolverType::kDirect;
+  p.attachments = {clump(0.4 * ea)};
+  EXPECT_FALSE(p.validate().empty()) << "at the bound: w L + 0.4 EA = EA";
+  p.attachments = {clump(0.4 * ea - 1.0)};
+  EXPECT_TRUE(p.validate().empty()) << p.validate().at(0);
+  CableAttachment lift = body("float", 1.0, 0.6 * ea);
+  lift.mass = 0.0;
+  p.attachments = {lift};
+  EXPECT_TRUE(p.validate().empty()) << p.validate().at(0);
+
+  TetherParams neutral = lockedString(length, 0.1);
+  neutral.axial_stiffness = ea;
+  neutral.mass_per_length = 0.6 * ea / (CableLoading::kGravity * length);  // m g L = 0.6 EA in air
+  neutral.attachments = {clump(0.6 * ea)};
+  EXPECT_TRUE(neutral.validate().empty()) << neutral.validate().at(0);
+  neutral.water_surface_z = 0.0;
+  all.clear();
+  for (const std::string& error : neutral.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_NE(all.find("up to 12000 N (the cable's weight below it with its attachments' net loads, in water or, above "
+                     "water_surface_z, in air (mass g)), must be below its EA: it would stretch it by 120%"),
+            std::string::npos)
+      << all;
+}
+
 }  // namespace
 }  // namespace rov_tether

@@ -39,6 +39,110 @@ std::string number(double value)
   return text.str();
 }
 
+/// The load each section of a hanging cable carries, against its EA (CableSections::check, for the solvers that
+/// take a segment at 100% strain for a blow-up). A hanging cable's tension at a point is the net weight of what
+/// hangs below it: hung from the spool, the cable between the point and the vehicle end with the attachments on it
+/// (a clump adds its weight, a float takes off its lift); hung from the vehicle (a spool below it, or buoyant
+/// material floating up from the spool), the rest. All of cable_length counts (any winch may pay it out). Between
+/// two breaks (a section's end, an attachment) the load grows linearly, so its most is at one of their ends; at the
+/// section's EA or more it stretches the segment there by 100% (kDivergenceLimit), which no cable survives and the
+/// solver takes for a blow-up (TetherParams::validate makes the same check of a uniform cable alone: w L < EA).
+/// With water_surface_z set any part of the cable may be above the surface (where the spool is, is not a
+/// parameter), where it weighs its mass g (mass_per_length g, an attachment's mass g) instead of its weight in
+/// water: each piece counts at whichever of the two the load at hand is largest with, so the bound holds wherever
+/// the surface cuts the cable. `attachments`: those whose own values are valid (the others are refused for
+/// themselves).
+std::vector<std::string> hangingLoadErrors(const TetherParams& params, const CableSections& made,
+                                           const std::vector<CableAttachment>& attachments)
+{
+  const auto& materials = made.materials();
+  const auto& ends = made.ends();
+  const bool surface = !std::isnan(params.water_surface_z);
+  const double g = CableLoading::kGravity;
+  std::vector<double> from(materials.size() + 1, 0.0);  // each section boundary's distance from the vehicle end [m]
+  for (std::size_t s = 0; s < materials.size(); ++s)
+  {
+    from[s + 1] =
+        s + 1 == materials.size() ? params.cable_length : static_cast<double>(ends[s]) * params.segment_length;
+  }
+  // The downward load per metre of each section, and of each attachment, in water and (with a surface) in air.
+  struct Load
+  {
+    double at = 0.0;                // where (an attachment) [m from the vehicle end]
+    double water = 0.0, air = 0.0;  // [N or N/m], down positive
+  };
+  std::vector<Load> points;
+  std::vector<double> breaks(from.begin(), from.end());
+  for (const CableAttachment& attachment : attachments)
+  {
+    points.push_back({attachment.arc_length_from_vehicle, -attachment.net_buoyancy, attachment.mass * g});
+    breaks.push_back(attachment.arc_length_from_vehicle);
+  }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  // The load between the vehicle end and x (the attachments at x too when `at_x`), at its least and its most.
+  const auto below = [&](double x, bool at_x)
+  {
+    std::pair<double, double> load{0.0, 0.0};
+    const auto add = [&](double water, double air)
+    {
+      load.first += surface ? std::min(water, air) : water;
+      load.second += surface ? std::max(water, air) : water;
+    };
+    for (std::size_t s = 0; s < materials.size(); ++s)
+    {
+      const double length = std::max(0.0, std::min(x, from[s + 1]) - from[s]);
+      add(materials[s].weight_in_water * length, materials[s].mass_per_length * g * length);
+    }
+    for (const Load& point : points)
+    {
+      if (point.at < x || (at_x && point.at == x))
+      {
+        add(point.water, point.air);
+      }
+    }
+    return load;
+  };
+  const auto total = below(params.cable_length, true);
+  std::vector<std::string> errors;
+  for (std::size_t s = 0; s < materials.size(); ++s)
+  {
+    double pull = 0.0;
+    for (std::size_t b = 0; b + 1 < breaks.size(); ++b)
+    {
+      if (!(breaks[b] >= from[s] && breaks[b + 1] <= from[s + 1]))
+      {
+        continue;
+      }
+      // Just above the lower break (its attachments included) and just below the upper one (its not).
+      for (const auto& [lo, hi] : {below(breaks[b], true), below(breaks[b + 1], false)})
+      {
+        // Hung from the spool the load below the point, hung from the vehicle the load above it.
+        pull = std::max({pull, std::abs(lo), std::abs(hi), std::abs(total.first - lo), std::abs(total.second - hi)});
+      }
+    }
+    const double stiffness = materials[s].axial_stiffness;
+    if (!(pull < kDivergenceLimit * stiffness))
+    {
+      const bool loads = !points.empty() || surface;
+      errors.push_back((params.sections.empty() ? std::string("the cable")
+                                                : "sections: the cable from " + number(from[s]) + " m to " +
+                                                      number(from[s + 1]) + " m from the vehicle") +
+                       " (weight_in_water = " + number(materials[s].weight_in_water) +
+                       " N/m, axial_stiffness EA = " + number(stiffness) + " N): " +
+                       (loads ? std::string("the load hanging from it, up to ") + number(pull) +
+                                    " N (the cable's weight below it" +
+                                    (points.empty() ? "" : " with its attachments' net loads") +
+                                    (surface ? ", in water or, above water_surface_z, in air (mass g)" : "") + ")"
+                              : std::string("the cable's own weight in water hanging from it, up to ") + number(pull) +
+                                    " N (w L of the sections below it)") +
+                       ", must be below its EA: it would stretch it by " + number(100.0 * pull / stiffness) +
+                       "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
+    }
+  }
+  return errors;
+}
+
 }  // namespace
 
 SectionMaterial SectionMaterial::of(const TetherParams& params)
@@ -251,42 +355,6 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
       }
     }
   }
-  if (sections && !params.sections.empty() && failsAtFullStrain(params.solver))
-  {
-    // A hanging cable's tension at a point is the weight in water of what hangs below it: hung from the spool, the
-    // cable between the point and the vehicle end; hung from the vehicle (a spool below it, or buoyant material
-    // floating up from the spool), the rest. All of cable_length counts (any winch may pay it out). Along a section
-    // the weight grows linearly, so its most is at one of its ends; at its EA or more it stretches the segment there
-    // by 100% (kDivergenceLimit), which no cable survives and the solver takes for a blow-up (TetherParams::validate
-    // makes the same check of a uniform cable: w L < EA).
-    const auto& materials = made.materials();
-    const auto& ends = made.ends();
-    std::vector<double> below(materials.size() + 1, 0.0);  // weight from the vehicle end to each boundary [N]
-    std::vector<double> from(materials.size() + 1, 0.0);   // each boundary's distance from the vehicle end [m]
-    for (std::size_t s = 0; s < materials.size(); ++s)
-    {
-      from[s + 1] =
-          s + 1 == materials.size() ? params.cable_length : static_cast<double>(ends[s]) * params.segment_length;
-      below[s + 1] = below[s] + materials[s].weight_in_water * (from[s + 1] - from[s]);
-    }
-    const double total = below.back();
-    for (std::size_t s = 0; s < materials.size(); ++s)
-    {
-      const double pull = std::max(
-          {std::abs(below[s]), std::abs(below[s + 1]), std::abs(total - below[s]), std::abs(total - below[s + 1])});
-      const double stiffness = materials[s].axial_stiffness;
-      if (!(pull < kDivergenceLimit * stiffness))
-      {
-        errors.push_back("sections: the cable from " + number(from[s]) + " m to " + number(from[s + 1]) +
-                         " m from the vehicle (weight_in_water = " + number(materials[s].weight_in_water) +
-                         " N/m, axial_stiffness EA = " + number(stiffness) +
-                         " N): the cable's own weight in water hanging from it, up to " + number(pull) +
-                         " N (w L of the sections below it), must be below its EA: it would stretch it by " +
-                         number(100.0 * pull / stiffness) +
-                         "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
-      }
-    }
-  }
   if (sections && params.solver != SolverType::kDirect)
   {
     const SectionMaterial own = SectionMaterial::of(params);
@@ -304,6 +372,7 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
     }
   }
   std::vector<std::string> names;
+  std::vector<CableAttachment> loads;  // the attachments whose own place and load are valid
   for (std::size_t a = 0; a < params.attachments.size(); ++a)
   {
     const CableAttachment& attachment = params.attachments[a];
@@ -319,6 +388,7 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
       errors.push_back(which + ": the name is used twice");
     }
     names.push_back(attachment.name);
+    const std::size_t before = errors.size();
     const double arc = attachment.arc_length_from_vehicle;
     if (!(arc > 0.0 && arc <= params.cable_length))
     {
@@ -378,6 +448,16 @@ std::vector<std::string> CableSections::check(const TetherParams& params)
             "%, which no cable survives and the solver takes for a blow-up (a segment at 100% strain)");
       }
     }
+    if (errors.size() == before)
+    {
+      loads.push_back(attachment);
+    }
+  }
+  if (sections && failsAtFullStrain(params.solver))
+  {
+    // What the cable carries hanging, its attachments' loads with it (each refused for itself is said above).
+    const std::vector<std::string> hanging = hangingLoadErrors(params, made, loads);
+    errors.insert(errors.end(), hanging.begin(), hanging.end());
   }
   return errors;
 }

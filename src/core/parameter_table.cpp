@@ -148,11 +148,13 @@ const std::vector<ParameterInfo>& parameterInfo()
        "random displacement half-width per axis per 0.02 s reference step", kLive},
       {"seed", "int", "-", 0.0, 9e15, kClosed, kClosed, "", "noise seed; same seed, same run", kAtStart},
       {"weight_in_water", "double", "N/m", -1e4, 1e4, kClosed, kClosed,
-       "[-1e4, 1e4], and |weight_in_water| x cable_length < axial_stiffness with `direct` or `lumped_mass`",
+       "[-1e4, 1e4], and |weight_in_water| x cable_length, with the attachments' loads (and above "
+       "`water_surface_z` the weight in air), < axial_stiffness with `direct` or `lumped_mass`",
        "net weight, positive sinks, 0 neutrally buoyant", kLive},
       {"mass_per_length", "double", "kg/m", 0.0, 1e4, kOpen, kClosed, "", "mass, for weight and tension", kLive},
       {"axial_stiffness", "double", "N", 0.0, 1e12, kOpen, kClosed,
-       "(0, 1e12], and above |weight_in_water| x cable_length with `direct` or `lumped_mass`",
+       "(0, 1e12], and above |weight_in_water| x cable_length, with the attachments' loads (and above "
+       "`water_surface_z` the weight in air), with `direct` or `lumped_mass`",
        "EA: `xpbd`, `lumped_mass`, `direct` stiffness; `pbd`: only the scale of T/EA", kLive},
       {"axial_damping", "double", "N s", 0.0, 1e12, kClosed, kClosed, "",
        "BA: Kelvin-Voigt axial damping (`direct`, `xpbd`, `lumped_mass`), tension EA e + BA de/dt; 0 = none", kLive},

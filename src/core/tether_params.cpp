@@ -321,7 +321,8 @@ std::vector<std::string> TetherParams::validate() const
   // out: any winch may pay it out), and that stretches its top segment by w L / EA; a buoyant one (w < 0) floats up
   // from its lower end the same way. At 100% (kDivergenceLimit) or more no cable survives it and the solver takes
   // the segment for a blow-up: the cable was re-laid every step, as an attachment's load of EA or more was. A cable
-  // in sections: CableSections::check, section by section.
+  // in sections, with attachments (whose loads the top carries too) or with a water surface (above which it weighs
+  // its mass g): CableSections::check, section by section.
   const double top = std::abs(whole.weight_in_water) * whole.cable_length;
   if (failsAtFullStrain(whole.solver) && whole.sections.empty() && !(top < kDivergenceLimit * whole.axial_stiffness))
   {
@@ -334,7 +335,7 @@ std::vector<std::string> TetherParams::validate() const
         "%, which no cable survives and solver " + toString(whole.solver) +
         " takes for a blow-up (a segment at 100% strain)");
   }
-  if (errors.empty() && (!sections.empty() || !attachments.empty()))
+  if (errors.empty() && (!sections.empty() || !attachments.empty() || !std::isnan(water_surface_z)))
   {
     const auto material = CableSections::check(whole);
     errors.insert(errors.end(), material.begin(), material.end());

@@ -78,7 +78,10 @@ class CableSections
 
   /// Every problem with params' sections and attachments (params resolved, its own fields valid): make()'s, and
   /// for an attachment a missing or repeated name, an arc length outside (0, cable_length], a negative mass,
-  /// added mass, drag area or drag coefficient, a buoyancy that is not finite or beyond +-1e7 N.
+  /// added mass, drag area or drag coefficient, a buoyancy that is not finite or beyond +-1e7 N; and, with a solver
+  /// that fails at full strain (direct, lumped_mass), a section that would carry its EA or more hanging from either
+  /// end: the cable's weight below it with its attachments' loads (a float's lift taken off), with water_surface_z
+  /// set counting each piece in water or in air (mass g), whichever loads it more.
   static std::vector<std::string> check(const TetherParams& params);
 
   /// True when every segment is of one material (no sections, or sections that set nothing different).
