@@ -429,6 +429,63 @@ TEST(Runner, SimulatesTheWholeDurationPastTheLastOutputTime)
   fs::remove_all(dir);
 }
 
+// The summary's maxima cover every step the run simulates, the tail past the last output time too (1.05 s at one
+// row a second: rows at 0 and 1 s, then 10 steps of 5 ms no row holds). A locked 10 m cable (EA 1e5 N, weightless,
+// no noise) whose vehicle pulls it from 10 m at 0.01 m/s: quasi-static, its tension is the elastic EA (d - L) / L,
+// rising to its most at the end, 105 N at 1.05 s (the last row's 100 N is 5% short); the bound, 1%, is well above
+// the drag the moving cable feels (mu gamma v L / 2 ~ 0.03 N) and below the 5% the tail adds. A speed winch paying
+// out at 0.5 m/s from 2 m (drive limit 1 m/s^2) has out L0 + v t - v^2 / (2 a) once at speed: 2.4 m at 1.05 s (the
+// last row's 2.375 m is 0.025 m short), bound one step's pay-out, v h = 2.5 mm. The maxima were taken at the rows
+// alone.
+TEST(Runner, TheSummarysMaximaCoverEveryStepTheTailPastTheLastRowToo)
+{
+  const std::string pulled = R"(
+params: {noise: 0, bending: false, winch_mode: locked, cable_length: 10, initial_deployed_length: 10}
+spool: [0, 0, 0]
+vehicle:
+  - [0, 10, 0, 0]
+  - [2, 10.02, 0, 0]
+duration: 1.05
+output_rate: 1
+)";
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(pulled, &scenario), "");
+  const std::string dir = temporaryDirectory("tail_maxima");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  ASSERT_NEAR(summary.simulated, 1.05, 1e-9);
+  ASSERT_EQ(summary.state_rows, 2u);  // t = 0 and 1 s: the tail is in no row
+  const double ea = scenario.params.axial_stiffness;
+  const double length = scenario.params.cable_length;
+  const double at_end = ea * (scenario.vehicleAt(1.05).norm() - length) / length;
+  std::printf(
+      "[ measured ] pulled to 1.05 s: max tension %.4f N at %.3f s, at the vehicle %.4f N (elastic %.4f N; "
+      "the last row's %.4f N)\n",
+      summary.max_tension, summary.max_tension_time, summary.max_tension_vehicle, at_end,
+      ea * (scenario.vehicleAt(1.0).norm() - length) / length);
+  EXPECT_NEAR(summary.max_tension, at_end, 0.01 * at_end);
+  EXPECT_NEAR(summary.max_tension_vehicle, at_end, 0.01 * at_end);
+  EXPECT_NEAR(summary.max_tension_time, 1.05, 1e-9);
+  EXPECT_NEAR(summary.max_strain, (scenario.vehicleAt(1.05).norm() - length) / length, 0.01 * at_end / ea);
+
+  std::string paying = pulled;
+  paying.replace(paying.find("winch_mode: locked, cable_length: 10, initial_deployed_length: 10"),
+                 std::string("winch_mode: locked, cable_length: 10, initial_deployed_length: 10").size(),
+                 "winch_mode: speed, winch_speed: 0.5, max_winch_acceleration: 1, initial_deployed_length: 2");
+  paying.replace(paying.find("  - [0, 10, 0, 0]\n  - [2, 10.02, 0, 0]"),
+                 std::string("  - [0, 10, 0, 0]\n  - [2, 10.02, 0, 0]").size(), "  - [0, 1.5, 0, 0]");
+  ASSERT_EQ(parseScenario(paying, &scenario), "");
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  const double v = 0.5, a = 1.0, h = scenario.params.time_step;
+  const double deployed = 2.0 + v * 1.05 - v * v / (2.0 * a);
+  std::printf(
+      "[ measured ] paying out to 1.05 s: max deployed %.4f m, at the end %.4f m (L0 + v t - v^2 / 2a "
+      "%.4f m)\n",
+      summary.deployed_max, summary.deployed_end, deployed);
+  EXPECT_NEAR(summary.deployed_max, deployed, v * h);
+  fs::remove_all(dir);
+}
+
 // A parameter file (config/*.yaml, --params) that gives a key twice is refused whole, naming the key: either
 // value could be the one meant (issue 26, item 13).
 TEST(ConfigFiles, ARepeatedKeyIsRefusedNamingIt)

@@ -107,6 +107,44 @@ std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::strin
   return "";
 }
 
+/// Folds a tether's state into its summary's maxima (deployed length, tension anywhere and at the vehicle, strain).
+void takeMaxima(const TetherSummary& s, double t, RunSummary* result)
+{
+  result->deployed_max = std::max(result->deployed_max, s.deployed_length);
+  if (s.max_tension > result->max_tension)
+  {
+    result->max_tension = s.max_tension;
+    result->max_tension_time = t;
+  }
+  result->max_tension_vehicle = std::max(result->max_tension_vehicle, s.tension_vehicle);
+  result->max_strain = std::max(result->max_strain, s.max_strain);
+}
+
+/// The summary's maxima over every step each tether takes, not only the output rows' states (a tension that peaks
+/// between two rows, or after the last, which the runner simulates up to the duration). Its own time is kept apart
+/// (seconds()), so that the summary's CPU time stays the simulation's.
+class StepMaxima : public StepObserver
+{
+ public:
+  StepMaxima(const World& world, std::vector<RunSummary>& each) : world_(world), each_(each) {}
+  void beforeStep(std::size_t /*tether*/) override {}
+  void afterStep(std::size_t i) override
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const Tether& sim = world_.tether(i);
+    sim.computeSegmentTensions(tensions_);
+    takeMaxima(sim.summarize(tensions_), sim.time(), &each_[i]);
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  double seconds() const { return seconds_; }
+
+ private:
+  const World& world_;
+  std::vector<RunSummary>& each_;
+  std::vector<double> tensions_;
+  double seconds_ = 0.0;
+};
+
 /// A tether's state row and shape rows at t_out, and its running maxima; the row's Newton effort is the
 /// sub-steps' since the previous row (the tether's mark is moved on).
 void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* shape_file, std::vector<double>& tensions,
@@ -156,12 +194,7 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   }
   ++result->state_rows;
   result->shape_rows += positions.size();
-  result->deployed_max = std::max(result->deployed_max, s.deployed_length);
-  if (s.max_tension > result->max_tension)
-  {
-    result->max_tension = s.max_tension;
-    result->max_tension_time = t_out;
-  }
+  takeMaxima(s, t_out, result);  // the start's state (every step's: StepMaxima)
   if (sim.winchOutrun())
   {
     result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
@@ -179,8 +212,6 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
     result->first_stall_time = result->stall_rows == 0 ? t_out : result->first_stall_time;
     ++result->stall_rows;
   }
-  result->max_tension_vehicle = std::max(result->max_tension_vehicle, s.tension_vehicle);
-  result->max_strain = std::max(result->max_strain, s.max_strain);
 }
 
 /// The world's topology at t_out as rows of topology.csv; returns how many.
@@ -369,8 +400,11 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   }
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
   std::vector<RunSummary> each = startOutputs(tethers, world, files, topology_file);
+  StepMaxima maxima(world, each);
+  stepper.setStepObserver(&maxima);
 
   const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
+  stepper.setStepObserver(nullptr);
   const bool ok = stepper.observerError().empty() && stepper.runError().empty();
   const std::string close_error = closeAll(files, ok, out_dir);
   if (!stepper.runError().empty())
@@ -385,7 +419,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return close_error;
   }
-  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds());
+  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - maxima.seconds());
   result.earlier_outputs = std::move(earlier);
   if (summary != nullptr)
   {

@@ -171,7 +171,7 @@ bool ScenarioStepper::feedUpTo(double t)
 }
 bool ScenarioStepper::advanceWorld(double t)
 {
-  const Status status = world_.advanceTo(t);
+  const Status status = world_.advanceTo(t, nullptr, step_observer_);
   if (!status.ok)
   {
     run_error_ = status.message;

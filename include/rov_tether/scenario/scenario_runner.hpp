@@ -25,14 +25,16 @@ struct RunSummary
   double simulated = 0.0;
   std::size_t state_rows = 0;
   std::size_t shape_rows = 0;
-  double deployed_start = 0.0;       ///< [m]
-  double deployed_end = 0.0;         ///< [m]
-  double deployed_max = 0.0;         ///< [m]
-  double max_tension = 0.0;          ///< Largest segment tension at any output time [N].
-  double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle at any output time [N].
-  double max_strain = 0.0;           ///< Largest geometric strain at any output time [-].
+  double deployed_start = 0.0;  ///< [m]
+  double deployed_end = 0.0;    ///< [m]
+  // The maxima are over every state the run simulated: the start and every step's (between and after the output
+  // rows too), not only the rows'.
+  double deployed_max = 0.0;         ///< Largest deployed length [m].
+  double max_tension = 0.0;          ///< Largest segment tension [N].
+  double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle [N].
+  double max_strain = 0.0;           ///< Largest geometric strain [-].
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
-  double max_tension_time = 0.0;     ///< Output time of max_tension [s].
+  double max_tension_time = 0.0;     ///< The time of the state (a step's, or the start) of max_tension [s].
   std::uint64_t recoveries = 0;      ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
   SolverEffort solver;               ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
   std::string last_failure;          ///< Tether::lastFailure() ("" for none).

@@ -49,6 +49,10 @@ class ScenarioStepper
   /// Lets the observers look at every time of theirs up to `until` [s], in time order.
   void observe(const std::vector<RunObserver*>& observers, double until);
 
+  /// Tells `observer` around every step the world takes from now on (World::advanceTo's StepObserver); nullptr:
+  /// none. It must outlive the stepper's advances.
+  void setStepObserver(StepObserver* observer) { step_observer_ = observer; }
+
   /// Stops driving tether i's dynamic vehicle (its thrust schedule or controller): from now on its thrust is the
   /// caller's (Tether::setVehicleThrust, held until changed). False when the scenario gives it no dynamic vehicle.
   bool releaseVehicle(std::size_t i);
@@ -82,6 +86,7 @@ class ScenarioStepper
   std::vector<std::pair<std::size_t, VehicleDriver>> vehicles_;
   std::vector<bool> released_;  ///< Per tether: its dynamic vehicle's thrust is the caller's (releaseVehicle).
   double cpu_ = 0.0;
+  StepObserver* step_observer_ = nullptr;
   std::string run_error_;
   std::string observer_error_;
 };
