@@ -1,5 +1,6 @@
 #include "rov_tether/ros/tether_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -238,8 +239,12 @@ bool TetherNode::onGetTension(GetTension::Request& request, GetTension::Response
 namespace
 {
 /// The winch parameters and target length [m] a SetWinch request asks for, on top of `params`: "" when they
-/// are valid, else why not (nothing is changed then). `target` is NaN for none.
-std::string winchRequest(const SetWinch::Request& request, TetherParams* params, double* target)
+/// are valid, else why not (nothing is changed then). `target` is NaN for none. A request refused for a parameter
+/// the service does not set (a constant_tension target above what max_winch_pull, set by dynamic_reconfigure,
+/// lets the motor pull) says so: the parameter, its value, and how to change it on the node's dynamic_reconfigure
+/// server `reconfigure` (its namespace); without that the user is left looking for a field SetWinch lacks.
+std::string winchRequest(const SetWinch::Request& request, TetherParams* params, double* target,
+                         const std::string& reconfigure)
 {
   if (!request.mode.empty() && !parseWinchMode(request.mode, &params->winch_mode))
   {
@@ -259,7 +264,22 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
   const auto errors = params->validate();
   if (!errors.empty())
   {
-    return errors.front();
+    // validate()'s messages begin with the parameter they are about ("max_winch_pull = 50: ...").
+    const std::string name = errors.front().substr(0, errors.front().find(" = "));
+    const auto& table = parameterInfo();
+    const auto info =
+        std::find_if(table.begin(), table.end(), [&](const ParameterInfo& row) { return row.name == name; });
+    const bool field =
+        name == "winch_mode" || name == "winch_speed" || name == "brake_tension" || name == "target_tension";
+    if (info == table.end() || field)
+    {
+      return errors.front();
+    }
+    return errors.front() + "; " + name + " (now " + formatParamValue(getParameter(*params, name)) +
+           ") is no field of ~set_winch: " +
+           (info->live ? "change it with dynamic_reconfigure (rosrun dynamic_reconfigure dynparam set " + reconfigure +
+                             " " + name + " VALUE), then ask again"
+                       : std::string("it is set at start (the node's parameters)"));
   }
   if (request.target_length < 0.0 || !std::isfinite(request.target_length))
   {
@@ -304,7 +324,7 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
   TetherParams params = tether_.params();
   double target = std::nan("");
   response.success = false;
-  response.message = winchRequest(request, &params, &target);
+  response.message = winchRequest(request, &params, &target, private_nh_.getNamespace());
   if (!response.message.empty())
   {
     return true;

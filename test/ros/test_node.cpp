@@ -320,7 +320,7 @@ void Harness::startFresh()
   // default.yaml's values of what the cases change, and its brake winch without a target.
   ros::ServiceClient parameters = nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
   ASSERT_TRUE(parameters.waitForExistence(ros::Duration(10.0)));
-  auto defaults = reconfigure({{"drag", 0.9}}, {{"iterations", 10}}, {{"solver", "direct"}});
+  auto defaults = reconfigure({{"drag", 0.9}, {"max_winch_pull", 0.0}}, {{"iterations", 10}}, {{"solver", "direct"}});
   ASSERT_TRUE(parameters.call(defaults));
   ASSERT_NO_FATAL_FAILURE(setWinch("brake"));
   // A reset detaches the vehicle; the next pose attaches it at home on a cable laid out afresh.
@@ -663,6 +663,51 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
   ASSERT_TRUE(client.call(srv));
   EXPECT_TRUE(srv.response.success) << srv.response.message;
   EXPECT_NE(srv.response.message.find("deprecated"), std::string::npos) << srv.response.message;
+}
+
+// A ~set_winch request refused for a parameter the service has no field for says which and how to change it: a
+// constant_tension target of 100 N with max_winch_pull 50 N (set by dynamic_reconfigure) is refused, as the motor
+// gives way below the band's lower edge, target_tension - tension_deadband = 100 - 1 = 99 N (default.yaml's 1 N
+// deadband; Params.AWinchPullBelowTheTensionBandIsRefused). The answer names max_winch_pull, its value now, that it
+// is no field of ~set_winch and the dynparam command for this node's server (it named the value and the bound but
+// not where to change it, and SetWinch has no such field). Following it, max_winch_pull 99 N (the edge is taken),
+// the same request is taken and ~state shows the new mode and target.
+TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  ros::ServiceClient parameters = h.nh_.serviceClient<dynamic_reconfigure::Reconfigure>("/tether_node/set_parameters");
+  ASSERT_TRUE(parameters.waitForExistence(ros::Duration(10.0)));
+  auto pull = reconfigure({{"max_winch_pull", 50.0}}, {});
+  ASSERT_TRUE(parameters.call(pull));
+  ASSERT_DOUBLE_EQ(configDouble(pull.response.config, "max_winch_pull"), 50.0);  // taken: a brake has no stall pull
+  ros::ServiceClient client;
+  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
+  rov_tether::SetWinch srv;
+  srv.request.mode = "constant_tension";
+  srv.request.target_tension = 100.0;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  const std::string& message = srv.response.message;
+  EXPECT_NE(message.find("max_winch_pull = 50: in constant_tension mode must be 0 (derived) or at least "
+                         "target_tension - tension_deadband = 100 - 1 = 99"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("max_winch_pull (now 50.0) is no field of ~set_winch: change it with dynamic_reconfigure "
+                         "(rosrun dynamic_reconfigure dynparam set /tether_node max_winch_pull VALUE), then ask again"),
+            std::string::npos)
+      << message;
+  ASSERT_TRUE(h.drive(0.2, home));
+  EXPECT_EQ(h.state_.winch_mode, "brake");  // nothing changed
+
+  pull = reconfigure({{"max_winch_pull", 99.0}}, {});
+  ASSERT_TRUE(parameters.call(pull));
+  ASSERT_DOUBLE_EQ(configDouble(pull.response.config, "max_winch_pull"), 99.0);
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_TRUE(h.drive(0.2, home));
+  EXPECT_EQ(h.state_.winch_mode, "constant_tension");
+  EXPECT_DOUBLE_EQ(h.state_.target_tension, 100.0);
 }
 
 // The brake and constant-tension setpoints go through ~set_winch and come back in ~state; a vehicle faster
