@@ -1034,6 +1034,58 @@ TEST(Runner, APathStartingOutOfTheTethersReachIsSaid)
   EXPECT_EQ(warnings.front() + "\n", message);
 }
 
+// A vehicle jump that lands out of the cable's reach is said by the runner, as the node warns of it (69c511e;
+// VehicleJump.AJumpOutOfTheCablesReachIsSaid): a path 5 m out on a locked 8 m cable that jumps to 30 m between
+// t = 1 s and 1.005 s (25 m in 5 ms, far beyond max_vehicle_speed x dt + max_vehicle_jump = 1.015 m) is re-laid
+// stretched to it, at (30 - 8) / 8 = 2.75, and the warning gives the count, the time of the step that said it (the
+// jump's, within its 5 ms step: 1.005 or 1.01 s, printed 1.00 or 1.01) and the tether's words. It was said only as
+// an over-tension. A jump within reach (to 7 m) is a jump and says nothing; a path that starts out of reach is said
+// once, as the world's warning when it is built (Runner.APathStartingOutOfTheTethersReachIsSaid), not again.
+TEST(Runner, AJumpOutOfTheCablesReachIsSaid)
+{
+  const auto run = [](double to, RunSummary* summary)
+  {
+    Scenario scenario;
+    const std::string yaml =
+        "params: {winch_mode: locked, cable_length: 8.0, initial_deployed_length: 8.0, noise: 0.0}\n"
+        "spool: [0, 0, 0]\nvehicle: [[0, 5, 0, 0], [1, 5, 0, 0], [1.005, " +
+        std::to_string(to) + ", 0, 0], [2, " + std::to_string(to) + ", 0, 0]]\nduration: 2\n";
+    EXPECT_EQ(parseScenario(yaml, &scenario), "");
+    const std::string dir = temporaryDirectory("jump_out_of_reach");
+    EXPECT_EQ(runScenario(scenario, dir, summary), "");
+    fs::remove_all(dir);
+    return runWarnings(scenario, *summary, 1e12);  // over-tension left out: above every tension
+  };
+  RunSummary summary;
+  std::vector<std::string> warnings = run(30.0, &summary);
+  EXPECT_EQ(summary.jumps, 1u);
+  EXPECT_EQ(summary.out_of_reach, 1u);
+  EXPECT_GE(summary.first_out_of_reach_time, 1.005 - 1e-9);
+  EXPECT_LE(summary.first_out_of_reach_time, 1.01 + 1e-9);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].rfind("vehicle out of the cable's reach (1) from t = 1.0", 0), 0u) << warnings[0];
+  EXPECT_NE(warnings[0].find(" s, the last: the vehicle's pose after a jump is 30 m from the spool, beyond the 8 m of "
+                             "cable the locked winch has out: the cable is laid stretched to it (strain 2.75): it "
+                             "jumped out of the tether's reach"),
+            std::string::npos)
+      << warnings[0];
+  warnings = run(7.0, &summary);
+  EXPECT_EQ(summary.jumps, 1u);
+  EXPECT_EQ(summary.out_of_reach, 0u);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+
+  Scenario scenario;
+  ASSERT_EQ(parseScenario("params: {winch_mode: locked, initial_deployed_length: 8.0, noise: 0.0}\n"
+                          "spool: [0, 0, 0]\nvehicle: [[0, 30, 0, 0], [1, 30, 0, 0]]\nduration: 0.1\n",
+                          &scenario),
+            "");
+  const std::string dir = temporaryDirectory("start_out_of_reach");
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  fs::remove_all(dir);
+  EXPECT_EQ(summary.out_of_reach, 0u);
+  EXPECT_EQ(runWarnings(scenario, summary, 1e12).size(), 1u) << "the world's warning alone";
+}
+
 // A `speed` winch reeling in at 0.5 m/s against a ROV that holds still 9 m out on 10 m: once the slack is in, the
 // motor's stall pull (7.5 N, derived: 1.25 x (5 + 1)) holds it, and the runner says so as the node does, with the
 // first output time it was held (Tether::winchStalled), the speed and the pull. The slack is in by 2.25 s at the

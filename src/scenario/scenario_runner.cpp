@@ -120,13 +120,21 @@ void takeMaxima(const TetherSummary& s, double t, RunSummary* result)
   result->max_strain = std::max(result->max_strain, s.max_strain);
 }
 
-/// The summary's maxima over every step each tether takes, not only the output rows' states (a tension that peaks
-/// between two rows, or after the last, which the runner simulates up to the duration). Its own time is kept apart
-/// (seconds()), so that the summary's CPU time stays the simulation's.
-class StepMaxima : public StepObserver
+/// What the summary takes at every step each tether takes, not only at the output rows: the maxima (a tension that
+/// peaks between two rows, or after the last, which the runner simulates up to the duration), and a vehicle that
+/// lands out of its cable's reach (a jump: Tether::outOfReachCount, counted from here on; a path's start out of
+/// reach is said when the world is built, among buildWorld's warnings), with the time of the step that said it.
+/// Its own time is kept apart (seconds()), so that the summary's CPU time stays the simulation's.
+class StepRecord : public StepObserver
 {
  public:
-  StepMaxima(const World& world, std::vector<RunSummary>& each) : world_(world), each_(each) {}
+  StepRecord(const World& world, std::vector<RunSummary>& each) : world_(world), each_(each)
+  {
+    for (std::size_t i = 0; i < world.size(); ++i)
+    {
+      out_of_reach_.push_back(world.tether(i).outOfReachCount());
+    }
+  }
   void beforeStep(std::size_t /*tether*/) override {}
   void afterStep(std::size_t i) override
   {
@@ -134,6 +142,14 @@ class StepMaxima : public StepObserver
     const Tether& sim = world_.tether(i);
     sim.computeSegmentTensions(tensions_);
     takeMaxima(sim.summarize(tensions_), sim.time(), &each_[i]);
+    if (sim.outOfReachCount() > out_of_reach_[i])
+    {
+      RunSummary& s = each_[i];
+      s.first_out_of_reach_time = s.out_of_reach == 0 ? sim.time() : s.first_out_of_reach_time;
+      s.out_of_reach += sim.outOfReachCount() - out_of_reach_[i];
+      s.last_out_of_reach = sim.lastOutOfReach();
+      out_of_reach_[i] = sim.outOfReachCount();
+    }
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   double seconds() const { return seconds_; }
@@ -141,6 +157,7 @@ class StepMaxima : public StepObserver
  private:
   const World& world_;
   std::vector<RunSummary>& each_;
+  std::vector<std::uint64_t> out_of_reach_;  ///< Each tether's Tether::outOfReachCount() taken so far.
   std::vector<double> tensions_;
   double seconds_ = 0.0;
 };
@@ -194,7 +211,7 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   }
   ++result->state_rows;
   result->shape_rows += positions.size();
-  takeMaxima(s, t_out, result);  // the start's state (every step's: StepMaxima)
+  takeMaxima(s, t_out, result);  // the start's state (every step's: StepRecord)
   if (sim.winchOutrun())
   {
     result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
@@ -400,8 +417,8 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   }
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
   std::vector<RunSummary> each = startOutputs(tethers, world, files, topology_file);
-  StepMaxima maxima(world, each);
-  stepper.setStepObserver(&maxima);
+  StepRecord every_step(world, each);
+  stepper.setStepObserver(&every_step);
 
   const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
   stepper.setStepObserver(nullptr);
@@ -419,7 +436,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return close_error;
   }
-  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - maxima.seconds());
+  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - every_step.seconds());
   result.earlier_outputs = std::move(earlier);
   if (summary != nullptr)
   {
@@ -453,6 +470,13 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
     {
       warnings.push_back(who + "simulation failure (" + std::to_string(s.recoveries) +
                          "), the last: " + s.last_failure);
+    }
+    if (s.out_of_reach > 0)
+    {
+      // As the node warns of it (TetherDiagnostics), with the run's time and count.
+      std::snprintf(line, sizeof line, "vehicle out of the cable's reach (%llu) from t = %.2f s, the last: ",
+                    static_cast<unsigned long long>(s.out_of_reach), s.first_out_of_reach_time);
+      warnings.push_back(who + line + s.last_out_of_reach);
     }
     const double warn_above =
         std::isnan(tethers[i].max_tension_warning) ? max_tension_warning : tethers[i].max_tension_warning;

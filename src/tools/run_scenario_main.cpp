@@ -34,8 +34,8 @@ void usage(std::FILE* out)
       "  parameter and each option once.\n"
       "  --max-tension-warning N: warn of a tension above N newtons (default 500, the node's), for\n"
       "                          each tether that does not set its own max_tension_warning.\n"
-      "  Warnings (stderr, as the node logs them): simulation failures, over-tension, an outrun winch,\n"
-      "  a reel-in held at the winch's stall pull.\n"
+      "  Warnings (stderr, as the node logs them): simulation failures, a vehicle out of its cable's reach,\n"
+      "  over-tension, an outrun winch, a reel-in held at the winch's stall pull.\n"
       "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
 }
 

@@ -34,15 +34,21 @@ struct RunSummary
   double max_tension_vehicle = 0.0;  ///< Largest tension at the vehicle [N].
   double max_strain = 0.0;           ///< Largest geometric strain [-].
   std::uint64_t jumps = 0;           ///< Vehicle jumps handled.
-  double max_tension_time = 0.0;     ///< The time of the state (a step's, or the start) of max_tension [s].
-  std::uint64_t recoveries = 0;      ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
-  SolverEffort solver;               ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
-  std::string last_failure;          ///< Tether::lastFailure() ("" for none).
-  std::size_t outrun_rows = 0;       ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
-  double first_outrun_time = -1.0;   ///< The first of them [s]; negative: none.
-  std::size_t stall_rows = 0;        ///< Output times at which the stall pull held the reel-in (Tether::winchStalled).
-  double first_stall_time = -1.0;    ///< The first of them [s]; negative: none.
-  double first_stall_speed = 0.0;    ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
+  /// Times the vehicle landed out of its cable's reach during the run (a jump; Tether::outOfReachCount from the
+  /// world's build on: a path's start out of reach is in world_warnings), the time of the step that first said it
+  /// [s] (negative: none) and what the tether said the last time (Tether::lastOutOfReach).
+  std::uint64_t out_of_reach = 0;
+  double first_out_of_reach_time = -1.0;
+  std::string last_out_of_reach;
+  double max_tension_time = 0.0;    ///< The time of the state (a step's, or the start) of max_tension [s].
+  std::uint64_t recoveries = 0;     ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
+  SolverEffort solver;              ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
+  std::string last_failure;         ///< Tether::lastFailure() ("" for none).
+  std::size_t outrun_rows = 0;      ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
+  double first_outrun_time = -1.0;  ///< The first of them [s]; negative: none.
+  std::size_t stall_rows = 0;       ///< Output times at which the stall pull held the reel-in (Tether::winchStalled).
+  double first_stall_time = -1.0;   ///< The first of them [s]; negative: none.
+  double first_stall_speed = 0.0;   ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
   /// The first output time at which a cable that started with some on the spool had all of cable_length paid
   /// out [s]; negative: never (or it started so).
   double first_full_time = -1.0;
@@ -73,7 +79,8 @@ constexpr double kDefaultMaxTensionWarning = 500.0;
 
 /// What the node warns of, for a run (each tether's, named when there are several): simulation failures,
 /// a tension above `max_tension_warning` [N] (over-tension; a tether's own ScenarioTether::max_tension_warning
-/// instead, where it sets one), the vehicle outrunning the winch, a `speed` winch's reel-in held at the motor's
+/// instead, where it sets one), a vehicle that lands out of its cable's reach during the run (a jump), the
+/// vehicle outrunning the winch, a `speed` winch's reel-in held at the motor's
 /// stall pull and the cable running out (all of cable_length paid out, where some was on the spool at the
 /// start); and an earlier run's outputs left in the output directory. Empty when the run gave none.
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
