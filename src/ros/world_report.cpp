@@ -11,9 +11,8 @@
 namespace rov_tether::ros_layer
 {
 
-ObstacleScene::ObstacleScene(ros::NodeHandle& private_nh, const std::string& world_frame, double marker_rate,
-                             World& world, tf2_ros::Buffer& tf)
-    : world_frame_(world_frame), marker_period_(1.0 / marker_rate), world_(world), tf_(tf)
+ObstacleFrames::ObstacleFrames(const std::string& world_frame, World& world, tf2_ros::Buffer& tf)
+    : world_frame_(world_frame), world_(world), tf_(tf)
 {
   for (std::size_t i = 0; i < world_.obstacleCount(); ++i)
   {
@@ -22,14 +21,14 @@ ObstacleScene::ObstacleScene(ros::NodeHandle& private_nh, const std::string& wor
     {
       framed_.push_back(i);
       local_.push_back(obstacle.pose());  // built from its position and orientation: in its frame
+      missing_.emplace_back(kMissingFramePeriod);
     }
   }
-  marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("obstacles", 1, /*latch=*/true);
-  publish(ros::Time::now());
 }
 
-void ObstacleScene::update(const ros::Time& now)
+bool ObstacleFrames::follow(const ros::Time& now, std::vector<std::string>* warnings)
 {
+  bool moved = false;
   for (std::size_t k = 0; k < framed_.size(); ++k)
   {
     const std::size_t i = framed_[k];
@@ -41,16 +40,38 @@ void ObstacleScene::update(const ros::Time& now)
     }
     catch (const tf2::TransformException& e)
     {
-      ROS_WARN_THROTTLE(5.0, "tether_node: obstacle '%s' keeps its last pose: no transform %s -> %s: %s",
-                        world_.obstacle(i).name().c_str(), world_frame_.c_str(), frame.c_str(), e.what());
+      if (missing_[k].due(now))
+      {
+        warnings->push_back("obstacle '" + world_.obstacle(i).name() + "' keeps its last pose: no transform " +
+                            world_frame_ + " -> " + frame + ": " + e.what());
+      }
       continue;
     }
     const Eigen::Isometry3d pose = frame_in_world * local_[k];
     if (!pose.isApprox(world_.obstacle(i).pose(), 1e-12))
     {
       world_.setObstaclePose(i, pose.translation(), Eigen::Quaterniond(pose.linear()));
-      moved_ = true;
+      moved = true;
     }
+  }
+  return moved;
+}
+
+ObstacleScene::ObstacleScene(ros::NodeHandle& private_nh, const std::string& world_frame, double marker_rate,
+                             World& world, tf2_ros::Buffer& tf)
+    : world_frame_(world_frame), marker_period_(1.0 / marker_rate), world_(world), frames_(world_frame, world, tf)
+{
+  marker_pub_ = private_nh.advertise<visualization_msgs::MarkerArray>("obstacles", 1, /*latch=*/true);
+  publish(ros::Time::now());
+}
+
+void ObstacleScene::update(const ros::Time& now)
+{
+  warnings_.clear();
+  moved_ = frames_.follow(now, &warnings_) || moved_;
+  for (const std::string& warning : warnings_)
+  {
+    ROS_WARN("tether_node: %s", warning.c_str());
   }
   if (moved_ && marker_pub_.getNumSubscribers() > 0 && (now - last_publish_ >= marker_period_ || now < last_publish_))
   {

@@ -1,5 +1,6 @@
 // The ROS layer without a master: converters, colours, service answers, parameter loading.
 #include <gtest/gtest.h>
+#include <tf2_ros/buffer.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
@@ -1413,6 +1414,67 @@ TEST(Obstacles, ContactPointsAreDrawnWhereTheCableTouches)
 }
 
 // ~topology carries World::topology line for line, with the names of the tethers and obstacles.
+// An obstacle whose tf frame never comes keeps its pose and is warned of with a throttle of its own
+// (ObstacleFrames, what ObstacleScene logs): one ROS_WARN_THROTTLE line warned of the first missing frame and hid
+// every other obstacle's for its 5 s, as LogThrottle.EachOwnerIsDueOncePerPeriodOfItsOwn shows of tethers. Two
+// obstacles on missing frames are both warned of at 10 s, neither again before 15 s (kMissingFramePeriod), both at
+// 15 s; once a's frame comes, a moves there (its local pose the identity: to the frame's origin, to 1e-12 m) and is
+// no longer warned of, while b is again at 20 s, 5 s after its last. An obstacle in the world frame is never looked up.
+TEST(Obstacles, EachMissingFrameIsWarnedOfWithAThrottleOfItsOwn)
+{
+  WorldOptions options;
+  ASSERT_EQ(loadObstacles("{obstacles: [{name: a, type: sphere, radius: 0.5, frame: fa},"
+                          "{name: b, type: sphere, radius: 0.5, frame: fb},"
+                          "{name: fixed, type: sphere, radius: 0.5, position: [5, 0, 0]}]}",
+                          &options),
+            "");
+  std::vector<std::unique_ptr<Obstacle>> obstacles;
+  for (const ObstacleSpec& spec : options.obstacles)
+  {
+    Status status;
+    obstacles.push_back(makePrimitive(spec, &status));
+    ASSERT_TRUE(obstacles.back()) << status.message;
+  }
+  World world;
+  ASSERT_TRUE(world.setObstacles(std::move(obstacles)).ok);
+  tf2_ros::Buffer tf;
+  ObstacleFrames frames("world", world, tf);
+  std::vector<std::string> warnings;
+  const auto names = [&warnings]
+  {
+    std::string said;
+    for (const std::string& warning : warnings)
+    {
+      said += warning.substr(0, warning.find(':')) + ";";
+    }
+    warnings.clear();
+    return said;
+  };
+  EXPECT_FALSE(frames.follow(ros::Time(10.0), &warnings));
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[1].rfind("obstacle 'b' keeps its last pose: no transform world -> fb", 0), 0u) << warnings[1];
+  EXPECT_EQ(names(), "obstacle 'a' keeps its last pose;obstacle 'b' keeps its last pose;")
+      << "each obstacle's warning, not the first's alone";
+  EXPECT_FALSE(frames.follow(ros::Time(14.9), &warnings));
+  EXPECT_EQ(names(), "");
+  EXPECT_FALSE(frames.follow(ros::Time(15.0), &warnings));
+  EXPECT_EQ(names(), "obstacle 'a' keeps its last pose;obstacle 'b' keeps its last pose;");
+
+  geometry_msgs::TransformStamped fa;
+  fa.header.stamp = ros::Time(15.5);
+  fa.header.frame_id = "world";
+  fa.child_frame_id = "fa";
+  fa.transform.translation.x = 1.0, fa.transform.translation.y = 2.0, fa.transform.translation.z = 3.0;
+  fa.transform.rotation.w = 1.0;
+  ASSERT_TRUE(tf.setTransform(fa, "test", true));
+  EXPECT_TRUE(frames.follow(ros::Time(16.0), &warnings)) << "a moved to its frame";
+  EXPECT_EQ(names(), "");
+  EXPECT_LT((world.obstacle(0).pose().translation() - Eigen::Vector3d(1.0, 2.0, 3.0)).norm(), 1e-12);
+  EXPECT_FALSE(frames.follow(ros::Time(20.0), &warnings)) << "a stays where its frame is";
+  EXPECT_EQ(names(), "obstacle 'b' keeps its last pose;");
+  EXPECT_EQ(world.obstacle(2).pose().translation(), Eigen::Vector3d(5.0, 0.0, 0.0));
+}
+
 TEST(Obstacles, TopologyMessageNamesTethersAndObjects)
 {
   TetherParams params;
