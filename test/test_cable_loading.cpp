@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "rov_tether/core/tether.hpp"
@@ -884,6 +885,53 @@ TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLo
                      "water_surface_z, in air (mass g)), must be below its EA: it would stretch it by 120%"),
             std::string::npos)
       << all;
+
+  // Hung from the vehicle: buoyant cable floats up from the spool and the vehicle holds it down, so a point carries
+  // what lies between it and the spool. A weightless 6 m section of EA 3e4 N at the vehicle end under 4 m of
+  // -1e4 N/m towards the drum carries all of their 4e4 N of lift (133%): refused, though hung from the spool it
+  // carries nothing. The buoyant section (EA 1e5 N) carries the same 4e4 N at most (40%): it is not named.
+  TetherParams lifted = lockedString(length, 0.1);
+  lifted.sections = {{6.0, {{"weight_in_water", 0.0}, {"axial_stiffness", 3e4}}},
+                     {std::numeric_limits<double>::quiet_NaN(), {{"weight_in_water", -1e4}}}};
+  const auto lifted_errors = lifted.validate();
+  ASSERT_EQ(lifted_errors.size(), 1u);
+  EXPECT_NE(lifted_errors[0].find("the cable from 0 m to 6 m from the vehicle"), std::string::npos) << lifted_errors[0];
+  EXPECT_NE(lifted_errors[0].find("up to 40000 N"), std::string::npos) << lifted_errors[0];
+
+  // A float's lift counts as a clump's weight does: a buoyant cable of -0.3 EA in all (-300 N/m over 10 m) with a
+  // float of 0.9 EA lift 1 m from the vehicle floats up 1.2 EA against the vehicle, held at the vehicle end's
+  // segment (T = |w L - sum of net buoyancies| = 12000 N): refused; without the float it is 0.3 EA, taken.
+  TetherParams floating = lockedString(length, 0.1);
+  floating.axial_stiffness = ea;
+  floating.weight_in_water = -0.3 * ea / length;
+  EXPECT_TRUE(floating.validate().empty()) << floating.validate().at(0);
+  CableAttachment big_float = body("float", 1.0, 0.9 * ea);
+  big_float.mass = 0.0;
+  floating.attachments = {big_float};
+  all.clear();
+  for (const std::string& error : floating.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_NE(all.find("up to 12000 N"), std::string::npos) << all;
+
+  // In air a float weighs its mass g like any body: a float of 0.6 EA lift and 0.6 EA of mass g on a neutral cable
+  // of 0.6 EA of mass g, all above water_surface_z, hangs 1.2 EA from the spool: refused. Under water (no surface)
+  // the float's lift is the most: 0.6 EA, taken.
+  TetherParams in_air = lockedString(length, 0.1);
+  in_air.axial_stiffness = ea;
+  in_air.mass_per_length = 0.6 * ea / (CableLoading::kGravity * length);
+  CableAttachment heavy_float = body("float", 1.0, 0.6 * ea);
+  heavy_float.mass = 0.6 * ea / CableLoading::kGravity;
+  in_air.attachments = {heavy_float};
+  EXPECT_TRUE(in_air.validate().empty()) << in_air.validate().at(0);
+  in_air.water_surface_z = 0.0;
+  all.clear();
+  for (const std::string& error : in_air.validate())
+  {
+    all += error + "\n";
+  }
+  EXPECT_NE(all.find("up to 12000 N"), std::string::npos) << all;
 }
 
 }  // namespace

@@ -483,6 +483,23 @@ output_rate: 1
       "%.4f m)\n",
       summary.deployed_max, summary.deployed_end, deployed);
   EXPECT_NEAR(summary.deployed_max, deployed, v * h);
+
+  // A peak between two rows: the same locked cable pulled out 0.02 m by 0.5 s and let back by 1 s (rows at 0 and
+  // 1 s, both with the cable at its length: 0 N). Quasi-static as above, the peak is the elastic EA 0.02 / L =
+  // 200 N at 0.5 s (the path's turn), within 1% (the drag at 0.04 m/s, ~0.1 N, is far less) and within a step of
+  // its time; the rows, and the run's last state, hold none of it.
+  std::string there_and_back = pulled;
+  there_and_back.replace(there_and_back.find("  - [2, 10.02, 0, 0]\nduration: 1.05"),
+                         std::string("  - [2, 10.02, 0, 0]\nduration: 1.05").size(),
+                         "  - [0.5, 10.02, 0, 0]\n  - [1, 10, 0, 0]\nduration: 1");
+  ASSERT_EQ(parseScenario(there_and_back, &scenario), "");
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  ASSERT_EQ(summary.state_rows, 2u);
+  const double peak = ea * 0.02 / length;
+  std::printf("[ measured ] out and back by 1 s: max tension %.4f N at %.3f s (elastic %.4f N at 0.5 s)\n",
+              summary.max_tension, summary.max_tension_time, peak);
+  EXPECT_NEAR(summary.max_tension, peak, 0.01 * peak);
+  EXPECT_NEAR(summary.max_tension_time, 0.5, scenario.params.time_step + 1e-9);
   fs::remove_all(dir);
 }
 

@@ -264,22 +264,28 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
   const auto errors = params->validate();
   if (!errors.empty())
   {
-    // validate()'s messages begin with the parameter they are about ("max_winch_pull = 50: ...").
-    const std::string name = errors.front().substr(0, errors.front().find(" = "));
+    // Every problem, each about the parameter its message begins with ("max_winch_pull = 50: ..."); one that is no
+    // field of the request says where it is changed.
     const auto& table = parameterInfo();
-    const auto info =
-        std::find_if(table.begin(), table.end(), [&](const ParameterInfo& row) { return row.name == name; });
-    const bool field =
-        name == "winch_mode" || name == "winch_speed" || name == "brake_tension" || name == "target_tension";
-    if (info == table.end() || field)
+    std::string answer;
+    for (const std::string& error : errors)
     {
-      return errors.front();
+      const std::string name = error.substr(0, error.find(" = "));
+      const auto info =
+          std::find_if(table.begin(), table.end(), [&](const ParameterInfo& row) { return row.name == name; });
+      const bool field =
+          name == "winch_mode" || name == "winch_speed" || name == "brake_tension" || name == "target_tension";
+      answer += (answer.empty() ? "" : "; ") + error;
+      if (info != table.end() && !field)
+      {
+        answer += "; " + name + " (now " + formatParamValue(getParameter(*params, name)) +
+                  ") is no field of ~set_winch: " +
+                  (info->live ? "change it with dynamic_reconfigure (rosrun dynamic_reconfigure dynparam set " +
+                                    reconfigure + " " + name + " VALUE), then ask again"
+                              : std::string("it is set at start (the node's parameters)"));
+      }
     }
-    return errors.front() + "; " + name + " (now " + formatParamValue(getParameter(*params, name)) +
-           ") is no field of ~set_winch: " +
-           (info->live ? "change it with dynamic_reconfigure (rosrun dynamic_reconfigure dynparam set " + reconfigure +
-                             " " + name + " VALUE), then ask again"
-                       : std::string("it is set at start (the node's parameters)"));
+    return answer;
   }
   if (request.target_length < 0.0 || !std::isfinite(request.target_length))
   {

@@ -671,7 +671,8 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
 // deadband; Params.AWinchPullBelowTheTensionBandIsRefused). The answer names max_winch_pull, its value now, that it
 // is no field of ~set_winch and the dynparam command for this node's server (it named the value and the bound but
 // not where to change it, and SetWinch has no such field). Following it, max_winch_pull 99 N (the edge is taken),
-// the same request is taken and ~state shows the new mode and target.
+// the same request is taken and ~state shows the new mode and target. A refusal about the request's own field (a
+// speed past max_winch_speed) gets no such hint.
 TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
 {
   Harness& h = *harness;
@@ -697,6 +698,17 @@ TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
                          "(rosrun dynamic_reconfigure dynparam set /tether_node max_winch_pull VALUE), then ask again"),
             std::string::npos)
       << message;
+  // A refusal about one of the request's own fields names no other place to change it: a speed past
+  // max_winch_speed is the request's `speed`.
+  rov_tether::SetWinch too_fast;
+  too_fast.request.mode = "speed";
+  too_fast.request.speed = 15.0;  // within the table's [-20, 20] m/s, past default.yaml's max_winch_speed
+  ASSERT_TRUE(client.call(too_fast));
+  EXPECT_FALSE(too_fast.response.success);
+  EXPECT_NE(too_fast.response.message.find("winch_speed = 15: must be in [-max_winch_speed, max_winch_speed]"),
+            std::string::npos)
+      << too_fast.response.message;
+  EXPECT_EQ(too_fast.response.message.find("is no field"), std::string::npos) << too_fast.response.message;
   ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.winch_mode, "brake");  // nothing changed
 

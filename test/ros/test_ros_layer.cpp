@@ -1413,7 +1413,6 @@ TEST(Obstacles, ContactPointsAreDrawnWhereTheCableTouches)
   EXPECT_TRUE(marker.points.empty());
 }
 
-// ~topology carries World::topology line for line, with the names of the tethers and obstacles.
 // An obstacle whose tf frame never comes keeps its pose and is warned of with a throttle of its own
 // (ObstacleFrames, what ObstacleScene logs): one ROS_WARN_THROTTLE line warned of the first missing frame and hid
 // every other obstacle's for its 5 s, as LogThrottle.EachOwnerIsDueOncePerPeriodOfItsOwn shows of tethers. Two
@@ -1475,6 +1474,7 @@ TEST(Obstacles, EachMissingFrameIsWarnedOfWithAThrottleOfItsOwn)
   EXPECT_EQ(world.obstacle(2).pose().translation(), Eigen::Vector3d(5.0, 0.0, 0.0));
 }
 
+// ~topology carries World::topology line for line, with the names of the tethers and obstacles.
 TEST(Obstacles, TopologyMessageNamesTethersAndObjects)
 {
   TetherParams params;
