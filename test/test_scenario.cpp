@@ -728,14 +728,14 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   RunSummary summary;
   ASSERT_EQ(runScenario(scenario, dir + "_lib", &summary), "");
   EXPECT_GT(summary.max_tension, 500.0);
-  EXPECT_GT(summary.outrun_rows, 0u);
+  EXPECT_GT(summary.outrun_seconds, 0.0);
   EXPECT_EQ(runWarnings(scenario, summary, 1e12).size(), 1u);  // above every tension: only the outrun
   EXPECT_LT(summary.first_full_time, 0.0);  // 7 m of the 10 out at the end: the cable did not run out
   // Running out of cable is said as such (it read as an outrun winch, or not at all): 3 m of cable, 2 m out, the
   // vehicle driving away at 1 m/s from 1.5 m, its brake (5 N on a weightless cable) paying out as fast as it goes
   // (max_winch_speed 2 m/s: never outrun). The cable, nearly straight, runs out when the vehicle is 3 m out
-  // plus the brake's stretch (3 m x 5 N / EA, a few mm): just after t = 1.5 s, so at the next output row (1.6 s),
-  // or up to a row sooner for its sag.
+  // plus the brake's stretch (3 m x 5 N / EA, a few mm): just after t = 1.5 s (the step that pays out the last of
+  // it), or up to 0.1 s sooner for its sag.
   std::ofstream(scenario_path) << "params: {cable_length: 3.0, initial_deployed_length: 2.0, winch_mode: brake, "
                                   "brake_tension: 5.0, max_winch_speed: 2.0, weight_in_water: 0.0, noise: 0.0}\n"
                                   "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [3, 4.5, 0, 0]]\n"
@@ -744,7 +744,7 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   ASSERT_EQ(runScenario(scenario, dir + "_out", &summary), "");
   EXPECT_GE(summary.first_full_time, 1.4 - 1e-9);
   EXPECT_LE(summary.first_full_time, 1.6 + 1e-9);
-  EXPECT_EQ(summary.outrun_rows, 0u);
+  EXPECT_EQ(summary.outrun_seconds, 0.0);
   const std::vector<std::string> out = runWarnings(scenario, summary, 1e12);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].rfind("the cable runs out at t = 1.", 0), 0u) << out[0];
@@ -1107,8 +1107,10 @@ TEST(Runner, AJumpOutOfTheCablesReachIsSaid)
 // motor's stall pull (7.5 N, derived: 1.25 x (5 + 1)) holds it, and the runner says so as the node does, with the
 // first output time it was held (Tether::winchStalled), the speed and the pull. The slack is in by 2.25 s at the
 // latest (the drum at 0.5 m/s after 0.5 s at 1 m/s^2: 0.125 m, then 0.875 m at 0.5 m/s; the drag on the moving
-// slack can hold it sooner), held 0.2 s (kOutrunTime) it is said: from the output row at or after 2.45 s at the
-// latest, so at the 26 rows from 2.5 s to 5 s at least. Paying out at 0.5 m/s to the same ROV is no stall.
+// slack can hold it sooner), held 0.2 s (kOutrunTime) it is said: from the step that ends at 2.45 s at the latest,
+// so for 5 - 2.45 = 2.55 s at least. Paying out at 0.5 m/s to the same ROV is no stall. Said from the steps, not the
+// output rows: at one row every 2 s to 3 s (rows at 0 and 2 s, the stall after both) it is said all the same, from
+// the same step (it read no stall: the rows held none).
 TEST(Runner, WarnsOfAReelInHeldAtTheStallPull)
 {
   const std::string yaml =
@@ -1125,14 +1127,25 @@ TEST(Runner, WarnsOfAReelInHeldAtTheStallPull)
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("the winch cannot reel in at its commanded -0.5 m/s"), std::string::npos) << warnings[0];
   EXPECT_GT(summary.first_stall_time, Tether::kOutrunTime);
-  EXPECT_LE(summary.first_stall_time, 2.5 + 1e-9);
+  EXPECT_LE(summary.first_stall_time, 2.45 + 1e-9);
+  const double first_stall = summary.first_stall_time;
   EXPECT_NE(warnings[0].find("stall pull of 7.5 N (max_winch_pull 0: 1.25 x"), std::string::npos) << warnings[0];
-  EXPECT_GE(summary.stall_rows, 26u);
+  EXPECT_GE(summary.stall_seconds, 5.0 - 2.45 - 1e-9);
+  Scenario sparse_rows = scenario;
+  sparse_rows.output_rate = 0.5;
+  sparse_rows.duration = 3.0;
+  ASSERT_EQ(runScenario(sparse_rows, dir, &summary), "");
+  fs::remove_all(dir);
+  ASSERT_EQ(summary.state_rows, 2u);  // t = 0 and 2 s
+  EXPECT_DOUBLE_EQ(summary.first_stall_time, first_stall);
+  EXPECT_GT(first_stall, 2.0) << "said after the last row (2 s), or this part does not test the steps past it";
+  EXPECT_GE(summary.stall_seconds, 3.0 - 2.45 - 1e-9);
+  EXPECT_EQ(runWarnings(sparse_rows, summary, kDefaultMaxTensionWarning).size(), 1u);
   Scenario paying_out = scenario;
   paying_out.params.winch_speed = 0.5;
   ASSERT_EQ(runScenario(paying_out, dir, &summary), "");
   fs::remove_all(dir);
-  EXPECT_EQ(summary.stall_rows, 0u);
+  EXPECT_EQ(summary.stall_seconds, 0.0);
   EXPECT_TRUE(runWarnings(paying_out, summary, kDefaultMaxTensionWarning).empty());
 }
 

@@ -121,9 +121,10 @@ void takeMaxima(const TetherSummary& s, double t, RunSummary* result)
 }
 
 /// What the summary takes at every step each tether takes, not only at the output rows: the maxima (a tension that
-/// peaks between two rows, or after the last, which the runner simulates up to the duration), and a vehicle that
-/// lands out of its cable's reach (a jump: Tether::outOfReachCount, counted from here on; a path's start out of
-/// reach is said when the world is built, among buildWorld's warnings), with the time of the step that said it.
+/// peaks between two rows, or after the last, which the runner simulates up to the duration), an outrun winch, a
+/// reel-in held at the stall pull (for how long, from when), a cable that runs out, and a vehicle that lands out of
+/// its cable's reach (a jump: Tether::outOfReachCount, counted from here on; a path's start out of reach is said
+/// when the world is built, among buildWorld's warnings), each with the time of the step that first said it.
 /// Its own time is kept apart (seconds()), so that the summary's CPU time stays the simulation's.
 class StepRecord : public StepObserver
 {
@@ -133,6 +134,7 @@ class StepRecord : public StepObserver
     for (std::size_t i = 0; i < world.size(); ++i)
     {
       out_of_reach_.push_back(world.tether(i).outOfReachCount());
+      last_time_.push_back(world.tether(i).time());
     }
   }
   void beforeStep(std::size_t /*tether*/) override {}
@@ -141,10 +143,29 @@ class StepRecord : public StepObserver
     const auto start = std::chrono::steady_clock::now();
     const Tether& sim = world_.tether(i);
     sim.computeSegmentTensions(tensions_);
-    takeMaxima(sim.summarize(tensions_), sim.time(), &each_[i]);
+    const TetherSummary state = sim.summarize(tensions_);
+    takeMaxima(state, sim.time(), &each_[i]);
+    RunSummary& s = each_[i];
+    const double step = sim.time() - last_time_[i];
+    last_time_[i] = sim.time();
+    if (sim.winchOutrun())
+    {
+      s.first_outrun_time = s.outrun_seconds > 0.0 ? s.first_outrun_time : sim.time();
+      s.outrun_seconds += step;
+    }
+    if (sim.winchStalled())
+    {
+      s.first_stall_speed = s.stall_seconds > 0.0 ? s.first_stall_speed : sim.winchCommandedSpeed();
+      s.first_stall_time = s.stall_seconds > 0.0 ? s.first_stall_time : sim.time();
+      s.stall_seconds += step;
+    }
+    if (s.first_full_time < 0.0 && sim.params().cable_length - state.deployed_length <= 1e-9 &&
+        s.deployed_start < sim.params().cable_length - 1e-9)
+    {
+      s.first_full_time = sim.time();
+    }
     if (sim.outOfReachCount() > out_of_reach_[i])
     {
-      RunSummary& s = each_[i];
       s.first_out_of_reach_time = s.out_of_reach == 0 ? sim.time() : s.first_out_of_reach_time;
       s.out_of_reach += sim.outOfReachCount() - out_of_reach_[i];
       s.last_out_of_reach = sim.lastOutOfReach();
@@ -158,6 +179,7 @@ class StepRecord : public StepObserver
   const World& world_;
   std::vector<RunSummary>& each_;
   std::vector<std::uint64_t> out_of_reach_;  ///< Each tether's Tether::outOfReachCount() taken so far.
+  std::vector<double> last_time_;            ///< Each tether's time at its last step (or the start) [s].
   std::vector<double> tensions_;
   double seconds_ = 0.0;
 };
@@ -211,24 +233,7 @@ void writeTether(Tether& sim, double t_out, std::FILE* state_file, std::FILE* sh
   }
   ++result->state_rows;
   result->shape_rows += positions.size();
-  takeMaxima(s, t_out, result);  // the start's state (every step's: StepRecord)
-  if (sim.winchOutrun())
-  {
-    result->first_outrun_time = result->outrun_rows == 0 ? t_out : result->first_outrun_time;
-    ++result->outrun_rows;
-  }
-  const double on_the_spool = sim.params().cable_length - s.deployed_length;
-  if (result->first_full_time < 0.0 && on_the_spool <= 1e-9 &&
-      result->deployed_start < sim.params().cable_length - 1e-9)
-  {
-    result->first_full_time = t_out;
-  }
-  if (sim.winchStalled())
-  {
-    result->first_stall_speed = result->stall_rows == 0 ? sim.winchCommandedSpeed() : result->first_stall_speed;
-    result->first_stall_time = result->stall_rows == 0 ? t_out : result->first_stall_time;
-    ++result->stall_rows;
-  }
+  takeMaxima(s, t_out, result);  // the start's state (every step's, and the winch's warnings: StepRecord)
 }
 
 /// The world's topology at t_out as rows of topology.csv; returns how many.
@@ -487,12 +492,12 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
                     s.max_tension, s.max_tension_time, warn_above, s.max_strain);
       warnings.push_back(who + line);
     }
-    if (s.outrun_rows > 0)
+    if (s.outrun_seconds > 0.0)
     {
       std::snprintf(line, sizeof line,
-                    "the vehicle outruns the winch at %zu output times from t = %.2f s: it pays out at "
+                    "the vehicle outruns the winch for %.3g s in all from t = %.2f s: it pays out at "
                     "max_winch_speed = %.3g m/s and the cable stretches",
-                    s.outrun_rows, s.first_outrun_time, p.max_winch_speed);
+                    s.outrun_seconds, s.first_outrun_time, p.max_winch_speed);
       warnings.push_back(who + line);
     }
     if (s.first_full_time >= 0.0)
@@ -503,12 +508,12 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
                     s.first_full_time, p.cable_length);
       warnings.push_back(who + line);
     }
-    if (s.stall_rows > 0)
+    if (s.stall_seconds > 0.0)
     {
       std::snprintf(line, sizeof line,
-                    "the winch cannot reel in at its commanded %.3g m/s at %zu output times from t = %.2f s: the "
+                    "the winch cannot reel in at its commanded %.3g m/s for %.3g s in all from t = %.2f s: the "
                     "spool tension holds it at the motor's stall pull of %.4g N (max_winch_pull%s)",
-                    s.first_stall_speed, s.stall_rows, s.first_stall_time, p.winchPull(),
+                    s.first_stall_speed, s.stall_seconds, s.first_stall_time, p.winchPull(),
                     p.max_winch_pull > 0.0 ? ""
                                            : " 0: 1.25 x the larger of target_tension + tension_deadband and "
                                              "brake_tension");

@@ -40,16 +40,18 @@ struct RunSummary
   std::uint64_t out_of_reach = 0;
   double first_out_of_reach_time = -1.0;
   std::string last_out_of_reach;
-  double max_tension_time = 0.0;    ///< The time of the state (a step's, or the start) of max_tension [s].
-  std::uint64_t recoveries = 0;     ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
-  SolverEffort solver;              ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
-  std::string last_failure;         ///< Tether::lastFailure() ("" for none).
-  std::size_t outrun_rows = 0;      ///< Output times at which the vehicle outran the winch (Tether::winchOutrun).
-  double first_outrun_time = -1.0;  ///< The first of them [s]; negative: none.
-  std::size_t stall_rows = 0;       ///< Output times at which the stall pull held the reel-in (Tether::winchStalled).
-  double first_stall_time = -1.0;   ///< The first of them [s]; negative: none.
-  double first_stall_speed = 0.0;   ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
-  /// The first output time at which a cable that started with some on the spool had all of cable_length paid
+  double max_tension_time = 0.0;  ///< The time of the state (a step's, or the start) of max_tension [s].
+  std::uint64_t recoveries = 0;   ///< Simulation failures (the cable re-laid), Tether::recoveryCount().
+  SolverEffort solver;            ///< Newton iterations and residuals over the run (direct), Tether::solverEffort().
+  std::string last_failure;       ///< Tether::lastFailure() ("" for none).
+  /// The steps' time, in all, at whose end the vehicle outran the winch (Tether::winchOutrun) [s].
+  double outrun_seconds = 0.0;
+  double first_outrun_time = -1.0;  ///< The end of the first such step [s]; negative: none.
+  /// The steps' time, in all, at whose end the stall pull held the reel-in (Tether::winchStalled) [s].
+  double stall_seconds = 0.0;
+  double first_stall_time = -1.0;  ///< The end of the first such step [s]; negative: none.
+  double first_stall_speed = 0.0;  ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
+  /// The end of the first step at which a cable that started with some on the spool had all of cable_length paid
   /// out [s]; negative: never (or it started so).
   double first_full_time = -1.0;
   std::size_t topology_rows = 0;    ///< Rows of topology.csv (0: not written).
