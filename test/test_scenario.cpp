@@ -112,7 +112,7 @@ TEST(ScenarioFile, BadScenariosNameTheField)
       {"spool: [0, 0, 0]\nduration: 1\nvehicle: [[1, 0, 0, 0], [0.5, 1, 0, 0]]", "vehicle[1]: time"},
       {"spool: [0, 0, 0]\nduration: 1\nvehicle: [[-1, 0, 0, 0]]", "vehicle[0]: time"},
       {"params: {iterations: 0}\nspool: [0, 0, 0]\nduration: 1", "params.iterations = 0"},
-      {"params: {itrations: 3}\nspool: [0, 0, 0]\nduration: 1", "unknown parameter 'itrations'"},
+      {"params: {itrations: 3}\nspool: [0, 0, 0]\nduration: 1", "params: unknown parameter 'itrations'"},
       {"params: {bending: maybe}\nspool: [0, 0, 0]\nduration: 1", "params.bending: wrong type"},
       {"params: {drag: [1]}\nspool: [0, 0, 0]\nduration: 1", "params.drag: wrong type (a list), expected a number"},
       {"params: {current: [1, 2]}\nspool: [0, 0, 0]\nduration: 1", "params.current: expected a list of 3 numbers"},

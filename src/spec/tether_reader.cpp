@@ -102,11 +102,16 @@ std::string readTetherParams(const YAML::Node& map, const std::string& prefix, P
   // The core's one loader of parameter values: types and ranges, and the whole set validated.
   for (const auto& error : applyParameters(values, &candidate))
   {
-    // The core's "parameter 'drag': ..." becomes "params.drag: ..." under a prefix.
+    // The core's "parameter 'drag': ..." becomes "params.drag: ..." under a prefix, an unknown name ("unknown
+    // parameter 'drg' (did you mean 'drag'?)") "params: unknown ...", and validate()'s ("drag = 2: ...")
+    // "params.drag = 2: ...".
     const std::string quoted = "parameter '";
     const std::size_t end =
         error.compare(0, quoted.size(), quoted) == 0 ? error.find("':", quoted.size()) : std::string::npos;
-    errors.push_back(prefix.empty() || end == std::string::npos
+    const bool unknown = error.rfind("unknown parameter", 0) == 0;
+    errors.push_back(prefix.empty() ? error
+                     : unknown      ? field_prefix.substr(0, field_prefix.size() - 1) + ": " + error
+                     : end == std::string::npos
                          ? prefix + error
                          : field_prefix + error.substr(quoted.size(), end - quoted.size()) + error.substr(end + 1));
   }
