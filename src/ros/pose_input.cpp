@@ -16,10 +16,17 @@ std::string checkPose(const geometry_msgs::Pose& pose)
 {
   const auto& p = pose.position;
   const auto& q = pose.orientation;
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(q.x) || !std::isfinite(q.y) ||
-      !std::isfinite(q.z) || !std::isfinite(q.w))
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
   {
-    return "position or orientation is not finite";
+    char text[160];
+    std::snprintf(text, sizeof(text), "position (x, y, z) = (%g, %g, %g) is not finite", p.x, p.y, p.z);
+    return text;
+  }
+  if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.w))
+  {
+    char text[160];
+    std::snprintf(text, sizeof(text), "orientation (x, y, z, w) = (%g, %g, %g, %g) is not finite", q.x, q.y, q.z, q.w);
+    return text;
   }
   const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
   if (std::abs(norm - 1.0) > 1e-3)

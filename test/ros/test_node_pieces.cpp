@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -79,7 +80,10 @@ TEST(PoseInput, RefusesNonFiniteAndUnnormalisedPosesAndCountsThem)
   PoseInput input(NodeOptions(), tf, tether);
 
   auto nan = poseMsg(std::nan(""), 0.0, -1.0, 1.0);
-  EXPECT_NE(checkPose(nan.pose).find("not finite"), std::string::npos);
+  EXPECT_EQ(checkPose(nan.pose), "position (x, y, z) = (nan, 0, -1) is not finite");  // which part, and its values
+  auto turned = poseMsg(1.0, 0.0, -1.0, 1.0);
+  turned.pose.orientation.z = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(checkPose(turned.pose), "orientation (x, y, z, w) = (0, 0, inf, 1) is not finite");
   input.receive(shared(nan), ros::Time(1.0));
   auto unnormalised = poseMsg(1.0, 0.0, -1.0, 1.0);
   unnormalised.pose.orientation.w = 1.01;
