@@ -69,6 +69,19 @@ void TetherDiagnostics::report(const ros::Time& now)
                                                 : "strain rule's payout_threshold x axial_stiffness");
     }
   }
+  // The cable running out, as the runner says it: all of cable_length paid out where some was on the spool (the
+  // diagnostics' "fully deployed" says it as long as it lasts).
+  const bool full = tether_.deployedLength() >= tether_.params().cable_length - 1e-9;
+  if (full && !was_full_ && had_spooled_ && run_out_log_.due(now))
+  {
+    ROS_WARN(
+        "tether_node%s: the cable runs out: all of cable_length = %.4g m is paid out, and from then on the winch has "
+        "no "
+        "more to give (the cable stretches where the vehicle pulls on)",
+        label_.c_str(), tether_.params().cable_length);
+  }
+  was_full_ = full;
+  had_spooled_ = had_spooled_ || !full;
   if (tether_.winchStalled())
   {
     last_stall_time_ = now;

@@ -906,6 +906,32 @@ TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
       << *line;
 }
 
+// A vehicle that drives on past all of the cable (default.yaml: 10 m, a 5 N brake paying out behind it, from 2 m)
+// runs it out: the node says so on /rosout once, naming cable_length, as the runner does (its /diagnostics said
+// only "fully deployed"). Driven from home (1.58 m out) to 11.5 m at 0.5 m/s the cable is all out before the
+// vehicle is 10 m from the spool plus the brake's stretch (5 N / EA over 10 m: 0.5 mm), at 18 s at the latest.
+TEST(TetherNode, ACableThatRunsOutIsWarned)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  const auto said = [&]
+  {
+    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
+                         [](const std::string& line) { return line.find("the cable runs out") != std::string::npos; });
+  };
+  const auto before = said();
+  const double t0 = h.sim_time_;
+  ASSERT_TRUE(h.drive(22.0, [t0](double t) { return poseAt(1.5 + 0.5 * std::min(t - t0, 20.0), 0.0, -0.5); }));
+  EXPECT_GE(h.state_.deployed_length, 10.0 - 1e-6);
+  ASSERT_TRUE(h.waitFor([&] { return said() > before; }, 10.0)) << "no warning on /rosout";
+  EXPECT_EQ(said(), before + 1);
+  const auto line =
+      std::find_if(h.node_warnings_.rbegin(), h.node_warnings_.rend(),
+                   [](const std::string& l) { return l.find("the cable runs out") != std::string::npos; });
+  EXPECT_NE(line->find("all of cable_length = 10 m is paid out"), std::string::npos) << *line;
+  ASSERT_TRUE(h.drive(0.5, home));
+}
+
 TEST(TetherNode, ResetServiceResets)
 {
   Harness& h = *harness;
