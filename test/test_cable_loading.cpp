@@ -830,6 +830,15 @@ TEST(Sections, ACableItsOwnWeightWouldStretchByItsLengthIsRefused)
 // surface taken (under water the cable weighs nothing, the top carries the clump's 0.6 EA).
 TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLoads)
 {
+  const auto errorsOf = [](const TetherParams& params)
+  {
+    std::string all;
+    for (const std::string& error : params.validate())
+    {
+      all += error + "\n";
+    }
+    return all;
+  };
   const double ea = 1e4;
   const double length = 10.0;
   TetherParams p = lockedString(length, 0.1);
@@ -843,11 +852,7 @@ TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLo
     return a;
   };
   p.attachments = {clump(0.6 * ea)};
-  std::string all;
-  for (const std::string& error : p.validate())
-  {
-    all += error + "\n";
-  }
+  std::string all = errorsOf(p);
   EXPECT_EQ(all,
             "the cable (weight_in_water = 600 N/m, axial_stiffness EA = 10000 N): the load hanging from it, up to "
             "12000 N (the cable's weight below it with its attachments' net loads), must be below its EA: it would "
@@ -876,11 +881,7 @@ TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLo
   neutral.attachments = {clump(0.6 * ea)};
   EXPECT_TRUE(neutral.validate().empty()) << neutral.validate().at(0);
   neutral.water_surface_z = 0.0;
-  all.clear();
-  for (const std::string& error : neutral.validate())
-  {
-    all += error + "\n";
-  }
+  all = errorsOf(neutral);
   EXPECT_NE(all.find("up to 12000 N (the cable's weight below it with its attachments' net loads, in water or, above "
                      "water_surface_z, in air (mass g)), must be below its EA: it would stretch it by 120%"),
             std::string::npos)
@@ -908,11 +909,7 @@ TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLo
   CableAttachment big_float = body("float", 1.0, 0.9 * ea);
   big_float.mass = 0.0;
   floating.attachments = {big_float};
-  all.clear();
-  for (const std::string& error : floating.validate())
-  {
-    all += error + "\n";
-  }
+  all = errorsOf(floating);
   EXPECT_NE(all.find("up to 12000 N"), std::string::npos) << all;
 
   // In air a float weighs its mass g like any body: a float of 0.6 EA lift and 0.6 EA of mass g on a neutral cable
@@ -926,11 +923,7 @@ TEST(Attachments, TheTopOfAHangingCableCarriesTheCablesWeightAndItsAttachmentsLo
   in_air.attachments = {heavy_float};
   EXPECT_TRUE(in_air.validate().empty()) << in_air.validate().at(0);
   in_air.water_surface_z = 0.0;
-  all.clear();
-  for (const std::string& error : in_air.validate())
-  {
-    all += error + "\n";
-  }
+  all = errorsOf(in_air);
   EXPECT_NE(all.find("up to 12000 N"), std::string::npos) << all;
 }
 
