@@ -38,6 +38,47 @@ std::string checkPose(const geometry_msgs::Pose& pose)
   return "";
 }
 
+std::string warningKind(const std::string& why)
+{
+  std::string kind;
+  const auto digit = [&](std::size_t k) { return k < why.size() && std::isdigit(static_cast<unsigned char>(why[k])); };
+  for (std::size_t i = 0; i < why.size();)
+  {
+    std::size_t j = i + (why[i] == '-' || why[i] == '+' ? 1 : 0);
+    if (why.compare(j, 3, "nan") == 0 || why.compare(j, 3, "inf") == 0)
+    {
+      kind += '#';
+      i = j + 3;
+      continue;
+    }
+    std::size_t k = j;
+    bool number = false;
+    while (k < why.size() && (digit(k) || why[k] == '.'))
+    {
+      number = number || digit(k);
+      ++k;
+    }
+    if (!number)
+    {
+      kind += why[i++];
+      continue;
+    }
+    if (k < why.size() && (why[k] == 'e' || why[k] == 'E'))
+    {
+      const std::size_t e = k + 1 + (k + 1 < why.size() && (why[k + 1] == '-' || why[k + 1] == '+') ? 1 : 0);
+      if (digit(e))
+      {
+        for (k = e; digit(k); ++k)
+        {
+        }
+      }
+    }
+    kind += '#';
+    i = k;
+  }
+  return kind;
+}
+
 Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose)
 {
   const auto& p = pose.position;
@@ -187,11 +228,7 @@ void PoseInput::refuse(const std::string& why)
 
 void PoseInput::warnEach(const char* what, const std::string& why)
 {
-  std::string kind = what;
-  for (const char c : why)
-  {
-    kind += std::isdigit(static_cast<unsigned char>(c)) ? '#' : c;
-  }
+  const std::string kind = what + warningKind(why);
   const double now = ros::WallTime::now().toSec();
   {
     std::lock_guard<std::mutex> lock(warn_mutex_);

@@ -268,6 +268,7 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
     // field of the request says where it is changed.
     const auto& table = parameterInfo();
     std::string answer;
+    std::vector<std::string> hinted;
     for (const std::string& error : errors)
     {
       const std::string name = error.substr(0, error.find(" = "));
@@ -276,8 +277,9 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
       const bool field =
           name == "winch_mode" || name == "winch_speed" || name == "brake_tension" || name == "target_tension";
       answer += (answer.empty() ? "" : "; ") + error;
-      if (info != table.end() && !field)
+      if (info != table.end() && !field && std::find(hinted.begin(), hinted.end(), name) == hinted.end())
       {
+        hinted.push_back(name);
         answer += "; " + name + " (now " + formatParamValue(getParameter(*params, name)) +
                   ") is no field of ~set_winch: " +
                   (info->live ? "change it with dynamic_reconfigure (rosrun dynamic_reconfigure dynparam set " +

@@ -709,6 +709,15 @@ TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
             std::string::npos)
       << too_fast.response.message;
   EXPECT_EQ(too_fast.response.message.find("is no field"), std::string::npos) << too_fast.response.message;
+  // Both problems of a request that has two: the pull with its hint (once), and the speed.
+  rov_tether::SetWinch both;
+  both.request.mode = "constant_tension";
+  both.request.target_tension = 100.0;
+  both.request.speed = 15.0;
+  ASSERT_TRUE(client.call(both));
+  EXPECT_FALSE(both.response.success);
+  EXPECT_NE(both.response.message.find("max_winch_pull = 50:"), std::string::npos) << both.response.message;
+  EXPECT_NE(both.response.message.find("winch_speed = 15: must be in"), std::string::npos) << both.response.message;
   ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.winch_mode, "brake");  // nothing changed
 
@@ -889,6 +898,12 @@ TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
                          { return line.find("out of the tether's reach") != std::string::npos; });
   };
   EXPECT_EQ(said(), 0) << "the vehicle at home, 1.58 m out on 2 m";
+  const auto run_out = [&]
+  {
+    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
+                         [](const std::string& line) { return line.find("the cable runs out") != std::string::npos; });
+  };
+  const auto run_out_before = run_out();
   ros::ServiceClient client = h.nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
   std_srvs::Trigger srv;
@@ -904,6 +919,8 @@ TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
                        "cable is laid stretched to it (strain 0.2)"),
             std::string::npos)
       << *line;
+  ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(12.0, 0.0, 0.0); }));
+  EXPECT_EQ(run_out(), run_out_before) << "laid out to all of its 10 m, the cable did not run out: no winch paid it";
 }
 
 // A vehicle that drives on past all of the cable (default.yaml: 10 m, a 5 N brake paying out behind it, from 2 m)
@@ -924,6 +941,8 @@ TEST(TetherNode, ACableThatRunsOutIsWarned)
   ASSERT_TRUE(h.drive(22.0, [t0](double t) { return poseAt(1.5 + 0.5 * std::min(t - t0, 20.0), 0.0, -0.5); }));
   EXPECT_GE(h.state_.deployed_length, 10.0 - 1e-6);
   ASSERT_TRUE(h.waitFor([&] { return said() > before; }, 10.0)) << "no warning on /rosout";
+  // Still pulling on the run-out cable past the warnings' 5 s throttle: said once, not again.
+  ASSERT_TRUE(h.drive(6.0, [](double) { return poseAt(11.5, 0.0, -0.5); }));
   EXPECT_EQ(said(), before + 1);
   const auto line =
       std::find_if(h.node_warnings_.rbegin(), h.node_warnings_.rend(),

@@ -84,6 +84,13 @@ TEST(PoseInput, RefusesNonFiniteAndUnnormalisedPosesAndCountsThem)
   auto turned = poseMsg(1.0, 0.0, -1.0, 1.0);
   turned.pose.orientation.z = std::numeric_limits<double>::infinity();
   EXPECT_EQ(checkPose(turned.pose), "orientation (x, y, z, w) = (0, 0, inf, 1) is not finite");
+  // One reason with other values each time is one kind of warning, throttled together (once a second): the
+  // values in checkPose's message (signs, points, exponents, nan and inf) each count as one number.
+  EXPECT_EQ(warningKind("position (x, y, z) = (nan, 0.5, -1) is not finite"),
+            warningKind("position (x, y, z) = (-nan, 12.25, 1e+06) is not finite"));
+  EXPECT_EQ(warningKind("position (x, y, z) = (nan, 0.5, -1) is not finite"),
+            "position (x, y, z) = (#, #, #) is not finite");
+  EXPECT_NE(warningKind(checkPose(nan.pose)), warningKind(checkPose(turned.pose)));
   input.receive(shared(nan), ros::Time(1.0));
   auto unnormalised = poseMsg(1.0, 0.0, -1.0, 1.0);
   unnormalised.pose.orientation.w = 1.01;

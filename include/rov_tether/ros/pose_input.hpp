@@ -33,6 +33,10 @@ namespace rov_tether::ros_layer
 /// quaternion whose norm is off 1 by more than 1e-3.
 std::string checkPose(const geometry_msgs::Pose& pose);
 
+/// The kind of a warning `why` (its text with each number, nan and inf as one '#'), which PoseInput throttles: one
+/// reason arriving with other values each time is one kind, not a new warning each.
+std::string warningKind(const std::string& why);
+
 /// The pose as a rigid transform (the quaternion taken as given; checkPose it first).
 Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose);
 
@@ -160,8 +164,8 @@ class PoseInput
   /// The vehicle at `vehicle` (world frame) at `stamp` into the tether; counts and logs a refusal.
   bool addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now);
   void refuse(const std::string& why);
-  /// Warns of `why` at most once a second for each kind of reason (its text without its numbers), so that one
-  /// problem arriving often does not hide another.
+  /// Warns of `why` at most once a second for each kind of reason (warningKind: its text without its numbers), so
+  /// that one problem arriving often does not hide another.
   void warnEach(const char* what, const std::string& why);
   /// Says once, at INFO, how a pose the node takes was read (`key` the case, `text` what it did).
   void noteOnce(const std::string& key, const std::string& text);
