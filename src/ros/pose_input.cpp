@@ -4,10 +4,10 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <regex>
 
 namespace rov_tether::ros_layer
 {
@@ -40,43 +40,9 @@ std::string checkPose(const geometry_msgs::Pose& pose)
 
 std::string warningKind(const std::string& why)
 {
-  std::string kind;
-  const auto digit = [&](std::size_t k) { return k < why.size() && std::isdigit(static_cast<unsigned char>(why[k])); };
-  for (std::size_t i = 0; i < why.size();)
-  {
-    std::size_t j = i + (why[i] == '-' || why[i] == '+' ? 1 : 0);
-    if (why.compare(j, 3, "nan") == 0 || why.compare(j, 3, "inf") == 0)
-    {
-      kind += '#';
-      i = j + 3;
-      continue;
-    }
-    std::size_t k = j;
-    bool number = false;
-    while (k < why.size() && (digit(k) || why[k] == '.'))
-    {
-      number = number || digit(k);
-      ++k;
-    }
-    if (!number)
-    {
-      kind += why[i++];
-      continue;
-    }
-    if (k < why.size() && (why[k] == 'e' || why[k] == 'E'))
-    {
-      const std::size_t e = k + 1 + (k + 1 < why.size() && (why[k + 1] == '-' || why[k + 1] == '+') ? 1 : 0);
-      if (digit(e))
-      {
-        for (k = e; digit(k); ++k)
-        {
-        }
-      }
-    }
-    kind += '#';
-    i = k;
-  }
-  return kind;
+  // A number (sign, digits, point, exponent), nan or inf.
+  static const std::regex number("[-+]?(nan|inf|[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?)");
+  return std::regex_replace(why, number, "#");
 }
 
 Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose)

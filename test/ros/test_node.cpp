@@ -137,6 +137,19 @@ class Harness
   long short_of_tolerance_ = -1;            ///< "sub-steps short of solver_tolerance" of the last (-1: none yet).
   int tether_diagnostics_count_ = 0;        ///< Tether diagnostics statuses received.
   std::vector<std::string> node_warnings_;  ///< The node's WARN lines on /rosout, in order.
+  /// How many of the node's WARN lines so far hold `text`.
+  long warningsSaying(const std::string& text) const
+  {
+    return std::count_if(node_warnings_.begin(), node_warnings_.end(),
+                         [&](const std::string& line) { return line.find(text) != std::string::npos; });
+  }
+  /// The last of the node's WARN lines that holds `text` ("" for none).
+  std::string lastWarningSaying(const std::string& text) const
+  {
+    const auto line = std::find_if(node_warnings_.rbegin(), node_warnings_.rend(),
+                                   [&](const std::string& l) { return l.find(text) != std::string::npos; });
+    return line == node_warnings_.rend() ? "" : *line;
+  }
   double sim_time_ = 1000.0;
 
  private:
@@ -891,18 +904,9 @@ TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
 {
   Harness& h = *harness;
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
-  const auto said = [&]
-  {
-    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
-                         [](const std::string& line)
-                         { return line.find("out of the tether's reach") != std::string::npos; });
-  };
+  const auto said = [&] { return h.warningsSaying("out of the tether's reach"); };
   EXPECT_EQ(said(), 0) << "the vehicle at home, 1.58 m out on 2 m";
-  const auto run_out = [&]
-  {
-    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
-                         [](const std::string& line) { return line.find("the cable runs out") != std::string::npos; });
-  };
+  const auto run_out = [&] { return h.warningsSaying("the cable runs out"); };
   const auto run_out_before = run_out();
   ros::ServiceClient client = h.nh_.serviceClient<std_srvs::Trigger>("/tether_node/reset");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10.0)));
@@ -912,13 +916,11 @@ TEST(TetherNode, AFirstPoseOutOfTheTethersReachIsWarned)
   ASSERT_TRUE(h.state_.vehicle_attached);
   ASSERT_TRUE(h.waitFor([&] { return said() > 0; }, 10.0)) << "no warning on /rosout";
   EXPECT_EQ(said(), 1);
-  const auto line =
-      std::find_if(h.node_warnings_.rbegin(), h.node_warnings_.rend(),
-                   [](const std::string& l) { return l.find("out of the tether's reach") != std::string::npos; });
-  EXPECT_NE(line->find("the vehicle's first position is 12 m from the spool, beyond the 10 m of cable there is: the "
-                       "cable is laid stretched to it (strain 0.2)"),
+  const std::string line = h.lastWarningSaying("out of the tether's reach");
+  EXPECT_NE(line.find("the vehicle's first position is 12 m from the spool, beyond the 10 m of cable there is: the "
+                      "cable is laid stretched to it (strain 0.2)"),
             std::string::npos)
-      << *line;
+      << line;
   ASSERT_TRUE(h.drive(0.5, [](double) { return poseAt(12.0, 0.0, 0.0); }));
   EXPECT_EQ(run_out(), run_out_before) << "laid out to all of its 10 m, the cable did not run out: no winch paid it";
 }
@@ -931,11 +933,7 @@ TEST(TetherNode, ACableThatRunsOutIsWarned)
 {
   Harness& h = *harness;
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
-  const auto said = [&]
-  {
-    return std::count_if(h.node_warnings_.begin(), h.node_warnings_.end(),
-                         [](const std::string& line) { return line.find("the cable runs out") != std::string::npos; });
-  };
+  const auto said = [&] { return h.warningsSaying("the cable runs out"); };
   const auto before = said();
   const double t0 = h.sim_time_;
   ASSERT_TRUE(h.drive(22.0, [t0](double t) { return poseAt(1.5 + 0.5 * std::min(t - t0, 20.0), 0.0, -0.5); }));
@@ -944,10 +942,8 @@ TEST(TetherNode, ACableThatRunsOutIsWarned)
   // Still pulling on the run-out cable past the warnings' 5 s throttle: said once, not again.
   ASSERT_TRUE(h.drive(6.0, [](double) { return poseAt(11.5, 0.0, -0.5); }));
   EXPECT_EQ(said(), before + 1);
-  const auto line =
-      std::find_if(h.node_warnings_.rbegin(), h.node_warnings_.rend(),
-                   [](const std::string& l) { return l.find("the cable runs out") != std::string::npos; });
-  EXPECT_NE(line->find("all of cable_length = 10 m is paid out"), std::string::npos) << *line;
+  const std::string line = h.lastWarningSaying("the cable runs out");
+  EXPECT_NE(line.find("all of cable_length = 10 m is paid out"), std::string::npos) << line;
   ASSERT_TRUE(h.drive(0.5, home));
 }
 
