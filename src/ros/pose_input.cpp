@@ -318,6 +318,7 @@ void PoseInput::receive(const geometry_msgs::PoseStamped::ConstPtr& msg, const r
   {
     std::lock_guard<std::mutex> lock(mutex_);
     waiting_for_tf_.push_back(HandOver{pose, now});
+    latest_received_ = std::max(latest_received_, pose->header.stamp);
   }
   filter_->add(pose);
 }
@@ -336,6 +337,7 @@ void PoseInput::handOver(const geometry_msgs::PoseStamped::ConstPtr& msg, const 
     return;
   }
   hand_over_.push_back(HandOver{msg, arrival});
+  latest_received_ = std::max(latest_received_, msg->header.stamp);
 }
 
 ros::Time PoseInput::stopWaiting(const geometry_msgs::PoseStamped* msg)
@@ -571,6 +573,14 @@ void PoseInput::reset(const ros::Time& now)
       refused += static_cast<std::size_t>(list->end() - keep);
       list->erase(keep, list->end());
     }
+    latest_received_ = ros::Time();  // of the poses kept, which the tether will still take
+    for (const auto* list : {&hand_over_, &waiting_for_tf_})
+    {
+      for (const HandOver& pose : *list)
+      {
+        latest_received_ = std::max(latest_received_, pose.msg->header.stamp);
+      }
+    }
   }
   if (refused > 0)
   {
@@ -580,6 +590,12 @@ void PoseInput::reset(const ros::Time& now)
       ROS_WARN("rov_pose rejected%s: %zu poses that arrived before the clock went back", label_.c_str(), refused);
     }
   }
+}
+
+ros::Time PoseInput::resetCut(const ros::Time& now) const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_received_ < now ? now : latest_received_ + ros::Duration(0, 1);
 }
 
 ros::Time PoseInput::earliestArrival() const

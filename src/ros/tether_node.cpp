@@ -373,8 +373,9 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
 bool TetherNode::onReset(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response)
 {
   const ros::Time now = ros::Time::now();
+  const ros::Time cut = pose_input_.resetCut(now);
   scheduler_.reset(index_, now, "reset requested");
-  pose_input_.refuseStampedBefore(now);  // a pose of the vehicle before the reset, delivered late, lays out nothing
+  pose_input_.refuseStampedBefore(cut);  // a pose of the vehicle before the reset, delivered late, lays out nothing
   response.success = true;
   response.message = "tether reset to " + std::to_string(tether_.deployedLength()) + " m";
   return true;

@@ -108,6 +108,10 @@ class PoseInput
   /// (counts, warns) every pose stamped before `cut`, taken later or not, so a pose of the vehicle before
   /// the reset (still queued, or delivered late) does not lay the fresh cable out to where it was.
   void refuseStampedBefore(const ros::Time& cut) { reset_cut_ = cut; }
+  /// Where to cut for a reset asked for at ROS time `now` (before reset()): `now`, or just after the latest
+  /// stamp of a pose received so far when that is later. A publisher on a simulated clock runs ahead of the
+  /// node's: its poses received before the reset, stamped after the node's `now`, show the vehicle before it.
+  ros::Time resetCut(const ros::Time& now) const;
 
   /// Poses refused (bad numbers, frames tf cannot transform in time, refused by the core).
   std::uint64_t rejected() const { return rejected_; }
@@ -196,6 +200,7 @@ class PoseInput
   mutable std::mutex mutex_;              ///< Guards the two lists below (input and physics threads).
   std::vector<HandOver> hand_over_;       ///< Received, for the physics thread (capacity kMaxHandOver).
   std::vector<HandOver> waiting_for_tf_;  ///< In the MessageFilter, with their arrival times.
+  ros::Time latest_received_;             ///< The latest stamp of the poses received since the last reset.
   std::vector<HandOver> taking_;          ///< Physics thread: the poses being taken (swapped with hand_over_).
 
   std::mutex warn_mutex_;                               ///< Guards the two below (input and physics threads).
