@@ -208,9 +208,8 @@ TEST(Winch, VehicleOutrunningTheWinchStretchesTheCable)
 
 // constant_tension: the ROV wanders out and in (radially, from rest, at most 0.5 m/s: r' = 0.5 sin(0.1 t))
 // on a 1 N/m tether; the winch pays out and reels in to hold the spool tension at 30 N. With direct (the
-// drum in the step) within +-10% at every step: the 1 N deadband (3%) plus the lag of a drum limited to
-// 1 m/s^2. xpbd's winch acts on the last step's tension, so only its mean over the minute is held within
-// 10%; its range is printed (docs/model.md, winch modes).
+// drum in the step) within the 1 N deadband at every step (below). xpbd's winch acts on the last step's tension, so
+// only its mean over the minute is held within 10%; its range is printed (docs/model.md, winch modes).
 TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
 {
   for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
@@ -249,13 +248,18 @@ TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
     }
     const double mean = sum / count;
     std::printf(
-        "[ measured ] constant tension 30 N, %s: spool tension in [%.2f, %.2f] N, mean %.2f N; paid out %.1f m, "
+        "[ measured ] constant tension 30 N, %s: spool tension in [%.4f, %.4f] N, mean %.2f N; paid out %.1f m, "
         "reeled in %.1f m\n",
         toString(solver).c_str(), lowest, highest, mean, paid, reeled);
     if (solver == SolverType::kDirect)
     {
-      EXPECT_GT(lowest, 0.9 * p.target_tension);
-      EXPECT_LT(highest, 1.1 * p.target_tension);
+      // The drum in the step pays out at target + deadband and reels in at target - deadband (its law, to
+      // the 1e-3 by which the readout's bending multipliers across the spool segment's cut move it), and the
+      // drive keeps up: the vehicle accelerates at 0.05 m/s^2 at most, the drum at 1 m/s^2. Below the floor
+      // only by a particle taken onto the drum as it reels in (one every 0.1 m segment), which unloads the
+      // spool segment for a step (0.2% below it here, at every take-in): 0.5% allowed for that.
+      EXPECT_GT(lowest, (p.target_tension - p.tension_deadband) * (1.0 - 5e-3));
+      EXPECT_LT(highest, (p.target_tension + p.tension_deadband) * (1.0 + 1e-3));
     }
     EXPECT_NEAR(mean, p.target_tension, 0.1 * p.target_tension) << toString(solver);
     EXPECT_GT(paid, 5.0) << toString(solver);  // it followed the 10 m excursion both ways
@@ -265,9 +269,8 @@ TEST(Winch, ConstantTensionHoldsTheTargetWhileTheVehicleWanders)
 
 // scenarios/heavy_dive.yaml (the case): a 60 m tether of 2 N/m in a 0.5 m/s cross current, the ROV
 // descending to 40 m in 60 s off a 150 N brake. The deployed length follows the dive without stalls (it grows
-// over every 2 s while the ROV goes down), the largest tension is at most 1.5 times the final steady spool
-// tension (the mean of the last 5 s), and the largest strain is below 1% (the paper's strain rule with pbd: 16%,
-// docs/model.md).
+// over every 2 s while the ROV goes down), no tension spikes above the brake, and the largest strain is below
+// 1% (the paper's strain rule with pbd: 16%, docs/model.md).
 TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
 {
   const Scenario scenario = shippedScenario("heavy_dive");
@@ -296,11 +299,17 @@ TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
   }
   const double final_tension = final_sum / final_count;
   std::printf(
-      "[ measured ] heavy dive: least pay-out over 2 s while diving %.3f m, peak tension %.1f N (final %.1f N), "
-      "max strain %.4f\n",
-      shortest_gain, peak, final_tension, strain);
+      "[ measured ] heavy dive: least pay-out over 2 s while diving %.3f m, peak tension %.4f N (final %.4f N, "
+      "brake %.1f N), max strain %.4f\n",
+      shortest_gain, peak, final_tension, scenario.params.brake_tension, strain);
   EXPECT_GT(shortest_gain, 0.0);
-  EXPECT_LT(peak, 1.5 * final_tension);
+  // The brake's drum holds the spool segment at the brake whenever it pays out (its law, to the solver's
+  // tolerance: 1e-4 of it is far above), and the hanging cable pulls hardest at its top: no segment, at no
+  // step, above the brake. Holding at 40 m from 60 s, the current's drag on the bowed cable keeps the drum
+  // creeping, so the last 5 s hold the spool at the brake.
+  const double brake = scenario.params.brake_tension;
+  EXPECT_LE(peak, brake * (1.0 + 1e-4));
+  EXPECT_NEAR(final_tension, brake, 1e-4 * brake);
   EXPECT_LT(strain, 0.01);
 }
 
@@ -364,7 +373,7 @@ TEST(Winch, AReelInNeverPullsHarderThanTheMotorsStallPull)
 // swung the spool between 0 and 28 kN and failed the solve every 3-4 s. The reel-in stops at the stall pull
 // (7.5 N before the switch, 1.25 x 21 = 26.25 N after it), so from the switch on the spool tension stays
 // within 1.5 x the target (the bound), nothing is re-laid, and 5 s after it the tension is held
-// within the deadband plus 10%.
+// within the deadband.
 TEST(Winch, ASwitchFromSpeedToConstantTensionMakesNoSpike)
 {
   TetherParams p = pullParams();
@@ -398,8 +407,9 @@ TEST(Winch, ASwitchFromSpeedToConstantTensionMakesNoSpike)
       before, after, settled_low, settled_high);
   EXPECT_LT(after, 1.5 * p.target_tension);
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
-  EXPECT_GT(settled_low, 0.9 * (p.target_tension - p.tension_deadband));
-  EXPECT_LT(settled_high, 1.1 * (p.target_tension + p.tension_deadband));
+  // The drum's law (the readout within 1e-3, as above): within the deadband, the ROV holding still.
+  EXPECT_GT(settled_low, (p.target_tension - p.tension_deadband) * (1.0 - 1e-3));
+  EXPECT_LT(settled_high, (p.target_tension + p.tension_deadband) * (1.0 + 1e-3));
 }
 
 // A `speed` winch reeling in at 0.5 m/s that the taut cable holds at the motor's stall pull (7.5 N) cannot reel in
