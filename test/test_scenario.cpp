@@ -624,6 +624,54 @@ TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
   fs::remove_all(dir);
 }
 
+// `--out results` beside other runs' folders (results/dive1/ of a single tether, results/seen/ with its cameras,
+// results/pair/ of a tethers list with its topology.csv): those folders mix with nothing this run writes, so none of
+// their files is named (every one was, file by file: "dive1/shape.csv; dive1/state.csv; ..."). What does mix is still
+// named: a CSV left in a directory this run writes into (a tethers list's a/vehicle.csv of an earlier dynamic run);
+// and, once out_dir holds an earlier world run's topology.csv, a folder of tether files only (c/), which can be
+// that run's tether directory, while a folder with a run of its own (pair/'s topology.csv, seen/'s cameras/) cannot.
+TEST(Runner, OtherRunsFoldersInTheOutputDirectoryAreNotNamed)
+{
+  const fs::path dir = temporaryDirectory("other_runs");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood, &scenario), "");
+  for (const fs::path& sub : {dir / "dive1", dir / "seen" / "cameras" / "front", dir / "pair" / "a"})
+  {
+    fs::create_directories(sub);
+  }
+  for (const fs::path& file :
+       {dir / "dive1" / "state.csv", dir / "dive1" / "shape.csv", dir / "seen" / "state.csv",
+        dir / "seen" / "shape.csv", dir / "seen" / "cameras" / "front" / "mask_000000.png",
+        dir / "pair" / "topology.csv", dir / "pair" / "a" / "state.csv", dir / "pair" / "a" / "shape.csv"})
+  {
+    std::ofstream(file) << "other run\n";
+  }
+  // A single tether writes state.csv and shape.csv in dir: the folders beside them are no output of its.
+  EXPECT_EQ(earlierOutputs(scenario, dir, {dir / "state.csv", dir / "shape.csv"}), std::vector<std::string>{});
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, std::vector<std::string>{});
+  for (const std::string& warning : runWarnings(scenario, summary, kDefaultMaxTensionWarning))
+  {
+    EXPECT_EQ(warning.find("earlier run"), std::string::npos) << warning;
+  }
+  // A tethers list (a, b) writes dir/a/, dir/b/ and dir/topology.csv: what is left in its own a/ is named, as is
+  // the single tether's state.csv and shape.csv it leaves in dir.
+  fs::create_directories(dir / "a");
+  std::ofstream(dir / "a" / "vehicle.csv") << "earlier\n";
+  const std::vector<fs::path> two = {dir / "a" / "state.csv", dir / "a" / "shape.csv", dir / "b" / "state.csv",
+                                     dir / "b" / "shape.csv", dir / "topology.csv"};
+  EXPECT_EQ(earlierOutputs(scenario, dir, two), (std::vector<std::string>{"a/vehicle.csv", "shape.csv", "state.csv"}));
+  // An earlier world run's topology.csv in dir: a folder of tether files only may be its tether directory.
+  fs::create_directories(dir / "c");
+  std::ofstream(dir / "c" / "state.csv") << "earlier\n";
+  std::ofstream(dir / "topology.csv") << "earlier\n";
+  const std::vector<std::string> expected = {"a/vehicle.csv",   "c/state.csv", "dive1/shape.csv",
+                                             "dive1/state.csv", "shape.csv",   "state.csv"};
+  EXPECT_EQ(earlierOutputs(scenario, dir, two), expected);
+  fs::remove_all(dir);
+}
+
 // A state row is written at each output time from the last step before it: rows faster than the steps would
 // repeat a step's state under times that were never simulated (a helper's 50 rows per s on 0.1 s steps wrote four
 // copies of t = 0 at 0.02-0.08 s). So output_rate above 1 / time_step is refused, naming both, by the library and

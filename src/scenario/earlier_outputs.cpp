@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
 
 namespace rov_tether
 {
@@ -50,6 +51,37 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
   }
   const auto writes = [&](const fs::path& file)
   { return std::find(written.begin(), written.end(), file) != written.end(); };
+  // The directories one level down this run writes into (a tethers list's DIR/<name>/).
+  std::vector<fs::path> own_dirs;
+  for (const fs::path& file : written)
+  {
+    const fs::path relative = file.lexically_relative(out_dir);
+    if (std::distance(relative.begin(), relative.end()) == 2)
+    {
+      own_dirs.push_back(*relative.begin());
+    }
+  }
+  // A directory this run does not write into is an earlier run's tether directory only if an earlier world run
+  // wrote here (every run with a tethers list writes DIR/topology.csv; this run has not replaced it yet) and it
+  // holds what a tether directory holds, no run of its own (a topology.csv or a directory: cameras/, tethers').
+  // Anything else is another run's folder (`--out results` beside results/dive1/), which mixes with nothing this run
+  // writes: its files were named one by one, every other run's.
+  std::error_code topology_ec;
+  const bool earlier_world = fs::is_regular_file(out_dir / "topology.csv", topology_ec);
+  const auto earlierTetherDirectory = [&](const fs::path& dir)
+  {
+    std::error_code dir_ec;
+    for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, dir_ec), end;
+         !dir_ec && it != end; it.increment(dir_ec))
+    {
+      std::error_code entry_ec;
+      if (it->path().filename() == "topology.csv" || fs::is_directory(it->path(), entry_ec))
+      {
+        return false;
+      }
+    }
+    return !dir_ec;
+  };
   // The CSV files, in out_dir and one level down (a tethers list's directories), in name order. An entry that
   // cannot be read is passed over, not the rest with it.
   std::vector<fs::path> csv;
@@ -69,6 +101,11 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
     if (!fs::is_directory(it->path(), dir_ec) || it->path().filename() == "cameras")
     {
       continue;
+    }
+    const bool own = std::find(own_dirs.begin(), own_dirs.end(), it->path().filename()) != own_dirs.end();
+    if (!own && !(earlier_world && earlierTetherDirectory(it->path())))
+    {
+      continue;  // another run's folder
     }
     for (fs::directory_iterator sub(it->path(), fs::directory_options::skip_permission_denied, dir_ec), last;
          !dir_ec && sub != last; sub.increment(dir_ec))
