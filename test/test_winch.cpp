@@ -1,13 +1,17 @@
 // A winch that works by tension (issue: brake, constant tension, drum dynamics, without stick-slip). Each
 // bound says where it comes from; docs/references.md holds the axial drag of a straight cable.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 
 #include "rov_tether/core/spool_drum.hpp"
 #include "rov_tether/scenario/scenario.hpp"
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -744,6 +748,97 @@ TEST(Winch, TheDrumsStretchOffItsLawIsTheDistanceToTheLaw)
   rounding.prepare(0.031);
   const double half = 0.5 * 0.031 * 0.13;
   EXPECT_NEAR(rounding.stretchOff(half, 0.13), half, eps);
+}
+
+// A `speed` winch reeling in without a target, on a slack cable (the vehicle holds still 2 m out), comes to
+// min_deployed_length (5 m) and is asked past it for as long as winch_speed stays negative. It used to run into the
+// limit at full speed (-0.5 m/s to 0 within two steps, where the drive's max_winch_acceleration a = 1 m/s^2 allows
+// a h = 0.005 m/s a step) and then, at every step it stood there, still head for -0.5 m/s (winchCommandedSpeed),
+// reel in a h^2 from standing and, with direct, hand the solver a drum reeling in what payOut then refused; nobody
+// was told. Now it slows down to stop there as at a target: its speed changes by at most a h a step (the stopping
+// speed is the steps' own, v^2 / 2a + v h / 2 = d); it stands at exactly 0 with 0 commanded and the length at
+// min_deployed_length, never below; it is never said to stall (the cable is slack); and winchAtShortest says so from
+// the step after it arrived on. The steps' profile, up to 0.5 m/s and down again at a h a step, covers 1 m in
+// 2.5 s less a step (100 steps up, 0.12625 m; 99 down, 0.12375 m; 300 at 0.5 m/s), bound +-2 steps. The runner
+// warns of it once, from the arrival, for the rest of the 6 s to a step (its last step ends at or past 6 s).
+TEST(Winch, ASpeedWinchReelingInToTheShortestLengthSlowsDownStopsAndIsSaidOnce)
+{
+  for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
+  {
+    SCOPED_TRACE(toString(solver));
+    TetherParams p;
+    p.noise = 0.0;
+    p.solver = solver;
+    p.cable_length = 40.0;
+    p.winch_mode = WinchMode::kSpeed;
+    p.winch_speed = -0.5;
+    p.initial_deployed_length = 6.0;
+    p.min_deployed_length = 5.0;
+    Tether sim(p, Position::Zero(), Position(2.0, 0.0, 0.0));
+    const double a = p.max_winch_acceleration, h = p.time_step;
+    double last_speed = 0.0, largest_change = 0.0, arrived = -1.0;
+    int standing = 0, unmet = 0, said_before = 0, stalled = 0;
+    drive(
+        sim, 0.0, 6.0, [](double) { return 2.0; },
+        [&]
+        {
+          largest_change = std::max(largest_change, std::abs(sim.winchSpeed() - last_speed));
+          last_speed = sim.winchSpeed();
+          stalled += sim.winchStalled() ? 1 : 0;
+          EXPECT_GE(sim.deployedLength(), p.min_deployed_length - 1e-12) << "at t = " << sim.time();
+          if (arrived < 0.0)
+          {
+            said_before += sim.winchAtShortest() ? 1 : 0;
+            arrived = sim.deployedLength() <= p.min_deployed_length + 1e-9 ? sim.time() : -1.0;
+            return;
+          }
+          ++standing;
+          unmet += sim.winchSpeed() == 0.0 && sim.winchCommandedSpeed() == 0.0 && sim.winchAtShortest() ? 0 : 1;
+        });
+    std::printf(
+        "[ measured ] %s: at min_deployed_length at %.3f s (2.495 s by the profile), largest speed change "
+        "%.4f m/s a step (bound a h = %.4f)\n",
+        toString(solver).c_str(), arrived, largest_change, a * h);
+    ASSERT_GT(arrived, 0.0) << "the premise: reeled in to the limit";
+    EXPECT_GE(arrived, 2.5 - 2 * h);
+    EXPECT_LE(arrived, 2.5 + 2 * h);
+    EXPECT_LE(largest_change, a * h * (1.0 + 1e-6));
+    EXPECT_GT(standing, 600);  // 3.5 s of 5 ms steps
+    EXPECT_EQ(unmet, 0) << "standing: speed and commanded speed 0, winchAtShortest";
+    EXPECT_EQ(said_before, 0);
+    EXPECT_EQ(stalled, 0);
+    EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+  }
+  // The runner says it once, with the time it got there and how long it stood, and no stall.
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(R"(
+params: {noise: 0, cable_length: 40, winch_mode: speed, winch_speed: -0.5, initial_deployed_length: 6,
+         min_deployed_length: 5}
+spool: [0, 0, 0]
+vehicle:
+  - [0, 2, 0, 0]
+duration: 6
+output_rate: 10
+)",
+                          &scenario),
+            "");
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("rov_tether_test_shortest_" + std::to_string(static_cast<long>(::getpid()))))
+                              .string();
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir, &summary), "");
+  std::filesystem::remove_all(dir);
+  const double h = scenario.params.time_step;
+  EXPECT_GE(summary.first_shortest_time, 2.5 - 2 * h);
+  EXPECT_LE(summary.first_shortest_time, 2.5 + 2 * h);
+  EXPECT_NEAR(summary.shortest_seconds, 6.0 - summary.first_shortest_time, h + 1e-9);
+  int said = 0;
+  for (const std::string& warning : runWarnings(scenario, summary, kDefaultMaxTensionWarning))
+  {
+    said += warning.find("min_deployed_length = 5 m") != std::string::npos ? 1 : 0;
+    EXPECT_EQ(warning.find("stall"), std::string::npos) << warning;
+  }
+  EXPECT_EQ(said, 1);
 }
 
 }  // namespace

@@ -121,16 +121,29 @@ double ConstantTensionWinch::lengthChange(const WinchInput& in)
   return accelerate(in.drive_speed, wanted, p.max_winch_acceleration, in.dt) * in.dt;
 }
 
+double SpeedWinch::shortestDistance(const WinchInput& in)
+{
+  // Within rounding of the limit (the rest lengths' sum) it is there: asked for no 1e-16 m reel-ins.
+  const double distance = in.params.min_deployed_length - in.deployed;
+  return distance < -1e-9 ? distance : 0.0;
+}
+
 double SpeedWinch::commandedSpeed(const WinchInput& in)
 {
   const TetherParams& p = in.params;
-  if (std::isnan(in.target_length))
+  if (std::isnan(in.target_length) && !(p.winch_speed < 0.0))
   {
     return p.winch_speed;
   }
-  // Towards the target: no faster than lets it stop there at max_winch_acceleration.
-  const double distance = in.target_length - in.deployed;
-  const double stopping = std::sqrt(2.0 * p.max_winch_acceleration * std::abs(distance));
+  // Towards the target, or a reel-in without one towards min_deployed_length (the shortest the drum reels in to,
+  // which it would otherwise hit at full speed and then be asked past at every step): no faster than lets it stop
+  // there at max_winch_acceleration. At min_deployed_length that is 0.
+  const double distance = std::isnan(in.target_length) ? shortestDistance(in) : in.target_length - in.deployed;
+  // The speed from which steps of dt, each slower by a dt, stop within the distance d: v^2 / 2a + v dt / 2 = d (the
+  // continuous sqrt(2 a d) ran a dt behind and arrived at up to ten times a dt: a jerk at the end).
+  const double a = p.max_winch_acceleration;
+  const double half_step = 0.5 * a * in.dt;
+  const double stopping = std::sqrt(half_step * half_step + 2.0 * a * std::abs(distance)) - half_step;
   return std::copysign(std::min(std::abs(p.winch_speed), stopping), distance);
 }
 
@@ -140,7 +153,8 @@ double SpeedWinch::lengthChange(const WinchInput& in)
   const double change = accelerate(in.drive_speed, commandedSpeed(in), p.max_winch_acceleration, in.dt) * in.dt;
   if (std::isnan(in.target_length))
   {
-    return change;
+    // A reel-in not past min_deployed_length (a drive still paying out slows down as it would).
+    return p.winch_speed < 0.0 ? std::max(change, shortestDistance(in)) : change;
   }
   const double distance = in.target_length - in.deployed;  // and not past the target
   return std::abs(change) > std::abs(distance) ? distance : change;

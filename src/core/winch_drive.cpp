@@ -71,6 +71,9 @@ void WinchDrive::afterSolve(const Scene& scene, bool drum_in_solve, double h)
   }
   outrun_time_ = atItsLimit(scene, h) ? outrun_time_ + h : 0.0;
   noteStall(scene, h);
+  const TetherParams& params = scene.params;
+  at_shortest_ = params.winch_mode == WinchMode::kSpeed && std::isnan(target_length_) && params.winch_speed < 0.0 &&
+                 speed_ == 0.0 && scene.spool.deployedLength(scene.cable) <= params.min_deployed_length + 1e-9;
 }
 
 void WinchDrive::payOut(const Scene& scene, double change, double dt)
@@ -104,6 +107,7 @@ void WinchDrive::reset()
   outrun_time_ = 0.0;
   stall_time_ = 0.0;
   held_at_pull_ = false;
+  at_shortest_ = false;
 }
 
 void WinchDrive::noteStall(const Scene& scene, double h)

@@ -84,6 +84,16 @@ void TetherDiagnostics::report(const ros::Time& now)
   }
   was_full_ = full;
   had_spooled_ = had_spooled_ || !full;
+  // A speed winch asked to reel in past min_deployed_length stands there: said once each time it comes to stand.
+  const bool at_shortest = tether_.winchAtShortest();
+  if (at_shortest && !was_at_shortest_ && shortest_log_.due(now))
+  {
+    ROS_WARN(
+        "tether_node%s: the winch stands at min_deployed_length = %.4g m: winch_speed = %.3g m/s asks it to reel in "
+        "further, which it does not (it slowed down to stop there; ~set_winch a speed >= 0 or a target_length)",
+        label_.c_str(), tether_.params().min_deployed_length, tether_.params().winch_speed);
+  }
+  was_at_shortest_ = at_shortest;
   if (tether_.winchStalled())
   {
     last_stall_time_ = now;
@@ -153,6 +163,7 @@ void TetherDiagnostics::restarted()
   // Laid out afresh: running out is counted from the cable as the reset lays it.
   was_full_ = false;
   had_spooled_ = false;
+  was_at_shortest_ = false;
 }
 
 void TetherDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -122,7 +122,8 @@ void takeMaxima(const TetherSummary& s, double t, RunSummary* result)
 
 /// What the summary takes at every step each tether takes, not only at the output rows: the maxima (a tension that
 /// peaks between two rows, or after the last, which the runner simulates up to the duration), an outrun winch, a
-/// reel-in held at the stall pull (for how long, from when), a cable that runs out, and a vehicle that lands out of
+/// reel-in held at the stall pull (for how long, from when), a speed winch asked to reel in past min_deployed_length
+/// (the same), a cable that runs out, and a vehicle that lands out of
 /// its cable's reach (a jump: Tether::outOfReachCount, counted from here on; a path's start out of reach is said
 /// when the world is built, among buildWorld's warnings), each with the time of the step that first said it.
 /// Its own time is kept apart (seconds()), so that the summary's CPU time stays the simulation's.
@@ -158,6 +159,11 @@ class StepRecord : public StepObserver
       s.first_stall_speed = s.stall_seconds > 0.0 ? s.first_stall_speed : sim.winchCommandedSpeed();
       s.first_stall_time = s.stall_seconds > 0.0 ? s.first_stall_time : sim.time();
       s.stall_seconds += step;
+    }
+    if (sim.winchAtShortest())
+    {
+      s.first_shortest_time = s.shortest_seconds > 0.0 ? s.first_shortest_time : sim.time();
+      s.shortest_seconds += step;
     }
     if (s.first_full_time < 0.0 && sim.params().cable_length - state.deployed_length <= 1e-9 &&
         s.deployed_start < sim.params().cable_length - 1e-9)
@@ -517,6 +523,14 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
                     p.max_winch_pull > 0.0 ? ""
                                            : " 0: 1.25 x the larger of target_tension + tension_deadband and "
                                              "brake_tension");
+      warnings.push_back(who + line);
+    }
+    if (s.shortest_seconds > 0.0)
+    {
+      std::snprintf(line, sizeof line,
+                    "the winch stands at min_deployed_length = %.4g m for %.3g s in all from t = %.2f s: winch_speed = "
+                    "%.3g m/s asks it to reel in further, which it does not (it slowed down to stop there)",
+                    p.min_deployed_length, s.shortest_seconds, s.first_shortest_time, p.winch_speed);
       warnings.push_back(who + line);
     }
   }

@@ -130,6 +130,11 @@ class Tether
   /// cannot reel in at its speed, as an outrun winch cannot pay out at the vehicle's. A few steps at the pull (a
   /// cable coming taut) are not.
   bool winchStalled() const { return winch_.stalled(); }
+  /// True when a `speed` winch without a target length, its winch_speed asking to reel in, stood at
+  /// min_deployed_length over the last step: it reels in no further (it slowed down to stop there at
+  /// max_winch_acceleration), and the request goes unmet for as long as it stands (said once by the node and the
+  /// runner).
+  bool winchAtShortest() const { return winch_.atShortest(); }
   /// A `speed` winch's commanded speed in the last sub-step [m/s] (negative reeling in): winch_speed, or towards a
   /// target length; 0 in the other modes.
   double winchCommandedSpeed() const { return winch_.commandedSpeed(); }

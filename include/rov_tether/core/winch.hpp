@@ -81,17 +81,23 @@ class ConstantTensionWinch : public Winch
 };
 
 /// `speed`: pays out (positive) or reels in at winch_speed, or towards the target length, where it stops
-/// without overshoot; its drive's speed changes by at most max_winch_acceleration. A reel-in stops (the motor
-/// gives way) when the spool tension reaches the motor's stall pull (TetherParams::winchPull()); with direct
-/// within the step (a SpoolDrum of that law), otherwise from the last step's tension.
+/// without overshoot; its drive's speed changes by at most max_winch_acceleration. A reel-in without a target
+/// stops so at min_deployed_length, and stands there (commanded 0, no drum handed to the solver) for as long as
+/// winch_speed asks past it. A reel-in stops (the motor gives way) when the spool tension reaches the motor's stall
+/// pull (TetherParams::winchPull()); with direct within the step (a SpoolDrum of that law), otherwise from the last
+/// step's tension.
 class SpeedWinch : public Winch
 {
  public:
   double lengthChange(const WinchInput& in) override;
   bool drum(const WinchInput& in, SpoolDrum* drum) override;
   /// The speed it heads for [m/s] (negative reeling in) before the acceleration limit: winch_speed, or towards
-  /// the target no faster than lets it stop there.
+  /// the target, or a reel-in towards min_deployed_length, no faster than lets it stop there.
   static double commandedSpeed(const WinchInput& in);
+
+ private:
+  /// How far a reel-in may go before min_deployed_length [m], <= 0 (0 within 1e-9 m of it).
+  static double shortestDistance(const WinchInput& in);
 };
 
 /// `locked`: the deployed length never changes.

@@ -63,6 +63,9 @@ class WinchDrive
   bool outrun() const { return outrun_time_ >= kOutrunTime; }
   /// A speed winch's reel-in held at the stall pull for kOutrunTime (Tether::winchStalled).
   bool stalled() const { return stall_time_ >= kOutrunTime; }
+  /// A `speed` winch without a target, its winch_speed asking to reel in, standing at min_deployed_length over the
+  /// last sub-step (Tether::winchAtShortest).
+  bool atShortest() const { return at_shortest_; }
 
  private:
   /// Whether the winch paid out at max_winch_speed over the last sub-step of length h [s] while the spool
@@ -80,6 +83,7 @@ class WinchDrive
   double commanded_speed_ = 0.0;  ///< A speed winch's commanded speed in the sub-step [m/s]; 0 in other modes.
   double reel_in_asked_ = 0.0;    ///< The reel-in a speed winch's drum was asked for in the sub-step [m] (< 0).
   bool held_at_pull_ = false;     ///< The sub-step's reel-in was held back at the stall pull.
+  bool at_shortest_ = false;      ///< atShortest().
   SpoolDrum drum_;                ///< The brake drum as the solver takes it into a step.
 };
 

@@ -66,6 +66,7 @@ class TetherDiagnostics
   std::uint64_t reported_out_of_reach_ = 0;  ///< Attachments out of the cable's reach already logged.
   bool was_full_ = false;                    ///< All of cable_length was paid out at the last report.
   bool had_spooled_ = false;                 ///< Some cable was on the spool at a report: running out is news.
+  bool was_at_shortest_ = false;             ///< Tether::winchAtShortest() at the last report.
   std::uint64_t reported_failures_ = 0;      ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;              ///< When the last failure was seen; diagnostics show ERROR for a while.
   ros::Time last_outrun_time_;               ///< When the vehicle last outran the winch; diagnostics WARN for a while.
@@ -74,7 +75,7 @@ class TetherDiagnostics
   /// other tether's): outrun, stall and unconverged once per 5 s (kFailureReportTime), failures and jumps once a
   /// second.
   LogThrottle outrun_log_{5.0}, stall_log_{5.0}, unconverged_log_{5.0}, failure_log_{1.0}, jump_log_{1.0},
-      run_out_log_{5.0};
+      run_out_log_{5.0}, shortest_log_{5.0};
   std::uint64_t reported_drops_ = 0;        ///< Dropped poses already seen.
   ros::Time last_drop_time_;                ///< When poses were last dropped; diagnostics show WARN for a while.
   std::uint64_t reported_unconverged_ = 0;  ///< Steps short of solver_tolerance already logged.

@@ -54,6 +54,10 @@ struct RunSummary
   /// The end of the first step at which a cable that started with some on the spool had all of cable_length paid
   /// out [s]; negative: never (or it started so).
   double first_full_time = -1.0;
+  /// The steps' time, in all, at whose end a `speed` winch asked to reel in stood at min_deployed_length
+  /// (Tether::winchAtShortest) [s], and the end of the first such step [s] (negative: none).
+  double shortest_seconds = 0.0;
+  double first_shortest_time = -1.0;
   std::size_t topology_rows = 0;    ///< Rows of topology.csv (0: not written).
   std::size_t vehicle_rows = 0;     ///< Rows of the tether's vehicle.csv (0: not written: no dynamic vehicle).
   std::vector<RunSummary> tethers;  ///< Each tether's own figures (steps: its own), in scenario order.
@@ -83,7 +87,8 @@ constexpr double kDefaultMaxTensionWarning = 500.0;
 /// a tension above `max_tension_warning` [N] (over-tension; a tether's own ScenarioTether::max_tension_warning
 /// instead, where it sets one), a vehicle that lands out of its cable's reach during the run (a jump), the
 /// vehicle outrunning the winch, a `speed` winch's reel-in held at the motor's
-/// stall pull and the cable running out (all of cable_length paid out, where some was on the spool at the
+/// stall pull, a `speed` winch asked to reel in past min_deployed_length (once, with the time it got there and how
+/// long it stood) and the cable running out (all of cable_length paid out, where some was on the spool at the
 /// start); and an earlier run's outputs left in the output directory. Empty when the run gave none.
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning);
 
