@@ -41,6 +41,19 @@ TetherParams pullParams()
   return p;
 }
 
+/// A `speed` winch reeling in at 0.5 m/s from `initial` [m] deployed, down to min_deployed_length 5 m (40 m cable).
+TetherParams reelingInToFiveMetres(double initial)
+{
+  TetherParams p;
+  p.noise = 0.0;
+  p.cable_length = 40.0;
+  p.winch_mode = WinchMode::kSpeed;
+  p.winch_speed = -0.5;
+  p.initial_deployed_length = initial;
+  p.min_deployed_length = 5.0;
+  return p;
+}
+
 /// Feeds the vehicle at x(t) along +x, one sample a step (linear interpolation between coarser samples would
 /// put the vehicle's acceleration into the steps that cross a sample), and calls `each` after every step.
 template <typename Path, typename Each>
@@ -607,13 +620,7 @@ TEST(Winch, AModeChangeInASlipStartsFromTheDriveNotTheSlip)
 // ringing, which by 10 s is under half the stall pull (a held drum reads the stall pull itself, within 1%).
 TEST(Winch, ASpeedWinchStopsAtTheShortestDeployedLengthWithoutPulling)
 {
-  TetherParams p;
-  p.noise = 0.0;
-  p.cable_length = 40.0;
-  p.winch_mode = WinchMode::kSpeed;
-  p.winch_speed = -0.5;
-  p.initial_deployed_length = 8.0;
-  p.min_deployed_length = 5.0;
+  TetherParams p = reelingInToFiveMetres(8.0);
   Tether sim(p, Position::Zero(), Position(4.999, 0.0, 0.0));
   auto x = [](double) { return 4.999; };
   double pulled = 0.0;
@@ -766,14 +773,8 @@ TEST(Winch, ASpeedWinchReelingInToTheShortestLengthSlowsDownStopsAndIsSaidOnce)
   for (const SolverType solver : {SolverType::kDirect, SolverType::kXpbd})
   {
     SCOPED_TRACE(toString(solver));
-    TetherParams p;
-    p.noise = 0.0;
+    TetherParams p = reelingInToFiveMetres(6.0);
     p.solver = solver;
-    p.cable_length = 40.0;
-    p.winch_mode = WinchMode::kSpeed;
-    p.winch_speed = -0.5;
-    p.initial_deployed_length = 6.0;
-    p.min_deployed_length = 5.0;
     Tether sim(p, Position::Zero(), Position(2.0, 0.0, 0.0));
     const double a = p.max_winch_acceleration, h = p.time_step;
     double last_speed = 0.0, largest_change = 0.0, arrived = -1.0;
