@@ -157,6 +157,42 @@ TEST(Winch, BrakeStopsPayingOutWhenTheVehicleStops)
   }
 }
 
+// A drum of 20 kg (winch_inertia) paying out at 1 m/s behind the ROV when it stops: the brake takes the drum's
+// and the moving cable's kinetic energy (m_d + mu l) V^2 / 2 (and the drag some), so the drum pays out at most
+// (m_d + mu l) V^2 / (2 B) more (2.23 m on 23 m of 0.1 kg/m against 5 N) and a step at V, never turns faster than
+// V sqrt(1 + mu l / m_d) (1.056 m/s: all the cable's energy given to the drum), and stands once stopped. With
+// direct and the default bending the cable is a rod: it was pushed back into the outlet, a particle released from
+// the slack spool segment kept its strain (near -100%), pushed with nearly EA, and the drum was driven out at
+// max_winch_speed until the cable was all out (40 m).
+TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
+{
+  TetherParams p = pullParams();
+  p.winch_inertia = 20.0;
+  ASSERT_TRUE(p.bending && p.bending_stiffness > 0.0 && p.solver == SolverType::kDirect) << "the premise: a rod";
+  Tether sim(p, Position::Zero(), Position(2.0, 0.0, 0.0));
+  auto x = [](double t) { return t < 2.0 ? 2.0 + 0.5 * t * t / 2.0 : std::min(3.0 + (t - 2.0), 23.0); };
+  drive(sim, 0.0, 22.0, x, [] {});
+  const double at_stop = sim.deployedLength(), speed = sim.winchSpeed();
+  ASSERT_NEAR(speed, 1.0, 0.01) << "the premise: paying out at the vehicle's speed";
+  double fastest = 0.0, at_28 = 0.0;
+  drive(sim, 22.0, 30.0, x,
+        [&]
+        {
+          fastest = std::max(fastest, sim.winchSpeed());
+          at_28 = sim.time() <= 28.0 ? sim.deployedLength() : at_28;
+        });
+  const double cable_mass = p.mass_per_length * at_stop;
+  const double bound = (p.winch_inertia + cable_mass) * speed * speed / (2.0 * p.brake_tension) + speed * p.time_step;
+  std::printf(
+      "[ measured ] a 20 kg drum when the vehicle stops: %.3f m paid out (bound %.3f m), fastest %.4f m/s (bound "
+      "%.4f m/s)\n",
+      sim.deployedLength() - at_stop, bound, fastest, speed * std::sqrt(1.0 + cable_mass / p.winch_inertia));
+  EXPECT_LT(sim.deployedLength() - at_stop, bound);
+  EXPECT_LE(fastest, speed * std::sqrt(1.0 + cable_mass / p.winch_inertia));
+  EXPECT_EQ(sim.deployedLength(), at_28) << "stopped by 28 s: (m_d + mu l) V / B = 4.5 s after the stop at most";
+  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
 // A drum with an equivalent mass m: while the brake slips its speed obeys m dv/dt = T - brake_tension, T the
 // spool tension (implicit Euler: the tension at the end of each step). A 10 m cable of 5 N/m hangs from the
 // spool with a free end, so its weight (50 N) overcomes the 20 N brake and the drum accelerates (m = 10 kg);

@@ -24,16 +24,16 @@ void Spool::setDeployedLength(Cable& cable, double deployed) const
   cable.rest[cable.first] = deployed - static_cast<double>(count - 1) * segment_;
 }
 
-void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length,
-                   bool last_pinned) const
+void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length, bool last_pinned,
+                   bool segments_push) const
 {
   const std::size_t n = cable.size();
   cable.rest[cable.first] += change;
   if (change > 0.0)
   {
-    while (cable.first > 0 && cable.rest[cable.first] > kMaxFirst * segment_)
+    while (cable.first > 0 && cable.rest[cable.first] > kMaxFirst * segment_ &&
+           release(cable, lambda, change, mass_per_length, last_pinned, segments_push))
     {
-      release(cable, lambda, change, mass_per_length, last_pinned);
     }
   }
   else
@@ -46,8 +46,8 @@ void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineM
   cable.updateMasses(cable.first, cable.first + 2, mass_per_length, last_pinned);
 }
 
-void Spool::release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length,
-                    bool last_pinned) const
+bool Spool::release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length, bool last_pinned,
+                    bool segments_push) const
 {
   // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with the
   // velocity of the cable material there, so neither the shape nor any constraint error changes and nothing
@@ -55,9 +55,14 @@ void Spool::release(Cable& cable, Multipliers& lambda, double change, const Line
   // the first segment in this step. The velocity is interpolated between that and particle f + 1's.
   const std::size_t f = cable.first;
   const double rest = cable.rest[f];
-  const double fraction = (rest - segment_) / rest;
   double tx = cable.x[f + 1] - cable.x[f], ty = cable.y[f + 1] - cable.y[f], tz = cable.z[f + 1] - cable.z[f];
   const double length = std::sqrt(tx * tx + ty * ty + tz * tz);
+  const bool slack_rod = segments_push && length < rest;
+  if (slack_rod && !(length > segment_))
+  {
+    return false;  // the slack stays in the first segment until it is long enough for a segment at rest
+  }
+  const double fraction = slack_rod ? (length - segment_) / length : (rest - segment_) / rest;
   const double scale = length > 0.0 ? change / length : 0.0;
   tx *= scale, ty *= scale, tz *= scale;
   auto along = [fraction, f](std::vector<double>& v, double from) { v[f] = from + fraction * (v[f + 1] - from); };
@@ -69,6 +74,7 @@ void Spool::release(Cable& cable, Multipliers& lambda, double change, const Line
   cable.rest[f] = segment_;
   lambda.stretch[cable.first] = lambda.stretch[f];  // both halves of the split segment carry its tension
   cable.updateMasses(cable.first, cable.first + 3, mass_per_length, last_pinned);
+  return true;
 }
 
 void Spool::merge(Cable& cable, const LineMass& mass_per_length, bool last_pinned) const

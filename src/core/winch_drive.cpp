@@ -91,7 +91,8 @@ void WinchDrive::payOut(const Scene& scene, double change, double dt)
   speed_ = drive_speed_ = change / dt;
   if (change != 0.0)
   {
-    scene.spool.payOut(scene.cable, scene.solver.multipliers(), change, params.lineMass(), scene.vehicle_attached);
+    const bool rod = params.solver == SolverType::kDirect && params.bending && params.bending_stiffness > 0.0;
+    scene.spool.payOut(scene.cable, scene.solver.multipliers(), change, params.lineMass(), scene.vehicle_attached, rod);
   }
 }
 

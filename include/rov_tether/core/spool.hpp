@@ -33,11 +33,20 @@ class Spool
   /// Grows (change > 0) or shrinks the first segment by `change` [m], releasing or taking back particles
   /// to keep it within its bounds; masses are updated as Cable::updateMasses does (`mass`, `last_pinned`).
   /// A released particle starts on the first segment with the velocity of the cable material there (paid-out
-  /// material leaves the outlet at change / dt along the segment); both halves carry its tension.
-  void payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned) const;
+  /// material leaves the outlet at change / dt along the segment); both halves carry its tension. Both parts of
+  /// the split segment keep its strain, but where the segments push (`segments_push`: a rod, direct with
+  /// bending) and the first segment is slack (shorter than its rest: cable paid out into slack, pushed back at
+  /// the outlet): there the new segment is laid at its rest length a segment from the next particle and the
+  /// slack stays in the first segment, whose force is the drum's law (none while slack); none is released
+  /// while the first segment is shorter than a segment. Split keeping the strain, a rod's new segment would
+  /// push with the compression the slack segment held at no force: up to EA.
+  void payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned,
+              bool segments_push = false) const;
 
  private:
-  void release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned) const;
+  /// Releases particle first - 1 onto the first segment (payOut); false, nothing changed, when it cannot.
+  bool release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass, bool last_pinned,
+               bool segments_push) const;
   void merge(Cable& cable, const LineMass& mass, bool last_pinned) const;
 
   Position outlet_;
