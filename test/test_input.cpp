@@ -385,10 +385,23 @@ TEST(VehicleJump, FiveMetreJumpIsSurvived)
       worst_strain = std::max(worst_strain, s.max_strain);
       worst_tension = std::max(worst_tension, s.max_tension);
     }
+    // The jump re-lays the cable to the vehicle as a fresh start lays it: over the next 2 s no more strain than a
+    // cable laid there from the start shows over its first 2 s (twice it: the start's time and noise differ),
+    // and the brake, taking the cable's settling as a suddenly applied load, holds it below twice its tension.
+    Tether fresh(params, Position::Zero(), Position(2.0, 5.0, -1.0));
+    double fresh_strain = 0.0;
+    for (int k = 1; k <= 200; ++k)
+    {
+      ASSERT_TRUE(succeeded(fresh.addVehicleSample(0.01 * k, Position(2.0, 5.0, -1.0))));
+      ASSERT_TRUE(succeeded(fresh.advance(0.01)));
+      fresh_strain = std::max(fresh_strain, fresh.summary().max_strain);
+    }
+    std::printf("[ measured ] after a 5 m jump, %s: worst strain %.3g (laid there fresh %.3g), worst tension %.3f N\n",
+                toString(solver).c_str(), worst_strain, fresh_strain, worst_tension);
     EXPECT_EQ(sim.jumpCount(), 1u);
     EXPECT_EQ(sim.recoveryCount(), 0u);
-    EXPECT_LT(worst_strain, 0.05);
-    EXPECT_LT(worst_tension, 10.0);
+    EXPECT_LT(worst_strain, 2.0 * fresh_strain);
+    EXPECT_LT(worst_tension, 2.0 * params.brake_tension);
     EXPECT_GE(sim.deployedLength(), Position(2.0, 5.0, -1.0).norm() - 1e-9);  // paid out to reach it
     EXPECT_NEAR((sim.particle(sim.deployedParticleCount() - 1) - Position(2.0, 5.0, -1.0)).norm(), 0.0, 1e-12);
   }
