@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "rov_tether/core/run_out_watch.hpp"
 #include "rov_tether/core/spool_drum.hpp"
 #include "rov_tether/scenario/scenario.hpp"
 #include "rov_tether/scenario/scenario_runner.hpp"
@@ -191,6 +192,66 @@ TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
   EXPECT_LE(fastest, speed * std::sqrt(1.0 + cable_mass / p.winch_inertia));
   EXPECT_EQ(sim.deployedLength(), at_28) << "stopped by 28 s: (m_d + mu l) V / B = 4.5 s after the stop at most";
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
+/// A tether whose vehicle starts `x0` [m] along x, and a RunOutWatch on it after every step.
+struct RunOutCount
+{
+  RunOutCount(const TetherParams& p, double x0) : sim(p, Position::Zero(), Position(x0, 0.0, 0.0)) {}
+  /// Drives the vehicle along x(t) from `from` to `to` [s]; how many times the cable ran out (`at`: the deployed
+  /// length the last time).
+  template <typename Path>
+  int drive(double from, double to, Path x)
+  {
+    int said = 0;
+    rov_tether::test::drive(sim, from, to, x,
+                            [&]
+                            {
+                              if (watch.update(sim))
+                              {
+                                ++said, at = sim.deployedLength();
+                              }
+                            });
+    return said;
+  }
+  Tether sim;
+  RunOutWatch watch;
+  double at = 0.0;
+};
+
+// The cable runs out (RunOutWatch, which the node's /rosout warning and the runner's summary read) when the winch
+// pays out the last of cable_length where some was on the spool, once each time; a cable laid out anew to all of
+// its length has not run out: after a jump out of its reach, after the spool jumped away from the vehicle (it was
+// said then, taken for a run-out), and laid out full from the start. A brake pulled out at 1 m/s on 10 m: said once,
+// when the deployed length reaches 10 m.
+TEST(Winch, ACableRunsOutWhenTheWinchPaysOutItsLastNotWhenItIsLaidOutFull)
+{
+  TetherParams p = pullParams();
+  p.cable_length = 10.0;
+  {
+    RunOutCount run(p, 2.0);
+    EXPECT_EQ(run.drive(0.0, 14.0, [](double t) { return 2.0 + std::min(t, 10.0); }), 1);
+    EXPECT_NEAR(run.at, p.cable_length, 1e-9);
+  }
+  {
+    RunOutCount run(p, 3.0);
+    EXPECT_EQ(run.drive(0.0, 1.0, [](double) { return 3.0; }), 0);
+    EXPECT_EQ(run.drive(1.0, 2.0, [](double) { return 30.0; }), 0) << "a jump out of reach";
+    EXPECT_EQ(run.sim.jumpCount(), 1u);
+    EXPECT_GE(run.sim.deployedLength(), p.cable_length - 1e-9) << "the premise: laid out to all of its length";
+  }
+  {
+    RunOutCount run(p, 8.0);
+    EXPECT_EQ(run.drive(0.0, 1.0, [](double) { return 8.0; }), 0);
+    ASSERT_TRUE(run.sim.setSpoolPosition(Position(-5.0, 0.0, 0.0), true).ok);  // 13 m from the vehicle
+    EXPECT_EQ(run.drive(1.0, 2.0, [](double) { return 8.0; }), 0) << "a spool that jumped";
+    EXPECT_GE(run.sim.deployedLength(), p.cable_length - 1e-9) << "the premise: laid out to all of its length";
+  }
+  {
+    p.initial_deployed_length = p.cable_length;
+    RunOutCount run(p, 9.0);
+    EXPECT_EQ(run.drive(0.0, 2.0, [](double t) { return 9.0 + t; }), 0) << "laid out full";
+  }
 }
 
 // A drum with an equivalent mass m: while the brake slips its speed obeys m dv/dt = T - brake_tension, T the

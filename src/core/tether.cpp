@@ -208,6 +208,7 @@ void Tether::build(double deployed_length)
 
 void Tether::layOut(double deployed_length)
 {
+  ++lays_;
   if (world_contact_ != nullptr)
   {
     world_contact_->forget();

@@ -69,12 +69,9 @@ void TetherDiagnostics::report(const ros::Time& now)
                                                 : "strain rule's payout_threshold x axial_stiffness");
     }
   }
-  // The cable running out, as the runner says it: the winch paying out the last of cable_length where some was on
-  // the spool (the diagnostics' "fully deployed" says it as long as it lasts). A cable laid out anew since the last
-  // report (a jump, a vehicle out of reach, a reset: restarted()) is taken as it is laid, not as run out.
-  const bool full = tether_.deployedLength() >= tether_.params().cable_length - 1e-9;
-  const bool relaid = tether_.jumpCount() > reported_jumps_ || tether_.outOfReachCount() > reported_out_of_reach_;
-  if (full && !was_full_ && had_spooled_ && !relaid && run_out_log_.due(now))
+  // The cable running out, as the runner says it (RunOutWatch; the diagnostics' "fully deployed" says it as long
+  // as it lasts).
+  if (run_out_.update(tether_) && run_out_log_.due(now))
   {
     ROS_WARN(
         "tether_node%s: the cable runs out: all of cable_length = %.4g m is paid out, and from then on the winch has "
@@ -82,8 +79,6 @@ void TetherDiagnostics::report(const ros::Time& now)
         "more to give (the cable stretches where the vehicle pulls on)",
         label_.c_str(), tether_.params().cable_length);
   }
-  was_full_ = full;
-  had_spooled_ = had_spooled_ || !full;
   // A speed winch asked to reel in past min_deployed_length stands there: said once each time it comes to stand.
   const bool at_shortest = tether_.winchAtShortest();
   if (at_shortest && !was_at_shortest_ && shortest_log_.due(now))
@@ -160,9 +155,6 @@ void TetherDiagnostics::restarted()
   period_start_ = SolverEffort{};
   reported_unconverged_ = 0;
   last_unconverged_time_ = ros::Time();
-  // Laid out afresh: running out is counted from the cable as the reset lays it.
-  was_full_ = false;
-  had_spooled_ = false;
   was_at_shortest_ = false;
 }
 

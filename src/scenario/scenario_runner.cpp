@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "rov_tether/core/run_out_watch.hpp"
 #include "rov_tether/scenario/earlier_outputs.hpp"
 #include "rov_tether/scenario/scenario_stepper.hpp"
 #include "rov_tether/scenario/vehicle_driver.hpp"
@@ -136,6 +137,7 @@ class StepRecord : public StepObserver
     {
       out_of_reach_.push_back(world.tether(i).outOfReachCount());
       last_time_.push_back(world.tether(i).time());
+      run_out_.emplace_back().update(world.tether(i));  // the cable as it is laid at the start
     }
   }
   void beforeStep(std::size_t /*tether*/) override {}
@@ -165,8 +167,7 @@ class StepRecord : public StepObserver
       s.first_shortest_time = s.shortest_seconds > 0.0 ? s.first_shortest_time : sim.time();
       s.shortest_seconds += step;
     }
-    if (s.first_full_time < 0.0 && sim.params().cable_length - state.deployed_length <= 1e-9 &&
-        s.deployed_start < sim.params().cable_length - 1e-9)
+    if (run_out_[i].update(sim) && s.first_full_time < 0.0)
     {
       s.first_full_time = sim.time();
     }
@@ -185,6 +186,7 @@ class StepRecord : public StepObserver
   const World& world_;
   std::vector<RunSummary>& each_;
   std::vector<std::uint64_t> out_of_reach_;  ///< Each tether's Tether::outOfReachCount() taken so far.
+  std::vector<RunOutWatch> run_out_;         ///< Whether each tether's cable has run out.
   std::vector<double> last_time_;            ///< Each tether's time at its last step (or the start) [s].
   std::vector<double> tensions_;
   double seconds_ = 0.0;

@@ -269,6 +269,9 @@ class Tether
   double solverResidual() const { return solver_->lastResidual(); }
   /// Number of vehicle jumps handled by re-laying the cable.
   std::uint64_t jumpCount() const { return jumps_; }
+  /// Times the cable was laid out anew: at construction, and after a reset, a jump, a first pose out of reach, a
+  /// recovery, a rebuild or a spool that jumped (RunOutWatch reads it).
+  std::uint64_t layCount() const { return lays_; }
   /// Number of times a kinematic vehicle was attached (given at construction, or its first sample taken) beyond
   /// the cable's reach: further from the spool than the deployed length a locked winch keeps, or than
   /// cable_length. The cable is laid stretched to it, as attachVehicleBody does for a dynamic one (and says).
@@ -356,6 +359,7 @@ class Tether
   double last_step_ = 0.0;  ///< Length of the last step taken [s] (tension = lambda / last_step^2).
   std::uint64_t steps_ = 0;
   std::uint64_t jumps_ = 0;
+  std::uint64_t lays_ = 0;
   std::uint64_t out_of_reach_ = 0;
   std::string last_out_of_reach_;
   std::uint64_t recoveries_ = 0;

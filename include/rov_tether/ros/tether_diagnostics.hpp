@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "rov_tether/core/run_out_watch.hpp"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/ros/log_throttle.hpp"
 #include "rov_tether/ros/param_loader.hpp"
@@ -64,8 +65,7 @@ class TetherDiagnostics
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   std::uint64_t reported_jumps_ = 0;         ///< Vehicle jumps already logged.
   std::uint64_t reported_out_of_reach_ = 0;  ///< Attachments out of the cable's reach already logged.
-  bool was_full_ = false;                    ///< All of cable_length was paid out at the last report.
-  bool had_spooled_ = false;                 ///< Some cable was on the spool at a report: running out is news.
+  RunOutWatch run_out_;                      ///< Whether the cable has run out since the last report.
   bool was_at_shortest_ = false;             ///< Tether::winchAtShortest() at the last report.
   std::uint64_t reported_failures_ = 0;      ///< Simulation failures (blow-ups) already logged.
   ros::Time last_failure_time_;              ///< When the last failure was seen; diagnostics show ERROR for a while.
