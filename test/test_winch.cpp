@@ -191,6 +191,16 @@ TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
   EXPECT_LT(sim.deployedLength() - at_stop, bound);
   EXPECT_LE(fastest, speed * std::sqrt(1.0 + cable_mass / p.winch_inertia));
   EXPECT_EQ(sim.deployedLength(), at_28) << "stopped by 28 s: (m_d + mu l) V / B = 4.5 s after the stop at most";
+  // The slack the drum paid out waits in the first segment (its rest past 1.5 segments); the vehicle driving on
+  // at 0.5 m/s for 20 s (10 m: more than the 2 m paid out into slack and the cable bunched behind the stop) takes
+  // it up, and particles are released from it again: the first segment back within its bounds.
+  const double spare = sim.state().rest[sim.state().first] / p.segment_length;
+  drive(
+      sim, 30.0, 50.0, [](double t) { return 23.0 + 0.5 * (t - 30.0); }, [] {});
+  const double back = sim.state().rest[sim.state().first] / p.segment_length;
+  std::printf("[ measured ] the first segment: %.2f segments when the drum stood, %.2f after the vehicle drove on\n",
+              spare, back);
+  EXPECT_LE(back, Spool::kMaxFirst + 1e-9);
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
 }
 
@@ -286,9 +296,10 @@ TEST(Winch, DrumWithInertiaAcceleratesAsAMass)
   }
   // The drum and the cable hanging from it move as one: (m + mu l) dv/dt = w l - brake - mu gamma l v (the
   // paper's drag damps every particle's velocity at gamma = -ln(drag) / 0.02 s, along the cable too), dl/dt = v,
-  // from v = 0 at l = 10 m; integrated here by RK4 in 1e-4 s steps. Within 2%: the half spool segment lumped on
-  // the pinned outlet (at most 0.75% of l, neither weighing nor damped), the sub-step's discrete decay (gamma h /
-  // 2 = 0.7% of the drag) and the implicit step's O(h) lag.
+  // from v = 0 at l = 10 m; integrated here by RK4 in 1e-4 s steps. Within 3%: the half spool segment lumped on
+  // the pinned outlet (at most 0.75% of l, neither weighing nor damped), the sub-step's discrete decay (gamma h / 2
+  // = 5.27 x 0.005 / 2 = 1.3% of the drag, which is most of the balance) and the implicit step's O(h) lag (h over
+  // the 0.5 s time constant, 1%).
   const double gamma = -std::log(p.drag) / kReferenceStep, mu = p.mass_per_length, w = p.weight_in_water;
   const auto accel = [&](double l, double v)
   { return (w * l - p.brake_tension - mu * gamma * l * v) / (p.winch_inertia + mu * l); };
@@ -308,7 +319,7 @@ TEST(Winch, DrumWithInertiaAcceleratesAsAMass)
       "acceleration within %.3f%% of (T - brake) / m\n",
       sim.winchSpeed(), v, 100 * worst);
   EXPECT_LT(worst, 0.01);
-  EXPECT_NEAR(sim.winchSpeed(), v, 0.02 * v);
+  EXPECT_NEAR(sim.winchSpeed(), v, 0.03 * v);
 }
 
 // The ROV outruns the winch (1.5 m/s against max_winch_speed 1 m/s): the drum pays out at its limit, so the
@@ -446,7 +457,7 @@ TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
   EXPECT_GT(shortest_gain, 0.0);
   // The brake's drum holds the spool segment at the brake whenever it pays out (its law, to the solver's
   // tolerance: 1e-4 of it is far above), and the hanging cable pulls hardest at its top: no segment, at no
-  // step, above the brake. Holding at 40 m from 60 s, the current's drag on the bowed cable keeps the drum
+  // sample (every 0.1 s), above the brake. Holding at 40 m from 60 s, the current's drag on the bowed cable keeps the drum
   // creeping, so the last 5 s hold the spool at the brake.
   const double brake = scenario.params.brake_tension;
   EXPECT_LE(peak, brake * (1.0 + 1e-4));

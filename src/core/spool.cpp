@@ -25,14 +25,14 @@ void Spool::setDeployedLength(Cable& cable, double deployed) const
 }
 
 void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length, bool last_pinned,
-                   bool segments_push) const
+                   bool rod_on_drum) const
 {
   const std::size_t n = cable.size();
   cable.rest[cable.first] += change;
   if (change > 0.0)
   {
     while (cable.first > 0 && cable.rest[cable.first] > kMaxFirst * segment_ &&
-           release(cable, lambda, change, mass_per_length, last_pinned, segments_push))
+           release(cable, lambda, change, mass_per_length, last_pinned, rod_on_drum))
     {
     }
   }
@@ -47,7 +47,7 @@ void Spool::payOut(Cable& cable, Multipliers& lambda, double change, const LineM
 }
 
 bool Spool::release(Cable& cable, Multipliers& lambda, double change, const LineMass& mass_per_length, bool last_pinned,
-                    bool segments_push) const
+                    bool rod_on_drum) const
 {
   // Particle f leaves the spool: it is placed on the first segment, where the cable already is, with the
   // velocity of the cable material there, so neither the shape nor any constraint error changes and nothing
@@ -57,7 +57,7 @@ bool Spool::release(Cable& cable, Multipliers& lambda, double change, const Line
   const double rest = cable.rest[f];
   double tx = cable.x[f + 1] - cable.x[f], ty = cable.y[f + 1] - cable.y[f], tz = cable.z[f + 1] - cable.z[f];
   const double length = std::sqrt(tx * tx + ty * ty + tz * tz);
-  const bool slack_rod = segments_push && length < rest;
+  const bool slack_rod = rod_on_drum && length < rest;
   if (slack_rod && !(length > segment_))
   {
     return false;  // the slack stays in the first segment until it is long enough for a segment at rest

@@ -58,7 +58,7 @@ void WinchDrive::afterSolve(const Scene& scene, bool drum_in_solve, double h)
   {
     // Reeled in less than asked (by more than rounding): the stall pull held the drum.
     held_at_pull_ = reel_in_asked_ < 0.0 && drum_.payout > reel_in_asked_ * (1.0 - 1e-9);
-    payOut(scene, drum_.payout, h);  // the pay-out the drum's law gave within the solve
+    payOut(scene, drum_.payout, h, true);  // the pay-out the drum's law gave within the solve
     // The drive turned within its limits. A pull past the motor's stall pull stops a reel-in (the drive stops with
     // its motor, as far as standing) and pulled harder back-drives the drum out: a slip the drive does not take on.
     // A massless drum has no speed of its own: once the pull lets go, it turns at its drive's speed again (not at
@@ -76,7 +76,7 @@ void WinchDrive::afterSolve(const Scene& scene, bool drum_in_solve, double h)
                  speed_ == 0.0 && scene.spool.deployedLength(scene.cable) <= params.min_deployed_length + 1e-9;
 }
 
-void WinchDrive::payOut(const Scene& scene, double change, double dt)
+void WinchDrive::payOut(const Scene& scene, double change, double dt, bool drum_law)
 {
   const TetherParams& params = scene.params;
   const double deployed = scene.spool.deployedLength(scene.cable);
@@ -91,8 +91,11 @@ void WinchDrive::payOut(const Scene& scene, double change, double dt)
   speed_ = drive_speed_ = change / dt;
   if (change != 0.0)
   {
-    const bool rod = params.solver == SolverType::kDirect && params.bending && params.bending_stiffness > 0.0;
-    scene.spool.payOut(scene.cable, scene.solver.multipliers(), change, params.lineMass(), scene.vehicle_attached, rod);
+    // A rod's first segment under the drum's law (no force while slack) keeps a slack release's slack.
+    const bool rod_on_drum =
+        drum_law && params.solver == SolverType::kDirect && params.bending && params.bending_stiffness > 0.0;
+    scene.spool.payOut(scene.cable, scene.solver.multipliers(), change, params.lineMass(), scene.vehicle_attached,
+                       rod_on_drum);
   }
 }
 

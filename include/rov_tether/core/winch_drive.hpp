@@ -45,7 +45,7 @@ class WinchDrive
   /// then the outrun and stall counts.
   void afterSolve(const Scene& scene, bool drum_in_solve, double h);
   /// Pays out (positive) or reels in `change` [m] within the speed and length limits; sets the winch's speed.
-  void payOut(const Scene& scene, double change, double dt);
+  void payOut(const Scene& scene, double change, double dt, bool drum_law = false);
   /// The drive starts again (a new winch mode or solver, a re-laid cable) from the drum as it turns, but not from
   /// a slip past the old drive: the one of the two speeds nearer standing, and standing if they turn opposite ways.
   void restartDrive();
