@@ -476,6 +476,7 @@ TEST(VehicleCoupling, SteadyTowingThroughABrakeGoesAtTheDragBalanceSpeed)
     EXPECT_NEAR(tether.summary().tension_spool, params.brake_tension, 0.01 * params.brake_tension);
   }
   EXPECT_GT(tether.deployedLength(), 10.0) << "the vehicle paid out the tether";
+  EXPECT_GT(without_tether, 0.01) << "the premise: the bound tells the tether's drag from none";
   std::printf(
       "[ measured ] towing: speed within %.2f%% of the balance; the balance without the tether's drag up to %.2f%% "
       "off\n",

@@ -563,6 +563,7 @@ void PoseInput::reset(const ros::Time& now)
   last_pose_stamp_ = ros::Time();
   gap_count_ = 0;
   history_.clear();
+  reset_cut_ = ros::Time();  // a clock gone back starts a new time line; ~reset sets its own cut after this
   std::size_t refused = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);

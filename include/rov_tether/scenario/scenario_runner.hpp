@@ -51,8 +51,8 @@ struct RunSummary
   double stall_seconds = 0.0;
   double first_stall_time = -1.0;  ///< The end of the first such step [s]; negative: none.
   double first_stall_speed = 0.0;  ///< The speed the winch was commanded then [m/s] (Tether::winchCommandedSpeed).
-  /// The end of the first step at which a cable that started with some on the spool had all of cable_length paid
-  /// out [s]; negative: never (or it started so).
+  /// The end of the first step at which the cable ran out: the winch paid out the last of cable_length where some
+  /// was on the spool since the cable was laid (RunOutWatch) [s]; negative: never.
   double first_full_time = -1.0;
   /// The steps' time, in all, at whose end a `speed` winch asked to reel in stood at min_deployed_length
   /// (Tether::winchAtShortest) [s], and the end of the first such step [s] (negative: none).
