@@ -457,8 +457,8 @@ TEST(Winch, HeavyDiveFollowsWithoutStallsOrSpikes)
   EXPECT_GT(shortest_gain, 0.0);
   // The brake's drum holds the spool segment at the brake whenever it pays out (its law, to the solver's
   // tolerance: 1e-4 of it is far above), and the hanging cable pulls hardest at its top: no segment, at no
-  // sample (every 0.1 s), above the brake. Holding at 40 m from 60 s, the current's drag on the bowed cable keeps the drum
-  // creeping, so the last 5 s hold the spool at the brake.
+  // sample (every 0.1 s), above the brake. Holding at 40 m from 60 s, the current's drag on the bowed cable keeps the
+  // drum creeping, so the last 5 s hold the spool at the brake.
   const double brake = scenario.params.brake_tension;
   EXPECT_LE(peak, brake * (1.0 + 1e-4));
   EXPECT_NEAR(final_tension, brake, 1e-4 * brake);
