@@ -153,8 +153,10 @@ double SpeedWinch::lengthChange(const WinchInput& in)
   const double change = accelerate(in.drive_speed, commandedSpeed(in), p.max_winch_acceleration, in.dt) * in.dt;
   if (std::isnan(in.target_length))
   {
-    // A reel-in not past min_deployed_length (a drive still paying out slows down as it would).
-    return p.winch_speed < 0.0 ? std::max(change, shortestDistance(in)) : change;
+    // A reel-in not past min_deployed_length, whatever winch_speed asks now: a drive still reeling in after a
+    // switch to 0 or a pay-out slows down at max_winch_acceleration, which may not stop it in time (a drive still
+    // paying out slows down as it would).
+    return change < 0.0 ? std::max(change, shortestDistance(in)) : change;
   }
   const double distance = in.target_length - in.deployed;  // and not past the target
   return std::abs(change) > std::abs(distance) ? distance : change;
