@@ -166,11 +166,22 @@ TEST(Winch, BrakeStopsPayingOutWhenTheVehicleStops)
 // direct and the default bending the cable is a rod: it was pushed back into the outlet, a particle released from
 // the slack spool segment kept its strain (near -100%), pushed with nearly EA, and the drum was driven out at
 // max_winch_speed until the cable was all out (40 m).
-TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
+namespace
+{
+
+/// ADrumWithInertiaCoastsToAStopWhenTheVehicleStops, with the default EI on the tether or in two sections.
+void drumCoastsToAStop(bool in_sections)
 {
   TetherParams p = pullParams();
   p.winch_inertia = 20.0;
-  ASSERT_TRUE(p.bending && p.bending_stiffness > 0.0 && p.solver == SolverType::kDirect) << "the premise: a rod";
+  if (in_sections)
+  {
+    const double rest = std::numeric_limits<double>::quiet_NaN();  // the last section: the rest of the cable
+    p.sections = {{10.0, {{"bending_stiffness", p.bending_stiffness}}},
+                  {rest, {{"bending_stiffness", p.bending_stiffness}}}};
+    p.bending_stiffness = 0.0;
+  }
+  ASSERT_TRUE(p.elasticBending() && p.solver == SolverType::kDirect) << "the premise: a rod";
   Tether sim(p, Position::Zero(), Position(2.0, 0.0, 0.0));
   auto x = [](double t) { return t < 2.0 ? 2.0 + 0.5 * t * t / 2.0 : std::min(3.0 + (t - 2.0), 23.0); };
   drive(sim, 0.0, 22.0, x, [] {});
@@ -203,6 +214,19 @@ TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
               spare, back);
   EXPECT_LE(back, Spool::kMaxFirst + 1e-9);
   EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
+}  // namespace
+
+TEST(Winch, ADrumWithInertiaCoastsToAStopWhenTheVehicleStops)
+{
+  // The rod's EI on the tether, or only in its sections (the tether's 0): the drum's release reads the same EI
+  // as the solver (TetherParams::elasticBending(); it read the tether's alone, and ran the sectioned cable out).
+  for (const bool in_sections : {false, true})
+  {
+    SCOPED_TRACE(in_sections ? "EI in sections" : "EI on the tether");
+    drumCoastsToAStop(in_sections);
+  }
 }
 
 /// A tether whose vehicle starts `x0` [m] along x, and a RunOutWatch on it after every step.

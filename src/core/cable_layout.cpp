@@ -84,8 +84,7 @@ class InscribedArc
 }  // namespace
 
 CableLayout::CableLayout(const TetherParams& params)
-    : elastic_(params.bending && params.bending_stiffness > 0.0 &&
-               (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)),
+    : elastic_(params.elasticBending() && (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)),
       floats_(params.weight_in_water < 0.0),
       seabed_z_(params.seabed_z)
 {

@@ -17,23 +17,21 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.time_step = h;
   settings.axial_stiffness = params.axial_stiffness;
   settings.axial_damping = params.axial_damping;
-  settings.bending_stiffness = params.bending_stiffness;
   // A cable in sections: the largest damping and bending of any section switch them on (direct reads each
   // segment's own); a section that sets neither has the tether's.
+  settings.bending_stiffness = params.largestBendingStiffness();
   if (!params.sections.empty())
   {
-    settings.axial_damping = settings.bending_stiffness = 0.0;
+    settings.axial_damping = 0.0;
   }
   for (const CableSection& section : params.sections)
   {
-    double damping = params.axial_damping, bending = params.bending_stiffness;
+    double damping = params.axial_damping;
     for (const auto& [name, value] : section.properties)
     {
       damping = name == "axial_damping" ? value : damping;
-      bending = name == "bending_stiffness" ? value : bending;
     }
     settings.axial_damping = std::max(settings.axial_damping, damping);
-    settings.bending_stiffness = std::max(settings.bending_stiffness, bending);
   }
   settings.over_relaxation = params.over_relaxation;
   settings.tolerance = params.solver_tolerance;

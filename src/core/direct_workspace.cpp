@@ -99,7 +99,7 @@ void DirectWorkspace::begin(const Cable& cable, Multipliers& lambda, const Solve
   std::copy(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), warm_lambda.begin() + f);
   std::fill(lambda.stretch.begin() + static_cast<std::ptrdiff_t>(f), lambda.stretch.end(), 0.0);
   std::fill(lambda.bend.begin() + static_cast<std::ptrdiff_t>(std::min(f, lambda.bend.size())), lambda.bend.end(), 0.0);
-  bending = settings.bending && settings.bending_stiffness > 0.0 && m >= 2;
+  bending = settings.elasticBending() && m >= 2;
   unilateral = !bending;
   nominal = cable.rest[n - 2];
   const double h = settings.time_step;

@@ -263,7 +263,7 @@ void PbdSolver::project(Cable& state, Multipliers& lambda, const SolverSettings&
   const bool bending = settings.bending && !compliant_;
   const double inv_dt2 = 1.0 / (settings.time_step * settings.time_step);
   const double stretch_compliance = compliant_ ? inv_dt2 / settings.axial_stiffness : 0.0;
-  const bool joints = compliant_ && settings.bending && settings.bending_stiffness > 0.0 && m >= 3;
+  const bool joints = compliant_ && settings.elasticBending() && m >= 3;
   const double inv_ei_h2 = joints ? inv_dt2 / settings.bending_stiffness : 0.0;
   // Sized for the whole cable on the first step, whichever path runs: pay-out never reallocates.
   const std::size_t capacity = 4 * (state.size() / 4 + 2);

@@ -252,6 +252,21 @@ double TetherParams::winchPull() const
   return max_winch_pull > 0.0 ? max_winch_pull : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
+double TetherParams::largestBendingStiffness() const
+{
+  double largest = sections.empty() ? bending_stiffness : 0.0;
+  for (const CableSection& section : sections)
+  {
+    double stiffness = bending_stiffness;
+    for (const auto& [name, value] : section.properties)
+    {
+      stiffness = name == "bending_stiffness" ? value : stiffness;
+    }
+    largest = std::max(largest, stiffness);
+  }
+  return largest;
+}
+
 TetherParams TetherParams::resolved() const
 {
   TetherParams r = *this;

@@ -92,8 +92,7 @@ void WinchDrive::payOut(const Scene& scene, double change, double dt, bool drum_
   if (change != 0.0)
   {
     // A rod's first segment under the drum's law (no force while slack) keeps a slack release's slack.
-    const bool rod_on_drum =
-        drum_law && params.solver == SolverType::kDirect && params.bending && params.bending_stiffness > 0.0;
+    const bool rod_on_drum = drum_law && params.solver == SolverType::kDirect && params.elasticBending();
     scene.spool.payOut(scene.cable, scene.solver.multipliers(), change, params.lineMass(), scene.vehicle_attached,
                        rod_on_drum);
   }

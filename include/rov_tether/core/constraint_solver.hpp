@@ -27,7 +27,9 @@ struct SolverSettings
   {
     return axial_damping > 0.0 ? axial_damping / (time_step * axial_stiffness + axial_damping) : 0.0;
   }
-  double bending_stiffness = 0;  ///< EI [N m^2]; xpbd only (0 = no bending resistance).
+  double bending_stiffness = 0;  ///< The largest EI [N m^2] (TetherParams::largestBendingStiffness()); xpbd, direct.
+  /// EI bending acts: TetherParams::elasticBending() for the settings made from() them.
+  bool elasticBending() const { return bending && bending_stiffness > 0.0; }
   double over_relaxation = 1.0;  ///< pbd: each correction times this (successive over-relaxation) [-].
   double tolerance = 1e-8;       ///< direct: stop when every residual is below this x its length [-].
   /// The winch's drum, for a solver that takes it into the step (takesDrum()): it decides the pay-out

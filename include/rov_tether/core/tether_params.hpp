@@ -217,6 +217,12 @@ struct TetherParams
   /// The winch motor's stall pull [N]: max_winch_pull, or when 0, 1.25 x the larger of target_tension +
   /// tension_deadband and brake_tension (a motor a quarter stronger than the tension it is set to hold).
   double winchPull() const;
+  /// The largest EI of the cable [N m^2]: bending_stiffness, or in sections the largest of theirs (a section that
+  /// sets none has the tether's). SolverSettings::from switches bending on by it; direct reads each segment's own.
+  double largestBendingStiffness() const;
+  /// EI bending acts (xpbd's and direct's joints; under direct the cable is a rod, which carries compression):
+  /// `bending` on and some EI > 0 (largestBendingStiffness()).
+  bool elasticBending() const { return bending && largestBendingStiffness() > 0.0; }
   /// Largest stable sub-step of the explicit lumped_mass chain, dL / sqrt(EA / mu_eff) [s], times
   /// sqrt(1 + zeta^2) - zeta with axial damping (zeta = BA / (dL sqrt(EA mu)), its fastest mode's ratio).
   double criticalStep() const;
