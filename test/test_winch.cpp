@@ -82,8 +82,8 @@ void drive(Tether& sim, double from, double to, Path x, Each each)
 // Breaking away, the drum stands until the pull reaches the brake (the cable only stretches), then the cable,
 // at rest, takes the pay-out speed v_b = a t_b within a step, t_b = sqrt(2 brake l / EA) the time the
 // stretch took: at most mu l v_b / h (0.57 N) above T. A drum that sticks and then slips spikes beyond
-// that. No segment is stretched beyond its own tension's T / EA + 1e-4 (the paper's strain rule needed 15%
-// strain to pay out).
+// that. No segment is stretched beyond what the vehicle's pull gives, e <= T / EA (the paper's strain rule needed
+// 15% strain to pay out).
 TEST(Winch, BrakePullOutCarriesTheBrakePlusTheAxialDrag)
 {
   const TetherParams p = pullParams();
@@ -94,39 +94,40 @@ TEST(Winch, BrakePullOutCarriesTheBrakePlusTheAxialDrag)
   const double breakaway_time = std::sqrt(2.0 * p.brake_tension * 2.0 / p.axial_stiffness);
   const double breakaway_jerk = p.mass_per_length * 2.0 * breakaway_time / h;  // mu l a t_b / h, a = 1 m/s^2
   double breakaway_excess = -1e9, worst = 0.0, worst_strain = -1.0;
-  std::vector<double> tensions;
-  drive(
-      sim, 1.0, 20.0, x,
-      [&]
-      {
-        const TetherSummary s = sim.summary();
-        const double t = sim.time();
-        const double v = (x(t) - x(t - h)) / h, a = (x(t) - 2.0 * x(t - h) + x(t - 2.0 * h)) / (h * h);
-        const double segment = p.segment_length;
-        const double spool_segment = s.deployed_length - segment * static_cast<double>(sim.deployedParticleCount() - 2);
-        const double l = s.deployed_length - 0.5 * (spool_segment + segment);
-        const double reference = p.brake_tension + axialDrag(p, v) * l + p.mass_per_length * l * a;
-        if (t < 1.05)
+  drive(sim, 1.0, 20.0, x,
+        [&]
         {
-          breakaway_excess = std::max(breakaway_excess, s.tension_vehicle - reference - breakaway_jerk);
-        }
-        else
-        {
-          worst = std::max(worst, std::abs(s.tension_vehicle / reference - 1.0));
-        }
-        sim.computeSegmentTensions(tensions);
-        for (std::size_t k = 0; k < tensions.size(); ++k)
-        {
-          worst_strain = std::max(worst_strain, sim.segmentStrain(k) - std::max(tensions[k], 0.0) / p.axial_stiffness);
-        }
-      });
+          const TetherSummary s = sim.summary();
+          const double t = sim.time();
+          const double v = (x(t) - x(t - h)) / h, a = (x(t) - 2.0 * x(t - h) + x(t - 2.0 * h)) / (h * h);
+          const double segment = p.segment_length;
+          const double spool_segment =
+              s.deployed_length - segment * static_cast<double>(sim.deployedParticleCount() - 2);
+          const double l = s.deployed_length - 0.5 * (spool_segment + segment);
+          const double reference = p.brake_tension + axialDrag(p, v) * l + p.mass_per_length * l * a;
+          if (t < 1.05)
+          {
+            breakaway_excess = std::max(breakaway_excess, s.tension_vehicle - reference - breakaway_jerk);
+          }
+          else
+          {
+            worst = std::max(worst, std::abs(s.tension_vehicle / reference - 1.0));
+          }
+          // The vehicle's pull is the largest along the cable (the drag and the inertia add up towards it): no segment
+          // stretched beyond what it gives, EA e <= T (within the same 1%, or the breakaway's excess).
+          const double largest = t < 1.05 ? reference + breakaway_jerk : 1.01 * reference;
+          for (std::size_t k = 0; k + 1 < sim.deployedParticleCount(); ++k)
+          {
+            worst_strain = std::max(worst_strain, p.axial_stiffness * sim.segmentStrain(k) / largest);
+          }
+        });
   std::printf(
       "[ measured ] brake pull-out at 1 m/s: breaking away at most %.3f N above T + mu l v_b / h (%.3f N); then "
-      "within %.2f%% of T = brake + R_t l + mu l a; strain beyond T/EA at most %.2g\n",
+      "within %.2f%% of T = brake + R_t l + mu l a; every segment's EA e at most %.3f of that\n",
       breakaway_excess, breakaway_jerk, 100 * worst, worst_strain);
   EXPECT_LT(breakaway_excess, 0.0);
   EXPECT_LT(worst, 0.01);
-  EXPECT_LT(worst_strain, 1e-4);
+  EXPECT_LE(worst_strain, 1.0);
 }
 
 // The ROV stops (after pulling out at 1 m/s): the drum stops when the pull falls below the brake. The cable
