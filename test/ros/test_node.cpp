@@ -817,6 +817,44 @@ TEST(TetherNode, ASpeedWinchHeldAtItsStallPullIsReported)
       << h.tether_summary_;
 }
 
+// A `speed` winch reeling in at 0.5 m/s with the vehicle 0.46 m from the spool (inside min_deployed_length, 0.5 m in
+// default.yaml, so nothing pulls: the rod's arc at 0.5 m bends with about EI / R^2 = 2 N, below the motor's 7.5 N
+// stall pull; at 0.32 m the tighter bend held the drum at the stall pull, 0.68 m out) slows down and stands at 0.5 m;
+// the node says so on /rosout once each time it comes to stand, naming min_deployed_length and winch_speed
+// (Tether::winchAtShortest), as the runner does: from 2 m, 1.5 m at 0.5 m/s and 0.5 s of each ramp
+// (max_winch_acceleration 1 m/s^2) take 3.5 s; 1.5 s more to spare, then 6 s more standing (past the warnings' 5 s
+// throttle) say nothing more.
+TEST(TetherNode, ASpeedWinchStandingAtTheShortestLengthIsSaidOnce)
+{
+  Harness& h = *harness;
+  ASSERT_NO_FATAL_FAILURE(h.startFresh());
+  const auto said = [&] { return h.warningsSaying("the winch stands at min_deployed_length"); };
+  const auto before = said();
+  const double t0 = h.sim_time_;
+  const auto close = [t0](double t)
+  {
+    const double s = std::min((t - t0) / 2.0, 1.0);  // from home (1.5, 0, -0.5) to (0.45, 0, -0.1) in 2 s
+    return poseAt(1.5 - 1.05 * s, 0.0, -0.5 + 0.4 * s);
+  };
+  ASSERT_TRUE(h.drive(2.0, close));
+  EXPECT_EQ(said(), before);
+  ros::ServiceClient client;
+  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
+  rov_tether::SetWinch srv;
+  srv.request.mode = "speed";
+  srv.request.speed = -0.5;
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_TRUE(h.drive(5.0, close));
+  EXPECT_NEAR(h.state_.deployed_length, 0.5, 1e-6);
+  ASSERT_TRUE(h.waitFor([&] { return said() > before; }, 10.0)) << "no warning on /rosout";
+  const std::string line = h.lastWarningSaying("the winch stands at min_deployed_length");
+  EXPECT_NE(line.find("min_deployed_length = 0.5 m: winch_speed = -0.5 m/s"), std::string::npos) << line;
+  ASSERT_TRUE(h.drive(6.0, close));
+  EXPECT_EQ(said(), before + 1);
+  EXPECT_NEAR(h.state_.deployed_length, 0.5, 1e-6);
+}
+
 // A sub-step the solver stops short of solver_tolerance is reported, not only counted by the runner: /diagnostics
 // counts such sub-steps, and warns for 5 s after one that ended above solver_residual_warning (node.yaml: 1e-4).
 // With one Newton iteration a step, a moving cable's sub-steps end far above both (residuals up to 0.6 of a
