@@ -1,10 +1,12 @@
 // Scenario files, parameter files and the rov_tether_run executable.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -276,6 +278,29 @@ std::vector<std::string> readLines(const fs::path& path)
     lines.push_back(line);
   }
   return lines;
+}
+
+/// topology.csv's rows as fields, header first.
+std::vector<std::vector<std::string>> csvRows(const fs::path& path)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& line : readLines(path))
+  {
+    std::vector<std::string> fields(1);
+    for (const char c : line)
+    {
+      if (c == ',')
+      {
+        fields.emplace_back();
+      }
+      else
+      {
+        fields.back().push_back(c);
+      }
+    }
+    rows.push_back(fields);
+  }
+  return rows;
 }
 
 // The summary states what ran: `segment_length: auto` as the length it chose (chords of 1 cm on a 2 m
@@ -567,7 +592,7 @@ TEST(Runner, ARefusedVehicleSampleStopsTheRunAndWritesNothing)
 
 // A run writes into a directory that may hold an earlier run's outputs, and replaces only the files it writes
 // (state.csv, shape.csv of kGood here). What it leaves of the earlier run is named in a warning, so that no one
-// reads a mixed directory as one run's: a topology.csv and a tether directory's state.csv it did not write, a
+// reads a mixed directory as one run's: a topology.csv and the state.csv of a tether it names (a/), a
 // camera directory of a camera it does not have, and a camera's frame files past the frames it renders (a
 // camera at 1 Hz over kGood's 3 s renders frames 0 to 3; frame 7's three files are an earlier run's). Its own
 // files, index.csv and frames 0 to 3 are not named. A target that is a directory fails before the run, and leaves
@@ -586,13 +611,14 @@ TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
   fs::create_directories(dir / "cameras" / "forward");
   fs::create_directories(dir / "cameras" / "aft");
   for (const fs::path& file :
-       {dir / "state.csv", dir / "topology.csv", dir / "a" / "state.csv", dir / "notes.txt",
-        dir / "cameras" / "forward" / "index.csv", dir / "cameras" / "forward" / "mask_000003.png",
-        dir / "cameras" / "forward" / "mask_000007.png", dir / "cameras" / "forward" / "depth_000007.png",
-        dir / "cameras" / "forward" / "depth_preview_000007.png", dir / "cameras" / "aft" / "mask_000000.png"})
+       {dir / "state.csv", dir / "a" / "state.csv", dir / "notes.txt", dir / "cameras" / "forward" / "index.csv",
+        dir / "cameras" / "forward" / "mask_000003.png", dir / "cameras" / "forward" / "mask_000007.png",
+        dir / "cameras" / "forward" / "depth_000007.png", dir / "cameras" / "forward" / "depth_preview_000007.png",
+        dir / "cameras" / "aft" / "mask_000000.png"})
   {
     std::ofstream(file) << "earlier\n";
   }
+  std::ofstream(dir / "topology.csv") << kTopologyCsvHeader << "\n0.000000,a,b,linking_number,0\n";
   const std::vector<std::string> expected = {"a/state.csv", "topology.csv",
                                              "cameras/aft/ (1 file: a camera this scenario does not have)",
                                              "cameras/forward/ (3 frame files past this run's 4 frames)"};
@@ -628,8 +654,8 @@ TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
 // results/pair/ of a tethers list with its topology.csv): those folders mix with nothing this run writes, so none of
 // their files is named (every one was, file by file: "dive1/shape.csv; dive1/state.csv; ..."). What does mix is still
 // named: a CSV left in a directory this run writes into (a tethers list's a/vehicle.csv of an earlier dynamic run);
-// and, once out_dir holds an earlier world run's topology.csv, a folder of tether files only (c/), which can be
-// that run's tether directory, while a folder with a run of its own (pair/'s topology.csv, seen/'s cameras/) cannot.
+// and, once out_dir holds an earlier world run's topology.csv that names c, c/'s tether files, which are that run's
+// tether directory, while dive1/, which it does not name, is not.
 TEST(Runner, OtherRunsFoldersInTheOutputDirectoryAreNotNamed)
 {
   const fs::path dir = temporaryDirectory("other_runs");
@@ -662,13 +688,140 @@ TEST(Runner, OtherRunsFoldersInTheOutputDirectoryAreNotNamed)
   const std::vector<fs::path> two = {dir / "a" / "state.csv", dir / "a" / "shape.csv", dir / "b" / "state.csv",
                                      dir / "b" / "shape.csv", dir / "topology.csv"};
   EXPECT_EQ(earlierOutputs(scenario, dir, two), (std::vector<std::string>{"a/vehicle.csv", "shape.csv", "state.csv"}));
-  // An earlier world run's topology.csv in dir: a folder of tether files only may be its tether directory.
+  // An earlier world run's topology.csv in dir, of tethers a, b and c: c/ is its tether directory, dive1/ is not.
   fs::create_directories(dir / "c");
   std::ofstream(dir / "c" / "state.csv") << "earlier\n";
-  std::ofstream(dir / "topology.csv") << "earlier\n";
-  const std::vector<std::string> expected = {"a/vehicle.csv",   "c/state.csv", "dive1/shape.csv",
-                                             "dive1/state.csv", "shape.csv",   "state.csv"};
+  std::ofstream(dir / "topology.csv") << kTopologyCsvHeader << "\n0.000000,a,b,linking_number,0\n"
+                                      << "0.000000,a,c,linking_number,0\n0.000000,b,c,linking_number,0\n";
+  const std::vector<std::string> expected = {"a/vehicle.csv", "c/state.csv", "shape.csv", "state.csv"};
   EXPECT_EQ(earlierOutputs(scenario, dir, two), expected);
+  fs::remove_all(dir);
+}
+
+/// The lines of `warnings` that say an earlier run's outputs were left (none, or the one).
+std::vector<std::string> earlierRunWarnings(const std::vector<std::string>& warnings)
+{
+  std::vector<std::string> found;
+  std::copy_if(warnings.begin(), warnings.end(), std::back_inserter(found),
+               [](const std::string& w) { return w.find("earlier run's outputs") != std::string::npos; });
+  return found;
+}
+
+/// `dir`/`name`/ as another run's folder: a single tether's state.csv and shape.csv.
+void otherRunsFolder(const fs::path& dir, const std::string& name)
+{
+  fs::create_directories(dir / name);
+  std::ofstream(dir / name / "state.csv") << kStateCsvHeader << "\n";
+  std::ofstream(dir / name / "shape.csv") << kShapeCsvHeader << "\n";
+}
+
+/// A tethers list of hanging tethers 5 m apart, named `names` (no contact, no obstacle: only linking_number rows).
+std::string hangingTethers(const std::vector<std::string>& names)
+{
+  std::string yaml = "duration: 0.5\noutput_rate: 10\ntethers:\n";
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    yaml += "  - {name: " + names[i] + ", params: {iterations: 3}, spool: [0, " + std::to_string(5 * i) + ", 0]}\n";
+  }
+  return yaml;
+}
+
+// A single tether with obstacles writes topology.csv beside its own state.csv and shape.csv, so a second run into
+// the same `--out results` finds a topology.csv there, which took every folder of CSVs beside it (another run's
+// results/dive1/) for an earlier world run's tether directory, and named its files as this run's earlier outputs.
+// Only a tether its topology.csv names is taken: here `tether`, the single tether's own name, which with its
+// state.csv in results is not a directory (results/tether/ is another run's too), and not dive1, though an obstacle
+// of that name is in every row's `object` (a wrap's object is an obstacle, never a tether). Without the names both
+// folders were named; with every row's object taken dive1/ is, without the state.csv's rule tether/ is.
+TEST(Runner, ASingleTetherWithObstaclesTakesNoOtherRunsFolderForItsOwn)
+{
+  const fs::path dir = temporaryDirectory("single_obstacles");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(kGood + "obstacles:\n  - {name: dive1, type: cylinder, position: [0, 3, -1], radius: "
+                                  "0.2, length: 2}\n",
+                          &scenario),
+            "");
+  ASSERT_TRUE(scenario.usesWorld());
+  otherRunsFolder(dir, "dive1");
+  otherRunsFolder(dir, "tether");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, std::vector<std::string>{});  // nothing earlier yet
+  // The premise: the topology.csv it left names tether (its wrap rows' tether) and dive1 (their object).
+  const auto rows = csvRows(dir / "topology.csv");
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows[1].at(1), "tether");
+  EXPECT_EQ(rows[1].at(2), "dive1");
+  EXPECT_EQ(rows[1].at(3), "wrap_turns");
+  ASSERT_TRUE(fs::is_regular_file(dir / "state.csv"));
+
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, std::vector<std::string>{});
+  EXPECT_EQ(earlierRunWarnings(runWarnings(scenario, summary, kDefaultMaxTensionWarning)), std::vector<std::string>{});
+  fs::remove_all(dir);
+}
+
+// A tethers list (a, b) run again into its own `--out results`: the topology.csv it finds is the one it wrote before,
+// which names a and b, not results/dive1/ beside them, another run's folder. That folder's files were named as this
+// run's earlier outputs (any folder of CSVs beside an earlier topology.csv was taken for its tether directory).
+TEST(Runner, AWorldRunAgainIntoItsFolderTakesNoOtherRunsFolderForItsOwn)
+{
+  const fs::path dir = temporaryDirectory("world_again");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(hangingTethers({"a", "b"}), &scenario), "");
+  otherRunsFolder(dir, "dive1");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, std::vector<std::string>{});
+  ASSERT_GE(csvRows(dir / "topology.csv").size(), 2u);  // the premise: an earlier topology.csv for the second run
+
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, std::vector<std::string>{});
+  EXPECT_EQ(earlierRunWarnings(runWarnings(scenario, summary, kDefaultMaxTensionWarning)), std::vector<std::string>{});
+  EXPECT_EQ(readLines(dir / "dive1" / "state.csv"), std::vector<std::string>{kStateCsvHeader});  // left as it was
+  fs::remove_all(dir);
+}
+
+// What the earlier topology.csv names is still taken: a tethers list (a, b, c) and then (a, b) into one folder leaves
+// c/state.csv and c/shape.csv, the earlier run's, which are named (a reader would take c/ for this run's), while
+// dive1/ beside them, another run's, is not. c, the last of three that touch nothing, is named in no row's `tether`,
+// only as the object of its linking_number rows (a and c, b and c): named only when those objects are read. A
+// topology.csv with no row (a tethers list of one that touched nothing) names no tether, and no folder is taken.
+TEST(Runner, AnEarlierWorldRunsTetherDirectoryLeftBehindIsNamed)
+{
+  const fs::path dir = temporaryDirectory("world_left");
+  Scenario three, two;
+  ASSERT_EQ(parseScenario(hangingTethers({"a", "b", "c"}), &three), "");
+  ASSERT_EQ(parseScenario(hangingTethers({"a", "b"}), &two), "");
+  otherRunsFolder(dir, "dive1");
+  RunSummary summary;
+  ASSERT_EQ(runScenario(three, dir.string(), &summary), "");
+  // The premise: c is in no row's `tether`, and the object of linking_number rows.
+  const auto rows = csvRows(dir / "topology.csv");
+  ASSERT_GE(rows.size(), 2u);
+  std::set<std::string> tether_column, linked;
+  for (std::size_t r = 1; r < rows.size(); ++r)
+  {
+    tether_column.insert(rows[r].at(1));
+    EXPECT_EQ(rows[r].at(3), "linking_number");
+    linked.insert(rows[r].at(2));
+  }
+  EXPECT_EQ(tether_column, (std::set<std::string>{"a", "b"}));
+  EXPECT_EQ(linked, (std::set<std::string>{"b", "c"}));
+
+  ASSERT_EQ(runScenario(two, dir.string(), &summary), "");
+  EXPECT_EQ(summary.earlier_outputs, (std::vector<std::string>{"c/shape.csv", "c/state.csv"}));
+  const std::vector<std::string> warnings = earlierRunWarnings(runWarnings(two, summary, kDefaultMaxTensionWarning));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("did not replace: c/shape.csv; c/state.csv. They are left"), std::string::npos)
+      << warnings[0];
+
+  // The same folder, its topology.csv of no row: nothing names c.
+  std::ofstream(dir / "topology.csv") << kTopologyCsvHeader << "\n";
+  EXPECT_EQ(earlierOutputs(two, dir,
+                           {dir / "a" / "state.csv", dir / "a" / "shape.csv", dir / "b" / "state.csv",
+                            dir / "b" / "shape.csv", dir / "topology.csv"}),
+            std::vector<std::string>{});
   fs::remove_all(dir);
 }
 
@@ -1328,29 +1481,6 @@ std::string fileText(const fs::path& path)
 {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-/// topology.csv's rows as fields, header first.
-std::vector<std::vector<std::string>> csvRows(const fs::path& path)
-{
-  std::vector<std::vector<std::string>> rows;
-  for (const std::string& line : readLines(path))
-  {
-    std::vector<std::string> fields(1);
-    for (const char c : line)
-    {
-      if (c == ',')
-      {
-        fields.emplace_back();
-      }
-      else
-      {
-        fields.back().push_back(c);
-      }
-    }
-    rows.push_back(fields);
-  }
-  return rows;
 }
 
 // A `tethers` list writes each tether's files in DIR/<name>/ and DIR/topology.csv, nothing in DIR itself; a

@@ -16,9 +16,10 @@ namespace rov_tether
 /// vehicle.csv, topology.csv, in out_dir or a tether's directory one level down) that this run does not, a camera's
 /// directory cameras/<name>/ for a camera this scenario does not have, and a camera's frame files (mask_, depth_,
 /// depth_preview_ NNNNNN.png) past the frames this run renders. A directory one level down counts as a tether's
-/// when this run writes into it, or when out_dir holds an earlier world run's topology.csv and the directory holds
-/// no run of its own (no topology.csv, no directory); any other is another run's folder and is not looked into.
-/// Empty for a directory that does not exist.
+/// when this run writes into it, or when out_dir's earlier topology.csv names it as a tether (a row's `tether`, a
+/// linking_number row's `object`; `tether`, a single tether's name, not while out_dir holds a state.csv) and the
+/// directory holds no run of its own (no topology.csv, no directory); any other is another run's folder and is not
+/// looked into. Empty for a directory that does not exist.
 std::vector<std::string> earlierOutputs(const Scenario& scenario, const std::filesystem::path& out_dir,
                                         const std::vector<std::filesystem::path>& written);
 
