@@ -825,6 +825,96 @@ TEST(Runner, AnEarlierWorldRunsTetherDirectoryLeftBehindIsNamed)
   fs::remove_all(dir);
 }
 
+/// Makes `path` a directory with a file in it when the run reaches `time` [s]: something else writing where an
+/// output goes after the run has opened its files (a directory there before the run is refused).
+class DirectoryInTheWay : public RunObserver
+{
+ public:
+  DirectoryInTheWay(fs::path path, double time) : path_(std::move(path)), time_(time) {}
+  double nextTime() const override { return done_ ? std::numeric_limits<double>::infinity() : time_; }
+  std::string observe(const Tether& /*sim*/) override
+  {
+    fs::create_directories(path_);
+    std::ofstream(path_ / "notes.txt") << "someone else's\n";
+    done_ = true;
+    return "";
+  }
+
+ private:
+  fs::path path_;
+  double time_;
+  bool done_ = false;
+};
+
+/// Every entry under `dir`, relative to it.
+std::set<std::string> entriesUnder(const fs::path& dir)
+{
+  std::set<std::string> entries;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+  {
+    entries.insert(fs::relative(entry.path(), dir).string());
+  }
+  return entries;
+}
+
+// A run writes each output under a partial name and moves them all into place at the end, and a move that failed
+// half-way left some new files and some earlier ones, with an error naming only the file that failed: here
+// b/shape.csv, a directory that came during the run, after a/state.csv, a/shape.csv and b/state.csv had been moved
+// in over or beside the earlier a/ and topology.csv. All or nothing: the error names that file and says that no
+// output was replaced, and every file is as it was (a/'s and topology.csv's earlier contents, no b/state.csv, where
+// there was none; the directory in the way untouched; no partial or moved-aside file left). A file at a name an
+// earlier output is moved aside to (.topology.csv.earlier, left by a run that stopped while it moved its outputs,
+// maybe the only copy of an earlier file) is refused before the run, named, and kept; without it the run replaces
+// every file and leaves no moved-aside one.
+TEST(Runner, AMoveIntoPlaceThatFailsHalfWayReplacesNothing)
+{
+  const fs::path dir = temporaryDirectory("move_fails");
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(hangingTethers({"a", "b"}), &scenario), "");
+  fs::create_directories(dir / "a");
+  const std::vector<fs::path> earlier = {dir / "a" / "state.csv", dir / "a" / "shape.csv", dir / "topology.csv"};
+  for (const fs::path& file : earlier)
+  {
+    std::ofstream(file) << "earlier\n";
+  }
+  DirectoryInTheWay in_the_way(dir / "b" / "shape.csv", 0.2);
+  RunSummary summary;
+  EXPECT_EQ(runScenario(scenario, dir.string(), &summary, {&in_the_way}),
+            "cannot move '" + (dir / "b" / "shape.csv").string() +
+                "' into place: " + std::make_error_code(std::errc::is_a_directory).message() +
+                ". No output was replaced: every file is as it was before this run");
+  EXPECT_EQ(entriesUnder(dir), (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", "b", "b/shape.csv",
+                                                      "b/shape.csv/notes.txt", "topology.csv"}));
+  for (const fs::path& file : earlier)
+  {
+    EXPECT_EQ(readLines(file), std::vector<std::string>{"earlier"}) << file;
+  }
+  EXPECT_EQ(readLines(dir / "b" / "shape.csv" / "notes.txt"), std::vector<std::string>{"someone else's"});
+
+  fs::remove_all(dir / "b");
+  std::ofstream(dir / ".topology.csv.earlier") << "the only copy\n";
+  const std::string error = runScenario(scenario, dir.string(), &summary);
+  EXPECT_EQ(error.rfind("cannot write '" + (dir / "topology.csv").string() + "': '" +
+                            (dir / ".topology.csv.earlier").string() + "' is in the way",
+                        0),
+            0u)
+      << error;
+  EXPECT_EQ(entriesUnder(dir),
+            (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", ".topology.csv.earlier", "topology.csv"}));
+  EXPECT_EQ(readLines(dir / ".topology.csv.earlier"), std::vector<std::string>{"the only copy"});
+  EXPECT_EQ(readLines(dir / "topology.csv"), std::vector<std::string>{"earlier"});
+
+  fs::remove(dir / ".topology.csv.earlier");
+  ASSERT_EQ(runScenario(scenario, dir.string(), &summary), "");
+  EXPECT_EQ(entriesUnder(dir), (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", "b", "b/shape.csv",
+                                                      "b/state.csv", "topology.csv"}));
+  for (const fs::path& file : earlier)
+  {
+    EXPECT_NE(readLines(file).at(0), "earlier") << file;
+  }
+  fs::remove_all(dir);
+}
+
 // A state row is written at each output time from the last step before it: rows faster than the steps would
 // repeat a step's state under times that were never simulated (a helper's 50 rows per s on 0.1 s steps wrote four
 // copies of t = 0 at 0.02-0.08 s). So output_rate above 1 / time_step is refused, naming both, by the library and

@@ -63,15 +63,17 @@ struct RunSummary
   std::vector<RunSummary> tethers;  ///< Each tether's own figures (steps: its own), in scenario order.
   /// What building the world said (buildWorld's warnings: a vehicle out of its cable's reach), for runWarnings.
   std::vector<std::string> world_warnings;
-  /// The output directory's files of an earlier run that this run did not replace (earlierOutputs).
+  /// The output directory's files of an earlier run that this run did not replace (earlierOutputs), and an earlier
+  /// file it replaced that was moved aside and could not be removed (.<name>.earlier).
   std::vector<std::string> earlier_outputs;
 };
 
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list
 /// out_dir/<name>/state.csv and shape.csv for each, and for a world's scenario (Scenario::usesWorld)
-/// out_dir/topology.csv; all created together at the end, so a failed run leaves no partial file. Each
-/// observer looks at the first tether at its own times up to the scenario's duration. Returns "" on success,
-/// otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an advance the
+/// out_dir/topology.csv; all moved into place together at the end, all or none (should a move fail, every earlier
+/// file is put back and the error says so), so a failed run leaves no partial file and no mix of new and earlier
+/// files. Each observer looks at the first tether at its own times up to the scenario's duration. Returns "" on
+/// success, otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an advance the
 /// simulation refused, in a scenario that was not validated: the run stops there and writes nothing).
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                                       const std::vector<RunObserver*>& observers = {});
