@@ -117,6 +117,8 @@ class Harness
   void moveVehicleOut();
   /// ~set_winch to `mode` (brake, locked, ...), no speed, no target, default.yaml's brake and target tensions.
   void setWinch(const std::string& mode);
+  /// ~set_winch to `speed` at `speed` [m/s], no target.
+  void setWinchSpeed(double speed);
   /// A client of ~set_winch, once the service is there (10 s at most).
   void winchClient(ros::ServiceClient* client);
 
@@ -363,6 +365,16 @@ void Harness::setWinch(const std::string& mode)
   command.request.mode = mode;
   command.request.brake_tension = 5.0;  // default.yaml
   command.request.target_tension = 5.0;
+  ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
+}
+
+void Harness::setWinchSpeed(double speed)
+{
+  ros::ServiceClient winch;
+  ASSERT_NO_FATAL_FAILURE(winchClient(&winch));
+  rov_tether::SetWinch command;
+  command.request.mode = "speed";
+  command.request.speed = speed;
   ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
 }
 
@@ -801,13 +813,7 @@ TEST(TetherNode, ASpeedWinchHeldAtItsStallPullIsReported)
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   EXPECT_EQ(h.tether_summary_.find("stall pull"), std::string::npos) << h.tether_summary_;
-  ros::ServiceClient client;
-  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
-  rov_tether::SetWinch srv;
-  srv.request.mode = "speed";
-  srv.request.speed = -0.5;
-  ASSERT_TRUE(client.call(srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_NO_FATAL_FAILURE(h.setWinchSpeed(-0.5));
   // The slack (deployed less the 5.52 m to the vehicle) is in within a second; then 2.5 s held, past the diagnostics'
   // period.
   ASSERT_TRUE(h.drive(3.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
@@ -838,13 +844,7 @@ TEST(TetherNode, ASpeedWinchStandingAtTheShortestLengthIsSaidOnce)
   };
   ASSERT_TRUE(h.drive(2.0, close));
   EXPECT_EQ(said(), before);
-  ros::ServiceClient client;
-  ASSERT_NO_FATAL_FAILURE(h.winchClient(&client));
-  rov_tether::SetWinch srv;
-  srv.request.mode = "speed";
-  srv.request.speed = -0.5;
-  ASSERT_TRUE(client.call(srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_NO_FATAL_FAILURE(h.setWinchSpeed(-0.5));
   ASSERT_TRUE(h.drive(5.0, close));
   EXPECT_NEAR(h.state_.deployed_length, 0.5, 1e-6);
   ASSERT_TRUE(h.waitFor([&] { return said() > before; }, 10.0)) << "no warning on /rosout";
