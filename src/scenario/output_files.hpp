@@ -1,0 +1,29 @@
+#pragma once
+// The runner's output files (private to rov_tether_scenario): each written under a temporary name and moved into
+// place, all or none, only when the whole run succeeded (docs/runner.md).
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rov_tether
+{
+
+/// An output file written under a temporary name and moved into place only when the whole run succeeded.
+struct OutputFile
+{
+  std::filesystem::path path;     ///< Where it goes.
+  std::filesystem::path partial;  ///< Where it is written first.
+  std::FILE* file = nullptr;      ///< Open on `partial` between openAll and closeAll.
+};
+
+/// Opens every file (creating its directory); "" or the error, with nothing left behind.
+std::string openAll(std::vector<OutputFile>& files);
+
+/// Closes every file; on success (`keep`) moves them into place, all or none (an earlier file a move put aside and
+/// could not remove is added to `left`), otherwise removes them. "" or the error.
+std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::string& out_dir,
+                     std::vector<std::string>* left);
+
+}  // namespace rov_tether
