@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 #include "cable_layout.hpp"
 #include "rov_tether/core/spool.hpp"
@@ -59,6 +60,14 @@ void expectNoSegmentStretched(const LaidCable& laid)
   }
 }
 
+/// `params` in two sections (2 m and the rest), each of bending_stiffness `ei`.
+TetherParams inSections(TetherParams params, double ei)
+{
+  params.sections = {{2.0, {{"bending_stiffness", ei}}},
+                     {std::numeric_limits<double>::quiet_NaN(), {{"bending_stiffness", ei}}}};
+  return params;
+}
+
 TetherParams legsParams()
 {
   TetherParams params;
@@ -88,13 +97,12 @@ TEST(CableLayout, ATautCableLiesOnTheChordWithItsEndsOnSpoolAndVehicle)
   }
 }
 
-// Slack, for a cable that does not resist bending: two straight legs spool -> apex -> vehicle, as long as the
-// deployed length, the apex straight below the chord's middle; no segment stretched.
-TEST(CableLayout, ASlackCableHangsOnTwoLegsAsLongAsTheCable)
+/// ASlackCableHangsOnTwoLegsAsLongAsTheCable with `params`.
+void slackCableHangsOnTwoLegs(const TetherParams& params)
 {
   const Position outlet(0.0, 0.0, -1.0), vehicle(6.0, 0.0, -1.0);
   LaidCable laid(100, 0.1, 10.0, outlet);
-  CableLayout(legsParams()).layOut(laid.cable, outlet, &vehicle, laid.length);
+  CableLayout(params).layOut(laid.cable, outlet, &vehicle, laid.length);
   expectAtRestFromTheSpool(laid, outlet);
   expectNoSegmentStretched(laid);
   EXPECT_EQ(laid.at(laid.last()), vehicle);  // pinned on the vehicle
@@ -113,13 +121,25 @@ TEST(CableLayout, ASlackCableHangsOnTwoLegsAsLongAsTheCable)
   EXPECT_NEAR((apex - outlet).norm() + (vehicle - apex).norm(), laid.length, kTight);
 }
 
-// Slack, for a cable that resists bending (direct, bending_stiffness > 0): on a circular arc below the chord,
-// each segment exactly its rest length (no stretch, no kink), from the spool to the vehicle.
-TEST(CableLayout, ASlackRodLiesOnAnArcWithEverySegmentAtItsRestLength)
+// Slack, for a cable that does not resist bending: two straight legs spool -> apex -> vehicle, as long as the
+// deployed length, the apex straight below the chord's middle; no segment stretched.
+TEST(CableLayout, ASlackCableHangsOnTwoLegsAsLongAsTheCable)
+{
+  // The tether's EI 0, or every section's 0 under the tether's default (the lay-out reads the cable's EI,
+  // TetherParams::elasticBending(): it read the tether's alone, and bowed such a cable on an arc).
+  for (const TetherParams& params : {legsParams(), inSections(TetherParams(), 0.0)})
+  {
+    SCOPED_TRACE(params.sections.empty() ? "no sections" : "EI 0 in every section");
+    slackCableHangsOnTwoLegs(params);
+  }
+}
+
+/// ASlackRodLiesOnAnArcWithEverySegmentAtItsRestLength with `params`.
+void slackRodLiesOnAnArc(const TetherParams& params)
 {
   const Position outlet(0.0, 0.0, -1.0), vehicle(3.0, 0.0, -2.0);
   LaidCable laid(60, 0.1, 5.125, outlet);  // a first segment of 0.125 m: the arc takes unequal chords
-  CableLayout(TetherParams()).layOut(laid.cable, outlet, &vehicle, laid.length);
+  CableLayout(params).layOut(laid.cable, outlet, &vehicle, laid.length);
   expectAtRestFromTheSpool(laid, outlet);
   EXPECT_EQ(laid.at(laid.last()), vehicle);  // pinned on it, not the arc's end found by bisection
   for (std::size_t j = laid.cable.first; j < laid.last(); ++j)
@@ -140,6 +160,20 @@ TEST(CableLayout, ASlackRodLiesOnAnArcWithEverySegmentAtItsRestLength)
     EXPECT_NEAR(laid.at(i).y(), 0.0, kTight) << "particle " << i;  // in the vertical plane of the chord
   }
   EXPECT_LT(laid.at(mid).z(), std::min(outlet.z(), vehicle.z()));  // bowed down, below the chord
+}
+
+// Slack, for a cable that resists bending (direct with EI > 0, on the tether or in its sections): on a circular arc below the chord,
+// each segment exactly its rest length (no stretch, no kink), from the spool to the vehicle.
+TEST(CableLayout, ASlackRodLiesOnAnArcWithEverySegmentAtItsRestLength)
+{
+  // The tether's EI, or EI only in its sections (the tether's 0): the lay-out reads the cable's EI.
+  TetherParams limp;
+  limp.bending_stiffness = 0.0;
+  for (const TetherParams& params : {TetherParams(), inSections(limp, 0.2)})
+  {
+    SCOPED_TRACE(params.sections.empty() ? "no sections" : "EI only in the sections");
+    slackRodLiesOnAnArc(params);
+  }
 }
 
 // Slack that would hang through the flat seabed: bowed sideways, and nothing below seabed_z. 20 m over 12 m

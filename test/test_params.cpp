@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rov_tether/core/constraint_solver.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -20,6 +21,46 @@ struct BadValue
 };
 
 // Every range check names the field, its value and the allowed range.
+// EI bending acts (TetherParams::elasticBending(): direct's rod, xpbd's joints, the lay-out's arc, the drum's release)
+// when `bending` is on and some part of the cable has EI > 0: the tether's without sections; with them each
+// section's own or, setting none, the tether's. The solver switches bending on by the same largest EI
+// (SolverSettings::from).
+TEST(Params, EIBendingActsWhereSomeSectionOfTheCableHasIt)
+{
+  const double rest = std::numeric_limits<double>::quiet_NaN();  // the last section: the rest of the cable
+  const auto sectioned = [&](double tether, const std::vector<CableSection>& sections)
+  {
+    TetherParams p;
+    p.bending_stiffness = tether;
+    p.sections = sections;
+    return p;
+  };
+  const CableSection stiff_first{2.0, {{"bending_stiffness", 0.3}}}, limp_first{2.0, {{"bending_stiffness", 0.0}}};
+  const CableSection limp_rest{rest, {{"bending_stiffness", 0.0}}}, inherits_rest{rest, {}};
+  struct Case
+  {
+    const char* what;
+    TetherParams params;
+    double largest;
+  };
+  const Case cases[] = {
+      {"no sections, the tether's EI", sectioned(0.2, {}), 0.2},
+      {"no sections, no EI", sectioned(0.0, {}), 0.0},
+      {"EI only in a section", sectioned(0.0, {stiff_first, limp_rest}), 0.3},
+      {"every section limp, the tether's EI unused", sectioned(0.2, {limp_first, limp_rest}), 0.0},
+      {"a section inherits the tether's EI", sectioned(0.2, {limp_first, inherits_rest}), 0.2},
+      {"the stiffer of a section's and the inherited", sectioned(0.2, {stiff_first, inherits_rest}), 0.3}};
+  for (const Case& c : cases)
+  {
+    EXPECT_EQ(c.params.largestBendingStiffness(), c.largest) << c.what;
+    EXPECT_EQ(c.params.elasticBending(), c.largest > 0.0) << c.what;
+    EXPECT_EQ(SolverSettings::from(c.params, c.params.time_step).elasticBending(), c.largest > 0.0) << c.what;
+    TetherParams off = c.params;
+    off.bending = false;
+    EXPECT_FALSE(off.elasticBending()) << c.what;
+  }
+}
+
 TEST(Params, EveryOutOfRangeFieldIsNamed)
 {
   const std::vector<BadValue> cases = {

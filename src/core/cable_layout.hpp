@@ -16,8 +16,8 @@ namespace rov_tether
  * segment starts stretched:
  * - taut (the deployed length at most the spool-vehicle distance): a straight line from the spool;
  * - slack: two straight legs spool -> apex -> vehicle as long as the cable, the apex below the chord's middle
- *   (sideways when the chord is vertical); for a cable that resists bending (`bending` on,
- *   `bending_stiffness` > 0, a solver that bends: direct or xpbd) a circular arc in the same plane whose
+ *   (sideways when the chord is vertical); for a cable that resists bending (TetherParams::elasticBending():
+ *   EI > 0 on the tether or in a section; a solver that bends: direct or xpbd) a circular arc in the same plane whose
  *   chords are the rest lengths instead, as a V's kink would spring open in the first steps (a 2 m cable at
  *   EI 0.2 N m^2 pushed its vehicle with 1 N);
  * - slack that would hang through a flat seabed (`seabed_z`): bowed sideways, level across the chord, and

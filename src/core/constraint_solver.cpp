@@ -16,23 +16,10 @@ SolverSettings SolverSettings::from(const TetherParams& params, double h)
   settings.bending = params.bending;
   settings.time_step = h;
   settings.axial_stiffness = params.axial_stiffness;
-  settings.axial_damping = params.axial_damping;
   // A cable in sections: the largest damping and bending of any section switch them on (direct reads each
   // segment's own); a section that sets neither has the tether's.
+  settings.axial_damping = params.largestOverSections("axial_damping", params.axial_damping);
   settings.bending_stiffness = params.largestBendingStiffness();
-  if (!params.sections.empty())
-  {
-    settings.axial_damping = 0.0;
-  }
-  for (const CableSection& section : params.sections)
-  {
-    double damping = params.axial_damping;
-    for (const auto& [name, value] : section.properties)
-    {
-      damping = name == "axial_damping" ? value : damping;
-    }
-    settings.axial_damping = std::max(settings.axial_damping, damping);
-  }
   settings.over_relaxation = params.over_relaxation;
   settings.tolerance = params.solver_tolerance;
   return settings;

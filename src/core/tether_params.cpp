@@ -252,17 +252,17 @@ double TetherParams::winchPull() const
   return max_winch_pull > 0.0 ? max_winch_pull : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
-double TetherParams::largestBendingStiffness() const
+double TetherParams::largestOverSections(const std::string& name, double own) const
 {
-  double largest = sections.empty() ? bending_stiffness : 0.0;
+  double largest = sections.empty() ? own : 0.0;
   for (const CableSection& section : sections)
   {
-    double stiffness = bending_stiffness;
-    for (const auto& [name, value] : section.properties)
+    double value = own;
+    for (const auto& [set, set_value] : section.properties)
     {
-      stiffness = name == "bending_stiffness" ? value : stiffness;
+      value = set == name ? set_value : value;
     }
-    largest = std::max(largest, stiffness);
+    largest = std::max(largest, value);
   }
   return largest;
 }

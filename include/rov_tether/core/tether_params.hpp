@@ -217,9 +217,12 @@ struct TetherParams
   /// The winch motor's stall pull [N]: max_winch_pull, or when 0, 1.25 x the larger of target_tension +
   /// tension_deadband and brake_tension (a motor a quarter stronger than the tension it is set to hold).
   double winchPull() const;
-  /// The largest EI of the cable [N m^2]: bending_stiffness, or in sections the largest of theirs (a section that
-  /// sets none has the tether's). SolverSettings::from switches bending on by it; direct reads each segment's own.
-  double largestBendingStiffness() const;
+  /// The largest value of the section parameter `name` along the cable: `own` (the tether's value of it) without
+  /// sections, else the largest a section sets or, setting none, has from the tether.
+  double largestOverSections(const std::string& name, double own) const;
+  /// The largest EI of the cable [N m^2] (largestOverSections). SolverSettings::from switches bending on by it;
+  /// direct reads each segment's own.
+  double largestBendingStiffness() const { return largestOverSections("bending_stiffness", bending_stiffness); }
   /// EI bending acts (xpbd's and direct's joints; under direct the cable is a rod, which carries compression):
   /// `bending` on and some EI > 0 (largestBendingStiffness()).
   bool elasticBending() const { return bending && largestBendingStiffness() > 0.0; }
