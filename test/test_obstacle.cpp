@@ -200,6 +200,11 @@ TEST(Obstacle, ValidateNamesTheObstacleAndTheField)
   ASSERT_TRUE(validate(s).ok);
   cases.push_back({s, "needs a name"});
   cases.back().spec.name.clear();
+  for (const char* bad : {"wreck,bow", "wreck\"", "wreck\nbow", "wreck\rbow", "wreck\tbow"})
+  {
+    cases.push_back({s, "the name must hold no comma, double quote or control character"});
+    cases.back().spec.name = bad;
+  }
   cases.push_back({s, "radius"});
   cases.back().spec.radius = -1.0;
   cases.push_back({s, "friction"});

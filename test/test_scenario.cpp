@@ -689,10 +689,13 @@ TEST(Runner, OtherRunsFoldersInTheOutputDirectoryAreNotNamed)
                                      dir / "b" / "shape.csv", dir / "topology.csv"};
   EXPECT_EQ(earlierOutputs(scenario, dir, two), (std::vector<std::string>{"a/vehicle.csv", "shape.csv", "state.csv"}));
   // An earlier world run's topology.csv in dir, of tethers a, b and c: c/ is its tether directory, dive1/ is not.
+  // It names pair and seen as tethers too: a folder so named holds no tether's files only (a run's own
+  // topology.csv, a camera directory), so it is another run's all the same, by the "no run of its own" guard.
   fs::create_directories(dir / "c");
   std::ofstream(dir / "c" / "state.csv") << "earlier\n";
   std::ofstream(dir / "topology.csv") << kTopologyCsvHeader << "\n0.000000,a,b,linking_number,0\n"
-                                      << "0.000000,a,c,linking_number,0\n0.000000,b,c,linking_number,0\n";
+                                      << "0.000000,a,c,linking_number,0\n0.000000,b,c,linking_number,0\n"
+                                      << "0.000000,pair,seen,linking_number,0\n";
   const std::vector<std::string> expected = {"a/vehicle.csv", "c/state.csv", "shape.csv", "state.csv"};
   EXPECT_EQ(earlierOutputs(scenario, dir, two), expected);
   fs::remove_all(dir);

@@ -363,6 +363,14 @@ Status validate(const ObstacleSpec& spec)
   {
     return Status::error("obstacle: every obstacle needs a name");
   }
+  // A field of topology.csv, written as it is (the earlier-outputs check reads the file back): no comma, quote or
+  // line break (any control character) to split its row.
+  if (std::any_of(spec.name.begin(), spec.name.end(),
+                  [](char c) { return c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+  {
+    return Status::error(who + "the name must hold no comma, double quote or control character (a field of the "
+                               "runner's topology.csv)");
+  }
   if (!spec.position.allFinite() || !spec.orientation.allFinite())
   {
     return Status::error(who + "position and orientation must be finite");

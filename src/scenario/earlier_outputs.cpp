@@ -52,6 +52,11 @@ long frameNumber(const std::string& name)
 std::vector<std::string> topologyTethers(const fs::path& file)
 {
   std::vector<std::string> names;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+  {
+    return names;  // none, or no file the runner wrote (a FIFO would block the read)
+  }
   std::ifstream in(file);
   std::string line;
   if (!std::getline(in, line) || line != kTopologyCsvHeader)
@@ -68,8 +73,9 @@ std::vector<std::string> topologyTethers(const fs::path& file)
   };
   while (std::getline(in, line))
   {
-    // t,tether,object,kind,value: a tether's name has no comma (isTetherName), an obstacle's may, so the object is
-    // what lies between the tether and the last two fields. A line of fewer fields gives nothing.
+    // t,tether,object,kind,value: a tether's name has no comma (isTetherName), nor an obstacle's (validate in
+    // obstacle.cpp; a file of an older build may hold one), so the object is taken as what lies between the tether
+    // and the last two fields. A line of fewer fields gives nothing.
     const std::size_t t_end = line.find(',');
     const std::size_t tether_end = t_end == std::string::npos ? t_end : line.find(',', t_end + 1);
     const std::size_t value_start = line.rfind(',');
