@@ -885,7 +885,7 @@ TEST(Runner, AMoveIntoPlaceThatFailsHalfWayReplacesNothing)
   EXPECT_EQ(runScenario(scenario, dir.string(), &summary, {&in_the_way}),
             "cannot move '" + (dir / "b" / "shape.csv").string() +
                 "' into place: " + std::make_error_code(std::errc::is_a_directory).message() +
-                ". No output was replaced: every file is as it was before this run");
+                ". No CSV output was replaced: every CSV file is as it was before this run");
   EXPECT_EQ(entriesUnder(dir), (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", "b", "b/shape.csv",
                                                       "b/shape.csv/notes.txt", "topology.csv"}));
   for (const fs::path& file : earlier)

@@ -24,8 +24,10 @@ std::string asideInTheWay(const std::vector<OutputFile>& files)
     if (fs::exists(fs::symlink_status(asideOf(out.path), ec)))
     {
       return "cannot write '" + out.path.string() + "': '" + asideOf(out.path).string() +
-             "' is in the way (an earlier file moved aside by a run that stopped before it had moved its outputs "
-             "into place?): put it back or remove it";
+             "' is in the way: an earlier output moved aside, by a run that stopped before it had moved its own "
+             "into place (then it may be the only copy of the earlier one: put it back) or by a run that could not "
+             "remove it once its own were in place (then it is the replaced one, older than '" +
+             out.path.filename().string() + "': delete it)";
     }
   }
   return "";
@@ -77,7 +79,8 @@ std::string moveIntoPlace(const std::vector<OutputFile>& files, const fs::path& 
       if (ec)
       {
         left->push_back(asideOf(files[i].path).lexically_relative(out_dir).string() + " (the earlier " +
-                        files[i].path.filename().string() + ", moved aside and not removed: " + ec.message() + ")");
+                        files[i].path.filename().string() + " this run replaced, moved aside and not removed: " +
+                        ec.message() + "; delete it, or the next run into this directory refuses to start)");
       }
     }
     return "";
@@ -102,9 +105,9 @@ std::string moveIntoPlace(const std::vector<OutputFile>& files, const fs::path& 
     }
     fs::remove(files[i].partial, ec);
   }
-  return error + (not_undone.empty() ? ". No output was replaced: every file is as it was before this run"
+  return error + (not_undone.empty() ? ". No CSV output was replaced: every CSV file is as it was before this run"
                                      : ". Undoing the moves failed, so the directory holds a mix" + not_undone +
-                                           "; every other file is as it was before this run");
+                                           "; every other CSV file is as it was before this run");
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ struct RunSummary
 /// out_dir/<name>/state.csv and shape.csv for each, and for a world's scenario (Scenario::usesWorld)
 /// out_dir/topology.csv; all moved into place together at the end, all or none (should a move fail, every earlier
 /// file is put back and the error says so), so a failed run leaves no partial file and no mix of new and earlier
-/// files. Each observer looks at the first tether at its own times up to the scenario's duration. Returns "" on
+/// files (these CSV files: a camera dataset an observer writes, rov_tether_run's, is written in place as the run
+/// goes). Each observer looks at the first tether at its own times up to the scenario's duration. Returns "" on
 /// success, otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an advance the
 /// simulation refused, in a scenario that was not validated: the run stops there and writes nothing).
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
