@@ -144,8 +144,9 @@ class MultiTether(unittest.TestCase):
         # warning is throttled for. One throttle for the node (ROS_WARN_THROTTLE's, per line) let only the first
         # through and hid the other for 5 s.
         # The 4 s of poses: long enough for both stalls to be said (each drum's ramp to 0.5 m/s at 1 m/s^2, 0.5 s, and
-        # at most 0.5 m of slack at that speed, 1 s, plus kOutrunTime's 0.2 s held: 1.7 s at most), and shorter than
-        # the 5 s throttle, so that one throttle shared by both would hide the second for all of the window.
+        # at most 0.25 x 2.5 m = 0.625 m of slack at that speed, 1.25 s, plus kOutrunTime's 0.2 s held: 1.95 s at
+        # most), and shorter than the 5 s throttle, so that one throttle shared by both would hide the second for all
+        # of the window.
         for i in (0, 1):
             name = "/tether_node/t%d/set_winch" % i
             rospy.wait_for_service(name, timeout=10.0)
