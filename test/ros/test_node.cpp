@@ -115,10 +115,9 @@ class Harness
   void startFresh();
   /// From home, the vehicle goes out 4 m along x at 0.4 m/s and stops 5.5 m out (deployed above 5 m).
   void moveVehicleOut();
-  /// ~set_winch to `mode` (brake, locked, ...), no speed, no target, default.yaml's brake and target tensions.
-  void setWinch(const std::string& mode);
-  /// ~set_winch to `speed` at `speed` [m/s], no target.
-  void setWinchSpeed(double speed);
+  /// ~set_winch to `mode` (brake, locked, ...) at `speed` [m/s] (speed mode), no target, default.yaml's brake and
+  /// target tensions.
+  void setWinch(const std::string& mode, double speed = 0.0);
   /// A client of ~set_winch, once the service is there (10 s at most).
   void winchClient(ros::ServiceClient* client);
 
@@ -357,24 +356,15 @@ void Harness::winchClient(ros::ServiceClient* client)
   ASSERT_TRUE(client->waitForExistence(ros::Duration(10.0)));
 }
 
-void Harness::setWinch(const std::string& mode)
+void Harness::setWinch(const std::string& mode, double speed)
 {
   ros::ServiceClient winch;
   ASSERT_NO_FATAL_FAILURE(winchClient(&winch));
   rov_tether::SetWinch command;
   command.request.mode = mode;
+  command.request.speed = speed;
   command.request.brake_tension = 5.0;  // default.yaml
   command.request.target_tension = 5.0;
-  ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
-}
-
-void Harness::setWinchSpeed(double speed)
-{
-  ros::ServiceClient winch;
-  ASSERT_NO_FATAL_FAILURE(winchClient(&winch));
-  rov_tether::SetWinch command;
-  command.request.mode = "speed";
-  command.request.speed = speed;
   ASSERT_TRUE(winch.call(command) && command.response.success) << command.response.message;
 }
 
@@ -813,7 +803,7 @@ TEST(TetherNode, ASpeedWinchHeldAtItsStallPullIsReported)
   ASSERT_NO_FATAL_FAILURE(h.startFresh());
   ASSERT_NO_FATAL_FAILURE(h.moveVehicleOut());
   EXPECT_EQ(h.tether_summary_.find("stall pull"), std::string::npos) << h.tether_summary_;
-  ASSERT_NO_FATAL_FAILURE(h.setWinchSpeed(-0.5));
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("speed", -0.5));
   // The slack (deployed less the 5.52 m to the vehicle) is in within a second; then 2.5 s held, past the diagnostics'
   // period.
   ASSERT_TRUE(h.drive(3.5, [](double) { return poseAt(5.5, 0.0, -0.5); }));
@@ -844,7 +834,7 @@ TEST(TetherNode, ASpeedWinchStandingAtTheShortestLengthIsSaidOnce)
   };
   ASSERT_TRUE(h.drive(2.0, close));
   EXPECT_EQ(said(), before);
-  ASSERT_NO_FATAL_FAILURE(h.setWinchSpeed(-0.5));
+  ASSERT_NO_FATAL_FAILURE(h.setWinch("speed", -0.5));
   ASSERT_TRUE(h.drive(5.0, close));
   EXPECT_NEAR(h.state_.deployed_length, 0.5, 1e-6);
   ASSERT_TRUE(h.waitFor([&] { return said() > before; }, 10.0)) << "no warning on /rosout";
