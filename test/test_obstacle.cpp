@@ -200,7 +200,7 @@ TEST(Obstacle, ValidateNamesTheObstacleAndTheField)
   ASSERT_TRUE(validate(s).ok);
   cases.push_back({s, "needs a name"});
   cases.back().spec.name.clear();
-  for (const char* bad : {"wreck,bow", "wreck\"", "wreck\nbow", "wreck\rbow", "wreck\tbow"})
+  for (const char* bad : {"wreck,bow", "wreck\"", "wreck\nbow", "wreck\rbow", "wreck\tbow", "wreck\x01", "wreck\x7f"})
   {
     cases.push_back({s, "the name must hold no comma, double quote or control character"});
     cases.back().spec.name = bad;
@@ -229,7 +229,12 @@ TEST(Obstacle, ValidateNamesTheObstacleAndTheField)
     EXPECT_NE(status.message.find(c.says), std::string::npos) << status.message;
     if (!c.spec.name.empty())
     {
-      EXPECT_NE(status.message.find("'" + c.spec.name + "'"), std::string::npos) << status.message;
+      // The name as given, a control character shown as '?' so that the message stays on one line.
+      std::string shown = c.spec.name;
+      std::replace_if(
+          shown.begin(), shown.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }, '?');
+      EXPECT_NE(status.message.find("'" + shown + "'"), std::string::npos) << status.message;
+      EXPECT_EQ(status.message.find_first_of("\n\r"), std::string::npos) << status.message;
     }
     Status made;
     EXPECT_EQ(makeObstacle(c.spec, &made), nullptr);

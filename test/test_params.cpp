@@ -20,7 +20,6 @@ struct BadValue
   ParamValue value;
 };
 
-// Every range check names the field, its value and the allowed range.
 // EI bending acts (TetherParams::elasticBending(): direct's rod, xpbd's joints, the lay-out's arc, the drum's release)
 // when `bending` is on and some part of the cable has EI > 0: the tether's without sections; with them each
 // section's own or, setting none, the tether's. The solver switches bending on by the same largest EI
@@ -54,13 +53,22 @@ TEST(Params, EIBendingActsWhereSomeSectionOfTheCableHasIt)
   {
     EXPECT_EQ(c.params.largestBendingStiffness(), c.largest) << c.what;
     EXPECT_EQ(c.params.elasticBending(), c.largest > 0.0) << c.what;
-    EXPECT_EQ(SolverSettings::from(c.params, c.params.time_step).elasticBending(), c.largest > 0.0) << c.what;
+    const SolverSettings settings = SolverSettings::from(c.params, c.params.time_step);
+    EXPECT_EQ(settings.bending_stiffness, c.largest) << c.what;
+    EXPECT_EQ(settings.elasticBending(), c.largest > 0.0) << c.what;
     TetherParams off = c.params;
     off.bending = false;
     EXPECT_FALSE(off.elasticBending()) << c.what;
-  }
+  }  // Axial damping switches on by the same rule (largestOverSections): a section's own, or the tether's.
+  TetherParams damped = sectioned(0.2, {{2.0, {{"axial_damping", 3.0}}}, inherits_rest});
+  EXPECT_EQ(SolverSettings::from(damped, damped.time_step).axial_damping, 3.0) << "a section's over the tether's 0";
+  damped.axial_damping = 5.0;
+  EXPECT_EQ(SolverSettings::from(damped, damped.time_step).axial_damping, 5.0) << "the tether's, inherited";
+  damped.sections = {{2.0, {{"axial_damping", 0.0}}}, {rest, {{"axial_damping", 0.0}}}};
+  EXPECT_EQ(SolverSettings::from(damped, damped.time_step).axial_damping, 0.0) << "every section undamped";
 }
 
+// Every range check names the field, its value and the allowed range.
 TEST(Params, EveryOutOfRangeFieldIsNamed)
 {
   const std::vector<BadValue> cases = {

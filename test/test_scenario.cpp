@@ -864,8 +864,8 @@ std::set<std::string> entriesUnder(const fs::path& dir)
 // half-way left some new files and some earlier ones, with an error naming only the file that failed: here
 // b/shape.csv, a directory that came during the run, after a/state.csv, a/shape.csv and b/state.csv had been moved
 // in over or beside the earlier a/ and topology.csv. All or nothing: the error names that file and says that no
-// output was replaced, and every file is as it was (a/'s and topology.csv's earlier contents, no b/state.csv, where
-// there was none; the directory in the way untouched; no partial or moved-aside file left). A file at a name an
+// CSV output was replaced, and every CSV file is as it was (a/'s and topology.csv's earlier contents, no b/state.csv,
+// where there was none; the directory in the way untouched; no partial or moved-aside file left). A file at a name an
 // earlier output is moved aside to (.topology.csv.earlier, left by a run that stopped while it moved its outputs,
 // maybe the only copy of an earlier file) is refused before the run, named, and kept; without it the run replaces
 // every file and leaves no moved-aside one.
@@ -902,6 +902,9 @@ TEST(Runner, AMoveIntoPlaceThatFailsHalfWayReplacesNothing)
                         0),
             0u)
       << error;
+  // Either case, and what to do in each: a stopped run's copy may be the only one; a finished run's is older.
+  EXPECT_NE(error.find("may be the only copy of the earlier one: put it back"), std::string::npos) << error;
+  EXPECT_NE(error.find("the replaced one, older than 'topology.csv': delete it"), std::string::npos) << error;
   EXPECT_EQ(entriesUnder(dir),
             (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", ".topology.csv.earlier", "topology.csv"}));
   EXPECT_EQ(readLines(dir / ".topology.csv.earlier"), std::vector<std::string>{"the only copy"});
@@ -1825,9 +1828,10 @@ TEST(Layers, NoFileIncludesALayerAboveIt)
 // The scenario model, the CSV runner and the study need no YAML: only the reader (scenario_yaml) does.
 TEST(Layers, OnlyTheScenarioReaderUsesYaml)
 {
-  for (const char* file : {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/study/study.cpp",
-                           "/include/rov_tether/scenario/scenario.hpp",
-                           "/include/rov_tether/scenario/scenario_runner.hpp", "/include/rov_tether/study/study.hpp"})
+  for (const char* file :
+       {"/src/scenario/scenario.cpp", "/src/scenario/scenario_runner.cpp", "/src/scenario/output_files.cpp",
+        "/src/study/study.cpp", "/include/rov_tether/scenario/scenario.hpp",
+        "/include/rov_tether/scenario/scenario_runner.hpp", "/include/rov_tether/study/study.hpp"})
   {
     std::ifstream in(std::string(ROV_TETHER_SOURCE_DIR) + file);
     ASSERT_TRUE(in) << file;

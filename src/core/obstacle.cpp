@@ -368,8 +368,12 @@ Status validate(const ObstacleSpec& spec)
   if (std::any_of(spec.name.begin(), spec.name.end(),
                   [](char c) { return c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
   {
-    return Status::error(who + "the name must hold no comma, double quote or control character (a field of the "
-                               "runner's topology.csv)");
+    std::string shown = spec.name;  // on one line
+    std::replace_if(
+        shown.begin(), shown.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }, '?');
+    return Status::error("obstacle '" + shown + "' (" + shapeTypeName(spec.type) +
+                         "): the name must hold no comma, double quote or control character (a field of the runner's "
+                         "topology.csv)");
   }
   if (!spec.position.allFinite() || !spec.orientation.allFinite())
   {

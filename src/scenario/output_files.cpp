@@ -33,14 +33,14 @@ std::string asideInTheWay(const std::vector<OutputFile>& files)
   return "";
 }
 
-/// Moves every file into place, all or nothing: a failure half-way left some new files and some earlier ones in
-/// the directory, and no word of which. First each earlier file at a target (any entry but a directory, which the
-/// rename of a file cannot replace) is moved aside to .<name>.earlier beside it, then each new file is moved in,
+/// Moves every CSV file into place, all or nothing: a failure half-way left some new files and some earlier ones
+/// in the directory, and no word of which. First each earlier file at a target (any entry but a directory, which
+/// the rename of a file cannot replace) is moved aside to .<name>.earlier beside it, then each new file is moved in,
 /// then the earlier files are removed. Should a move fail, what was done is undone (each earlier file moved back
-/// over this run's, this run's removed where there was none), so that every file is as it was before the run, and
-/// the error says so; should the undoing fail too, the error names each file it leaves otherwise. An earlier file
-/// moved aside that cannot be removed once all are in place is added to `left` (as an earlier run's output this run
-/// did not replace). "" or the error; every partial file is gone either way.
+/// over this run's, this run's removed where there was none), so that every one of these files is as it was before
+/// the run, and the error says so; should the undoing fail too, the error names each file it leaves otherwise. A
+/// copy moved aside that cannot be removed once all are in place is added to `left` (its path and why), for the
+/// run's warnings. "" or the error; every partial file is gone either way.
 std::string moveIntoPlace(const std::vector<OutputFile>& files, const fs::path& out_dir, std::vector<std::string>* left)
 {
   std::string error = asideInTheWay(files);  // openAll's check, again: one may have come since
@@ -78,9 +78,7 @@ std::string moveIntoPlace(const std::vector<OutputFile>& files, const fs::path& 
       }
       if (ec)
       {
-        left->push_back(asideOf(files[i].path).lexically_relative(out_dir).string() + " (the earlier " +
-                        files[i].path.filename().string() + " this run replaced, moved aside and not removed: " +
-                        ec.message() + "; delete it, or the next run into this directory refuses to start)");
+        left->push_back(asideOf(files[i].path).lexically_relative(out_dir).string() + " (" + ec.message() + ")");
       }
     }
     return "";

@@ -21,8 +21,8 @@ struct OutputFile
 /// Opens every file (creating its directory); "" or the error, with nothing left behind.
 std::string openAll(std::vector<OutputFile>& files);
 
-/// Closes every file; on success (`keep`) moves them into place, all or none (an earlier file a move put aside and
-/// could not remove is added to `left`), otherwise removes them. "" or the error.
+/// Closes every file; on success (`keep`) moves them into place, all or none (a copy of an earlier file the move put
+/// aside and could not remove is added to `left`), otherwise removes them. "" or the error.
 std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::string& out_dir,
                      std::vector<std::string>* left);
 

@@ -359,7 +359,8 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
   stepper.setStepObserver(nullptr);
   const bool ok = stepper.observerError().empty() && stepper.runError().empty();
-  const std::string close_error = closeAll(files, ok, out_dir, &earlier);
+  std::vector<std::string> replaced_left;
+  const std::string close_error = closeAll(files, ok, out_dir, &replaced_left);
   if (!stepper.runError().empty())
   {
     return stepper.runError();
@@ -374,6 +375,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   }
   RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - every_step.seconds());
   result.earlier_outputs = std::move(earlier);
+  result.replaced_left = std::move(replaced_left);
   if (summary != nullptr)
   {
     *summary = result;
@@ -393,6 +395,16 @@ std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary&
     }
     warnings.push_back("the output directory holds an earlier run's outputs that this run did not replace: " + list +
                        ". They are left as they were: remove them, or write to an empty directory");
+  }
+  if (!summary.replaced_left.empty())
+  {
+    std::string list;
+    for (const std::string& item : summary.replaced_left)
+    {
+      list += (list.empty() ? "" : "; ") + item;
+    }
+    warnings.push_back("this run replaced earlier outputs but could not remove the copies it moved aside: " + list +
+                       ". Delete them: the next run into this directory refuses to start while they are there");
   }
   const std::vector<ScenarioTether> tethers = scenario.tetherList();
   const std::vector<RunSummary>& each = summary.tethers.empty() ? std::vector<RunSummary>{summary} : summary.tethers;

@@ -138,8 +138,8 @@ class MultiTether(unittest.TestCase):
 
     def test_3_two_stalled_winches_both_warn(self):
         # t0 and t1 reel in at 0.5 m/s (speed mode) while their vehicles hold still 2 m and 2.5 m out: the slack
-        # (deployed less the distance, under 0.5 m after test_1: deployed <= 1.25 x the distance) is in within a
-        # second, and then each motor's stall pull (default.yaml: 1.25 x (5 + 1) = 7.5 N) holds its drum: both are
+        # (deployed less the distance, at most 0.625 m after test_1 (t1's: deployed <= 1.25 x the 2.5 m) is in within
+        # 1.75 s, and then each motor's stall pull (default.yaml: 1.25 x (5 + 1) = 7.5 N) holds its drum: both are
         # held at their stall pull within about a second of each other, and each is warned of within the 5 s a
         # warning is throttled for. One throttle for the node (ROS_WARN_THROTTLE's, per line) let only the first
         # through and hid the other for 5 s.

@@ -63,9 +63,10 @@ struct RunSummary
   std::vector<RunSummary> tethers;  ///< Each tether's own figures (steps: its own), in scenario order.
   /// What building the world said (buildWorld's warnings: a vehicle out of its cable's reach), for runWarnings.
   std::vector<std::string> world_warnings;
-  /// The output directory's files of an earlier run that this run did not replace (earlierOutputs), and an earlier
-  /// file it replaced that was moved aside and could not be removed (.<name>.earlier).
+  /// The output directory's files of an earlier run that this run did not replace (earlierOutputs).
   std::vector<std::string> earlier_outputs;
+  /// The earlier files this run replaced whose copies moved aside (.<name>.earlier) could not be removed.
+  std::vector<std::string> replaced_left;
 };
 
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list
