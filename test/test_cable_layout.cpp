@@ -162,8 +162,8 @@ void slackRodLiesOnAnArc(const TetherParams& params)
   EXPECT_LT(laid.at(mid).z(), std::min(outlet.z(), vehicle.z()));  // bowed down, below the chord
 }
 
-// Slack, for a cable that resists bending (direct with EI > 0, on the tether or in its sections): on a circular arc below the chord,
-// each segment exactly its rest length (no stretch, no kink), from the spool to the vehicle.
+// Slack, for a cable that resists bending (direct with EI > 0, on the tether or in its sections): on a circular arc
+// below the chord, each segment exactly its rest length (no stretch, no kink), from the spool to the vehicle.
 TEST(CableLayout, ASlackRodLiesOnAnArcWithEverySegmentAtItsRestLength)
 {
   // The tether's EI, or EI only in its sections (the tether's 0): the lay-out reads the cable's EI.
