@@ -252,7 +252,7 @@ double TetherParams::winchPull() const
   return max_winch_pull > 0.0 ? max_winch_pull : 1.25 * std::max(target_tension + tension_deadband, brake_tension);
 }
 
-double TetherParams::largestOverSections(const std::string& name, double own) const
+double TetherParams::largestOverSections(std::string_view name, double own) const
 {
   double largest = sections.empty() ? own : 0.0;
   for (const CableSection& section : sections)

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -218,8 +219,9 @@ struct TetherParams
   /// tension_deadband and brake_tension (a motor a quarter stronger than the tension it is set to hold).
   double winchPull() const;
   /// The largest value of the section parameter `name` along the cable: `own` (the tether's value of it) without
-  /// sections, else the largest a section sets or, setting none, has from the tether.
-  double largestOverSections(const std::string& name, double own) const;
+  /// sections, else the largest a section sets or, setting none, has from the tether. Allocates nothing (read every
+  /// step).
+  double largestOverSections(std::string_view name, double own) const;
   /// The largest EI of the cable [N m^2] (largestOverSections). SolverSettings::from switches bending on by it;
   /// direct reads each segment's own.
   double largestBendingStiffness() const { return largestOverSections("bending_stiffness", bending_stiffness); }
