@@ -386,24 +386,25 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
 std::vector<std::string> runWarnings(const Scenario& scenario, const RunSummary& summary, double max_tension_warning)
 {
   std::vector<std::string> warnings = summary.world_warnings;
-  if (!summary.earlier_outputs.empty())
+  const auto listed = [](const std::vector<std::string>& items)
   {
     std::string list;
-    for (const std::string& item : summary.earlier_outputs)
+    for (const std::string& item : items)
     {
       list += (list.empty() ? "" : "; ") + item;
     }
-    warnings.push_back("the output directory holds an earlier run's outputs that this run did not replace: " + list +
+    return list;
+  };
+  if (!summary.earlier_outputs.empty())
+  {
+    warnings.push_back("the output directory holds an earlier run's outputs that this run did not replace: " +
+                       listed(summary.earlier_outputs) +
                        ". They are left as they were: remove them, or write to an empty directory");
   }
   if (!summary.replaced_left.empty())
   {
-    std::string list;
-    for (const std::string& item : summary.replaced_left)
-    {
-      list += (list.empty() ? "" : "; ") + item;
-    }
-    warnings.push_back("this run replaced earlier outputs but could not remove the copies it moved aside: " + list +
+    warnings.push_back("this run replaced earlier outputs but could not remove the copies it moved aside: " +
+                       listed(summary.replaced_left) +
                        ". Delete them: the next run into this directory refuses to start while they are there");
   }
   const std::vector<ScenarioTether> tethers = scenario.tetherList();
