@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rov_tether/core/status.hpp"
+
 namespace rov_tether::camera
 {
 namespace
@@ -30,16 +32,6 @@ int firstWhere(int lo, int hi, Predicate holds)
   return lo;
 }
 
-std::string joined(const std::vector<std::string>& errors)
-{
-  std::string text;
-  for (const auto& e : errors)
-  {
-    text += (text.empty() ? "" : "; ") + e;
-  }
-  return text;
-}
-
 }  // namespace
 
 CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics), d_(intrinsics.plumbBob())
@@ -47,7 +39,7 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
   const auto errors = intrinsics_.validate();
   if (!errors.empty())
   {
-    throw std::invalid_argument(joined(errors));
+    throw std::invalid_argument(joinMessages(errors));
   }
   max_focal_ = std::max(intrinsics_.fx(), intrinsics_.fy()) + std::abs(intrinsics_.skew());
   computeRays();

@@ -10,23 +10,13 @@
 #include "cable_layout.hpp"
 #include "rov_tether/core/cable_sections.hpp"
 #include "rov_tether/core/direct_solver.hpp"
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/core/water_surface.hpp"
 
 namespace rov_tether
 {
 namespace
 {
-
-std::string joinErrors(const std::vector<std::string>& errors)
-{
-  std::ostringstream out;
-  out << "invalid tether parameters: ";
-  for (std::size_t i = 0; i < errors.size(); ++i)
-  {
-    out << (i ? "; " : "") << errors[i];
-  }
-  return out.str();
-}
 
 bool withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate; }
 
@@ -56,7 +46,7 @@ Tether::Tether(const TetherParams& params, const Position& spool, double start_t
   const auto errors = params.validate();
   if (!errors.empty())
   {
-    throw std::invalid_argument(joinErrors(errors));
+    throw std::invalid_argument("invalid tether parameters: " + joinMessages(errors));
   }
   if (!withinLimits(spool) || !std::isfinite(start_time) || std::abs(start_time) > kMaxTime)
   {
@@ -130,7 +120,7 @@ Status Tether::setParams(const TetherParams& params)
   const auto errors = params.validate();
   if (!errors.empty())
   {
-    return Status::error(joinErrors(errors));
+    return Status::error("invalid tether parameters: " + joinMessages(errors));
   }
   if (vehicle_ != nullptr)
   {

@@ -17,6 +17,7 @@
 #include "rov_tether/camera/camera_model.hpp"
 #include "rov_tether/camera/camera_scene.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
+#include "rov_tether/core/status.hpp"
 #include "session.hpp"
 
 namespace py = pybind11;
@@ -91,12 +92,7 @@ class Camera
     const std::vector<std::string> errors = in.validate();
     if (!errors.empty())
     {
-      std::string text;
-      for (const std::string& e : errors)
-      {
-        text += (text.empty() ? "" : "; ") + e;
-      }
-      throw py::value_error(text);
+      throw py::value_error(joinMessages(errors));
     }
     return in;  // CameraModel throws std::invalid_argument (ValueError) for a distortion it cannot invert
   }

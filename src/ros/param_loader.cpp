@@ -10,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
 #include "rov_tether/spec/tether_reader.hpp"
@@ -220,15 +221,7 @@ class OptionReader
 
   void fail(const std::string& message) { errors_.push_back(message); }
 
-  std::string result() const
-  {
-    std::string joined;
-    for (const auto& e : errors_)
-    {
-      joined += (joined.empty() ? "" : "; ") + e;
-    }
-    return joined;
-  }
+  std::string result() const { return joinMessages(errors_); }
 
  private:
   /// Option `name`, when given, into v if it is a finite number in [min, max] (and `whole`, a whole one); false

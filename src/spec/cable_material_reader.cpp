@@ -3,22 +3,13 @@
 #include <algorithm>
 #include <utility>
 
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::spec
 {
 namespace
 {
-
-std::string joined(const std::vector<std::string>& errors)
-{
-  std::string out;
-  for (const auto& error : errors)
-  {
-    out += (out.empty() ? "" : "; ") + error;
-  }
-  return out;
-}
 
 /// Each item of a list of maps, or the one error that it is not one.
 template <typename ReadItem>
@@ -39,7 +30,7 @@ std::string readList(const YAML::Node& node, const std::string& field, const cha
     }
     read_item(node[k], item, &errors);
   }
-  return joined(errors);
+  return joinMessages(errors);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::spec
@@ -15,16 +16,6 @@ const std::vector<std::string> kTfFrameFields = {"name", "frame", "info_topic", 
                                                  "K",    "D",     "image_topic", "rate"};
 const std::vector<std::string> kVehicleFields = {"name",  "position", "orientation", "rate",
                                                  "width", "height",   "K",           "D"};
-
-std::string join(const std::vector<std::string>& fields)
-{
-  std::string list;
-  for (const auto& field : fields)
-  {
-    list += (list.empty() ? "" : ", ") + field;
-  }
-  return list;
-}
 
 /// A number as a user wrote it (64.5, 0, 1e+06), not std::to_string's fixed six decimals.
 std::string shown(double value)
@@ -155,14 +146,14 @@ std::string readCamera(const YAML::Node& node, const std::string& field, CameraM
   const std::vector<std::string>& fields = mount == CameraMount::kTfFrame ? kTfFrameFields : kVehicleFields;
   if (!node.IsMap())
   {
-    return field + ": expected a map with " + join(fields);
+    return field + ": expected a map with " + joinMessages(fields, ", ");
   }
   for (const auto& entry : node)
   {
     const std::string key = entry.first.as<std::string>();
     if (std::find(fields.begin(), fields.end(), key) == fields.end())
     {
-      return field + ": unknown field '" + key + "' (expected " + join(fields) + ")";
+      return field + ": unknown field '" + key + "' (expected " + joinMessages(fields, ", ") + ")";
     }
   }
   if (!node["name"])

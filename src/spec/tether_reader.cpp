@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/spec/cable_material_reader.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
@@ -119,16 +120,11 @@ std::string readTetherParams(const YAML::Node& map, const std::string& prefix, P
   {
     warnings->push_back(prefix + warning);
   }
-  std::string joined;
-  for (const auto& error : errors)
-  {
-    joined += (joined.empty() ? "" : "; ") + error;
-  }
-  if (joined.empty())
+  if (errors.empty())
   {
     *params = candidate;
   }
-  return joined;
+  return joinMessages(errors);
 }
 
 std::string readPosition(const YAML::Node& node, const std::string& field, Position* position)

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "rov_tether/core/status.hpp"
 #include "rov_tether/spec/yaml_read.hpp"
 
 namespace rov_tether::spec
@@ -36,16 +37,6 @@ std::vector<Field> fieldsOf(VehicleParams* p)
           {"quadratic_damping", 6, p->quadratic_damping.data()},
           {"thrust_limit", 6, p->thrust_limit.data()},
           {"size", 3, p->size.data()}};
-}
-
-std::string joined(const std::vector<std::string>& problems)
-{
-  std::string text;
-  for (const auto& problem : problems)
-  {
-    text += (text.empty() ? "" : "; ") + problem;
-  }
-  return text;
 }
 
 }  // namespace
@@ -94,7 +85,7 @@ std::string readControllerGains(const YAML::Node& map, const std::string& prefix
   }
   if (!problems.empty())
   {
-    return joined(problems);
+    return joinMessages(problems);
   }
   ControllerGains candidate;
   const Status designed = ControllerGains::design(vehicle, design, &candidate);
@@ -207,7 +198,7 @@ std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, 
       *gains = candidate_gains;
     }
   }
-  return joined(problems);
+  return joinMessages(problems);
 }
 
 std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params, ControllerGains* gains)

@@ -2,6 +2,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rov_tether
 {
@@ -17,5 +18,17 @@ struct [[nodiscard]] Status
   static Status error(std::string text) { return {false, std::move(text)}; }
   explicit operator bool() const { return ok; }
 };
+
+/// The messages one after the other, `separator` between two ("" for none): how a reader lists every problem
+/// it found in one error.
+inline std::string joinMessages(const std::vector<std::string>& messages, const char* separator = "; ")
+{
+  std::string text;
+  for (const auto& message : messages)
+  {
+    text += (text.empty() ? "" : separator) + message;
+  }
+  return text;
+}
 
 }  // namespace rov_tether
