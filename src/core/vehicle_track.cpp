@@ -21,25 +21,18 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
     samples_.push_back(Sample{t, position, false});
     return Status::success();
   }
-  if (!samples_.empty() && t < samples_.back().time)
+  Status done = samples_.empty() ? Status::success()
+                                 : order(t, samples_.back().time, (position - samples_.back().position).norm());
+  if (!done.ok)
   {
-    std::ostringstream out;
-    out << std::fixed << std::setprecision(6) << "vehicle sample rejected: time " << t
-        << " s is older than the last sample at " << samples_.back().time << " s";
-    return Status::error(out.str());
+    return done;
   }
   // Held: the simulation went on past the last sample with no newer one (poses that stopped). Decided before a
   // duplicate below takes its sample out: with two queued and the simulation between them, the one left is not held.
   const bool held = attached_ && samples_.size() == 1 && now > samples_.back().time;
-  Status done = Status::success();
   if (!samples_.empty() && t == samples_.back().time)
   {
-    // A duplicate stamp replaces the sample it repeats (the later message is the better fix), and says so.
-    std::ostringstream out;
-    out << std::fixed << std::setprecision(6) << "a sample stamped " << t << " s again replaced the one before ("
-        << std::setprecision(3) << (position - samples_.back().position).norm() << " m from it)";
-    done.message = out.str();
-    samples_.pop_back();
+    samples_.pop_back();  // a duplicate stamp replaces the sample it repeats (the later message is the better fix)
   }
   if (samples_.size() >= kMaxSamples)
   {
@@ -64,6 +57,24 @@ Status VehicleTrack::add(double t, const Position& position, double max_jump, do
   const bool jump = (position - previous).norm() > max_speed * dt + max_jump;
   samples_.push_back(Sample{t, position, jump});
   return done;
+}
+
+Status VehicleTrack::order(double t, double last_time, double moved)
+{
+  if (t > last_time)
+  {
+    return Status::success();
+  }
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(6);
+  if (t < last_time)
+  {
+    out << "vehicle sample rejected: time " << t << " s is older than the last sample at " << last_time << " s";
+    return Status::error(out.str());
+  }
+  out << "a sample stamped " << t << " s again replaced the one before (" << std::setprecision(3) << moved
+      << " m from it)";
+  return {true, out.str()};
 }
 
 void VehicleTrack::detach()

@@ -439,7 +439,7 @@ void PoseInput::poll(const ros::Time& now)
   checkAdoption();
 
   Eigen::Isometry3d pose;
-  if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), &pose))
+  if (!options_.spool_frame.empty() && lookup(options_.spool_frame, ros::Time(0), spool_transform_log_, &pose))
   {
     const Status status = tether_.setSpoolPosition(pose.translation());
     if (!status.ok)
@@ -452,20 +452,26 @@ void PoseInput::poll(const ros::Time& now)
     }
   }
   ros::Time stamp;
-  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), &pose, &stamp))
+  if (options_.pose_source == "tf" && lookup(options_.rov_frame, ros::Time(0), vehicle_transform_log_, &pose, &stamp))
   {
     // A static transform (stamp 0) holds at every time: it is taken now, as a pose that does not move.
     if (stamp.isZero())
     {
       stamp = now;
     }
-    if (stamp > last_pose_stamp_ && (stamp - now).toSec() > options_.max_pose_future)
+    // Each transform once: tf hands out the latest until a newer one comes, and a refused one would be counted
+    // (and said) again every tick.
+    if (stamp > last_pose_stamp_ && stamp != tf_handled_)
     {
-      refuseFuture((stamp - now).toSec());
-    }
-    else if (stamp > last_pose_stamp_)
-    {
-      addVehicle(pose, stamp, now);
+      tf_handled_ = stamp;
+      if ((stamp - now).toSec() > options_.max_pose_future)
+      {
+        refuseFuture((stamp - now).toSec());
+      }
+      else
+      {
+        addVehicle(pose, stamp, now);
+      }
     }
   }
 }
@@ -478,7 +484,7 @@ void PoseInput::take(const HandOver& pose, const ros::Time& now)
   if (!frame.empty() && frame != options_.world_frame)
   {
     Eigen::Isometry3d frame_in_world;
-    if (!lookup(frame, msg.header.stamp, &frame_in_world))
+    if (!lookup(frame, msg.header.stamp, frame_transform_log_, &frame_in_world))
     {
       ++rejected_;
       return;
@@ -488,7 +494,8 @@ void PoseInput::take(const HandOver& pose, const ros::Time& now)
   addVehicle(vehicle, msg.header.stamp, now);
 }
 
-bool PoseInput::lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp)
+bool PoseInput::lookup(const std::string& frame, const ros::Time& time, LogThrottle& log, Eigen::Isometry3d* pose,
+                       ros::Time* stamp)
 {
   try
   {
@@ -502,7 +509,7 @@ bool PoseInput::lookup(const std::string& frame, const ros::Time& time, Eigen::I
   }
   catch (const tf2::TransformException& e)
   {
-    if (transform_log_.due())
+    if (log.due())
     {
       ROS_WARN("tether_node%s: no transform %s -> %s: %s", label_.c_str(), options_.world_frame.c_str(), frame.c_str(),
                e.what());
@@ -531,7 +538,7 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   const double physics = tether_.time();
   const bool held =
       !sink_ && !last_pose_stamp_.isZero() && physics > last_pose_stamp_.toSec() && physics < stamp.toSec();
-  const Status status = sink_ ? sink_(stamp.toSec(), vehicle) : tether_.addVehicleSample(stamp.toSec(), attachment);
+  Status status = sink_ ? sinkPose(vehicle, attachment, stamp) : tether_.addVehicleSample(stamp.toSec(), attachment);
   if (!status.ok)
   {
     refuse(status.message);
@@ -558,12 +565,32 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   return true;
 }
 
+Status PoseInput::sinkPose(const Eigen::Isometry3d& vehicle, const Position& attachment, const ros::Time& stamp)
+{
+  // The core's rule for the order of samples, kept here for the sink, which takes setpoints as they come.
+  const Status order = last_pose_stamp_.isZero()
+                           ? Status::success()
+                           : VehicleTrack::order(stamp.toSec(), last_pose_stamp_.toSec(),
+                                                 (attachment - last_vehicle_ * options_.attachment_offset).norm());
+  if (!order.ok)
+  {
+    return order;
+  }
+  Status status = sink_(stamp.toSec(), vehicle);
+  if (status.ok && !order.message.empty())
+  {
+    status.message = order.message + (status.message.empty() ? "" : "; " + status.message);
+  }
+  return status;
+}
+
 void PoseInput::reset(const ros::Time& now)
 {
   last_pose_stamp_ = ros::Time();
   gap_count_ = 0;
   history_.clear();
   reset_cut_ = ros::Time();  // a clock gone back starts a new time line; ~reset sets its own cut after this
+  tf_handled_ = ros::Time();
   std::size_t refused = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -237,7 +237,7 @@ Status VehicleIo::takePose(double t, const Eigen::Isometry3d& vehicle)
   }
   if (tether_.vehicleDynamic())
   {
-    setpoints_.add(t, vehicle);  // stamps only increase: PoseInput refuses older ones
+    setpoints_.add(t, vehicle);  // stamps never decrease: PoseInput::sinkPose refuses older ones
     ++setpoint_count_;
   }
   return Status::success();

@@ -1038,6 +1038,90 @@ TEST(PoseInput, EachReasonForARefusalIsWarnedAndEachReadingOfAPoseIsSaid)
   EXPECT_EQ(log.count(log.warnings, "again replaced the one before (0.100 m from it)"), 1u);
 }
 
+// A dynamic vehicle's poses go to its setpoints (the sink), not through the core's VehicleTrack, which refuses an
+// older stamp: the sink took poses stamped 10, 11 and then 5 s, and the controller steered the vehicle back to where
+// it was at 5 s, with nothing refused or said. The sink now keeps the core's order: an older stamp is refused and
+// counted, the same stamp replaces the last setpoint and says so, as on the kinematic path.
+TEST(PoseInput, ADynamicVehiclesSetpointsKeepTheOrderTheCoreKeepsForItsSamples)
+{
+  LogCollector log;
+  Tether tether(quietParams(), Position::Zero());
+  tf2_ros::Buffer tf;
+  PoseInput input(NodeOptions(), tf, tether);
+  std::vector<std::pair<double, double>> taken;  // (time, x) of each setpoint the sink was handed
+  input.setVehicleSink(
+      [&taken](double t, const Eigen::Isometry3d& vehicle)
+      {
+        taken.emplace_back(t, vehicle.translation().x());
+        return Status::success();
+      });
+  const auto send = [&input](double x, double stamp, double now)
+  {
+    input.receive(shared(poseMsg(x, 0.0, -1.0, stamp)), ros::Time(now));
+    input.poll(ros::Time(now));
+  };
+  send(1.0, 10.0, 10.0);
+  send(2.0, 11.0, 11.0);
+  send(0.5, 5.0, 11.1);   // older than the last: refused, the sink never sees it
+  send(2.5, 11.0, 11.2);  // the same stamp again: it replaces the last setpoint, and says so
+  ASSERT_EQ(taken.size(), 3u);
+  EXPECT_EQ(taken[0], std::make_pair(10.0, 1.0));
+  EXPECT_EQ(taken[1], std::make_pair(11.0, 2.0));
+  EXPECT_EQ(taken[2], std::make_pair(11.0, 2.5));
+  EXPECT_EQ(input.rejected(), 1u);
+  EXPECT_EQ(input.accepted(), 3u);
+  EXPECT_EQ(log.count(log.warnings, "older than the last sample at 11.000000 s"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "again replaced the one before (0.500 m from it)"), 1u);
+  EXPECT_NEAR(input.lastVehicle().translation().x(), 2.5, 1e-12);
+}
+
+// pose_source tf: tf hands out the latest transform every tick until a newer one comes. One transform stamped
+// ahead of max_pose_future was refused (and counted) again at every poll: 200 polls, 200 "rejected poses" in
+// /diagnostics. It is one pose, refused once; a newer transform is a new pose.
+TEST(PoseInput, ATransformRefusedInTfModeIsCountedOnce)
+{
+  NodeOptions options;
+  options.pose_source = "tf";
+  Tether tether(quietParams(), Position::Zero());
+  tf2_ros::Buffer tf;
+  PoseInput input(options, tf, tether);
+  const Eigen::Isometry3d rov(Eigen::Translation3d(2.0, 0.0, -1.0));
+  ASSERT_TRUE(tf.setTransform(transform("world", "rov", 15.0, rov), "test"));  // 5 s ahead of ROS time at 10 s
+  for (int k = 0; k < 200; ++k)
+  {
+    input.poll(ros::Time(10.0 + 0.005 * k));
+  }
+  EXPECT_EQ(input.future(), 1u);
+  EXPECT_EQ(input.rejected(), 1u);
+  EXPECT_EQ(input.accepted(), 0u);
+  ASSERT_TRUE(tf.setTransform(transform("world", "rov", 16.0, rov), "test"));  // still ahead, but a new pose
+  input.poll(ros::Time(11.0));
+  EXPECT_EQ(input.future(), 2u);
+  ASSERT_TRUE(tf.setTransform(transform("world", "rov", 16.5, rov), "test"));  // within max_pose_future of 16 s
+  input.poll(ros::Time(16.0));
+  input.poll(ros::Time(16.005));
+  EXPECT_EQ(input.accepted(), 1u);
+  EXPECT_EQ(input.rejected(), 2u);
+}
+
+// The node's log throttles are one a kind of problem, so that a problem arriving often does not hide another. The
+// three transform lookups shared one: a missing spool_frame, looked up first at every tick, hid a missing rov_frame
+// (a typo) for good. Each use of a lookup now has its own.
+TEST(PoseInput, AMissingSpoolFrameDoesNotHideAMissingVehicleFrame)
+{
+  LogCollector log;
+  NodeOptions options;
+  options.pose_source = "tf";
+  options.spool_frame = "ship";
+  options.rov_frame = "rvo";
+  Tether tether(quietParams(), Position::Zero());
+  tf2_ros::Buffer tf;
+  PoseInput input(options, tf, tether);
+  input.poll(ros::Time(1.0));
+  EXPECT_EQ(log.count(log.warnings, "no transform world -> ship"), 1u);
+  EXPECT_EQ(log.count(log.warnings, "no transform world -> rvo"), 1u);
+}
+
 // Item 5 of issue 26: one pose stamped an hour ahead (a publisher with a wrong clock) was taken; every real
 // pose after it was then refused as "older than the last sample" and the vehicle end stayed frozen for the
 // hour. A stamp further ahead of ROS time than max_pose_future (1 s) is refused and counted instead.

@@ -33,6 +33,10 @@ class VehicleTrack
   /// `now` (or at t, if that is earlier). A move beyond max_speed [m/s] * dt + max_jump [m] from the sample dt before
   /// is a jump.
   Status add(double t, const Position& position, double max_jump, double max_speed, double now);
+  /// The rule add() keeps for the order of samples, for any stream of them (a dynamic vehicle's setpoints too): a
+  /// sample at t after the last one, at last_time [s], is taken; an older one refused; one at the same time
+  /// replaces the last, `moved` [m] from it, and the success's message says so.
+  static Status order(double t, double last_time, double moved);
   /// Drops the samples and detaches: the last particle becomes a free end.
   void detach();
 

@@ -162,11 +162,15 @@ class PoseInput
   void expireWaiting(const ros::Time& now);
   /// Physics side: one handed-over pose into the tether.
   void take(const HandOver& pose, const ros::Time& now);
-  /// world_frame -> frame at `time` (0: latest) with the transform's stamp; false and a throttled
-  /// warning when tf cannot tell.
-  bool lookup(const std::string& frame, const ros::Time& time, Eigen::Isometry3d* pose, ros::Time* stamp = nullptr);
+  /// world_frame -> frame at `time` (0: latest) with the transform's stamp; false and a warning when tf cannot
+  /// tell, throttled by `log` (one a use: a missing spool frame, looked up every tick, does not hide the vehicle's).
+  bool lookup(const std::string& frame, const ros::Time& time, LogThrottle& log, Eigen::Isometry3d* pose,
+              ros::Time* stamp = nullptr);
   /// The vehicle at `vehicle` (world frame) at `stamp` into the tether; counts and logs a refusal.
   bool addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& stamp, const ros::Time& now);
+  /// The vehicle into the sink (a dynamic vehicle's setpoints) at `stamp`, in the order the core keeps for its
+  /// samples (VehicleTrack::order): an older stamp refused, the same stamp replacing the last and said.
+  Status sinkPose(const Eigen::Isometry3d& vehicle, const Position& attachment, const ros::Time& stamp);
   void refuse(const std::string& why);
   /// Warns of `why` at most once a second for each kind of reason (warningKind: its text without its numbers), so
   /// that one problem arriving often does not hide another.
@@ -213,15 +217,19 @@ class PoseInput
   ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
   ros::Time reset_cut_;        ///< Poses stamped before it are from before a requested reset (zero: none).
+  /// pose_source tf: the stamp of the last vehicle transform taken or refused. tf keeps handing out the latest
+  /// transform every tick until a newer one comes: it is one pose, counted once.
+  ros::Time tf_handled_;
   Eigen::Isometry3d last_vehicle_ = Eigen::Isometry3d::Identity();
   VehicleHistory history_;
   std::array<double, kGaps> gaps_{};  ///< Ring of the last gaps (see neededDelay) [s].
   std::size_t gap_count_ = 0;
   /// This tether's own log throttles, once a second each (ROS_WARN_THROTTLE's belongs to the line: one tether's
-  /// would hide another's): poses dropped, expired waiting for tf, the spool frame, a transform, poses from before
-  /// a reset, poses from before the clock went back.
-  LogThrottle drop_log_{1.0}, expired_log_{1.0}, spool_log_{1.0}, transform_log_{1.0}, before_reset_log_{1.0},
-      clock_back_log_{1.0};
+  /// would hide another's): poses dropped, expired waiting for tf, the spool frame, no transform to the spool frame,
+  /// to rov_frame (pose_source tf) and to a pose's frame, poses from before a reset, poses from before the clock went
+  /// back.
+  LogThrottle drop_log_{1.0}, expired_log_{1.0}, spool_log_{1.0}, spool_transform_log_{1.0},
+      vehicle_transform_log_{1.0}, frame_transform_log_{1.0}, before_reset_log_{1.0}, clock_back_log_{1.0};
 };
 
 }  // namespace rov_tether::ros_layer
