@@ -6,7 +6,9 @@
 # Where the numbers are quoted: spool_payout in the README's quick start; the shipped scenarios' table
 # (pillar_wrap's tension and deployed length, the "try" variants) and the camera dataset example in
 # docs/runner.md; heavy_dive and its strain-rule variant in docs/model.md (How the tension winches work);
-# pillar_wrap and pillar_wrap_dynamic with a slow winch (the snag) in docs/runner.md, "A dynamic vehicle";
+# pillar_wrap and pillar_wrap_dynamic with a slow winch (the snag) in docs/runner.md, "A dynamic vehicle" (the pose
+# stream's pull at the vehicle also in docs/model.md, "A vehicle at an obstacle", and docs/limitations.md, "A
+# pose-driven vehicle has no force limit");
 # spool_payout without noise in docs/benchmarks.md ("Why twice a step: the noise").
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh" >/dev/null
