@@ -10,7 +10,10 @@
   catkin_build*.log were once committed, with this machine's paths, and rewritten by demo.sh);
 - every repository file the README, the docs, the code and the scenarios cite by path exists (REFERENCES.md
   was cited some fifty times but was never in the repository), and LICENSE holds the license package.xml
-  names.
+  names;
+- every gtest case (`Suite.Case`) the README and the docs cite exists, and every suite docs/tests.md's table
+  names is a gtest suite or a Python TestCase class (the table named suites `PythonApi` and `PythonCamera` of
+  pytest files that hold module-level functions).
 """
 import pathlib
 import re
@@ -73,6 +76,36 @@ class Repository(unittest.TestCase):
         ignored = subprocess.run(["git", "-C", str(ROOT), "check-ignore", "--no-index"] + written,
                                  capture_output=True, text=True).stdout.split()
         self.assertEqual(sorted(ignored), sorted(written), "not ignored by .gitignore")
+
+    def test_every_test_the_docs_name_exists(self):
+        # docs/tests.md named suites `PythonApi` and `PythonCamera` that never existed (the pytest files hold
+        # module-level functions). A `Suite.Case` the docs cite is a gtest case; a suite docs/tests.md's table
+        # names is a gtest suite (an INSTANTIATE_TEST_SUITE_P prefix included) or a Python TestCase class.
+        # Entries with a path or a dot (`test/python/...py`, `camera.test`) name files, which the check of cited
+        # files covers.
+        cases, suites = set(), set()
+        for source in sorted((ROOT / "test").rglob("*.cpp")):
+            text = source.read_text(errors="replace")
+            for suite, case in re.findall(r"\bTEST(?:_F|_P)?\(\s*(\w+),\s*(\w+)\s*\)", text):
+                cases.add("%s.%s" % (suite, case))
+                suites.add(suite)
+            suites.update(re.findall(r"\bINSTANTIATE_TEST_SUITE_P\(\s*(\w+),", text))
+        for source in sorted((ROOT / "test").rglob("*.py")):
+            suites.update(re.findall(r"^class (\w+)\(unittest\.TestCase\)", source.read_text(), re.M))
+        self.assertGreater(len(cases), 300, "the gtest cases were not found")
+        unknown = set()
+        for source in [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md")):
+            text = source.read_text()
+            for cited in re.findall(r"`([A-Z]\w*)\.([A-Z]\w*|\*)`", text):
+                known = cited[0] in suites if cited[1] == "*" else "%s.%s" % cited in cases
+                if not known:
+                    unknown.add("%s cites %s.%s" % (source.relative_to(ROOT), *cited))
+        table = (ROOT / "docs" / "tests.md").read_text()
+        for row in re.findall(r"^\| (.*?) \|", table, re.M):
+            for name in re.findall(r"`([A-Za-z]\w*)`", row):
+                if name[0].isupper() and name not in suites:
+                    unknown.add("docs/tests.md's table names the suite %s" % name)
+        self.assertEqual(sorted(unknown), [])
 
     def test_every_cited_file_exists_and_the_license_is_package_xmls(self):
         sources = [ROOT / "README.md", ROOT / "package.xml", ROOT / "CMakeLists.txt"]
