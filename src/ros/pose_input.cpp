@@ -548,9 +548,26 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   {
     warnEach("taken", status.message);  // taken, with something the core did about it (a duplicate stamp)
   }
+  // This pose came later after the last one's stamp than the physics waits for a pose (stale_pose_timeout behind
+  // ROS time), and the physics had passed that stamp: the end held there, and now catches up faster than the
+  // vehicle moved.
+  const double after_last = last_pose_stamp_.isZero() ? 0.0 : (now - last_pose_stamp_).toSec();
+  if (!sink_ && after_last > options_.stale_pose_timeout && physics > last_pose_stamp_.toSec())
+  {
+    ++late_;
+    char text[400];
+    std::snprintf(text, sizeof(text),
+                  "a pose stamped %.3f s came %.3f s after the stamp of the one before (%.3f s): the physics waits "
+                  "at most stale_pose_timeout %.3f s behind ROS time, had passed that one by %.3f s and held the "
+                  "cable end there, which now catches up faster than the vehicle moved. Poses this late: raise "
+                  "stale_pose_timeout above %.3f s",
+                  stamp.toSec(), after_last, last_pose_stamp_.toSec(), options_.stale_pose_timeout,
+                  physics - last_pose_stamp_.toSec(), after_last);
+    warnEach("taken late", text);
+  }
   if (!last_pose_stamp_.isZero())
   {
-    gaps_[gap_count_ % kGaps] = (now - last_pose_stamp_).toSec();
+    gaps_[gap_count_ % kGaps] = after_last;
     ++gap_count_;
   }
   ++accepted_;

@@ -184,6 +184,7 @@ void TetherDiagnostics::addMeasures(const TetherSummary& summary, diagnostic_upd
   status.add("physics real-time factor", schedule.real_time_factor);
   status.add("residual stretch", summary.mean_strain);
   status.add("poses taken", pose_input_.accepted());
+  status.add("poses taken late", pose_input_.late());
   status.add("rejected poses", pose_input_.rejected());
   status.add("rejected poses stamped in the future", pose_input_.future());
   status.add("dropped poses", pose_input_.dropped());

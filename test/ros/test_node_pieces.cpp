@@ -601,15 +601,14 @@ struct NodeRig : TetherHooks
 };
 
 /// A vehicle passing the spool at 1.5 m/s for 14 s (then still), its poses at `rate`, each arriving
-/// 20 ms after its stamp, run through the node's pieces from t = 100 s to 118 s.
-std::unique_ptr<NodeRig> passAtRate(double rate)
+/// `latency` after its stamp, run through the node's pieces (with `options`) from t = 100 s to 118 s.
+std::unique_ptr<NodeRig> passAtRate(double rate, double latency = 0.02, const NodeOptions& options = NodeOptions())
 {
   TetherParams params;
   params.cable_length = 30.0;
   params.max_winch_speed = 2.0;  // the winch can follow the vehicle's 1.5 m/s
-  auto rig = std::make_unique<NodeRig>(params);
+  auto rig = std::make_unique<NodeRig>(params, options);
   const auto vehicle = [](double t) { return Position(2.0, -10.5 + 1.5 * std::min(t - 100.0, 14.0), -1.0); };
-  const double latency = 0.02;
   int next = 0;
   for (int tick = 0; tick <= 18 * 200; ++tick)
   {
@@ -1120,6 +1119,44 @@ TEST(PoseInput, AMissingSpoolFrameDoesNotHideAMissingVehicleFrame)
   input.poll(ros::Time(1.0));
   EXPECT_EQ(log.count(log.warnings, "no transform world -> ship"), 1u);
   EXPECT_EQ(log.count(log.warnings, "no transform world -> rvo"), 1u);
+}
+
+// The physics waits for poses at most stale_pose_timeout (2 s) behind ROS time. 1 Hz fixes arriving 1.5 s late (a
+// USBL) come 2.5 s after the stamp of the one before, longer than that: the physics passed each fix's stamp before
+// it came, and the end, held, then caught up faster than the vehicle moved, with nothing said (a reviewer measured
+// 2659 N at the vehicle). Such a pose is now counted and warned, naming stale_pose_timeout; raised to 3 s, the
+// physics waits for every fix and the end never moves faster than the vehicle's 1.5 m/s (as in the test above).
+TEST(PoseRates, PosesLaterThanThePhysicsWaitsAreCountedAndSaid)
+{
+  const auto fastestEnd = [](const NodeRig& r)
+  {
+    double fastest = 0.0;
+    for (std::size_t k = 1; k < r.times.size(); ++k)
+    {
+      fastest = std::max(fastest, (r.ends[k] - r.ends[k - 1]).norm() / (r.times[k] - r.times[k - 1]));
+    }
+    return fastest;
+  };
+  LogCollector log;
+  const auto late = passAtRate(1.0, 1.5);
+  ASSERT_GT(late->times.size(), 400u);
+  EXPECT_GE(late->input->late(), 10u) << "every fix while the vehicle moves";
+  EXPECT_EQ(log.count(log.warnings, "raise stale_pose_timeout above 2.5"), 1u) << "throttled: once a second of wall";
+  EXPECT_GT(fastestEnd(*late), 1.5 * 1.1) << "the end caught up faster than the vehicle moved";
+  const std::size_t warned = log.warnings.size();
+
+  NodeOptions waits;
+  waits.stale_pose_timeout = 3.0;
+  const auto waited = passAtRate(1.0, 1.5, waits);
+  ASSERT_GT(waited->times.size(), 400u);
+  EXPECT_EQ(waited->input->late(), 0u);
+  EXPECT_EQ(log.warnings.size(), warned);
+  EXPECT_LE(fastestEnd(*waited), 1.5 * (1.0 + 1e-6));
+  std::printf(
+      "[ measured ] 1 Hz fixes 1.5 s late: %llu of %llu taken late, the end at most %.2f m/s; with "
+      "stale_pose_timeout 3 s: %llu late, at most %.4f m/s\n",
+      static_cast<unsigned long long>(late->input->late()), static_cast<unsigned long long>(late->input->accepted()),
+      fastestEnd(*late), static_cast<unsigned long long>(waited->input->late()), fastestEnd(*waited));
 }
 
 // Item 5 of issue 26: one pose stamped an hour ahead (a publisher with a wrong clock) was taken; every real

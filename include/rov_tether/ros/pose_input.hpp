@@ -121,6 +121,9 @@ class PoseInput
   std::uint64_t dropped() const { return dropped_; }
   /// Poses taken into the tether.
   std::uint64_t accepted() const { return accepted_; }
+  /// Of accepted(): poses the physics had already passed when they came (later after the one before than
+  /// stale_pose_timeout lets it wait), so the cable end caught up with them faster than the vehicle moved.
+  std::uint64_t late() const { return late_; }
   /// The last accepted vehicle pose in world_frame (the vehicle origin, not the attachment).
   const Eigen::Isometry3d& lastVehicle() const { return last_vehicle_; }
   /// The vehicle pose in world_frame at time t [s], interpolated between the poses taken; t must not
@@ -214,6 +217,7 @@ class PoseInput
   std::atomic<std::uint64_t> dropped_{0};
   std::atomic<std::uint64_t> future_{0};
   std::uint64_t accepted_ = 0;
+  std::uint64_t late_ = 0;
   ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
   ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
   ros::Time reset_cut_;        ///< Poses stamped before it are from before a requested reset (zero: none).
