@@ -53,7 +53,7 @@ double Scheduler::alignedPhysicsTime(std::size_t i, const ros::Time& now) const
   return std::floor((now.toSec() - delay_) / dt) * dt;
 }
 
-void Scheduler::restart(std::size_t i, const ros::Time& now)
+void Scheduler::restart(std::size_t i, const ros::Time& now, const ros::Time& clock)
 {
   // ROS time is finite and far below Tether::kMaxTime, so the reset is not refused; were it, the tether
   // goes on as it is and the log says why.
@@ -67,24 +67,26 @@ void Scheduler::restart(std::size_t i, const ros::Time& now)
     return;
   }
   tethers_[i].next_state = 0.0;
-  tethers_[i].hooks->restarted(now);
+  tethers_[i].hooks->restarted(clock);
 }
 
-void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& why)
+void Scheduler::reset(std::size_t i, const ros::Time& now, const std::string& why) { reset(i, now, now, why); }
+
+void Scheduler::reset(std::size_t i, const ros::Time& now, const ros::Time& clock, const std::string& why)
 {
   ROS_WARN("tether_node%s: %s: resetting the tether to %.2f m", tethers_[i].label.c_str(), why.c_str(),
            world_.tether(i).params().initial_deployed_length);
-  restart(i, now);
+  restart(i, now, clock);
   ++tethers_[i].resets;
   last_time_ = now;
 }
 
-void Scheduler::resetAll(const ros::Time& now, const std::string& why)
+void Scheduler::resetAll(const ros::Time& now, const ros::Time& clock, const std::string& why)
 {
   delay_ = interpolation_delay_;  // the poses' timing starts over with the tethers
   for (std::size_t i = 0; i < tethers_.size(); ++i)
   {
-    timed(i, [&] { reset(i, now, why); });  // re-laying a long cable is its own work
+    timed(i, [&] { reset(i, now, clock, why); });  // re-laying a long cable is its own work
   }
 }
 
@@ -105,7 +107,7 @@ void Scheduler::tick(const ros::Time& now)
     started_ = true;
     for (std::size_t i = 0; i < tethers_.size(); ++i)
     {
-      timed(i, [&] { restart(i, now); });
+      timed(i, [&] { restart(i, now, now); });
     }
     last_time_ = now;
   }
@@ -120,12 +122,14 @@ void Scheduler::tick(const ros::Time& now)
         at = arrival;  // a pose of the new clock, before this tick
       }
     }
-    resetAll(at, "time jumped backwards by " + std::to_string((last_time_ - at).toSec()) + " s");
+    // Restarted at the new clock's first pose, `at`; what arrived after this tick's `now` came on the old clock.
+    resetAll(at, now, "time jumped backwards by " + std::to_string((last_time_ - at).toSec()) + " s");
   }
   else if ((now - last_time_).toSec() - wall_gap > kMaxForwardJump)
   {
-    resetAll(now, "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s in " +
-                      std::to_string(wall_gap) + " s of wall time");
+    resetAll(now, now,
+             "time jumped forwards by " + std::to_string((now - last_time_).toSec()) + " s in " +
+                 std::to_string(wall_gap) + " s of wall time");
   }
   else if ((now - last_time_).toSec() > kMaxForwardJump)
   {

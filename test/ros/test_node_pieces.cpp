@@ -787,6 +787,34 @@ TEST(PoseInput, APoseLeftFromALoopedBagDoesNotStopTheNextLoop)
   EXPECT_EQ(steps_at_first_tick, 6u);
 }
 
+// The same loop with the new clock's first tick 0.12 s in (/clock messages can come sparsely): three poses of the
+// new clock wait for it. The tether restarted at the first one's arrival, and the poses that arrived after that
+// time were refused as from the old clock: the second and third, valid, with "poses that arrived before the clock
+// went back". What arrived after the tick's own time came on the old clock; the rest is the new clock's.
+TEST(PoseInput, PosesOfTheNewClockWaitingForItsFirstTickAreTaken)
+{
+  NodeRig rig(quietParams());
+  const auto loop = [&](double first_tick)
+  {
+    for (int k = 0; k <= 400; ++k)
+    {
+      const double t = 1000.0 + 0.05 * k;
+      rig.input->receive(shared(poseMsg(2.0 + 0.01 * k, 0.0, -1.0, t)), ros::Time(t));
+      for (double now = std::max(t + 0.005, first_tick); now <= t + 0.05 + 1e-9 && k < 400; now += 0.005)
+      {
+        rig.scheduler.tick(ros::Time(now));
+      }
+    }
+  };
+  loop(1000.005);
+  const std::uint64_t taken = rig.input->accepted();
+  ASSERT_EQ(taken, 400u);
+  loop(1000.12);  // poses at 1000.00, 1000.05 and 1000.10 s before the first tick
+  EXPECT_EQ(rig.scheduler.schedule(0).resets, 1u);
+  EXPECT_EQ(rig.input->rejected(), 1u) << "only the left-over pose of the old clock";
+  EXPECT_EQ(rig.input->accepted() - taken, 400u) << "every pose of the second loop (but its own last)";
+}
+
 // ~reset while poses flow: a pose of the vehicle before the reset can reach the physics after it, still
 // queued or delivered late by a busy subscriber thread (it made node.test's startFresh read 5.52 m after a
 // reset in a sanitizer build; one stamped ahead of the node's clock failed ResetServiceResets in CI). Taken,

@@ -100,9 +100,11 @@ class PoseInput
   /// waiting for tf whose stamp the physics has passed, and polls tf for the spool (spool_frame) and,
   /// with pose_source tf, the vehicle (a static transform, stamp 0, is taken as a pose at `now`).
   void poll(const ros::Time& now);
-  /// After the tether was reset at ROS time `now`: forgets the poses' timing and history, so the next
+  /// After the tether was reset on the tick at ROS time `now`: forgets the poses' timing and history, so the next
   /// pose is taken, and refuses (counts) the poses still waiting that arrived after `now`: they came on a
-  /// clock that has since gone back (a bag that loops), and would stop every pose of the new time line.
+  /// clock that has since gone back (a bag that loops), and would stop every pose of the new time line. (Not
+  /// after the time it restarted at: a clock gone back restarts at its first pose, and its later ones up to
+  /// `now` are its own.)
   void reset(const ros::Time& now);
   /// After a reset someone asked for at ROS time `cut` (~reset), not one a clock jump forced: refuses
   /// (counts, warns) every pose stamped before `cut`, taken later or not, so a pose of the vehicle before

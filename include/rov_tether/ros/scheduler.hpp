@@ -34,7 +34,8 @@ class TetherHooks
   virtual void stepped(double /*delay*/) {}
   /// After the physics advanced on this tick: reports, markers, diagnostics.
   virtual void afterAdvance(const ros::Time& /*now*/) {}
-  /// The tether was re-laid at ROS time `now` (start, clock jump, ~reset): inputs and outputs start over.
+  /// The tether was re-laid (start, clock jump, ~reset) on the tick at ROS time `now` (after a clock that went
+  /// back it restarted earlier, at the new clock's first pose): inputs and outputs start over.
   virtual void restarted(const ros::Time& /*now*/) {}
 
   /// When the tether's vehicle poses come, for the physics' place behind ROS time.
@@ -140,9 +141,12 @@ class Scheduler : private StepObserver
   /// The physics' target for ROS time `now`: the delay updated from the tethers' pose timing, and held
   /// at the latest pose (see the class).
   double physicsTarget(const ros::Time& now);
-  /// Re-lays tether i at the physics time of `now` and restarts its state grid and its hooks.
-  void restart(std::size_t i, const ros::Time& now);
-  void resetAll(const ros::Time& now, const std::string& why);
+  /// Re-lays tether i at the physics time of `now` and restarts its state grid and its hooks (restarted(clock):
+  /// `clock` is the tick's ROS time, later than `now` when a clock that went back restarts at its first pose).
+  void restart(std::size_t i, const ros::Time& now, const ros::Time& clock);
+  /// reset() with the tick's ROS time `clock` for the hooks (restart()).
+  void reset(std::size_t i, const ros::Time& now, const ros::Time& clock, const std::string& why);
+  void resetAll(const ros::Time& now, const ros::Time& clock, const std::string& why);
   /// Sets tether i's next ~state point for physics target `target`, and skips ahead beyond max_lag.
   void prepare(std::size_t i, double target, const ros::Time& now);
   /// Advances the world to `target`, stopping at every due ~state point to publish, and after every step of
