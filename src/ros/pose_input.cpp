@@ -98,9 +98,14 @@ bool PoseInput::worldFrameInUse() const
     return true;  // someone places it
   }
   // Children of world_frame other than the node's own frames (the spool outlet and the cable end, of any
-  // tether: "name/tether_spool") mean someone else works in it.
+  // tether: "name/tether_spool"; and a dynamic vehicle's rov_frame, which the node publishes from the first tick
+  // with vehicle_start) mean someone else works in it.
   const auto own = [this](const std::string& child)
   {
+    if (options_.vehicle_model == "dynamic" && child == options_.rov_frame)
+    {
+      return true;
+    }
     for (const std::string* suffix : {&options_.spool_outlet_frame, &options_.cable_end_frame})
     {
       if (!suffix->empty() && child.size() >= suffix->size() &&

@@ -988,6 +988,20 @@ TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
   EXPECT_EQ(used.input->adoptedFrame(), "");
   EXPECT_EQ(used.input->accepted(), 0u);
 
+  // A dynamic vehicle's rov_frame is the node's own (it publishes world -> rov_frame from the first tick when
+  // vehicle_start is given): it was taken as someone else working in world, and no pose in map was ever taken.
+  // For a kinematic vehicle the node publishes no rov_frame: someone else does, in world.
+  NodeOptions dynamic;
+  dynamic.vehicle_model = "dynamic";
+  for (const bool own : {true, false})
+  {
+    NodeRig rov(quietParams(), own ? dynamic : NodeOptions());
+    ASSERT_TRUE(rov.tf.setTransform(transform("world", "rov", 100.0, Eigen::Isometry3d::Identity()), "node"));
+    feedPosesIn(rov, "map", 1.0);
+    EXPECT_EQ(rov.input->adoptedFrame(), own ? "map" : "") << (own ? "dynamic" : "kinematic");
+    EXPECT_EQ(rov.input->accepted() > 0, own) << (own ? "dynamic" : "kinematic");
+  }
+
   // world_frame_from_pose: false keeps world_frame as it is.
   NodeOptions strict;
   strict.world_frame_from_pose = false;
