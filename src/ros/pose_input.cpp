@@ -98,11 +98,13 @@ bool PoseInput::worldFrameInUse() const
     return true;  // someone places it
   }
   // Children of world_frame other than the node's own frames (the spool outlet and the cable end, of any
-  // tether: "name/tether_spool"; and a dynamic vehicle's rov_frame, which the node publishes from the first tick
-  // with vehicle_start) mean someone else works in it.
+  // tether: "name/tether_spool"; and every dynamic vehicle's rov_frame, which the node publishes from the first
+  // tick with vehicle_start) mean someone else works in it.
   const auto own = [this](const std::string& child)
   {
-    if (options_.vehicle_model == "dynamic" && child == options_.rov_frame)
+    const auto& vehicles = options_.node_vehicle_frames;
+    if ((options_.vehicle_model == "dynamic" && child == options_.rov_frame) ||
+        std::find(vehicles.begin(), vehicles.end(), child) != vehicles.end())
     {
       return true;
     }
@@ -553,23 +555,26 @@ bool PoseInput::addVehicle(const Eigen::Isometry3d& vehicle, const ros::Time& st
   {
     warnEach("taken", status.message);  // taken, with something the core did about it (a duplicate stamp)
   }
-  // This pose came later after the last one's stamp than the physics waits for a pose (stale_pose_timeout behind
-  // ROS time), and the physics had passed that stamp: the end held there, and now catches up faster than the
-  // vehicle moved.
+  // This pose and the one before each came later after the stamp of their predecessor than the physics waits for a
+  // pose (stale_pose_timeout behind ROS time), and the physics had passed the last stamp: the end held there, and
+  // now catches up faster than the vehicle moved. Twice in a row: poses that come this late as a rule (latency
+  // plus period), not one outage, after which the end goes on from where it held as it should (docs/node.md).
   const double after_last = last_pose_stamp_.isZero() ? 0.0 : (now - last_pose_stamp_).toSec();
-  if (!sink_ && after_last > options_.stale_pose_timeout && physics > last_pose_stamp_.toSec())
+  const bool over = !last_pose_stamp_.isZero() && after_last > options_.stale_pose_timeout;
+  if (!sink_ && over && last_gap_over_ && physics > last_pose_stamp_.toSec())
   {
     ++late_;
     char text[400];
     std::snprintf(text, sizeof(text),
-                  "a pose stamped %.3f s came %.3f s after the stamp of the one before (%.3f s): the physics waits "
-                  "at most stale_pose_timeout %.3f s behind ROS time, had passed that one by %.3f s and held the "
-                  "cable end there, which now catches up faster than the vehicle moved. Poses this late: raise "
-                  "stale_pose_timeout above %.3f s",
+                  "a pose stamped %.3f s came %.3f s after the stamp of the one before (%.3f s), as the one before "
+                  "did: the physics, which waits for poses at most stale_pose_timeout behind ROS time (%.3f s here), "
+                  "had passed that one by %.3f s and held the cable end there, which now catches up faster than the "
+                  "vehicle moved. Poses this late: raise stale_pose_timeout above %.3f s",
                   stamp.toSec(), after_last, last_pose_stamp_.toSec(), options_.stale_pose_timeout,
                   physics - last_pose_stamp_.toSec(), after_last);
     warnEach("taken late", text);
   }
+  last_gap_over_ = over;
   if (!last_pose_stamp_.isZero())
   {
     gaps_[gap_count_ % kGaps] = after_last;
@@ -613,6 +618,7 @@ void PoseInput::reset(const ros::Time& now)
   history_.clear();
   reset_cut_ = ros::Time();  // a clock gone back starts a new time line; ~reset sets its own cut after this
   tf_handled_ = ros::Time();
+  last_gap_over_ = false;
   std::size_t refused = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);

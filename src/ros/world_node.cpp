@@ -185,6 +185,18 @@ std::vector<TetherSetup> loadSetups(const ros::NodeHandle& private_nh, const std
     shareOneClock(names, &setups);
     checkVehicleFrames(names, setups);
   }
+  std::vector<std::string> vehicle_frames;  // each dynamic vehicle's, which the node publishes under world_frame
+  for (const TetherSetup& setup : setups)
+  {
+    if (setup.options.vehicle_model == "dynamic")
+    {
+      vehicle_frames.push_back(setup.options.rov_frame);
+    }
+  }
+  for (TetherSetup& setup : setups)
+  {
+    setup.options.node_vehicle_frames = vehicle_frames;
+  }
   checkSpoolMounts(names, setups);
   return setups;
 }

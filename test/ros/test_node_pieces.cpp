@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../test_helpers.hpp"
@@ -746,6 +747,7 @@ TEST(PoseRates, AfterAGapInThePosesTheEndGoesOnFromWhereItWasHeld)
   EXPECT_EQ(r.world.tether(0).jumpCount(), 0u);
   EXPECT_EQ(r.world.tether(0).recoveryCount(), 0u);
   EXPECT_EQ(r.input->rejected(), 0u);
+  EXPECT_EQ(r.input->late(), 0u) << "one outage is not poses late as a rule (the stale-pose warning said it)";
   const auto far = gapInThePoses(0.3, 8.0);
   EXPECT_EQ(far->world.tether(0).jumpCount(), 1u);
   EXPECT_EQ(far->world.tether(0).recoveryCount(), 0u);
@@ -990,16 +992,23 @@ TEST(PoseInput, PosesInMapWhileNobodyElseUsesTheWorldFrameAreTakenAsInTheWorld)
 
   // A dynamic vehicle's rov_frame is the node's own (it publishes world -> rov_frame from the first tick when
   // vehicle_start is given): it was taken as someone else working in world, and no pose in map was ever taken.
-  // For a kinematic vehicle the node publishes no rov_frame: someone else does, in world.
+  // So is another tether's dynamic vehicle's (node_vehicle_frames, which the world's setup fills in). For a
+  // kinematic vehicle the node publishes no rov_frame: someone else does, in world.
   NodeOptions dynamic;
   dynamic.vehicle_model = "dynamic";
-  for (const bool own : {true, false})
+  NodeOptions beside_dynamic;  // a kinematic tether beside another tether's dynamic vehicle, in rov_b
+  beside_dynamic.node_vehicle_frames = {"rov_b"};
+  const std::vector<std::tuple<const char*, NodeOptions, const char*, bool>> cases = {
+      {"dynamic", dynamic, "rov", true},
+      {"kinematic beside a dynamic vehicle", beside_dynamic, "rov_b", true},
+      {"kinematic", NodeOptions(), "rov", false}};
+  for (const auto& [what, options, child, own] : cases)
   {
-    NodeRig rov(quietParams(), own ? dynamic : NodeOptions());
-    ASSERT_TRUE(rov.tf.setTransform(transform("world", "rov", 100.0, Eigen::Isometry3d::Identity()), "node"));
+    NodeRig rov(quietParams(), options);
+    ASSERT_TRUE(rov.tf.setTransform(transform("world", child, 100.0, Eigen::Isometry3d::Identity()), "node"));
     feedPosesIn(rov, "map", 1.0);
-    EXPECT_EQ(rov.input->adoptedFrame(), own ? "map" : "") << (own ? "dynamic" : "kinematic");
-    EXPECT_EQ(rov.input->accepted() > 0, own) << (own ? "dynamic" : "kinematic");
+    EXPECT_EQ(rov.input->adoptedFrame(), own ? "map" : "") << what;
+    EXPECT_EQ(rov.input->accepted() > 0, own) << what;
   }
 
   // world_frame_from_pose: false keeps world_frame as it is.
@@ -1166,8 +1175,9 @@ TEST(PoseInput, AMissingSpoolFrameDoesNotHideAMissingVehicleFrame)
 // The physics waits for poses at most stale_pose_timeout (2 s) behind ROS time. 1 Hz fixes arriving 1.5 s late (a
 // USBL) come 2.5 s after the stamp of the one before, longer than that: the physics passed each fix's stamp before
 // it came, and the end, held, then caught up faster than the vehicle moved, with nothing said (a reviewer measured
-// 2659 N at the vehicle). Such a pose is now counted and warned, naming stale_pose_timeout; raised to 3 s, the
-// physics waits for every fix and the end never moves faster than the vehicle's 1.5 m/s (as in the test above).
+// 2659 N at the vehicle). Such a pose, after one that came as late, is now counted and warned, naming
+// stale_pose_timeout; raised to 3 s, the physics waits for every fix and the end never moves faster than the
+// vehicle's 1.5 m/s (as in the test above). One outage is not counted (AfterAGapInThePoses... below).
 TEST(PoseRates, PosesLaterThanThePhysicsWaitsAreCountedAndSaid)
 {
   const auto fastestEnd = [](const NodeRig& r)
@@ -1183,7 +1193,7 @@ TEST(PoseRates, PosesLaterThanThePhysicsWaitsAreCountedAndSaid)
   const auto late = passAtRate(1.0, 1.5);
   ASSERT_GT(late->times.size(), 400u);
   EXPECT_GE(late->input->late(), 10u) << "every fix while the vehicle moves";
-  EXPECT_EQ(log.count(log.warnings, "raise stale_pose_timeout above 2.5"), 1u) << "throttled: once a second of wall";
+  EXPECT_GE(log.count(log.warnings, "raise stale_pose_timeout above 2.5"), 1u);
   EXPECT_GT(fastestEnd(*late), 1.5 * 1.1) << "the end caught up faster than the vehicle moved";
   const std::size_t warned = log.warnings.size();
 

@@ -82,6 +82,9 @@ struct NodeOptions
   /// The YAML files the launch loaded into the node's namespace (the shipped launch files set it), which
   /// checkParamFiles reads again for a key given twice (roslaunch keeps the last one without a word).
   std::vector<std::string> param_files;
+  /// Not a parameter: the rov_frame of every dynamic vehicle of the node (the world's setup fills it in), frames the
+  /// node itself publishes under world_frame (PoseInput's "does someone else use world_frame?").
+  std::vector<std::string> node_vehicle_frames;
 };
 
 /// One tether's parameters as loaded: the model's and the node's.

@@ -123,8 +123,9 @@ class PoseInput
   std::uint64_t dropped() const { return dropped_; }
   /// Poses taken into the tether.
   std::uint64_t accepted() const { return accepted_; }
-  /// Of accepted(): poses the physics had already passed when they came (later after the one before than
-  /// stale_pose_timeout lets it wait), so the cable end caught up with them faster than the vehicle moved.
+  /// Of accepted(): poses that came, as the one before did, later after their predecessor's stamp than
+  /// stale_pose_timeout lets the physics wait, and found it past the one before: the cable end held and caught up
+  /// faster than the vehicle moved (one late pose after an outage is not counted: the stale-pose warning says it).
   std::uint64_t late() const { return late_; }
   /// The last accepted vehicle pose in world_frame (the vehicle origin, not the attachment).
   const Eigen::Isometry3d& lastVehicle() const { return last_vehicle_; }
@@ -220,9 +221,10 @@ class PoseInput
   std::atomic<std::uint64_t> future_{0};
   std::uint64_t accepted_ = 0;
   std::uint64_t late_ = 0;
-  ros::Time last_pose_time_;   ///< ROS time the last accepted pose was taken.
-  ros::Time last_pose_stamp_;  ///< Stamp of the last accepted pose.
-  ros::Time reset_cut_;        ///< Poses stamped before it are from before a requested reset (zero: none).
+  bool last_gap_over_ = false;  ///< The last pose came more than stale_pose_timeout after its predecessor's stamp.
+  ros::Time last_pose_time_;    ///< ROS time the last accepted pose was taken.
+  ros::Time last_pose_stamp_;   ///< Stamp of the last accepted pose.
+  ros::Time reset_cut_;         ///< Poses stamped before it are from before a requested reset (zero: none).
   /// pose_source tf: the stamp of the last vehicle transform taken or refused. tf keeps handing out the latest
   /// transform every tick until a newer one comes: it is one pose, counted once.
   ros::Time tf_handled_;
