@@ -256,6 +256,33 @@ TEST(ConfigFiles, AssignmentsOverrideParameters)
   EXPECT_EQ(params.drag, 0.9);  // a refused assignment changes nothing
 }
 
+// --set values were applied and validated one at a time: initial_deployed_length=25 before cable_length=30 was
+// refused (25 > the 10 m cable), after it taken. And the name was pasted into YAML text: "drag: 0.5 #=0.7" set
+// drag to 0.5 with its value and its own name hidden behind a comment. Now the assignments are one map, validated
+// once, and a name is a key as it is.
+TEST(ConfigFiles, AssignmentsApplyTogetherAndANameIsNeverYaml)
+{
+  for (const auto& order : {std::vector<std::string>{"initial_deployed_length=25", "cable_length=30"},
+                            std::vector<std::string>{"cable_length=30", "initial_deployed_length=25"}})
+  {
+    TetherParams params;
+    EXPECT_EQ(applyAssignments(order, &params), "") << order.front();
+    EXPECT_EQ(params.initial_deployed_length, 25.0);
+    EXPECT_EQ(params.cable_length, 30.0);
+  }
+  TetherParams params;
+  const std::string hidden = applyAssignments({"drag: 0.5 #=0.7"}, &params);
+  EXPECT_NE(hidden.find("unknown parameter 'drag: 0.5 #'"), std::string::npos) << hidden;
+  EXPECT_NE(applyAssignments({"{drag: 0.5}=1"}, &params).find("unknown parameter"), std::string::npos);
+  EXPECT_EQ(params.drag, 0.9);
+  // Refused whole: one bad value keeps the good one out too.
+  EXPECT_NE(applyAssignments({"noise=0.001", "drag=7"}, &params).find("drag = 7"), std::string::npos);
+  EXPECT_EQ(params.noise, TetherParams().noise);
+  EXPECT_NE(applyAssignments({"noise=0.001", "noise=0.002"}, &params).find("'noise' given twice"), std::string::npos);
+  EXPECT_EQ(applyAssignments({"current=[0.3, 0, 0]"}, &params), "");  // a list value, in YAML syntax
+  EXPECT_EQ(params.current[0], 0.3);
+}
+
 std::string temporaryDirectory(const std::string& name)
 {
   const fs::path dir = fs::temp_directory_path() / ("rov_tether_test_" + name + "_" + std::to_string(::getpid()));
@@ -1055,6 +1082,39 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
   {
     fs::remove_all(d);
   }
+  fs::remove(scenario_path);
+  fs::remove(err);
+}
+
+// With `tethers:`, --set was also applied to the scenario's own parameters, which such a run does not use, and
+// checked against them: two 80 m tethers refused initial_deployed_length=15 as beyond "cable_length = 10", a
+// length the scenario never gave. It applies to each tether now, and a refusal names the tether.
+TEST(Runner, SetWithTethersAppliesToEachTetherAndNamesTheOneThatRefuses)
+{
+  const std::string dir = temporaryDirectory("set_tethers");
+  const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
+  std::ofstream(scenario_path) << "duration: 0.1\n"
+                                  "tethers:\n"
+                                  "  - {name: a, spool: [0, 0, 0], vehicle: [[0, 1.5, 0, 0], [1, 2, 0, 0]],\n"
+                                  "     params: {cable_length: 80}}\n"
+                                  "  - {name: b, spool: [5, 0, 0], vehicle: [[0, 6.5, 0, 0], [1, 7, 0, 0]],\n"
+                                  "     params: {cable_length: 20}}\n";
+  const std::string err = dir + "_stderr.txt";
+  const std::string run = std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir;
+  const auto runKeepingStderr = [&](const std::string& more)
+  {
+    const int status = std::system((run + more + " >/dev/null 2> " + err).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(runKeepingStderr(" --set initial_deployed_length=15"), 0);  // within both tethers' cable
+  const std::vector<std::string> state = readLines(dir + "/a/state.csv");
+  ASSERT_GT(state.size(), 1u);
+  EXPECT_EQ(runKeepingStderr(" --set initial_deployed_length=30"), 2);  // beyond b's 20 m
+  const std::vector<std::string> lines = readLines(err);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_NE(lines.front().find("--set, tether b: "), std::string::npos) << lines.front();
+  EXPECT_NE(lines.front().find("cable_length = 20"), std::string::npos) << lines.front();
+  fs::remove_all(dir);
   fs::remove(scenario_path);
   fs::remove(err);
 }

@@ -439,12 +439,44 @@ std::string loadParamsFile(const std::string& path, TetherParams* params)
 
 std::string applyAssignment(const std::string& assignment, TetherParams* params)
 {
-  const auto equals = assignment.find('=');
-  if (equals == std::string::npos || equals == 0)
-  {
-    return "'" + assignment + "': expected name=value";
-  }
-  return parseParams(assignment.substr(0, equals) + ": " + assignment.substr(equals + 1), params);
+  return applyAssignments({assignment}, params);
+}
+
+std::string applyAssignments(const std::vector<std::string>& assignments, TetherParams* params)
+{
+  return guardYaml(
+      [&]() -> std::string
+      {
+        YAML::Node root(YAML::NodeType::Map);
+        const YAML::Node& given = root;  // reading a key through a non-const node would add it
+        for (const std::string& assignment : assignments)
+        {
+          const auto equals = assignment.find('=');
+          if (equals == std::string::npos || equals == 0)
+          {
+            return "'" + assignment + "': expected name=value";
+          }
+          const std::string name = assignment.substr(0, equals);
+          if (given[name])
+          {
+            return "'" + name + "' given twice";
+          }
+          YAML::Node value;
+          const std::string duplicate = spec::loadYamlText(assignment.substr(equals + 1), &value);
+          if (!duplicate.empty())
+          {
+            return name + ": " + duplicate;
+          }
+          root[name] = value;
+        }
+        TetherParams candidate = *params;
+        const std::string error = applyParamMap(root, "", &candidate);
+        if (error.empty())
+        {
+          *params = candidate;
+        }
+        return error;
+      });
 }
 
 }  // namespace rov_tether

@@ -157,23 +157,30 @@ int parseArguments(int argc, char** argv, Options* options)
   return -1;
 }
 
-/// Loads the scenario and applies the --set assignments (to every tether); "" or the error.
+/// Loads the scenario and applies the --set assignments, all together (their order does not matter), to the
+/// scenario's tether or, with `tethers:`, to each of them (the scenario's own parameters are then not used, and a
+/// value they would refuse is none of the run's business); "" or the error, naming the tether.
 std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenario* scenario)
 {
-  std::string error = rov_tether::loadScenario(options.scenario_path, scenario);
-  for (const auto& assignment : options.assignments)
+  const std::string loaded = rov_tether::loadScenario(options.scenario_path, scenario);
+  if (!loaded.empty() || options.assignments.empty())
   {
-    if (error.empty())
+    return loaded.empty() ? scenario->checkOutputRate() : loaded;
+  }
+  if (scenario->tethers.empty())
+  {
+    const std::string error = rov_tether::applyAssignments(options.assignments, &scenario->params);
+    return error.empty() ? scenario->checkOutputRate() : "--set " + error;
+  }
+  for (auto& tether : scenario->tethers)
+  {
+    const std::string error = rov_tether::applyAssignments(options.assignments, &tether.params);
+    if (!error.empty())
     {
-      error = rov_tether::applyAssignment(assignment, &scenario->params);
-      for (auto& tether : scenario->tethers)
-      {
-        error = error.empty() ? rov_tether::applyAssignment(assignment, &tether.params) : error;
-      }
-      error = error.empty() ? "" : "--set " + error;
+      return "--set, tether " + tether.name + ": " + error;
     }
   }
-  return error.empty() ? scenario->checkOutputRate() : error;
+  return scenario->checkOutputRate();
 }
 
 /// Decimals that print `seconds` as it is, 2 to 6 (50.00 s; a step of 0.005 s ends at 0.015 s, not "0.01").

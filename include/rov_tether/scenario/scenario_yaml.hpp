@@ -2,6 +2,7 @@
 // Reading scenarios and parameter files (YAML, through yaml-cpp). The model is scenario.hpp.
 
 #include <string>
+#include <vector>
 
 #include "rov_tether/scenario/scenario.hpp"
 
@@ -21,5 +22,9 @@ namespace rov_tether
 [[nodiscard]] std::string loadParamsFile(const std::string& path, TetherParams* params);
 /// Applies "name=value" (value in YAML syntax) to `params`. Returns "" on success.
 [[nodiscard]] std::string applyAssignment(const std::string& assignment, TetherParams* params);
+/// Applies every "name=value" together, as one map of parameters, then validates once (so that their order does not
+/// matter: `initial_deployed_length=25` with `cable_length=30` in either order); `params` changes only on success.
+/// The name is a key as it is, never YAML text: a name that is not a parameter's is refused as unknown.
+[[nodiscard]] std::string applyAssignments(const std::vector<std::string>& assignments, TetherParams* params);
 
 }  // namespace rov_tether
