@@ -1,6 +1,7 @@
 // Scenario files, parameter files and the rov_tether_run executable.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -156,6 +157,41 @@ TEST(ScenarioFile, BadScenariosNameTheField)
     const std::string error = parseScenario(c.yaml, &scenario);
     EXPECT_NE(error.find(c.message), std::string::npos) << "yaml: " << c.yaml << "\nerror: " << error;
   }
+}
+
+// Two ways a scenario's YAML was taken wrongly, found by a review: a second document after a '---' line was never
+// read, its typo never reported (YAML::Load reads the first); and aliases of lists of aliases (ten levels of ten:
+// 1e10 values in 700 bytes) made the duplicate-key walk, and any reader after it, run for hours. Both refused now,
+// the second once 1e7 values are counted (10^9 here).
+TEST(Scenario, ASecondDocumentAndAnAliasBombAreRefused)
+{
+  Scenario scenario;
+  const std::string two =
+      parseScenario("spool: [0, 0, 0]\nduration: 1\n---\nparams: {cable_length: 50, brake_tenson: 5}\n", &scenario);
+  EXPECT_NE(two.find("2 YAML documents"), std::string::npos) << two;
+  std::string bomb = "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int level = 1; level <= 8; ++level)
+  {
+    const std::string below = "*l" + std::to_string(level - 1);
+    bomb += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " [" + below;
+    for (int k = 1; k < 10; ++k)
+    {
+      bomb += ", " + below;
+    }
+    bomb += "]\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::string refused = parseScenario(bomb + "spool: [0, 0, 0]\nduration: 1\n", &scenario);
+  EXPECT_NE(refused.find("more than 10000000 values"), std::string::npos) << refused;
+  std::printf("[ measured ] 1e9 values behind 8 levels of aliases refused in %.2f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  // A path of 100,000 waypoints (5 values each, a recorded dive at 10 Hz for almost 3 hours) is no bomb.
+  std::string path = "spool: [0, 0, 0]\nduration: 1\nvehicle: [";
+  for (int k = 0; k < 100000; ++k)
+  {
+    path += (k ? ", [" : "[") + std::to_string(0.01 * k) + ", 1.5, 0, 0]";
+  }
+  EXPECT_EQ(parseScenario(path + "]\n", &scenario), "");
 }
 
 // config/default.yaml holds every parameter at exactly the struct's default.

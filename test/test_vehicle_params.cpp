@@ -4,8 +4,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "rov_tether/core/vehicle_params.hpp"
 #include "rov_tether/spec/vehicle_reader.hpp"
@@ -70,6 +74,28 @@ TEST(VehicleParams, ShippedBlueRov2FileIsTheDefaults)
   EXPECT_EQ(read.thrust_limit, defaults.thrust_limit);
   EXPECT_EQ(read.size, defaults.size);
   EXPECT_TRUE(defaults.validate().ok) << defaults.validate().message;
+}
+
+// A vehicle file was read by YAML::Load alone: a key given twice was half-read (the first taken) and a second
+// document after '---' never read, where a scenario's YAML refuses both. Now it is read as every YAML file is.
+TEST(VehicleParams, AVehicleFileWithARepeatedKeyOrASecondDocumentIsRefused)
+{
+  std::ifstream shipped(vehicleFile("bluerov2_heavy"));
+  std::stringstream text;
+  text << shipped.rdbuf();
+  const std::string path = (std::filesystem::temp_directory_path() / "rov_tether_vehicle_twice.yaml").string();
+  for (const auto& [more, named] : std::vector<std::pair<std::string, std::string>>{
+           {"mass: 500\n", "duplicate key 'mass'"}, {"---\nmass: 500\n", "2 YAML documents"}})
+  {
+    std::ofstream(path) << text.str() << more;
+    VehicleParams read;
+    const std::string error = spec::loadVehicleParamsFile(path, &read);
+    EXPECT_NE(error.find(named), std::string::npos) << error;
+  }
+  std::ofstream(path) << text.str();
+  VehicleParams read;
+  EXPECT_EQ(spec::loadVehicleParamsFile(path, &read), "");
+  std::filesystem::remove(path);
 }
 
 // The work-class example loads and is one (1-5 t), slightly light in the sea as such vehicles are trimmed.

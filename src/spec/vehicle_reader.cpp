@@ -212,7 +212,9 @@ std::string loadVehicleParamsFile(const std::string& path, VehicleParams* params
   text << file.rdbuf();
   try
   {
-    return readVehicleParams(YAML::Load(text.str()), path, params, gains);
+    YAML::Node root;
+    const std::string problem = loadYamlText(text.str(), &root);  // a repeated key, a second document
+    return problem.empty() ? readVehicleParams(root, path, params, gains) : path + ": " + problem;
   }
   catch (const YAML::Exception& e)
   {

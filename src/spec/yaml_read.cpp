@@ -16,22 +16,31 @@ namespace
 /// inside the node its anchor names (`params: &p {a: *p}`) makes yaml-cpp's node graph a cycle, which every walk
 /// of it would follow for ever (fuzz_scenario: a stack overflow here).
 constexpr int kMaxYamlDepth = 64;
+/// More values than this, counting each alias's as often as it is used, are refused: aliases of lists of aliases
+/// (`l1: &l1 [*l0, *l0, ...]`, ten levels of ten) make a 700-byte file 1e10 values, which this walk and every
+/// reader after it would take hours to go through. A dive's recorded path at 10 Hz for an hour is 180,000.
+constexpr long kMaxYamlValues = 10000000;
 
 /// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
 /// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)", or, nested deeper
-/// than kMaxYamlDepth, a message saying so.
-std::string findDuplicateKey(const YAML::Node& node, const std::string& path, int depth = 0)
+/// than kMaxYamlDepth or holding more than kMaxYamlValues (counted down in `budget`), a message saying so.
+std::string findDuplicateKey(const YAML::Node& node, const std::string& path, long* budget, int depth = 0)
 {
   if (depth > kMaxYamlDepth)
   {
     return "'" + path.substr(0, 200) + "...' is nested more than " + std::to_string(kMaxYamlDepth) +
            " levels deep: an alias that refers to its own anchor's node?";
   }
+  if (--*budget < 0)
+  {
+    return "more than " + std::to_string(kMaxYamlValues) + " values (at '" + path.substr(0, 200) +
+           "'), counting each alias's each time it is used: aliases of lists of aliases?";
+  }
   if (node.IsSequence())
   {
     for (std::size_t i = 0; i < node.size(); ++i)
     {
-      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]", depth + 1);
+      const std::string error = findDuplicateKey(node[i], path + "[" + std::to_string(i) + "]", budget, depth + 1);
       if (!error.empty())
       {
         return error;
@@ -57,7 +66,7 @@ std::string findDuplicateKey(const YAML::Node& node, const std::string& path, in
       }
     }
     seen.emplace_back(key, line);
-    const std::string error = findDuplicateKey(entry.second, name, depth + 1);
+    const std::string error = findDuplicateKey(entry.second, name, budget, depth + 1);
     if (!error.empty())
     {
       return error;
@@ -70,8 +79,16 @@ std::string findDuplicateKey(const YAML::Node& node, const std::string& path, in
 
 std::string loadYamlText(const std::string& text, YAML::Node* root)
 {
-  *root = YAML::Load(text);
-  return findDuplicateKey(*root, "");
+  // Every document, so that one after a `---` line is refused rather than never read (YAML::Load reads the first).
+  const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+  *root = documents.empty() ? YAML::Node() : documents.front();
+  if (documents.size() > 1)
+  {
+    return "it holds " + std::to_string(documents.size()) +
+           " YAML documents (a line '---' starts each; '...' ends one): give one, the later ones would not be read";
+  }
+  long budget = kMaxYamlValues;
+  return findDuplicateKey(*root, "", &budget);
 }
 
 std::string checkYamlFile(const std::string& path)

@@ -13,7 +13,8 @@ namespace rov_tether::spec
 /// Parses YAML text into `root` and refuses a key that a map holds twice (yaml-cpp keeps both and a lookup
 /// takes the first; roslaunch and PyYAML keep the last): returns "" or "duplicate key 'path.key' (lines A and
 /// B): give each key once" (or that the nesting is deeper than any file of ours, an alias naming its own
-/// anchor). Throws YAML::Exception on YAML that does not parse.
+/// anchor; more than 1e7 values with aliases expanded; more than one YAML document). Throws YAML::Exception on
+/// YAML that does not parse.
 [[nodiscard]] std::string loadYamlText(const std::string& text, YAML::Node* root);
 
 /// The file at `path` read as loadYamlText reads text: "" or the problem, prefixed with the path (a file that
