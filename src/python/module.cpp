@@ -108,7 +108,13 @@ std::shared_ptr<Session> fromScenario(const std::string& path)
 /// is given 1e4 s (with one output a second unless `output_rate` says otherwise), which nothing here reads.
 std::shared_ptr<Session> fromDict(const py::dict& description)
 {
-  py::dict copy(description);
+  // A copy of the caller's dict, whose keys are the caller's: py::dict(description) is another handle to the same
+  // dict, so the invented keys went into it.
+  const auto copy = py::reinterpret_steal<py::dict>(PyDict_Copy(description.ptr()));
+  if (!copy)
+  {
+    throw py::error_already_set();
+  }
   if (!copy.contains("duration"))
   {
     copy["duration"] = 1.0e4;

@@ -1,6 +1,7 @@
 """The Python API (import rov_tether; issue 23, docs/python.md), run by scripts/test.sh with pytest in the
 catkin build's environment (its devel space on PYTHONPATH). ROV_TETHER_RUN names the runner to compare with
 (default: the catkin build's)."""
+import copy
 import csv
 import math
 import os
@@ -344,3 +345,16 @@ def test_reading_while_another_thread_steps_neither_blocks_nor_breaks():
 # show World, Tether and Camera (they showed none of them).
 def test_dir_lists_the_names_loaded_on_first_use():
     assert {"Camera", "Tether", "World"} <= set(dir(rov_tether))
+
+
+# World(description) reads the caller's dict and leaves it as it was: it used to add the `duration` and
+# `output_rate` it invented for the reader to the caller's own dict (a py::dict made from a dict is another handle to
+# the same object, not a copy), so the dict read back with keys its writer never gave. Nested lists and dicts are
+# compared too, deep copies being what the caller had.
+def test_a_world_leaves_the_callers_description_as_it_was():
+    description = {"spool": [0.0, 0.0, -1.0], "params": {"noise": 0.0, "winch_mode": "locked"},
+                   "obstacles": [{"name": "pillar", "type": "cylinder", "radius": 0.3, "length": 10,
+                                  "position": [1.0, 1.0, -1.0]}]}
+    before = copy.deepcopy(description)
+    rov_tether.World(description)
+    assert description == before
