@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rov_tether/core/tether_params.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
@@ -323,9 +324,21 @@ struct TetherView
     throwIfRefused(withWorld(*session, [&] { return tether().setTargetLength(length); }));
   }
 
-  /// As rov_tether_run --set name=value: the value as JSON (YAML reads it as it is), on one line.
+  /// As rov_tether_run --set name=value: the value as JSON (YAML reads it as it is), on one line. The name must be
+  /// exactly a parameter's: it is put into the YAML text as it is, where anything else would be read as YAML of
+  /// its own ("drag: 0.9 #" set drag, and the value became a comment).
   void setParam(const std::string& parameter, const py::object& value)
   {
+    const std::vector<std::string>& names = parameterNames();
+    // The cable's sections and attachments are parameters too, lists of maps outside the parameter table (as
+    // spec::readTetherParams reads them).
+    if (std::find(names.begin(), names.end(), parameter) == names.end() && parameter != "sections" &&
+        parameter != "attachments")
+    {
+      const std::string guess = closestName(parameter, names);
+      throw py::value_error("unknown parameter '" + parameter + "'" +
+                            (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));  // the runner's words
+    }
     const py::object plain = py::hasattr(value, "tolist") ? value.attr("tolist")() : value;
     std::string text;
     try
@@ -336,9 +349,9 @@ struct TetherView
     {
       throw py::value_error("set_param: " + parameter + ": the value is not plain data: " + error.what());
     }
-    if (parameter.find_first_of("=\n\r") != std::string::npos || text.find_first_of("\n\r") != std::string::npos)
+    if (text.find_first_of("\n\r") != std::string::npos)
     {
-      throw py::value_error("set_param: one parameter name and one value, on one line");
+      throw py::value_error("set_param: " + parameter + ": one value, on one line");
     }
     const std::string assignment = parameter + "=" + text;
     const Status status = withWorld(*session,
