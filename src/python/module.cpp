@@ -99,6 +99,11 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
 
 std::shared_ptr<Session> fromScenario(const std::string& path)
 {
+  if (path.find('\0') != std::string::npos)
+  {
+    // Refused as open() refuses it: the file would be opened up to the NUL, another file than the one named.
+    throw py::value_error("from_scenario: embedded null byte in the path");
+  }
   Scenario scenario;
   const std::string error = loadScenario(path, &scenario);
   return build(error, std::move(scenario));

@@ -390,3 +390,16 @@ def test_set_param_takes_exactly_one_parameter_name():
         w.advance_to(2.0)
     assert np.array_equal(world.tethers[0].positions, twin.tethers[0].positions)
     assert not np.allclose(changed.tethers[0].positions, twin.tethers[0].positions, rtol=0, atol=1e-3)
+
+
+# A path with a NUL in it is refused as Python's open() refuses it: the C++ reader opened the path up to the NUL, so
+# 'good.yaml\0/etc/passwd' silently loaded good.yaml. The good file itself still loads (what is refused is the NUL).
+def test_a_scenario_path_with_a_nul_is_refused_as_open_refuses_it(tmp_path):
+    path = tmp_path / "good.yaml"
+    path.write_text("spool: [0, 0, 0]\nduration: 1.0\n")
+    with pytest.raises(ValueError, match="embedded null byte"):
+        open(str(path) + "\0/etc/passwd")
+    for bad in (str(path) + "\0/etc/passwd", str(path).encode() + b"\0x"):
+        with pytest.raises(ValueError, match="embedded null byte"):
+            rov_tether.World.from_scenario(bad)
+    assert rov_tether.World.from_scenario(str(path)).time == 0.0
