@@ -111,6 +111,7 @@ PYBIND11_MODULE(_camera, m)
   using rov_tether::python::Camera;
   using rov_tether::python::Session;
   py::module_::import("rov_tether._core");  // the World type
+  rov_tether::python::translateMessages();
   m.doc() = "A camera looking at a rov_tether.World's tethers (docs/python.md)";
   py::class_<Camera>(m, "Camera", "A pinhole camera (plumb_bob distortion) that renders a World's tethers")
       .def(py::init<int, int, const std::vector<double>&, const std::vector<double>&>(), py::arg("width"),

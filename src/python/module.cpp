@@ -2,7 +2,8 @@
 // description of a world (a scenario file, or the same as a dict) by the same reader and builder as the runner
 // (loadScenario / parseScenario, buildWorld), and stepped by the same loop (ScenarioStepper), so a scenario run
 // from Python and by rov_tether_run gives the same numbers. Bad input raises ValueError with the reader's
-// message; a refused advance raises RuntimeError with the runner's. Every read, change and step of a world
+// message; a refused advance raises RuntimeError with the runner's (any byte of either that is not UTF-8 read as
+// U+FFFD: translateMessages, session.hpp). Every read, change and step of a world
 // holds its lock with the GIL released (withWorld, session.hpp), so other threads run Python meanwhile.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -91,7 +92,7 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
   }
   for (const std::string& warning : warnings)
   {
-    py::module_::import("warnings").attr("warn")(warning);  // a vehicle out of its cable's reach, as the runner says
+    py::module_::import("warnings").attr("warn")(pythonText(warning));  // a vehicle out of reach, as the runner says
   }
   session->stepper = std::make_unique<ScenarioStepper>(session->scenario, session->world);
   return session;
@@ -191,7 +192,7 @@ void advance(Session& session, double t, bool relative)
   }
   if (!error.empty())
   {
-    throw std::runtime_error(error);
+    raisePython(PyExc_RuntimeError, error);
   }
 }
 
@@ -373,7 +374,7 @@ struct TetherView
     if (!status.message.empty())
     {
       // Taken, with something to say (a cable_length or segment_length change lays the cable out anew).
-      py::module_::import("warnings").attr("warn")("set_param: " + parameter + ": " + status.message);
+      py::module_::import("warnings").attr("warn")(pythonText("set_param: " + parameter + ": " + status.message));
     }
   }
 
@@ -474,6 +475,7 @@ PYBIND11_MODULE(_core, m)
   using namespace rov_tether;
   using namespace rov_tether::python;
   m.doc() = "rov_tether's core: tethers, winches, obstacles and vehicles in one world (docs/python.md)";
+  translateMessages();  // messages that echo a file's bytes that are not UTF-8
 
   py::class_<TetherView>(m, "Tether", "One tether of a World (a view: it keeps the world alive)")
       .def_property_readonly("name", &TetherView::name)

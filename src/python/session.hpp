@@ -4,8 +4,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include <exception>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "rov_tether/core/world.hpp"
 #include "rov_tether/scenario/scenario.hpp"
@@ -34,6 +37,56 @@ auto withWorld(Session& session, F&& f)
   const pybind11::gil_scoped_release released;
   const std::lock_guard<std::mutex> lock(session.mutex);
   return f();
+}
+
+/// Python's text of a C++ string, UTF-8 with every byte that is not UTF-8 read as U+FFFD: a reader's message may
+/// echo a file's bytes as they are (a Latin-1 key), which pybind11's strict conversion refuses (UnicodeDecodeError,
+/// or for an exception's message an empty ValueError('')).
+inline pybind11::str pythonText(const std::string& text)
+{
+  PyObject* decoded = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+  if (decoded == nullptr)
+  {
+    throw pybind11::error_already_set();
+  }
+  return pybind11::reinterpret_steal<pybind11::str>(decoded);
+}
+
+/// Raises Python's `type` with `message` (pythonText): for a message that is no exception type of pybind11's.
+[[noreturn]] inline void raisePython(PyObject* type, const std::string& message)
+{
+  PyErr_SetObject(type, pythonText(message).ptr());
+  throw pybind11::error_already_set();
+}
+
+/// For the module being defined: the exceptions its functions throw reach Python as pybind11 makes them (the same
+/// types), with their messages read by pythonText. Any other exception is left to pybind11.
+inline void translateMessages()
+{
+  pybind11::register_local_exception_translator(
+      [](std::exception_ptr thrown)
+      {
+        try
+        {
+          std::rethrow_exception(thrown);
+        }
+        catch (const pybind11::key_error& e)
+        {
+          PyErr_SetObject(PyExc_KeyError, pythonText(e.what()).ptr());
+        }
+        catch (const pybind11::value_error& e)
+        {
+          PyErr_SetObject(PyExc_ValueError, pythonText(e.what()).ptr());
+        }
+        catch (const pybind11::type_error& e)
+        {
+          PyErr_SetObject(PyExc_TypeError, pythonText(e.what()).ptr());
+        }
+        catch (const std::invalid_argument& e)
+        {
+          PyErr_SetObject(PyExc_ValueError, pythonText(e.what()).ptr());
+        }
+      });
 }
 
 }  // namespace rov_tether::python

@@ -403,3 +403,22 @@ def test_a_scenario_path_with_a_nul_is_refused_as_open_refuses_it(tmp_path):
         with pytest.raises(ValueError, match="embedded null byte"):
             rov_tether.World.from_scenario(bad)
     assert rov_tether.World.from_scenario(str(path)).time == 0.0
+
+
+# A reader's message that echoes bytes of a file that are not UTF-8 (a Latin-1 key, 'dur\xe9e') reaches Python
+# whole, each such byte as U+FFFD, and says what the runner says of the same file: pybind11 made it a
+# ValueError('') (the message could not be decoded, and the decoding error was dropped). Random bytes, which the
+# reader takes for a scalar, are refused with a message too.
+def test_a_message_that_echoes_bytes_that_are_not_utf8_reaches_python(tmp_path):
+    path = tmp_path / "latin1.yaml"
+    path.write_bytes(b"spool: [0, 0, 0]\nduration: 1.0\ndur\xe9e: 1\n")
+    done = subprocess.run([RUNNER, str(path), "--out", str(tmp_path / "out")], capture_output=True)
+    assert done.returncode != 0
+    with pytest.raises(ValueError) as raised:
+        rov_tether.World.from_scenario(str(path))
+    assert "unknown field 'dur\ufffde'" in str(raised.value)
+    assert str(raised.value) in (done.stdout + done.stderr).decode("utf-8", "replace")
+    path.write_bytes(bytes(range(128, 256)) + b"\n")
+    with pytest.raises(ValueError) as raised:
+        rov_tether.World.from_scenario(str(path))
+    assert "scenario: expected a map" in str(raised.value)
