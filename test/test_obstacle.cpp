@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rov_tether/core/world.hpp"
@@ -239,6 +240,29 @@ TEST(Obstacle, ValidateNamesTheObstacleAndTheField)
     Status made;
     EXPECT_EQ(makeObstacle(c.spec, &made), nullptr);
     EXPECT_FALSE(made.ok);
+  }
+  // A name is text in Python and in the node's messages: UTF-8 as Python decodes it, each byte that is not shown as
+  // '?' (a Latin-1 letter, a character cut short, a stray continuation byte, an overlong '/', a surrogate, a code
+  // point beyond U+10FFFF); UTF-8 beyond ASCII (2, 3 and 4 bytes, the last code point) is taken.
+  for (const auto& [bad, shown] : std::vector<std::pair<std::string, std::string>>{{"pil\xe9r", "pil?r"},
+                                                                                   {"wreck\xc3", "wreck?"},
+                                                                                   {"\x80wreck", "?wreck"},
+                                                                                   {"\xc0\xaf", "??"},
+                                                                                   {"\xed\xa0\x80", "???"},
+                                                                                   {"\xf4\x90\x80\x80", "????"}})
+  {
+    ObstacleSpec named = s;
+    named.name = bad;
+    const Status status = validate(named);
+    EXPECT_FALSE(status.ok) << shown;
+    EXPECT_NE(status.message.find("obstacle '" + shown + "' (sphere): the name must be UTF-8"), std::string::npos)
+        << status.message;
+  }
+  for (const char* good : {"pilier \xc3\xa9", "\xe2\x82\xac", "\xf0\x9f\x98\x80", "\xf4\x8f\xbf\xbf"})
+  {
+    ObstacleSpec named = s;
+    named.name = good;
+    EXPECT_TRUE(validate(named).ok) << validate(named).message;
   }
 }
 

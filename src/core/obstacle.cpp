@@ -2,12 +2,42 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+#include <string>
 
 namespace rov_tether
 {
 namespace
 {
+
+/// The length of the UTF-8 character that starts at text[i], or 0 when the bytes there are not one (a stray
+/// continuation byte, a character cut short, an overlong form, a surrogate or beyond U+10FFFF): as Python decodes.
+std::size_t utf8Length(const std::string& text, std::size_t i)
+{
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  if (lead < 0x80)
+  {
+    return 1;
+  }
+  const std::size_t length = (lead & 0xe0) == 0xc0 ? 2 : (lead & 0xf0) == 0xe0 ? 3 : (lead & 0xf8) == 0xf0 ? 4 : 0;
+  if (length == 0 || i + length > text.size())
+  {
+    return 0;
+  }
+  std::uint32_t code = lead & (0x7f >> length);
+  for (std::size_t k = 1; k < length; ++k)
+  {
+    if ((byte(i + k) & 0xc0) != 0x80)
+    {
+      return 0;
+    }
+    code = code << 6 | (byte(i + k) & 0x3f);
+  }
+  const std::uint32_t least = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+  return code < least || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff) ? 0 : length;
+}
 
 /// A unit vector perpendicular to v (v not zero).
 Position perpendicular(const Position& v)
@@ -374,6 +404,22 @@ Status validate(const ObstacleSpec& spec)
     return Status::error("obstacle '" + shown + "' (" + shapeTypeName(spec.type) +
                          "): the name must hold no comma, double quote or control character (a field of the runner's "
                          "topology.csv)");
+  }
+  // Text that reaches Python (world.topology()) and the node's messages: UTF-8, as they read it.
+  std::string shown;
+  bool utf8 = true;
+  for (std::size_t i = 0; i < spec.name.size();)
+  {
+    const std::size_t length = utf8Length(spec.name, i);
+    utf8 = utf8 && length > 0;
+    shown += length > 0 ? spec.name.substr(i, length) : "?";
+    i += std::max<std::size_t>(length, 1);
+  }
+  if (!utf8)
+  {
+    return Status::error("obstacle '" + shown + "' (" + shapeTypeName(spec.type) +
+                         "): the name must be UTF-8 text (each '?' is a byte that is not: a file saved in another "
+                         "encoding?)");
   }
   if (!spec.position.allFinite() || !spec.orientation.allFinite())
   {

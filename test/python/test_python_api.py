@@ -422,3 +422,22 @@ def test_a_message_that_echoes_bytes_that_are_not_utf8_reaches_python(tmp_path):
     with pytest.raises(ValueError) as raised:
         rov_tether.World.from_scenario(str(path))
     assert "scenario: expected a map" in str(raised.value)
+
+
+# An obstacle's name is text that reaches Python (world.topology()) and the node's messages, so it must be UTF-8: a
+# Latin-1 name in a scenario file was taken, and world.topology() then raised UnicodeDecodeError. It is refused by
+# the core's check of every obstacle (the reader's, the runner's and the node's), naming the obstacle with '?' for
+# each byte that is not UTF-8, as the runner says it; a name in UTF-8 beyond ASCII is taken and comes back as given.
+def test_an_obstacle_name_that_is_not_utf8_is_refused(tmp_path):
+    path = tmp_path / "latin1_obstacle.yaml"
+    path.write_bytes(b'spool: [0, 0, -1]\nduration: 1.0\nobstacles: [{name: "pil\xe9r", type: cylinder, radius: 0.3, '
+                     b'length: 10, position: [1, 1, -1]}]\n')
+    done = subprocess.run([RUNNER, str(path), "--out", str(tmp_path / "out")], capture_output=True)
+    assert done.returncode != 0
+    with pytest.raises(ValueError, match=r"obstacle 'pil\?r' \(cylinder\): the name must be UTF-8") as raised:
+        rov_tether.World.from_scenario(str(path))
+    assert str(raised.value) in (done.stdout + done.stderr).decode("utf-8", "replace")
+    world = rov_tether.World({"spool": [0, 0, -1], "obstacles": [{"name": "pilier \u00e9", "type": "cylinder",
+                                                                 "radius": 0.3, "length": 10,
+                                                                 "position": [1, 1, -1]}]})
+    assert {r["object"] for r in world.topology()} == {"pilier \u00e9"}

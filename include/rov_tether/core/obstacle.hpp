@@ -50,9 +50,10 @@ struct ObstacleSpec
   std::string frame;                                      ///< node only: the tf frame it moves with.
 };
 
-/// Refuses an entry whose name is empty or holds a comma, a double quote or a control character (a field of the
-/// runner's topology.csv), whose numbers are not finite, whose sizes are not positive, whose
-/// friction is outside [0, 10] or a mesh without a file; the message names the obstacle and the field.
+/// Refuses an entry whose name is empty, holds a comma, a double quote or a control character (a field of the
+/// runner's topology.csv) or is not UTF-8 (text in Python and in the node's messages), whose numbers are not finite,
+/// whose sizes are not positive, whose friction is outside [0, 10] or a mesh without a file; the message names the
+/// obstacle and the field.
 Status validate(const ObstacleSpec& spec);
 
 /// An axis-aligned box [m].
