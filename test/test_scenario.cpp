@@ -157,6 +157,30 @@ TEST(ScenarioFile, BadScenariosNameTheField)
     const std::string error = parseScenario(c.yaml, &scenario);
     EXPECT_NE(error.find(c.message), std::string::npos) << "yaml: " << c.yaml << "\nerror: " << error;
   }
+  // A description whose duration may be left out (the Python API's) has none to check the rates against: 200 rows/s
+  // and a 200 Hz camera are taken, duration 0, where the runner's file refuses them. Each rate alone is still checked,
+  // and a duration given is checked with them.
+  const std::string camera =
+      "\nvehicle: [[0, 1, 0, 0], [10, 5, 0, 0]]\ncameras:\n  - {name: front, width: 64, height: "
+      "48, K: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1], rate: ";
+  for (const std::string& taken :
+       {std::string("spool: [0, 0, 0]\noutput_rate: 200"), "spool: [0, 0, 0]" + camera + "200}"})
+  {
+    Scenario scenario;
+    EXPECT_EQ(parseScenario(taken, &scenario, ScenarioDuration::kOptional), "") << taken;
+    EXPECT_EQ(scenario.duration, 0.0);
+    EXPECT_NE(parseScenario(taken, &scenario).find("duration: missing"), std::string::npos);
+  }
+  for (const auto& c : std::vector<BadScenario>{
+           {"spool: [0, 0, 0]\noutput_rate: 2e4", "output_rate = 20000"},
+           {"spool: [0, 0, 0]" + camera + "2000}", "cameras[0].rate = 2000"},
+           {"spool: [0, 0, 0]\nduration: 2e4\noutput_rate: 100", "duration x output_rate = 2000000"},
+           {"spool: [0, 0, 0]\nduration: 1e4" + camera + "200}", "cameras[0].rate: duration x rate = 2000000"}})
+  {
+    Scenario scenario;
+    const std::string error = parseScenario(c.yaml, &scenario, ScenarioDuration::kOptional);
+    EXPECT_NE(error.find(c.message), std::string::npos) << "yaml: " << c.yaml << "\nerror: " << error;
+  }
 }
 
 // Two ways a scenario's YAML was taken wrongly, found by a review: a second document after a '---' line was never

@@ -112,24 +112,9 @@ std::shared_ptr<Session> fromScenario(const std::string& path)
 
 /// A dict in the runner's scenario format, as JSON (a subset of YAML that the reader takes as it is; numpy
 /// arrays and numbers as lists and numbers). A dict without `duration` steps as far as it is advanced: the reader
-/// is given 1e4 s (with one output a second unless `output_rate` says otherwise), which nothing here reads.
+/// checks nothing against a duration it was not given (ScenarioDuration::kOptional).
 std::shared_ptr<Session> fromDict(const py::dict& description)
 {
-  // A copy of the caller's dict, whose keys are the caller's: py::dict(description) is another handle to the same
-  // dict, so the invented keys went into it.
-  const auto copy = py::reinterpret_steal<py::dict>(PyDict_Copy(description.ptr()));
-  if (!copy)
-  {
-    throw py::error_already_set();
-  }
-  if (!copy.contains("duration"))
-  {
-    copy["duration"] = 1.0e4;
-    if (!copy.contains("output_rate"))
-    {
-      copy["output_rate"] = 1.0;
-    }
-  }
   std::string text;
   try
   {
@@ -142,15 +127,15 @@ std::shared_ptr<Session> fromDict(const py::dict& description)
           }
           throw py::type_error("not a number, string, list or dict: " + py::repr(value).cast<std::string>());
         });
-    text =
-        yamlNonFinite(py::module_::import("json").attr("dumps")(copy, py::arg("default") = plain).cast<std::string>());
+    text = yamlNonFinite(
+        py::module_::import("json").attr("dumps")(description, py::arg("default") = plain).cast<std::string>());
   }
   catch (const py::error_already_set& error)
   {
     throw py::value_error(std::string("World: the description is not plain data: ") + error.what());
   }
   Scenario scenario;
-  const std::string error = parseScenario(text, &scenario);
+  const std::string error = parseScenario(text, &scenario, ScenarioDuration::kOptional);
   return build(error, std::move(scenario));
 }
 

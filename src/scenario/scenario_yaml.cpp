@@ -58,7 +58,7 @@ std::string applyParamMap(const YAML::Node& map, const std::string& prefix, Teth
 }
 
 /// The scenario's `cameras` (spec::readCameras, as the node's): each rides on the vehicle; at most 1e6
-/// frames each over the run.
+/// frames each over the run (a duration of 0, left out, has no end to count them to).
 std::string readCameras(const YAML::Node& node, double duration, std::vector<ScenarioCamera>* cameras)
 {
   std::vector<spec::CameraSpec> read;
@@ -70,7 +70,7 @@ std::string readCameras(const YAML::Node& node, double duration, std::vector<Sce
   for (std::size_t k = 0; k < read.size(); ++k)
   {
     const spec::CameraSpec& camera = read[k];
-    if (duration * camera.rate > kMaxOutputTimes)
+    if (duration > 0.0 && duration * camera.rate > kMaxOutputTimes)
     {
       return "cameras[" + std::to_string(k) + "].rate: duration x rate = " + std::to_string(duration * camera.rate) +
              ": more than 1e6 frames";
@@ -251,21 +251,26 @@ std::string readScenarioTethers(const YAML::Node& root, const std::string& base_
              : "";
 }
 
-/// `duration` (required) and `output_rate`, each in its range, with at most kMaxOutputTimes output times.
-std::string readScenarioTimes(const YAML::Node& root, Scenario* result)
+/// `duration` (required unless `duration` says it is not: then 0 when left out) and `output_rate`, each in its
+/// range, with at most kMaxOutputTimes output times over a duration given.
+std::string readScenarioTimes(const YAML::Node& root, ScenarioDuration duration, Scenario* result)
 {
-  if (!root["duration"])
+  std::string error;
+  if (root["duration"])
+  {
+    error = readNumber(root["duration"], "duration", &result->duration);
+    if (!error.empty())
+    {
+      return error;
+    }
+    if (result->duration <= 0.0 || result->duration > 1.0e6)
+    {
+      return "duration = " + std::to_string(result->duration) + ": must be in (0, 1e6] s";
+    }
+  }
+  else if (duration == ScenarioDuration::kRequired)
   {
     return "duration: missing (simulated time in s)";
-  }
-  std::string error = readNumber(root["duration"], "duration", &result->duration);
-  if (!error.empty())
-  {
-    return error;
-  }
-  if (result->duration <= 0.0 || result->duration > 1.0e6)
-  {
-    return "duration = " + std::to_string(result->duration) + ": must be in (0, 1e6] s";
   }
   if (root["output_rate"])
   {
@@ -279,7 +284,7 @@ std::string readScenarioTimes(const YAML::Node& root, Scenario* result)
   {
     return "output_rate = " + std::to_string(result->output_rate) + ": must be in (0, 1e4] rows per s";
   }
-  if (result->duration * result->output_rate > kMaxOutputTimes)
+  if (result->duration > 0.0 && result->duration * result->output_rate > kMaxOutputTimes)
   {
     return "duration x output_rate = " + std::to_string(result->duration * result->output_rate) +
            ": more than 1e6 output times";
@@ -317,7 +322,8 @@ std::string readScenarioSurroundings(const YAML::Node& root, const std::string& 
   return root["obstacles"] ? readObstacles(root["obstacles"], base_dir, &result->obstacles) : "";
 }
 
-std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario)
+std::string parseScenarioNode(const YAML::Node& root, const std::string& base_dir, Scenario* scenario,
+                              ScenarioDuration duration = ScenarioDuration::kRequired)
 {
   if (!root.IsMap())
   {
@@ -336,7 +342,7 @@ std::string parseScenarioNode(const YAML::Node& root, const std::string& base_di
   error = readScenarioTethers(root, base_dir, &result);
   if (error.empty())
   {
-    error = readScenarioTimes(root, &result);
+    error = readScenarioTimes(root, duration, &result);
   }
   if (error.empty())
   {
@@ -384,14 +390,14 @@ std::string guardYaml(Parse parse)
 
 }  // namespace
 
-std::string parseScenario(const std::string& yaml_text, Scenario* scenario)
+std::string parseScenario(const std::string& yaml_text, Scenario* scenario, ScenarioDuration duration)
 {
   return guardYaml(
       [&]
       {
         YAML::Node root;
         const std::string error = spec::loadYamlText(yaml_text, &root);
-        return error.empty() ? parseScenarioNode(root, "", scenario) : error;
+        return error.empty() ? parseScenarioNode(root, "", scenario, duration) : error;
       });
 }
 

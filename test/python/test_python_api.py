@@ -441,3 +441,24 @@ def test_an_obstacle_name_that_is_not_utf8_is_refused(tmp_path):
                                                                  "radius": 0.3, "length": 10,
                                                                  "position": [1, 1, -1]}]})
     assert {r["object"] for r in world.topology()} == {"pilier \u00e9"}
+
+
+# A dict that leaves `duration` out steps as far as it is advanced, so no check of a duration can refuse it: the
+# binding gave the reader an invented 1e4 s, and an output_rate of 200 rows/s (or a camera at 200 Hz) was then
+# refused as "duration x output_rate = 2000000: more than 1e6 output times", a duration the user never gave. Each
+# rate is still checked alone, and a duration the user gives is checked with it, the message naming the user's
+# numbers (2e4 s x 100 rows/s).
+def test_a_description_without_a_duration_is_not_refused_by_a_check_of_one():
+    camera = {"name": "front", "width": 64, "height": 48, "K": [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1], "rate": 200.0}
+    path = [[0.0, 1.0, 0.0, -1.0], [10.0, 5.0, 0.0, -1.0]]
+    for description in ({"spool": [0, 0, 0], "output_rate": 200.0},
+                        {"spool": [0, 0, 0], "vehicle": path, "cameras": [camera]}):
+        world = rov_tether.World(description)
+        world.advance_to(0.1)
+        assert world.time == pytest.approx(0.1)
+    with pytest.raises(ValueError, match=r"^output_rate = -1\.0+: must be in \(0, 1e4\]"):
+        rov_tether.World({"spool": [0, 0, 0], "output_rate": -1.0})
+    with pytest.raises(ValueError, match=r"cameras\[0\]\.rate = 2000: must be in \(0, 1000\] Hz"):
+        rov_tether.World({"spool": [0, 0, 0], "vehicle": path, "cameras": [dict(camera, rate=2000.0)]})
+    with pytest.raises(ValueError, match=r"^duration x output_rate = 2000000\.0+: more than 1e6 output times"):
+        rov_tether.World({"spool": [0, 0, 0], "duration": 2e4, "output_rate": 100.0})

@@ -101,7 +101,7 @@ struct Scenario
   Position spool = Position::Zero();
   std::vector<Waypoint> vehicle;          ///< Empty: the tether hangs from its spool with a free end.
   std::optional<DynamicVehicle> dynamic;  ///< `vehicle: {model: dynamic, ...}`: see ScenarioTether.
-  double duration = 0.0;
+  double duration = 0.0;                  ///< [s]; 0 when a description leaves it out (ScenarioDuration::kOptional).
   double output_rate = 10.0;
   std::vector<ScenarioCamera> cameras;  ///< On the vehicle; only with a vehicle path.
   /// Several tethers in one world, each written to DIR/<name>/; empty: the one tether of params, spool and

@@ -9,9 +9,19 @@
 namespace rov_tether
 {
 
+/// Whether a scenario must give its `duration` (a run of the runner's), or may leave it out (a world stepped as far
+/// as it is advanced: the Python API's description). Left out, Scenario::duration is 0 and nothing is checked against
+/// it (duration x output_rate, a camera's frames over the run); each rate is still checked alone.
+enum class ScenarioDuration
+{
+  kRequired,
+  kOptional,
+};
+
 /// Parses scenario YAML text. Returns "" on success, otherwise a message naming the bad field. A mesh
 /// obstacle's relative `file` stays relative (to the working directory).
-[[nodiscard]] std::string parseScenario(const std::string& yaml_text, Scenario* scenario);
+[[nodiscard]] std::string parseScenario(const std::string& yaml_text, Scenario* scenario,
+                                        ScenarioDuration duration = ScenarioDuration::kRequired);
 /// Reads and parses a scenario file. Returns "" on success, otherwise a message naming the bad field. A mesh
 /// obstacle's relative `file` is taken from the scenario file's directory.
 [[nodiscard]] std::string loadScenario(const std::string& path, Scenario* scenario);
