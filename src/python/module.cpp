@@ -95,6 +95,7 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
     py::module_::import("warnings").attr("warn")(pythonText(warning));  // a vehicle out of reach, as the runner says
   }
   session->stepper = std::make_unique<ScenarioStepper>(session->scenario, session->world);
+  session->asked = session->world.time();
   return session;
 }
 
@@ -139,9 +140,10 @@ std::shared_ptr<Session> fromDict(const py::dict& description)
   return build(error, std::move(scenario));
 }
 
-/// advance_to(t), or step(t) with `relative`: the target is taken under the lock, so two threads' steps add up.
-/// A target the world refuses is refused here, as ValueError, before the world sees it; a refused advance
-/// (RuntimeError) stops the world for good, as it stops the runner.
+/// advance_to(t), or step(t) with `relative`: the time last asked for plus t (Session::asked, not the world's time,
+/// which is the last whole step at or before it: the remainder was lost at every call). The target is taken under
+/// the lock, so two threads' steps add up. A target the world refuses is refused here, as ValueError, before the
+/// world sees it; a refused advance (RuntimeError) stops the world for good, as it stops the runner.
 void advance(Session& session, double t, bool relative)
 {
   const char* call = relative ? "step: dt" : "advance_to: t";
@@ -155,7 +157,7 @@ void advance(Session& session, double t, bool relative)
   withWorld(session,
             [&]
             {
-              const double target = relative ? session.world.time() + t : t;
+              const double target = relative ? std::max(session.asked, session.world.time()) + t : t;
               if (target < session.world.time() || target > Tether::kMaxTime)
               {
                 refused_argument = true;
@@ -166,9 +168,13 @@ void advance(Session& session, double t, bool relative)
               {
                 error = "the world stopped at an earlier error: " + session.stepper->runError();
               }
-              else if (!session.stepper->advance(target))
+              else
               {
-                error = session.stepper->runError();
+                session.asked = target;
+                if (!session.stepper->advance(target))
+                {
+                  error = session.stepper->runError();
+                }
               }
             });
   if (refused_argument)
@@ -504,9 +510,11 @@ PYBIND11_MODULE(_core, m)
                   "A runner scenario file (YAML), its vehicle paths included")
       .def(
           "advance_to", [](Session& s, double t) { advance(s, t, false); }, py::arg("t"),
-          "Steps every tether to time t [s] along the scenario's paths (the GIL released meanwhile)")
+          "Steps every tether to its last whole step at or before time t [s] along the scenario's paths (the GIL "
+          "released meanwhile)")
       .def(
-          "step", [](Session& s, double dt) { advance(s, dt, true); }, py::arg("dt"), "advance_to(time + dt)")
+          "step", [](Session& s, double dt) { advance(s, dt, true); }, py::arg("dt"),
+          "advance_to(the time last asked for + dt): steps shorter than a time step add up")
       .def_property_readonly(
           "time", [](Session& s) { return withWorld(s, [&] { return s.world.time(); }); }, "The world's time [s]")
       .def_property_readonly("tethers",

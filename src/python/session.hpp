@@ -25,6 +25,9 @@ struct Session
   World world;
   std::unique_ptr<ScenarioStepper> stepper;
   std::mutex mutex;
+  /// The time last asked for [s]: advance_to's t, or step's target. The world ends an advance at its last whole step
+  /// at or before it, and step(dt) goes on from here, so steps shorter than a time step add up.
+  double asked = 0.0;
 };
 
 /// Runs f() on the session's world with the GIL released and the world's lock held, and returns what f returns,

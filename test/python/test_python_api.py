@@ -462,3 +462,32 @@ def test_a_description_without_a_duration_is_not_refused_by_a_check_of_one():
         rov_tether.World({"spool": [0, 0, 0], "vehicle": path, "cameras": [dict(camera, rate=2000.0)]})
     with pytest.raises(ValueError, match=r"^duration x output_rate = 2000000\.0+: more than 1e6 output times"):
         rov_tether.World({"spool": [0, 0, 0], "duration": 2e4, "output_rate": 100.0})
+
+
+# step(dt) goes on from the time last asked for, not from the world's last whole step. The world takes whole steps
+# of time_step (5 ms by default) and ends an advance at the last one at or before its target, so the remainder was
+# lost at every call: 100 x step(0.001) never moved (each asked for 1 ms past 0) and 100 x step(0.0075) took one
+# step each, 0.5 s, not 0.75. Now they add up to 20 and 150 whole steps. advance_to(t) ends at the last whole step
+# at or before t (0.0123 s: at 0.010), and a step(dt) after it goes on from t (0.0123 + 0.0027: 0.015). Two threads
+# stepping 50 x 1 ms each reach 0.1 s between them: each takes its target under the world's lock.
+def test_small_steps_add_up_to_whole_steps():
+    def world():
+        return rov_tether.World({"spool": [0.0, 0.0, -1.0]})
+
+    for dt, calls, reached in [(0.001, 100, 0.1), (0.0075, 100, 0.75)]:
+        w = world()
+        for _ in range(calls):
+            w.step(dt)
+        assert w.time == pytest.approx(reached, abs=1e-12) == w.tethers[0].time
+    w = world()
+    w.advance_to(0.0123)
+    assert w.time == pytest.approx(0.010, abs=1e-12)
+    w.step(0.0027)
+    assert w.time == pytest.approx(0.015, abs=1e-12)
+    w = world()
+    threads = [threading.Thread(target=lambda: [w.step(0.001) for _ in range(50)]) for _ in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert w.time == pytest.approx(0.1, abs=1e-12)
