@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -144,6 +145,13 @@ std::shared_ptr<Session> fromDict(const py::dict& description)
 /// which is the last whole step at or before it: the remainder was lost at every call). The target is taken under
 /// the lock, so two threads' steps add up. A target the world refuses is refused here, as ValueError, before the
 /// world sees it; a refused advance (RuntimeError) stops the world for good, as it stops the runner.
+///
+/// The world steps towards the target in chunks of simulated time that take about kChunkSeconds of wall time each
+/// (Session::chunk, doubled or halved as the last one went), and between two the GIL is taken back to run Python's
+/// signal handlers: Ctrl-C (SIGINT) in the main thread stops the advance at the chunk's end, a whole step, and
+/// raises KeyboardInterrupt; the time asked for is then the world's, so step(dt) goes on from where it stopped.
+/// With the GIL released for the whole call, a SIGINT was seen only once it returned. The chunks step as one call
+/// would (ScenarioStepper::advance feeds the paths by the sample, wherever a call ends), and take nothing on the heap.
 void advance(Session& session, double t, bool relative)
 {
   const char* call = relative ? "step: dt" : "advance_to: t";
@@ -154,10 +162,12 @@ void advance(Session& session, double t, bool relative)
   }
   std::string error;
   bool refused_argument = false;
+  double target = 0.0;
+  double reached = 0.0;
   withWorld(session,
             [&]
             {
-              const double target = relative ? std::max(session.asked, session.world.time()) + t : t;
+              target = relative ? std::max(session.asked, session.world.time()) + t : t;
               if (target < session.world.time() || target > Tether::kMaxTime)
               {
                 refused_argument = true;
@@ -171,15 +181,64 @@ void advance(Session& session, double t, bool relative)
               else
               {
                 session.asked = target;
-                if (!session.stepper->advance(target))
-                {
-                  error = session.stepper->runError();
-                }
+                reached = session.world.time();
               }
             });
   if (refused_argument)
   {
     throw py::value_error(error);
+  }
+  bool done = !error.empty();
+  while (!done)
+  {
+    withWorld(session,
+              [&]
+              {
+                if (!session.stepper->runError().empty())
+                {
+                  error = "the world stopped at an earlier error: " + session.stepper->runError();  // another thread's
+                  done = true;
+                  return;
+                }
+                const double end = std::min(target, reached + session.chunk);
+                const double before = session.world.time();
+                const auto start = std::chrono::steady_clock::now();
+                if (!session.stepper->advance(end))
+                {
+                  error = session.stepper->runError();
+                  done = true;
+                  return;
+                }
+                const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                // Longer after a whole chunk that went quickly or took no step, shorter after a slow one; not after
+                // the last of a call, nor one the world had passed (another thread's), which say nothing of it.
+                const bool whole = end < target && end > before;
+                if (whole && (took < 0.5 * Session::kChunkSeconds || session.world.time() == before))
+                {
+                  session.chunk *= 2.0;
+                }
+                else if (took > 2.0 * Session::kChunkSeconds)
+                {
+                  session.chunk = std::max(0.5 * session.chunk, Session::kShortestChunk);
+                }
+                reached = end;
+                done = end >= target;
+              });
+    if (!done && PyErr_CheckSignals() != 0)
+    {
+      // A handler raised (KeyboardInterrupt): the world is at a whole step, and the next step(dt) goes on from it
+      // unless another thread has asked for more meanwhile.
+      py::error_already_set raised;
+      withWorld(session,
+                [&]
+                {
+                  if (session.asked == target)
+                  {
+                    session.asked = session.world.time();
+                  }
+                });
+      throw raised;
+    }
   }
   if (!error.empty())
   {

@@ -28,6 +28,11 @@ struct Session
   /// The time last asked for [s]: advance_to's t, or step's target. The world ends an advance at its last whole step
   /// at or before it, and step(dt) goes on from here, so steps shorter than a time step add up.
   double asked = 0.0;
+  /// How much simulated time an advance steps with the lock held before it lets Python check its signals [s]: sized
+  /// as it goes to take about kChunkSeconds of wall time (module.cpp, advance).
+  double chunk = 0.01;
+  static constexpr double kChunkSeconds = 0.05;
+  static constexpr double kShortestChunk = 1e-6;
 };
 
 /// Runs f() on the session's world with the GIL released and the world's lock held, and returns what f returns,

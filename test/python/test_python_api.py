@@ -6,7 +6,9 @@ import csv
 import math
 import os
 import pathlib
+import signal
 import subprocess
+import sys
 import threading
 import time
 
@@ -491,3 +493,47 @@ def test_small_steps_add_up_to_whole_steps():
     for thread in threads:
         thread.join()
     assert w.time == pytest.approx(0.1, abs=1e-12)
+
+
+# Ctrl-C (SIGINT) stops a long advance: Python's handler only sets a flag, which the binding now checks between
+# chunks of about 0.05 s of stepping (PyErr_CheckSignals, the GIL taken back for it). It raised nothing until the call
+# returned, here after 1e9 s of simulated time (2e11 steps: days). The child steps for a second, is sent SIGINT and
+# must exit within 3 s of it (the check every ~0.1 s at worst, and the child's exit, on a loaded machine), having
+# caught KeyboardInterrupt from advance_to with the world consistent: stopped at a whole step (a whole number of 5 ms
+# steps, the tether at the world's time, finite positions), and a step(0.05) after it goes on from there.
+def test_ctrl_c_stops_a_long_advance_at_a_whole_step():
+    script = """
+import sys
+import numpy as np
+import rov_tether
+world = rov_tether.World({"spool": [0.0, 0.0, -1.0]})
+print("stepping", flush=True)
+try:
+    world.advance_to(1e9)
+except KeyboardInterrupt:
+    stopped = world.time
+    tether = world.tethers[0]
+    ok = tether.time == stopped and bool(np.isfinite(tether.positions).all())
+    world.step(0.05)
+    print(repr(stopped), ok, repr(world.time), flush=True)
+    sys.exit(0)
+sys.exit(3)
+"""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "stepping\n"
+        time.sleep(1.0)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=10.0)
+        took = time.monotonic() - sent
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.communicate()
+    assert child.returncode == 0, err
+    assert took < 3.0
+    stopped, ok, after = out.split()
+    assert float(stopped) > 0.0 and ok == "True"  # it had stepped, and stopped between two steps
+    assert float(stopped) / 0.005 == pytest.approx(round(float(stopped) / 0.005), abs=1e-6)
+    assert float(after) == pytest.approx(float(stopped) + 0.05, abs=1e-9)
