@@ -115,7 +115,7 @@ void Tether::setWorldContact(Contact* contact)
 
 Position Tether::currentAt(const Position& point, double t) const { return current_.at(point, t); }
 
-Status Tether::setParams(const TetherParams& params)
+Status Tether::checkParams(const TetherParams& params) const
 {
   const auto errors = params.validate();
   if (!errors.empty())
@@ -129,6 +129,20 @@ Status Tether::setParams(const TetherParams& params)
     {
       return coupled;
     }
+  }
+  if (!sameStructure(params_, params.resolved()))
+  {
+    return Status{true, "cable rebuilt for the new cable_length or segment_length at the deployed length"};
+  }
+  return Status::success();
+}
+
+Status Tether::setParams(const TetherParams& params)
+{
+  const Status checked = checkParams(params);
+  if (!checked.ok)
+  {
+    return checked;
   }
   const bool rebuild = !sameStructure(params_, params.resolved());
   const bool new_solver = params.solver != params_.solver;
@@ -159,7 +173,7 @@ Status Tether::setParams(const TetherParams& params)
   {
     noise_.reseed(params_.seed);
     build(std::clamp(deployed, params_.min_deployed_length, params_.cable_length));
-    return Status{true, "cable rebuilt for the new cable_length or segment_length at the deployed length"};
+    return checked;  // what was rebuilt
   }
   if (new_solver)
   {

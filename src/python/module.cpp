@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -410,21 +411,43 @@ struct TetherView
       throw py::value_error("set_param: " + parameter + ": one value, on one line");
     }
     const std::string assignment = parameter + "=" + text;
+    // In two turns of the lock, with what the change has to say (a cable_length or segment_length lays the cable out
+    // anew) said between them, before the change: a warning raised as an error (-W error) then leaves the tether as
+    // it was, as a refused value does. (Said after the change, it raised with the change made.)
+    TetherParams params;
+    std::uint64_t changes = 0;
+    const Status checked = withWorld(*session,
+                                     [&]
+                                     {
+                                       params = tether().params();
+                                       changes = session->param_changes;
+                                       const std::string read = applyAssignment(assignment, &params);
+                                       return read.empty() ? tether().checkParams(params) : Status::error(read);
+                                     });
+    if (!checked.ok)
+    {
+      throw py::value_error(checked.message);
+    }
+    if (!checked.message.empty())
+    {
+      py::module_::import("warnings").attr("warn")(pythonText("set_param: " + parameter + ": " + checked.message));
+    }
     const Status status = withWorld(*session,
                                     [&]
                                     {
-                                      TetherParams params = tether().params();
-                                      const std::string read = applyAssignment(assignment, &params);
+                                      // Another thread's set_param in between: the assignment goes onto its change.
+                                      std::string read;
+                                      if (session->param_changes != changes)
+                                      {
+                                        params = tether().params();
+                                        read = applyAssignment(assignment, &params);
+                                      }
+                                      ++session->param_changes;
                                       return read.empty() ? tether().setParams(params) : Status::error(read);
                                     });
     if (!status.ok)
     {
       throw py::value_error(status.message);
-    }
-    if (!status.message.empty())
-    {
-      // Taken, with something to say (a cable_length or segment_length change lays the cable out anew).
-      py::module_::import("warnings").attr("warn")(pythonText("set_param: " + parameter + ": " + status.message));
     }
   }
 

@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -31,6 +32,9 @@ struct Session
   /// How much simulated time an advance steps with the lock held before it lets Python check its signals [s]: sized
   /// as it goes to take about kChunkSeconds of wall time (module.cpp, advance).
   double chunk = 0.01;
+  /// Parameter changes made (set_param): one checked in one turn of the lock and made in the next is applied anew
+  /// when another came between them.
+  std::uint64_t param_changes = 0;
   static constexpr double kChunkSeconds = 0.05;
   static constexpr double kShortestChunk = 1e-6;
 };

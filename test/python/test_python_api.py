@@ -11,6 +11,7 @@ import subprocess
 import sys
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -537,3 +538,31 @@ sys.exit(3)
     assert float(stopped) > 0.0 and ok == "True"  # it had stepped, and stopped between two steps
     assert float(stopped) / 0.005 == pytest.approx(round(float(stopped) / 0.005), abs=1e-6)
     assert float(after) == pytest.approx(float(stopped) + 0.05, abs=1e-9)
+
+
+# set_param's warning (a cable_length or segment_length that lays the cable out anew) comes before the change: a
+# warning raised as an error (python -W error, warnings.simplefilter("error"), pytest's filterwarnings = error) then
+# leaves the tether unchanged, as a refused value does. It came after the change, so the call raised with the cable
+# already rebuilt: 41 particles, not 21. Unchanged means it steps bit for bit as a twin that was never asked; asked
+# again with warnings as warnings, it is taken with its warning.
+def test_a_set_param_warning_raised_as_an_error_changes_nothing():
+    def world():
+        return rov_tether.World({"spool": [0.0, 0.0, -1.0], "params": {"cable_length": 10.0, "noise": 0.0,
+                                                                        "initial_deployed_length": 5.0,
+                                                                        "segment_length": 0.25}})
+
+    asked, twin = world(), world()
+    tether = asked.tethers[0]
+    for w in (asked, twin):
+        w.advance_to(1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="segment_length: cable rebuilt"):
+            tether.set_param("segment_length", 0.125)
+    assert len(tether.positions) == 21
+    for w in (asked, twin):
+        w.advance_to(2.0)
+    assert np.array_equal(tether.positions, twin.tethers[0].positions)
+    with pytest.warns(UserWarning, match="segment_length: cable rebuilt"):
+        tether.set_param("segment_length", 0.125)
+    assert len(tether.positions) == 41

@@ -82,6 +82,9 @@ class Tether
   /// particles and deployed length as they are, a new initial_deployed_length waits for reset(), a change of
   /// time_step keeps particle velocities. Invalid params are refused and the old ones kept.
   Status setParams(const TetherParams& params);
+  /// What setParams(params) would return, changing nothing: the refusal, or success with the message it would give
+  /// (the cable rebuilt), for a caller that says it before the change is made (Python's warning).
+  Status checkParams(const TetherParams& params) const;
   const TetherParams& params() const { return params_; }
 
   /// Contact with what a World holds (obstacles, other tethers, itself), projected after the seabed; null
