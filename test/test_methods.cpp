@@ -298,6 +298,20 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
   p.shape_tolerance = 0.001;
   EXPECT_EQ(p.resolved().segmentCount(), 61u);
   EXPECT_TRUE(p.validate().empty());
+  // A chord rule asking for segments below the 1 mm `auto` goes down to was followed with 1 mm, a chord error 1e8
+  // times the one asked for, without a word (a review found it). 8 R e = (1 mm)^2 at the limit: 1e-12 m on 1 mm
+  // asks for 8.9e-8 m segments, refused naming both; just above the limit, taken.
+  TetherParams fine = p;
+  fine.min_bend_radius = 1e-3;
+  fine.shape_tolerance = 1e-12;
+  const std::vector<std::string> refused = fine.validate();
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused.front().rfind("segment_length: auto: shape_tolerance = 1e-12 m on min_bend_radius = 0.001 m", 0),
+            0u)
+      << refused.front();
+  fine.shape_tolerance = 1.01e-3 * 1.01e-3 / (8.0 * fine.min_bend_radius);
+  EXPECT_TRUE(fine.validate().empty());
+  EXPECT_GE(fine.resolved().segment_length, 1.0e-3);
 
   std::string text;
   TetherParams parsed;

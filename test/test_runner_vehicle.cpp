@@ -190,6 +190,39 @@ TEST(VehicleBlock, OnlyTheDirectSolverCouplesAVehicle)
             "params.solver: direct)");
 }
 
+// Each of a dynamic vehicle's start and attachment_offset (and a carried spool's outlet_offset) is checked alone by
+// the reader, within +-1e6 m and the offsets' limit; their sum was not, and the tether's constructor threw past
+// +-1e6 m: rov_tether_run aborted (exit 134, an uncaught exception). buildWorld refuses it, naming the sum.
+TEST(VehicleBlock, AStartPlusAnOffsetBeyondReachIsRefusedNotThrown)
+{
+  Scenario scenario;
+  ASSERT_EQ(parseScenario(scenarioWith("{model: dynamic, params: " + kBlueRov +
+                                       ", start: [1000000, 0, 0, 0], attachment_offset: [0.5, 0, 0], "
+                                       "path: [[0, 1000000, 0, 0]]}"),
+                          &scenario),
+            "");
+  World world;
+  std::string error;
+  EXPECT_NO_THROW(error = buildWorld(worldSpecOf(scenario), &world, &world_warnings));
+  EXPECT_EQ(error,
+            "vehicle: start plus attachment_offset puts the attachment at (1000000.5, 0, 0), beyond +-1000000 m");
+  Scenario carried;
+  ASSERT_EQ(
+      parseScenario("duration: 1\ntethers:\n"
+                    "  - {name: u, spool: [999999, 0, 0], params: {initial_deployed_length: 1, cable_length: 5},\n"
+                    "     vehicle: {model: dynamic, params: " +
+                        kBlueRov +
+                        ", start: [1000000, 0, 0, 0], wrench: [[0, 0, 0, 0, 0, 0, 0]]}}\n"
+                        "  - {name: t, spool: {on: u, outlet_offset: [0.5, 0, 0]}, params: {cable_length: 5},\n"
+                        "     vehicle: [[0, 999999, 0, 0]]}\n",
+                    &carried),
+      "");
+  World carrier_world;
+  EXPECT_NO_THROW(error = buildWorld(worldSpecOf(carried), &carrier_world, &world_warnings));
+  EXPECT_EQ(error.rfind("tethers: t: spool: on u: its vehicle's start plus outlet_offset puts the spool at (", 0), 0u)
+      << error;
+}
+
 // A thrust schedule is the body-frame command, held piecewise-linearly over each step from the step's start
 // (the row at t shows the last step, from t - dt), each axis held at its limit and reported: a surge ramp from 0
 // to 200 N over 1 s gives wrenchAt(t - dt) below 113.7 N and exactly 113.7 N (bit 0 set) above; no controller,

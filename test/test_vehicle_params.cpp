@@ -147,6 +147,9 @@ TEST(VehicleParams, BadFilesAreRefusedNamingFileAndField)
       {withLine("size", "size: [0.457, 0.0, 0.254]"), "vehicles/test.yaml: size[1]: must be > 0 m (got 0)"},
       {std::string(kComplete) + "mass: 14.0\n", "vehicles/test.yaml: mass: given twice"},
       {"[1, 2]", "vehicles/test.yaml: expected a map"},
+      // Without a `controller:` block the gains are designed for the vehicle, and were not checked as a block's are:
+      // 1e300 kg designs infinite gains, which the controller refused only when the run started (the runner aborted).
+      {withLine("mass", "mass: 1.0e+300"), "vehicles/test.yaml: the controller designed for this vehicle: controller:"},
   };
   for (const auto& c : cases)
   {

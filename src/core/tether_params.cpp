@@ -149,6 +149,21 @@ std::vector<std::string> TetherParams::validateMaterial() const
     return errors;  // relations between fields are only meaningful when each field is sane
   }
 
+  if (segment_length_auto)
+  {
+    // resolved() keeps segments at 1 mm at least: the chord rule asking for less is refused, not followed silently.
+    const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
+    const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
+    if (cable_length / count < 1.0e-3)
+    {
+      errors.push_back("segment_length: auto: shape_tolerance = " + formatValue(shape_tolerance) +
+                       " m on min_bend_radius = " + formatValue(min_bend_radius) + " m asks for segments of " +
+                       formatValue(cable_length / count) +
+                       " m, below the 1 mm `auto` goes down to: raise shape_tolerance or min_bend_radius, or set "
+                       "segment_length");
+      return errors;
+    }
+  }
   if (segment_length_auto || iterations_auto)
   {
     return resolved().validateMaterial();  // the relations hold for the values `auto` chooses

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iomanip>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include "rov_tether/geometry/make_obstacle.hpp"
 #include "rov_tether/scenario/vehicle_driver.hpp"
@@ -123,6 +126,19 @@ Tether makeTether(const ScenarioTether& tether)
 namespace
 {
 
+/// "" for a position every coordinate of which is within Tether::kMaxCoordinate; else "(x, y, z), beyond +-1e6 m".
+std::string beyondReach(const Position& p)
+{
+  if (p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate)
+  {
+    return "";
+  }
+  std::ostringstream out;
+  out << std::setprecision(10) << "(" << p.x() << ", " << p.y() << ", " << p.z() << "), beyond +-"
+      << Tether::kMaxCoordinate << " m";
+  return out.str();
+}
+
 /// "" or the first tether whose own spool (not one a vehicle or a tf frame moves) is below its seabed or inside an
 /// obstacle (a primitive placed in the world: not one on a tf frame, nor a mesh).
 std::string checkSpools(const WorldSpec& spec, const World& world)
@@ -175,12 +191,28 @@ std::string buildWorld(const WorldSpec& spec, World* world, std::vector<std::str
   world->setContactBetweenTethers(spec.tether_contact);
   for (ScenarioTether tether : spec.tethers)
   {
+    const std::string who = spec.tethers.size() == 1 ? "" : "tethers: " + tether.name + ": ";
     const std::size_t carrier = tether.spool_on.empty() ? World::npos : world->find(tether.spool_on);
     if (carrier != World::npos && spec.tethers[carrier].dynamic)
     {
       // The outlet where the carrier's body starts (validateWorldSpec: the carrier was listed, so built, before).
       const VehicleBody body = startBody(*spec.tethers[carrier].dynamic);
       tether.spool = body.position() + body.attitude() * tether.spool_outlet_offset;
+      const std::string beyond = beyondReach(tether.spool);
+      if (!beyond.empty())
+      {
+        return who + "spool: on " + tether.spool_on + ": its vehicle's start plus outlet_offset puts the spool at " +
+               beyond;
+      }
+    }
+    if (tether.dynamic)
+    {
+      // Each of start and attachment_offset is checked alone by the reader; their sum may still be out of reach.
+      const std::string beyond = beyondReach(startAttachment(*tether.dynamic));
+      if (!beyond.empty())
+      {
+        return who + "vehicle: start plus attachment_offset puts the attachment at " + beyond;
+      }
     }
     const Status added = world->add(tether.name, std::make_unique<Tether>(makeTether(tether)));
     if (!added.ok)

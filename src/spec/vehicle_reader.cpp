@@ -189,6 +189,17 @@ std::string readVehicleParams(const YAML::Node& map, const std::string& prefix, 
     {
       problems.push_back(at + designed.message);
     }
+    else
+    {
+      // The designed gains must pass the controller's own check, as a block's do (readControllerGains): a
+      // mass of 1e300 kg designs infinite gains, which the controller refused only when the run started (an abort).
+      VehicleController check;
+      const Status accepted = check.configure(candidate, candidate_gains);
+      if (!accepted)
+      {
+        problems.push_back(at + "the controller designed for this vehicle: " + accepted.message);
+      }
+    }
   }
   if (problems.empty())
   {

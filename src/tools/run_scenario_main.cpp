@@ -288,7 +288,7 @@ void printWritten(const rov_tether::Scenario& scenario, const std::string& out_d
 
 }  // namespace
 
-int main(int argc, char** argv)
+int run(int argc, char** argv)
 {
   Options options;
   const int exit_code = parseArguments(argc, argv, &options);
@@ -351,4 +351,19 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
   }
   return 0;
+}
+
+int main(int argc, char** argv)
+{
+  // Every refusal the runner knows is a message and exit code 2 or 1; an exception that still gets here is a check
+  // missing before the core (a value the core refuses that no reader did): said, not an abort.
+  try
+  {
+    return run(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "rov_tether_run: %s (refused by the simulation, not by a check of the scenario)\n", e.what());
+    return 2;
+  }
 }
