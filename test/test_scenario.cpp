@@ -356,6 +356,13 @@ int runRunner(const std::string& arguments)
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// runRunner with its standard error kept in the file `err`.
+int runRunnerKeepingStderr(const std::string& arguments, const std::string& err)
+{
+  const int status = std::system((std::string(ROV_TETHER_RUNNER) + " " + arguments + " >/dev/null 2> " + err).c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 std::vector<std::string> readLines(const fs::path& path)
 {
   std::ifstream in(path);
@@ -1091,12 +1098,7 @@ TEST(Runner, WarnsOfOverTensionAndAnOutrunWinchAsTheNodeDoes)
                                   "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [10, 31.5, 0, 0]]\n"
                                   "duration: 10\noutput_rate: 10\n";
   const std::string err = dir + "_stderr.txt";
-  const auto runKeepingStderr = [&](const std::string& arguments)
-  {
-    const int status =
-        std::system((std::string(ROV_TETHER_RUNNER) + " " + arguments + " >/dev/null 2> " + err).c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  };
+  const auto runKeepingStderr = [&](const std::string& arguments) { return runRunnerKeepingStderr(arguments, err); };
   EXPECT_EQ(runKeepingStderr(scenario_path.string() + " --out " + dir), 0);
   std::string text;
   for (const std::string& line : readLines(err))
@@ -1160,12 +1162,8 @@ TEST(Runner, SetWithTethersAppliesToEachTetherAndNamesTheOneThatRefuses)
                                   "  - {name: b, spool: [5, 0, 0], vehicle: [[0, 6.5, 0, 0], [1, 7, 0, 0]],\n"
                                   "     params: {cable_length: 20}}\n";
   const std::string err = dir + "_stderr.txt";
-  const std::string run = std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir;
-  const auto runKeepingStderr = [&](const std::string& more)
-  {
-    const int status = std::system((run + more + " >/dev/null 2> " + err).c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  };
+  const std::string run = scenario_path.string() + " --out " + dir;
+  const auto runKeepingStderr = [&](const std::string& more) { return runRunnerKeepingStderr(run + more, err); };
   EXPECT_EQ(runKeepingStderr(" --set initial_deployed_length=15"), 0);  // within both tethers' cable
   const std::vector<std::string> state = readLines(dir + "/a/state.csv");
   ASSERT_GT(state.size(), 1u);
@@ -1188,12 +1186,8 @@ TEST(Runner, RefusesAnOptionOrAParameterGivenTwice)
   const fs::path scenario_path = fs::path(dir + "_scenario.yaml");
   std::ofstream(scenario_path) << "spool: [0, 0, 0]\nvehicle: [[0, 1.5, 0, 0], [1, 2.0, 0, 0]]\nduration: 0.1\n";
   const std::string err = dir + "_stderr.txt";
-  const std::string run = std::string(ROV_TETHER_RUNNER) + " " + scenario_path.string() + " --out " + dir;
-  const auto runKeepingStderr = [&](const std::string& more)
-  {
-    const int status = std::system((run + more + " >/dev/null 2> " + err).c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  };
+  const std::string run = scenario_path.string() + " --out " + dir;
+  const auto runKeepingStderr = [&](const std::string& more) { return runRunnerKeepingStderr(run + more, err); };
   const std::vector<std::pair<std::string, std::string>> cases = {
       {" --set noise=0.001 --set=noise=0.002", "--set noise given twice ('noise=0.001' and 'noise=0.002')"},
       {" --set 'noise =0.001' --set noise=0.002", "--set noise given twice ('noise =0.001' and 'noise=0.002')"},
