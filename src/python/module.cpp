@@ -101,8 +101,11 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
   return session;
 }
 
-std::shared_ptr<Session> fromScenario(const std::string& path)
+std::shared_ptr<Session> fromScenario(const py::object& file)
 {
+  // A str, bytes or os.PathLike (pathlib.Path), as open() takes (os.fspath: TypeError for anything else).
+  const py::module_ os = py::module_::import("os");
+  const std::string path = os.attr("fsdecode")(os.attr("fspath")(file)).cast<std::string>();
   if (path.find('\0') != std::string::npos)
   {
     // Refused as open() refuses it: the file would be opened up to the NUL, another file than the one named.

@@ -406,6 +406,12 @@ def test_a_scenario_path_with_a_nul_is_refused_as_open_refuses_it(tmp_path):
         with pytest.raises(ValueError, match="embedded null byte"):
             rov_tether.World.from_scenario(bad)
     assert rov_tether.World.from_scenario(str(path)).time == 0.0
+    # The path types open() takes: a pathlib.Path was refused as an incompatible argument (a TypeError from
+    # pybind11); anything else is refused as open() refuses it.
+    assert rov_tether.World.from_scenario(path).time == 0.0
+    assert rov_tether.World.from_scenario(str(path).encode()).time == 0.0
+    with pytest.raises(TypeError, match="expected str, bytes or os.PathLike"):
+        rov_tether.World.from_scenario(3)
 
 
 # A reader's message that echoes bytes of a file that are not UTF-8 (a Latin-1 key, 'dur\xe9e') reaches Python
