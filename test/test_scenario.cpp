@@ -218,6 +218,32 @@ TEST(Scenario, ASecondDocumentAndAnAliasBombAreRefused)
   EXPECT_EQ(parseScenario(path + "]\n", &scenario), "");
 }
 
+// A run's size was bounded only by its output times (1e6): 2,000 m of cable in 1 mm segments written 100 times a
+// second for 10,000 s is 2e12 rows of shape.csv (a review saw 2.3 GB written in 20 s), and a 10 us step with 10,000
+// sub-steps for 1e6 s is 1e15 sub-steps; both were taken. Refused now, naming the numbers, with the limits
+// Scenario::kMaxShapeRows (1e9 rows) and kMaxSubSteps (1e10); an hour of the demo's dive is far within both.
+TEST(ScenarioFile, ARunThatWouldFillADiskOrTakeDaysIsRefused)
+{
+  Scenario huge_output;
+  ASSERT_EQ(parseScenario("params: {cable_length: 2000, segment_length: 0.001, initial_deployed_length: 2000}\n"
+                          "spool: [0, 0, 0]\nduration: 10000\noutput_rate: 100\n",
+                          &huge_output),
+            "");
+  const std::string rows = huge_output.checkRunSize();
+  EXPECT_EQ(rows.rfind("shape.csv would hold up to 2e+12 rows (1000001 output times", 0), 0u) << rows;
+  Scenario long_run;
+  ASSERT_EQ(parseScenario(
+                "params: {time_step: 1.0e-5, substeps: 10000}\nspool: [0, 0, 0]\nduration: 1000000\noutput_rate: 0.1\n",
+                &long_run),
+            "");
+  const std::string steps = long_run.checkRunSize();
+  EXPECT_EQ(steps.rfind("the run would take 1e+15 sub-steps", 0), 0u) << steps;
+  Scenario hour;  // the demo's dive for an hour at 10 rows a second: 36,001 x 201 rows, 720,000 x 1 sub-steps
+  ASSERT_EQ(loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/spool_payout.yaml", &hour), "");
+  hour.duration = 3600.0;
+  EXPECT_EQ(hour.checkRunSize(), "");
+}
+
 // config/default.yaml holds every parameter at exactly the struct's default.
 // pathAt finds the waypoint by bisection; against its definition, read off the path directly: held before
 // the first waypoint and after the last, and between the last waypoint at or before t and the next, linear.

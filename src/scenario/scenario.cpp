@@ -1,6 +1,7 @@
 #include "rov_tether/scenario/scenario.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -70,6 +71,37 @@ std::string Scenario::checkOutputRate() const
                     1.0 / step, 1.0 / step);
       return text;
     }
+  }
+  return "";
+}
+
+std::string Scenario::checkRunSize() const
+{
+  const double outputs = std::floor(duration * output_rate + 1e-9) + 1.0;
+  double particles = 0.0, substeps = 0.0;
+  for (const ScenarioTether& tether : tetherList())
+  {
+    const TetherParams p = tether.params.resolved();
+    particles += static_cast<double>(p.segmentCount()) + 1.0;
+    substeps += std::ceil(duration / p.time_step) * p.substeps;
+  }
+  char text[400];
+  if (outputs * particles > kMaxShapeRows)
+  {
+    std::snprintf(text, sizeof text,
+                  "shape.csv would hold up to %.3g rows (%.0f output times, duration x output_rate, x %.0f particles "
+                  "with all the cable out), more than %.0e (some 60 GB): lower output_rate or duration, or lengthen "
+                  "segment_length",
+                  outputs * particles, outputs, particles, kMaxShapeRows);
+    return text;
+  }
+  if (substeps > kMaxSubSteps)
+  {
+    std::snprintf(text, sizeof text,
+                  "the run would take %.3g sub-steps (duration / time_step x substeps, over the tethers), more than "
+                  "%.0e (hours to days): shorten duration, or lengthen time_step or lower substeps",
+                  substeps, kMaxSubSteps);
+    return text;
   }
   return "";
 }

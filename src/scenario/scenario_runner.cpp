@@ -331,6 +331,11 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return rate_error;
   }
+  const std::string size_error = scenario.checkRunSize();
+  if (!size_error.empty())
+  {
+    return size_error;
+  }
   ScenarioStepper stepper(scenario, world);
   const std::vector<ScenarioTether>& tethers = stepper.tethers();
   if (world.size() != tethers.size())

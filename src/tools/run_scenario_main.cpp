@@ -162,15 +162,20 @@ int parseArguments(int argc, char** argv, Options* options)
 /// value they would refuse is none of the run's business); "" or the error, naming the tether.
 std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenario* scenario)
 {
+  const auto checked = [scenario]
+  {
+    const std::string rate = scenario->checkOutputRate();
+    return rate.empty() ? scenario->checkRunSize() : rate;
+  };
   const std::string loaded = rov_tether::loadScenario(options.scenario_path, scenario);
   if (!loaded.empty() || options.assignments.empty())
   {
-    return loaded.empty() ? scenario->checkOutputRate() : loaded;
+    return loaded.empty() ? checked() : loaded;
   }
   if (scenario->tethers.empty())
   {
     const std::string error = rov_tether::applyAssignments(options.assignments, &scenario->params);
-    return error.empty() ? scenario->checkOutputRate() : "--set " + error;
+    return error.empty() ? checked() : "--set " + error;
   }
   for (auto& tether : scenario->tethers)
   {
@@ -180,7 +185,7 @@ std::string loadScenarioWithOverrides(const Options& options, rov_tether::Scenar
       return "--set, tether " + tether.name + ": " + error;
     }
   }
-  return scenario->checkOutputRate();
+  return checked();
 }
 
 /// Decimals that print `seconds` as it is, 2 to 6 (50.00 s; a step of 0.005 s ends at 0.015 s, not "0.01").

@@ -118,6 +118,12 @@ struct Scenario
   /// "" when every tether steps at least as often as output_rate writes rows, else the error naming the
   /// tether and its time_step (a row between two steps would repeat the last step's state).
   std::string checkOutputRate() const;
+  /// "" when the run's size is sane, else the error naming the numbers: shape.csv's rows (output times x every
+  /// tether's particles with all its cable out) at most kMaxShapeRows, the sub-steps (duration / time_step x
+  /// substeps, over the tethers) at most kMaxSubSteps. A run past either would take days or fill a disk.
+  std::string checkRunSize() const;
+  static constexpr double kMaxShapeRows = 1e9;  ///< some 60 GB of shape.csv
+  static constexpr double kMaxSubSteps = 1e10;  ///< hours at a microsecond a sub-step
   /// The tethers to run: `tethers`, or the one of params, spool and vehicle (named "tether").
   std::vector<ScenarioTether> tetherList() const;
 
