@@ -193,6 +193,9 @@ TEST(Scenario, ASecondDocumentAndAnAliasBombAreRefused)
   const std::string two =
       parseScenario("spool: [0, 0, 0]\nduration: 1\n---\nparams: {cable_length: 50, brake_tenson: 5}\n", &scenario);
   EXPECT_NE(two.find("2 YAML documents"), std::string::npos) << two;
+  // An empty document (a '---' or '...' then '---' at the end) holds nothing left unread: taken.
+  EXPECT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\n---\n", &scenario), "");
+  EXPECT_EQ(parseScenario("spool: [0, 0, 0]\nduration: 1\n...\n---\n", &scenario), "");
   std::string bomb = "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
   for (int level = 1; level <= 8; ++level)
   {
@@ -365,6 +368,8 @@ TEST(ConfigFiles, AssignmentsApplyTogetherAndANameIsNeverYaml)
   EXPECT_NE(applyAssignments({"noise=0.001", "drag=7"}, &params).find("drag = 7"), std::string::npos);
   EXPECT_EQ(params.noise, TetherParams().noise);
   EXPECT_NE(applyAssignments({"noise=0.001", "noise=0.002"}, &params).find("'noise' given twice"), std::string::npos);
+  EXPECT_EQ(applyAssignments({" noise\t= 0.001"}, &params), "");  // the spaces round a name dropped, as YAML's
+  EXPECT_EQ(params.noise, 0.001);
   EXPECT_EQ(applyAssignments({"current=[0.3, 0, 0]"}, &params), "");  // a list value, in YAML syntax
   EXPECT_EQ(params.current[0], 0.3);
 }

@@ -105,7 +105,8 @@ std::shared_ptr<Session> fromScenario(const py::object& file)
 {
   // A str, bytes or os.PathLike (pathlib.Path), as open() takes (os.fspath: TypeError for anything else).
   const py::module_ os = py::module_::import("os");
-  const std::string path = os.attr("fsdecode")(os.attr("fspath")(file)).cast<std::string>();
+  // The file system's bytes (os.fsencode), so that a path that is not UTF-8 opens as open() opens it.
+  const std::string path = os.attr("fsencode")(file).cast<std::string>();
   if (path.find('\0') != std::string::npos)
   {
     // Refused as open() refuses it: the file would be opened up to the NUL, another file than the one named.
@@ -151,7 +152,8 @@ std::shared_ptr<Session> fromDict(const py::dict& description)
 /// world sees it; a refused advance (RuntimeError) stops the world for good, as it stops the runner.
 ///
 /// The world steps towards the target in chunks of simulated time that take about kChunkSeconds of wall time each
-/// (Session::chunk, doubled or halved as the last one went), and between two the GIL is taken back to run Python's
+/// (Session::chunk, scaled by how long the last one took; afresh after set_param), and between two the GIL is taken
+/// back to run Python's
 /// signal handlers: Ctrl-C (SIGINT) in the main thread stops the advance at the chunk's end, a whole step, and
 /// raises KeyboardInterrupt; the time asked for is then the world's, so step(dt) goes on from where it stopped.
 /// With the GIL released for the whole call, a SIGINT was seen only once it returned. The chunks step as one call
@@ -214,16 +216,19 @@ void advance(Session& session, double t, bool relative)
                   return;
                 }
                 const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                // Longer after a whole chunk that went quickly or took no step, shorter after a slow one; not after
-                // the last of a call, nor one the world had passed (another thread's), which say nothing of it.
+                // Scaled to take kChunkSeconds after a whole chunk (at most 4 times longer at once: a chunk's time
+                // is noisy), doubled after one that took no step, and shortened after any slow one at once, in
+                // proportion; not lengthened after the last of a call, nor one the world had passed (another
+                // thread's), which say nothing of it.
                 const bool whole = end < target && end > before;
-                if (whole && (took < 0.5 * Session::kChunkSeconds || session.world.time() == before))
+                if (whole && session.world.time() == before)
                 {
                   session.chunk *= 2.0;
                 }
-                else if (took > 2.0 * Session::kChunkSeconds)
+                else if ((whole && took < Session::kChunkSeconds) || took > 2.0 * Session::kChunkSeconds)
                 {
-                  session.chunk = std::max(0.5 * session.chunk, Session::kShortestChunk);
+                  session.chunk = std::clamp(session.chunk * Session::kChunkSeconds / std::max(took, 1e-9),
+                                             Session::kShortestChunk, 4.0 * session.chunk);
                 }
                 reached = end;
                 done = end >= target;
@@ -446,6 +451,9 @@ struct TetherView
                                         read = applyAssignment(assignment, &params);
                                       }
                                       ++session->param_changes;
+                                      // A finer cable or more iterations make a step slower by any factor: the
+                                      // next advance sizes its chunks afresh (Ctrl-C within about 0.1 s).
+                                      session->chunk = Session::kFirstChunk;
                                       return read.empty() ? tether().setParams(params) : Status::error(read);
                                     });
     if (!status.ok)

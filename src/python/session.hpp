@@ -31,11 +31,13 @@ struct Session
   double asked = 0.0;
   /// How much simulated time an advance steps with the lock held before it lets Python check its signals [s]: sized
   /// as it goes to take about kChunkSeconds of wall time (module.cpp, advance).
-  double chunk = 0.01;
+  double chunk = kFirstChunk;
   /// Parameter changes made (set_param): one checked in one turn of the lock and made in the next is applied anew
   /// when another came between them.
   std::uint64_t param_changes = 0;
   static constexpr double kChunkSeconds = 0.05;
+  static constexpr double kFirstChunk =
+      0.01;  ///< [s] of simulated time: the first chunk, and the first after set_param
   static constexpr double kShortestChunk = 1e-6;
 };
 

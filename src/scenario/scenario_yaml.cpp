@@ -462,7 +462,10 @@ std::string applyAssignments(const std::vector<std::string>& assignments, Tether
           {
             return "'" + assignment + "': expected name=value";
           }
-          const std::string name = assignment.substr(0, equals);
+          // The name without the spaces and tabs around it, as YAML drops them round a key (`--set 'noise = 0.001'`).
+          std::string name = assignment.substr(0, equals);
+          name.erase(name.find_last_not_of(" \t") + 1);
+          name.erase(0, name.find_first_not_of(" \t"));
           if (given[name])
           {
             return "'" + name + "' given twice";

@@ -1,5 +1,6 @@
 #include "rov_tether/spec/yaml_read.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -79,8 +80,11 @@ std::string findDuplicateKey(const YAML::Node& node, const std::string& path, lo
 
 std::string loadYamlText(const std::string& text, YAML::Node* root)
 {
-  // Every document, so that one after a `---` line is refused rather than never read (YAML::Load reads the first).
-  const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+  // Every document, so that one after a `---` line is refused rather than never read (YAML::Load reads the first);
+  // an empty one (a `---` at the end) holds nothing to read.
+  std::vector<YAML::Node> documents = YAML::LoadAll(text);
+  documents.erase(std::remove_if(documents.begin(), documents.end(), [](const YAML::Node& d) { return d.IsNull(); }),
+                  documents.end());
   *root = documents.empty() ? YAML::Node() : documents.front();
   if (documents.size() > 1)
   {

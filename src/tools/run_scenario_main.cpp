@@ -127,8 +127,8 @@ int parseArguments(int argc, char** argv, Options* options)
     else if ((arg == "--out" || arg == "--set") && has_value)
     {
       const std::string text = value();
-      // A parameter's name is what comes before its '=', without the spaces YAML would drop (a malformed
-      // assignment is applyAssignment's to refuse).
+      // A parameter's name is what comes before its '=', without the spaces around it, which applyAssignments
+      // drops too (a malformed assignment is applyAssignments' to refuse).
       std::string name = text.substr(0, text.find('='));
       name.erase(name.find_last_not_of(" \t") + 1);
       name.erase(0, name.find_first_not_of(" \t"));

@@ -412,6 +412,11 @@ def test_a_scenario_path_with_a_nul_is_refused_as_open_refuses_it(tmp_path):
     assert rov_tether.World.from_scenario(str(path).encode()).time == 0.0
     with pytest.raises(TypeError, match="expected str, bytes or os.PathLike"):
         rov_tether.World.from_scenario(3)
+    # A file name that is not UTF-8 (Latin-1 bytes) opens, as open() opens it.
+    latin1 = bytes(tmp_path) + b"/caf\xe9.yaml"
+    with open(latin1, "w") as f:
+        f.write("spool: [0, 0, 0]\nduration: 1.0\n")
+    assert rov_tether.World.from_scenario(latin1).time == 0.0
 
 
 # A reader's message that echoes bytes of a file that are not UTF-8 (a Latin-1 key, 'dur\xe9e') reaches Python
@@ -544,6 +549,44 @@ sys.exit(3)
     assert float(stopped) > 0.0 and ok == "True"  # it had stepped, and stopped between two steps
     assert float(stopped) / 0.005 == pytest.approx(round(float(stopped) / 0.005), abs=1e-6)
     assert float(after) == pytest.approx(float(stopped) + 0.05, abs=1e-9)
+
+
+# The chunks are sized by how long the last took, and a step's cost changes by any factor with set_param: 100 m of
+# cable in 1 m segments stepped for 300 s grew the chunk to tens of seconds, and after segment_length 0.01 (100
+# times the particles, some 800 times the cost of a step) one chunk took most of a minute, so Ctrl-C waited for it
+# (a reviewer measured 3.8 s on a shorter case). The first chunk after set_param is short again. The child is sent
+# SIGINT 0.5 s into the finer cable's advance and must exit within 2 s (the old chunk alone takes far longer).
+def test_ctrl_c_after_a_set_param_that_makes_steps_slower_is_as_prompt():
+    script = """
+import sys, warnings
+import rov_tether
+warnings.simplefilter("ignore")
+world = rov_tether.World({"spool": [0.0, 0.0, -1.0], "params": {"cable_length": 100.0,
+                          "initial_deployed_length": 100.0, "min_deployed_length": 1.0, "segment_length": 1.0,
+                          "noise": 0.0}})
+world.advance_to(300.0)
+world.tethers[0].set_param("segment_length", 0.01)
+print("stepping", flush=True)
+try:
+    world.advance_to(1e9)
+except KeyboardInterrupt:
+    sys.exit(0)
+sys.exit(3)
+"""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "stepping\n"
+        time.sleep(0.5)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=30.0)
+        took = time.monotonic() - sent
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.communicate()
+    assert child.returncode == 0, err
+    assert took < 2.0
 
 
 # set_param's warning (a cable_length or segment_length that lays the cable out anew) comes before the change: a
