@@ -507,6 +507,23 @@ def test_small_steps_add_up_to_whole_steps():
     assert w.time == pytest.approx(0.1, abs=1e-12)
 
 
+def interrupted(script, after):
+    """Runs `script` in a child Python, sends it SIGINT `after` seconds after it prints "stepping", and returns its
+    exit code, output, errors and the seconds from the signal to its exit."""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "stepping\n"
+        time.sleep(after)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=60.0)
+        return child.returncode, out, err, time.monotonic() - sent
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.communicate()
+
+
 # Ctrl-C (SIGINT) stops a long advance: Python's handler only sets a flag, which the binding now checks between
 # chunks of about 0.05 s of stepping (PyErr_CheckSignals, the GIL taken back for it). It raised nothing until the call
 # returned, here after 1e9 s of simulated time (2e11 steps: days). The child steps for a second, is sent SIGINT and
@@ -531,19 +548,8 @@ except KeyboardInterrupt:
     sys.exit(0)
 sys.exit(3)
 """
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        assert child.stdout.readline() == "stepping\n"
-        time.sleep(1.0)
-        sent = time.monotonic()
-        child.send_signal(signal.SIGINT)
-        out, err = child.communicate(timeout=10.0)
-        took = time.monotonic() - sent
-    finally:
-        if child.poll() is None:
-            child.kill()
-            child.communicate()
-    assert child.returncode == 0, err
+    returncode, out, err, took = interrupted(script, after=1.0)
+    assert returncode == 0, err
     assert took < 3.0
     stopped, ok, after = out.split()
     assert float(stopped) > 0.0 and ok == "True"  # it had stepped, and stopped between two steps
@@ -573,19 +579,8 @@ except KeyboardInterrupt:
     sys.exit(0)
 sys.exit(3)
 """
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        assert child.stdout.readline() == "stepping\n"
-        time.sleep(0.5)
-        sent = time.monotonic()
-        child.send_signal(signal.SIGINT)
-        out, err = child.communicate(timeout=30.0)
-        took = time.monotonic() - sent
-    finally:
-        if child.poll() is None:
-            child.kill()
-            child.communicate()
-    assert child.returncode == 0, err
+    returncode, out, err, took = interrupted(script, after=0.5)
+    assert returncode == 0, err
     assert took < 2.0
 
 
