@@ -241,6 +241,19 @@ TEST(ScenarioFile, ARunThatWouldFillADiskOrTakeDaysIsRefused)
             "");
   const std::string steps = long_run.checkRunSize();
   EXPECT_EQ(steps.rfind("the run would take 1e+15 sub-steps", 0), 0u) << steps;
+  // At the limit: 1,000 output times (99.9 s at 10 a second, and the start) of 999,001 particles (999 m in 1 mm
+  // segments) is 999,001,000 rows, taken; of 1,000,001 particles 1,000,001,000, refused. A locked winch writes what
+  // it laid out at the start, not the whole cable.
+  Scenario edge;
+  ASSERT_EQ(parseScenario("params: {cable_length: 999, segment_length: 0.001, initial_deployed_length: 2}\n"
+                          "spool: [0, 0, 0]\nduration: 99.9\noutput_rate: 10\n",
+                          &edge),
+            "");
+  EXPECT_EQ(edge.checkRunSize(), "");
+  edge.params.cable_length = 1000.0;
+  EXPECT_NE(edge.checkRunSize(), "");
+  edge.params.winch_mode = WinchMode::kLocked;
+  EXPECT_EQ(edge.checkRunSize(), "");
   Scenario hour;  // the demo's dive for an hour at 10 rows a second: 36,001 x 201 rows, 720,000 x 1 sub-steps
   ASSERT_EQ(loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/spool_payout.yaml", &hour), "");
   hour.duration = 3600.0;
@@ -363,6 +376,7 @@ TEST(ConfigFiles, AssignmentsApplyTogetherAndANameIsNeverYaml)
   const std::string hidden = applyAssignments({"drag: 0.5 #=0.7"}, &params);
   EXPECT_NE(hidden.find("unknown parameter 'drag: 0.5 #'"), std::string::npos) << hidden;
   EXPECT_NE(applyAssignments({"{drag: 0.5}=1"}, &params).find("unknown parameter"), std::string::npos);
+  EXPECT_NE(applyAssignments({" =1"}, &params).find("expected name=value"), std::string::npos);  // no name
   EXPECT_EQ(params.drag, 0.9);
   // Refused whole: one bad value keeps the good one out too.
   EXPECT_NE(applyAssignments({"noise=0.001", "drag=7"}, &params).find("drag = 7"), std::string::npos);

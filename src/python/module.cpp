@@ -227,7 +227,9 @@ void advance(Session& session, double t, bool relative)
                 }
                 else if ((whole && took < Session::kChunkSeconds) || took > 2.0 * Session::kChunkSeconds)
                 {
-                  session.chunk = std::clamp(session.chunk * Session::kChunkSeconds / std::max(took, 1e-9),
+                  // From the time it stepped: a call's last chunk is shorter than session.chunk.
+                  const double stepped = std::max(session.world.time() - before, Session::kShortestChunk);
+                  session.chunk = std::clamp(stepped * Session::kChunkSeconds / std::max(took, 1e-9),
                                              Session::kShortestChunk, 4.0 * session.chunk);
                 }
                 reached = end;

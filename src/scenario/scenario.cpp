@@ -82,7 +82,12 @@ std::string Scenario::checkRunSize() const
   for (const ScenarioTether& tether : tetherList())
   {
     const TetherParams p = tether.params.resolved();
-    particles += static_cast<double>(p.segmentCount()) + 1.0;
+    // shape.csv writes the cable that is out: all of it at most, what is laid out at the start when locked.
+    const double segments = static_cast<double>(p.segmentCount());
+    particles += (p.winch_mode == WinchMode::kLocked
+                      ? std::min(segments, std::ceil(p.initial_deployed_length / p.segment_length - 1e-9))
+                      : segments) +
+                 1.0;
     substeps += std::ceil(duration / p.time_step) * p.substeps;
   }
   char text[400];
@@ -90,8 +95,8 @@ std::string Scenario::checkRunSize() const
   {
     std::snprintf(text, sizeof text,
                   "shape.csv would hold up to %.3g rows (%.0f output times, duration x output_rate, x %.0f particles "
-                  "with all the cable out), more than %.0e (some 60 GB): lower output_rate or duration, or lengthen "
-                  "segment_length",
+                  "with all the cable out a winch may pay out), more than %.0e (some 60 GB): lower output_rate or "
+                  "duration, or lengthen segment_length or shorten cable_length",
                   outputs * particles, outputs, particles, kMaxShapeRows);
     return text;
   }

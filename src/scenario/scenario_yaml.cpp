@@ -457,15 +457,15 @@ std::string applyAssignments(const std::vector<std::string>& assignments, Tether
         const YAML::Node& given = root;  // reading a key through a non-const node would add it
         for (const std::string& assignment : assignments)
         {
+          // The name without the spaces and tabs around it, as YAML drops them round a key (`--set 'noise = 0.001'`).
           const auto equals = assignment.find('=');
-          if (equals == std::string::npos || equals == 0)
+          std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals);
+          name.erase(name.find_last_not_of(" \t") + 1);
+          name.erase(0, name.find_first_not_of(" \t"));
+          if (name.empty())
           {
             return "'" + assignment + "': expected name=value";
           }
-          // The name without the spaces and tabs around it, as YAML drops them round a key (`--set 'noise = 0.001'`).
-          std::string name = assignment.substr(0, equals);
-          name.erase(name.find_last_not_of(" \t") + 1);
-          name.erase(0, name.find_first_not_of(" \t"));
           if (given[name])
           {
             return "'" + name + "' given twice";
