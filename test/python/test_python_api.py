@@ -509,7 +509,10 @@ def test_small_steps_add_up_to_whole_steps():
 
 def interrupted(script, after):
     """Runs `script` in a child Python, sends it SIGINT `after` seconds after it prints "stepping", and returns its
-    exit code, output, errors and the seconds from the signal to its exit."""
+    exit code, output, errors and the seconds from the signal to its exit. The child first puts back Python's own
+    SIGINT handler (KeyboardInterrupt), as a terminal's Python has it: a suite started in the background (`&`,
+    nohup) starts its children with SIGINT ignored, and Python then leaves it ignored."""
+    script = "import signal\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n" + script
     child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         assert child.stdout.readline() == "stepping\n"
