@@ -33,6 +33,7 @@ naming the parameter, its value and its range (exit code 1). SIGTERM, SIGINT or 
 of waiting at any rate.
 """
 import math
+import signal
 import time
 
 import rospy
@@ -219,15 +220,30 @@ class VehicleSim:
         self.pub.publish(msg)
 
 
+_stop_signals = []  # SIGTERM or SIGINT received: the handler only appends here
+
+
+def _on_signal(signum, _frame):
+    # rospy's own handler runs its shutdown hooks here, on the main thread, between two of its bytecodes: one that
+    # lands inside publish(), which holds the topic's lock, closes the topic and waits for that lock for good (a
+    # suspected hang of the 1 kHz simulator on SIGTERM). This one takes no lock; the loop shuts rospy down.
+    _stop_signals.append(signum)
+
+
+def stopping():
+    """A signal asked to stop, or rospy shut down (rosnode kill, the master's shutdown)."""
+    return bool(_stop_signals) or rospy.is_shutdown()
+
+
 def sleep_until(due):
-    """Until ROS time reaches due [s], or shutdown (SIGTERM, SIGINT, rosnode kill: rospy's handlers only set
-    its flag, and a sleep as long as a step at a low ~rate went on after it). Wall clock: in slices of at most
+    """Until ROS time reaches due [s], or shutdown (SIGTERM, SIGINT, rosnode kill: the handlers only set a flag,
+    and a sleep as long as a step at a low ~rate went on after it). Wall clock: in slices of at most
     SHUTDOWN_CHECK. Under /clock this waits on the condition rospy.sleep waits on, against due itself:
     rospy.sleep(due - now) counts from the time it reads itself, later than now when a /clock message came
     between, and then sleeps past due, for good when the clock waits for this simulator (a lockstep driver such
     as external_coupling.test)."""
     if rospy.rostime.is_wallclock():
-        while not rospy.is_shutdown():
+        while not stopping():
             left = due - rospy.Time.now().to_sec()
             if left <= 0.0:
                 return
@@ -235,7 +251,7 @@ def sleep_until(due):
         return
     cond = rospy.rostime.get_rostime_cond()
     with cond:
-        while not rospy.is_shutdown() and rospy.Time.now().to_sec() < due - 1e-9:
+        while not stopping() and rospy.Time.now().to_sec() < due - 1e-9:
             cond.wait(SHUTDOWN_CHECK)
 
 
@@ -243,12 +259,14 @@ def wait_for_clock():
     """Until simulated time has started (the first /clock), or shutdown. (rospy.sleep raises on shutdown.)"""
     cond = rospy.rostime.get_rostime_cond()
     with cond:
-        while not rospy.is_shutdown() and rospy.Time.now().is_zero():
+        while not stopping() and rospy.Time.now().is_zero():
             cond.wait(SHUTDOWN_CHECK)
 
 
 def main():
-    rospy.init_node("vehicle_sim")
+    rospy.init_node("vehicle_sim", disable_signals=True)
+    signal.signal(signal.SIGTERM, _on_signal)
+    signal.signal(signal.SIGINT, _on_signal)
     try:
         sim = VehicleSim()
     except ValueError as error:
@@ -256,19 +274,21 @@ def main():
         raise SystemExit(1)
     h = 1.0 / sim.rate
     wait_for_clock()
-    if rospy.is_shutdown():
+    if stopping():
+        rospy.signal_shutdown("stopped")
         return
     t = rospy.Time.now().to_sec()
     sim.publish(t)
     rospy.loginfo("vehicle_sim: %.0f Hz, thrust [%.1f, %.1f, %.1f] N, tether force from %s", sim.rate,
                   sim.thrust[0], sim.thrust[1], sim.thrust[2], sim.tether_force)
-    while not rospy.is_shutdown():
+    while not stopping():
         now = rospy.Time.now().to_sec()
-        while t + h <= now + 1e-9 and not rospy.is_shutdown():  # catch up with ROS time in steps of exactly h
+        while t + h <= now + 1e-9 and not stopping():  # catch up with ROS time in steps of exactly h
             sim.step(h)
             t += h
             sim.publish(t)
         sleep_until(t + h)
+    rospy.signal_shutdown("signal %d" % _stop_signals[0] if _stop_signals else "shutdown")
 
 
 if __name__ == "__main__":
