@@ -18,8 +18,6 @@ namespace rov_tether
 namespace
 {
 
-bool withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate; }
-
 /// Whether a dynamic vehicle `body` can be coupled into the steps `params` take.
 Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
 {
@@ -40,6 +38,8 @@ Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
 }
 
 }  // namespace
+
+bool Tether::withinLimits(const Position& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
 
 Tether::Tether(const TetherParams& params, const Position& spool, double start_time) : spool_(spool)
 {

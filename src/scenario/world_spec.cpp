@@ -129,7 +129,7 @@ namespace
 /// "" for a position every coordinate of which is within Tether::kMaxCoordinate; else "(x, y, z), beyond +-1e6 m".
 std::string beyondReach(const Position& p)
 {
-  if (p.allFinite() && p.cwiseAbs().maxCoeff() <= Tether::kMaxCoordinate)
+  if (Tether::withinLimits(p))
   {
     return "";
   }

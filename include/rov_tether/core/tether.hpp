@@ -208,6 +208,9 @@ class Tether
   /// Largest |coordinate| of a spool or vehicle position accepted [m] (1000 km): beyond it constraint
   /// forces can overflow.
   static constexpr double kMaxCoordinate = 1e6;
+  /// Whether every coordinate of p is finite and within kMaxCoordinate: where a spool, a vehicle or an attachment
+  /// may be.
+  static bool withinLimits(const Position& p);
 
   double time() const { return time_; }
   std::uint64_t stepCount() const { return steps_; }
