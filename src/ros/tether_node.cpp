@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
-#include <tuple>
 
 #include "rov_tether/ros/reconfigure.hpp"
+#include "rov_tether/ros/winch_service.hpp"
 
 namespace rov_tether::ros_layer
 {
@@ -235,96 +234,6 @@ bool TetherNode::onGetTension(GetTension::Request& request, GetTension::Response
   answerGetTension(tether_, tensions_, request, &response);
   return true;  // refusals are answered with success = false and a message
 }
-
-namespace
-{
-/// The winch parameters and target length [m] a SetWinch request asks for, on top of `params`: "" when they
-/// are valid, else why not (nothing is changed then). `target` is NaN for none. A request refused for a parameter
-/// the service does not set (a constant_tension target above what max_winch_pull, set by dynamic_reconfigure,
-/// lets the motor pull) says so: the parameter, its value, and how to change it on the node's dynamic_reconfigure
-/// server `reconfigure` (its namespace); without that the user is left looking for a field SetWinch lacks.
-std::string winchRequest(const SetWinch::Request& request, TetherParams* params, double* target,
-                         const std::string& reconfigure)
-{
-  if (!request.mode.empty() && !parseWinchMode(request.mode, &params->winch_mode))
-  {
-    return "mode '" + request.mode + "': expected brake, constant_tension, speed, locked or strain";
-  }
-  params->winch_speed = request.speed;
-  for (const auto& [value, field, name] :
-       {std::tuple{request.brake_tension, &params->brake_tension, "brake_tension"},
-        std::tuple{request.target_tension, &params->target_tension, "target_tension"}})
-  {
-    if (!(value >= 0.0))
-    {
-      return std::string(name) + " = " + std::to_string(value) + " N: must be >= 0 (0 keeps the current value)";
-    }
-    *field = value > 0.0 ? value : *field;
-  }
-  const auto errors = params->validate();
-  if (!errors.empty())
-  {
-    // Every problem, each about the parameter its message begins with ("max_winch_pull = 50: ..."); one that is no
-    // field of the request says where it is changed.
-    const auto& table = parameterInfo();
-    std::string answer;
-    std::vector<std::string> hinted;
-    for (const std::string& error : errors)
-    {
-      const std::string name = error.substr(0, error.find(" = "));
-      const auto info =
-          std::find_if(table.begin(), table.end(), [&](const ParameterInfo& row) { return row.name == name; });
-      const bool field =
-          name == "winch_mode" || name == "winch_speed" || name == "brake_tension" || name == "target_tension";
-      answer += (answer.empty() ? "" : "; ") + error;
-      if (info != table.end() && !field && std::find(hinted.begin(), hinted.end(), name) == hinted.end())
-      {
-        hinted.push_back(name);
-        answer += "; " + name + " (now " + formatParamValue(getParameter(*params, name)) +
-                  ") is no field of ~set_winch: " +
-                  (info->live ? "change it with dynamic_reconfigure (rosrun dynamic_reconfigure dynparam set " +
-                                    reconfigure + " " + name + " VALUE), then ask again"
-                              : std::string("it is set at start (the node's parameters)"));
-      }
-    }
-    return answer;
-  }
-  if (request.target_length < 0.0 || !std::isfinite(request.target_length))
-  {
-    char asked[32];
-    std::snprintf(asked, sizeof(asked), "%g", request.target_length);
-    return "target_length = " + std::string(asked) + ": must be a finite length > 0 m, or 0 for none";
-  }
-  // Check the target against the new limits before changing anything.
-  *target = request.target_length > 0.0 ? request.target_length : std::nan("");
-  if (!std::isnan(*target) && !(*target >= params->min_deployed_length && *target <= params->cable_length))
-  {
-    return "target_length = " + std::to_string(*target) + " m: must be in [min_deployed_length, " +
-           "cable_length] = [" + std::to_string(params->min_deployed_length) + ", " +
-           std::to_string(params->cable_length) + "] m";
-  }
-  return "";
-}
-
-/// The answer to an accepted SetWinch request: the mode in force, its force, and any parameter warning.
-std::string winchAnswer(const TetherParams& params, const std::string& requested_mode)
-{
-  std::string message = "winch " + toString(params.winch_mode);
-  if (params.winch_mode == WinchMode::kBrake)
-  {
-    message += ", brake_tension " + std::to_string(params.brake_tension) + " N";
-  }
-  else if (params.winch_mode == WinchMode::kConstantTension)
-  {
-    message += ", target_tension " + std::to_string(params.target_tension) + " N";
-  }
-  for (const std::string& warning : parameterWarnings({{"winch_mode", requested_mode}}))
-  {
-    message += " (" + warning + ")";
-  }
-  return message;
-}
-}  // namespace
 
 bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& response)
 {

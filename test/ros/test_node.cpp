@@ -724,7 +724,8 @@ TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
             std::string::npos)
       << too_fast.response.message;
   EXPECT_EQ(too_fast.response.message.find("is no field"), std::string::npos) << too_fast.response.message;
-  // Both problems of a request that has two: the pull with its hint (once), and the speed.
+  // Both problems of a request that has two: the pull with its hint (once), and a speed constant_tension would not
+  // act on (winch_service.hpp: speed acts in speed mode only).
   rov_tether::SetWinch both;
   both.request.mode = "constant_tension";
   both.request.target_tension = 100.0;
@@ -732,7 +733,8 @@ TEST(TetherNode, SetWinchRefusedForMaxWinchPullSaysHowToChangeIt)
   ASSERT_TRUE(client.call(both));
   EXPECT_FALSE(both.response.success);
   EXPECT_NE(both.response.message.find("max_winch_pull = 50:"), std::string::npos) << both.response.message;
-  EXPECT_NE(both.response.message.find("winch_speed = 15: must be in"), std::string::npos) << both.response.message;
+  EXPECT_NE(both.response.message.find("speed = 15 m/s: acts in speed mode only"), std::string::npos)
+      << both.response.message;
   ASSERT_TRUE(h.drive(0.2, home));
   EXPECT_EQ(h.state_.winch_mode, "brake");  // nothing changed
 
