@@ -31,6 +31,13 @@ world-frame vector ([0, 0, 0]), ~start [m] ([0, 0, 0]), ~world_frame (world), ~p
 ~mass > 0, the masses and drags >= 0, ~start within +-1e6 m, ~slack_memory in [0, 3600]) stops it with an error
 naming the parameter, its value and its range (exit code 1). SIGTERM, SIGINT or a shutdown end it within 0.05 s
 of waiting at any rate.
+
+ROS time going back (a bag played in a loop, a simulator's reset) by more than a step restarts the vehicle's
+clock there, with a warning; the tether's messages from before are forgotten (a ~coupling stamped more than
+CLOCK_AHEAD past ROS time is from before the jump: dropped, and counted in a warning) and the vehicle waits for
+the next one, held where it is. ROS time leaping ahead by more than
+MAX_CATCH_UP is not stepped through (600 s at 1 kHz took 8 s of CPU, publishing poses long past): the vehicle
+is held where it is and its clock jumps there, with a warning.
 """
 import math
 import signal
@@ -101,6 +108,8 @@ RATE_RANGE = (0.5, 1000.0)  # [Hz]
 MAX_COORDINATE = 1e6  # [m] ~start: the node refuses poses beyond +-1e6 m (Tether::kMaxCoordinate)
 MAX_SLACK_MEMORY = 3600.0  # [s] ~slack_memory: the node's longest stale_pose_timeout
 SHUTDOWN_CHECK = 0.05  # [s] the longest a wait goes on without looking for shutdown
+MAX_CATCH_UP = 1.0  # [s] ROS time further ahead than this is jumped to, not stepped through
+CLOCK_AHEAD = 1.0  # [s] a ~coupling stamped further past ROS time than this is from before the clock went back
 
 
 def number(value):
@@ -173,6 +182,7 @@ class VehicleSim:
         self.last_taut = None  # (stamp [s], (F0, x0, v0, K, C)) of the last taut ~coupling
         self.wrench = None    # [N] the latest ~wrench's force (~tether_force: wrench)
         self.pull = [0.0, 0.0, 0.0]
+        self.dropped = 0  # ~coupling messages from before the clock went back
         self.pub = rospy.Publisher(pose_topic, PoseStamped, queue_size=100)
         if self.tether_force == "coupling":
             rospy.Subscriber(coupling_topic, TetherCoupling, self.on_coupling, queue_size=1, tcp_nodelay=True)
@@ -185,11 +195,25 @@ class VehicleSim:
         coupling = ([f.x, f.y, f.z], [p.x, p.y, p.z], [u.x, u.y, u.z],
                     [list(k[0:3]), list(k[3:6]), list(k[6:9])], [list(c[0:3]), list(c[3:6]), list(c[6:9])])
         stamp = msg.header.stamp.to_sec()
+        if stamp > rospy.Time.now().to_sec() + CLOCK_AHEAD:
+            self.dropped += 1  # from before the clock went back: its pull is for where the vehicle was then
+            rospy.logwarn_throttle(5.0, "vehicle_sim: %d ~coupling messages stamped more than %.0f s past ROS time "
+                                   "(from before the clock went back) dropped so far" % (self.dropped, CLOCK_AHEAD))
+            return
         if msg.taut:
             self.last_taut = (stamp, coupling)
         elif self.last_taut is not None and stamp - self.last_taut[0] <= self.slack_memory:
             coupling = self.last_taut[1]  # slack for a moment: the last taut spring, unilateral
         self.coupling = coupling
+
+    def restart(self, now, why):
+        """The vehicle's clock restarts at ROS time `now` [s], held where it is; the tether's messages are
+        forgotten (the next one comes from the node's time after the jump)."""
+        rospy.logwarn("vehicle_sim: %s: the vehicle is held at [%.3f, %.3f, %.3f] m and steps on from %.3f s; "
+                      "the tether's pull is taken again from its next message", why, self.x[0], self.x[1], self.x[2],
+                      now)
+        self.v = [0.0, 0.0, 0.0]
+        self.coupling = self.last_taut = self.wrench = None
 
     def on_wrench(self, msg):
         f = msg.wrench.force
@@ -235,23 +259,23 @@ def stopping():
     return bool(_stop_signals) or rospy.is_shutdown()
 
 
-def sleep_until(due):
-    """Until ROS time reaches due [s], or shutdown (SIGTERM, SIGINT, rosnode kill: the handlers only set a flag,
-    and a sleep as long as a step at a low ~rate went on after it). Wall clock: in slices of at most
-    SHUTDOWN_CHECK. Under /clock this waits on the condition rospy.sleep waits on, against due itself:
-    rospy.sleep(due - now) counts from the time it reads itself, later than now when a /clock message came
-    between, and then sleeps past due, for good when the clock waits for this simulator (a lockstep driver such
-    as external_coupling.test)."""
+def sleep_until(due, back):
+    """Until ROS time reaches due [s], goes back below `back` [s] (the loop then restarts the vehicle's clock), or
+    shutdown (SIGTERM, SIGINT, rosnode kill: the handlers only set a flag, and a sleep as long as a step at a low
+    ~rate went on after it). Wall clock: in slices of at most SHUTDOWN_CHECK. Under /clock this waits on the
+    condition rospy.sleep waits on, against due itself: rospy.sleep(due - now) counts from the time it reads
+    itself, later than now when a /clock message came between, and then sleeps past due, for good when the clock
+    waits for this simulator (a lockstep driver such as external_coupling.test)."""
     if rospy.rostime.is_wallclock():
         while not stopping():
-            left = due - rospy.Time.now().to_sec()
-            if left <= 0.0:
+            now = rospy.Time.now().to_sec()
+            if now >= due or now < back:
                 return
-            time.sleep(min(left, SHUTDOWN_CHECK))
+            time.sleep(min(due - now, SHUTDOWN_CHECK))
         return
     cond = rospy.rostime.get_rostime_cond()
     with cond:
-        while not stopping() and rospy.Time.now().to_sec() < due - 1e-9:
+        while not stopping() and back <= rospy.Time.now().to_sec() < due - 1e-9:
             cond.wait(SHUTDOWN_CHECK)
 
 
@@ -283,11 +307,20 @@ def main():
                   sim.thrust[0], sim.thrust[1], sim.thrust[2], sim.tether_force)
     while not stopping():
         now = rospy.Time.now().to_sec()
+        if now < t - h:
+            sim.restart(now, "ROS time went back from %.3f s to %.3f s" % (t, now))
+            t = now
+            sim.publish(t)
+        elif now - t > MAX_CATCH_UP:
+            sim.restart(now, "ROS time leapt %.3f s ahead (more than %.1f s: not stepped through)"
+                        % (now - t, MAX_CATCH_UP))
+            t = now
+            sim.publish(t)
         while t + h <= now + 1e-9 and not stopping():  # catch up with ROS time in steps of exactly h
             sim.step(h)
             t += h
             sim.publish(t)
-        sleep_until(t + h)
+        sleep_until(t + h, t - h)
     rospy.signal_shutdown("signal %d" % _stop_signals[0] if _stop_signals else "shutdown")
 
 

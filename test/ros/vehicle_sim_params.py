@@ -8,6 +8,10 @@ and `_rate:=1e-6` as a step of 11 days, during which it slept through SIGTERM.
 
 At the lowest rate it allows (0.5 Hz: a step of 2 s), SIGTERM right after a pose (the start of its 2 s sleep) ends
 it before that step would have ended: its waits look for shutdown every 0.05 s (it slept out the whole step).
+
+Under simulated time, /clock going back (a bag in a loop) restarts its clock there, and a leap far ahead is jumped
+to, each with a warning: it slept until the clock came back to where it had been (no pose for as long), and it
+stepped through a leap of any length, publishing every step's pose long after its time.
 """
 import os
 import signal
@@ -21,6 +25,7 @@ import rospkg
 import rospy
 import rostest
 from geometry_msgs.msg import PoseStamped
+from rosgraph_msgs.msg import Clock
 
 TIMEOUT = 20.0  # [s] rospy's start-up and the refusal; under 2 s on an idle machine
 # The simulator's lowest rate [Hz]. After publishing the pose stamped t it sleeps until t + 1 / SLOW_RATE, the next
@@ -117,6 +122,59 @@ class VehicleSimParams(unittest.TestCase):
         print("[ measured ] vehicle_sim.py at %g Hz ended %.3f s after SIGTERM, %.3f s before its next step's time "
               "(bound: before it)" % (SLOW_RATE, ended - sent, next_step - ended))
         self.assertLess(ended, next_step, "it slept out the step it was in")
+
+    def test_4_the_clock_going_back_restarts_it_and_a_leap_ahead_is_jumped_to(self):
+        stamps = []
+        sub = rospy.Subscriber("/jump/pose", PoseStamped, lambda m: stamps.append(m.header.stamp.to_sec()),
+                               queue_size=1000)
+        clock = rospy.Publisher("/clock", Clock, queue_size=10)
+        rospy.set_param("/use_sim_time", True)  # read by the simulator at its start; this test keeps the wall clock
+        run = self.start("jump", "_rate:=100", "_tether_force:=none", "_pose_topic:=/jump/pose")
+
+        def tick(start, seconds):
+            """/clock from `start` for `seconds` of simulated time in 0.01 s ticks, at about ten times real time."""
+            t = start
+            while t <= start + seconds + 1e-9:
+                clock.publish(Clock(clock=rospy.Time.from_sec(t)))
+                t += 0.01
+                time.sleep(0.001)
+
+        def came(ok):
+            """A pose whose stamp ok() takes comes within TIMEOUT of wall time while the clock stands."""
+            end = time.monotonic() + TIMEOUT
+            while not any(ok(t) for t in stamps) and time.monotonic() < end:
+                time.sleep(0.05)
+            return any(ok(t) for t in stamps)
+
+        failure = None
+        try:
+            end, start = time.monotonic() + TIMEOUT, 1000.0
+            while not stamps and time.monotonic() < end:  # until the simulator hears the clock
+                tick(start, 0.05)
+                start += 0.06
+            self.assertTrue(stamps, "no pose under /clock")
+            tick(start, 1.0)
+            self.assertTrue(came(lambda t: t >= start + 0.9), "no pose near %.1f s: %s" % (start + 1.0, stamps[-3:]))
+            tick(500.0, 1.0)  # back by 500 s, as a bag played in a loop starts again
+            self.assertTrue(came(lambda t: 500.0 <= t <= 501.0), "no pose after the clock went back to 500 s")
+            before = len(stamps)
+            tick(2000.0, 0.5)  # 1499 s ahead
+            self.assertTrue(came(lambda t: t >= 2000.0), "no pose after the clock leapt to 2000 s")
+            stepped = [t for t in stamps[before:] if 501.5 < t < 2000.0]
+            self.assertFalse(stepped, "%d poses stamped between the clock's 501 and 2000 s: stepped through the leap"
+                             % len(stepped))
+        except AssertionError as error:
+            failure = error
+        finally:
+            sub.unregister()
+            rospy.delete_param("/use_sim_time")
+            run.send_signal(signal.SIGTERM)
+            output, _ = run.communicate(timeout=TIMEOUT)
+        if failure is not None:
+            self.fail("%s\nvehicle_sim.py said:\n%s" % (failure, output))
+        self.assertIn("ROS time went back from 100", output)
+        self.assertEqual(output.count("ROS time went back"), 1, output)
+        self.assertIn("ROS time leapt 14", output)
 
 
 if __name__ == "__main__":
