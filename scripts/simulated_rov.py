@@ -20,11 +20,16 @@ optical frame (z forward, x right, y down) at ~camera_pose = [x, y, z, roll, pit
 the vehicle frame, the angles those of a frame looking along its x axis with z up (pitch > 0 looks down),
 as a scenario's `cameras:` entries give them. (Debian ships no static_transform_publisher.)
 
-Parameters: ~rate [Hz] (20), ~world_frame (world), ~rov_frame (rov), ~publish_tf (false), ~loop (true),
-~max_yaw_rate [deg/s] (30), ~wait_for_listener [s] (30; 0 starts at once), ~waypoints (list of [t, x, y, z]; default: the dive of
-scenarios/spool_payout.yaml), ~camera_frame ("" = none), ~camera_pose ([0, 0, 0, 0, 0, 0]).
+Parameters: ~rate [Hz] (20, in [0.5, 1000]), ~world_frame (world), ~rov_frame (rov), ~publish_tf (false), ~loop
+(true), ~max_yaw_rate [deg/s] (30), ~wait_for_listener [s] (30; 0 starts at once), ~waypoints (list of [t, x, y, z],
+finite numbers, the times increasing; default: the dive of scenarios/spool_payout.yaml), ~camera_frame ("" = none),
+~camera_pose ([0, 0, 0, 0, 0, 0]). A bad value stops it with an error naming the parameter (exit code 1).
+
+Under simulated time nothing is published before the first /clock (ROS time 0), and the dive's clock starts at the
+first time it reads after that, also with ~wait_for_listener 0; a pose is never published twice with one stamp.
 """
 import math
+import sys
 import time
 
 import rospy
@@ -147,31 +152,67 @@ class Dive:
         return position_at(self.waypoints, t_dive), self.yaw
 
 
+RATE_RANGE = (0.5, 1000.0)  # [Hz] as scripts/vehicle_sim.py's
+
+
+def rate_problem(value):
+    """"" when ~rate `value` is a finite number of Hz in RATE_RANGE, else why not."""
+    try:
+        rate = float(value)
+    except (TypeError, ValueError):
+        rate = float("nan")
+    if isinstance(value, bool) or not RATE_RANGE[0] <= rate <= RATE_RANGE[1]:
+        return "~rate = %r: must be a finite number in [%g, %g] Hz" % (value, RATE_RANGE[0], RATE_RANGE[1])
+    return ""
+
+
+def waypoints_problem(waypoints):
+    """"" when `waypoints` is a non-empty list of [t, x, y, z] of finite numbers with increasing times, else why
+    not: a time that does not increase would be a jump of the vehicle in no time (a 7 m jump in one pose)."""
+    if not isinstance(waypoints, (list, tuple)) or not waypoints:
+        return "~waypoints = %r: must be a non-empty list of [t, x, y, z]" % (waypoints,)
+    for i, w in enumerate(waypoints):
+        ok = isinstance(w, (list, tuple)) and len(w) == 4 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in w)
+        if not ok:
+            return "~waypoints[%d] = %r: must be [t, x, y, z], four finite numbers (s, m)" % (i, w)
+        if i > 0 and not w[0] > waypoints[i - 1][0]:
+            return ("~waypoints[%d]: its time %g s must be after the one before, %g s (a vehicle cannot jump)"
+                    % (i, w[0], waypoints[i - 1][0]))
+    return ""
+
+
 def main():
     rospy.init_node("simulated_rov")
-    rate_hz = float(rospy.get_param("~rate", 20.0))
+    rate_value = rospy.get_param("~rate", 20.0)
+    problem = rate_problem(rate_value)
+    if problem:
+        rospy.logfatal("simulated_rov: %s", problem)
+        sys.exit(1)
+    rate_hz = float(rate_value)
     world = rospy.get_param("~world_frame", "world")
     rov = rospy.get_param("~rov_frame", "rov")
     publish_tf = bool(rospy.get_param("~publish_tf", False))
     loop = bool(rospy.get_param("~loop", True))
     max_yaw_rate = float(rospy.get_param("~max_yaw_rate", MAX_YAW_RATE))
     waypoints = rospy.get_param("~waypoints", DIVE)
-    if not waypoints or any(len(w) != 4 for w in waypoints):
-        rospy.logfatal("simulated_rov: ~waypoints must be a non-empty list of [t, x, y, z]")
-        return
-    if not max_yaw_rate > 0:
-        rospy.logfatal("simulated_rov: ~max_yaw_rate must be positive [deg/s], got %s", max_yaw_rate)
-        return
+    problem = waypoints_problem(waypoints)
+    if problem:
+        rospy.logfatal("simulated_rov: %s", problem)
+        sys.exit(1)
+    if not max_yaw_rate > 0 or math.isinf(max_yaw_rate):
+        rospy.logfatal("simulated_rov: ~max_yaw_rate must be finite and positive [deg/s], got %s", max_yaw_rate)
+        sys.exit(1)
     wait_for_listener = float(rospy.get_param("~wait_for_listener", 30.0))
     if not wait_for_listener >= 0 or math.isinf(wait_for_listener):
         rospy.logfatal("simulated_rov: ~wait_for_listener must be finite and >= 0 [s], got %s", wait_for_listener)
-        return
+        sys.exit(1)
     camera_frame = rospy.get_param("~camera_frame", "")
     camera_pose = rospy.get_param("~camera_pose", [0.0] * 6)
     if camera_frame and (len(camera_pose) != 6 or not all(math.isfinite(float(v)) for v in camera_pose)):
         rospy.logfatal("simulated_rov: ~camera_pose must be [x, y, z, roll, pitch, yaw] (m, deg), got %s",
                        camera_pose)
-        return
+        sys.exit(1)
     static_broadcaster = None
     if camera_frame:
         static_broadcaster = tf2_ros.StaticTransformBroadcaster()
@@ -189,7 +230,12 @@ def main():
     pub = rospy.Publisher("rov_pose", PoseStamped, queue_size=10)
     broadcaster = tf2_ros.TransformBroadcaster() if publish_tf else None
     rate = rospy.Rate(rate_hz)
+    # Under simulated time, ROS time is 0 until the first /clock: the dive's clock starts after it (a bag's epoch
+    # read as time since 0 put the first pose far along the path).
+    while rospy.Time.now().is_zero() and not rospy.is_shutdown():
+        rospy.rostime.wallsleep(0.01)
     start = rospy.Time.now()
+    last_stamp = None
     # The wait is timed on the wall clock: under simulated time, ROS time is 0 until /clock ticks and can
     # jump (a bag's epoch, a loop back), neither of which says how long the vehicle has waited.
     waiting_since = time.monotonic()
@@ -207,6 +253,13 @@ def main():
         if now < start:  # simulated time went backwards (bag loop): restart the dive
             start = now
             dive.restart()
+        if now == last_stamp:  # the clock has not moved since the last pose: one pose a stamp
+            try:
+                rate.sleep()
+            except rospy.ROSTimeMovedBackwardsException:
+                pass
+            continue
+        last_stamp = now
         (x, y, z), yaw = dive.pose((now - start).to_sec())
         msg = PoseStamped()
         msg.header.stamp = now

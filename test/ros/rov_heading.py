@@ -13,7 +13,10 @@ and at jittered intervals, over two loops) and on the poses the running node pub
 import math
 import os
 import random
+import signal
+import subprocess
 import sys
+import time
 import unittest
 
 import rospkg
@@ -21,6 +24,7 @@ import rospy
 import rostest
 import yaml
 from geometry_msgs.msg import PoseStamped
+from rosgraph_msgs.msg import Clock
 
 PACKAGE = rospkg.RosPack().get_path("rov_tether")
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
@@ -41,6 +45,12 @@ def attachment(position, yaw, offset):
     c, s = math.cos(yaw), math.sin(yaw)
     return [position[0] + c * offset[0] - s * offset[1], position[1] + s * offset[0] + c * offset[1],
             position[2] + offset[2]]
+
+
+def init_node():
+    """This test's node, once (each case that needs one calls it)."""
+    if not rospy.core.is_initialized():
+        rospy.init_node("rov_heading_test")
 
 
 class RovHeading(unittest.TestCase):
@@ -86,7 +96,7 @@ class RovHeading(unittest.TestCase):
         self.assertAlmostEqual(yaw, math.atan2(7.0, -3.5), delta=1e-9)
 
     def test_3_published_poses_move_the_attachment_smoothly(self):
-        rospy.init_node("rov_heading_test")
+        init_node()
         waypoints = rospy.get_param("/simulated_rov/waypoints")
         dive = simulated_rov.Dive(waypoints)  # the node's path with its closing leg, for v_max
         # The dive waits for a listener (~wait_for_listener): subscribed late, the first pose is still the
@@ -109,6 +119,57 @@ class RovHeading(unittest.TestCase):
         poses = [([m.pose.position.x, m.pose.position.y, m.pose.position.z],
                   2 * math.atan2(m.pose.orientation.z, m.pose.orientation.w)) for m in received]
         self.check_steps(times, poses, dive.waypoints, simulated_rov.MAX_YAW_RATE, demo_offset(), "running node")
+
+    def test_4_bad_parameters_are_refused_naming_them(self):
+        # ~rate 0 crashed (ZeroDivisionError), NaN raised, -5 published as fast as it could; waypoints whose times do
+        # not increase jumped the vehicle 7 m in one pose; a NaN one published NaN poses. Each is refused, naming it.
+        script = os.path.join(PACKAGE, "scripts", "simulated_rov.py")
+        for run_number, (argument, expected) in enumerate((
+                ("_rate:=0", "~rate = 0: must be a finite number in [0.5, 1000] Hz"),
+                ("_rate:=.nan", "~rate = nan: must be a finite number in [0.5, 1000] Hz"),
+                ("_rate:=-5", "~rate = -5: must be a finite number in [0.5, 1000] Hz"),
+                ("_waypoints:=[[0, 1.5, 0, -1], [10, 5, 0, -1], [5, 1.5, 6, -1]]",
+                 "~waypoints[2]: its time 5 s must be after the one before, 10 s"),
+                ("_waypoints:=[[0, 1.5, 0, -1], [10, .nan, 0, -1]]", "~waypoints[1] = [10, nan, 0, -1]: must be"))):
+            # A name of its own each run: a run's private parameters stay on the master.
+            run = subprocess.run([sys.executable, script, "__name:=bad_rov%d" % run_number, argument], stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=TIMEOUT)
+            self.assertEqual(run.returncode, 1, argument + ":\n" + run.stdout)
+            self.assertIn(expected, run.stdout, argument)
+            self.assertNotIn("Traceback", run.stdout, argument)
+
+    def test_5_under_simulated_time_the_dive_starts_at_the_first_clock(self):
+        # With ~wait_for_listener 0 the dive's clock started at ROS time 0, before the first /clock: a clock starting
+        # at 1000 s put the first pose 1000 s along the looping dive (x 6.9, y 5.1: 9 m from the start), twice with
+        # one stamp. It starts at the first clock now: the first pose is the first waypoint's, stamps never repeat.
+        init_node()
+        script = os.path.join(PACKAGE, "scripts", "simulated_rov.py")
+        received = []
+        sub = rospy.Subscriber("/clocked/pose", PoseStamped, received.append, queue_size=1000)
+        clock = rospy.Publisher("/clock", Clock, queue_size=10)
+        rospy.set_param("/use_sim_time", True)  # read by the script at its start; this test keeps the wall clock
+        run = subprocess.Popen([sys.executable, script, "__name:=clocked_rov", "_wait_for_listener:=0",
+                                "rov_pose:=/clocked/pose"], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True)
+        try:
+            time.sleep(3.0)  # its start-up, with no clock: nothing may come
+            self.assertEqual(received, [], "a pose before the first /clock")
+            t, end = 1000.0, time.monotonic() + TIMEOUT
+            while len(received) < 10 and time.monotonic() < end:
+                clock.publish(Clock(clock=rospy.Time.from_sec(t)))
+                t += 0.01
+                time.sleep(0.005)
+        finally:
+            sub.unregister()
+            rospy.delete_param("/use_sim_time")
+            run.send_signal(signal.SIGINT)
+            output, _ = run.communicate(timeout=TIMEOUT)
+        self.assertGreaterEqual(len(received), 10, output)
+        first = received[0].pose.position
+        self.assertLess(math.dist([first.x, first.y, first.z], simulated_rov.DIVE[0][1:]), 0.1 * 0.5,
+                        "the first pose within 0.1 s of the dive's start at its 0.5 m/s first leg")
+        stamps = [m.header.stamp for m in received]
+        self.assertEqual(len(stamps), len(set(stamps)), "a stamp twice")
 
 
 if __name__ == "__main__":
