@@ -7,7 +7,8 @@ overrides file leaves its keys. The test puts exactly those on the master (what 
 `roslaunch rov_tether tether.launch` against the same master. With clear_params="true" the node must
 simulate one tether (publishing ~state, not ~t0/state), with default.yaml's cable, and report no typo.
 
-An overrides file wins over the launch's own frame arguments (`world_frame` included), as its name says.
+An overrides file wins over the launch's own frame arguments (`world_frame` included), as its name says, and an
+argument given on the command line wins over the file (the pose topic too).
 A key given twice in a file the launch loads stops the node, naming the file, the key and its lines.
 
 A second launch checks that tether_node's start-up INFO line reaches a piped stdout while the node runs
@@ -144,6 +145,23 @@ class LaunchParams(unittest.TestCase):
         dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch", "world_frame:=odom"],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
         self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/world_frame"], "odom", dumped.stderr)
+
+    def test_3b_a_pose_topic_argument_wins_over_the_overrides_file(self):
+        # tether.launch applied its pose_topic argument as a remap of rov_pose, which an overrides file's pose_topic
+        # (the live stack's topic) bypassed: `replay.launch pose_topic:=/rov_pose overrides:=live.yaml` listened to
+        # the live topic and never got the bag's poses. The argument is now the parameter, like the frames'.
+        overrides = self.scratch_file("live.yaml", "pose_topic: /live_stack/pose\n")
+        for arguments, expected in ((["pose_topic:=/from_arg/pose"], "/from_arg/pose"), ([], "/live_stack/pose")):
+            dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "tether.launch",
+                                     "overrides:=" + overrides] + arguments, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
+            self.assertEqual(dumped.returncode, 0, dumped.stderr)
+            self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/pose_topic"], expected, arguments)
+        dumped = subprocess.run(["roslaunch", "--dump-params", "rov_tether", "replay.launch", "bag:=x.bag",
+                                 "pose_topic:=/rov_pose", "overrides:=" + overrides], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True, timeout=TIMEOUT)
+        self.assertEqual(dumped.returncode, 0, dumped.stderr)
+        self.assertEqual(yaml.safe_load(dumped.stdout)[NODE + "/pose_topic"], "/rov_pose")
 
     def test_4_a_key_given_twice_in_a_loaded_file_stops_the_node(self):
         # roslaunch keeps the last of a repeated key without a word; tether.launch lists the files it loaded in
