@@ -290,6 +290,33 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
   EXPECT_NEAR(sim.deployedLength(), 3.2, 1e-9);
 }
 
+// A target length is gone to in speed mode at |winch_speed|: set in brake mode, or at speed 0, it would be kept and
+// shown (~state, the Python winch) and never gone to, so it is refused, naming the mode and the speed; leaving speed
+// mode clears a target set there (back in speed mode the winch does not run off to an old target).
+TEST(Spool, ATargetLengthTheWinchWouldNotGoToIsRefused)
+{
+  TetherParams params;  // brake, the default
+  Tether sim(params, Position::Zero(), Position(1.0, 0.0, -1.0));
+  Status status = sim.setTargetLength(3.0);
+  EXPECT_FALSE(status.ok);
+  EXPECT_NE(status.message.find("winch is in brake mode"), std::string::npos) << status.message;
+  EXPECT_TRUE(std::isnan(sim.targetLength()));
+  params.winch_mode = WinchMode::kSpeed;
+  params.winch_speed = 0.0;
+  ASSERT_TRUE(sim.setParams(params).ok);
+  status = sim.setTargetLength(3.0);
+  EXPECT_FALSE(status.ok);
+  EXPECT_NE(status.message.find("at winch_speed 0 m/s"), std::string::npos) << status.message;
+  params.winch_speed = 0.5;
+  ASSERT_TRUE(sim.setParams(params).ok);
+  ASSERT_TRUE(sim.setTargetLength(3.0).ok);
+  EXPECT_EQ(sim.targetLength(), 3.0);
+  params.winch_mode = WinchMode::kBrake;
+  ASSERT_TRUE(sim.setParams(params).ok);
+  EXPECT_TRUE(std::isnan(sim.targetLength()));
+  EXPECT_TRUE(sim.setTargetLength(std::nan("")).ok);  // clearing is taken in any mode
+}
+
 // The winch's speed rises at max_winch_acceleration a: from rest to v = 0.5 m/s at a = 1 m/s^2 it has paid
 // out v T - v^2 / (2 a) after T = 2 s, to within one step's pay-out v dt (the speed changes once a step).
 // Towards a target it slows down in time and stops there, without overshoot.

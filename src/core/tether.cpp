@@ -154,6 +154,10 @@ Status Tether::setParams(const TetherParams& params)
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
   const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
+  if (new_mode && params_.winch_mode != WinchMode::kSpeed)
+  {
+    winch_.setTargetLength(std::numeric_limits<double>::quiet_NaN());  // a target lives in speed mode only
+  }
   if (new_mode || new_solver)
   {
     // The new mode's (or the new method's) drive starts from the drum as it turns, but not from a slip past the old
@@ -288,6 +292,14 @@ Status Tether::setTargetLength(double length)
     std::ostringstream out;
     out << "target length " << length << " m rejected: must be in [min_deployed_length, cable_length] = ["
         << params_.min_deployed_length << ", " << params_.cable_length << "] m";
+    return Status::error(out.str());
+  }
+  if (!std::isnan(length) && !(params_.winch_mode == WinchMode::kSpeed && params_.winch_speed != 0.0))
+  {
+    // A target the winch would not go to (it acts in speed mode, at |winch_speed|) is refused, not kept and shown.
+    std::ostringstream out;
+    out << "target length " << length << " m rejected: a target is gone to in speed mode at |winch_speed|, and the "
+        << "winch is in " << toString(params_.winch_mode) << " mode at winch_speed " << params_.winch_speed << " m/s";
     return Status::error(out.str());
   }
   winch_.setTargetLength(length);
