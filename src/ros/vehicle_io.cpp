@@ -163,6 +163,10 @@ VehicleIo::VehicleIo(const TetherSetup& setup, Tether& tether, const std::string
 void VehicleIo::restarted()
 {
   start_due_ = true;
+  {
+    std::lock_guard<std::mutex> lock(command_mutex_);
+    command_.forget();  // the vehicle starts again at rest, with no command of the old time
+  }
   setpoints_.clear();
   controller_.reset();
   last_control_time_ = std::nan("");

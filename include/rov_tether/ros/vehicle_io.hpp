@@ -69,6 +69,14 @@ class WrenchCommand
   Wrench thrustAt(const ros::Time& now, bool* went_stale);
   /// Age of the command at `now` [s]; infinite before the first.
   double age(const ros::Time& now) const;
+  /// Forgets the command, as before the first (a restart: after the clock went back its arrival lies ahead and it
+  /// would count as fresh); the counts stay.
+  void forget()
+  {
+    command_ = Wrench::Zero();
+    arrival_ = ros::Time();
+    stale_said_ = false;
+  }
 
   std::uint64_t accepted() const { return accepted_; }
   std::uint64_t refused() const { return refused_; }
