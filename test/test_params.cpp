@@ -156,6 +156,38 @@ TEST(Params, ContradictionsBetweenFieldsAreNamed)
   EXPECT_TRUE(params.validate().empty());
 }
 
+// A cable heavier in water than in air (weight_in_water above mass_per_length g) displaces a negative volume; with a
+// water surface it came out of the water lighter (a reviewer's 5 N/m cable of 0.1 kg/m: 0.98 N/m in air). With a
+// surface it is refused, the uniform cable and a section alike, naming both and the mass it needs (the rule
+// attachments follow); at exactly its weight in air (nothing displaced) it is taken, and without a surface, where the
+// weight in air is never used, the fields stay independent as before.
+TEST(Params, ACableHeavierInWaterThanInAirIsRefusedWithAWaterSurface)
+{
+  TetherParams params;
+  params.water_surface_z = 0.0;
+  params.weight_in_water = 5.0;  // mass_per_length 0.1 kg/m by default
+  auto errors = params.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("weight_in_water = 5 N/m: it weighs more in water than in air, mass_per_length x g = 0.1 "
+                           "kg/m x 9.80665 m/s^2 = 0.980665 N/m"),
+            std::string::npos)
+      << errors[0];
+  EXPECT_NE(errors[0].find("at least 0.509858 kg/m"), std::string::npos) << errors[0];
+  params.weight_in_water = params.mass_per_length * 9.80665;
+  EXPECT_TRUE(params.validate().empty());
+  params.weight_in_water = 5.0;
+  params.water_surface_z = std::nan("");
+  EXPECT_TRUE(params.validate().empty());
+
+  TetherParams sections;
+  sections.water_surface_z = 0.0;
+  sections.sections = {{5.0, {{"weight_in_water", 5.0}}}, {}};
+  errors = sections.validate();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("weight_in_water = 5 N/m: it weighs more in water than in air"), std::string::npos)
+      << errors[0];
+}
+
 // A constant_tension winch reels in while the spool tension is below target_tension - tension_deadband; its motor
 // gives way at max_winch_pull. A pull below that edge of the band stalls the winch before the tension reaches the
 // band: it can never hold its target, so it is refused naming both values, in a file and as a live change (the

@@ -149,7 +149,8 @@ const std::vector<ParameterInfo>& parameterInfo()
       {"seed", "int", "-", 0.0, 9e15, kClosed, kClosed, "", "noise seed; same seed, same run", kAtStart},
       {"weight_in_water", "double", "N/m", -1e4, 1e4, kClosed, kClosed,
        "[-1e4, 1e4], and |weight_in_water| x cable_length, with the attachments' loads (and above "
-       "`water_surface_z` the weight in air), < axial_stiffness with `direct` or `lumped_mass`",
+       "`water_surface_z` the weight in air), < axial_stiffness with `direct` or `lumped_mass`; with "
+       "`water_surface_z`, at most mass_per_length x g",
        "net weight, positive sinks, 0 neutrally buoyant", kLive},
       {"mass_per_length", "double", "kg/m", 0.0, 1e4, kOpen, kClosed, "", "mass, for weight and tension", kLive},
       {"axial_stiffness", "double", "N", 0.0, 1e12, kOpen, kClosed,

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "parameter_members.hpp"
+#include "rov_tether/core/cable.hpp"
 #include "rov_tether/core/cable_sections.hpp"
 #include "rov_tether/core/constraint_solver.hpp"
 
@@ -189,6 +190,19 @@ std::vector<std::string> TetherParams::validateMaterial() const
   {
     relation("water_surface_z = " + formatValue(water_surface_z) + ": must be above seabed_z = " +
              formatValue(seabed_z) + " (there would be no water: the cable would weigh as in air)");
+  }
+  if (!std::isnan(water_surface_z) && weight_in_water > mass_per_length * CableLoading::kGravity)
+  {
+    // In water a cable weighs its mass g less its buoyancy rho g V, never more than mass g, unless the volume it
+    // displaces is negative; with a surface, the cable above it weighs mass g, and would come out of the water
+    // lighter (the rule attachments follow, CableSections::check).
+    relation("weight_in_water = " + formatValue(weight_in_water) +
+             " N/m: it weighs more in water than in air, mass_per_length x g = " + formatValue(mass_per_length) +
+             " kg/m x " + formatValue(CableLoading::kGravity) +
+             " m/s^2 = " + formatValue(mass_per_length * CableLoading::kGravity) +
+             " N/m (it would displace a negative volume, and above water_surface_z weigh less): give mass_per_length "
+             "at least " +
+             formatValue(weight_in_water / CableLoading::kGravity) + " kg/m, or a smaller weight");
   }
   if (initial_deployed_length < min_deployed_length || initial_deployed_length > cable_length)
   {
