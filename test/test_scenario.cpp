@@ -17,6 +17,7 @@
 
 #include "rov_tether/scenario/earlier_outputs.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
+#include "rov_tether/study/study.hpp"
 #include "test_helpers.hpp"
 
 namespace rov_tether::test
@@ -1269,6 +1270,28 @@ TEST(StudyTool, RefusesAnOptionGivenTwice)
   }
   EXPECT_FALSE(fs::exists(dir));
   EXPECT_FALSE(fs::exists(dir + "_other"));
+  fs::remove(err);
+}
+
+// An unknown --case is refused with exit code 2, naming the cases there are, before anything runs (it ran no
+// case and wrote a study.csv of the header alone, with exit code 0).
+TEST(StudyTool, RefusesAnUnknownCase)
+{
+  const std::string dir = temporaryDirectory("study_unknown_case");
+  const std::string err = dir + "_stderr.txt";
+  const int status = std::system((std::string(ROV_TETHER_STUDY) + " --out " + dir +
+                                  " --case catenary_s9 --quick --no-stability >/dev/null 2> " + err)
+                                     .c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2);
+  const std::vector<std::string> lines = readLines(err);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_NE(lines.front().find("no case called 'catenary_s9'"), std::string::npos) << lines.front();
+  for (const rov_tether::study::Case& c : rov_tether::study::cases())
+  {
+    EXPECT_NE(lines.front().find(c.name), std::string::npos) << c.name << ": " << lines.front();
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  fs::remove_all(dir);
   fs::remove(err);
 }
 

@@ -125,7 +125,20 @@ struct Options
   bool with_stability = true;
 };
 
-/// Reads the command line; false (after printing the usage) when it is wrong.
+/// Whether `name` is one of the study's cases.
+bool isCase(const std::string& name)
+{
+  for (const Case& c : cases())
+  {
+    if (c.name == name)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Reads the command line; false (after printing the usage or what is wrong) when it is wrong.
 bool parseOptions(int argc, char** argv, Options* options)
 {
   std::set<std::string> given;  // an option given twice is refused, not the first dropped without a word
@@ -163,6 +176,18 @@ bool parseOptions(int argc, char** argv, Options* options)
   if (options->out_dir.empty())
   {
     usage();
+    return false;
+  }
+  if (!options->only.empty() && !isCase(options->only))
+  {
+    // It ran no case and wrote a study.csv of the header alone, with exit code 0.
+    std::string names;
+    for (const Case& c : cases())
+    {
+      names += (names.empty() ? "" : ", ") + c.name;
+    }
+    std::fprintf(stderr, "rov_tether_study: no case called '%s'; the cases: %s\n", options->only.c_str(),
+                 names.c_str());
     return false;
   }
   return true;
