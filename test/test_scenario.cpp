@@ -1295,6 +1295,24 @@ TEST(StudyTool, RefusesAnUnknownCase)
   fs::remove(err);
 }
 
+// A stability.csv that cannot be written (a directory in its place) is said as study.csv's is, "cannot write
+// PATH" with exit code 1, before the study runs (its fopen was unchecked: the tool crashed after the whole study).
+TEST(StudyTool, SaysWhenItCannotWriteTheStabilityMap)
+{
+  const std::string dir = temporaryDirectory("study_no_stability_csv");
+  const std::string err = dir + "_stderr.txt";
+  fs::create_directories(dir + "/stability.csv");
+  const int status = std::system(
+      (std::string(ROV_TETHER_STUDY) + " --out " + dir + " --case taut_string --quick >/dev/null 2> " + err).c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
+  const std::vector<std::string> lines = readLines(err);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.front(), "cannot write " + dir + "/stability.csv");
+  EXPECT_FALSE(fs::exists(dir + "/study.csv"));  // nothing ran
+  fs::remove_all(dir);
+  fs::remove(err);
+}
+
 // The run's Newton effort (issue 24): by definition the sum, the largest and the worst residual of what the
 // solver reported after each sub-step. A direct tether stepped by hand, reading solverIterations() and
 // solverResidual() after every step (one sub-step each: no contact), gives exactly what solverEffort() summed;

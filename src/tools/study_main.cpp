@@ -268,15 +268,21 @@ void runAutomaticChoice(const Case& c, std::FILE* out)
   }
 }
 
-/// Writes OUT/study.csv: every case (or only `only`) swept, with the cheapest accurate run per method printed.
-bool writeStudy(const Options& options, const std::string& study_path)
+/// Opens `path` for writing; nullptr, after saying "cannot write PATH", when it cannot.
+std::FILE* openForWriting(const std::string& path)
 {
-  std::FILE* out = std::fopen(study_path.c_str(), "w");
-  if (out == nullptr)
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr)
   {
-    std::fprintf(stderr, "cannot write %s\n", study_path.c_str());
-    return false;
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
   }
+  return file;
+}
+
+/// Writes study.csv to `out`: every case (or only `only`) swept, with the cheapest accurate run per method
+/// printed. Closes `out`.
+void writeStudy(const Options& options, std::FILE* out)
+{
   std::fprintf(
       out,
       "scenario,method,segments,iterations,substeps,over_relaxation,time_step,shape_error,tension_error,cost_us_per_s,"
@@ -304,7 +310,6 @@ bool writeStudy(const Options& options, const std::string& study_path)
     }
   }
   std::fclose(out);
-  return true;
 }
 
 /// The cheapest accurate run (sag within 1%, end tension within 2%) per method on case c at axial stiffness
@@ -370,11 +375,10 @@ void printGoal(double stiffness, std::map<std::string, Result>& best)
   }
 }
 
-/// Writes OUT/stability.csv: each method's boundedness over step x stiffness and step x speed; prints the counts.
-void writeStabilityMap(const std::string& out_dir, bool quick)
+/// Writes stability.csv to `map`: each method's boundedness over step x stiffness and step x speed; prints the
+/// counts. Closes `map`.
+void writeStabilityMap(std::FILE* map, bool quick)
 {
-  const std::string path = out_dir + "/stability.csv";
-  std::FILE* map = std::fopen(path.c_str(), "w");
   std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
   const std::vector<double> steps =
       quick ? std::vector<double>{1e-4, 1e-3, 1e-2}
@@ -423,11 +427,26 @@ int main(int argc, char** argv)
   }
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
+  // Both files are opened before anything runs: a stability.csv that cannot be written was found (and crashed
+  // the tool) only after the whole study.
   const std::string study_path = options.out_dir + "/study.csv";
-  if (!writeStudy(options, study_path))
+  std::FILE* study_file = openForWriting(study_path);
+  if (study_file == nullptr)
   {
     return 1;
   }
+  std::FILE* stability_file = nullptr;
+  if (options.with_stability)
+  {
+    stability_file = openForWriting(options.out_dir + "/stability.csv");
+    if (stability_file == nullptr)
+    {
+      std::fclose(study_file);
+      std::remove(study_path.c_str());  // empty: nothing ran
+      return 1;
+    }
+  }
+  writeStudy(options, study_file);
   if (options.only.empty() || options.only == "catenary_s8")
   {
     // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
@@ -440,9 +459,9 @@ int main(int argc, char** argv)
       printGoal(stiffness, best);
     }
   }
-  if (options.with_stability)
+  if (stability_file != nullptr)
   {
-    writeStabilityMap(options.out_dir, options.quick);
+    writeStabilityMap(stability_file, options.quick);
   }
   std::printf("wrote %s%s\n", study_path.c_str(), options.with_stability ? " and stability.csv" : "");
   return 0;
