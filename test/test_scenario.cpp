@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -1311,6 +1312,42 @@ TEST(StudyTool, SaysWhenItCannotWriteTheStabilityMap)
   EXPECT_FALSE(fs::exists(dir + "/study.csv"));  // nothing ran
   fs::remove_all(dir);
   fs::remove(err);
+}
+
+// The automatic choice (the study's stars, docs/accuracy.md) is pbd's, the paper's solver, whose iterations
+// `iterations: auto` chooses from the stretch tolerance: 20 segments for 1 cm chords and 61 for 1 mm
+// (docs/references.md), more iterations for 0.1% stretch than for 1%. It ran the default solver (direct).
+TEST(StudyTool, TheAutomaticChoiceIsPbds)
+{
+  const std::string dir = temporaryDirectory("study_auto");
+  ASSERT_EQ(std::system((std::string(ROV_TETHER_STUDY) + " --out " + dir +
+                         " --case catenary_s8 --quick --no-stability >/dev/null")
+                            .c_str()),
+            0);
+  std::vector<std::vector<std::string>> autos;  // method, segments, iterations
+  for (const std::string& line : readLines(dir + "/study.csv"))
+  {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    for (std::string field; std::getline(stream, field, ',');)
+    {
+      fields.push_back(field);
+    }
+    if (line.size() > 5 && line.substr(line.size() - 5) == ",auto")
+    {
+      autos.push_back({fields.at(1), fields.at(2), fields.at(3)});
+    }
+  }
+  // Shape 1 cm then 1 mm, each with stretch 1% then 0.1%.
+  ASSERT_EQ(autos.size(), 4u);
+  for (std::size_t i = 0; i < autos.size(); ++i)
+  {
+    EXPECT_EQ(autos[i][0], "pbd") << i;
+    EXPECT_EQ(autos[i][1], i < 2 ? "20" : "61") << i;
+  }
+  EXPECT_LT(std::stoi(autos[0][2]), std::stoi(autos[1][2]));
+  EXPECT_LT(std::stoi(autos[2][2]), std::stoi(autos[3][2]));
+  fs::remove_all(dir);
 }
 
 // The run's Newton effort (issue 24): by definition the sum, the largest and the worst residual of what the
