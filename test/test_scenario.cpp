@@ -1274,6 +1274,18 @@ TEST(StudyTool, RefusesAnOptionGivenTwice)
   fs::remove(err);
 }
 
+/// The fields of a CSV line (no quoting: the study's lines have none).
+std::vector<std::string> commaSeparated(const std::string& line)
+{
+  std::vector<std::string> fields;
+  std::stringstream stream(line);
+  for (std::string field; std::getline(stream, field, ',');)
+  {
+    fields.push_back(field);
+  }
+  return fields;
+}
+
 // An unknown --case is refused with exit code 2, naming the cases there are, before anything runs (it ran no
 // case and wrote a study.csv of the header alone, with exit code 0).
 TEST(StudyTool, RefusesAnUnknownCase)
@@ -1327,12 +1339,7 @@ TEST(StudyTool, TheAutomaticChoiceIsPbds)
   std::vector<std::vector<std::string>> autos;  // method, segments, iterations
   for (const std::string& line : readLines(dir + "/study.csv"))
   {
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    for (std::string field; std::getline(stream, field, ',');)
-    {
-      fields.push_back(field);
-    }
+    const std::vector<std::string> fields = commaSeparated(line);
     if (line.size() > 5 && line.substr(line.size() - 5) == ",auto")
     {
       autos.push_back({fields.at(1), fields.at(2), fields.at(3)});
@@ -1347,6 +1354,39 @@ TEST(StudyTool, TheAutomaticChoiceIsPbds)
   }
   EXPECT_LT(std::stoi(autos[0][2]), std::stoi(autos[1][2]));
   EXPECT_LT(std::stoi(autos[2][2]), std::stoi(autos[3][2]));
+  fs::remove_all(dir);
+}
+
+// The paper's experiment keeps its own step (0.02 s): each method x resolution x effort runs once at it. The
+// efforts' three steps ran every configuration three times (189 rows, 69 of them distinct).
+TEST(StudyTool, RunsEachConfigurationOfThePapersExperimentOnce)
+{
+  const std::string dir = temporaryDirectory("study_paper");
+  ASSERT_EQ(std::system(
+                (std::string(ROV_TETHER_STUDY) + " --out " + dir + " --case paper_experiment --no-stability >/dev/null")
+                    .c_str()),
+            0);
+  std::set<std::string> configurations;
+  int rows = 0;
+  for (const std::string& line : readLines(dir + "/study.csv"))
+  {
+    const std::vector<std::string> fields = commaSeparated(line);
+    ASSERT_GE(fields.size(), 7u) << line;
+    if (fields[0] != "paper_experiment")
+    {
+      continue;  // the header
+    }
+    ++rows;
+    EXPECT_EQ(fields[6], "0.02") << line;
+    // method, segments, iterations, substeps, over_relaxation, time_step
+    EXPECT_TRUE(
+        configurations
+            .insert(fields[1] + "," + fields[2] + "," + fields[3] + "," + fields[4] + "," + fields[5] + "," + fields[6])
+            .second)
+        << "run twice: " << line;
+  }
+  // 3 resolutions x (pbd 12 efforts, xpbd 7, lumped_mass 3, direct 1).
+  EXPECT_EQ(rows, 3 * (12 + 7 + 3 + 1));
   fs::remove_all(dir);
 }
 

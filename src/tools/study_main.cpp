@@ -54,10 +54,14 @@ std::vector<int> resolutions(const std::string& name, bool quick)
   return {10, 20, 40};
 }
 
-std::vector<Effort> efforts(SolverType method, bool quick)
+/// The efforts of a method. A case whose step is part of it (`keep_step`) takes each at its own step once: the
+/// three steps ran every one of its configurations three times over.
+std::vector<Effort> efforts(SolverType method, bool quick, bool keep_step)
 {
   std::vector<Effort> out;
-  const std::vector<double> steps = quick ? std::vector<double>{0.005} : std::vector<double>{0.005, 0.02, 0.05};
+  const std::vector<double> steps = keep_step ? std::vector<double>{0.0}  // 0: the case's step
+                                    : quick   ? std::vector<double>{0.005}
+                                              : std::vector<double>{0.005, 0.02, 0.05};
   switch (method)
   {
     case SolverType::kPbd:
@@ -193,10 +197,10 @@ bool parseOptions(int argc, char** argv, Options* options)
   return true;
 }
 
-/// Sets the effort's iterations, sub-steps, over-relaxation and (unless `keep_step`) time step on p.
-void applyEffort(const Effort& effort, bool keep_step, TetherParams& p)
+/// Sets the effort's iterations, sub-steps, over-relaxation and (unless it is 0) time step on p.
+void applyEffort(const Effort& effort, TetherParams& p)
 {
-  if (effort.time_step > 0.0 && !keep_step)
+  if (effort.time_step > 0.0)
   {
     p.time_step = effort.time_step;
   }
@@ -217,12 +221,12 @@ void sweepCase(const Case& c, bool quick, std::FILE* out, std::map<std::string, 
   {
     for (int segments : resolutions(c.name, quick))
     {
-      for (const Effort& effort : efforts(method, quick))
+      // The paper's step is part of its case.
+      for (const Effort& effort : efforts(method, quick, c.name == "paper_experiment"))
       {
         TetherParams p = c.base(segments);
         p.solver = method;
-        // The paper's step is part of its case.
-        applyEffort(effort, c.name == "paper_experiment", p);
+        applyEffort(effort, p);
         if (p.substeps > 10000)
         {
           continue;
@@ -324,12 +328,12 @@ std::map<std::string, Result> cheapestAtStiffness(const Case& c, double stiffnes
   {
     for (int segments : {10, 20})
     {
-      for (const Effort& effort : efforts(method, quick))
+      for (const Effort& effort : efforts(method, quick, false))
       {
         TetherParams p = c.base(segments);
         p.axial_stiffness = stiffness;
         p.solver = method;
-        applyEffort(effort, false, p);
+        applyEffort(effort, p);
         const Result r = c.run(p);
         const bool accurate = r.shape_error <= 0.01 && r.tension_error <= 0.02;
         if (accurate && (best.count(r.method) == 0 || r.cost < best[r.method].cost))
