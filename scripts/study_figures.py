@@ -1,17 +1,16 @@
 #!/usr/bin/env python3
-"""Draws docs/speed_vs_accuracy.png and docs/stability.png from rov_tether_study's CSV files.
+"""Draws docs/speed_vs_accuracy.png and docs/stability.png from rov_tether_study's CSV files, and prints the
+figures docs/accuracy.md quotes from STUDY_DIR/study.csv (each case's runs per method: how many failed, the
+best, median and worst error of the others; the cheapest run within 1% shape and 2% tension against direct's).
 
 usage: study_figures.py STUDY_DIR DOCS_DIR
+       study_figures.py --summary STUDY_DIR     (only the printed figures: study_figures.py --summary docs)
 """
 import csv
 import math
 import pathlib
+import statistics
 import sys
-
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = {"pbd": "tab:blue", "pbd, over-relaxation 1.8": "tab:purple", "xpbd": "tab:green",
            "lumped_mass": "tab:red", "direct": "black"}
@@ -57,7 +56,49 @@ def pareto(points):
     return front
 
 
+def percent(error):
+    """An error as a percentage: 2 significant digits (0.0084909 -> 0.85%), whole from 100% (1.642 -> 164%)."""
+    value = 100 * error
+    if 100 <= value < 1e5:
+        return f"{value:.0f}%"
+    return f"{value:.2g}%"
+
+
+def accurate(row):
+    """rov_tether_study's goal: shape within 1%, tension within 2% (or not measured)."""
+    return float(row["shape_error"]) <= 0.01 and not float(row["tension_error"] or "nan") > 0.02
+
+
+def summary(rows):
+    """Prints each case's runs per method (the automatic choice apart): how many, how many failed (blow-up,
+    non-finite, or not at rest), the best, median and worst error (worst of shape and tension) of the runs that
+    did not fail; and the cheapest accurate run per method, with its cost against direct's."""
+    for case in dict.fromkeys(r["scenario"] for r in rows):
+        print(f"== {case}")
+        mine = [r for r in rows if r["scenario"] == case and r["label"] != "auto"]
+        cheapest = {}
+        for method in dict.fromkeys(r["method"] for r in mine):
+            runs = [r for r in mine if r["method"] == method]
+            errors = [error_of(r) for r in runs if r["failed"] == "0" and math.isfinite(error_of(r))]
+            line = f"   {method:<11} {len(runs):3d} runs, {len(runs) - len(errors):2d} failed"
+            if errors:
+                line += (f"; error of the others: best {percent(min(errors))}, median "
+                         f"{percent(statistics.median(errors))}, worst {percent(max(errors))}")
+            print(line)
+            good = [r for r in runs if accurate(r)]
+            if good:
+                cheapest[method] = min(good, key=lambda r: float(r["cost_us_per_s"]))
+        direct = float(cheapest["direct"]["cost_us_per_s"]) if "direct" in cheapest else math.nan
+        for method, r in cheapest.items():
+            cost = float(r["cost_us_per_s"])
+            against = f", {cost / direct:.3g}x direct's" if math.isfinite(direct) else ""
+            print(f"   cheapest within 1% shape / 2% tension: {method:<11} {cost:.0f} us/s ({r['segments']} segments, "
+                  f"over-relaxation {float(r['over_relaxation']):g}){against}")
+
+
 def speed_vs_accuracy(rows, docs):
+    import matplotlib.pyplot as plt  # only for the figures: the summary needs no matplotlib
+
     cases = list(dict.fromkeys(r["scenario"] for r in rows))
     columns = 4
     lines = math.ceil(len(cases) / columns)
@@ -112,6 +153,7 @@ def speed_vs_accuracy(rows, docs):
 
 
 def stability(rows, docs):
+    import matplotlib.pyplot as plt
     methods = list(dict.fromkeys(r["method"] for r in rows))
     fig, axes = plt.subplots(2, len(methods), figsize=(4.6 * len(methods), 7.5), squeeze=False)
     for column, method in enumerate(methods):
@@ -150,9 +192,16 @@ def stability(rows, docs):
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
+    if sys.argv[1] == "--summary":
+        summary(read(pathlib.Path(sys.argv[2]) / "study.csv"))
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
     study_dir = pathlib.Path(sys.argv[1])
     docs = pathlib.Path(sys.argv[2])
     docs.mkdir(parents=True, exist_ok=True)
+    summary(read(study_dir / "study.csv"))
     speed_vs_accuracy(read(study_dir / "study.csv"), docs)
     stability(read(study_dir / "stability.csv"), docs)
     print(f"wrote {docs / 'speed_vs_accuracy.png'} and {docs / 'stability.png'}")
