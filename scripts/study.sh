@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The speed-against-accuracy study and the stability map (docs/accuracy.md, "Speed against accuracy"): runs every
-# reference case of docs/references.md for pbd, xpbd and lumped_mass at several resolutions and efforts,
+# reference case of docs/references.md for pbd, xpbd, lumped_mass and direct at several resolutions and efforts,
 # writes docs/study.csv and docs/stability.csv and draws docs/speed_vs_accuracy.png and
-# docs/stability.png (python3-matplotlib, installed from Debian when missing). About 40 s on 2 cores.
+# docs/stability.png (python3-matplotlib, installed from Debian when missing). 6 min 27 s (4 min 20 s of CPU:
+# the tool runs on one core) on a shared 2-core machine; its last lines are study_figures.py's summary.
 # Extra arguments go to rov_tether_study (--quick, --case NAME, --no-stability): such a partial run leaves its
 # CSV files and figures in catkin_build/study/ and does not touch docs/, which holds the full run only.
 set -euo pipefail
