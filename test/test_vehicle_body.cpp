@@ -151,6 +151,38 @@ TEST(VehicleBody, PositivelyBuoyantBodyRisesAtTheTerminalSpeed)
   EXPECT_LT(tilt(body), 1e-9);                            // and upright
 }
 
+// 3a'. The same body 10 N light under a water surface (z = 0) floats up to it and settles where the submerged share
+// s of its 0.254 m hull carries its weight: s B = W, so its centre of buoyancy (the hull's middle) sits at
+// surface + h / 2 - s h. Without the surface's share it kept all of B above the water and rose for good (a reviewer
+// saw a BlueROV2 1.6 m above the surface after 60 s). Bound: 1 mm (the step's error at rest is none: the balance is
+// exact there; the damping lost above the water only slows the settling). Its potential energy, the integral of
+// -s B dz, is continuous across the surface and the total energy does not rise without thrust.
+TEST(VehicleBody, ALightBodyFloatsAtTheSurfaceWithTheShareThatCarriesItsWeight)
+{
+  VehicleParams p = neutral();
+  const double lift = 10.0;
+  p.displaced_volume = (p.weight() + lift) / (p.water_density * p.gravity);
+  VehicleBody body = bodyWith(p);
+  ASSERT_TRUE(body.setState(Eigen::Vector3d(0.0, 0.0, -1.0), Eigen::Quaterniond::Identity(), Twist::Zero()).ok);
+  body.setWaterSurface(0.0);
+  double energy = body.kineticEnergy() + body.potentialEnergy(), rise = 0.0;
+  for (int k = 0; k < 6000; ++k)  // 60 s
+  {
+    ThrustUsed used;
+    ASSERT_TRUE(body.step(kStep, Wrench::Zero(), Wrench::Zero(), &used).ok);
+    const double now = body.kineticEnergy() + body.potentialEnergy();
+    rise = std::max(rise, now - energy);
+    energy = now;
+  }
+  const double share = p.weight() / p.buoyancy();
+  const double centre = body.position().z() + p.center_of_buoyancy.z();
+  std::printf("[ measured ] floating: centre of buoyancy at %.5f m (s B = W: %.5f m), share %.4f\n", centre,
+              0.5 * p.size.z() - share * p.size.z(), body.submergedShare());
+  EXPECT_NEAR(centre, 0.5 * p.size.z() - share * p.size.z(), 1e-3);
+  EXPECT_NEAR(body.submergedShare(), share, 1e-3 / p.size.z());
+  EXPECT_LT(rise, 1e-6);  // [J] first-order steps: a damped float's energy falls
+}
+
 // 3b. Rolled 30 degrees and let go (neutral, r_B 0.01 m above r_G): the restoring moment B BG sin(phi) rights
 // it. Bound: a pendulum of stiffness B BG = 1.32 N m on I' = Ix - K_pdot = 0.449 kg m^2 (omega_n 1.72 rad/s)
 // with quadratic roll damping Kpp only (Kp = 0) loses (8/3) Kpp A^3 omega_n^2 per cycle (harmonic balance),

@@ -600,6 +600,7 @@ bool Tether::predictVehicle(double h, double t)
   const Position attachment = track_.position();
   // The vehicle sits in the same water as the cable: the current at its attachment point.
   vehicle_->setCurrent(current_.at(attachment, t));
+  vehicle_->setWaterSurface(params_.water_surface_z);  // above it the body floats less and is damped less
   const Status predicted = vehicle_->predict(h, &vehicle_predicted_);
   if (!predicted)
   {

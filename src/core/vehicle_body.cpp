@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -176,11 +177,23 @@ Twist VehicleBody::relativeVelocity() const
   return relative;
 }
 
+double VehicleBody::buoyancyHeight() const { return position_.z() + (attitude_ * params_.center_of_buoyancy).z(); }
+
+double VehicleBody::submergedShare() const
+{
+  if (std::isnan(water_surface_z_))
+  {
+    return 1.0;
+  }
+  const double height = params_.size.z();
+  return std::clamp((water_surface_z_ - (buoyancyHeight() - 0.5 * height)) / height, 0.0, 1.0);
+}
+
 Wrench VehicleBody::restoringWrench() const
 {
   const Vector3 up = attitude_.conjugate() * Vector3::UnitZ();  // world z in the body frame
   const Vector3 weight = -params_.weight() * up;
-  const Vector3 buoyancy = params_.buoyancy() * up;
+  const Vector3 buoyancy = submergedShare() * params_.buoyancy() * up;  // what is out of the water displaces none
   Wrench wrench;
   wrench.head<3>() = weight + buoyancy;
   wrench.tail<3>() = params_.center_of_gravity.cross(weight) + params_.center_of_buoyancy.cross(buoyancy);
@@ -196,7 +209,16 @@ double VehicleBody::kineticEnergy() const
 double VehicleBody::potentialEnergy() const
 {
   const double z_g = position_.z() + (attitude_ * params_.center_of_gravity).z();
-  const double z_b = position_.z() + (attitude_ * params_.center_of_buoyancy).z();
+  double z_b = buoyancyHeight();
+  if (!std::isnan(water_surface_z_))
+  {
+    // The buoyancy's potential is -B times the integral of the submerged share s over the height: z_b while all
+    // of the hull is under water, then the ramp's integral across the surface, then constant (out of the water).
+    const double height = params_.size.z();
+    const double wet_top = water_surface_z_ - 0.5 * height;  // z_b at which the hull's top reaches the surface
+    const double across = std::clamp(z_b - wet_top, 0.0, height);
+    z_b = std::min(z_b, wet_top) + across - 0.5 * across * across / height;
+  }
   return params_.weight() * z_g - params_.buoyancy() * z_b;
 }
 
@@ -212,8 +234,9 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->relative.head<3>() -= attitude_.conjugate() * current_;
   start->restoring = restoringWrench();
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
-  const Vector6 damping =
-      dt * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
+  // The water's damping acts on the share of the hull in it.
+  const Vector6 damping = dt * submergedShare() *
+                          (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
   if (diagonal_mass_)
   {
     start->damped.computeDiagonal(mass_matrix_.diagonal() + damping);  // six divisions

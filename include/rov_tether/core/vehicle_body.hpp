@@ -1,4 +1,6 @@
 #pragma once
+
+#include <limits>
 // A vehicle's 6-DOF rigid body in the water, in Fossen's form (docs/model.md, "Vehicle body").
 
 #include <Eigen/Cholesky>
@@ -95,6 +97,12 @@ class VehicleBody
   Status setState(const Eigen::Vector3d& position, const Eigen::Quaterniond& attitude, const Twist& velocity);
   /// The uniform current V_c [m/s], world frame; refuses non-finite values.
   Status setCurrent(const Eigen::Vector3d& current);
+  /// The water surface's height [m] in the world (NaN: none, the body always under water). Above it the body
+  /// loses its buoyancy and its damping in proportion to the share of its height (size.z, centred on the centre of
+  /// buoyancy) out of the water (submergedShare()); its added mass stays (docs/limitations.md).
+  void setWaterSurface(double z) { water_surface_z_ = z; }
+  /// The share of the hull's height under the water surface, in [0, 1] (1 without a surface).
+  double submergedShare() const;
 
   /**
    * Advances the body by dt [s] (0 < dt <= stableStepLimit()) under the thrust command `thrust` (held
@@ -176,6 +184,9 @@ class VehicleBody
   Eigen::Quaterniond attitude_ = Eigen::Quaterniond::Identity();
   Twist velocity_ = Twist::Zero();
   Eigen::Vector3d current_ = Eigen::Vector3d::Zero();
+  double water_surface_z_ = std::numeric_limits<double>::quiet_NaN();
+  /// The centre of buoyancy's height [m] in the world.
+  double buoyancyHeight() const;
 };
 
 }  // namespace rov_tether

@@ -67,6 +67,12 @@ class VehicleCoupling
     (void)body_.setCurrent(current);
     started_ = false;
   }
+  /// The water surface's height [m] (NaN: none): VehicleBody::setWaterSurface.
+  void setWaterSurface(double z)
+  {
+    body_.setWaterSurface(z);
+    started_ = false;
+  }
   /// Step 1: the attachment point after a step of h [s] under the body's own forces alone. Refuses a step
   /// beyond the body's stable limit; the body is unchanged.
   Status predict(double h, Position* predicted);
