@@ -33,9 +33,20 @@ std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera
   {
     return "distortion_model '" + info.distortion_model + "': only plumb_bob is supported";
   }
-  if (info.binning_x > 1 || info.binning_y > 1 || info.roi.width != 0 || info.roi.height != 0)
+  if (info.binning_x > 1 || info.binning_y > 1)
   {
-    return "binning or a region of interest: not supported (the full image is rendered)";
+    return "binning_x = " + std::to_string(info.binning_x) + ", binning_y = " + std::to_string(info.binning_y) +
+           ": binning is not supported (the full image is rendered)";
+  }
+  // sensor_msgs/CameraInfo: a roi of all zeros, or one the size of the image at (0, 0), is the full image.
+  const sensor_msgs::RegionOfInterest& roi = info.roi;
+  const bool no_roi = roi.width == 0 && roi.height == 0;
+  const bool full_roi = roi.x_offset == 0 && roi.y_offset == 0 && roi.width == info.width && roi.height == info.height;
+  if (!no_roi && !full_roi)
+  {
+    return "roi (x_offset, y_offset, width, height) = (" + std::to_string(roi.x_offset) + ", " +
+           std::to_string(roi.y_offset) + ", " + std::to_string(roi.width) + ", " + std::to_string(roi.height) +
+           "): a region of interest other than the full image is not supported (the full image is rendered)";
   }
   camera::CameraIntrinsics result;
   result.width = static_cast<int>(std::min<std::uint32_t>(info.width, camera::CameraIntrinsics::kMaxSide + 1));

@@ -1161,6 +1161,37 @@ TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
   }
 }
 
+// Review of the camera node, item 4: sensor_msgs/CameraInfo says a roi of the full image (offsets 0, the
+// image's width and height) means the same as all zeros, but any roi with a non-zero size was refused
+// (camera drivers that fill it in could not be used). It is taken now; a smaller or offset roi and binning
+// above 1 are still refused, naming them.
+TEST(CameraConfig, ARegionOfInterestOfTheFullImageIsTaken)
+{
+  sensor_msgs::CameraInfo info;
+  info.width = 64;
+  info.height = 48;
+  info.K = {50, 0, 31.5, 0, 50, 23.5, 0, 0, 1};
+  info.roi.width = 64;
+  info.roi.height = 48;
+  camera::CameraIntrinsics intrinsics;
+  EXPECT_EQ(intrinsicsFromCameraInfo(info, &intrinsics), "");
+  EXPECT_EQ(intrinsics.width, 64);
+  EXPECT_EQ(intrinsics.height, 48);
+  info.binning_x = info.binning_y = 1;  // 1 is no binning, as 0
+  EXPECT_EQ(intrinsicsFromCameraInfo(info, &intrinsics), "");
+  info.roi.width = 32;
+  EXPECT_NE(
+      intrinsicsFromCameraInfo(info, &intrinsics).find("roi (x_offset, y_offset, width, height) = (0, 0, 32, 48)"),
+      std::string::npos);
+  info.roi.width = 64;
+  info.roi.x_offset = 1;
+  EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("a region of interest other than the full image"),
+            std::string::npos);
+  info.roi.x_offset = 0;
+  info.binning_y = 2;
+  EXPECT_NE(intrinsicsFromCameraInfo(info, &intrinsics).find("binning_y = 2"), std::string::npos);
+}
+
 // ---- Obstacles (issue 14): the `obstacles` list, ~obstacles, contact points, ~topology. ----
 
 std::string loadObstacles(const std::string& yaml, WorldOptions* options = nullptr)

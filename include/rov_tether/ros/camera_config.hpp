@@ -26,7 +26,7 @@ std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector
                               std::vector<CameraConfig>* cameras);
 
 /// Intrinsics from a CameraInfo: "" or why it cannot be used (distortion model other than plumb_bob,
-/// binning or a region of interest, invalid K).
+/// binning or a region of interest other than the full image, invalid K).
 std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics);
 
 /// Copies `image` (CV_8UC1 as mono8, CV_32FC1 as 32FC1) into `msg`, reusing its storage.
