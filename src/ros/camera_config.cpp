@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <new>
+#include <stdexcept>
 
 #include "rov_tether/ros/obstacle_config.hpp"
 #include "rov_tether/ros/xmlrpc_yaml.hpp"
@@ -60,6 +62,29 @@ std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera
   }
   *intrinsics = result;
   return "";
+}
+
+std::string buildCameraModel(const camera::CameraIntrinsics& intrinsics, std::unique_ptr<camera::CameraModel>* model,
+                             const CameraModelBuilder& build)
+{
+  const std::string size = std::to_string(intrinsics.width) + "x" + std::to_string(intrinsics.height);
+  try
+  {
+    *model = build ? build(intrinsics) : std::make_unique<camera::CameraModel>(intrinsics);
+    return "";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  catch (const std::bad_alloc&)
+  {
+    return "building the " + size + " camera ran out of memory";
+  }
+  catch (const std::exception& e)
+  {
+    return "building the " + size + " camera failed: " + e.what();
+  }
 }
 
 void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor_msgs::Image* msg)

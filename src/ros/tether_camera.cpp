@@ -24,7 +24,11 @@ TetherCamera::TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros:
 {
   if (config_.info_topic.empty())
   {
-    model_ = std::make_unique<camera::CameraModel>(config_.intrinsics);  // throws naming D when it folds
+    const std::string error = buildCameraModel(config_.intrinsics, &model_);  // names D when it folds
+    if (!error.empty())
+    {
+      throw std::invalid_argument(error);
+    }
   }
   const auto connect = [this](const image_transport::SingleSubscriberPublisher&) { onConnection(); };
   const std::string base = config_.name + "/";
@@ -81,14 +85,10 @@ void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
   std::string error = intrinsicsFromCameraInfo(*info, &intrinsics);
   if (error.empty() && (!model_ || model_->intrinsics() != intrinsics))
   {
-    try
-    {
-      model_ = std::make_unique<camera::CameraModel>(intrinsics);
-    }
-    catch (const std::invalid_argument& e)
-    {
-      error = e.what();
-    }
+    // Anything building throws (std::bad_alloc too) refuses this CameraInfo: it never ends the node. The old
+    // model goes first, so the two never take memory together.
+    model_.reset();
+    error = buildCameraModel(intrinsics, &model_);
   }
   if (!error.empty())
   {

@@ -9,7 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <new>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -1159,6 +1162,70 @@ TEST(CameraConfig, IncrementalImageMessagesEqualFullCopies)
     EXPECT_EQ(depth.encoding, "32FC1");
     EXPECT_EQ(depth.header.seq, static_cast<std::uint32_t>(frame));
   }
+}
+
+// Review of the camera node, item 1: a CameraInfo of up to 16384 x 16384 px passed the per-side check, and
+// building its camera took more than 2 GB (rays alone: 8 bytes a pixel); the std::bad_alloc killed the node.
+// Now at most 4096 x 4096 pixels are taken, whatever the sides, and the message says the cap, from a
+// CameraInfo and from the `cameras` list alike (one check: CameraIntrinsics::validate).
+TEST(CameraConfig, ACameraOfMoreThan4096By4096PixelsIsRefused)
+{
+  sensor_msgs::CameraInfo info;
+  info.K = {1000, 0, 0, 0, 1000, 0, 0, 0, 1};
+  const auto refusal = [&](std::uint32_t width, std::uint32_t height)
+  {
+    info.width = width;
+    info.height = height;
+    info.K[2] = 0.5 * width - 0.5;
+    info.K[5] = 0.5 * height - 0.5;
+    camera::CameraIntrinsics intrinsics;
+    return intrinsicsFromCameraInfo(info, &intrinsics);
+  };
+  EXPECT_NE(refusal(16384, 16384).find("width x height = 16384 x 16384 = 268435456 px: at most 4096 x 4096"),
+            std::string::npos)
+      << refusal(16384, 16384);
+  EXPECT_NE(refusal(8192, 2049).find("at most 4096 x 4096 = 16777216 px"), std::string::npos) << "one row too many";
+  EXPECT_EQ(refusal(4096, 4096), "");
+  EXPECT_EQ(refusal(8192, 2048), "") << "as many pixels as 4096 x 4096, in another shape";
+  EXPECT_EQ(refusal(16384, 1), "") << "each side is still allowed up to 16384";
+  std::vector<CameraConfig> cameras;
+  const std::string error = loadCameraConfigs(
+      rov_tether::test::toXmlRpc(YAML::Load(
+          "[{name: a, frame: f, width: 10000, height: 10000, K: [5000, 0, 4999.5, 0, 5000, 4999.5, 0, 0, 1]}]")),
+      {}, &cameras);
+  EXPECT_NE(error.find("cameras[0].width x height = 10000 x 10000"), std::string::npos) << error;
+}
+
+// Review of the camera node, item 1: only std::invalid_argument was caught around building a camera from a
+// CameraInfo, so a std::bad_alloc (or OpenCV's cv::Exception) escaped the callback and ended the node.
+// buildCameraModel turns any std::exception into the reason the CameraInfo is refused, and keeps what
+// *model held; here the builder fails as memory or OpenCV would.
+TEST(CameraConfig, ACameraThatCannotBeBuiltIsRefusedNotThrown)
+{
+  camera::CameraIntrinsics intrinsics;
+  intrinsics.width = 64;
+  intrinsics.height = 48;
+  intrinsics.K = {50, 0, 31.5, 0, 50, 23.5, 0, 0, 1};
+  std::unique_ptr<camera::CameraModel> model;
+  std::string error;
+  EXPECT_NO_THROW(error = buildCameraModel(intrinsics, &model,
+                                           [](const camera::CameraIntrinsics&) -> std::unique_ptr<camera::CameraModel>
+                                           { throw std::bad_alloc(); }));
+  EXPECT_EQ(error, "building the 64x48 camera ran out of memory");
+  EXPECT_EQ(model, nullptr);
+  EXPECT_NO_THROW(error = buildCameraModel(intrinsics, &model,
+                                           [](const camera::CameraIntrinsics&) -> std::unique_ptr<camera::CameraModel>
+                                           { throw std::runtime_error("cv::undistortPoints failed"); }));
+  EXPECT_EQ(error, "building the 64x48 camera failed: cv::undistortPoints failed");
+  EXPECT_EQ(model, nullptr);
+  // Invalid intrinsics are refused naming the field, as before; valid ones are built.
+  intrinsics.K[0] = -1.0;
+  EXPECT_NE(buildCameraModel(intrinsics, &model).find("fx = K[0] = -1"), std::string::npos);
+  EXPECT_EQ(model, nullptr);
+  intrinsics.K[0] = 50.0;
+  EXPECT_EQ(buildCameraModel(intrinsics, &model), "");
+  ASSERT_NE(model, nullptr);
+  EXPECT_EQ(model->width(), 64);
 }
 
 // Review of the camera node, item 4: sensor_msgs/CameraInfo says a roi of the full image (offsets 0, the

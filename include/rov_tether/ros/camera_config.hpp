@@ -5,10 +5,13 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
+#include <functional>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
+#include "rov_tether/camera/camera_model.hpp"
 #include "rov_tether/spec/camera_intrinsics.hpp"
 #include "rov_tether/spec/camera_spec.hpp"
 
@@ -26,8 +29,18 @@ std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector
                               std::vector<CameraConfig>* cameras);
 
 /// Intrinsics from a CameraInfo: "" or why it cannot be used (distortion model other than plumb_bob,
-/// binning or a region of interest other than the full image, invalid K).
+/// binning or a region of interest other than the full image, invalid K, more than 4096 x 4096 pixels).
 std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics);
+
+/// What builds a camera model: CameraModel's constructor unless a test gives one that fails as memory would.
+using CameraModelBuilder = std::function<std::unique_ptr<camera::CameraModel>(const camera::CameraIntrinsics&)>;
+
+/// Builds the model of `intrinsics` into *model (with `build`, CameraModel's constructor when empty). Returns
+/// "" or why it cannot be built, *model left as it was then: invalid intrinsics, a distortion that folds
+/// over, or any other std::exception (std::bad_alloc: out of memory). Never throws: a camera that cannot be
+/// built is refused, and the node goes on.
+std::string buildCameraModel(const camera::CameraIntrinsics& intrinsics, std::unique_ptr<camera::CameraModel>* model,
+                             const CameraModelBuilder& build = {});
 
 /// Copies `image` (CV_8UC1 as mono8, CV_32FC1 as 32FC1) into `msg`, reusing its storage.
 void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor_msgs::Image* msg);

@@ -26,6 +26,9 @@ struct CameraIntrinsics
 
   /// Largest image side accepted [px].
   static constexpr int kMaxSide = 16384;
+  /// Most pixels accepted, 4096 x 4096: building a camera takes some 40 bytes a pixel (its rays, and the
+  /// distortion's inversion), so 16384 x 16384, within kMaxSide, would need more than 10 GB.
+  static constexpr long kMaxPixels = 4096L * 4096L;
 
   double fx() const { return K[0]; }
   double fy() const { return K[4]; }
@@ -67,6 +70,12 @@ struct CameraIntrinsics
     if (height < 1 || height > kMaxSide)
     {
       errors.push_back(prefix + "height = " + std::to_string(height) + ": must be in [1, 16384] px");
+    }
+    if (width >= 1 && height >= 1 && static_cast<long>(width) * height > kMaxPixels)
+    {
+      errors.push_back(prefix + "width x height = " + std::to_string(width) + " x " + std::to_string(height) + " = " +
+                       std::to_string(static_cast<long>(width) * height) +
+                       " px: at most 4096 x 4096 = 16777216 px (a camera takes some 40 bytes a pixel to build)");
     }
     for (std::size_t i = 0; i < K.size(); ++i)
     {
