@@ -93,7 +93,8 @@ void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
   if (!error.empty())
   {
     model_.reset();
-    if (warningDue("info"))
+    // Its own key: the frames dropped for want of a model warn under "info", with their count.
+    if (warningDue("info_refused"))
     {
       ROS_WARN("tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(),
                info_sub_.getTopic().c_str(), error.c_str());

@@ -10,8 +10,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "rov_tether/TetherCoverage.h"
 
@@ -62,9 +66,10 @@ class CameraNode : public testing::Test
     static_tf_.sendTransform(camera);
   }
 
-  /// Publishes the vehicle pose, and with `images` a CameraInfo and an image stamped now (+ `image_offset`
-  /// [s]); returns the image's stamp.
-  ros::Time publish(bool images, double image_offset = 0.0)
+  /// Publishes the vehicle pose, and with `images` a CameraInfo (of `info_width` x `info_height` px) and an
+  /// image (kWidth x kHeight) stamped now (+ `image_offset` [s]); returns the image's stamp.
+  ros::Time publish(bool images, double image_offset = 0.0, std::uint32_t info_width = kWidth,
+                    std::uint32_t info_height = kHeight)
   {
     const ros::Time now = ros::Time::now();
     geometry_msgs::PoseStamped pose;
@@ -78,8 +83,8 @@ class CameraNode : public testing::Test
       sensor_msgs::CameraInfo info;
       info.header.stamp = now;
       info.header.frame_id = "cam_optical";
-      info.width = kWidth;
-      info.height = kHeight;
+      info.width = info_width;
+      info.height = info_height;
       info.distortion_model = "plumb_bob";
       info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
       info.K = {200, 0, 159.5, 0, 200, 119.5, 0, 0, 1};
@@ -297,6 +302,76 @@ TEST_F(CameraNode, BadImageStampsAreWarnedAboutAndNeverBlockTheGoodOnes)
   EXPECT_EQ(mask_stamps.count(past), 0u);
   EXPECT_NE(logged.find("ahead of ROS time"), std::string::npos) << logged;
   EXPECT_NE(logged.find("older than the tether shapes kept"), std::string::npos) << logged;
+}
+
+// Review of the camera node, items 1 and 5. A CameraInfo of 16384 x 16384 px passed the per-side check and
+// building its camera (more than 2 GB) could end the node with std::bad_alloc; it is refused now by the
+// pixel cap, said, and the node goes on. The refusal and the frames dropped for want of a camera shared one
+// throttle key, so while refused CameraInfos kept coming the dropped-frame warning (with its count) was
+// never due: now each has its own key, and the drop is said right after the refusal (within 3 s here; the
+// shared key held it back for 5 s). A good CameraInfo then brings the masks back.
+TEST_F(CameraNode, ARefusedCameraInfoAndTheFramesItCostsAreEachSaid)
+{
+  std::set<double> mask_stamps;
+  std::vector<std::pair<std::string, ros::WallTime>> warnings;
+  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 50,
+                                                               [&](const sensor_msgs::Image::ConstPtr& msg)
+                                                               { mask_stamps.insert(msg->header.stamp.toSec()); });
+  ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
+      "/rosout", 100,
+      [&](const rosgraph_msgs::Log::ConstPtr& msg)
+      {
+        if (msg->level == rosgraph_msgs::Log::WARN && msg->msg.find("camera front:") != std::string::npos)
+        {
+          warnings.emplace_back(msg->msg, ros::WallTime::now());
+        }
+      });
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 1 && info_pub_.getNumSubscribers() == 1; }, 10.0));
+  const auto said = [&](const std::string& text) -> const ros::WallTime*
+  {
+    for (const auto& [message, when] : warnings)
+    {
+      if (message.find(text) != std::string::npos)
+      {
+        return &when;
+      }
+    }
+    return nullptr;
+  };
+  const std::string refused = "camera_info refused: width x height = 16384 x 16384 = 268435456 px: at most 4096 x 4096";
+  const std::string dropped = "so far): the last CameraInfo was refused: width x height = 16384 x 16384";
+  ros::WallTime next = ros::WallTime::now();
+  const auto at15Hz = [&](std::uint32_t side)
+  {
+    if (ros::WallTime::now() >= next)
+    {
+      if (side == 0)
+      {
+        publish(true);
+      }
+      else
+      {
+        publish(true, 0.0, side, side);
+      }
+      next += ros::WallDuration(1.0 / 15.0);
+    }
+  };
+  waitFor([&] { return said(refused) != nullptr && said(dropped) != nullptr; }, 12.0, [&] { at15Hz(16384); });
+  std::string logged;
+  for (const auto& w : warnings)
+  {
+    logged += w.first + "\n";
+  }
+  std::printf("[ measured ] warnings of camera front:\n%s", logged.c_str());
+  ASSERT_NE(said(refused), nullptr) << logged;
+  ASSERT_NE(said(dropped), nullptr) << logged;
+  EXPECT_NE(logged.find("the last CameraInfo was refused: width x height = 16384 x 16384"), std::string::npos)
+      << logged;
+  EXPECT_LT((*said(dropped) - *said(refused)).toSec(), 3.0) << "the drop is said at once, not after the refusal's 5 s";
+  // The node lives on: a good CameraInfo is taken and frames are drawn again.
+  const std::size_t before = mask_stamps.size();
+  EXPECT_TRUE(waitFor([&] { return mask_stamps.size() >= before + 5; }, 10.0, [&] { at15Hz(0); }))
+      << mask_stamps.size() - before << " masks after the good CameraInfo";
 }
 
 }  // namespace
