@@ -20,7 +20,8 @@ TetherCamera::TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros:
       world_frame_(world_frame),
       max_future_(max_future),
       budget_(render_budget),
-      transport_(private_nh)
+      transport_(private_nh),
+      schedule_(config.rate)
 {
   if (config_.info_topic.empty())
   {
@@ -68,7 +69,7 @@ void TetherCamera::onConnection()
       image_transport::ImageTransport it(nh_);
       image_sub_ = it.subscribe(config_.image_topic, 5, &TetherCamera::onImage, this);
     }
-    next_frame_ = -1.0;
+    schedule_.reset();
   }
   else if (!active_now && subscribed_)
   {
@@ -153,14 +154,19 @@ void TetherCamera::process(camera::CameraScene& scene)
   if (config_.image_topic.empty())
   {
     // Frames on a grid of physics time: k / rate.
-    if (next_frame_ < 0.0 || next_frame_ < scene.oldest())
+    const double was = schedule_.next();
+    FrameSchedule::Start start = FrameSchedule::Start::kKept;
+    const std::vector<double> times = schedule_.due(scene.oldest(), scene.newest(), &start);
+    if (start == FrameSchedule::Start::kRestarted && warningDue("schedule"))
     {
-      next_frame_ = std::ceil(scene.newest() * config_.rate - 1e-9) / config_.rate;
+      ROS_WARN(
+          "tether_node: camera %s: its frame schedule restarted at %.3f s: its next frame at %.3f s lay outside "
+          "the tether shapes kept (%.3f-%.3f s), the clock jumped (a bag played in a loop?)",
+          config_.name.c_str(), times.empty() ? schedule_.next() : times.front(), was, scene.oldest(), scene.newest());
     }
-    while (next_frame_ <= scene.newest() + 1e-9)
+    for (const double t : times)
     {
-      renderAt(ros::Time(next_frame_), scene, nullptr);
-      next_frame_ = std::round(next_frame_ * config_.rate + 1.0) / config_.rate;
+      renderAt(ros::Time(t), scene, nullptr);
     }
     return;
   }

@@ -6,6 +6,7 @@
 #include <tf2_ros/buffer.h>
 #include <topic_tools/shape_shifter.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -18,6 +19,7 @@
 
 #include "../test_helpers.hpp"
 #include "rov_tether/core/world.hpp"
+#include "rov_tether/ros/frame_schedule.hpp"
 #include "rov_tether/ros/load_governor.hpp"
 #include "rov_tether/ros/pose_input.hpp"
 #include "rov_tether/ros/render_budget.hpp"
@@ -363,6 +365,73 @@ TEST(RenderBudget, ACameraSkippingFramesMeasuresAgainEverOnceInAWhile)
     budget.allows(pixels, 1e4 * (k + 1));  // the first skip of a run of skips
   }
   EXPECT_EQ(budget.retry(), RenderBudget::kLastRetry);
+}
+
+// Review of the camera node, item 2: a camera at a fixed rate went silent after physics time went back
+// (a bag played in a loop): its schedule started again only when its next frame time fell below the oldest
+// shape kept, but after a jump back the shapes start over at the new time, far below it, and the camera
+// waited for the physics to come back there (100 s here). Now the schedule starts again, said as
+// kRestarted, once its next time lies more than one period past the newest shape. A 10 Hz camera, the
+// physics ticking at 100 Hz and 1 s of shapes kept, as in the node.
+TEST(FrameSchedule, AFixedRateCameraStartsAgainWhenPhysicsTimeGoesBack)
+{
+  FrameSchedule schedule(10.0);
+  std::vector<double> frames;
+  int first = 0, restarted = 0;
+  const auto tick = [&](double oldest, double newest)
+  {
+    FrameSchedule::Start start = FrameSchedule::Start::kKept;
+    for (const double t : schedule.due(oldest, newest, &start))
+    {
+      frames.push_back(t);
+    }
+    first += start == FrameSchedule::Start::kFirst;
+    restarted += start == FrameSchedule::Start::kRestarted;
+  };
+  const auto run = [&](double from, double to)
+  {
+    for (int k = 0; from + 0.01 * k <= to + 1e-9; ++k)
+    {
+      const double t = from + 0.01 * k;
+      tick(std::max(from, t - 1.0), t);
+    }
+  };
+  run(150.0, 152.0);
+  ASSERT_EQ(frames.size(), 21u) << "150.0, 150.1, ..., 152.0";
+  EXPECT_EQ(first, 1);
+  EXPECT_EQ(restarted, 0) << "a schedule going on as the physics goes is kept";
+  for (std::size_t k = 0; k < frames.size(); ++k)
+  {
+    EXPECT_NEAR(frames[k], 150.0 + 0.1 * k, 1e-9);
+  }
+  // The bag starts over 100 s earlier: the shapes start over at 50 s (ShapeHistory clears when time goes back).
+  frames.clear();
+  run(50.0, 51.0);
+  EXPECT_EQ(restarted, 1);
+  ASSERT_EQ(frames.size(), 11u) << "50.0, 50.1, ..., 51.0: the camera does not wait for 152.1 s";
+  for (std::size_t k = 0; k < frames.size(); ++k)
+  {
+    EXPECT_NEAR(frames[k], 50.0 + 0.1 * k, 1e-9);
+  }
+  // Physics time jumping ahead past the shapes kept starts it again too (as before), at the newest shape.
+  frames.clear();
+  tick(60.0, 60.0);
+  EXPECT_EQ(restarted, 2);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_NEAR(frames[0], 60.0, 1e-9);
+  // At ROS times of wall clocks (1.7e9 s), the grid's rounding never reads as a jump.
+  FrameSchedule wall(30.0);
+  int wall_restarts = 0;
+  std::size_t wall_frames = 0;
+  for (int k = 0; k < 300; ++k)
+  {
+    const double t = 1.7e9 + 0.01 * k;
+    FrameSchedule::Start start = FrameSchedule::Start::kKept;
+    wall_frames += wall.due(t - 1.0, t, &start).size();
+    wall_restarts += start == FrameSchedule::Start::kRestarted;
+  }
+  EXPECT_EQ(wall_restarts, 0);
+  EXPECT_NEAR(static_cast<double>(wall_frames), 90.0, 1.0);
 }
 
 // A node whose physics cannot hold real time falls more than max_lag behind on every tick (here each

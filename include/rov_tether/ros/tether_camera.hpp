@@ -18,6 +18,7 @@
 #include "rov_tether/camera/camera_scene.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
+#include "rov_tether/ros/frame_schedule.hpp"
 #include "rov_tether/ros/render_budget.hpp"
 
 namespace rov_tether::ros_layer
@@ -89,7 +90,7 @@ class TetherCamera
   camera::TetherRenderer renderer_;
   std::vector<camera::Tube> tubes_;
   std::deque<sensor_msgs::ImageConstPtr> queue_;
-  double next_frame_ = -1.0;  ///< Rate mode: physics time of the next frame [s]; < 0: not set.
+  FrameSchedule schedule_;  ///< Rate mode: the frames' times.
   std::uint64_t dropped_ = 0;
   sensor_msgs::Image mask_msg_, depth_msg_;
   std::vector<int> mask_msg_pixels_, depth_msg_pixels_;  ///< The tether pixels each message holds.
