@@ -282,7 +282,13 @@ void Scheduler::advance(double target)
       TetherSchedule& s = tethers_[i];
       if (s.next_state <= stop)
       {
-        timed(i, [&] { s.hooks->publishState(); });
+        // Not before time 0: a clock starting at 0 puts the physics interpolation_delay behind it, at negative
+        // times, which no stamp can carry (they were clamped to 0: several ~state and tf at stamp 0, tf's
+        // TF_REPEATED_DATA).
+        if (world_.tether(i).time() >= 0.0)
+        {
+          timed(i, [&] { s.hooks->publishState(); });
+        }
         s.next_state += s.state_period;
         state_due = true;
       }

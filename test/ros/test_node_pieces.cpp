@@ -281,6 +281,29 @@ TEST(Scheduler, StartsBehindRosTimeOnTheStepGridAndPublishesOnTheStateGrid)
   EXPECT_EQ(t.scheduler.schedule(0).resets, 0u);
 }
 
+// A clock starting at 0 (a simulator's, a bag's from its start) puts the physics interpolation_delay (0.1 s)
+// behind it, at negative times. Their states were published with the stamp clamped to 0: several ~state and tf at
+// stamp 0 (tf's TF_REPEATED_DATA). Now nothing is published before time 0, and the states after it keep the grid,
+// each time once.
+TEST(Scheduler, NothingIsPublishedBeforeTimeZero)
+{
+  OneTether t;
+  for (double now = 0.0033; now < 0.4; now += 0.005)
+  {
+    t.scheduler.tick(ros::Time(now));
+  }
+  ASSERT_LT(t.world.tether(0).time(), 0.3);
+  ASSERT_GE(t.hooks->state_times.size(), 5u);  // 0 to about 0.29 s on the 1/30 s grid
+  for (std::size_t k = 0; k < t.hooks->state_times.size(); ++k)
+  {
+    EXPECT_GE(t.hooks->state_times[k], 0.0) << k;
+    if (k > 0)
+    {
+      EXPECT_GT(t.hooks->state_times[k], t.hooks->state_times[k - 1]) << k;
+    }
+  }
+}
+
 TEST(Scheduler, ClockJumpsResetAndFallingBehindSkips)
 {
   OneTether t;
