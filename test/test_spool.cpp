@@ -292,7 +292,8 @@ TEST(Spool, SpeedModeGoesToATargetLengthAndHolds)
 
 // A target length is gone to in speed mode at |winch_speed|: set in brake mode, or at speed 0, it would be kept and
 // shown (~state, the Python winch) and never gone to, so it is refused, naming the mode and the speed; leaving speed
-// mode clears a target set there (back in speed mode the winch does not run off to an old target).
+// mode, or a winch_speed of 0, clears a target set there (back in speed mode the winch does not run off to an old
+// target).
 TEST(Spool, ATargetLengthTheWinchWouldNotGoToIsRefused)
 {
   TetherParams params;  // brake, the default
@@ -311,6 +312,12 @@ TEST(Spool, ATargetLengthTheWinchWouldNotGoToIsRefused)
   ASSERT_TRUE(sim.setParams(params).ok);
   ASSERT_TRUE(sim.setTargetLength(3.0).ok);
   EXPECT_EQ(sim.targetLength(), 3.0);
+  params.winch_speed = 0.0;  // standing: the target would stay in ~state, never gone to
+  ASSERT_TRUE(sim.setParams(params).ok);
+  EXPECT_TRUE(std::isnan(sim.targetLength()));
+  params.winch_speed = 0.5;
+  ASSERT_TRUE(sim.setParams(params).ok);
+  ASSERT_TRUE(sim.setTargetLength(3.0).ok);
   params.winch_mode = WinchMode::kBrake;
   ASSERT_TRUE(sim.setParams(params).ok);
   EXPECT_TRUE(std::isnan(sim.targetLength()));

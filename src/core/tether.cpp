@@ -154,9 +154,10 @@ Status Tether::setParams(const TetherParams& params)
   // A rebuilt cable keeps its deployed length and, as when attaching, reaches the vehicle.
   const double deployed = track_.attached() ? lengthToReach(track_.position()) : deployedLength();
   applyParams(params);
-  if (new_mode && params_.winch_mode != WinchMode::kSpeed)
+  if (params_.winch_mode != WinchMode::kSpeed || params_.winch_speed == 0.0)
   {
-    winch_.setTargetLength(std::numeric_limits<double>::quiet_NaN());  // a target lives in speed mode only
+    // A target lives in speed mode with a speed to go there at (setTargetLength); out of it, it is cleared.
+    winch_.setTargetLength(std::numeric_limits<double>::quiet_NaN());
   }
   if (new_mode || new_solver)
   {

@@ -151,7 +151,7 @@ void TetherNode::restarted(const ros::Time& now)
   diagnostics_.restarted();
   if (vehicle_io_)
   {
-    vehicle_io_->restarted();
+    vehicle_io_->restarted(now);
   }
 }
 
@@ -239,7 +239,7 @@ bool TetherNode::onSetWinch(SetWinch::Request& request, SetWinch::Response& resp
 {
   applyPendingParams();
   TetherParams params = tether_.params();
-  double target = std::nan("");
+  double target = tether_.targetLength();  // the target in force: a request of one field keeps it
   response.success = false;
   response.message = winchRequest(request, &params, &target, private_nh_.getNamespace());
   if (!response.message.empty())

@@ -42,9 +42,14 @@ std::string withHint(const std::string& error, const TetherParams& params, const
 }
 }  // namespace
 
-std::string winchRequest(const SetWinch::Request& request, TetherParams* params, double* target,
+std::string winchRequest(const SetWinch::Request& request, TetherParams* params_in_force, double* target_in_force,
                          const std::string& reconfigure)
 {
+  // Worked out on copies, handed back only when the request is taken: a refusal changes nothing the caller holds.
+  TetherParams asked = *params_in_force;
+  double asked_target = *target_in_force;
+  TetherParams* params = &asked;
+  double* target = &asked_target;
   if (!request.mode.empty() && !parseWinchMode(request.mode, &params->winch_mode))
   {
     return "mode '" + request.mode + "': expected brake, constant_tension, speed, locked or strain";
@@ -114,6 +119,11 @@ std::string winchRequest(const SetWinch::Request& request, TetherParams* params,
   for (const std::string& problem : problems)
   {
     answer += (answer.empty() ? "" : "; ") + problem;
+  }
+  if (answer.empty())
+  {
+    *params_in_force = asked;
+    *target_in_force = asked_target;
   }
   return answer;
 }

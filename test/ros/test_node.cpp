@@ -659,6 +659,15 @@ TEST(TetherNode, SetWinchGoesToATargetLengthAndRefusesBadCommands)
   EXPECT_NEAR(h.state_.deployed_length, 7.0, 1e-6);
   EXPECT_EQ(h.state_.winch_mode, "speed");
   EXPECT_NEAR(h.state_.target_length, 7.0, 1e-9);
+  // A request of one field keeps the target in force (with mode "" a 0 keeps what is in force: the node handed the
+  // rules no target, and the request cleared it).
+  rov_tether::SetWinch one;
+  one.request.brake_tension = 7.0;
+  ASSERT_TRUE(client.call(one));
+  ASSERT_TRUE(one.response.success) << one.response.message;
+  ASSERT_TRUE(h.drive(0.2, [](double) { return poseAt(5.5, 0.0, -0.5); }));
+  EXPECT_EQ(h.state_.winch_mode, "speed");
+  EXPECT_NEAR(h.state_.target_length, 7.0, 1e-9);
 
   srv.request.mode = "fast";
   ASSERT_TRUE(client.call(srv));

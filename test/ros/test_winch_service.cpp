@@ -89,6 +89,8 @@ TEST(WinchService, SpeedAndTargetThatWouldNotActAreRefused)
       const std::string answer = winchRequest(request(mode, speed, target), &params, &kept, "/n");
       EXPECT_NE(answer.find(field), std::string::npos) << mode << ": " << answer;
       EXPECT_NE(answer.find(std::string("would be in ") + mode + " mode"), std::string::npos) << answer;
+      EXPECT_EQ(kept, 5.0);  // refused: nothing the caller holds changes
+      EXPECT_EQ(params.winch_mode, WinchMode::kBrake);
     }
   }
   TetherParams brake;  // the default mode, kept by "": a target asked of it is refused too

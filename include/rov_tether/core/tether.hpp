@@ -116,7 +116,7 @@ class Tether
   Status addVehicleSample(double t, const Position& vehicle);
   /// In `speed` mode, pays out or reels in towards `length` [m] at |winch_speed| and holds it there.
   /// NaN clears the target. Refuses lengths outside [min_deployed_length, cable_length], and any target unless the
-  /// winch is in speed mode with a winch_speed to go there at; a change of mode away from speed clears it.
+  /// winch is in speed mode with a winch_speed to go there at; parameters without either (setParams) clear it.
   Status setTargetLength(double length);
   /// The target length of `speed` mode [m], NaN when there is none.
   double targetLength() const { return winch_.targetLength(); }
