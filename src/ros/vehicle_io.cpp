@@ -160,12 +160,12 @@ VehicleIo::VehicleIo(const TetherSetup& setup, Tether& tether, const std::string
   }
 }
 
-void VehicleIo::restarted()
+void VehicleIo::restarted(const ros::Time& clock)
 {
   start_due_ = true;
   {
     std::lock_guard<std::mutex> lock(command_mutex_);
-    command_.forget();  // the vehicle starts again at rest, with no command of the old time
+    command_.forgetArrivedAfter(clock);  // the vehicle starts again at rest, with no command of the old time
   }
   setpoints_.clear();
   controller_.reset();

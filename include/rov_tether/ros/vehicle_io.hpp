@@ -69,13 +69,16 @@ class WrenchCommand
   Wrench thrustAt(const ros::Time& now, bool* went_stale);
   /// Age of the command at `now` [s]; infinite before the first.
   double age(const ros::Time& now) const;
-  /// Forgets the command, as before the first (a restart: after the clock went back its arrival lies ahead and it
-  /// would count as fresh); the counts stay.
-  void forget()
+  /// Forgets a command that arrived after `clock`, as before the first: after the clock went back to `clock` its
+  /// arrival lies ahead and it would count as fresh. One that arrived on the new clock stays. The counts stay.
+  void forgetArrivedAfter(const ros::Time& clock)
   {
-    command_ = Wrench::Zero();
-    arrival_ = ros::Time();
-    stale_said_ = false;
+    if (arrival_ > clock)
+    {
+      command_ = Wrench::Zero();
+      arrival_ = ros::Time();
+      stale_said_ = false;
+    }
   }
 
   std::uint64_t accepted() const { return accepted_; }
@@ -119,9 +122,10 @@ class VehicleIo
   void beforeAdvance(const ros::Time& now);
   /// With each ~state: ~odom and tf at the tether's physics time.
   void publishState();
-  /// After the tether was reset (which ends the dynamic vehicle): it starts again (beforeAdvance, takePose),
-  /// with no setpoint and the controller's integrals at zero.
-  void restarted();
+  /// After the tether was reset at ROS time `clock` (which ends the dynamic vehicle): it starts again
+  /// (beforeAdvance, takePose), with no setpoint, the controller's integrals at zero and no command from before the
+  /// clock went back.
+  void restarted(const ros::Time& clock);
   /// The body's pose in the world frame; identity before the start.
   Eigen::Isometry3d pose() const;
   /// The /diagnostics values of the vehicle: commands taken, refused, stale periods, setpoints, what drives it,
