@@ -52,7 +52,8 @@ std::string readIntrinsics(const YAML::Node& node, const std::string& field, cam
     }
     if (size != std::floor(size) || size < 1 || size > camera::CameraIntrinsics::kMaxSide)
     {
-      return field + "." + key + " = " + shown(size) + ": must be a whole number in [1, 16384] px";
+      return field + "." + key + " = " + shown(size) +
+             ": must be a whole number in [1, 16384] px (and width x height at most 4096 x 4096)";
     }
     (std::string(key) == "width" ? intrinsics->width : intrinsics->height) = static_cast<int>(size);
   }

@@ -57,8 +57,9 @@ struct VehicleParams
   /// BlueROV2 Heavy: 4.1 kgf (40.2 N, the T200's reverse thrust at 16 V) per thruster, summed over the
   /// thrusters' components on each axis (config/vehicles/bluerov2_heavy.yaml says how).
   Vector6 thrust_limit = (Vector6() << 113.7, 113.7, 160.8, 35.1, 19.3, 30.4).finished();
-  /// Outer size: length (x), width (y), height (z) [m], centred on the body origin: the box the node draws in rviz,
-  /// and with a water surface the height over which the hull comes out of the water (VehicleBody::submergedShare).
+  /// Outer size: length (x), width (y), height (z) [m]: the box the node draws in rviz, centred on the body origin;
+  /// and with a water surface, its height is the hull's, centred on the centre of buoyancy, over which the hull
+  /// comes out of the water (VehicleBody::submergedShare).
   /// BlueROV2 Heavy: 457 x 575 x 254 mm (Blue Robotics' BlueROV2 technical specifications, Heavy configuration;
   /// config/vehicles/bluerov2_heavy.yaml).
   Eigen::Vector3d size{0.457, 0.575, 0.254};
