@@ -1309,19 +1309,24 @@ TEST(StudyTool, RefusesAnUnknownCase)
 }
 
 // A stability.csv that cannot be written (a directory in its place) is said as study.csv's is, "cannot write
-// PATH" with exit code 1, before the study runs (its fopen was unchecked: the tool crashed after the whole study).
+// PATH" with exit code 1, before the study runs (its fopen was unchecked: the tool crashed after the whole study),
+// and an earlier run's study.csv stays as it was (it was truncated, then removed).
 TEST(StudyTool, SaysWhenItCannotWriteTheStabilityMap)
 {
   const std::string dir = temporaryDirectory("study_no_stability_csv");
   const std::string err = dir + "_stderr.txt";
   fs::create_directories(dir + "/stability.csv");
+  {
+    std::ofstream earlier(dir + "/study.csv");
+    earlier << "an earlier run\n";
+  }
   const int status = std::system(
       (std::string(ROV_TETHER_STUDY) + " --out " + dir + " --case taut_string --quick >/dev/null 2> " + err).c_str());
   EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
   const std::vector<std::string> lines = readLines(err);
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines.front(), "cannot write " + dir + "/stability.csv");
-  EXPECT_FALSE(fs::exists(dir + "/study.csv"));  // nothing ran
+  EXPECT_EQ(readLines(dir + "/study.csv"), std::vector<std::string>{"an earlier run"});  // nothing ran
   fs::remove_all(dir);
   fs::remove(err);
 }

@@ -286,6 +286,26 @@ std::FILE* openForWriting(const std::string& path)
   return file;
 }
 
+/// Whether `path` can be written, found without truncating it (an earlier run's file stays until this run writes
+/// its own); a file made to find out is removed. Says so when it cannot.
+bool writable(const std::string& path)
+{
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path, ec);
+  std::FILE* file = std::fopen(path.c_str(), "a");
+  if (file == nullptr)
+  {
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    return false;
+  }
+  std::fclose(file);
+  if (!existed)
+  {
+    std::remove(path.c_str());
+  }
+  return true;
+}
+
 /// Writes study.csv to `out`: every case (or only `only`) swept, with the cheapest accurate run per method
 /// printed. Closes `out`.
 void writeStudy(const Options& options, std::FILE* out)
@@ -436,7 +456,14 @@ int main(int argc, char** argv)
   std::filesystem::create_directories(options.out_dir, ec);
   // Both files are opened before anything runs: a stability.csv that cannot be written was found (and crashed
   // the tool) only after the whole study.
+  // Checked without truncating either (opening study.csv first truncated an earlier run's, which a refusal for
+  // stability.csv then lost).
   const std::string study_path = options.out_dir + "/study.csv";
+  const std::string stability_path = options.out_dir + "/stability.csv";
+  if (!writable(study_path) || (options.with_stability && !writable(stability_path)))
+  {
+    return 1;
+  }
   std::FILE* study_file = openForWriting(study_path);
   if (study_file == nullptr)
   {
@@ -445,11 +472,10 @@ int main(int argc, char** argv)
   std::FILE* stability_file = nullptr;
   if (options.with_stability)
   {
-    stability_file = openForWriting(options.out_dir + "/stability.csv");
+    stability_file = openForWriting(stability_path);
     if (stability_file == nullptr)
     {
       std::fclose(study_file);
-      std::remove(study_path.c_str());  // empty: nothing ran
       return 1;
     }
   }
