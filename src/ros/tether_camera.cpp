@@ -13,12 +13,13 @@ namespace rov_tether::ros_layer
 
 TetherCamera::TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
                            const tf2_ros::Buffer& tf, const std::string& world_frame, double max_future,
-                           double render_budget)
+                           double max_wait, double render_budget)
     : config_(config),
       nh_(nh),
       tf_(tf),
       world_frame_(world_frame),
       max_future_(max_future),
+      max_wait_(max_wait),
       budget_(render_budget),
       transport_(private_nh),
       schedule_(config.rate)
@@ -115,10 +116,23 @@ void TetherCamera::onImage(const sensor_msgs::ImageConstPtr& image)
     drop("future", why);
     return;
   }
+  // The physics runs up to stale_pose_timeout behind ROS time while it waits for poses (1 Hz fixes, a pause): the
+  // images wait as long (30 of them, a second at 30 Hz, dropped the one due next, so none was drawn).
+  const ros::Time now = ros::Time::now();
+  while (!queue_.empty() && (now - queue_.front()->header.stamp).toSec() > max_wait_)
+  {
+    char why[200];
+    std::snprintf(why, sizeof(why),
+                  "an image waited %.2f s for the physics, more than %.2f s (stale_pose_timeout + "
+                  "interpolation_delay + 0.5 s): are the poses, the clock or the physics stalled?",
+                  (now - queue_.front()->header.stamp).toSec(), max_wait_);
+    queue_.pop_front();
+    drop("queue", why);
+  }
   if (queue_.size() >= kMaxQueued)
   {
     queue_.pop_front();
-    drop("queue", "more than 30 images wait for the physics (is the clock or the physics stalled?)");
+    drop("queue_full", "more than " + std::to_string(kMaxQueued) + " images wait for the physics");
   }
   queue_.push_back(image);
 }
@@ -279,7 +293,7 @@ void TetherCamera::publishRendered(const std_msgs::Header& header, const camera:
 
 CameraSet::CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
                      const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
-                     double render_budget)
+                     double max_wait, double render_budget)
     : scene_(world)
 {
   for (const auto& config : cameras)
@@ -287,7 +301,7 @@ CameraSet::CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& 
     try
     {
       cameras_.push_back(
-          std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame, max_future, render_budget));
+          std::make_unique<TetherCamera>(config, nh, private_nh, tf, world_frame, max_future, max_wait, render_budget));
     }
     catch (const std::invalid_argument& e)
     {

@@ -276,8 +276,14 @@ WorldNode::WorldNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   }
   if (has_cameras)
   {
+    double longest_hold = 0.0;  // the physics waits for the slowest tether's poses
+    for (const auto& setup : setups)
+    {
+      longest_hold = std::max(longest_hold, setup.options.stale_pose_timeout);
+    }
     cameras_ = std::make_unique<CameraSet>(world_spec.cameras, nh_, private_nh_, tf_buffer_, world_,
                                            setups.front().options.world_frame, setups.front().options.max_pose_future,
+                                           CameraSet::maxWait(longest_hold, setups.front().options.interpolation_delay),
                                            setups.front().options.max_lag);
   }
   for (std::size_t i = 0; i < world_spec.tethers.size(); ++i)

@@ -42,9 +42,11 @@ class TetherCamera
  public:
   /// Advertises under private_nh/<name>/; topics are resolved in `nh`. `tf` must outlive this.
   /// `max_future` [s]: images stamped further ahead of ROS time are dropped (the node's max_pose_future);
+  /// `max_wait` [s]: an image waits for the physics this long after its stamp at most (the physics waits for poses
+  /// up to stale_pose_timeout behind ROS time, plus interpolation_delay: CameraSet::maxWait);
   /// `render_budget` [s]: the longest a frame may take to draw (the node's max_lag).
   TetherCamera(const CameraConfig& config, ros::NodeHandle& nh, ros::NodeHandle& private_nh, const tf2_ros::Buffer& tf,
-               const std::string& world_frame, double max_future, double render_budget);
+               const std::string& world_frame, double max_future, double max_wait, double render_budget);
 
   /// Someone subscribes to one of its outputs.
   bool active() const;
@@ -54,8 +56,9 @@ class TetherCamera
   std::uint64_t dropped() const { return dropped_; }
   const std::string& name() const { return config_.name; }
 
-  /// At most this many images wait for the physics to reach their stamp.
-  static constexpr std::size_t kMaxQueued = 30;
+  /// At most this many images wait for the physics to reach their stamp (a bound on memory: 10 s at 30 Hz; the
+  /// wait itself is bounded by max_wait).
+  static constexpr std::size_t kMaxQueued = 300;
 
  private:
   void onConnection();
@@ -77,6 +80,7 @@ class TetherCamera
   const tf2_ros::Buffer& tf_;
   std::string world_frame_;
   double max_future_;  ///< [s]
+  double max_wait_;    ///< [s]
   RenderBudget budget_;
   std::map<std::string, ros::WallTime> last_warning_;  ///< This camera's last warning per reason.
   image_transport::ImageTransport transport_;
@@ -109,7 +113,13 @@ class CameraSet
   /// that cannot be set up. `world` and `tf` must outlive this.
   CameraSet(const std::vector<CameraConfig>& cameras, ros::NodeHandle& nh, ros::NodeHandle& private_nh,
             const tf2_ros::Buffer& tf, const World& world, const std::string& world_frame, double max_future,
-            double render_budget);
+            double max_wait, double render_budget);
+  /// How long an image may wait for the physics [s]: the longest the physics waits for poses behind ROS time
+  /// (stale_pose_timeout), plus interpolation_delay and half a second for the ticks.
+  static double maxWait(double stale_pose_timeout, double interpolation_delay)
+  {
+    return stale_pose_timeout + interpolation_delay + 0.5;
+  }
   void afterTick();
   std::size_t size() const { return cameras_.size(); }
 
