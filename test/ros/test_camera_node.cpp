@@ -106,6 +106,14 @@ class CameraNode : public testing::Test
     return now;
   }
 
+  /// Subscribes to front's masks, keeping their stamps in `stamps`.
+  ros::Subscriber keepMaskStamps(std::set<double>* stamps)
+  {
+    return nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 200,
+                                             [stamps](const sensor_msgs::Image::ConstPtr& msg)
+                                             { stamps->insert(msg->header.stamp.toSec()); });
+  }
+
   ros::NodeHandle nh_;
   ros::Publisher pose_pub_, info_pub_, image_pub_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
@@ -251,9 +259,7 @@ TEST_F(CameraNode, AFixedCameraRendersOnItsRateGrid)
 TEST_F(CameraNode, ImagesWaitForAPhysicsHeldBySparsePoses)
 {
   std::set<double> mask_stamps;
-  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 200,
-                                                               [&](const sensor_msgs::Image::ConstPtr& msg)
-                                                               { mask_stamps.insert(msg->header.stamp.toSec()); });
+  ros::Subscriber mask_sub = keepMaskStamps(&mask_stamps);
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 1; }, 10.0));
   std::set<double> stamps;
   const ros::WallTime start = ros::WallTime::now();
@@ -286,9 +292,7 @@ TEST_F(CameraNode, BadImageStampsAreWarnedAboutAndNeverBlockTheGoodOnes)
 {
   std::set<double> mask_stamps;
   std::vector<std::string> warnings;
-  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 50,
-                                                               [&](const sensor_msgs::Image::ConstPtr& msg)
-                                                               { mask_stamps.insert(msg->header.stamp.toSec()); });
+  ros::Subscriber mask_sub = keepMaskStamps(&mask_stamps);
   ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
       "/rosout", 100,
       [&](const rosgraph_msgs::Log::ConstPtr& msg)
@@ -356,9 +360,7 @@ TEST_F(CameraNode, ARefusedCameraInfoAndTheFramesItCostsAreEachSaid)
 {
   std::set<double> mask_stamps;
   std::vector<std::pair<std::string, ros::WallTime>> warnings;
-  ros::Subscriber mask_sub = nh_.subscribe<sensor_msgs::Image>("/tether_node/front/mask", 50,
-                                                               [&](const sensor_msgs::Image::ConstPtr& msg)
-                                                               { mask_stamps.insert(msg->header.stamp.toSec()); });
+  ros::Subscriber mask_sub = keepMaskStamps(&mask_stamps);
   ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
       "/rosout", 100,
       [&](const rosgraph_msgs::Log::ConstPtr& msg)
