@@ -182,6 +182,14 @@ def waypoints_problem(waypoints):
     return ""
 
 
+def sleep(rate):
+    """Until the rate's next tick; a clock that went back (bag loop) ends it early, and the loop restarts the dive."""
+    try:
+        rate.sleep()
+    except rospy.ROSTimeMovedBackwardsException:
+        pass
+
+
 def main():
     rospy.init_node("simulated_rov")
     rate_value = rospy.get_param("~rate", 20.0)
@@ -254,10 +262,7 @@ def main():
             start = now
             dive.restart()
         if now == last_stamp:  # the clock has not moved since the last pose: one pose a stamp
-            try:
-                rate.sleep()
-            except rospy.ROSTimeMovedBackwardsException:
-                pass
+            sleep(rate)
             continue
         last_stamp = now
         (x, y, z), yaw = dive.pose((now - start).to_sec())
@@ -275,10 +280,7 @@ def main():
             tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = x, y, z
             tf.transform.rotation = msg.pose.orientation
             broadcaster.sendTransform(tf)
-        try:
-            rate.sleep()
-        except rospy.ROSTimeMovedBackwardsException:
-            pass
+        sleep(rate)
 
 
 if __name__ == "__main__":

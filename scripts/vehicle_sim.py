@@ -307,13 +307,13 @@ def main():
                   sim.thrust[0], sim.thrust[1], sim.thrust[2], sim.tether_force)
     while not stopping():
         now = rospy.Time.now().to_sec()
+        jump = None
         if now < t - h:
-            sim.restart(now, "ROS time went back from %.3f s to %.3f s" % (t, now))
-            t = now
-            sim.publish(t)
+            jump = "ROS time went back from %.3f s to %.3f s" % (t, now)
         elif now - t > MAX_CATCH_UP:
-            sim.restart(now, "ROS time leapt %.3f s ahead (more than %.1f s: not stepped through)"
-                        % (now - t, MAX_CATCH_UP))
+            jump = "ROS time leapt %.3f s ahead (more than %.1f s: not stepped through)" % (now - t, MAX_CATCH_UP)
+        if jump:
+            sim.restart(now, jump)
             t = now
             sim.publish(t)
         while t + h <= now + 1e-9 and not stopping():  # catch up with ROS time in steps of exactly h
