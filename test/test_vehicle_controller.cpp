@@ -323,6 +323,50 @@ TEST(VehicleController, YawWrapsTheShortWay)
   EXPECT_NEAR(VehicleController::yawOf(body.attitude()), -170.0 * deg, 0.5 * deg);
 }
 
+// A setpoint 900 km ahead of a body pitched 10 degrees nose-down. The world error is bounded before it is
+// turned into the body frame: horizontally to 2 x the error at which the surge or sway P term alone meets
+// its limit (reach r = 2 max(113.7 / 27.8, 113.7 / 28.9) = 8.18 m with the defaults). At rest (no integral,
+// no velocity) the thrust is then exactly kp (R^T [r, 0, 0]): heave kp_z r sin(10 deg) = 64 N, inside its
+// 160.8 N limit, and the same as for a setpoint 20 m ahead (also beyond the reach). Unbounded, the 900 km
+// turned by 10 degrees asked 156 km of heave: the heave held at its limit as well as the surge, a thrust
+// 55 degrees off the way to go. Below the reach nothing changes: 3 m ahead gives kp (R^T [3, 0, 0]).
+// Seen failing without the bound (heave saturated).
+TEST(VehicleController, AFarSetpointAsksNoMoreThanOneAtTheReach)
+{
+  const VehicleParams vehicle = neutral();
+  VehicleController controller;
+  ASSERT_TRUE(controller.configure(vehicle, ControllerGains{}).ok);
+  const ControllerGains& gains = controller.gains();
+  const double reach =
+      2.0 * std::max(vehicle.thrust_limit[0] / gains.proportional[0], vehicle.thrust_limit[1] / gains.proportional[1]);
+  const Eigen::Quaterniond pitched(Eigen::AngleAxisd(10.0 * kPi / 180.0, Eigen::Vector3d::UnitY()));
+  auto thrustFor = [&](double ahead)
+  {
+    VehicleBody body;
+    EXPECT_TRUE(body.setParams(vehicle).ok);
+    EXPECT_TRUE(body.setState(Eigen::Vector3d::Zero(), pitched, Twist::Zero()).ok);
+    VehicleController fresh;
+    EXPECT_TRUE(fresh.configure(vehicle, gains).ok);
+    VehicleSetpoint setpoint;
+    setpoint.position = Eigen::Vector3d(ahead, 0.0, 0.0);
+    ControllerOutput out;
+    EXPECT_TRUE(fresh.update(kStep, setpoint, body, &out).ok);
+    return out;
+  };
+  const Eigen::Vector3d bounded = pitched.conjugate() * Eigen::Vector3d(reach, 0.0, 0.0);
+  const ControllerOutput far = thrustFor(9e5);
+  EXPECT_NEAR(far.thrust[2], gains.proportional[2] * bounded.z(), 1e-9);
+  EXPECT_LT(std::abs(far.thrust[2]), vehicle.thrust_limit[2]);
+  EXPECT_EQ(far.saturated_axes & 0b100, 0) << "heave held at its limit";
+  EXPECT_EQ(far.saturated_axes & 0b1, 1) << "surge at its limit: the reach asks twice it";
+  const ControllerOutput near = thrustFor(20.0);
+  EXPECT_EQ(near.thrust, far.thrust);
+  const ControllerOutput inside = thrustFor(3.0);
+  const Eigen::Vector3d unbounded = pitched.conjugate() * Eigen::Vector3d(3.0, 0.0, 0.0);
+  EXPECT_NEAR(inside.thrust[0], gains.proportional[0] * unbounded.x(), 1e-9);
+  EXPECT_NEAR(inside.thrust[2], gains.proportional[2] * unbounded.z(), 1e-9);
+}
+
 // The optional level hold (ControllerDesign::level_bandwidth 4 rad/s: a critically damped PD on roll, I' =
 // 0.26 + 0.189 = 0.449 kg m^2, kp = I' 16 = 7.18 N m/rad, kd = I' 8 = 3.59 N m s/rad). A body rolled 0.3 rad at
 // rest: its roll decays as 0.3 (1 + omega t) e^-(omega t) (the restoring moment, 1.3 N m/rad, only stiffens it):

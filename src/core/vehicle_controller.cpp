@@ -191,8 +191,25 @@ Status VehicleController::configure(const VehicleParams& vehicle, const Controll
     limit_[i] = vehicle.thrust_limit[kWrenchRow[i]];
   }
   level_limit_ = vehicle.thrust_limit.segment<2>(3);
+  reach_ =
+      Eigen::Vector2d(kReachFactor * std::max(limit_[0] / gains.proportional[0], limit_[1] / gains.proportional[1]),
+                      kReachFactor * limit_[2] / gains.proportional[2]);
   integral_.setZero();
   return Status::success();
+}
+
+Eigen::Vector3d VehicleController::boundedError(const Eigen::Vector3d& world_error) const
+{
+  // Horizontal and vertical parts bounded apart, each keeping its direction, so a far setpoint neither takes
+  // the depth's authority nor, rotated by a small tilt, asks for the heave limit.
+  Eigen::Vector3d bounded = world_error;
+  const double horizontal = world_error.head<2>().norm();
+  if (horizontal > reach_[0])
+  {
+    bounded.head<2>() *= reach_[0] / horizontal;
+  }
+  bounded.z() = std::clamp(world_error.z(), -reach_[1], reach_[1]);
+  return bounded;
 }
 
 double VehicleController::yawOf(const Eigen::Quaterniond& attitude)
@@ -214,7 +231,7 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
     return Status::error("vehicle controller: the setpoint (position, yaw, velocity, yaw rate) must be finite");
   }
   const Eigen::Quaterniond to_body = body.attitude().conjugate();
-  const Eigen::Vector3d position_error = to_body * (setpoint.position - body.position());
+  const Eigen::Vector3d position_error = to_body * boundedError(setpoint.position - body.position());
   const Eigen::Vector3d velocity_error = to_body * setpoint.velocity - body.velocity().head<3>();
   // std::remainder(x, 2 pi) is x - 2 pi n with n the nearest integer: the error in [-pi, pi], the short way.
   const double yaw_error = std::remainder(setpoint.yaw - yawOf(body.attitude()), 2.0 * kPi);

@@ -113,7 +113,11 @@ struct VehicleSetpoint
  * Per-axis PID from a setpoint to a body-frame thrust, as ROV position controllers are built (Fossen 2011,
  * ch. 12, "PID control"; Astrom and Hagglund, "Advanced PID Control", 2006, ch. 3, for the windup):
  *  - surge, sway, heave: the world error setpoint - position rotated into the body frame by the attitude,
- *    e = R^T (p_ref - p); the derivative term acts on the measured body velocity, kd (R^T v_ff - v);
+ *    e = R^T (p_ref - p); the derivative term acts on the measured body velocity, kd (R^T v_ff - v). The
+ *    world error is first bounded, its horizontal part's length and its vertical part each to twice the
+ *    error at which the P term alone meets the thrust limit (the larger of surge's and sway's horizontally),
+ *    keeping its direction: a far setpoint then asks what one at that reach asks, and a small tilt cannot
+ *    turn a long horizontal error into a saturated heave;
  *  - yaw: the heading error wrapped to [-pi, pi] (the short way round), the derivative on the body yaw rate r
  *    (the heading's rate while the vehicle is level);
  *  - roll and pitch are by default not controlled: their thrust is 0 and the restoring moment (the centre of
@@ -160,9 +164,17 @@ class VehicleController
   static double yawOf(const Eigen::Quaterniond& attitude);
 
  private:
+  /// The world error with its horizontal part's length held within reach_[0] and its vertical part within
+  /// reach_[1].
+  Eigen::Vector3d boundedError(const Eigen::Vector3d& world_error) const;
+
+  /// The reach is this many times the error at which the proportional term alone meets the thrust limit.
+  static constexpr double kReachFactor = 2.0;
+
   ControllerGains gains_;
-  Vector4 limit_{113.7, 113.7, 160.8, 30.4};  ///< Thrust limits of the controlled axes [N; N m].
-  Eigen::Vector2d level_limit_{35.1, 19.3};   ///< Roll and pitch thrust limits [N m].
+  Eigen::Vector2d reach_{2.0 * 113.7 / 27.8, 2.0 * 160.8 / 45.1};  ///< Horizontal, vertical reach [m].
+  Vector4 limit_{113.7, 113.7, 160.8, 30.4};                       ///< Thrust limits of the controlled axes [N; N m].
+  Eigen::Vector2d level_limit_{35.1, 19.3};                        ///< Roll and pitch thrust limits [N m].
   Vector4 integral_ = Vector4::Zero();
 };
 
