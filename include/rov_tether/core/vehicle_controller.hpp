@@ -28,10 +28,15 @@ struct ControllerDesign
   /// The integral's pole at -integral_ratio * omega: slow against the pair, so it removes a steady offset
   /// (a current, a tether's pull) in about 1 / (integral_ratio omega) = 5 s without changing the pair.
   double integral_ratio = 0.2;
-  /// Natural frequency of the optional level hold on roll and pitch [rad/s]: 0, none (the default: roll and
-  /// pitch left to the restoring moment). Else a PD per axis with kp = I' omega^2, kd = 2 zeta omega I' - d
-  /// (I' inertia with added inertia, d linear damping; kd held at 0 when negative: the vehicle damps more).
-  double level_bandwidth = 0.0;
+  /// Natural frequency of the level hold on roll and pitch [rad/s]: a PD per axis with kp = I' omega^2,
+  /// kd = 2 zeta omega I' - d (I' inertia with added inertia, d linear damping; kd held at 0 when negative:
+  /// the vehicle damps more); 0, none (roll and pitch left to the restoring moment). Default 8 rad/s: left to
+  /// its restoring moment (W BG = 1.3 N m/rad), the BlueROV2 Heavy turns broadside under the added-mass
+  /// (Munk) moment, stiffness (m33' - m11') U^2 = 12.3 U^2 N m/rad, above U = 0.33 m/s (a 0.5 m/s path
+  /// pitched it 78 degrees); at 8 rad/s kp = 23.4 N m/rad in pitch, 2.6 times the Munk stiffness at its
+  /// full-thrust surge speed (0.85 m/s), and the hold still settles at the largest time_step, 0.1 s (10 rad/s
+  /// does not). Both are tested (test_vehicle_controller.cpp).
+  double level_bandwidth = 8.0;
 
   /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio, level_bandwidth >= 0. Names the field and value.
   Status validate() const;
@@ -68,10 +73,11 @@ struct ControllerGains
   Vector4 integral_limit{113.7, 113.7, 160.8, 30.4};
   /// Anti-windup by conditional integration (VehicleController). Off only to show what it prevents (tests).
   bool anti_windup = true;
-  /// Optional level hold, a PD on roll and pitch [N m/rad; N m s/rad] (roll, pitch) towards level: 0 by
-  /// default, the two axes left to the restoring moment. ControllerDesign::level_bandwidth places it.
-  Eigen::Vector2d level_proportional = Eigen::Vector2d::Zero();
-  Eigen::Vector2d level_derivative = Eigen::Vector2d::Zero();
+  /// Level hold, a PD on roll and pitch [N m/rad; N m s/rad] (roll, pitch) towards level, placed by
+  /// ControllerDesign::level_bandwidth (8 rad/s: I' 64 and 16 I' - d); 0 leaves the two axes to the restoring
+  /// moment.
+  Eigen::Vector2d level_proportional{28.736, 23.36};
+  Eigen::Vector2d level_derivative{7.184, 5.04};
 
   /// Finite; proportional > 0; integral, derivative, integral_limit, level gains >= 0. Names the field, axis
   /// and value.
@@ -87,7 +93,7 @@ struct ControllerGains
 struct ControllerOutput
 {
   /// Body-frame thrust [Fx, Fy, Fz, Mx, My, Mz] [N, N m], each axis within the vehicle's thrust_limit; roll
-  /// and pitch 0 without the level hold.
+  /// and pitch 0 with the level hold's gains 0.
   Wrench thrust = Wrench::Zero();
   /// Bit i set (ThrustUsed's numbering: 0 surge, 1 sway, 2 heave, 3 roll, 4 pitch, 5 yaw): the controller
   /// asked for more than the limit on that axis and was held at it.
@@ -120,13 +126,13 @@ struct VehicleSetpoint
  *    turn a long horizontal error into a saturated heave;
  *  - yaw: the heading error wrapped to [-pi, pi] (the short way round), the derivative on the body yaw rate r
  *    (the heading's rate while the vehicle is level);
- *  - roll and pitch are by default not controlled: their thrust is 0 and the restoring moment (the centre of
- *    buoyancy above the centre of gravity: 0.01 m on the BlueROV2 Heavy) rights the vehicle. That is weak:
- *    1.3 N m/rad on the BlueROV2 Heavy, against the added-mass (Munk) moment (Z_wdot - X_udot) u w = 12.3 u w
- *    N m of a vehicle moving forward and down at once, which pitches it tens of degrees in a dive. The
- *    optional level hold (level_proportional, level_derivative: a PD on the tilt, as an autopilot's
- *    stabilised mode) keeps it level: torque kp (z_b x up) - kd [p, q] on roll and pitch, `up` the world's z
- *    in the body frame, held at the roll and pitch thrust limits (reported in bits 3 and 4).
+ *  - roll and pitch: the level hold (level_proportional, level_derivative: a PD on the tilt, as an
+ *    autopilot's stabilised mode) keeps the vehicle level: torque kp (z_b x up) - kd [p, q] on roll and pitch,
+ *    `up` the world's z in the body frame, held at the roll and pitch thrust limits (reported in bits 3 and
+ *    4). With its gains 0 the restoring moment alone rights the vehicle (the centre of buoyancy above the
+ *    centre of gravity: 0.01 m on the BlueROV2 Heavy, 1.3 N m/rad). That is weak against the added-mass
+ *    (Munk) moment (Z_wdot - X_udot) u w = 12.3 u w N m of a vehicle moving forward and tilted or sinking:
+ *    above 0.33 m/s it turns the BlueROV2 Heavy broadside.
  * Each axis's output kp e + I + D is held within +-thrust_limit (reported, ControllerOutput).
  *
  * Anti-windup: conditional integration (clamping). The integral is advanced, I += ki e dt, only when the
