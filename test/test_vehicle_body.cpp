@@ -188,6 +188,40 @@ TEST(VehicleBody, ALightBodyFloatsAtTheSurfaceWithTheShareThatCarriesItsWeight)
   EXPECT_LT(energy, start);
 }
 
+// 3a''. Thrusters out of the water push nothing. A neutral body at rest with its centre of buoyancy at the surface
+// (half its hull out, share 1/2), fully out (share 0) and fully under (share 1), given 100 N of heave thrust for
+// one step. From rest the step is exact per axis (nothing turns it: diagonal mass, r_G at the origin, no
+// current): the thrust's own velocity change is h s F / (m' + h s Zw), m' = m + Z_wdot, the linear damping on
+// the share in the water, taken as the difference from the same step without thrust (the restoring force's
+// part cancels). Bound 1e-12 m/s (rounding). The applied thrust is reported as s F. Seen failing with the
+// thrust applied whole out of the water (0.031 m/s where none is due at share 0).
+TEST(VehicleBody, ThrustersOutOfTheWaterPushNothing)
+{
+  const VehicleParams p = neutral();
+  const double force = 100.0;
+  const double mass = p.mass + p.added_mass[2];
+  for (const double share : {0.0, 0.5, 1.0})
+  {
+    SCOPED_TRACE(share);
+    // The centre of buoyancy (0.01 m above the origin) at surface + h/2 - s h.
+    const Eigen::Vector3d where(0.0, 0.0, 0.5 * p.size.z() - share * p.size.z() - p.center_of_buoyancy.z());
+    double rise[2];
+    for (int pushed = 0; pushed < 2; ++pushed)
+    {
+      VehicleBody body = bodyWith(p);
+      ASSERT_TRUE(body.setState(where, Eigen::Quaterniond::Identity(), Twist::Zero()).ok);
+      body.setWaterSurface(0.0);
+      ASSERT_NEAR(body.submergedShare(), share, 1e-12);
+      ThrustUsed used;
+      ASSERT_TRUE(body.step(kStep, axis(2, pushed * force), Wrench::Zero(), &used).ok);
+      EXPECT_NEAR(used.applied[2], pushed * share * force, 1e-12);
+      rise[pushed] = body.velocity()[2];
+    }
+    const double expected = kStep * share * force / (mass + kStep * share * p.linear_damping[2]);
+    EXPECT_NEAR(rise[1] - rise[0], expected, 1e-12);
+  }
+}
+
 // 3b. Rolled 30 degrees and let go (neutral, r_B 0.01 m above r_G): the restoring moment B BG sin(phi) rights
 // it. Bound: a pendulum of stiffness B BG = 1.32 N m on I' = Ix - K_pdot = 0.449 kg m^2 (omega_n 1.72 rad/s)
 // with quadratic roll damping Kpp only (Kp = 0) loses (8/3) Kpp A^3 omega_n^2 per cycle (harmonic balance),

@@ -233,6 +233,7 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->relative = velocity_;
   start->relative.head<3>() -= attitude_.conjugate() * current_;
   start->restoring = restoringWrench();
+  start->wet = submergedShare();
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
   // The water's damping acts on the share of the hull in it.
   const Vector6 damping = dt * submergedShare() *
@@ -308,6 +309,7 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
       applied.saturated_axes |= static_cast<std::uint8_t>(1u << i);
     }
   }
+  applied.applied *= start.wet;  // the thrusters' share in the water
 
   // 1. Kick: thrust, external wrench and the restoring wrench at this attitude, nu_k = nu_r + h M^-1 tau; and
   // 2. damping, implicit per axis with |nu_r| from the step's start: (M + h D) nu' = M nu_k = M nu_r + h tau

@@ -22,7 +22,8 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 /// What one step did with the thrust command: the wrench it applied and the axes held at their limit.
 struct ThrustUsed
 {
-  /// The thrust applied [N, N m]: the command, each axis held within +-thrust_limit.
+  /// The thrust applied [N, N m]: the command, each axis held within +-thrust_limit, times the share of the
+  /// hull under the water surface (thrusters out of the water push nothing; 1 without a surface).
   Wrench applied = Wrench::Zero();
   /// Bit i set: axis i (surge, sway, heave, roll, pitch, yaw) was commanded beyond its limit and held at it.
   std::uint8_t saturated_axes = 0;
@@ -37,6 +38,7 @@ struct VehicleStepStart
   double dt = 0.0;
   Twist relative = Twist::Zero();     ///< nu_r at the start
   Wrench restoring = Wrench::Zero();  ///< restoringWrench() at the start
+  double wet = 1.0;                   ///< submergedShare() at the start: the share of the thrust the water gives
   BodyLu damped;                      ///< M + dt D(|nu_r|), factored
 };
 
@@ -98,8 +100,8 @@ class VehicleBody
   /// The uniform current V_c [m/s], world frame; refuses non-finite values.
   Status setCurrent(const Eigen::Vector3d& current);
   /// The water surface's height [m] in the world (NaN: none, the body always under water). Above it the body
-  /// loses its buoyancy and its damping in proportion to the share of its height (size.z, centred on the centre of
-  /// buoyancy) out of the water (submergedShare()); its added mass stays (docs/limitations.md).
+  /// loses its buoyancy, its damping and its thrust in proportion to the share of its height (size.z, centred on
+  /// the centre of buoyancy) out of the water (submergedShare()); its added mass stays (docs/limitations.md).
   void setWaterSurface(double z) { water_surface_z_ = z; }
   /// The share of the hull's height under the water surface, in [0, 1] (1 without a surface).
   double submergedShare() const;
