@@ -20,6 +20,7 @@ Exits 1, after stopping the rest, when the bag is missing or holds no poses, no 
 or a rosbag process fails. roslaunch itself exits 0 whatever its nodes do: `rosrun rov_tether replay.sh
 ARGS` runs replay.launch and exits with this script's code, which it writes into ~result_file.
 """
+import math
 import os
 import signal
 import subprocess
@@ -80,8 +81,8 @@ def default_output(bag):
 class Replay:
     def __init__(self):
         self.caller_cwd = caller_directory()
-        self.bag_arg = rospy.get_param("~bag")
-        self.rate = float(rospy.get_param("~rate", 1.0))
+        self.bag_arg = rospy.get_param("~bag", "")
+        self.rate_arg = rospy.get_param("~rate", 1.0)  # checked in run(), so finish() runs after a refusal
         self.record = bool(rospy.get_param("~record", True))
         self.output_arg = rospy.get_param("~output", "")
         self.result_file = rospy.get_param("~result_file", "")  # the exit code goes here too (replay.sh)
@@ -131,8 +132,11 @@ class Replay:
 
     def check_bag(self, bag):
         """The number of poses the bag holds on ~pose_topic; an error naming what it holds instead."""
-        with rosbag.Bag(bag) as recorded:
-            topics = recorded.get_type_and_topic_info().topics
+        try:
+            with rosbag.Bag(bag) as recorded:
+                topics = recorded.get_type_and_topic_info().topics
+        except (rosbag.ROSBagException, OSError) as e:
+            raise RuntimeError("%s cannot be read as a bag (%s; an unindexed bag: rosbag reindex)" % (bag, e))
         if self.pose_topic not in topics:
             raise RuntimeError("%s holds no %s; its topics: %s (set pose_topic:=...)" % (
                 bag, self.pose_topic, ", ".join("%s (%s)" % (name, info.msg_type)
@@ -154,13 +158,29 @@ class Replay:
                 poses, self.pose_topic, self.diagnostics.get("rejected poses", "an unknown number"),
                 self.diagnostics.get("poses taken", "unknown"), self.states))
 
+    @staticmethod
+    def rate_of(value):
+        """~rate as a number > 0 (rosbag play fails on 0, and plays everything at once below it)."""
+        try:
+            rate = float(value)
+        except (TypeError, ValueError):
+            rate = float("nan")
+        if not math.isfinite(rate) or rate <= 0.0:
+            raise ValueError("rate:=%s: must be a number > 0 (the playback's speed-up)" % value)
+        return rate
+
     def run(self):
+        self.rate = self.rate_of(self.rate_arg)
+        if not self.bag_arg:
+            raise ValueError("no bag given: bag:=<the dive's bag>")
         bag = resolve(self.bag_arg, self.caller_cwd)
         if not os.path.isfile(bag):
             raise RuntimeError("no bag at %s (bag:=%s, relative paths are relative to %s)"
                                % (bag, self.bag_arg, self.caller_cwd or "nothing: $PWD is not set"))
         output = resolve(self.output_arg, self.caller_cwd) if self.output_arg else default_output(bag)
-        if output == bag:
+        if not output.endswith(".bag"):
+            output += ".bag"  # as rosbag record -O names it
+        if os.path.realpath(output) == os.path.realpath(bag):
             raise RuntimeError("output:=%s would overwrite the bag being played" % self.output_arg)
         poses = self.check_bag(bag)
         rospy.Subscriber(self.node + "/state", TetherState, self.on_state, queue_size=100)
@@ -249,11 +269,14 @@ def main():
     except (RuntimeError, ValueError) as e:
         rospy.logfatal("replay: %s", e)
         code = 1
+    except Exception as e:  # anything unforeseen still ends the launch and says so
+        rospy.logfatal("replay: failed: %s: %s", type(e).__name__, e)
+        code = 1
     finally:
         replay.finish()
-    if replay.result_file:
-        with open(replay.result_file, "w") as f:
-            f.write("%d\n" % code)
+        if replay.result_file:
+            with open(replay.result_file, "w") as f:
+                f.write("%d\n" % code)
     sys.exit(code)
 
 

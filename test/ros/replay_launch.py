@@ -12,6 +12,8 @@
    no pose was taken and how many were refused (it used to exit 0 with 428 states, none attached).
 5. A bag of nav_msgs/Odometry (robot_localization) replays: exit code 0, the vehicle attached (item 4).
    This Python has no nav_msgs module: the class is generated from the installed .msg files.
+6. Bad arguments (a rate that is no number or not > 0, a file that is not a bag, an output that is the bag
+   itself once rosbag adds .bag) are refused by name, replay.sh exits 1 and the launch ends by itself.
 """
 import os
 import shutil
@@ -159,6 +161,27 @@ class ReplayLaunch(unittest.TestCase):
             attached = [m.vehicle_attached for _, m, _ in bag.read_messages(["/tether_node/state"])]
         print("[ measured ] Odometry: %d states, %d with the vehicle attached" % (len(attached), sum(attached)))
         self.assertGreater(sum(attached), 0.5 * len(attached), "the vehicle is attached for most of the dive")
+
+    def test_6_bad_arguments_are_refused_and_the_launch_ends(self):
+        # Each is refused naming what is wrong, replay.sh exits 1, and the launch ends by itself (the test's
+        # timeout would stop one that hung). Before: rate:=fast crashed the player before it could stop the node
+        # (the launch never ended); rate:=0 was handed to rosbag play, which failed, and the replay blamed the
+        # node; a file that is not a bag ended in a traceback and "ended without a result"; output:=<the bag
+        # without .bag> passed the overwrite check, and rosbag record, adding .bag, recorded over the dive.
+        shutil.copy(os.path.join(DATA, BAG), self.cwd)
+        size = os.path.getsize(os.path.join(self.cwd, BAG))
+        with open(os.path.join(self.cwd, "broken.bag"), "w") as f:
+            f.write("not a bag\n")
+        for args, said in [(("bag:=" + BAG, "rate:=fast"), "rate:=fast: must be a number > 0"),
+                           (("bag:=" + BAG, "rate:=0"), "rate:=0: must be a number > 0"),
+                           (("bag:=broken.bag",), "broken.bag cannot be read as a bag"),
+                           (("bag:=" + BAG, "output:=" + BAG[:-len(".bag")]),
+                            "would overwrite the bag being played")]:
+            code, output = self.roslaunch(*args, command=("rosrun", "rov_tether", "replay.sh"))
+            self.assertEqual(code, 1, output)
+            self.assertIn(said, output)
+            self.assertNotIn("Traceback", output)
+        self.assertEqual(os.path.getsize(os.path.join(self.cwd, BAG)), size, "the dive's bag is untouched")
 
 
 if __name__ == "__main__":
