@@ -10,13 +10,25 @@ from diagnostic_msgs.msg import DiagnosticArray
 latest = {"state": None, "rtf": float("nan"), "diag": ""}
 
 
+def diagnostics_name(state_topic):
+    """The name of the /diagnostics status of the tether that publishes `state_topic`: the node's updater calls
+    it "<node>: tether" for /<node>/state and "<node>: tether <name>" for /<node>/<name>/state (several
+    tethers), so each summary reads its own tether's status, not the last one whose name ends in "tether"."""
+    parts = [part for part in state_topic.split("/") if part]
+    if len(parts) >= 3 and parts[-1] == "state":
+        return "%s: tether %s" % (parts[-3], parts[-2])
+    if len(parts) == 2 and parts[-1] == "state":
+        return "%s: tether" % parts[0]
+    return None  # not a tether_node topic: match any tether's status
+
+
 def on_state(msg):
     latest["state"] = msg
 
 
-def on_diagnostics(msg):
+def on_diagnostics(msg, name=None):
     for status in msg.status:
-        if status.name.endswith("tether"):
+        if status.name == name if name else status.name.endswith("tether"):
             latest["diag"] = status.message
             for kv in status.values:
                 if kv.key == "physics real-time factor":
@@ -46,7 +58,10 @@ def main():
     duration = float(rospy.get_param("~duration", 0.0))
     label = str(rospy.get_param("~label", ""))
     rospy.Subscriber(topic, TetherState, on_state)
-    rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)
+    rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics, callback_args=diagnostics_name(topic))
+    # ~duration counts from the first clock (under /clock, time is 0 until it comes), waiting included.
+    while not rospy.is_shutdown() and rospy.Time.now().is_zero():
+        rospy.sleep(0.01)
     start = rospy.Time.now()
     first_stamp = None
     while not rospy.is_shutdown():
@@ -54,11 +69,11 @@ def main():
         s = latest["state"]
         if s is None:
             print("waiting for %s ..." % topic, flush=True)
-            continue
-        if first_stamp is None or s.header.stamp < first_stamp:
-            first_stamp = s.header.stamp
-        line = summary_line((s.header.stamp - first_stamp).to_sec(), s, latest["rtf"], latest["diag"])
-        print(("%-9s " % label if label else "") + line, flush=True)
+        else:
+            if first_stamp is None or s.header.stamp < first_stamp:
+                first_stamp = s.header.stamp
+            line = summary_line((s.header.stamp - first_stamp).to_sec(), s, latest["rtf"], latest["diag"])
+            print(("%-9s " % label if label else "") + line, flush=True)
         if duration > 0 and (rospy.Time.now() - start).to_sec() >= duration:
             break
 

@@ -7,6 +7,8 @@ scripts/test.sh; JUnit XML with --gtest_output=xml:FILE):
   captured byte for byte, escapes included, its PARAMETERS list cut short): no terminal escape, no line of
   roslaunch's SUMMARY block (CLEAR PARAMETERS, PARAMETERS, NODES and their lists) and no start-up or
   shut-down chatter get through; every line of the nodes does, and so does the end of a node that crashes;
+- with several tethers, each summary reads its own tether's /diagnostics status, not the last one whose name
+  ends in "tether";
 - the summary line (scripts/tether_summary.py) before /diagnostics has measured the real-time factor says so
   instead of printing "physics nanx real time" (the pillar demo's first line) or "0x" (the demo's);
 - demo.sh describes the cable's colours as the README and tensionColor do (light blue, lighter stripes),
@@ -102,6 +104,23 @@ class DemoOutput(unittest.TestCase):
         self.assertIn("| physics    419x real time | tether simulated", measured)
         # The columns stay where they were: the fields after it start at the same place.
         self.assertEqual(line.index(" | ", line.index("physics")), measured.index(" | ", measured.index("physics")))
+
+    def test_each_summary_reads_its_own_tethers_diagnostics(self):
+        # Two tethers (tms_demo.launch): the statuses "tether_node: tether umbilical" and "tether_node: tether
+        # tether". Matched by the name's end, the umbilical's summary showed the other tether's warning and
+        # real-time factor. Each summary now takes the status its state topic names.
+        summary = load_summary()
+        self.assertEqual(summary.diagnostics_name("/tether_node/umbilical/state"), "tether_node: tether umbilical")
+        self.assertEqual(summary.diagnostics_name("/tether_node/state"), "tether_node: tether")
+        statuses = [types.SimpleNamespace(name="tether_node: tether umbilical", message="tether simulated",
+                                          values=[types.SimpleNamespace(key="physics real-time factor",
+                                                                        value="65.8")]),
+                    types.SimpleNamespace(name="tether_node: tether tether", message="thrust held at thrust_limit",
+                                          values=[types.SimpleNamespace(key="physics real-time factor",
+                                                                        value="137")])]
+        summary.on_diagnostics(types.SimpleNamespace(status=statuses),
+                               summary.diagnostics_name("/tether_node/umbilical/state"))
+        self.assertEqual((summary.latest["diag"], summary.latest["rtf"]), ("tether simulated", 65.8))
 
     def test_demo_describes_the_colours_rviz_shows(self):
         script = (ROOT / "scripts" / "demo.sh").read_text()
