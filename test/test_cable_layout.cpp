@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "cable_layout.hpp"
+#include "rov_tether/core/cable_sections.hpp"
 #include "rov_tether/core/spool.hpp"
 
 namespace rov_tether::test
@@ -17,6 +18,7 @@ namespace
 {
 
 constexpr double kTight = 1e-9;  ///< Rounding over metres of cable [m].
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// A cable of `segments` segments of `segment` m, `deployed` m of it off a spool at `spool`.
 struct LaidCable
@@ -223,6 +225,95 @@ TEST(CableLayout, AFreeEndHangsStraightDownOrFloatsStraightUp)
           << "weight " << weight << ", particle " << i;
       arc += i + 1 < laid.cable.size() ? laid.cable.rest[i] : 0.0;
     }
+  }
+}
+
+/// Where a free end off `outlet` is laid at arc length s: `vertical` m straight up (`up` 1) or down (-1), then
+/// level along +x.
+Position onVerticalThenLevel(const Position& outlet, double up, double vertical, double s)
+{
+  const double rise = std::min(s, vertical);
+  return outlet + Position(s - rise, 0.0, up * rise);
+}
+
+// A free end is laid where it settles, the deployed length along its rest lengths: a buoyant one up to the
+// surface and along it, a heavy one down to the seabed and along it, in +x; from a spool above the surface
+// (a deck) any cable hangs down to the water first (it is heavy in air). Each particle on that path to
+// rounding, none above the surface nor below the seabed by more than that. Seen failing before the free end
+// heeded them (laid straight up or down all 30 m: 20 m above the surface, 26 and 14 m below the seabed, the deck's
+// buoyant cable 32 m above the surface).
+TEST(CableLayout, AFreeEndStopsAtTheSurfaceOrTheSeabedAndLiesAlongIt)
+{
+  struct Case
+  {
+    const char* what;
+    double weight, spool_z, surface_z, seabed_z;
+    double up, vertical;  // the path: up (1) or down (-1) that far, then level
+  };
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  const Case cases[] = {
+      {"buoyant, up 10 m to the surface", -1.0, -10.0, 0.0, none, 1.0, 10.0},
+      {"heavy, down 4 m to the seabed", 1.0, -10.0, 0.0, -14.0, -1.0, 4.0},
+      {"buoyant from a deck, down 2 m to the surface", -1.0, 2.0, 0.0, -14.0, -1.0, 2.0},
+      {"heavy from a deck, down 16 m to the seabed", 1.0, 2.0, 0.0, -14.0, -1.0, 16.0},
+  };
+  for (const Case& c : cases)
+  {
+    TetherParams params;
+    params.weight_in_water = c.weight;
+    params.water_surface_z = c.surface_z;
+    params.seabed_z = c.seabed_z;
+    const Position outlet(2.0, -1.0, c.spool_z);
+    LaidCable laid(400, 0.1, 30.0, outlet);
+    CableLayout(params).layOut(laid.cable, outlet, nullptr, laid.length);
+    expectAtRestFromTheSpool(laid, outlet);
+    double arc = 0.0, off_path = 0.0, highest_past_drop = -kInf, lowest = kInf;
+    for (std::size_t i = laid.cable.first; i < laid.cable.size(); ++i)
+    {
+      const Position p = laid.at(i);
+      off_path = std::max(off_path, (p - onVerticalThenLevel(outlet, c.up, c.vertical, arc)).norm());
+      if (arc > std::max(c.spool_z - c.surface_z, 0.0) + kTight)  // past a deck's drop to the water
+      {
+        highest_past_drop = std::max(highest_past_drop, p.z());
+      }
+      lowest = std::min(lowest, p.z());
+      arc += i + 1 < laid.cable.size() ? laid.cable.rest[i] : 0.0;
+    }
+    EXPECT_LT(off_path, kTight) << c.what;
+    EXPECT_LE(highest_past_drop, c.surface_z + kTight) << c.what;
+    EXPECT_FALSE(lowest < c.seabed_z - kTight) << c.what << ": lowest " << lowest;  // false for no seabed (NaN)
+  }
+}
+
+// A free end rises or sinks by the net weight in water of the whole cable, its sections and attachments
+// included, not by the tether's weight_in_water: 10 m at -0.5 N/m with an 8 N clump at the end weigh
+// -5 + 8 = +3 N and hang straight down; 10 m at 0.5 N/m whose last 6 m (from the free end) are a -1.5 N/m
+// section weigh 2 - 9 = -7 N and float straight up. Seen failing before (laid by weight_in_water: the first
+// up, the second down, their ends 20 m off).
+TEST(CableLayout, AFreeEndRisesOrSinksByTheNetWeightOfItsSectionsAndAttachments)
+{
+  TetherParams clumped;
+  clumped.cable_length = 10.0;
+  clumped.segment_length = 0.1;
+  clumped.weight_in_water = -0.5;
+  CableAttachment clump;
+  clump.name = "clump";
+  clump.mass = 1.0;
+  clump.net_buoyancy = -8.0;
+  clumped.attachments = {clump};
+  TetherParams floated = clumped;
+  floated.attachments.clear();
+  floated.weight_in_water = 0.5;
+  floated.sections = {{6.0, {{"weight_in_water", -1.5}}}, {std::numeric_limits<double>::quiet_NaN(), {}}};
+  for (const auto& [params, up] : {std::pair{clumped, -1.0}, std::pair{floated, 1.0}})
+  {
+    const Position outlet(2.0, -1.0, -3.0);
+    LaidCable laid(100, 0.1, 10.0, outlet);
+    CableSections::load(params, &laid.cable);
+    CableLayout(params).layOut(laid.cable, outlet, nullptr, laid.length);
+    expectAtRestFromTheSpool(laid, outlet);
+    EXPECT_LT((laid.at(laid.last()) - (outlet + up * 10.0 * Position::UnitZ())).norm(), kTight)
+        << (up < 0.0 ? "clumped" : "floated");
   }
 }
 

@@ -85,8 +85,9 @@ class InscribedArc
 
 CableLayout::CableLayout(const TetherParams& params)
     : elastic_(params.elasticBending() && (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)),
-      floats_(params.weight_in_water < 0.0),
-      seabed_z_(params.seabed_z)
+      weight_(params.weight_in_water),
+      seabed_z_(params.seabed_z),
+      surface_z_(params.water_surface_z)
 {
 }
 
@@ -96,42 +97,85 @@ void CableLayout::layOut(Cable& cable, const Position& spool, const Position* ve
   {
     cable.place(i, spool);
   }
-  const Chord chord = chordOf(spool, vehicle, length);
+  if (vehicle == nullptr)
+  {
+    layFree(cable, spool, length);
+    return;
+  }
+  const Chord chord = chordOf(spool, *vehicle, length);
   lay(cable, chord, slackSide(chord.direction));
   if (std::isfinite(seabed_z_) && chord.offset > 0.0 && lowest(cable) < seabed_z_)
   {
     bowAboveSeabed(cable, chord);
   }
-  if (vehicle != nullptr)
-  {
-    cable.place(cable.size() - 1, *vehicle);
-  }
+  cable.place(cable.size() - 1, *vehicle);
 }
 
-CableLayout::Chord CableLayout::chordOf(const Position& spool, const Position* vehicle, double length) const
+CableLayout::Chord CableLayout::chordOf(const Position& spool, const Position& vehicle, double length)
 {
   Chord chord;
   chord.spool = spool;
   chord.length = length;
-  if (vehicle != nullptr)
-  {
-    chord.end = *vehicle;
-    const Position span = chord.end - spool;
-    chord.distance = span.norm();
-    chord.middle = spool + 0.5 * span;  // taut or stretched: a straight line
-    chord.direction = chord.distance > 1e-9 ? Position(span / chord.distance) : Position::UnitX();
-    // The V's legs are each half the cable: the apex is sqrt((L/2)^2 - (d/2)^2) off the chord's middle.
-    chord.offset = chord.distance < length
-                       ? std::sqrt(std::max(0.25 * (length * length - chord.distance * chord.distance), 0.0))
-                       : 0.0;
-  }
-  else
-  {
-    // A free end hangs (or floats, when lighter than water) straight from the spool.
-    chord.end = spool + (floats_ ? 1.0 : -1.0) * length * Position::UnitZ();
-    chord.middle = 0.5 * (spool + chord.end);
-  }
+  chord.end = vehicle;
+  const Position span = chord.end - spool;
+  chord.distance = span.norm();
+  chord.middle = spool + 0.5 * span;  // taut or stretched: a straight line
+  chord.direction = chord.distance > 1e-9 ? Position(span / chord.distance) : Position::UnitX();
+  // The V's legs are each half the cable: the apex is sqrt((L/2)^2 - (d/2)^2) off the chord's middle.
+  chord.offset = chord.distance < length
+                     ? std::sqrt(std::max(0.25 * (length * length - chord.distance * chord.distance), 0.0))
+                     : 0.0;
   return chord;
+}
+
+void CableLayout::layFree(Cable& cable, const Position& spool, double length) const
+{
+  // Above the surface every cable is heavy (its weight in air): it hangs down to the water first. Below it, what
+  // is left of the cable rises when its net weight in water is negative, else sinks.
+  const bool in_air = spool.z() > surface_z_;  // false without a surface (NaN)
+  const double drop_in_air = in_air ? spool.z() - surface_z_ : 0.0;
+  const bool rises = netWeightBeyond(cable, drop_in_air) < 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double to_seabed = std::isfinite(seabed_z_) ? std::max(spool.z() - seabed_z_, 0.0) : inf;
+  const double to_surface = std::isfinite(surface_z_) ? std::max(surface_z_ - spool.z(), 0.0) : inf;
+  const double up = rises && !in_air ? 1.0 : -1.0;
+  const double vertical = rises ? (in_air ? drop_in_air : to_surface) : to_seabed;
+  if (vertical >= length)
+  {
+    // Straight up or down, all of it: as a free end was laid before surface and seabed were heeded, to the bit.
+    Chord chord;
+    chord.spool = spool;
+    chord.length = length;
+    chord.end = spool + up * length * Position::UnitZ();
+    chord.middle = 0.5 * (spool + chord.end);
+    layOnLegs(cable, chord, chord.middle);
+    return;
+  }
+  // Up or down to the surface or the seabed it stops at, then along it in +x.
+  double arc = 0.0;
+  for (std::size_t i = cable.first; i < cable.size(); ++i)
+  {
+    const double rise = std::min(arc, vertical), run = arc - rise;
+    cable.place(i, Position(spool.x() + run, spool.y(), spool.z() + up * rise));
+    arc += i + 1 < cable.size() ? cable.rest[i] : 0.0;
+  }
+}
+
+double CableLayout::netWeightBeyond(const Cable& cable, double from) const
+{
+  const CableLoading& load = cable.loading;
+  double weight = 0.0, arc = 0.0;
+  for (std::size_t j = cable.first; j + 1 < cable.size(); ++j)
+  {
+    const double beyond = std::clamp(arc + cable.rest[j] - from, 0.0, cable.rest[j]);  // of segment j
+    weight += (load.empty() ? weight_ : load.weight[j]) * beyond;
+    arc += cable.rest[j];
+    if (!load.empty() && arc > from)
+    {
+      weight -= load.point_force[j + 1];  // an attachment's net buoyancy on particle j + 1, up positive
+    }
+  }
+  return weight;
 }
 
 Position CableLayout::slackSide(const Position& direction)

@@ -22,14 +22,20 @@ namespace rov_tether
  *   EI 0.2 N m^2 pushed its vehicle with 1 N);
  * - slack that would hang through a flat seabed (`seabed_z`): bowed sideways, level across the chord, and
  *   what of it is still below the seabed put on it;
- * - no vehicle: straight down from the spool, or up when lighter than water (`weight_in_water` < 0).
+ * - no vehicle (a free end): where it settles. Above the water surface (`water_surface_z`) any cable is heavy: it
+ *   hangs straight down to the surface. In the water, the cable beyond that point rises straight up when its net
+ *   weight in water is negative (its sections' `weight_in_water` over their lengths less its attachments'
+ *   `net_buoyancy`), else it hangs straight down; it stops at the surface or the seabed (`seabed_z`) and the rest
+ *   of it lies along that level in +x. Without a surface or a seabed in its way, straight up or down, all of it.
+ *   (A cable whose net weight changes sign along it, a heavy length with a buoyant tail, is laid by the whole's
+ *   and folds as it settles.)
  * Particles still on the spool sit at the outlet; the vehicle particle sits on the vehicle. Allocates
  * nothing.
  */
 class CableLayout
 {
  public:
-  /// Takes what the layout depends on from `params` (bending, solver, seabed_z, weight_in_water).
+  /// Takes what the layout depends on from `params` (bending, solver, seabed_z, water_surface_z, weight_in_water).
   explicit CableLayout(const TetherParams& params);
 
   /// Places every particle of `cable` at rest. The rest lengths (and `cable.first`) are as the spool set
@@ -51,7 +57,12 @@ class CableLayout
     double length = 0.0;    ///< Deployed length [m].
   };
 
-  Chord chordOf(const Position& spool, const Position* vehicle, double length) const;
+  static Chord chordOf(const Position& spool, const Position& vehicle, double length);
+  /// Lays a free end (no vehicle): vertical from the spool to where it stops, then level along +x.
+  void layFree(Cable& cable, const Position& spool, double length) const;
+  /// Net weight in water, down positive, of the deployed cable beyond arc length `from` off the spool: its
+  /// segments' (cable.loading's, else weight_in_water) and its attachments' [N].
+  double netWeightBeyond(const Cable& cable, double from) const;
   /// The unit vector slack hangs towards: down, normal to the chord (sideways for a vertical chord).
   static Position slackSide(const Position& direction);
   /// Lays the deployed particles along the arc or the two legs bowed towards the unit vector `side`.
@@ -63,9 +74,10 @@ class CableLayout
   /// The slack bowed sideways, level across the chord, and what is still below seabed_z put on it.
   void bowAboveSeabed(Cable& cable, const Chord& chord) const;
 
-  bool elastic_;     ///< Slack is laid on an arc: the cable resists bending.
-  bool floats_;      ///< A free end rises: lighter than water.
-  double seabed_z_;  ///< The flat seabed's height, NaN for none [m].
+  bool elastic_;      ///< Slack is laid on an arc: the cable resists bending.
+  double weight_;     ///< weight_in_water of a uniform cable (no cable.loading) [N/m].
+  double seabed_z_;   ///< The flat seabed's height, NaN for none [m].
+  double surface_z_;  ///< The water surface's height, NaN for none [m].
 };
 
 }  // namespace rov_tether
