@@ -55,9 +55,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   params.cable_length = 20.0;
   params.segment_length = 0.5;
   params.initial_deployed_length = 3.0;
-  params.solver = static_cast<SolverType>(in.byte() % 4);
+  // Every solver and every winch mode: the last enumerator + 1 (the asserts catch one added after it).
+  static_assert(static_cast<int>(SolverType::kDirect) == 4, "fuzz every solver: update the count");
+  static_assert(static_cast<int>(WinchMode::kStrain) == 4, "fuzz every winch mode: update the count");
+  params.solver = static_cast<SolverType>(in.byte() % 5);
   params.drag_model = in.byte() & 1 ? DragModel::kMorison : DragModel::kDamping;
-  params.winch_mode = static_cast<WinchMode>(in.byte() % 3);
+  params.winch_mode = static_cast<WinchMode>(in.byte() % 5);
   params.weight_in_water = in.number(5.0);
   params.current = {in.number(1.0), in.number(1.0), in.number(1.0)};
   if (in.byte() & 1)
