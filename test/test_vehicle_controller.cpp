@@ -48,6 +48,28 @@ VehicleBody bodyAt(const VehicleParams& params, const Eigen::Vector3d& position,
   return body;
 }
 
+/// A controller with the default design but the level hold at `level` [rad/s], configured for `vehicle`.
+VehicleController withLevelHold(const VehicleParams& vehicle, double level)
+{
+  ControllerDesign design;
+  design.level_bandwidth = level;
+  ControllerGains gains;
+  EXPECT_TRUE(ControllerGains::design(vehicle, design, &gains).ok);
+  VehicleController controller;
+  EXPECT_TRUE(controller.configure(vehicle, gains).ok);
+  return controller;
+}
+
+/// A body at rest at `position`, rolled 0.3 rad.
+VehicleBody rolledBody(const VehicleParams& params, const Eigen::Vector3d& position)
+{
+  VehicleBody body;
+  EXPECT_TRUE(body.setParams(params).ok);
+  EXPECT_TRUE(
+      body.setState(position, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), Twist::Zero()).ok);
+  return body;
+}
+
 /// One closed-loop step: the controller's thrust for the body's state now, then the body's step under it.
 ControllerOutput closedLoopStep(VehicleController* controller, VehicleBody* body, const VehicleSetpoint& setpoint)
 {
@@ -383,17 +405,8 @@ TEST(VehicleController, LevelHoldRightsARolledVehicle)
   for (const double level : {4.0, 0.0})
   {
     SCOPED_TRACE(level);
-    ControllerDesign design;
-    design.level_bandwidth = level;
-    ControllerGains gains;
-    ASSERT_TRUE(ControllerGains::design(vehicle, design, &gains).ok);
-    VehicleController controller;
-    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
-    VehicleBody body;
-    ASSERT_TRUE(body.setParams(vehicle).ok);
-    ASSERT_TRUE(body.setState(Eigen::Vector3d::Zero(),
-                              Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), Twist::Zero())
-                    .ok);
+    VehicleController controller = withLevelHold(vehicle, level);
+    VehicleBody body = rolledBody(vehicle, Eigen::Vector3d::Zero());
     double late_swing = 0.0;
     for (int i = 1; i <= static_cast<int>(std::lround(2.5 / kStep)); ++i)
     {
@@ -431,19 +444,11 @@ TEST(VehicleController, TheDefaultLevelHoldKeepsACruisingVehicleLevel)
   for (const bool hold : {true, false})
   {
     SCOPED_TRACE(hold);
-    ControllerDesign design;
-    if (!hold)
-    {
-      design.level_bandwidth = 0.0;
-    }
-    ControllerGains gains;
-    ASSERT_TRUE(ControllerGains::design(vehicle, design, &gains).ok);
+    VehicleController controller = withLevelHold(vehicle, hold ? ControllerDesign{}.level_bandwidth : 0.0);
     if (hold)
     {
-      EXPECT_EQ(gains.level_proportional, ControllerGains{}.level_proportional) << "the default design";
+      EXPECT_EQ(controller.gains().level_proportional, ControllerGains{}.level_proportional) << "the default design";
     }
-    VehicleController controller;
-    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
     VehicleBody body = bodyAt(vehicle, Eigen::Vector3d(0.0, 0.0, -20.0));
     double tilt = 0.0;
     for (int i = 0; i < static_cast<int>(std::lround(60.0 / kStep)); ++i)
@@ -478,17 +483,8 @@ TEST(VehicleController, TheDefaultLevelHoldSettlesAtTheLargestStep)
   for (const double level : {8.0, 10.0})
   {
     SCOPED_TRACE(level);
-    ControllerDesign design;
-    design.level_bandwidth = level;
-    ControllerGains gains;
-    ASSERT_TRUE(ControllerGains::design(vehicle, design, &gains).ok);
-    VehicleController controller;
-    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
-    VehicleBody body;
-    ASSERT_TRUE(body.setParams(vehicle).ok);
-    ASSERT_TRUE(body.setState(Eigen::Vector3d(0.0, 0.0, -20.0),
-                              Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), Twist::Zero())
-                    .ok);
+    VehicleController controller = withLevelHold(vehicle, level);
+    VehicleBody body = rolledBody(vehicle, Eigen::Vector3d(0.0, 0.0, -20.0));
     VehicleSetpoint setpoint;
     setpoint.position = Eigen::Vector3d(0.0, 0.0, -20.0);
     double late = 0.0;
