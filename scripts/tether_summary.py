@@ -11,15 +11,18 @@ latest = {"state": None, "rtf": float("nan"), "diag": ""}
 
 
 def diagnostics_name(state_topic):
-    """The name of the /diagnostics status of the tether that publishes `state_topic`: the node's updater calls
-    it "<node>: tether" for /<node>/state and "<node>: tether <name>" for /<node>/<name>/state (several
-    tethers), so each summary reads its own tether's status, not the last one whose name ends in "tether"."""
+    """The names the /diagnostics status of the tether publishing `state_topic` may have: the node's updater
+    calls it "<node>: tether" for <node>/state and "<node>: tether <name>" for <node>/<name>/state (several
+    tethers), <node> being the node's full name without its leading slash (its namespace included). Both
+    readings of the topic are kept (only one exists), so each summary reads its own tether's status, not the
+    last one whose name ends in "tether"; None for a topic not ending in /state (any tether's status)."""
     parts = [part for part in state_topic.split("/") if part]
-    if len(parts) >= 3 and parts[-1] == "state":
-        return "%s: tether %s" % (parts[-3], parts[-2])
-    if len(parts) == 2 and parts[-1] == "state":
-        return "%s: tether" % parts[0]
-    return None  # not a tether_node topic: match any tether's status
+    if len(parts) < 2 or parts[-1] != "state":
+        return None
+    names = {"%s: tether" % "/".join(parts[:-1])}
+    if len(parts) >= 3:
+        names.add("%s: tether %s" % ("/".join(parts[:-2]), parts[-2]))
+    return names
 
 
 def on_state(msg):
@@ -27,8 +30,9 @@ def on_state(msg):
 
 
 def on_diagnostics(msg, name=None):
+    """Keeps the message and real-time factor of the status named in `name` (a set; None: any tether's)."""
     for status in msg.status:
-        if status.name == name if name else status.name.endswith("tether"):
+        if status.name in name if name else status.name.endswith("tether"):
             latest["diag"] = status.message
             for kv in status.values:
                 if kv.key == "physics real-time factor":

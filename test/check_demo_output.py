@@ -109,9 +109,14 @@ class DemoOutput(unittest.TestCase):
         # Two tethers (tms_demo.launch): the statuses "tether_node: tether umbilical" and "tether_node: tether
         # tether". Matched by the name's end, the umbilical's summary showed the other tether's warning and
         # real-time factor. Each summary now takes the status its state topic names.
+        # The status is named after the node's full name (namespace included), so a node in a namespace is
+        # found too (an exact match on the topic's last parts missed it).
         summary = load_summary()
-        self.assertEqual(summary.diagnostics_name("/tether_node/umbilical/state"), "tether_node: tether umbilical")
-        self.assertEqual(summary.diagnostics_name("/tether_node/state"), "tether_node: tether")
+        self.assertIn("tether_node: tether umbilical", summary.diagnostics_name("/tether_node/umbilical/state"))
+        self.assertIn("tether_node: tether", summary.diagnostics_name("/tether_node/state"))
+        self.assertIn("ns/tether_node: tether", summary.diagnostics_name("/ns/tether_node/state"))
+        self.assertIn("ns/tether_node: tether umbilical", summary.diagnostics_name("/ns/tether_node/umbilical/state"))
+        self.assertNotIn("tether_node: tether tether", summary.diagnostics_name("/tether_node/umbilical/state"))
         statuses = [types.SimpleNamespace(name="tether_node: tether umbilical", message="tether simulated",
                                           values=[types.SimpleNamespace(key="physics real-time factor",
                                                                         value="65.8")]),
