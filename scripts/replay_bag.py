@@ -178,6 +178,8 @@ class Replay:
             raise RuntimeError("no bag at %s (bag:=%s, relative paths are relative to %s)"
                                % (bag, self.bag_arg, self.caller_cwd or "nothing: $PWD is not set"))
         output = resolve(self.output_arg, self.caller_cwd) if self.output_arg else default_output(bag)
+        if self.output_arg and (os.path.isdir(output) or self.output_arg.endswith("/")):
+            output = os.path.join(output, os.path.basename(default_output(bag)))  # a directory: the name in it
         if not output.endswith(".bag"):
             output += ".bag"  # as rosbag record -O names it
         if os.path.realpath(output) == os.path.realpath(bag):

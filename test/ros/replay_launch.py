@@ -10,7 +10,8 @@
    through `rosrun rov_tether replay.sh`: exit code 0, the vehicle attached (issue 26, items 1 and 3).
 4. The same bag with `world_frame_from_pose: false`: every pose refused; replay.sh exits 1 and says that
    no pose was taken and how many were refused (it used to exit 0 with 428 states, none attached).
-5. A bag of nav_msgs/Odometry (robot_localization) replays: exit code 0, the vehicle attached (item 4).
+5. A bag of nav_msgs/Odometry (robot_localization) replays: exit code 0, the vehicle attached (item 4),
+   recorded into a directory given as `output` under the default name.
    This Python has no nav_msgs module: the class is generated from the installed .msg files.
 6. Bad arguments (a rate that is no number or not > 0, a file that is not a bag, an output that is the bag
    itself once rosbag adds .bag) are refused by name, replay.sh exits 1 and the launch ends by itself.
@@ -154,10 +155,12 @@ class ReplayLaunch(unittest.TestCase):
                 msg.pose.pose.position.x, msg.pose.pose.position.z = 1.5 + 0.015 * k, -1.0
                 msg.pose.pose.orientation.w = 1.0
                 bag.write("/odometry/filtered", msg, msg.header.stamp)
+        # Recorded into a directory: the default name inside it (it was recorded as results.bag beside it).
+        os.makedirs(os.path.join(self.cwd, "results"))
         code, output = self.roslaunch("bag:=ekf_dive.bag", "pose_topic:=/odometry/filtered", "rate:=%g" % RATE,
-                                      "output:=out.bag", command=("rosrun", "rov_tether", "replay.sh"))
+                                      "output:=results", command=("rosrun", "rov_tether", "replay.sh"))
         self.assertEqual(code, 0, output)
-        with rosbag.Bag(os.path.join(self.cwd, "out.bag")) as bag:
+        with rosbag.Bag(os.path.join(self.cwd, "results", "ekf_dive.tether.bag")) as bag:
             attached = [m.vehicle_attached for _, m, _ in bag.read_messages(["/tether_node/state"])]
         print("[ measured ] Odometry: %d states, %d with the vehicle attached" % (len(attached), sum(attached)))
         self.assertGreater(sum(attached), 0.5 * len(attached), "the vehicle is attached for most of the dive")
