@@ -216,8 +216,8 @@ TEST(VehicleController, IntegralRemovesTheOffsetOfAConstantCurrent)
 
 // Setpoints far away on every axis and heading, jumping every 5 s, from a tilted vehicle in a current: the
 // thrust on each axis is at most the vehicle's thrust_limit (its thrusters' force, vehicle_params.hpp);
-// held axes are reported as such and hold exactly the limit; roll and pitch get no thrust (left to the
-// restoring moment). Seen failing with the output not held at the limit.
+// held axes are reported as such and hold exactly the limit (roll and pitch, the level hold's, too). Seen
+// failing with the output not held at the limit.
 TEST(VehicleController, ThrustNeverExceedsTheLimit)
 {
   const VehicleParams vehicle = neutral();
@@ -435,8 +435,9 @@ TEST(VehicleController, LevelHoldRightsARolledVehicle)
 // w = U sin theta, and the Munk moment (m33' - m11') u w turns it further: its stiffness (18.68 - 6.36) U^2 =
 // 3.1 N m/rad at 0.5 m/s exceeds the restoring moment's W BG = 1.3 N m/rad (13.4 kg x 9.81 x 0.01 m), so
 // without a level hold the linearised pitch is unstable (from U = sqrt(1.3 / 12.3) = 0.33 m/s); with the
-// default's kp 23.4 N m/rad it is 7.5 times over. Bounds: with the hold the tilt stays within 1 degree (the
-// stable loop's only excitation is the start, where the surge thrust's reaction is the disturbance); with
+// default's kp 23.4 N m/rad it is 7.5 times over. Bounds: with the hold the tilt stays within 1 degree, a stated
+// tolerance (the hold is linearly stable with its stiffness 7.5 times the Munk one's, and the start is its only
+// excitation); with
 // level_bandwidth 0 it passes 30 degrees (seen: 78). Seen failing with the default level_bandwidth 0.
 TEST(VehicleController, TheDefaultLevelHoldKeepsACruisingVehicleLevel)
 {
@@ -473,9 +474,12 @@ TEST(VehicleController, TheDefaultLevelHoldKeepsACruisingVehicleLevel)
 
 // The default level hold at the largest time_step (0.1 s, the parameter table's bound): a body rolled 0.3 rad
 // at rest is level within 1 mrad over the last 10 of 20 s. The thrust is held over each step, so the PD loop
-// is discrete: with omega h = 0.8 and the derivative's 2 zeta omega h = 1.6 it still settles, while
-// level_bandwidth 10 (omega h = 1, 2 zeta omega h = 2, the edge for an explicit derivative) keeps swinging
-// beyond 1 mrad. Seen failing with the default at 10 rad/s.
+// is discrete: I' x'' = -kp x - kd x' with kp, kd from the state at the step's start is stable while
+// a h^2 + 2 b h < 4 (a = kp / I', b = kd / I'), up to levelStepLimit(). Roll, the tighter axis: a = 64,
+// b = 16 (no linear roll damping), h < 0.1036 s; 0.1 s settles, while level_bandwidth 10 (limit 0.083 s) keeps
+// swinging beyond 1 mrad. The hold is critically damped whatever damping_ratio the translation asks (at 1.2
+// it would have b = 19.2 and a limit of 0.090 s). The controller says when an update is longer than the
+// limit (the node warns). Seen failing with the default at 10 rad/s, and with the hold's kd on damping_ratio.
 TEST(VehicleController, TheDefaultLevelHoldSettlesAtTheLargestStep)
 {
   const VehicleParams vehicle;
@@ -484,6 +488,9 @@ TEST(VehicleController, TheDefaultLevelHoldSettlesAtTheLargestStep)
   {
     SCOPED_TRACE(level);
     VehicleController controller = withLevelHold(vehicle, level);
+    const double a = 64.0, b = 16.0;  // roll at 8 rad/s: omega^2 and 2 omega
+    EXPECT_NEAR(withLevelHold(vehicle, 8.0).levelStepLimit(), (-b + std::sqrt(b * b + 4.0 * a)) / a, 1e-12);
+    EXPECT_EQ(controller.levelStepLimit() < step, level != ControllerDesign{}.level_bandwidth);
     VehicleBody body = rolledBody(vehicle, Eigen::Vector3d(0.0, 0.0, -20.0));
     VehicleSetpoint setpoint;
     setpoint.position = Eigen::Vector3d(0.0, 0.0, -20.0);
@@ -492,6 +499,7 @@ TEST(VehicleController, TheDefaultLevelHoldSettlesAtTheLargestStep)
     {
       ControllerOutput out;
       ASSERT_TRUE(controller.update(step, setpoint, body, &out).ok);
+      ASSERT_EQ(out.level_step_too_long, level != ControllerDesign{}.level_bandwidth);
       ASSERT_TRUE(body.step(step, out.thrust, Wrench::Zero(), nullptr).ok);
       if (i > 100)
       {
@@ -507,6 +515,13 @@ TEST(VehicleController, TheDefaultLevelHoldSettlesAtTheLargestStep)
       EXPECT_GT(late, 1e-3);
     }
   }
+  ControllerDesign damped;
+  damped.damping_ratio = 1.2;
+  ControllerGains gains;
+  ASSERT_TRUE(ControllerGains::design(vehicle, damped, &gains).ok);
+  EXPECT_EQ(gains.level_derivative, ControllerGains{}.level_derivative) << "critically damped whatever zeta";
+  EXPECT_NEAR(VehicleController{}.levelStepLimit(), withLevelHold(vehicle, 8.0).levelStepLimit(), 1e-4)
+      << "the unconfigured controller's limit is the default vehicle's";
 }
 
 // Bad gains, designs and updates are refused with a message naming the field, the axis and the value, and

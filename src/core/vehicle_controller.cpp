@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -148,8 +149,9 @@ Status ControllerGains::design(const VehicleParams& vehicle, const ControllerDes
     const double w = design.level_bandwidth;
     const double inertia = vehicle.inertia[j] + vehicle.added_mass[3 + j];
     designed.level_proportional[j] = inertia * w * w;
-    designed.level_derivative[j] =
-        std::max(0.0, 2.0 * design.damping_ratio * w * inertia - vehicle.linear_damping[3 + j]);
+    // Critically damped whatever damping_ratio the translation asks: the hold's margin at a coarse update period
+    // is thin (levelStepLimit()), and a larger ratio would shrink it.
+    designed.level_derivative[j] = std::max(0.0, 2.0 * w * inertia - vehicle.linear_damping[3 + j]);
   }
   *gains = designed;
   return Status::success();
@@ -191,9 +193,25 @@ Status VehicleController::configure(const VehicleParams& vehicle, const Controll
     limit_[i] = vehicle.thrust_limit[kWrenchRow[i]];
   }
   level_limit_ = vehicle.thrust_limit.segment<2>(3);
-  reach_ =
-      Eigen::Vector2d(kReachFactor * std::max(limit_[0] / gains.proportional[0], limit_[1] / gains.proportional[1]),
-                      kReachFactor * limit_[2] / gains.proportional[2]);
+  reach_ = reachOf(limit_, gains);
+  // The level hold's PD acts on the state at the update's start and is held for dt: per axis the discrete loop
+  // I' x'' = -kp x - kd x' (the vehicle's own damping is implicit in its step) is stable while
+  // (kp / I') dt^2 + 2 (kd / I') dt < 4, so up to dt = (-b + sqrt(b^2 + 4 a)) / a, a = kp / I', b = kd / I'.
+  level_step_limit_ = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < 2; ++j)
+  {
+    const double inertia = vehicle.inertia[j] + vehicle.added_mass[3 + j];
+    const double a = gains.level_proportional[j] / inertia;
+    const double b = gains.level_derivative[j] / inertia;
+    if (a > 0.0)
+    {
+      level_step_limit_ = std::min(level_step_limit_, (-b + std::sqrt(b * b + 4.0 * a)) / a);
+    }
+    else if (b > 0.0)
+    {
+      level_step_limit_ = std::min(level_step_limit_, 2.0 / b);
+    }
+  }
   integral_.setZero();
   return Status::success();
 }
@@ -203,13 +221,19 @@ Eigen::Vector3d VehicleController::boundedError(const Eigen::Vector3d& world_err
   // Horizontal and vertical parts bounded apart, each keeping its direction, so a far setpoint neither takes
   // the depth's authority nor, rotated by a small tilt, asks for the heave limit.
   Eigen::Vector3d bounded = world_error;
-  const double horizontal = world_error.head<2>().norm();
+  const double horizontal = std::hypot(world_error.x(), world_error.y());  // no overflow for a huge error
   if (horizontal > reach_[0])
   {
     bounded.head<2>() *= reach_[0] / horizontal;
   }
   bounded.z() = std::clamp(world_error.z(), -reach_[1], reach_[1]);
   return bounded;
+}
+
+Eigen::Vector2d VehicleController::reachOf(const Vector4& limit, const ControllerGains& gains)
+{
+  return Eigen::Vector2d(kReachFactor * std::max(limit[0] / gains.proportional[0], limit[1] / gains.proportional[1]),
+                         kReachFactor * limit[2] / gains.proportional[2]);
 }
 
 double VehicleController::yawOf(const Eigen::Quaterniond& attitude)
@@ -241,6 +265,7 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
   const Vector4 rate_error(velocity_error.x(), velocity_error.y(), velocity_error.z(), yaw_rate_error);
 
   ControllerOutput result;
+  result.level_step_too_long = dt > level_step_limit_;
   for (int i = 0; i < 4; ++i)
   {
     const double wanted = gains_.proportional[i] * error[i] + integral_[i] + gains_.derivative[i] * rate_error[i];

@@ -299,6 +299,13 @@ Wrench VehicleIo::controlledThrust()
     return Wrench::Zero();
   }
   last_control_time_ = now;
+  if (output.level_step_too_long && level_step_log_.due())
+  {
+    ROS_WARN(
+        "tether_node%s: vehicle controller: updated every %.3f s, longer than the %.3f s its level hold settles "
+        "at (it swings roll and pitch up): raise physics_rate or lower the vehicle file's level_bandwidth",
+        label_.c_str(), dt, controller_.levelStepLimit());
+  }
   return output.thrust;
 }
 

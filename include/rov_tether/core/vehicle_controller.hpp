@@ -28,14 +28,14 @@ struct ControllerDesign
   /// The integral's pole at -integral_ratio * omega: slow against the pair, so it removes a steady offset
   /// (a current, a tether's pull) in about 1 / (integral_ratio omega) = 5 s without changing the pair.
   double integral_ratio = 0.2;
-  /// Natural frequency of the level hold on roll and pitch [rad/s]: a PD per axis with kp = I' omega^2,
-  /// kd = 2 zeta omega I' - d (I' inertia with added inertia, d linear damping; kd held at 0 when negative:
-  /// the vehicle damps more); 0, none (roll and pitch left to the restoring moment). Default 8 rad/s: left to
-  /// its restoring moment (W BG = 1.3 N m/rad), the BlueROV2 Heavy turns broadside under the added-mass
-  /// (Munk) moment, stiffness (m33' - m11') U^2 = 12.3 U^2 N m/rad, above U = 0.33 m/s (a 0.5 m/s path
-  /// pitched it 78 degrees); at 8 rad/s kp = 23.4 N m/rad in pitch, 2.6 times the Munk stiffness at its
-  /// full-thrust surge speed (0.85 m/s), and the hold still settles at the largest time_step, 0.1 s (10 rad/s
-  /// does not). Both are tested (test_vehicle_controller.cpp).
+  /// Natural frequency of the level hold on roll and pitch [rad/s]: a critically damped PD per axis with
+  /// kp = I' omega^2, kd = 2 omega I' - d (I' inertia with added inertia, d linear damping; kd held at 0 when
+  /// negative: the vehicle damps more; damping_ratio is the translation's and yaw's only); 0, none (roll and pitch left
+  /// to the restoring moment). Default 8 rad/s: left to its restoring moment (W BG = 1.3 N m/rad), the BlueROV2 Heavy
+  /// turns broadside under the added-mass (Munk) moment, stiffness (m33' - m11') U^2 = 12.3 U^2 N m/rad, above U = 0.33
+  /// m/s (a 0.5 m/s path pitched it 78 degrees); at 8 rad/s kp = 23.4 N m/rad in pitch, 2.6 times the Munk stiffness at
+  /// its full-thrust surge speed (0.85 m/s), and the hold still settles at the largest time_step, 0.1 s (10 rad/s does
+  /// not). Both are tested (test_vehicle_controller.cpp).
   double level_bandwidth = 8.0;
 
   /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio, level_bandwidth >= 0. Names the field and value.
@@ -100,6 +100,9 @@ struct ControllerOutput
   std::uint8_t saturated_axes = 0;
   /// Bit i set (same numbering): the integral went beyond its integral_limit in this update and was held at it.
   std::uint8_t integral_held_axes = 0;
+  /// The update's dt exceeds VehicleController::levelStepLimit(): the level hold swings up instead of settling
+  /// (the node warns: raise physics_rate or lower level_bandwidth).
+  bool level_step_too_long = false;
 };
 
 /// A setpoint: where the vehicle should be, and optionally how fast the setpoint moves.
@@ -161,6 +164,10 @@ class VehicleController
   /// dt <= 0 (nothing changes). The thrust limits are those configure() was given.
   Status update(double dt, const VehicleSetpoint& setpoint, const VehicleBody& body, ControllerOutput* output);
 
+  /// The longest update period [s] at which the level hold, its PD held over each update, still settles (from
+  /// configure()'s vehicle and gains; infinite without a hold): 0.104 s for the default BlueROV2 Heavy.
+  double levelStepLimit() const { return level_step_limit_; }
+
   /// The integral terms [N; N m], per axis (surge, sway, heave, yaw).
   const Vector4& integral() const { return integral_; }
   /// Restarts the integrals at 0.
@@ -176,11 +183,15 @@ class VehicleController
 
   /// The reach is this many times the error at which the proportional term alone meets the thrust limit.
   static constexpr double kReachFactor = 2.0;
+  /// Horizontal and vertical reach [m]: kReachFactor times the larger of limit / kp in surge and sway, and in heave.
+  static Eigen::Vector2d reachOf(const Vector4& limit, const ControllerGains& gains);
 
   ControllerGains gains_;
-  Eigen::Vector2d reach_{2.0 * 113.7 / 27.8, 2.0 * 160.8 / 45.1};  ///< Horizontal, vertical reach [m].
-  Vector4 limit_{113.7, 113.7, 160.8, 30.4};                       ///< Thrust limits of the controlled axes [N; N m].
-  Eigen::Vector2d level_limit_{35.1, 19.3};                        ///< Roll and pitch thrust limits [N m].
+  Vector4 limit_{113.7, 113.7, 160.8, 30.4};         ///< Thrust limits of the controlled axes [N; N m].
+  Eigen::Vector2d level_limit_{35.1, 19.3};          ///< Roll and pitch thrust limits [N m].
+  Eigen::Vector2d reach_ = reachOf(limit_, gains_);  ///< Horizontal, vertical reach [m].
+  double level_step_limit_ =
+      0.1036;  ///< levelStepLimit() [s], the default BlueROV2 Heavy's (roll's), as configure() gives it
   Vector4 integral_ = Vector4::Zero();
 };
 

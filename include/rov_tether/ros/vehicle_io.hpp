@@ -162,9 +162,9 @@ class VehicleIo
   std::uint64_t saturated_reported_ = 0;
   /// This vehicle's own log throttles (ROS_WARN_THROTTLE's belongs to the line: one tether's would hide another's):
   /// a command in another frame, another refused command (both under command_mutex_), a start refused, the thrust
-  /// held at its limit, the controller refused, the thrust refused.
+  /// held at its limit, the controller refused, the level hold updated too rarely to settle, the thrust refused.
   LogThrottle frame_log_{1.0}, command_log_{1.0}, start_log_{5.0}, saturation_log_{5.0}, controller_log_{1.0},
-      thrust_log_{1.0};
+      level_step_log_{10.0}, thrust_log_{1.0};
   ros::Subscriber command_sub_;
   ros::Publisher odom_pub_;
   ros::Publisher tf_pub_;

@@ -28,8 +28,8 @@ namespace rov_tether::spec
                                                 ControllerGains* gains = nullptr);
 
 /// Reads a vehicle controller's block for `vehicle`: the design keys `bandwidth` (4 numbers: surge, sway,
-/// heave [rad/s], yaw [rad/s]), `damping_ratio`, `integral_ratio` (ControllerDesign; each defaults to
-/// ControllerDesign's) give ControllerGains::design(vehicle, ...); the gain keys `proportional`, `integral`,
+/// heave [rad/s], yaw [rad/s]), `damping_ratio`, `integral_ratio`, `level_bandwidth` (ControllerDesign; each defaults
+/// to ControllerDesign's) give ControllerGains::design(vehicle, ...); the gain keys `proportional`, `integral`,
 /// `derivative`, `integral_limit` (4 numbers each) then replace the designed ones they name. An unknown or
 /// repeated key, a non-finite number, a design the vehicle refuses and gains VehicleController::configure
 /// refuses (negative, or an unstable loop) are errors, "<prefix>: controller: ...". `gains` set only on success.
