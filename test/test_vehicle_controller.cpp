@@ -438,7 +438,7 @@ TEST(VehicleController, LevelHoldRightsARolledVehicle)
 // default's kp 23.4 N m/rad it is 7.5 times over. Bounds: with the hold the tilt stays within 1 degree, a stated
 // tolerance (the hold is linearly stable with its stiffness 7.5 times the Munk one's, and the start is its only
 // excitation); with
-// level_bandwidth 0 it passes 30 degrees (seen: 78). Seen failing with the default level_bandwidth 0.
+// level_bandwidth 0 it passes 30 degrees. Seen failing with the default level_bandwidth 0.
 TEST(VehicleController, TheDefaultLevelHoldKeepsACruisingVehicleLevel)
 {
   const VehicleParams vehicle;

@@ -33,9 +33,9 @@ struct ControllerDesign
   /// negative: the vehicle damps more; damping_ratio is the translation's and yaw's only); 0, none (roll and pitch left
   /// to the restoring moment). Default 8 rad/s: left to its restoring moment (W BG = 1.3 N m/rad), the BlueROV2 Heavy
   /// turns broadside under the added-mass (Munk) moment, stiffness (m33' - m11') U^2 = 12.3 U^2 N m/rad, above U = 0.33
-  /// m/s (a 0.5 m/s path pitched it 78 degrees); at 8 rad/s kp = 23.4 N m/rad in pitch, 2.6 times the Munk stiffness at
-  /// its full-thrust surge speed (0.85 m/s), and the hold still settles at the largest time_step, 0.1 s (10 rad/s does
-  /// not). Both are tested (test_vehicle_controller.cpp).
+  /// m/s (a 0.5 m/s path pitched it past 30 degrees); at 8 rad/s kp = 23.4 N m/rad in pitch, 2.6 times the Munk
+  /// stiffness at its full-thrust surge speed (0.85 m/s), and the hold still settles at the largest time_step, 0.1 s
+  /// (10 rad/s does not). Both are tested (test_vehicle_controller.cpp).
   double level_bandwidth = 8.0;
 
   /// Finite; bandwidth > 0; damping_ratio > 0; integral_ratio, level_bandwidth >= 0. Names the field and value.
