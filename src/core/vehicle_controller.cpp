@@ -63,6 +63,9 @@ double effectiveMass(const VehicleParams& vehicle, int i)
 
 double linearDamping(const VehicleParams& vehicle, int i) { return vehicle.linear_damping[kWrenchRow[i]]; }
 
+/// Roll (j 0) or pitch (j 1) inertia with its added inertia, I' [kg m^2]: the level hold's plant.
+double levelInertia(const VehicleParams& vehicle, int j) { return vehicle.inertia[j] + vehicle.added_mass[3 + j]; }
+
 }  // namespace
 
 Status ControllerDesign::validate() const
@@ -147,7 +150,7 @@ Status ControllerGains::design(const VehicleParams& vehicle, const ControllerDes
   for (int j = 0; j < 2; ++j)  // the level hold: roll (row 3), pitch (row 4)
   {
     const double w = design.level_bandwidth;
-    const double inertia = vehicle.inertia[j] + vehicle.added_mass[3 + j];
+    const double inertia = levelInertia(vehicle, j);
     designed.level_proportional[j] = inertia * w * w;
     // Critically damped whatever damping_ratio the translation asks: the hold's margin at a coarse update period
     // is thin (levelStepLimit()), and a larger ratio would shrink it.
@@ -200,7 +203,7 @@ Status VehicleController::configure(const VehicleParams& vehicle, const Controll
   level_step_limit_ = std::numeric_limits<double>::infinity();
   for (int j = 0; j < 2; ++j)
   {
-    const double inertia = vehicle.inertia[j] + vehicle.added_mass[3 + j];
+    const double inertia = levelInertia(vehicle, j);
     const double a = gains.level_proportional[j] / inertia;
     const double b = gains.level_derivative[j] / inertia;
     if (a > 0.0)
