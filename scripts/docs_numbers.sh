@@ -26,7 +26,8 @@ if ((${#names[@]} == 0)); then
             "datasets/forward_camera_dive"
             "pillar_wrap --set max_winch_speed=0.3"
             "pillar_wrap_dynamic --set max_winch_speed=0.3"
-            "spool_payout --set noise=0")
+            "spool_payout --set noise=0"
+            "tms --set winch_speed=-0.3")
 fi
 run() {
   local name="$1" out="$2"

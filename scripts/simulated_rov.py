@@ -40,7 +40,7 @@ DIVE = [[0.0, 1.5, 0.0, -1.0], [16.0, 9.5, 0.0, -3.0], [26.0, 6.0, 7.0, -3.0], [
         [50.0, 1.5, 0.5, -1.5]]
 
 # [deg/s] Heading rate limit. Work-class ROVs turn at some 30-60 deg/s; the slow end keeps the demo's turns
-# (up to 117 degrees at a waypoint) about 4 s long, so the attachment 0.3 m behind the vehicle moves at
+# (up to 119 degrees at a waypoint) about 4 s long, so the attachment 0.3 m behind the vehicle moves at
 # most 0.3 m x 0.52 rad/s = 0.16 m/s faster than the vehicle.
 MAX_YAW_RATE = 30.0
 
