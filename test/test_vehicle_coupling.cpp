@@ -665,5 +665,47 @@ TEST(VehicleCoupling, ASnaggedVehiclePullsNoHarderThanItsThrustAndMomentumCan)
   }
 }
 
+// A solve that diverges is no force on the vehicle. The 5 t vehicle (moving at 0.5 m/s in surge, thrust off) on
+// a locked, nearly inextensible 10 m tether (EA 1e9 N, weightless), 2 sub-steps a step and 1 Newton iteration
+// (2 more to rescue a diverged one), its spool moved 10 m away at every step: the first step drags the vehicle
+// after it, and the second's first sub-step diverges (a segment at strain 1 or more after the rescue), so the
+// tether is re-laid at rest. Physics: the folded chain's particle moves are no pull, so over that step the body
+// moves as a free body does (here with nothing on it but its own damping and nothing from the weightless cable)
+// for the whole step, both sub-steps: a copy of the body stepped twice by the sub-step with no wrench, to
+// rounding (1e-9 m, 1e-9 m/s). Seen failing with the diverged solve's pull applied (0.25 m and 323 m/s off, and
+// 1.2e9 N reported as the pull) and with the step's second sub-step skipped for the body (0.40 m, 62 m/s). Should the
+// failure move to another sub-step (a solver change), the counts asserted first say so.
+TEST(VehicleCoupling, ADivergedSolvePullsNothingAndTheBodyTakesTheWholeStep)
+{
+  TetherParams params = lockedTether(1e9);
+  params.substeps = 2;
+  params.iterations = 1;
+  Tether tether(params, Position::Zero(), Position(kLength, 0.0, 0.0));
+  VehicleBody body = bodyAt(workClass(), kLength, 0.0);
+  ASSERT_TRUE(body.setState(body.position(), body.attitude(), surge(0.5)).ok);
+  ASSERT_TRUE(tether.attachVehicleBody(body, Eigen::Vector3d::Zero()).ok);
+  for (int step = 1; step <= 2; ++step)
+  {
+    body = *tether.vehicleBody();
+    ASSERT_TRUE(tether.setSpoolPosition(Position(-10.0 * step, 0.0, 0.0)).ok);
+    tether.step();
+    ASSERT_EQ(tether.recoveryCount(), step == 2 ? 1u : 0u) << "this test needs the second step to blow up";
+  }
+  ASSERT_NE(tether.lastFailure().find("diverged"), std::string::npos) << tether.lastFailure();
+  ASSERT_EQ(tether.solverEffort().substeps, 3u) << "the blow-up must be the second step's first sub-step";
+  VehicleBody free = body;
+  const double h = params.time_step / params.substeps;
+  for (int k = 0; k < params.substeps; ++k)
+  {
+    ASSERT_TRUE(free.step(h, Wrench::Zero(), Wrench::Zero(), nullptr).ok);
+  }
+  const VehicleBody& coupled = *tether.vehicleBody();
+  EXPECT_NEAR((coupled.position() - free.position()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((coupled.velocity() - free.velocity()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(tether.vehicleForce().norm(), 0.0, 1e-9) << "a weightless cable re-laid at rest pulls nothing";
+  const Position end = tether.particle(tether.deployedParticleCount() - 1);
+  EXPECT_NEAR((end - coupled.position()).norm(), 0.0, 1e-12) << "re-laid to where the body is";
+}
+
 }  // namespace
 }  // namespace rov_tether::test

@@ -460,7 +460,7 @@ void Tether::step()
   for (int k = 1; k <= substeps && recoveries_ == failures; ++k)
   {
     spool_placed_ = k == substeps ? spool_.outlet() : Position(spool_placed_ + spool_step_);
-    subStep(h, k == substeps ? next_time : next_time - dt + k * h);
+    subStep(h, k == substeps ? next_time : next_time - dt + k * h, substeps - k);
   }
   spool_step_ = Position::Zero();
   last_step_ = h;
@@ -477,7 +477,7 @@ void Tether::step()
   }
 }
 
-void Tether::subStep(double h, double t)
+void Tether::subStep(double h, double t, int rest)
 {
   const std::size_t n = cable_.size();
   cable_.placeMoving(cable_.first, spool_placed_, spool_step_);
@@ -529,9 +529,10 @@ void Tether::subStep(double h, double t)
     cable_.setInverseMass(n - 1, vehicle_inv_mass_);
   }
   solver_->solve(cable_, settings, contacts_, freeEnd());
-  if (vehicle_ != nullptr)
+  const std::string diverged = divergence(h);
+  if (vehicle_ != nullptr && !finishVehicle(h, diverged.empty(), diverged.empty() ? 0 : rest))
   {
-    finishVehicle(h);
+    return;
   }
   if (world_contact_ != nullptr)
   {
@@ -543,23 +544,29 @@ void Tether::subStep(double h, double t)
   effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
   effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
                          solver_->lastRescued());
+  if (!diverged.empty())
+  {
+    fail(diverged);
+  }
+}
+
+std::string Tether::divergence(double h) const
+{
+  std::ostringstream why;
   const double strain = solver_->lastMaxStrain();
   if (!std::isnan(strain) && !(strain < kDivergenceLimit))
   {
-    std::ostringstream why;
     why << "lumped_mass diverged (segment strain " << strain << "): the sub-step " << h
         << " s exceeds the critical step " << params_.criticalStep()
         << " s = segment_length / sqrt(EA / mu) (shorter with axial_damping)";
-    fail(why.str());
+    return why.str();
   }
   if (solver_->lastRescued() && !(solver_->lastRescueStrain() < kDivergenceLimit))
   {
-    std::ostringstream why;
     why << "direct solver diverged: after " << solver_->lastIterations()
         << " iterations (past `iterations`, to bring the step back) a segment ends at strain "
         << solver_->lastRescueStrain() << " (100% or more: a blow-up)";
-    fail(why.str());
-    return;
+    return why.str();
   }
   const double residual = solver_->lastResidual();
   if (!std::isnan(residual) && !(residual < kDivergenceLimit))
@@ -567,11 +574,10 @@ void Tether::subStep(double h, double t)
     // A constraint still violated by its own length after `iterations` Newton steps and the rescue's more
     // (DirectSolver::kRescueBudget): the chain has folded (a teleport, a violent pull) and would not unfold by
     // itself.
-    std::ostringstream why;
     why << "direct solver did not converge (residual " << residual << " of a segment's length after "
         << solver_->lastIterations() << " iterations)";
-    fail(why.str());
   }
+  return why.str();
 }
 
 void SolverEffort::add(int sub_step_iterations, double residual, double tolerance, bool rescue)
@@ -617,24 +623,34 @@ bool Tether::predictVehicle(double h, double t)
   return true;
 }
 
-void Tether::finishVehicle(double h)
+bool Tether::finishVehicle(double h, bool solved, int rest)
 {
   const std::size_t n = cable_.size();
-  // The tether's pull is what moved the attachment particle off its prediction in the solve:
+  // The vehicle carries the last half segment's weight (a pinned particle's share, vehicleForce()); and the
+  // tether's pull, which is what moved the attachment particle off its prediction in the solve:
   // M (x - x~) = h^2 F for the particle of mass 1 / w.
-  // The vehicle carries the last half segment's weight besides (a pinned particle's share, vehicleForce()).
-  const Force pull =
-      (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_) + endLoad(n - 1, n - 2);
+  Force pull = endLoad(n - 1, n - 2);
+  if (solved)
+  {
+    pull += (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_);
+  }
   cable_.setInverseMass(n - 1, 0.0);  // pinned again between sub-steps, as the kinematic end is
   Position reached;
-  const Status stepped = vehicle_->finish(h, pull, &reached);
+  Status stepped = vehicle_->finish(h, pull, &reached);
+  // A diverged solve's particle moves are no force (the chain folded): the body steps without them, and over
+  // the step's `rest` sub-steps too, which the tether skips to be re-laid at rest to where the body ends.
+  for (int k = 0; k < rest && stepped; ++k)
+  {
+    stepped = vehicle_->finish(h, pull, &reached);
+  }
   if (!stepped)
   {
     fail("dynamic vehicle: " + stepped.message);
-    return;
+    return false;
   }
   cable_.x[n - 1] = reached.x(), cable_.y[n - 1] = reached.y(), cable_.z[n - 1] = reached.z();
   track_.setPosition(reached);
+  return true;
 }
 
 Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d& attachment_offset)

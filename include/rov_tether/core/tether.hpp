@@ -318,12 +318,17 @@ class Tether
   std::string layOutToReach(const Position& attachment, const char* who);
   /// A kinematic vehicle attaching at `attachment`: layOutToReach, an attachment out of reach counted and kept.
   void attachKinematic(const Position& attachment);
-  void subStep(double h, double t);
+  /// One sub-step of h ending at t, `rest` more to come in this step (a dynamic vehicle steps over them alone
+  /// when this one fails).
+  void subStep(double h, double t, int rest);
+  /// Why the last solve failed (a blow-up the tether is re-laid from), or "" when it did not.
+  std::string divergence(double h) const;
   /// The dynamic vehicle's part of a sub-step of h at time t before the solve: the body's own step puts the
   /// attachment particle at its prediction, with the body's mobility as its inverse mass. False on failure.
   bool predictVehicle(double h, double t);
-  /// After the solve: the body steps under the solved pull; the attachment particle goes where it lands.
-  void finishVehicle(double h);
+  /// After the solve: the body steps under the solved pull (`solved`; else under the last half segment's weight
+  /// alone, and `rest` sub-steps more); the attachment particle goes where it lands. False on failure.
+  bool finishVehicle(double h, bool solved, int rest);
   void fail(const std::string& why);
   /// What the winch reads and moves in this sub-step.
   WinchDrive::Scene winchScene();
