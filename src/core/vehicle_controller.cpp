@@ -267,11 +267,16 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
   const Vector4 error(position_error.x(), position_error.y(), position_error.z(), yaw_error);
   const Vector4 rate_error(velocity_error.x(), velocity_error.y(), velocity_error.z(), yaw_rate_error);
 
+  // The translational integral is kept in world axes: what it cancels (a current, a tether's pull, a net
+  // buoyancy) is fixed in the world, and stays so while the vehicle turns. Each update takes it into the body's
+  // axes, advances and holds it there per axis, and turns it back.
+  Vector4 integral;
+  integral << to_body * integral_.head<3>(), integral_[3];
   ControllerOutput result;
   result.level_step_too_long = dt > level_step_limit_;
   for (int i = 0; i < 4; ++i)
   {
-    const double wanted = gains_.proportional[i] * error[i] + integral_[i] + gains_.derivative[i] * rate_error[i];
+    const double wanted = gains_.proportional[i] * error[i] + integral[i] + gains_.derivative[i] * rate_error[i];
     const double limit = limit_[i];
     const double held = wanted > limit ? limit : (wanted < -limit ? -limit : wanted);
     const auto bit = static_cast<std::uint8_t>(1u << kWrenchRow[i]);
@@ -285,15 +290,16 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
     const bool winding = held != wanted && error[i] * wanted > 0.0;
     if (!gains_.anti_windup || !winding)
     {
-      integral_[i] += gains_.integral[i] * error[i] * dt;
+      integral[i] += gains_.integral[i] * error[i] * dt;
     }
     const double cap = gains_.integral_limit[i];
-    if (integral_[i] > cap || integral_[i] < -cap)
+    if (integral[i] > cap || integral[i] < -cap)
     {
-      integral_[i] = integral_[i] > cap ? cap : -cap;
+      integral[i] = integral[i] > cap ? cap : -cap;
       result.integral_held_axes |= bit;
     }
   }
+  integral_ << body.attitude() * integral.head<3>(), integral[3];
   // The level hold: the torque that turns the body's z axis towards the world's, z_b x up = [-up_y, up_x, 0].
   const Eigen::Vector3d up = to_body * Eigen::Vector3d::UnitZ();
   const double tilt[2] = {-up.y(), up.x()};

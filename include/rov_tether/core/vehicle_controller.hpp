@@ -168,7 +168,9 @@ class VehicleController
   /// configure()'s vehicle and gains; infinite without a hold): 0.104 s for the default BlueROV2 Heavy.
   double levelStepLimit() const { return level_step_limit_; }
 
-  /// The integral terms [N; N m], per axis (surge, sway, heave, yaw).
+  /// The integral terms [N; N m]: the translational one in world axes (x, y, z; kept there, so that what it
+  /// cancels, fixed in the world, stays cancelled as the vehicle turns; each update acts on it and holds it per
+  /// body axis, surge, sway and heave), then yaw's.
   const Vector4& integral() const { return integral_; }
   /// Restarts the integrals at 0.
   void reset() { integral_.setZero(); }
