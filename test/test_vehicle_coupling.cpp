@@ -10,6 +10,7 @@
 #include "rov_tether/core/obstacle.hpp"
 #include "rov_tether/core/tether.hpp"
 #include "rov_tether/core/vehicle_body.hpp"
+#include "rov_tether/core/vehicle_coupling.hpp"
 #include "rov_tether/core/world.hpp"
 
 namespace rov_tether::test
@@ -663,6 +664,36 @@ TEST(VehicleCoupling, ASnaggedVehiclePullsNoHarderThanItsThrustAndMomentumCan)
     EXPECT_GE(at_spool, at_vehicle / capstan * 0.99);
     EXPECT_LE(at_spool, at_vehicle * capstan * 1.01);
   }
+}
+
+// The attachment point's inverse mass with and without predict() for the step: the same factorisation of the
+// body's step (M + h D, the water's damping on the share of the hull in it), so the same number to the bit,
+// wet or half out of the water; and half out, the hull is damped less, so the point is more mobile than wet.
+// Seen failing with the fallback's damping taken on the whole hull (it mirrored the body's step by hand).
+TEST(VehicleCoupling, TheEndsInverseMassIsThePredictionsWithOrWithoutOne)
+{
+  VehicleBody body = bodyAt(blueRov(), 0.0, 0.0);
+  Twist moving;
+  moving << 0.4, 0.1, -0.2, 0.05, -0.1, 0.2;
+  ASSERT_TRUE(body.setState(body.position(), body.attitude(), moving).ok);
+  const Position neighbour(-1.0, 0.3, 0.2);
+  const Position end(0.1, -0.2, 0.1);
+  const double h = 0.005;
+  double cold_at[2] = {0.0, 0.0};
+  for (const bool half : {false, true})
+  {
+    SCOPED_TRACE(half ? "half out of the water" : "under water");
+    VehicleCoupling coupling(body, Eigen::Vector3d(-0.2, 0.0, 0.1));
+    // The surface at the hull's mid-height puts half of it out (VehicleBody::submergedShare).
+    coupling.setWaterSurface(half ? body.position().z() : 10.0);
+    const double cold = coupling.inverseMass(neighbour, end, h);
+    Position predicted;
+    ASSERT_TRUE(coupling.predict(h, &predicted).ok);
+    EXPECT_EQ(coupling.inverseMass(neighbour, end, h), cold);
+    EXPECT_GT(cold, 0.0);
+    cold_at[half ? 1 : 0] = cold;
+  }
+  EXPECT_GT(cold_at[1], cold_at[0]) << "less of the hull in the water: less damped, more mobile";
 }
 
 // A solve that diverges is no force on the vehicle. The 5 t vehicle (moving at 0.5 m/s in surge, thrust off) on

@@ -79,15 +79,9 @@ Eigen::Matrix3d VehicleCoupling::pointMobility(const VehicleStepStart& start) co
 double VehicleCoupling::inverseMass(const Position& neighbour, const Position& predicted, double h) const
 {
   VehicleStepStart fallback;
-  if (!(started_ && start_.dt == h))
+  if (!(started_ && start_.dt == h) && !body_.startStep(h, &fallback))
   {
-    // Without predict() (or for another h): M + h D(|nu_r|) as the body's step would factor it.
-    const VehicleParams& p = body_.params();
-    Matrix6 resisted = body_.massMatrix();
-    resisted.diagonal() +=
-        h * (p.linear_damping + p.quadratic_damping.cwiseProduct(body_.relativeVelocity().cwiseAbs()));
-    fallback.dt = h;
-    fallback.damped.compute(resisted);
+    return 0.0;  // a step the body refuses (predict() says why): held as the kinematic end is
   }
   const VehicleStepStart& start = started_ && start_.dt == h ? start_ : fallback;  // predict()'s factorisation
   const Position along = predicted - neighbour;

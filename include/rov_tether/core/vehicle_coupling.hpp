@@ -78,7 +78,8 @@ class VehicleCoupling
   Status predict(double h, Position* predicted);
   /// Step 2: the inverse mass [1/kg] the solver gives the last particle, the attachment point's mobility
   /// along the direction from `neighbour` (the last-but-one particle's prediction) to `predicted`; the
-  /// largest eigenvalue of W_p when the two coincide.
+  /// largest eigenvalue of W_p when the two coincide. Without predict(h) the body's step of h is factored here as
+  /// predict() would (0 for a step the body refuses).
   double inverseMass(const Position& neighbour, const Position& predicted, double h) const;
   /// Step 4: the body's step of h under the tether's pull `pull` (world frame, at the attachment point)
   /// besides its own forces. Returns the attachment point it reaches.
