@@ -1,5 +1,7 @@
 #include "rov_tether/spec/yaml_read.hpp"
 
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -21,6 +23,74 @@ constexpr int kMaxYamlDepth = 64;
 /// (`l1: &l1 [*l0, *l0, ...]`, ten levels of ten) make a 700-byte file 1e10 values, which this walk and every
 /// reader after it would take hours to go through. A dive's recorded path at 10 Hz for an hour is 180,000.
 constexpr long kMaxYamlValues = 10000000;
+
+/// Where each document's first node starts. yaml-cpp 0.7 (Debian 12's) reads a ',' where no value can start (at
+/// the start of a document, or after a flow sequence at block level: `[1, 2], 3`) as an endless run of empty
+/// documents at that same place (yaml-cpp issue #1040, fixed upstream by pull request #1319): YAML::LoadAll
+/// filled the memory (fuzz_scenario: a 600-byte scenario took 20 GB) and YAML::Load read it as an empty file.
+class DocumentStarts : public YAML::EventHandler
+{
+ public:
+  /// The position of the last document's first node.
+  std::size_t start() const { return start_.pos; }
+  const YAML::Mark& mark() const { return start_; }
+
+  void OnDocumentStart(const YAML::Mark& /*mark*/) override { first_ = true; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t /*anchor*/) override { note(mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t /*anchor*/) override { note(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string& /*tag*/, YAML::anchor_t /*anchor*/,
+                const std::string& /*value*/) override
+  {
+    note(mark);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string& /*tag*/, YAML::anchor_t /*anchor*/,
+                       YAML::EmitterStyle::value /*style*/) override
+  {
+    note(mark);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string& /*tag*/, YAML::anchor_t /*anchor*/,
+                  YAML::EmitterStyle::value /*style*/) override
+  {
+    note(mark);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void note(const YAML::Mark& mark)
+  {
+    if (first_)
+    {
+      start_ = mark;
+      first_ = false;
+    }
+  }
+  bool first_ = false;
+  YAML::Mark start_;
+};
+
+/// Throws YAML::ParserException where the parser stops making progress (two documents starting at the same
+/// place: DocumentStarts), before YAML::LoadAll would loop there.
+void refuseEndlessDocuments(const std::string& text)
+{
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts starts;
+  bool any = false;
+  std::size_t previous = 0;
+  while (parser.HandleNextDocument(starts))
+  {
+    if (any && starts.start() == previous)
+    {
+      throw YAML::ParserException(starts.mark(),
+                                  "a ',' (or another token) where no value can start: outside [ ] or { }, a ',' "
+                                  "separates nothing");
+    }
+    any = true;
+    previous = starts.start();
+  }
+}
 
 /// Finds a key that a map in `node` holds twice (yaml-cpp keeps both and `node[key]` takes the first, so a
 /// repeated key would be half-read). Returns "" or "duplicate key 'path.key' (lines A and B)", or, nested deeper
@@ -81,7 +151,8 @@ std::string findDuplicateKey(const YAML::Node& node, const std::string& path, lo
 std::string loadYamlText(const std::string& text, YAML::Node* root)
 {
   // Every document, so that one after a `---` line is refused rather than never read (YAML::Load reads the first);
-  // an empty one (a `---` at the end) holds nothing to read.
+  // an empty one (a `---` at the end) holds nothing to read. First the documents' places, where yaml-cpp may loop.
+  refuseEndlessDocuments(text);
   std::vector<YAML::Node> documents = YAML::LoadAll(text);
   documents.erase(std::remove_if(documents.begin(), documents.end(), [](const YAML::Node& d) { return d.IsNull(); }),
                   documents.end());
