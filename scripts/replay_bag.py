@@ -14,7 +14,9 @@ launch/replay.launch (see README, "Replaying your own dives", and docs/node.md).
    ~tether_node to shut down (SIGINT), so every process of the launch ends and roslaunch exits by itself.
 
 5. A replay in which the node took no pose (every ~state without a vehicle attached) is a failure: the
-   node's count of refused poses is read from /diagnostics and said, with where the reasons are.
+   node's count of refused poses is read from /diagnostics and said, with where the reasons are. A replay
+   that ends well says the poses played and the node's counts of poses taken and refused (a warning when
+   it refused some).
 
 Exits 1, after stopping the rest, when the bag is missing or holds no poses, no pose was taken, the node
 or a rosbag process fails. roslaunch itself exits 0 whatever its nodes do: `rosrun rov_tether replay.sh
@@ -225,10 +227,19 @@ class Replay:
             if recorder.returncode not in (0, -signal.SIGINT):
                 raise RuntimeError("rosbag record exited with code %d" % recorder.returncode)
         self.check_poses_taken(poses)
-        if self.record:
-            rospy.loginfo("replay: done, recorded %s", output)
+        self.say_done(poses, output if self.record else None)
+
+    def say_done(self, poses, output):
+        """The replay's last line: what was played, and what the node took and refused by its last /diagnostics
+        (published on the bag's clock, so up to a second of it before the end); a warning when it refused some."""
+        refused = self.diagnostics.get("rejected poses", "an unknown number of")
+        line = "replay: done: %d poses of %s played; by its last /diagnostics the node took %s and refused %s%s" % (
+            poses, self.pose_topic, self.diagnostics.get("poses taken", "an unknown number"), refused,
+            ("; recorded " + output) if output else "")
+        if refused == "0":
+            rospy.loginfo(line)
         else:
-            rospy.loginfo("replay: done")
+            rospy.logwarn(line + " (tether_node's warnings above say why)")
 
     @staticmethod
     def stop(process):

@@ -90,6 +90,9 @@ class ReplayLaunch(unittest.TestCase):
         self.assertNotIn("REQUIRED process", output)
         self.assertNotIn("has died", output)
         self.assertIn("all processes on machine have died, roslaunch will exit", output)  # it ended by itself
+        # Its last line says what was played and what the node made of it: a clean dive, nothing refused.
+        self.assertRegex(output, r"replay: done: \d+ poses of /rov_pose played; by its last /diagnostics the node "
+                                 r"took \d+ and refused 0; recorded ")
         self.assertEqual(sorted(os.listdir(DATA)), data_before, "nothing written into test/data")
         recorded = os.path.join(self.ros_home, "replay", "straight_excursion.tether.bag")
         self.assertTrue(os.path.isfile(recorded), output)
@@ -142,6 +145,7 @@ class ReplayLaunch(unittest.TestCase):
                                       command=("rosrun", "rov_tether", "replay.sh"))
         self.assertEqual(code, 1, output)
         self.assertIn("no pose was taken: 201 poses of /mavros/local_position/pose played", output)
+        self.assertNotIn("replay: done", output)
         self.assertIn("set world_frame to 'map'", output)  # the node's warning says what to do
 
     def test_5_an_odometry_bag_replays(self):
