@@ -269,17 +269,24 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
 
   // The translational integral is kept in world axes: what it cancels (a current, a tether's pull, a net
   // buoyancy) is fixed in the world, and stays so while the vehicle turns. Each update takes it into the body's
-  // axes, advances and holds it there per axis, and turns it back.
+  // axes, where each axis's term acts held within its integral_limit and advances, and turns it back.
   Vector4 integral;
   integral << to_body * integral_.head<3>(), integral_[3];
   ControllerOutput result;
   result.level_step_too_long = dt > level_step_limit_;
   for (int i = 0; i < 4; ++i)
   {
-    const double wanted = gains_.proportional[i] * error[i] + integral[i] + gains_.derivative[i] * rate_error[i];
+    const double cap = gains_.integral_limit[i];
+    // A turn can put more on an axis than its limit (what two axes held, on one): the term acts held, the rest kept.
+    const double term = integral[i] > cap ? cap : (integral[i] < -cap ? -cap : integral[i]);
+    const auto bit = static_cast<std::uint8_t>(1u << kWrenchRow[i]);
+    if (term != integral[i])
+    {
+      result.integral_held_axes |= bit;
+    }
+    const double wanted = gains_.proportional[i] * error[i] + term + gains_.derivative[i] * rate_error[i];
     const double limit = limit_[i];
     const double held = wanted > limit ? limit : (wanted < -limit ? -limit : wanted);
-    const auto bit = static_cast<std::uint8_t>(1u << kWrenchRow[i]);
     if (held != wanted)
     {
       result.saturated_axes |= bit;
@@ -288,18 +295,28 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
 
     // Conditional integration: not while held at the limit with the error pushing further out.
     const bool winding = held != wanted && error[i] * wanted > 0.0;
-    if (!gains_.anti_windup || !winding)
+    const double before = integral[i];
+    const double after = !gains_.anti_windup || !winding ? before + gains_.integral[i] * error[i] * dt : before;
+    // The integral limit: integrating never takes an axis beyond it (one already beyond by a turn stays as it is).
+    if (std::abs(after) > cap && std::abs(after) > std::abs(before))
     {
-      integral[i] += gains_.integral[i] * error[i] * dt;
-    }
-    const double cap = gains_.integral_limit[i];
-    if (integral[i] > cap || integral[i] < -cap)
-    {
-      integral[i] = integral[i] > cap ? cap : -cap;
+      integral[i] = std::abs(before) > cap ? before : std::copysign(cap, after);
       result.integral_held_axes |= bit;
+    }
+    else
+    {
+      integral[i] = after;
     }
   }
   integral_ << body.attitude() * integral.head<3>(), integral[3];
+  // Turns cannot pile it up either: horizontally no longer than the surge and sway limits' diagonal, beyond which
+  // no heading could use it.
+  const double horizontal = std::hypot(integral_[0], integral_[1]);
+  const double widest = std::hypot(gains_.integral_limit[0], gains_.integral_limit[1]);
+  if (horizontal > widest)
+  {
+    integral_.head<2>() *= widest / horizontal;
+  }
   // The level hold: the torque that turns the body's z axis towards the world's, z_b x up = [-up_y, up_x, 0].
   const Eigen::Vector3d up = to_body * Eigen::Vector3d::UnitZ();
   const double tilt[2] = {-up.y(), up.x()};

@@ -98,7 +98,8 @@ struct ControllerOutput
   /// Bit i set (ThrustUsed's numbering: 0 surge, 1 sway, 2 heave, 3 roll, 4 pitch, 5 yaw): the controller
   /// asked for more than the limit on that axis and was held at it.
   std::uint8_t saturated_axes = 0;
-  /// Bit i set (same numbering): the integral went beyond its integral_limit in this update and was held at it.
+  /// Bit i set (same numbering): the integral term acting on that axis was held at its integral_limit in this
+  /// update (integrating would have taken it beyond, or a turn put more on the axis than its limit).
   std::uint8_t integral_held_axes = 0;
   /// The update's dt exceeds VehicleController::levelStepLimit(): the level hold swings up instead of settling
   /// (the node warns: raise physics_rate or lower level_bandwidth).
@@ -169,8 +170,8 @@ class VehicleController
   double levelStepLimit() const { return level_step_limit_; }
 
   /// The integral terms [N; N m]: the translational one in world axes (x, y, z; kept there, so that what it
-  /// cancels, fixed in the world, stays cancelled as the vehicle turns; each update acts on it and holds it per
-  /// body axis, surge, sway and heave), then yaw's.
+  /// cancels, fixed in the world, stays cancelled as the vehicle turns; each update acts with its part on each
+  /// body axis, surge, sway and heave, held within that axis's integral_limit), then yaw's.
   const Vector4& integral() const { return integral_; }
   /// Restarts the integrals at 0.
   void reset() { integral_.setZero(); }
