@@ -530,7 +530,10 @@ void Tether::subStep(double h, double t, int rest)
   }
   solver_->solve(cable_, settings, contacts_, freeEnd());
   const std::string diverged = divergence(h);
-  if (vehicle_ != nullptr && !finishVehicle(h, diverged.empty(), diverged.empty() ? 0 : rest))
+  effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
+  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
+                         solver_->lastRescued());
+  if (vehicle_ != nullptr && !finishVehicle(h, t, diverged, rest))
   {
     return;
   }
@@ -541,9 +544,6 @@ void Tether::subStep(double h, double t, int rest)
     substep_policy_.sawPullIn(world_contact_->lastPullIn());
   }
   winch_.afterSolve(winchScene(), settings.drum != nullptr, h);
-  effort_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance, solver_->lastRescued());
-  effort_since_mark_.add(solver_->lastIterations(), solver_->lastResidual(), params_.solver_tolerance,
-                         solver_->lastRescued());
   if (!diverged.empty())
   {
     fail(diverged);
@@ -623,33 +623,49 @@ bool Tether::predictVehicle(double h, double t)
   return true;
 }
 
-bool Tether::finishVehicle(double h, bool solved, int rest)
+bool Tether::finishVehicle(double h, double t, const std::string& diverged, int rest)
 {
   const std::size_t n = cable_.size();
   // The vehicle carries the last half segment's weight (a pinned particle's share, vehicleForce()); and the
   // tether's pull, which is what moved the attachment particle off its prediction in the solve:
   // M (x - x~) = h^2 F for the particle of mass 1 / w.
   Force pull = endLoad(n - 1, n - 2);
-  if (solved)
+  std::string failed = diverged;
+  if (failed.empty())
   {
-    pull += (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_);
+    const Force solved = (cable_.position(n - 1) - vehicle_predicted_) / (h * h * vehicle_inv_mass_);
+    if (solved.allFinite())
+    {
+      pull += solved;
+    }
+    else
+    {
+      failed = "direct solver: the solve left the vehicle's attachment point non-finite";
+    }
   }
   cable_.setInverseMass(n - 1, 0.0);  // pinned again between sub-steps, as the kinematic end is
   Position reached;
   Status stepped = vehicle_->finish(h, pull, &reached);
-  // A diverged solve's particle moves are no force (the chain folded): the body steps without them, and over
-  // the step's `rest` sub-steps too, which the tether skips to be re-laid at rest to where the body ends.
-  for (int k = 0; k < rest && stepped; ++k)
+  // A failed solve's particle moves are no force (the chain folded): the body steps without them, and over the
+  // step's `rest` sub-steps too (each in the current where its attachment is then), which the tether skips to be
+  // re-laid at rest to where the body ends.
+  for (int k = 1; k <= rest && stepped && !failed.empty(); ++k)
   {
+    vehicle_->setCurrent(current_.at(vehicle_->attachment(), t + k * h));
     stepped = vehicle_->finish(h, pull, &reached);
   }
   if (!stepped)
   {
-    fail("dynamic vehicle: " + stepped.message);
+    fail("dynamic vehicle: " + stepped.message + (failed.empty() ? "" : " (after: " + failed + ")"));
     return false;
   }
   cable_.x[n - 1] = reached.x(), cable_.y[n - 1] = reached.y(), cable_.z[n - 1] = reached.z();
   track_.setPosition(reached);
+  if (diverged.empty() && !failed.empty())
+  {
+    fail(failed);  // the caller fails only what divergence() says
+    return false;
+  }
   return true;
 }
 

@@ -326,9 +326,11 @@ class Tether
   /// The dynamic vehicle's part of a sub-step of h at time t before the solve: the body's own step puts the
   /// attachment particle at its prediction, with the body's mobility as its inverse mass. False on failure.
   bool predictVehicle(double h, double t);
-  /// After the solve: the body steps under the solved pull (`solved`; else under the last half segment's weight
-  /// alone, and `rest` sub-steps more); the attachment particle goes where it lands. False on failure.
-  bool finishVehicle(double h, bool solved, int rest);
+  /// After the solve of the sub-step of h ending at t: the body steps under the solved pull (else, when the solve
+  /// `diverged` (why, as divergence() says it) or left the attachment point non-finite, under the last half
+  /// segment's weight alone, and the step's `rest` sub-steps more); the attachment particle goes where it lands.
+  /// False on failure (fail() called).
+  bool finishVehicle(double h, double t, const std::string& diverged, int rest);
   void fail(const std::string& why);
   /// What the winch reads and moves in this sub-step.
   WinchDrive::Scene winchScene();
