@@ -232,10 +232,14 @@ class Replay:
     def say_done(self, poses, output):
         """The replay's last line: what was played, and what the node took and refused by its last /diagnostics
         (published on the bag's clock, so up to a second of it before the end); a warning when it refused some."""
-        refused = self.diagnostics.get("rejected poses", "an unknown number of")
+        recorded = ("; recorded " + output) if output else ""
+        if "rejected poses" not in self.diagnostics:
+            rospy.logwarn("replay: done: %d poses of %s played; no /diagnostics from the node came, so what it took "
+                          "and refused is not known%s", poses, self.pose_topic, recorded)
+            return
+        refused = self.diagnostics["rejected poses"]
         line = "replay: done: %d poses of %s played; by its last /diagnostics the node took %s and refused %s%s" % (
-            poses, self.pose_topic, self.diagnostics.get("poses taken", "an unknown number"), refused,
-            ("; recorded " + output) if output else "")
+            poses, self.pose_topic, self.diagnostics.get("poses taken", "?"), refused, recorded)
         if refused == "0":
             rospy.loginfo(line)
         else:
