@@ -31,8 +31,7 @@ constexpr long kMaxYamlValues = 10000000;
 class DocumentStarts : public YAML::EventHandler
 {
  public:
-  /// The position of the last document's first node.
-  std::size_t start() const { return start_.pos; }
+  /// Where the last document's first node starts.
   const YAML::Mark& mark() const { return start_; }
 
   void OnDocumentStart(const YAML::Mark& /*mark*/) override { first_ = true; }
@@ -77,18 +76,16 @@ void refuseEndlessDocuments(const std::string& text)
   std::istringstream in(text);
   YAML::Parser parser(in);
   DocumentStarts starts;
-  bool any = false;
-  std::size_t previous = 0;
+  int previous = -1;  // no document yet
   while (parser.HandleNextDocument(starts))
   {
-    if (any && starts.start() == previous)
+    if (starts.mark().pos == previous)
     {
       throw YAML::ParserException(starts.mark(),
                                   "a ',' (or another token) where no value can start: outside [ ] or { }, a ',' "
                                   "separates nothing");
     }
-    any = true;
-    previous = starts.start();
+    previous = starts.mark().pos;
   }
 }
 
