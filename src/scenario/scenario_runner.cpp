@@ -324,7 +324,7 @@ std::string runScenario(const Scenario& scenario, const std::string& out_dir, Ru
 }
 
 std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir, RunSummary* summary,
-                        const std::vector<RunObserver*>& observers)
+                        const std::vector<RunObserver*>& observers, const volatile std::sig_atomic_t* interrupt)
 {
   const std::string rate_error = scenario.checkOutputRate();
   if (!rate_error.empty())
@@ -337,6 +337,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
     return size_error;
   }
   ScenarioStepper stepper(scenario, world);
+  stepper.setInterrupt(interrupt);
   const std::vector<ScenarioTether>& tethers = stepper.tethers();
   if (world.size() != tethers.size())
   {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace rov_tether
@@ -171,6 +172,14 @@ bool ScenarioStepper::feedUpTo(double t)
 }
 bool ScenarioStepper::advanceWorld(double t)
 {
+  if (interrupt_ != nullptr && *interrupt_ != 0)
+  {
+    interrupted_ = true;
+    char line[96];
+    std::snprintf(line, sizeof line, "interrupted at t = %.6g s", world_.time());
+    run_error_ = line;
+    return false;
+  }
   const Status status = world_.advanceTo(t, nullptr, step_observer_);
   if (!status.ok)
   {

@@ -1,6 +1,7 @@
 // rov_tether_run: runs a scenario offline (no ROS master) and writes state.csv and shape.csv (per tether, and
 // topology.csv, for a scenario with obstacles or several tethers).
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -36,7 +37,26 @@ void usage(std::FILE* out)
       "                          each tether that does not set its own max_tension_warning.\n"
       "  Warnings (stderr, as the node logs them): simulation failures, a vehicle out of its cable's reach,\n"
       "  over-tension, an outrun winch, a reel-in held at the winch's stall pull.\n"
-      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error.\n");
+      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error, 130 or 143 stopped by\n"
+      "  SIGINT (Ctrl-C) or SIGTERM (no CSV output written; a second Ctrl-C ends it at once).\n");
+}
+
+/// The signal that asked the run to stop (SIGINT, SIGTERM), 0 while none: set by onStopSignal, read between the
+/// stretches the run advances (ScenarioStepper::setInterrupt).
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void onStopSignal(int signal_number) { g_stop_signal = signal_number; }
+
+/// From here on, SIGINT and SIGTERM ask the run to stop where it can leave the output directory as it was; each
+/// handler is taken once (SA_RESETHAND), so a second Ctrl-C ends the program at once, as it would have.
+void stopOnSignals()
+{
+  struct sigaction action = {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 /// The command line's choices.
@@ -336,9 +356,22 @@ int run(int argc, char** argv)
     observers.push_back(dataset.get());
   }
   rov_tether::RunSummary s;
+  stopOnSignals();
   error = dataset ? dataset->open() : "";
-  error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers) : error;
+  error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal) : error;
   error = error.empty() && dataset ? dataset->close() : error;
+  const int stopped_by = g_stop_signal;
+  if (!error.empty() && stopped_by != 0)
+  {
+    // Stopped from outside: said as what it is, not as an output error (the CSVs' temporaries are removed, the
+    // earlier outputs left as they were, as for any run that fails).
+    std::fprintf(stderr,
+                 "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output was written, and the "
+                 "output directory's earlier CSV files are as they were%s\n",
+                 stopped_by == SIGINT ? "SIGINT" : "SIGTERM", error.c_str(), scenario.duration,
+                 dataset ? "; the camera frames written so far stay in its cameras/ (written in place)" : "");
+    return 128 + stopped_by;
+  }
   if (!error.empty())
   {
     for (const std::string& warning : world_warnings)

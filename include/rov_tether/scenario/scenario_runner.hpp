@@ -2,6 +2,7 @@
 // Running a scenario offline and writing its CSV files (state.csv, shape.csv; per tether, and topology.csv, for
 // a world's scenario). No YAML here: the scenario comes from scenario_yaml.hpp or is built in code.
 
+#include <csignal>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -80,9 +81,12 @@ struct RunSummary
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                                       const std::vector<RunObserver*>& observers = {});
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a
-/// caller can tell a world that cannot be built from a run that failed).
+/// caller can tell a world that cannot be built from a run that failed). Once `*interrupt` is non-zero (a signal
+/// handler's; nullptr: never) the run stops before the next stretch it advances (ScenarioStepper::setInterrupt)
+/// and fails as any run does, with "interrupted at t = T s": no CSV output written, earlier ones left as they were.
 [[nodiscard]] std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir,
-                                      RunSummary* summary, const std::vector<RunObserver*>& observers = {});
+                                      RunSummary* summary, const std::vector<RunObserver*>& observers = {},
+                                      const volatile std::sig_atomic_t* interrupt = nullptr);
 
 /// The node's default `max_tension_warning` [N]: the runner warns above the same tension.
 constexpr double kDefaultMaxTensionWarning = 500.0;

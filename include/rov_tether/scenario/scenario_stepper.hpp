@@ -2,6 +2,7 @@
 // Moving a world built from a scenario along its tethers' paths: the loop of the offline runner
 // (scenario_runner.hpp) and of the Python API. No YAML and no output files here.
 
+#include <csignal>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -57,6 +58,13 @@ class ScenarioStepper
   /// caller's (Tether::setVehicleThrust, held until changed). False when the scenario gives it no dynamic vehicle.
   bool releaseVehicle(std::size_t i);
 
+  /// Stops advancing once `*flag` is non-zero (a signal handler's: rov_tether_run's SIGINT and SIGTERM), before the
+  /// next stretch the world is advanced by (to the next output or observer time; a step, with dynamic vehicles):
+  /// advance() then fails with runError() "interrupted at t = T s" and interrupted() is true. nullptr: never.
+  void setInterrupt(const volatile std::sig_atomic_t* flag) { interrupt_ = flag; }
+  /// The run stopped at the interrupt flag (setInterrupt).
+  bool interrupted() const { return interrupted_; }
+
   /// The scenario's tethers (Scenario::tetherList), in World order.
   const std::vector<ScenarioTether>& tethers() const { return tethers_; }
   /// The dynamic vehicles' drivers with their tethers' indices, in scenario order.
@@ -87,6 +95,8 @@ class ScenarioStepper
   std::vector<bool> released_;  ///< Per tether: its dynamic vehicle's thrust is the caller's (releaseVehicle).
   double cpu_ = 0.0;
   StepObserver* step_observer_ = nullptr;
+  const volatile std::sig_atomic_t* interrupt_ = nullptr;
+  bool interrupted_ = false;
   std::string run_error_;
   std::string observer_error_;
 };
