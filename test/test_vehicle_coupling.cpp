@@ -562,6 +562,23 @@ TEST(VehicleCoupling, AttachSkipResetAndLiveChangesKeepTheirPromises)
   EXPECT_NE(live.message.find("stable"), std::string::npos) << live.message;
   EXPECT_EQ(fine_tether.params().time_step, fine.time_step);
 
+  // With a water surface, the limit of the hull crossing it (VehicleBody::stableStepLimitAt): a hull 2 mm high is
+  // a stiff heave spring (B / 2 mm), whose limit is below the 50 ms step that the body's restoring moment takes.
+  VehicleParams flat = blueRov();
+  flat.size.z() = 0.002;
+  const VehicleBody flat_body = bodyAt(flat, 5.0, 0.2);
+  TetherParams coarse = lockedTether(1e5);
+  coarse.time_step = 0.05;
+  ASSERT_GT(flat_body.stableStepLimit(), coarse.time_step);
+  ASSERT_LT(flat_body.stableStepLimitAt(0.0), coarse.time_step);
+  Tether deep(coarse, Position::Zero(), Position(kLength, 0.0, 0.0));
+  EXPECT_TRUE(deep.attachVehicleBody(flat_body, Eigen::Vector3d::Zero()).ok) << "no surface";
+  coarse.water_surface_z = 10.0;
+  Tether surfaced(coarse, Position::Zero(), Position(kLength, 0.0, 0.0));
+  const Status crossing = surfaced.attachVehicleBody(flat_body, Eigen::Vector3d::Zero());
+  EXPECT_FALSE(crossing.ok);
+  EXPECT_NE(crossing.message.find("water surface"), std::string::npos) << crossing.message;
+
   ASSERT_TRUE(tether.setVehicleThrust(surge(kThrust)).ok);
   for (int i = 0; i < 100; ++i)
   {

@@ -27,11 +27,13 @@ Status dynamicVehicleFits(const TetherParams& params, const VehicleBody& body)
                          toString(params.solver) +
                          "' has no implicit step to couple it into (use a kinematic vehicle end, or solver direct)");
   }
-  if (!(params.subStep() <= body.stableStepLimit()))
+  const double limit = body.stableStepLimitAt(params.water_surface_z);
+  if (!(params.subStep() <= limit))
   {
     std::ostringstream out;
-    out << "a dynamic vehicle needs sub-steps within its body's stable limit " << body.stableStepLimit()
-        << " s; time_step / substeps is " << params.subStep() << " s";
+    out << "a dynamic vehicle needs sub-steps within its body's stable limit " << limit << " s"
+        << (std::isnan(params.water_surface_z) ? "" : " (with the water surface: the hull's buoyancy and thrust)")
+        << "; time_step / substeps is " << params.subStep() << " s";
     return Status::error(out.str());
   }
   return Status::success();

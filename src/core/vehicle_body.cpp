@@ -126,11 +126,41 @@ void VehicleBody::prepare()
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
   // effective rotational inertia I' (translation free: the inverse of M^-1's rotational block) at
   // omega_n = sqrt(k / I'); semi-implicit Euler on a spring is stable for h omega_n < 2.
-  const double k = (params_.buoyancy() * params_.center_of_buoyancy - params_.weight() * r_g).norm();
+  // (stableStepLimitAt: with a water surface, the hull crossing it adds the springs of its buoyancy and thrust.)
   const Matrix6 inverse = mass_factor.solve(Matrix6::Identity());
-  const Matrix3 compliance = 0.5 * (inverse.bottomRightCorner<3, 3>() + inverse.bottomRightCorner<3, 3>().transpose());
-  const double largest_compliance = Eigen::SelfAdjointEigenSolver<Matrix3>(compliance).eigenvalues().maxCoeff();
-  stable_step_ = k > 0.0 ? 2.0 / std::sqrt(k * largest_compliance) : std::numeric_limits<double>::infinity();
+  const auto largest = [](const Matrix3& block)
+  { return Eigen::SelfAdjointEigenSolver<Matrix3>(0.5 * (block + block.transpose())).eigenvalues().maxCoeff(); };
+  rotational_compliance_ = largest(inverse.bottomRightCorner<3, 3>());
+  translational_compliance_ = largest(inverse.topLeftCorner<3, 3>());
+  stable_step_ = stableStepLimitAt(water_surface_z_);
+}
+
+double VehicleBody::stableStepLimitAt(double surface_z) const
+{
+  const Vector3& r_g = params_.center_of_gravity;
+  const Vector3& r_b = params_.center_of_buoyancy;
+  const double submerged_spring = (params_.buoyancy() * r_b - params_.weight() * r_g).norm();
+  double lambda = submerged_spring * rotational_compliance_;
+  if (!std::isnan(surface_z))
+  {
+    // The share s in [0, 1] scales the buoyancy: its spring on the attitude is largest at one end or the other.
+    lambda = std::max(submerged_spring, params_.weight() * r_g.norm()) * rotational_compliance_;
+    const double height = params_.size.z();
+    const double along = std::sqrt(translational_compliance_) + r_b.norm() * std::sqrt(rotational_compliance_);
+    const double thrust = std::sqrt(translational_compliance_) * params_.thrust_limit.head<3>().norm() +
+                          std::sqrt(rotational_compliance_) * params_.thrust_limit.tail<3>().norm();
+    lambda += params_.buoyancy() / height * along * along + thrust * along / height;
+  }
+  return lambda > 0.0 ? 2.0 / std::sqrt(lambda) : std::numeric_limits<double>::infinity();
+}
+
+void VehicleBody::setWaterSurface(double z)
+{
+  if (std::isnan(z) != std::isnan(water_surface_z_))
+  {
+    stable_step_ = stableStepLimitAt(z);  // the limit depends on there being a surface, not on its height
+  }
+  water_surface_z_ = z;
 }
 
 void VehicleBody::factorMassPlusCoriolis(const Vector6& momentum, double a, BodyLu* lu) const
@@ -226,8 +256,10 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
 {
   if (!(dt > 0.0) || !(dt <= stable_step_))
   {
-    return Status::error("vehicle step: dt must be in (0, " + number(stable_step_) +
-                         "] s, the restoring moment's stability limit (got " + number(dt) + ")");
+    return Status::error("vehicle step: dt must be in (0, " + number(stable_step_) + "] s, the stability limit of " +
+                         (std::isnan(water_surface_z_) ? "the restoring moment"
+                                                       : "the restoring moment and the surface's buoyancy and thrust") +
+                         " (got " + number(dt) + ")");
   }
   start->dt = dt;
   start->relative = velocity_;

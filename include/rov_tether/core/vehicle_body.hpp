@@ -78,10 +78,12 @@ struct VehicleStepTrial
  * Parts 1 and 2 are one solve, (M + h D_n) nu_r' = M nu_r + h tau; M + h D_n and M + h/2 C are factored without
  * pivoting, the translational block first (BodyLu: their symmetric parts are positive definite, their
  * translational blocks diagonal), and M + h D_n once for every step from the same start (startStep()).
- * First order in h overall (the kick and the damping are). The one conditional part is the restoring moment
- * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): it is a spring of stiffness at
+ * First order in h overall (the kick and the damping are). The one conditional part is the restoring wrench
+ * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): under water a spring of stiffness at
  * most k = |B r_B - W r_G| on the smallest effective rotational inertia I' (with added inertia, translation
- * free), stable for h < 2 / sqrt(k / I') (stableStepLimit(): about 1 s for the BlueROV2 Heavy).
+ * free), stable for h < 2 / sqrt(k / I') (stableStepLimit(): about 1 s for the BlueROV2 Heavy); with a water
+ * surface also the heave spring of the hull's buoyancy and thrust crossing it (stableStepLimitAt(): about 0.3 s
+ * for the BlueROV2 Heavy).
  * No allocation in step().
  */
 class VehicleBody
@@ -102,7 +104,8 @@ class VehicleBody
   /// The water surface's height [m] in the world (NaN: none, the body always under water). Above it the body
   /// loses its buoyancy, its damping and its thrust in proportion to the share of its height (size.z, centred on
   /// the centre of buoyancy) out of the water (submergedShare()); its added mass stays (docs/limitations.md).
-  void setWaterSurface(double z) { water_surface_z_ = z; }
+  /// The stable step limit becomes stableStepLimitAt(z).
+  void setWaterSurface(double z);
   /// The share of the hull's height under the water surface, in [0, 1] (1 without a surface).
   double submergedShare() const;
 
@@ -135,9 +138,22 @@ class VehicleBody
    */
   Status stepAgain(const VehicleStepStart& start, const VehicleStepTrial& trial, const Wrench& more);
 
-  /// The largest stable step [s]: 2 / sqrt(k / I') for the restoring spring (class comment); infinite with
-  /// no restoring moment.
+  /// The largest stable step [s] in the body's water (setWaterSurface): stableStepLimitAt(its surface).
   double stableStepLimit() const { return stable_step_; }
+  /**
+   * The largest stable step [s] with the water surface at `surface_z` (NaN: none): 2 / sqrt(lambda), lambda a
+   * bound on the largest eigenvalue of M^-1 K, K the stiffness of what the step takes explicitly (class
+   * comment). Under water K is the restoring moment's spring, lambda = k c_rot (k = |B r_B - W r_G|, c_rot the
+   * largest rotational compliance with translation free: 2 / sqrt(k / I')); infinite with no restoring moment.
+   * With a surface the hull crossing it is a spring too: the buoyancy s B and the thrust s tau fall with the
+   * share s in the water, whose slope is -1 / size.z along g = [up; r_B x up] (a rise of the centre of
+   * buoyancy, body frame). Each part's norm in M's metric bounds its share of lambda: (B / size.z) |g|^2 for
+   * the buoyancy, |tau_limit| |g| / size.z for the thrust at its limit, with |g| <= sqrt(c_trans) + |r_B|
+   * sqrt(c_rot) (c_trans the largest translational compliance), and the restoring spring with the share anywhere
+   * in [0, 1], k = max(|B r_B - W r_G|, |W r_G|). Whatever the body's depth, so that the limit does not change
+   * as it moves.
+   */
+  double stableStepLimitAt(double surface_z) const;
 
   const Eigen::Vector3d& position() const { return position_; }
   const Eigen::Quaterniond& attitude() const { return attitude_; }
@@ -181,6 +197,10 @@ class VehicleBody
   bool diagonal_mass_ = true;                                             ///< M is diagonal (r_G = 0)
   Eigen::Vector3d inverse_translational_mass_ = Eigen::Vector3d::Ones();  ///< M's diagonal's head, inverted
   double stable_step_ = 0.0;
+  /// The largest eigenvalues of M^-1's rotational and translational blocks (the compliances with the other free)
+  /// [1/(kg m^2), 1/kg], for stableStepLimitAt.
+  double rotational_compliance_ = 0.0;
+  double translational_compliance_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   Eigen::Quaterniond attitude_ = Eigen::Quaterniond::Identity();
