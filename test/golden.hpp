@@ -1,7 +1,7 @@
 #pragma once
 // Golden outputs: hashes of whole output files, compared with the values committed in test/golden/.
 // They pin behaviour through refactoring: a change that moves outputs on purpose regenerates them with
-//   ROV_TETHER_UPDATE_GOLDEN=1 test_core --gtest_filter='Golden*'        (test/golden/runner.txt)
+//   ROV_TETHER_UPDATE_GOLDEN=1 test_core --gtest_filter='Golden*'        (test/golden/runner*.txt)
 //   ROV_TETHER_UPDATE_GOLDEN=1 test_ros_layer --gtest_filter='Golden*'   (test/golden/node_replay.txt)
 // and commits the new file on its own, saying why the outputs moved. Update in one process, as above: tests that
 // share a file (GoldenFile's scope) each rewrite it whole, so shards run side by side would undo each other.

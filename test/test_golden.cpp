@@ -1,7 +1,8 @@
 // Golden outputs of the scenario runner: every shipped scenario, as shipped and under variants that reach
 // each method, drag model, winch mode and input path, must write byte-identical state.csv and shape.csv
-// (the scenarios of a world, with obstacles or several tethers, as shipped: every file they write).
-// The hashes live in test/golden/runner.txt (see golden.hpp for how to regenerate them on purpose).
+// (the scenarios of a world, with obstacles or several tethers, and those with a dynamic vehicle, as shipped:
+// every file they write). The hashes live in test/golden/runner.txt, runner_worlds.txt and runner_vehicles.txt
+// (see golden.hpp for how to regenerate them on purpose).
 #include <unistd.h>
 
 #include <algorithm>
@@ -142,14 +143,24 @@ std::size_t checkEveryFileAsShipped(GoldenFile& golden, const std::string& tag, 
   for (const auto& file : shippedScenarioFiles())
   {
     Scenario scenario;
-    EXPECT_EQ(loadScenario(file.string(), &scenario), "") << file;
+    const std::string loaded = loadScenario(file.string(), &scenario);
+    if (!loaded.empty())
+    {
+      ADD_FAILURE() << file << ": " << loaded;
+      continue;
+    }
     if (!wanted(scenario))
     {
       continue;
     }
     fs::remove_all(out);
     RunSummary summary;
-    EXPECT_EQ(runScenario(scenario, out.string(), &summary), "") << file;
+    const std::string run = runScenario(scenario, out.string(), &summary);
+    if (!run.empty())
+    {
+      ADD_FAILURE() << file << ": " << run;  // its hashes are then missing, which expectAllChecked says too
+      continue;
+    }
     std::vector<fs::path> written;
     for (const auto& entry : fs::recursive_directory_iterator(out))
     {

@@ -1,9 +1,12 @@
 #include "rov_tether/scenario/scenario_runner.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -366,9 +369,25 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   stepper.setStepObserver(nullptr);
   const bool ok = stepper.observerError().empty() && stepper.runError().empty();
   std::vector<std::string> replaced_left;
+  sigset_t held, before;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
+  if (interrupt != nullptr)
+  {
+    pthread_sigmask(SIG_BLOCK, &held, &before);  // a signal now waits until the outputs are in place, or all gone
+  }
   const std::string close_error = closeAll(files, ok, out_dir, &replaced_left);
+  if (interrupt != nullptr)
+  {
+    pthread_sigmask(SIG_SETMASK, &before, nullptr);
+  }
   if (!stepper.runError().empty())
   {
+    if (summary != nullptr && stepper.interrupted())
+    {
+      summary->interrupted = true;
+    }
     return stepper.runError();
   }
   if (!stepper.observerError().empty())

@@ -37,26 +37,42 @@ void usage(std::FILE* out)
       "                          each tether that does not set its own max_tension_warning.\n"
       "  Warnings (stderr, as the node logs them): simulation failures, a vehicle out of its cable's reach,\n"
       "  over-tension, an outrun winch, a reel-in held at the winch's stall pull.\n"
-      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error, 130 or 143 stopped by\n"
-      "  SIGINT (Ctrl-C) or SIGTERM (no CSV output written; a second Ctrl-C ends it at once).\n");
+      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error. Stopped by SIGINT (Ctrl-C)\n"
+      "  or SIGTERM it writes no CSV output and ends by that signal (the shell's 130 or 143); a second\n"
+      "  Ctrl-C ends it at once.\n");
 }
 
-/// The signal that asked the run to stop (SIGINT, SIGTERM), 0 while none: set by onStopSignal, read between the
-/// stretches the run advances (ScenarioStepper::setInterrupt).
+/// The signal that asked the run to stop (SIGINT, SIGTERM; the first of them), 0 while none: set by onStopSignal,
+/// read between the stretches the run advances (ScenarioStepper::setInterrupt).
 volatile std::sig_atomic_t g_stop_signal = 0;
 
-extern "C" void onStopSignal(int signal_number) { g_stop_signal = signal_number; }
+extern "C" void onStopSignal(int signal_number)
+{
+  if (g_stop_signal == 0)
+  {
+    g_stop_signal = signal_number;
+  }
+}
 
-/// From here on, SIGINT and SIGTERM ask the run to stop where it can leave the output directory as it was; each
-/// handler is taken once (SA_RESETHAND), so a second Ctrl-C ends the program at once, as it would have.
+/// From here on, SIGINT and SIGTERM ask the run to stop where it can leave the output directory as it was. Each
+/// handler is taken once (SA_RESETHAND), so that a second Ctrl-C ends the program at once, as it would have; a
+/// signal the program was started ignoring (a job started in the background by a shell) stays ignored.
 void stopOnSignals()
 {
   struct sigaction action = {};
   action.sa_handler = onStopSignal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  sigaddset(&action.sa_mask, SIGINT);
+  sigaddset(&action.sa_mask, SIGTERM);
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  for (const int signal_number : {SIGINT, SIGTERM})
+  {
+    struct sigaction was = {};
+    if (sigaction(signal_number, nullptr, &was) == 0 && was.sa_handler != SIG_IGN)
+    {
+      sigaction(signal_number, &action, nullptr);
+    }
+  }
 }
 
 /// The command line's choices.
@@ -361,16 +377,25 @@ int run(int argc, char** argv)
   error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal) : error;
   error = error.empty() && dataset ? dataset->close() : error;
   const int stopped_by = g_stop_signal;
-  if (!error.empty() && stopped_by != 0)
+  if (!error.empty() && s.interrupted)
   {
     // Stopped from outside: said as what it is, not as an output error (the CSVs' temporaries are removed, the
-    // earlier outputs left as they were, as for any run that fails).
-    std::fprintf(stderr,
-                 "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output was written, and the "
-                 "output directory's earlier CSV files are as they were%s\n",
-                 stopped_by == SIGINT ? "SIGINT" : "SIGTERM", error.c_str(), scenario.duration,
-                 dataset ? "; the camera frames written so far stay in its cameras/ (written in place)" : "");
-    return 128 + stopped_by;
+    // earlier outputs left as they were, as for any run that fails); then ended by the signal, as the program
+    // would have been without its handler, so that a shell or a script that runs it sees the signal.
+    for (const std::string& warning : world_warnings)
+    {
+      std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
+    }
+    std::fprintf(
+        stderr,
+        "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output (state, shape, vehicle, "
+        "topology) was written, and the output directory's earlier ones are as they were%s\n",
+        stopped_by == SIGINT ? "SIGINT" : "SIGTERM", error.c_str(), scenario.duration,
+        dataset ? "; each camera's index.csv and frames written so far stay in cameras/ (written in place)" : "");
+    std::fflush(stderr);
+    std::signal(stopped_by, SIG_DFL);
+    std::raise(stopped_by);
+    return 128 + stopped_by;  // not reached: the signal's default action ends the program
   }
   if (!error.empty())
   {
@@ -382,6 +407,12 @@ int run(int argc, char** argv)
     return 1;
   }
   s.world_warnings = std::move(world_warnings);  // said with the run's warnings, after the summary
+  if (stopped_by != 0)
+  {
+    // The signal came as the run finished (while its outputs moved into place): they are whole, and said so.
+    s.world_warnings.push_back(std::string(stopped_by == SIGINT ? "SIGINT" : "SIGTERM") +
+                               " came after the run had finished: its outputs are complete");
+  }
   printRun(scenario, scenario_path, s);
   printWritten(scenario, out_dir, s, dataset.get());
   for (const std::string& warning : rov_tether::runWarnings(scenario, s, options.max_tension_warning))

@@ -68,6 +68,8 @@ struct RunSummary
   std::vector<std::string> earlier_outputs;
   /// The earlier files this run replaced whose copies moved aside (.<name>.earlier) could not be removed.
   std::vector<std::string> replaced_left;
+  /// The run stopped at runScenario's `interrupt` (its error says when): the one field set when a run fails.
+  bool interrupted = false;
 };
 
 /// Runs `scenario` and writes out_dir/state.csv and out_dir/shape.csv, or with a `tethers` list
@@ -83,7 +85,9 @@ struct RunSummary
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a
 /// caller can tell a world that cannot be built from a run that failed). Once `*interrupt` is non-zero (a signal
 /// handler's; nullptr: never) the run stops before the next stretch it advances (ScenarioStepper::setInterrupt)
-/// and fails as any run does, with "interrupted at t = T s": no CSV output written, earlier ones left as they were.
+/// and fails as any run does, with "interrupted at t = T s" and summary->interrupted set: no CSV output written,
+/// earlier ones left as they were. With an `interrupt`, SIGINT and SIGTERM are held while the outputs move into
+/// place, so that a second signal, whose default action ends the program, cannot split the move.
 [[nodiscard]] std::string runScenario(const Scenario& scenario, World& world, const std::string& out_dir,
                                       RunSummary* summary, const std::vector<RunObserver*>& observers = {},
                                       const volatile std::sig_atomic_t* interrupt = nullptr);

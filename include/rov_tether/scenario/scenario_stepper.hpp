@@ -59,7 +59,7 @@ class ScenarioStepper
   bool releaseVehicle(std::size_t i);
 
   /// Stops advancing once `*flag` is non-zero (a signal handler's: rov_tether_run's SIGINT and SIGTERM), before the
-  /// next stretch the world is advanced by (to the next output or observer time; a step, with dynamic vehicles):
+  /// next stretch the world is advanced by (at most 0.25 s of simulated time; a step, with dynamic vehicles):
   /// advance() then fails with runError() "interrupted at t = T s" and interrupted() is true. nullptr: never.
   void setInterrupt(const volatile std::sig_atomic_t* flag) { interrupt_ = flag; }
   /// The run stopped at the interrupt flag (setInterrupt).
