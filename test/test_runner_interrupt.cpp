@@ -1,4 +1,5 @@
-// rov_tether_run stopped from outside: Ctrl-C (SIGINT) or a kill (SIGTERM) in the middle of a run.
+// Runs that stop in the middle: rov_tether_run stopped from outside (Ctrl-C, SIGINT, or a kill, SIGTERM), and a run
+// left by an exception.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -9,8 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
+
+#include "rov_tether/scenario/scenario_runner.hpp"
+#include "rov_tether/scenario/scenario_yaml.hpp"
 
 namespace rov_tether::test
 {
@@ -139,6 +144,35 @@ TEST(Runner, ASignalStopsTheRunAndLeavesTheOutputDirectoryAsItWas)
     EXPECT_FALSE(fs::exists(dir / "out" / "shape.csv"));
     EXPECT_EQ(readAll(dir / "out" / "state.csv"), earlier);
   }
+}
+
+/// Looks at the run at 1 s and throws there, as a value the core refuses that no check caught would.
+class ThrowingObserver : public RunObserver
+{
+ public:
+  double nextTime() const override { return 1.0; }
+  std::string observe(const Tether& /*sim*/) override { throw std::runtime_error("refused in the middle"); }
+};
+
+// A run left by an exception half-way (an observer's, here; in rov_tether_run a value the core refuses that no
+// check of the scenario did, which main reports) removes its temporaries and leaves an earlier state.csv as it was.
+// Before, the two .partial files stayed.
+TEST(Runner, ARunLeftByAnExceptionLeavesNoTemporaryBehind)
+{
+  const RemovedAtEnd scratch{fs::temp_directory_path() / ("rov_tether_test_exception_" + std::to_string(::getpid()))};
+  const fs::path& dir = scratch.dir;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string earlier = "an earlier run's state.csv\n";
+  std::ofstream(dir / "state.csv") << earlier;
+  Scenario scenario;
+  ASSERT_EQ(loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/spool_payout.yaml", &scenario), "");
+  ThrowingObserver observer;
+  RunSummary summary;
+  EXPECT_THROW(static_cast<void>(runScenario(scenario, dir.string(), &summary, {&observer})), std::runtime_error);
+  EXPECT_EQ(partialFiles(dir), "");
+  EXPECT_FALSE(fs::exists(dir / "shape.csv"));
+  EXPECT_EQ(readAll(dir / "state.csv"), earlier);
 }
 
 }  // namespace

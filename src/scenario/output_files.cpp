@@ -151,6 +151,20 @@ std::string openAll(std::vector<OutputFile>& files)
   return "";
 }
 
+void discardAll(std::vector<OutputFile>& files)
+{
+  for (OutputFile& out : files)
+  {
+    if (out.file != nullptr)
+    {
+      std::fclose(out.file);
+      out.file = nullptr;
+    }
+    std::error_code ec;
+    fs::remove(out.partial, ec);
+  }
+}
+
 /// Closes every file; on success (`keep`) moves them into place (moveIntoPlace: all or none), otherwise removes
 /// them. "" or the error.
 std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::string& out_dir,

@@ -26,4 +26,8 @@ std::string openAll(std::vector<OutputFile>& files);
 std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::string& out_dir,
                      std::vector<std::string>* left);
 
+/// Closes every file without moving any into place and removes them: for a run left by an exception between
+/// openAll and closeAll (the earlier outputs stay as they were).
+void discardAll(std::vector<OutputFile>& files);
+
 }  // namespace rov_tether

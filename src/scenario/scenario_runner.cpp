@@ -361,12 +361,26 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
     return open_error;
   }
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
-  std::vector<RunSummary> each = startOutputs(tethers, world, files, topology_file);
-  StepRecord every_step(world, each);
-  stepper.setStepObserver(&every_step);
-
-  const std::size_t topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
-  stepper.setStepObserver(nullptr);
+  std::vector<RunSummary> each;
+  std::size_t topology_rows = 0;
+  double recording_seconds = 0.0;
+  try
+  {
+    // An exception (a value the core refuses that no check of the scenario did, an observer's) leaves no temporary
+    // behind, and the earlier outputs as they were.
+    each = startOutputs(tethers, world, files, topology_file);
+    StepRecord every_step(world, each);
+    stepper.setStepObserver(&every_step);
+    topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
+    stepper.setStepObserver(nullptr);
+    recording_seconds = every_step.seconds();
+  }
+  catch (...)
+  {
+    stepper.setStepObserver(nullptr);
+    discardAll(files);
+    throw;
+  }
   const bool ok = stepper.observerError().empty() && stepper.runError().empty();
   std::vector<std::string> replaced_left;
   sigset_t held, before;
@@ -398,7 +412,7 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return close_error;
   }
-  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - every_step.seconds());
+  RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - recording_seconds);
   result.earlier_outputs = std::move(earlier);
   result.replaced_left = std::move(replaced_left);
   if (summary != nullptr)
