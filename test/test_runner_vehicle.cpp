@@ -223,6 +223,47 @@ TEST(VehicleBlock, AStartPlusAnOffsetBeyondReachIsRefusedNotThrown)
       << error;
 }
 
+// A vehicle floats in its tether's water, or is said not to. The BlueROV2 Heavy's file takes fresh water (1000
+// kg/m^3: rho g V = 131.45 N, 0.98 N heavy); on a tether in sea water (the default 1025) it floats in other water
+// than its cable. buildWorld says so among its warnings, with both densities and the buoyancy it would have in
+// the tether's (134.74 N, 2.31 N light: rho g V with the tether's rho), and says nothing with the tether's water
+// set alike. (Tether::attachVehicleBody's message, which the node logs as the runner does.) Seen failing with
+// the check left out: no warning.
+TEST(VehicleBlock, AVehicleInOtherWaterThanItsTetherIsSaid)
+{
+  const VehicleParams fresh;  // the BlueROV2 Heavy's defaults, the file's values
+  ASSERT_EQ(fresh.water_density, 1000.0);
+  const double volume = fresh.displaced_volume, g = fresh.gravity;
+  for (const double tether_water : {1025.0, 1000.0})
+  {
+    SCOPED_TRACE(tether_water);
+    Scenario scenario;
+    ASSERT_EQ(parseScenario("duration: 1\nparams: {winch_mode: locked, initial_deployed_length: 5, cable_length: 5, "
+                            "water_density: " +
+                                std::to_string(tether_water) +
+                                "}\nspool: [0, 0, 0]\nvehicle: {model: dynamic, params: " + kBlueRov +
+                                ", start: [4, 0, 0, 0], wrench: [[0, 0, 0, 0, 0, 0, 0]]}\n",
+                            &scenario),
+              "");
+    World world;
+    std::vector<std::string> warnings;
+    ASSERT_EQ(buildWorld(worldSpecOf(scenario), &world, &warnings), "");
+    if (tether_water == fresh.water_density)
+    {
+      EXPECT_TRUE(warnings.empty()) << warnings.front();
+      continue;
+    }
+    ASSERT_EQ(warnings.size(), 1u);
+    char expected[320];
+    std::snprintf(expected, sizeof expected,
+                  "vehicle: its water_density 1000 kg/m^3 is not the tether's 1025 kg/m^3: its buoyancy is %.4g N, "
+                  "%.4g N heavy in water, where in the tether's water it would be %.4g N, %.4g N light",
+                  1000.0 * g * volume, fresh.mass * g - 1000.0 * g * volume, 1025.0 * g * volume,
+                  1025.0 * g * volume - fresh.mass * g);
+    EXPECT_EQ(warnings.front().rfind(expected, 0), 0u) << warnings.front() << "\n" << expected;
+  }
+}
+
 // A thrust schedule is the body-frame command, held piecewise-linearly over each step from the step's start
 // (the row at t shows the last step, from t - dt), each axis held at its limit and reported: a surge ramp from 0
 // to 200 N over 1 s gives wrenchAt(t - dt) below 113.7 N and exactly 113.7 N (bit 0 set) above; no controller,

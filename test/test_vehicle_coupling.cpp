@@ -500,12 +500,14 @@ TEST(VehicleCoupling, OnlyDirectTakesADynamicVehicleAndBadInputIsRefused)
     EXPECT_NE(refused.message.find("direct"), std::string::npos) << refused.message;
     EXPECT_FALSE(tether.vehicleDynamic());
   }
-  Tether tether(lockedTether(1e5), Position::Zero(), Position(kLength, 0.0, 0.0));
+  TetherParams same_water = lockedTether(1e5);
+  same_water.water_density = blueRov().water_density;  // or the vehicle floats in other water, and is said to
+  Tether tether(same_water, Position::Zero(), Position(kLength, 0.0, 0.0));
   EXPECT_FALSE(tether.setVehicleThrust(surge(kThrust)).ok);
   EXPECT_FALSE(tether.attachVehicleBody(bodyAt(blueRov(), kLength, 0.2), Eigen::Vector3d(NAN, 0.0, 0.0)).ok);
   const Status within = tether.attachVehicleBody(bodyAt(blueRov(), kLength, 0.2), Eigen::Vector3d(-0.2, 0.0, 0.0));
   ASSERT_TRUE(within.ok);
-  EXPECT_EQ(within.message, "") << "within the cable's reach: nothing to say";
+  EXPECT_EQ(within.message, "") << "within the cable's reach, in the same water: nothing to say";
   EXPECT_TRUE(tether.vehicleDynamic());
   EXPECT_FALSE(tether.setVehicleThrust(surge(NAN)).ok);
   EXPECT_FALSE(tether.addVehicleSample(0.1, Position(kLength, 0.0, 0.0)).ok);

@@ -696,8 +696,11 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
   track_.detach();
   track_.attachAt(time_, attachment);
   Status done = Status::success();
-  // As when a first sample attaches: the cable reaches the vehicle, or is said not to.
+  // As when a first sample attaches: the cable reaches the vehicle, or is said not to; and the vehicle floats in
+  // the cable's water, or is said not to (both warnings, the caller's to say).
   done.message = layOutToReach(attachment, "the vehicle's attachment");
+  const std::string water = waterMismatch(body.params(), params_.water_density);
+  done.message += water.empty() ? "" : (done.message.empty() ? "" : "; ") + water;
   return done;
 }
 

@@ -1,6 +1,7 @@
 #include "rov_tether/core/vehicle_params.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace rov_tether
@@ -81,6 +82,28 @@ Status VehicleParams::validate() const
     }
   }
   return Status::success();
+}
+
+std::string waterMismatch(const VehicleParams& vehicle, double water_density)
+{
+  if (vehicle.water_density == water_density)
+  {
+    return "";
+  }
+  // Its buoyancy in water of density rho, and how heavy or light that leaves it.
+  const auto afloat = [&vehicle](double rho)
+  {
+    const double buoyancy = rho * vehicle.gravity * vehicle.displaced_volume;
+    const double net = vehicle.weight() - buoyancy;
+    char text[96];
+    std::snprintf(text, sizeof text, "%.4g N, %.4g N %s", buoyancy, std::abs(net), net >= 0.0 ? "heavy" : "light");
+    return std::string(text);
+  };
+  char densities[160];
+  std::snprintf(densities, sizeof densities, "its water_density %.6g kg/m^3 is not the tether's %.6g kg/m^3",
+                vehicle.water_density, water_density);
+  return std::string(densities) + ": its buoyancy is " + afloat(vehicle.water_density) +
+         " in water, where in the tether's water it would be " + afloat(water_density) + " (set the two alike)";
 }
 
 }  // namespace rov_tether

@@ -228,7 +228,7 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
            pose.translation().y(), pose.translation().z(), options_.world_frame.c_str());
   if (!status.message.empty())
   {
-    ROS_WARN("tether_node%s: %s", label_.c_str(), status.message.c_str());  // out of the cable's reach
+    ROS_WARN("tether_node%s: dynamic vehicle: %s", label_.c_str(), status.message.c_str());  // out of reach, water
   }
   return true;
 }

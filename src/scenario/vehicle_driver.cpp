@@ -43,7 +43,7 @@ std::string attachDynamicVehicle(const ScenarioTether& tether, Tether* sim, std:
   const Status attached = sim->attachVehicleBody(startBody(*tether.dynamic), tether.dynamic->attachment_offset);
   if (attached.ok && !attached.message.empty())
   {
-    *warning = "vehicle: " + attached.message;  // out of reach
+    *warning = "vehicle: " + attached.message;  // out of reach, in other water than the cable's
   }
   return attached.ok ? "" : "vehicle: " + attached.message;
 }

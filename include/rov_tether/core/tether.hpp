@@ -155,6 +155,8 @@ class Tether
   /// into its step: with another solver, a sub-step beyond the body's stableStepLimit(), a non-finite or
   /// too large offset (beyond VehicleParams::kMaxOffset) or an attachment point beyond kMaxCoordinate, it is
   /// refused and the tether is unchanged. detachVehicle() and reset() end it (the end is kinematic again).
+  /// Attached, the status's message holds the warnings for the caller to say ("" for none): an attachment point
+  /// out of the cable's reach, a vehicle whose water_density is not the tether's (waterMismatch), or both.
   Status attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d& attachment_offset);
   /// The body-frame thrust command of the dynamic vehicle [N, N m], held until changed (saturated per axis
   /// at the body's thrust_limit). Refused without a dynamic vehicle or with non-finite values.

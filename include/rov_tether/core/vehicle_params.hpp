@@ -77,4 +77,9 @@ struct VehicleParams
   static constexpr double kMaxOffset = 100.0;
 };
 
+/// "" when `vehicle`'s water_density is the tether's `water_density` [kg/m^3]; otherwise a warning with both and the
+/// buoyancy the vehicle would have in the tether's water: a vehicle file identified in fresh water (the BlueROV2
+/// Heavy's) on a tether in sea water floats in other water than its cable, 2.5% of its buoyancy apart.
+std::string waterMismatch(const VehicleParams& vehicle, double water_density);
+
 }  // namespace rov_tether
