@@ -188,20 +188,81 @@ TEST(VehicleBody, ALightBodyFloatsAtTheSurfaceWithTheShareThatCarriesItsWeight)
   EXPECT_LT(energy, start);
 }
 
+// 3a'''. Out of the water a body has no added mass: it falls at g. The BlueROV2 Heavy 2 m above the surface, from
+// rest: nothing but its weight acts (no buoyancy, no damping out of the water), so its heave mass is m alone and
+// the step's kick and drift are exact for a constant force: w_n = -g h n, z_n = z_0 - g h^2 n (n + 1) / 2 (bound
+// 1e-9 m: rounding over 40 steps). Seen failing with the added mass kept out of the water: it fell at
+// g m / (m + Z_wdot), 0.42 g.
+TEST(VehicleBody, OutOfTheWaterABodyFallsAtG)
+{
+  const VehicleParams p;
+  VehicleBody body = bodyWith(p);
+  const double z0 = 2.0;
+  ASSERT_TRUE(body.setState(Eigen::Vector3d(0.0, 0.0, z0), Eigen::Quaterniond::Identity(), Twist::Zero()).ok);
+  body.setWaterSurface(0.0);
+  ASSERT_EQ(body.submergedShare(), 0.0);
+  const int steps = 40;
+  for (int n = 1; n <= steps; ++n)
+  {
+    ASSERT_TRUE(body.step(kStep, Wrench::Zero(), Wrench::Zero(), nullptr).ok);
+    ASSERT_EQ(body.submergedShare(), 0.0) << "step " << n;
+  }
+  const double fall = p.gravity * kStep * kStep * steps * (steps + 1) / 2.0;
+  std::printf("[ measured ] out of the water: fell %.6f m in %.2f s (exact for the step: %.6f m)\n",
+              z0 - body.position().z(), steps * kStep, fall);
+  EXPECT_NEAR(body.position().z(), z0 - fall, 1e-9);
+  EXPECT_NEAR(body.velocity()[2], -p.gravity * kStep * steps, 1e-12);
+}
+
+// 3a''''. Entering the water a body keeps its momentum (von Karman's water entry): the added mass it gains slows
+// it. A body with no buoyancy (V = 0) and no damping dropped through the surface: only its weight W acts, so its
+// momentum, M(s) w with M at each step's starting share s, grows by W h a step exactly: -W t (within 1e-9 of it,
+// relative) through the whole crossing (share 0 to 1), while its speed falls below free fall's. Seen failing with
+// the velocity kept instead (the added mass gained for nothing: momentum, and kinetic energy, out of nowhere).
+TEST(VehicleBody, EnteringTheWaterABodyKeepsItsMomentum)
+{
+  VehicleParams p;
+  p.displaced_volume = 0.0;
+  p.linear_damping.setZero();
+  p.quadratic_damping.setZero();
+  VehicleBody body = bodyWith(p);
+  ASSERT_TRUE(
+      body.setState(Eigen::Vector3d(0.0, 0.0, 0.5 * p.size.z() + 0.01), Eigen::Quaterniond::Identity(), Twist::Zero())
+          .ok);
+  body.setWaterSurface(0.0);
+  ASSERT_EQ(body.submergedShare(), 0.0);
+  const double weight = p.weight();
+  double worst = 0.0;
+  int n = 0;
+  for (; n < 400 && body.submergedShare() < 1.0; ++n)
+  {
+    const double share = body.submergedShare();
+    ASSERT_TRUE(body.step(kStep, Wrench::Zero(), Wrench::Zero(), nullptr).ok);
+    const double momentum = body.massMatrixAt(share)(2, 2) * body.velocity()[2];
+    const double expected = -weight * kStep * (n + 1);
+    worst = std::max(worst, std::abs(momentum - expected) / std::abs(expected));
+  }
+  std::printf("[ measured ] through the surface in %d steps: momentum within %.2g of -W t (relative)\n", n, worst);
+  EXPECT_GT(n, 10) << "it crossed the surface in steps";
+  EXPECT_EQ(body.submergedShare(), 1.0) << "and ended under water";
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(body.velocity()[2], -p.gravity * kStep * n) << "slower than free fall";
+}
+
 // 3a''. Thrusters out of the water push nothing. A neutral body at rest with its centre of buoyancy at the surface
 // (half its hull out, share 1/2), fully out (share 0) and fully under (share 1), given 100 N of heave thrust for
 // one step. From rest the step is exact per axis (nothing turns it: diagonal mass, r_G at the origin, no
-// current): the thrust's own velocity change is h s F / (m' + h s Zw), m' = m + Z_wdot, the linear damping on
-// the share in the water, taken as the difference from the same step without thrust (the restoring force's
-// part cancels). Bound 1e-12 m/s (rounding). The applied thrust is reported as s F. Seen failing with the
-// thrust applied whole out of the water (0.031 m/s where none is due at share 0).
+// current): the thrust's own velocity change is h s F / (m' + h s Zw), m' = m + s Z_wdot (the added mass of the
+// share in the water), the linear damping on that share, taken as the difference from the same step without
+// thrust (the restoring force's part cancels). Bound 1e-12 m/s (rounding). The applied thrust is reported as
+// s F. Seen failing with the thrust applied whole out of the water (0.031 m/s where none is due at share 0).
 TEST(VehicleBody, ThrustersOutOfTheWaterPushNothing)
 {
   const VehicleParams p = neutral();
   const double force = 100.0;
-  const double mass = p.mass + p.added_mass[2];
   for (const double share : {0.0, 0.5, 1.0})
   {
+    const double mass = p.mass + share * p.added_mass[2];
     SCOPED_TRACE(share);
     // The centre of buoyancy (0.01 m above the origin) at surface + h/2 - s h.
     const Eigen::Vector3d where(0.0, 0.0, 0.5 * p.size.z() - share * p.size.z() - p.center_of_buoyancy.z());

@@ -120,7 +120,6 @@ void VehicleBody::prepare()
   // A body whose origin is its centre of gravity (most published models, the BlueROV2 Heavy's) has a diagonal
   // M: its products are six multiplications.
   diagonal_mass_ = mass_matrix_.isDiagonal(0.0);
-  inverse_translational_mass_ = mass_matrix_.diagonal().head<3>().cwiseInverse();
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
@@ -132,6 +131,9 @@ void VehicleBody::prepare()
   { return Eigen::SelfAdjointEigenSolver<Matrix3>(0.5 * (block + block.transpose())).eigenvalues().maxCoeff(); };
   rotational_compliance_ = largest(inverse.bottomRightCorner<3, 3>());
   translational_compliance_ = largest(inverse.topLeftCorner<3, 3>());
+  const Matrix6 dry = Eigen::LDLT<Matrix6>(rigid).solve(Matrix6::Identity());  // out of the water: no added mass
+  dry_rotational_compliance_ = largest(dry.bottomRightCorner<3, 3>());
+  dry_translational_compliance_ = largest(dry.topLeftCorner<3, 3>());
   stable_step_ = stableStepLimitAt(water_surface_z_);
 }
 
@@ -143,12 +145,14 @@ double VehicleBody::stableStepLimitAt(double surface_z) const
   double lambda = submerged_spring * rotational_compliance_;
   if (!std::isnan(surface_z))
   {
-    // The share s in [0, 1] scales the buoyancy: its spring on the attitude is largest at one end or the other.
-    lambda = std::max(submerged_spring, params_.weight() * r_g.norm()) * rotational_compliance_;
+    // The share s in [0, 1] scales the buoyancy: its spring on the attitude is largest at one end or the other. It
+    // scales the added mass too: the compliances are largest out of the water (M_RB <= M_RB + s M_A).
+    const double rotational = dry_rotational_compliance_, translational = dry_translational_compliance_;
+    lambda = std::max(submerged_spring, params_.weight() * r_g.norm()) * rotational;
     const double height = params_.size.z();
-    const double along = std::sqrt(translational_compliance_) + r_b.norm() * std::sqrt(rotational_compliance_);
-    const double thrust = std::sqrt(translational_compliance_) * params_.thrust_limit.head<3>().norm() +
-                          std::sqrt(rotational_compliance_) * params_.thrust_limit.tail<3>().norm();
+    const double along = std::sqrt(translational) + r_b.norm() * std::sqrt(rotational);
+    const double thrust = std::sqrt(translational) * params_.thrust_limit.head<3>().norm() +
+                          std::sqrt(rotational) * params_.thrust_limit.tail<3>().norm();
     lambda += params_.buoyancy() / height * along * along + thrust * along / height;
   }
   return lambda > 0.0 ? 2.0 / std::sqrt(lambda) : std::numeric_limits<double>::infinity();
@@ -160,18 +164,31 @@ void VehicleBody::setWaterSurface(double z)
   {
     stable_step_ = stableStepLimitAt(z);  // the limit depends on there being a surface, not on its height
   }
+  const bool moved = !(z == water_surface_z_ || (std::isnan(z) && std::isnan(water_surface_z_)));
   water_surface_z_ = z;
+  if (moved)
+  {
+    velocity_share_ = submergedShare();  // the velocity as it is, in the water as it now is
+  }
 }
 
-void VehicleBody::factorMassPlusCoriolis(const Vector6& momentum, double a, BodyLu* lu) const
+Matrix6 VehicleBody::massMatrixAt(double share) const
+{
+  Matrix6 mass = mass_matrix_;
+  mass.diagonal() -= (1.0 - share) * params_.added_mass;
+  return mass;
+}
+
+void VehicleBody::factorMassPlusCoriolis(const VehicleStepStart& start, const Vector6& momentum, double a,
+                                         BodyLu* lu) const
 {
   if (diagonal_mass_)
   {
-    lu->computeGyroscopic(inverse_translational_mass_, mass_matrix_.diagonal().tail<3>(), a * momentum.head<3>(),
+    lu->computeGyroscopic(start.inverse_translational_mass, start.mass.diagonal().tail<3>(), a * momentum.head<3>(),
                           a * momentum.tail<3>());
     return;
   }
-  lu->compute(massPlusCoriolis(mass_matrix_, momentum, a));
+  lu->compute(massPlusCoriolis(start.mass, momentum, a));
 }
 
 Status VehicleBody::setState(const Eigen::Vector3d& position, const Eigen::Quaterniond& attitude, const Twist& velocity)
@@ -187,6 +204,7 @@ Status VehicleBody::setState(const Eigen::Vector3d& position, const Eigen::Quate
   position_ = position;
   attitude_ = attitude.normalized();
   velocity_ = velocity;
+  velocity_share_ = submergedShare();
   return Status::success();
 }
 
@@ -233,7 +251,7 @@ Wrench VehicleBody::restoringWrench() const
 double VehicleBody::kineticEnergy() const
 {
   const Twist relative = relativeVelocity();
-  return 0.5 * relative.dot(mass_matrix_ * relative);
+  return 0.5 * relative.dot(massMatrixAt(submergedShare()) * relative);
 }
 
 double VehicleBody::potentialEnergy() const
@@ -266,17 +284,27 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->relative.head<3>() -= attitude_.conjugate() * current_;
   start->restoring = restoringWrench();
   start->wet = submergedShare();
+  start->mass = massMatrixAt(start->wet);
+  start->inverse_translational_mass = start->mass.diagonal().head<3>().cwiseInverse();
+  if (start->wet > velocity_share_ && params_.added_mass.any())
+  {
+    // Deeper in the water than when its velocity was set: the added mass it gains keeps the momentum M nu_r (von
+    // Karman's water entry), which slows it; the kinetic energy 1/2 p^T M^-1 p falls as M grows.
+    const Vector6 momentum = massMatrixAt(velocity_share_) * start->relative;
+    start->relative = diagonal_mass_ ? Twist(momentum.cwiseQuotient(start->mass.diagonal()))
+                                     : Twist(Eigen::LDLT<Matrix6>(start->mass).solve(momentum));
+  }
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
   // The water's damping acts on the share of the hull in it.
-  const Vector6 damping = dt * submergedShare() *
-                          (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
+  const Vector6 damping =
+      dt * start->wet * (params_.linear_damping + params_.quadratic_damping.cwiseProduct(start->relative.cwiseAbs()));
   if (diagonal_mass_)
   {
-    start->damped.computeDiagonal(mass_matrix_.diagonal() + damping);  // six divisions
+    start->damped.computeDiagonal(start->mass.diagonal() + damping);  // six divisions
   }
   else
   {
-    Matrix6 damped = mass_matrix_;
+    Matrix6 damped = start->mass;
     damped.diagonal() += damping;
     start->damped.compute(damped);
   }
@@ -292,7 +320,9 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
 
 Status VehicleBody::step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
 {
-  return advance(start, thrust, external, &position_, &attitude_, &velocity_, used, nullptr);
+  const Status stepped = advance(start, thrust, external, &position_, &attitude_, &velocity_, used, nullptr);
+  velocity_share_ = stepped ? start.wet : velocity_share_;  // the step's velocity is M at its start's share's
+  return stepped;
 }
 
 Status VehicleBody::stepped(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external,
@@ -313,11 +343,12 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
   const Twist before = trial.damped + dt * start.damped.solve(more);
   // C at the mean of the ends, the far end guessed as the trial's moved by what `more` added (the implicit
   // midpoint rule's one pass, as step()'s second).
-  const Vector6 momentum = massTimes(before + 0.5 * (trial.turned - trial.damped));
+  const Vector6 momentum = massTimes(start, before + 0.5 * (trial.turned - trial.damped));
   BodyLu cayley;
-  factorMassPlusCoriolis(momentum, 0.5 * dt, &cayley);
-  const Twist after = cayley.solve(Twist(massTimes(before) - 0.5 * dt * coriolisTimes(momentum, before)));
+  factorMassPlusCoriolis(start, momentum, 0.5 * dt, &cayley);
+  const Twist after = cayley.solve(Twist(massTimes(start, before) - 0.5 * dt * coriolisTimes(momentum, before)));
   drift(dt, before, after, &position_, &attitude_, &velocity_);
+  velocity_share_ = start.wet;
   return Status::success();
 }
 
@@ -347,14 +378,14 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   // 2. damping, implicit per axis with |nu_r| from the step's start: (M + h D) nu' = M nu_k = M nu_r + h tau
   // (start.damped), one solve for both.
   Twist relative =
-      start.damped.solve(Twist(massTimes(start.relative) + dt * (applied.applied + external + start.restoring)));
+      start.damped.solve(Twist(massTimes(start, start.relative) + dt * (applied.applied + external + start.restoring)));
 
   // 3. Coriolis and centripetal terms: a Cayley transform (M + h/2 C) nu' = (M - h/2 C) nu with C frozen keeps
   // nu^T M nu exactly, C being skew-symmetric. C is taken at the step's start, then once more at the mean of
   // the two ends (one pass of the implicit midpoint rule): frozen at the start alone, the body's momentum
   // would turn with a first-order error in its length.
   const Twist before = relative;
-  const Vector6 momentum_before = massTimes(before);
+  const Vector6 momentum_before = massTimes(start, before);
   Twist turned = before;
   // A trial (stepped() for stepAgain()) takes the first pass only: C at the start, where the body goes to
   // O(h^3) in position; stepAgain() takes the second from it. (An explicit midpoint step in its place, which
@@ -364,9 +395,9 @@ Status VehicleBody::advance(const VehicleStepStart& start, const Wrench& thrust,
   for (int pass = 0; pass < passes; ++pass)
   {
     // C's argument M nu, at the mean of the two ends: on the first pass both are `before`.
-    const Vector6 momentum = pass == 0 ? momentum_before : massTimes(0.5 * (before + turned));
+    const Vector6 momentum = pass == 0 ? momentum_before : massTimes(start, 0.5 * (before + turned));
     BodyLu cayley;  // M + h/2 C: its symmetric part is M, its translational block diagonal
-    factorMassPlusCoriolis(momentum, 0.5 * dt, &cayley);
+    factorMassPlusCoriolis(start, momentum, 0.5 * dt, &cayley);
     turned = cayley.solve(Twist(momentum_before - 0.5 * dt * coriolisTimes(momentum, before)));
   }
   if (trial != nullptr)

@@ -94,7 +94,7 @@ std::shared_ptr<Session> build(const std::string& error, Scenario scenario)
   }
   for (const std::string& warning : warnings)
   {
-    py::module_::import("warnings").attr("warn")(pythonText(warning));  // a vehicle out of reach, as the runner says
+    py::module_::import("warnings").attr("warn")(pythonText(warning));  // out of reach, other water: as the runner says
   }
   session->stepper = std::make_unique<ScenarioStepper>(session->scenario, session->world);
   session->asked = session->world.time();

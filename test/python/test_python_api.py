@@ -189,7 +189,7 @@ def test_a_dynamic_vehicle_takes_its_thrust_from_python():
     world = rov_tether.World({
         "spool": [0.0, 0.0, -1.0],
         "params": {"solver": "direct", "cable_length": 40.0, "initial_deployed_length": 3.0, "winch_mode": "brake",
-                   "brake_tension": 1.0},
+                   "brake_tension": 1.0, "water_density": 1000.0},  # the vehicle file's fresh water
         "vehicle": {"model": "dynamic", "params": str(ROOT / "config" / "vehicles" / "bluerov2_heavy.yaml"),
                     "start": [3.0, 0.0, -1.0, 0.0], "wrench": [[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]}})
     (tether,) = world.tethers

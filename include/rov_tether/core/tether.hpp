@@ -152,7 +152,8 @@ class Tether
   /// attachment point and the tether's pull, solved within the step (VehicleCoupling,
   /// docs/model.md "A dynamic vehicle end"). The cable is laid out at rest to the attachment point as when a
   /// first sample attaches; vehicle samples are refused while it is dynamic. Only `direct` couples a vehicle
-  /// into its step: with another solver, a sub-step beyond the body's stableStepLimit(), a non-finite or
+  /// into its step: with another solver, a sub-step beyond the body's stable limit in this tether's water
+  /// (VehicleBody::stableStepLimitAt(water_surface_z)), a non-finite or
   /// too large offset (beyond VehicleParams::kMaxOffset) or an attachment point beyond kMaxCoordinate, it is
   /// refused and the tether is unchanged. detachVehicle() and reset() end it (the end is kinematic again).
   /// Attached, the status's message holds the warnings for the caller to say ("" for none): an attachment point

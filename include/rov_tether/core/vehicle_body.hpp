@@ -36,10 +36,12 @@ struct ThrustUsed
 struct VehicleStepStart
 {
   double dt = 0.0;
-  Twist relative = Twist::Zero();     ///< nu_r at the start
-  Wrench restoring = Wrench::Zero();  ///< restoringWrench() at the start
-  double wet = 1.0;                   ///< submergedShare() at the start: the share of the thrust the water gives
-  BodyLu damped;                      ///< M + dt D(|nu_r|), factored
+  Twist relative = Twist::Zero();      ///< nu_r at the start
+  Wrench restoring = Wrench::Zero();   ///< restoringWrench() at the start
+  double wet = 1.0;                    ///< submergedShare() at the start: the share of the thrust the water gives
+  Matrix6 mass = Matrix6::Identity();  ///< M at that share: the rigid body's and `wet` of the added mass
+  Eigen::Vector3d inverse_translational_mass = Eigen::Vector3d::Ones();  ///< its diagonal's head, inverted
+  BodyLu damped;                                                         ///< M + dt D(|nu_r|), factored
 };
 
 /// What stepped() computed that a second step from the same start, with the same thrust and more external
@@ -82,8 +84,7 @@ struct VehicleStepTrial
  * taken explicitly (1, then 4 with the kicked velocity: semi-implicit Euler): under water a spring of stiffness at
  * most k = |B r_B - W r_G| on the smallest effective rotational inertia I' (with added inertia, translation
  * free), stable for h < 2 / sqrt(k / I') (stableStepLimit(): about 1 s for the BlueROV2 Heavy); with a water
- * surface also the heave spring of the hull's buoyancy and thrust crossing it (stableStepLimitAt(): about 0.3 s
- * for the BlueROV2 Heavy).
+ * surface also the heave spring of the hull's buoyancy and thrust crossing it (stableStepLimitAt()).
  * No allocation in step().
  */
 class VehicleBody
@@ -102,9 +103,11 @@ class VehicleBody
   /// The uniform current V_c [m/s], world frame; refuses non-finite values.
   Status setCurrent(const Eigen::Vector3d& current);
   /// The water surface's height [m] in the world (NaN: none, the body always under water). Above it the body
-  /// loses its buoyancy, its damping and its thrust in proportion to the share of its height (size.z, centred on
-  /// the centre of buoyancy) out of the water (submergedShare()); its added mass stays (docs/limitations.md).
-  /// The stable step limit becomes stableStepLimitAt(z).
+  /// loses its buoyancy, its damping, its thrust and its added mass in proportion to the share of its height
+  /// (size.z, centred on the centre of buoyancy) out of the water (submergedShare()): M = M_RB + s M_A. Entering
+  /// the water its momentum M nu_r is kept (the added mass it gains slows it: von Karman's water entry); leaving,
+  /// its velocity (the water keeps the momentum of the added mass it sheds). Either way the kinetic energy does
+  /// not grow. The stable step limit becomes stableStepLimitAt(z).
   void setWaterSurface(double z);
   /// The share of the hull's height under the water surface, in [0, 1] (1 without a surface).
   double submergedShare() const;
@@ -150,8 +153,8 @@ class VehicleBody
    * buoyancy, body frame). Each part's norm in M's metric bounds its share of lambda: (B / size.z) |g|^2 for
    * the buoyancy, |tau_limit| |g| / size.z for the thrust at its limit, with |g| <= sqrt(c_trans) + |r_B|
    * sqrt(c_rot) (c_trans the largest translational compliance), and the restoring spring with the share anywhere
-   * in [0, 1], k = max(|B r_B - W r_G|, |W r_G|). Whatever the body's depth, so that the limit does not change
-   * as it moves.
+   * in [0, 1], k = max(|B r_B - W r_G|, |W r_G|); the compliances are M_RB's, out of the water, the largest at
+   * any share (M = M_RB + s M_A). Whatever the body's depth, so that the limit does not change as it moves.
    */
   double stableStepLimitAt(double surface_z) const;
 
@@ -163,11 +166,14 @@ class VehicleBody
   Twist relativeVelocity() const;
   const Eigen::Vector3d& current() const { return current_; }
 
-  /// M = M_RB + M_A about the body origin.
+  /// M = M_RB + M_A about the body origin, under water.
   const Matrix6& massMatrix() const { return mass_matrix_; }
+  /// M_RB + s M_A: the mass matrix with the share s in [0, 1] of the hull in the water.
+  Matrix6 massMatrixAt(double share) const;
   /// The restoring wrench -g(eta) (weight at r_G, buoyancy at r_B) acting on the body at this attitude.
   Wrench restoringWrench() const;
-  /// Kinetic energy of the body and its added mass relative to the water, 1/2 nu_r^T M nu_r [J].
+  /// Kinetic energy of the body and its added mass relative to the water, 1/2 nu_r^T M nu_r [J] (M at the share in the
+  /// water).
   double kineticEnergy() const;
   /// Potential energy in the world, W z_G - B z_B (centres in world coordinates, z up) [J].
   double potentialEnergy() const;
@@ -183,30 +189,33 @@ class VehicleBody
   void drift(double dt, const Twist& before, const Twist& after, Eigen::Vector3d* position,
              Eigen::Quaterniond* attitude, Twist* velocity) const;
 
-  /// M v (six products when M is diagonal).
-  Vector6 massTimes(const Vector6& v) const
+  /// M v, M the step's (`start`; six products when M is diagonal).
+  Vector6 massTimes(const VehicleStepStart& start, const Vector6& v) const
   {
-    return diagonal_mass_ ? Vector6(mass_matrix_.diagonal().cwiseProduct(v)) : Vector6(mass_matrix_ * v);
+    return diagonal_mass_ ? Vector6(start.mass.diagonal().cwiseProduct(v)) : Vector6(start.mass * v);
   }
-  /// Factors M + a C(momentum) (part 3's Cayley transform) into `lu`: without building the 6 x 6 matrix when M is
-  /// diagonal.
-  void factorMassPlusCoriolis(const Vector6& momentum, double a, BodyLu* lu) const;
+  /// Factors M + a C(momentum) (part 3's Cayley transform), M the step's, into `lu`: without building the 6 x 6
+  /// matrix when M is diagonal.
+  void factorMassPlusCoriolis(const VehicleStepStart& start, const Vector6& momentum, double a, BodyLu* lu) const;
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
-  bool diagonal_mass_ = true;                                             ///< M is diagonal (r_G = 0)
-  Eigen::Vector3d inverse_translational_mass_ = Eigen::Vector3d::Ones();  ///< M's diagonal's head, inverted
+  bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
   double stable_step_ = 0.0;
   /// The largest eigenvalues of M^-1's rotational and translational blocks (the compliances with the other free)
-  /// [1/(kg m^2), 1/kg], for stableStepLimitAt.
+  /// [1/(kg m^2), 1/kg], for stableStepLimitAt: under water (M), and out of it (M_RB, the largest at any share).
   double rotational_compliance_ = 0.0;
   double translational_compliance_ = 0.0;
+  double dry_rotational_compliance_ = 0.0;
+  double dry_translational_compliance_ = 0.0;
 
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   Eigen::Quaterniond attitude_ = Eigen::Quaterniond::Identity();
   Twist velocity_ = Twist::Zero();
   Eigen::Vector3d current_ = Eigen::Vector3d::Zero();
   double water_surface_z_ = std::numeric_limits<double>::quiet_NaN();
+  /// The share in the water at which velocity_ was last set: a step that starts deeper in keeps the momentum.
+  double velocity_share_ = 1.0;
   /// The centre of buoyancy's height [m] in the world.
   double buoyancyHeight() const;
 };
