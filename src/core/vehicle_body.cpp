@@ -130,7 +130,6 @@ void VehicleBody::prepare()
   const auto largest = [](const Matrix3& block)
   { return Eigen::SelfAdjointEigenSolver<Matrix3>(0.5 * (block + block.transpose())).eigenvalues().maxCoeff(); };
   rotational_compliance_ = largest(inverse.bottomRightCorner<3, 3>());
-  translational_compliance_ = largest(inverse.topLeftCorner<3, 3>());
   const Matrix6 dry = Eigen::LDLT<Matrix6>(rigid).solve(Matrix6::Identity());  // out of the water: no added mass
   dry_rotational_compliance_ = largest(dry.bottomRightCorner<3, 3>());
   dry_translational_compliance_ = largest(dry.topLeftCorner<3, 3>());
@@ -164,12 +163,33 @@ void VehicleBody::setWaterSurface(double z)
   {
     stable_step_ = stableStepLimitAt(z);  // the limit depends on there being a surface, not on its height
   }
-  const bool moved = !(z == water_surface_z_ || (std::isnan(z) && std::isnan(water_surface_z_)));
+  // velocity_share_ stays: a surface moved past the body is met as the body meeting it (the next step keeps the
+  // momentum where the share rose, the velocity where it fell), so the kinetic energy does not grow either way.
   water_surface_z_ = z;
-  if (moved)
+}
+
+Twist VehicleBody::entered(const Twist& relative, double from, double to) const
+{
+  if (!(to > from) || !params_.added_mass.any())
   {
-    velocity_share_ = submergedShare();  // the velocity as it is, in the water as it now is
+    return relative;  // out of the water, or no deeper: the velocity stays (the water keeps the shed momentum)
   }
+  // Deeper in: the added mass it gains keeps the momentum M nu_r (von Karman's water entry), which slows it; the
+  // kinetic energy 1/2 p^T M^-1 p falls as M grows.
+  const Vector6 momentum = massMatrixAt(from) * relative;
+  const Matrix6 mass = massMatrixAt(to);
+  return diagonal_mass_ ? Twist(momentum.cwiseQuotient(mass.diagonal()))
+                        : Twist(Eigen::LDLT<Matrix6>(mass).solve(momentum));
+}
+
+void VehicleBody::settleVelocity(double from)
+{
+  const double now = submergedShare();
+  Twist relative = relativeVelocity();
+  relative = entered(relative, from, now);
+  velocity_ = relative;
+  velocity_.head<3>() += attitude_.conjugate() * current_;
+  velocity_share_ = now;
 }
 
 Matrix6 VehicleBody::massMatrixAt(double share) const
@@ -286,14 +306,8 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->wet = submergedShare();
   start->mass = massMatrixAt(start->wet);
   start->inverse_translational_mass = start->mass.diagonal().head<3>().cwiseInverse();
-  if (start->wet > velocity_share_ && params_.added_mass.any())
-  {
-    // Deeper in the water than when its velocity was set: the added mass it gains keeps the momentum M nu_r (von
-    // Karman's water entry), which slows it; the kinetic energy 1/2 p^T M^-1 p falls as M grows.
-    const Vector6 momentum = massMatrixAt(velocity_share_) * start->relative;
-    start->relative = diagonal_mass_ ? Twist(momentum.cwiseQuotient(start->mass.diagonal()))
-                                     : Twist(Eigen::LDLT<Matrix6>(start->mass).solve(momentum));
-  }
+  // Deeper in the water than where its velocity was set (a state or a surface set since): the momentum is kept.
+  start->relative = entered(start->relative, velocity_share_, start->wet);
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).
   // The water's damping acts on the share of the hull in it.
   const Vector6 damping =
@@ -321,7 +335,10 @@ Status VehicleBody::step(double dt, const Wrench& thrust, const Wrench& external
 Status VehicleBody::step(const VehicleStepStart& start, const Wrench& thrust, const Wrench& external, ThrustUsed* used)
 {
   const Status stepped = advance(start, thrust, external, &position_, &attitude_, &velocity_, used, nullptr);
-  velocity_share_ = stepped ? start.wet : velocity_share_;  // the step's velocity is M at its start's share's
+  if (stepped)
+  {
+    settleVelocity(start.wet);  // the step's velocity is for M at its start's share: now at the share it ends at
+  }
   return stepped;
 }
 
@@ -348,7 +365,7 @@ Status VehicleBody::stepAgain(const VehicleStepStart& start, const VehicleStepTr
   factorMassPlusCoriolis(start, momentum, 0.5 * dt, &cayley);
   const Twist after = cayley.solve(Twist(massTimes(start, before) - 0.5 * dt * coriolisTimes(momentum, before)));
   drift(dt, before, after, &position_, &attitude_, &velocity_);
-  velocity_share_ = start.wet;
+  settleVelocity(start.wet);
   return Status::success();
 }
 

@@ -37,8 +37,8 @@ class BodyLu
 
   /// Factors [diag(d1), -S(p); -S(p), diag(d2) - S(q)] given d1^-1 = `inverse_d1` (d1 positive; not checked),
   /// S(a) b = a x b: M + h/2 C for a diagonal M, Fossen's Coriolis matrix C at M nu = [p1; p2] being [0, -S(p1);
-  /// -S(p1), -S(p2)], so p = h/2 p1 and q = h/2 p2 (VehicleBody's Cayley step, which keeps M's d1^-1: d1 does
-  /// not change from step to step). The same factorisation as compute() without building the 6 x 6 matrix.
+  /// -S(p1), -S(p2)], so p = h/2 p1 and q = h/2 p2 (VehicleBody's Cayley step, which takes d1^-1 from its
+  /// step's start). The same factorisation as compute() without building the 6 x 6 matrix.
   void computeGyroscopic(const Eigen::Vector3d& inverse_d1, const Eigen::Vector3d& d2, const Eigen::Vector3d& p,
                          const Eigen::Vector3d& q)
   {

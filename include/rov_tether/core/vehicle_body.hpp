@@ -36,7 +36,8 @@ struct ThrustUsed
 struct VehicleStepStart
 {
   double dt = 0.0;
-  Twist relative = Twist::Zero();      ///< nu_r at the start
+  Twist relative =
+      Twist::Zero();  ///< nu_r at the start (its momentum kept, should the share have risen since it was set)
   Wrench restoring = Wrench::Zero();   ///< restoringWrench() at the start
   double wet = 1.0;                    ///< submergedShare() at the start: the share of the thrust the water gives
   Matrix6 mass = Matrix6::Identity();  ///< M at that share: the rigid body's and `wet` of the added mass
@@ -60,12 +61,12 @@ struct VehicleStepTrial
  *   M nu_r' + C(nu_r) nu_r + D(nu_r) nu_r + g(eta) = tau_thrust + tau_external,
  *
  * nu = [v; omega] the body velocity, nu_r = nu - [R^T V_c; 0] relative to the water (V_c the current, world
- * frame), M = M_RB + M_A (rigid body about the body origin with centre of gravity r_G, plus diagonal added
- * mass), C = C_RB + C_A in the skew-symmetric form C(nu) = [0, -S(p1); -S(p1), -S(p2)] with [p1; p2] = M nu
- * (the rigid-body part equals Fossen's velocity-independent parametrisation, which lets the current enter
- * through nu_r alone), D = diag(linear) + diag(quadratic) |nu_r|, and g the weight m g at r_G and the
- * buoyancy rho g V at r_B. Pose: position in the world frame (z up), attitude a unit quaternion body ->
- * world (no Euler angles, no singularity).
+ * frame), M = M_RB + s M_A (rigid body about the body origin with centre of gravity r_G, plus diagonal added
+ * mass on the share s of the hull in the water, 1 without a surface), C = C_RB + C_A in the skew-symmetric form C(nu) =
+ * [0, -S(p1); -S(p1), -S(p2)] with [p1; p2] = M nu (the rigid-body part equals Fossen's velocity-independent
+ * parametrisation, which lets the current enter through nu_r alone), D = diag(linear) + diag(quadratic) |nu_r|, and g
+ * the weight m g at r_G and the buoyancy rho g V at r_B. Pose: position in the world frame (z up), attitude a unit
+ * quaternion body -> world (no Euler angles, no singularity).
  *
  * Step (h = dt), a split of four exact or stable parts:
  *  1. kick: nu_r += h M^-1 (tau + g(eta_n)) with the saturated thrust;
@@ -194,6 +195,12 @@ class VehicleBody
   {
     return diagonal_mass_ ? Vector6(start.mass.diagonal().cwiseProduct(v)) : Vector6(start.mass * v);
   }
+  /// The relative velocity `relative`, set with `from` of the hull in the water, with `to` in it: the momentum
+  /// M nu_r kept when `to` is deeper (entering), else the velocity (leaving).
+  Twist entered(const Twist& relative, double from, double to) const;
+  /// After a step from the share `from`: the velocity for the share the body is at now (entered()), which
+  /// velocity_share_ then holds.
+  void settleVelocity(double from);
   /// Factors M + a C(momentum) (part 3's Cayley transform), M the step's, into `lu`: without building the 6 x 6
   /// matrix when M is diagonal.
   void factorMassPlusCoriolis(const VehicleStepStart& start, const Vector6& momentum, double a, BodyLu* lu) const;
@@ -202,10 +209,9 @@ class VehicleBody
   Matrix6 mass_matrix_ = Matrix6::Identity();
   bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
   double stable_step_ = 0.0;
-  /// The largest eigenvalues of M^-1's rotational and translational blocks (the compliances with the other free)
-  /// [1/(kg m^2), 1/kg], for stableStepLimitAt: under water (M), and out of it (M_RB, the largest at any share).
+  /// The largest eigenvalues of M^-1's rotational block under water (M) and of M_RB^-1's rotational and
+  /// translational blocks (out of the water: the largest at any share) [1/(kg m^2), 1/kg], for stableStepLimitAt.
   double rotational_compliance_ = 0.0;
-  double translational_compliance_ = 0.0;
   double dry_rotational_compliance_ = 0.0;
   double dry_translational_compliance_ = 0.0;
 
@@ -214,7 +220,8 @@ class VehicleBody
   Twist velocity_ = Twist::Zero();
   Eigen::Vector3d current_ = Eigen::Vector3d::Zero();
   double water_surface_z_ = std::numeric_limits<double>::quiet_NaN();
-  /// The share in the water at which velocity_ was last set: a step that starts deeper in keeps the momentum.
+  /// The share in the water for which velocity_ holds (a step's end, setState): a step that starts deeper in (the
+  /// surface moved, a state set) keeps the momentum.
   double velocity_share_ = 1.0;
   /// The centre of buoyancy's height [m] in the world.
   double buoyancyHeight() const;
