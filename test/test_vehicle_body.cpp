@@ -231,7 +231,7 @@ TEST(VehicleBody, OutOfTheWaterABodyFallsAtG)
 // momentum M(s) w, M at the share s it ends each step at, grows by W h a step exactly: -W t (within 1e-9 of it,
 // relative) through the whole crossing (share 0 to 1), while its speed falls below free fall's. The same through
 // startStep, stepped and stepAgain (a VehicleCoupling sub-step's path). Seen failing with the velocity kept
-// instead (the added mass gained for nothing: momentum, and kinetic energy, out of nowhere: 75% off).
+// instead (the added mass gained for nothing: momentum, and kinetic energy, out of nowhere).
 TEST(VehicleBody, EnteringTheWaterABodyKeepsItsMomentum)
 {
   VehicleParams p;
@@ -330,7 +330,12 @@ TEST(VehicleBody, AStepThatStartsDeeperKeepsTheMomentumWithAFullMassMatrix)
   const Vector6 before = body.massMatrixAt(0.2) * body.relativeVelocity();
   const Vector6 after = body.massMatrixAt(0.8) * start.relative;
   EXPECT_LT((after - before).norm(), 1e-12 * before.norm()) << after.transpose() << " vs " << before.transpose();
-  EXPECT_LT(start.relative.norm(), body.relativeVelocity().norm()) << "slowed";
+  // Its kinetic energy, 1/2 p^T M^-1 p, falls as M grows (the pitch rate may grow through the heave-pitch coupling).
+  const double energy_before = 0.5 * body.relativeVelocity().dot(before);
+  const double energy_after = 0.5 * start.relative.dot(after);
+  std::printf("[ measured ] kinetic energy %.4f J at share 0.2, %.4f J at 0.8 with the momentum kept\n", energy_before,
+              energy_after);
+  EXPECT_LT(energy_after, energy_before);
 }
 
 // 3a''. Thrusters out of the water push nothing. A neutral body at rest with its centre of buoyancy at the surface
@@ -798,10 +803,10 @@ TEST(VehicleBody, StepLimitIsTheRestoringSpringsAndHolds)
 }
 
 // With a water surface the hull crossing it is a heave spring the step takes explicitly: its buoyancy s B falls
-// with the share s in the water, k = B / size.z, on the heave mass m + s Z_wdot, at most m out of the water (and
+// with the share s in the water, k = B / size.z, on the heave mass m + s Z_wdot, at least m (out of the water; and
 // its thrust likewise). The BlueROV2 Heavy made twice as light as it is heavy (B = 2 W: it floats with half its
 // height out, mid-way through the ramp), its damping taken away (the implicit damping steadies any step): the
-// heave spring on the mass out of the water (7.23 rad/s) needs h < 2 / omega = 0.28 s, where the restoring
+// heave spring on the mass out of the water (8.79 rad/s) needs h < 2 / omega = 0.23 s, where the restoring
 // moment's limit under water is 0.74 s. stableStepLimitAt(surface) is at most that, and stableStepLimit() is it
 // once the body has a surface (and the limit under water again without). Started 2 cm below where it floats and
 // stepped at 0.95 of the limit for 2000 steps, the heave stays within semi-implicit Euler's modified energy's

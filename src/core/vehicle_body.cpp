@@ -120,6 +120,7 @@ void VehicleBody::prepare()
   // A body whose origin is its centre of gravity (most published models, the BlueROV2 Heavy's) has a diagonal
   // M: its products are six multiplications.
   diagonal_mass_ = mass_matrix_.isDiagonal(0.0);
+  inverse_translational_mass_ = mass_matrix_.diagonal().head<3>().cwiseInverse();
 
   // The restoring moment is a spring on the attitude of stiffness at most k = |B r_B - W r_G| (the norm of
   // the Hessian of the potential -e_z^T R (B r_B - W r_G) in a small rotation). It turns the smallest
@@ -185,10 +186,11 @@ Twist VehicleBody::entered(const Twist& relative, double from, double to) const
 void VehicleBody::settleVelocity(double from)
 {
   const double now = submergedShare();
-  Twist relative = relativeVelocity();
-  relative = entered(relative, from, now);
-  velocity_ = relative;
-  velocity_.head<3>() += attitude_.conjugate() * current_;
+  if (now > from && params_.added_mass.any())  // deeper in: the momentum kept (otherwise the velocity, untouched)
+  {
+    velocity_ = entered(relativeVelocity(), from, now);
+    velocity_.head<3>() += attitude_.conjugate() * current_;
+  }
   velocity_share_ = now;
 }
 
@@ -304,8 +306,16 @@ Status VehicleBody::startStep(double dt, VehicleStepStart* start) const
   start->relative.head<3>() -= attitude_.conjugate() * current_;
   start->restoring = restoringWrench();
   start->wet = submergedShare();
-  start->mass = massMatrixAt(start->wet);
-  start->inverse_translational_mass = start->mass.diagonal().head<3>().cwiseInverse();
+  if (start->wet == 1.0)
+  {
+    start->mass = mass_matrix_;  // under water (and always without a surface): as prepared
+    start->inverse_translational_mass = inverse_translational_mass_;
+  }
+  else
+  {
+    start->mass = massMatrixAt(start->wet);
+    start->inverse_translational_mass = start->mass.diagonal().head<3>().cwiseInverse();
+  }
   // Deeper in the water than where its velocity was set (a state or a surface set since): the momentum is kept.
   start->relative = entered(start->relative, velocity_share_, start->wet);
   // The damping of step 2, implicit per axis with |nu_r| from the step's start (exact at a steady state).

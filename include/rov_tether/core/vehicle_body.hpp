@@ -207,7 +207,8 @@ class VehicleBody
 
   VehicleParams params_;
   Matrix6 mass_matrix_ = Matrix6::Identity();
-  bool diagonal_mass_ = true;  ///< M is diagonal (r_G = 0)
+  bool diagonal_mass_ = true;                                             ///< M is diagonal (r_G = 0)
+  Eigen::Vector3d inverse_translational_mass_ = Eigen::Vector3d::Ones();  ///< M's diagonal's head, inverted
   double stable_step_ = 0.0;
   /// The largest eigenvalues of M^-1's rotational block under water (M) and of M_RB^-1's rotational and
   /// translational blocks (out of the water: the largest at any share) [1/(kg m^2), 1/kg], for stableStepLimitAt.
