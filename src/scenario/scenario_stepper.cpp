@@ -178,7 +178,9 @@ bool ScenarioStepper::advanceWorld(double t)
 {
   // In stretches of at most kStretch, so that an interrupt is seen within one (World::advanceTo steps the same
   // steps in the same order whether it is called once or in stretches: each tether's grid is its own).
-  // A target the world refuses, or a world that does not move, goes to World::advanceTo whole.
+  // A target the world refuses, an empty world, or one that did not move in a whole stretch (every tether's next
+  // step ending past it: none is that long) goes to World::advanceTo whole.
+  bool whole = !(std::abs(t) <= Tether::kMaxTime) || world_.size() == 0;
   for (;;)
   {
     if (interrupt_ != nullptr && *interrupt_ != 0)
@@ -190,7 +192,6 @@ bool ScenarioStepper::advanceWorld(double t)
       return false;
     }
     const double before = world_.time();
-    const bool whole = !(std::abs(t) <= Tether::kMaxTime) || world_.size() == 0;
     const double to = whole ? t : std::min(t, before + kStretch);
     const Status status = world_.advanceTo(to, nullptr, step_observer_);
     if (!status.ok)
@@ -202,14 +203,7 @@ bool ScenarioStepper::advanceWorld(double t)
     {
       return true;
     }
-    if (!(world_.time() > before))
-    {
-      // Nothing stepped in a whole stretch (every tether's next step ends past it: none is that long, but a
-      // world that will not move is asked for t itself rather than looped on).
-      const Status rest = world_.advanceTo(t, nullptr, step_observer_);
-      run_error_ = rest.ok ? "" : rest.message;
-      return rest.ok;
-    }
+    whole = !(world_.time() > before);
   }
 }
 }  // namespace rov_tether

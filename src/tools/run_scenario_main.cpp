@@ -377,20 +377,24 @@ int run(int argc, char** argv)
   error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal) : error;
   error = error.empty() && dataset ? dataset->close() : error;
   const int stopped_by = g_stop_signal;
+  const char* const signal_name = stopped_by == SIGINT ? "SIGINT" : "SIGTERM";
+  if (!error.empty())
+  {
+    for (const std::string& warning : world_warnings)
+    {
+      std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
+    }
+  }
   if (!error.empty() && s.interrupted)
   {
     // Stopped from outside: said as what it is, not as an output error (the CSVs' temporaries are removed, the
     // earlier outputs left as they were, as for any run that fails); then ended by the signal, as the program
     // would have been without its handler, so that a shell or a script that runs it sees the signal.
-    for (const std::string& warning : world_warnings)
-    {
-      std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
-    }
     std::fprintf(
         stderr,
         "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output (state, shape, vehicle, "
         "topology) was written, and the output directory's earlier ones are as they were%s\n",
-        stopped_by == SIGINT ? "SIGINT" : "SIGTERM", error.c_str(), scenario.duration,
+        signal_name, error.c_str(), scenario.duration,
         dataset ? "; each camera's index.csv and frames written so far stay in cameras/ (written in place)" : "");
     std::fflush(stderr);
     std::signal(stopped_by, SIG_DFL);
@@ -399,10 +403,6 @@ int run(int argc, char** argv)
   }
   if (!error.empty())
   {
-    for (const std::string& warning : world_warnings)
-    {
-      std::fprintf(stderr, "rov_tether_run: warning: %s\n", warning.c_str());
-    }
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     return 1;
   }
@@ -410,8 +410,7 @@ int run(int argc, char** argv)
   if (stopped_by != 0)
   {
     // The signal came as the run finished (while its outputs moved into place): they are whole, and said so.
-    s.world_warnings.push_back(std::string(stopped_by == SIGINT ? "SIGINT" : "SIGTERM") +
-                               " came after the run had finished: its outputs are complete");
+    s.world_warnings.push_back(std::string(signal_name) + " came after the run had finished: its outputs are complete");
   }
   printRun(scenario, scenario_path, s);
   printWritten(scenario, out_dir, s, dataset.get());
