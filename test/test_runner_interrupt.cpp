@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rov_tether/scenario/scenario_runner.hpp"
 #include "rov_tether/scenario/scenario_yaml.hpp"
@@ -58,6 +59,51 @@ struct RemovedAtEnd
   }
 };
 
+/// Starts `program` with `arguments` as from an interactive shell (SIGINT and SIGTERM at their default and not
+/// blocked: the test itself may have been started in the background, with SIGINT ignored, which the program would
+/// keep), its standard error into `err` and its output to /dev/null. Everything is made before fork: the child only
+/// calls what is safe after it.
+pid_t startProgram(const char* program, const std::vector<std::string>& arguments, const std::string& err)
+{
+  std::vector<char*> argv{const_cast<char*>(program)};
+  for (const std::string& argument : arguments)
+  {
+    argv.push_back(const_cast<char*>(argument.c_str()));
+  }
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0)
+  {
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(fd, 2);
+    ::dup2(null, 1);
+    ::execv(program, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// Waits until `pid` has ended or `seconds` have passed, or (with `until`) until that file is there: the pid if it
+/// ended (its status in `status`), else 0.
+pid_t waitFor(pid_t pid, int* status, int seconds, const fs::path& until = {})
+{
+  const auto start = std::chrono::steady_clock::now();
+  pid_t ended = 0;
+  while (ended == 0 && (until.empty() || !fs::exists(until)) &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds))
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ended = ::waitpid(pid, status, WNOHANG);
+  }
+  return ended;
+}
+
 // scenarios/spool_payout.yaml (the demo's dive) made 5000 s long (over a minute of CPU) is sent SIGINT, then
 // SIGTERM, once it is writing its outputs. Each time the runner stops well before the end (the time it says it
 // stopped at: it looks for the signal every 0.25 s of simulated time), says by what, removes its temporaries
@@ -76,7 +122,6 @@ TEST(Runner, ASignalStopsTheRunAndLeavesTheOutputDirectoryAsItWas)
   scenario.replace(at + 1, scenario.find('\n', at + 1) - at - 1, "duration: 5000");
   std::ofstream(dir / "long.yaml") << scenario;
   const std::string earlier = "an earlier run's state.csv\n";
-  // Everything the child needs, made before fork (the child only calls what is safe after it).
   const std::string err = (dir / "stderr.txt").string(), long_yaml = (dir / "long.yaml").string(),
                     out = (dir / "out").string();
 
@@ -85,44 +130,15 @@ TEST(Runner, ASignalStopsTheRunAndLeavesTheOutputDirectoryAsItWas)
     const char* name = signal_number == SIGINT ? "SIGINT" : "SIGTERM";
     SCOPED_TRACE(name);
     std::ofstream(dir / "out" / "state.csv") << earlier;
-    const pid_t pid = ::fork();
+    const pid_t pid = startProgram(ROV_TETHER_RUNNER, {long_yaml, "--out", out}, err);
     ASSERT_GE(pid, 0);
-    if (pid == 0)
-    {
-      // As from an interactive shell: both signals at their default and not blocked (the test itself may have
-      // been started in the background, with SIGINT ignored, which the runner would keep).
-      ::signal(SIGINT, SIG_DFL);
-      ::signal(SIGTERM, SIG_DFL);
-      sigset_t none;
-      sigemptyset(&none);
-      ::sigprocmask(SIG_SETMASK, &none, nullptr);
-      const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int null = ::open("/dev/null", O_WRONLY);
-      ::dup2(fd, 2);
-      ::dup2(null, 1);
-      ::execl(ROV_TETHER_RUNNER, ROV_TETHER_RUNNER, long_yaml.c_str(), "--out", out.c_str(),
-              static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
     // The temporaries are opened after the handlers are set: once one is there, the run is under way.
-    const auto start = std::chrono::steady_clock::now();
     int status = 0;
-    pid_t ended = 0;
-    while (!fs::exists(dir / "out" / ".state.csv.partial") && ended == 0 &&
-           std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
-    {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      ended = ::waitpid(pid, &status, WNOHANG);
-    }
+    pid_t ended = waitFor(pid, &status, 120, dir / "out" / ".state.csv.partial");
     ASSERT_EQ(ended, 0) << "the runner ended before it was stopped: " << readAll(err);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the steps
     ASSERT_EQ(::kill(pid, signal_number), 0);
-    const auto sent = std::chrono::steady_clock::now();
-    while (ended == 0 && std::chrono::steady_clock::now() - sent < std::chrono::seconds(60))
-    {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      ended = ::waitpid(pid, &status, WNOHANG);
-    }
+    ended = waitFor(pid, &status, 60);
     if (ended == 0)
     {
       ::kill(pid, SIGKILL);
@@ -143,6 +159,49 @@ TEST(Runner, ASignalStopsTheRunAndLeavesTheOutputDirectoryAsItWas)
     EXPECT_EQ(partialFiles(dir / "out"), "");
     EXPECT_FALSE(fs::exists(dir / "out" / "shape.csv"));
     EXPECT_EQ(readAll(dir / "out" / "state.csv"), earlier);
+  }
+}
+
+// rov_tether_study (the whole study: minutes of CPU) sent SIGINT, then SIGTERM, once it is writing: it removes its
+// temporaries (.study.csv.partial, .stability.csv.partial), says by what it stopped, leaves an earlier run's
+// study.csv and stability.csv as they were and ends by the signal. Before, it wrote both in place: a stop
+// half-way left them truncated, the earlier ones lost.
+TEST(StudyTool, ASignalStopsTheStudyAndLeavesTheOutputDirectoryAsItWas)
+{
+  const RemovedAtEnd scratch{fs::temp_directory_path() / ("rov_tether_test_study_stop_" + std::to_string(::getpid()))};
+  const fs::path& dir = scratch.dir;
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  const std::string err = (dir / "stderr.txt").string(), out = (dir / "out").string();
+  for (const int signal_number : {SIGINT, SIGTERM})
+  {
+    const char* name = signal_number == SIGINT ? "SIGINT" : "SIGTERM";
+    SCOPED_TRACE(name);
+    std::ofstream(dir / "out" / "study.csv") << "an earlier study\n";
+    std::ofstream(dir / "out" / "stability.csv") << "an earlier map\n";
+    const pid_t pid = startProgram(ROV_TETHER_STUDY, {"--out", out}, err);
+    ASSERT_GE(pid, 0);
+    int status = 0;
+    pid_t ended = waitFor(pid, &status, 120, dir / "out" / ".study.csv.partial");
+    ASSERT_EQ(ended, 0) << "the study ended before it was stopped: " << readAll(err);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the first case
+    ASSERT_EQ(::kill(pid, signal_number), 0);
+    ended = waitFor(pid, &status, 60);
+    if (ended == 0)
+    {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      FAIL() << "the study went on for 60 s after the signal";
+    }
+    const std::string said = readAll(err);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1) << "; " << said;
+    EXPECT_EQ(WTERMSIG(status), signal_number) << said;
+    EXPECT_EQ(said, std::string("rov_tether_study: stopped by ") + name +
+                        ": study.csv and stability.csv were not written, and the output directory's earlier ones are "
+                        "as they were\n");
+    EXPECT_EQ(partialFiles(dir / "out"), "");
+    EXPECT_EQ(readAll(dir / "out" / "study.csv"), "an earlier study\n");
+    EXPECT_EQ(readAll(dir / "out" / "stability.csv"), "an earlier map\n");
   }
 }
 

@@ -1335,8 +1335,8 @@ TEST(StudyTool, RefusesAnUnknownCase)
 }
 
 // A stability.csv that cannot be written (a directory in its place) is said as study.csv's is, "cannot write
-// PATH" with exit code 1, before the study runs (its fopen was unchecked: the tool crashed after the whole study),
-// and an earlier run's study.csv stays as it was (it was truncated, then removed).
+// 'PATH': ..." with exit code 1, before the study runs (its fopen was unchecked: the tool crashed after the whole
+// study), and an earlier run's study.csv stays as it was (it was truncated, then removed).
 TEST(StudyTool, SaysWhenItCannotWriteTheStabilityMap)
 {
   const std::string dir = temporaryDirectory("study_no_stability_csv");
@@ -1351,7 +1351,7 @@ TEST(StudyTool, SaysWhenItCannotWriteTheStabilityMap)
   EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
   const std::vector<std::string> lines = readLines(err);
   ASSERT_FALSE(lines.empty());
-  EXPECT_EQ(lines.front(), "cannot write " + dir + "/stability.csv");
+  EXPECT_EQ(lines.front(), "rov_tether_study: cannot write '" + dir + "/stability.csv': it is a directory");
   EXPECT_EQ(readLines(dir + "/study.csv"), std::vector<std::string>{"an earlier run"});  // nothing ran
   fs::remove_all(dir);
   fs::remove(err);
@@ -1376,6 +1376,7 @@ TEST(StudyTool, TheAutomaticChoiceIsPbds)
       autos.push_back({fields.at(1), fields.at(2), fields.at(3)});
     }
   }
+  EXPECT_FALSE(fs::exists(dir + "/.study.csv.partial"));  // moved into place
   // Shape 1 cm then 1 mm, each with stretch 1% then 0.1%.
   ASSERT_EQ(autos.size(), 4u);
   for (std::size_t i = 0; i < autos.size(); ++i)

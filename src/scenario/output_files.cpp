@@ -1,5 +1,5 @@
 // The runner's output files: see output_files.hpp.
-#include "output_files.hpp"
+#include "rov_tether/scenario/output_files.hpp"
 
 #include <system_error>
 

@@ -13,7 +13,7 @@
 #include <memory>
 #include <utility>
 
-#include "output_files.hpp"
+#include "rov_tether/scenario/output_files.hpp"
 #include "rov_tether/core/run_out_watch.hpp"
 #include "rov_tether/scenario/earlier_outputs.hpp"
 #include "rov_tether/scenario/scenario_stepper.hpp"

@@ -1,16 +1,18 @@
 // rov_tether_study: the speed-against-accuracy study and the stability map (docs/accuracy.md, "Speed against
 // accuracy"). Runs every reference case for each method x resolution x effort and writes
 // OUT/study.csv and OUT/stability.csv for scripts/figures.py.
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "rov_tether/scenario/output_files.hpp"
 #include "rov_tether/study/study.hpp"
 
 namespace
@@ -275,39 +277,8 @@ void runAutomaticChoice(const Case& c, std::FILE* out)
   }
 }
 
-/// Opens `path` for writing; nullptr, after saying "cannot write PATH", when it cannot.
-std::FILE* openForWriting(const std::string& path)
-{
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (file == nullptr)
-  {
-    std::fprintf(stderr, "cannot write %s\n", path.c_str());
-  }
-  return file;
-}
-
-/// Whether `path` can be written, found without truncating it (an earlier run's file stays until this run writes
-/// its own); a file made to find out is removed. Says so when it cannot.
-bool writable(const std::string& path)
-{
-  std::error_code ec;
-  const bool existed = std::filesystem::exists(path, ec);
-  std::FILE* file = std::fopen(path.c_str(), "a");
-  if (file == nullptr)
-  {
-    std::fprintf(stderr, "cannot write %s\n", path.c_str());
-    return false;
-  }
-  std::fclose(file);
-  if (!existed)
-  {
-    std::remove(path.c_str());
-  }
-  return true;
-}
-
 /// Writes study.csv to `out`: every case (or only `only`) swept, with the cheapest accurate run per method
-/// printed. Closes `out`.
+/// printed.
 void writeStudy(const Options& options, std::FILE* out)
 {
   std::fprintf(
@@ -336,7 +307,6 @@ void writeStudy(const Options& options, std::FILE* out)
           method.c_str(), r.segments, r.substeps, r.iterations, r.over_relaxation, r.time_step, r.cost);
     }
   }
-  std::fclose(out);
 }
 
 /// The cheapest accurate run (sag within 1%, end tension within 2%) per method on case c at axial stiffness
@@ -403,7 +373,7 @@ void printGoal(double stiffness, std::map<std::string, Result>& best)
 }
 
 /// Writes stability.csv to `map`: each method's boundedness over step x stiffness and step x speed; prints the
-/// counts. Closes `map`.
+/// counts.
 void writeStabilityMap(std::FILE* map, bool quick)
 {
   std::fprintf(map, "method,time_step,stiffness,speed,critical_step,bounded,max_strain\n");
@@ -440,7 +410,53 @@ void writeStabilityMap(std::FILE* map, bool quick)
                 total[index]);
     ++index;
   }
-  std::fclose(map);
+}
+
+/// The temporary files the study writes (set once they are open), which a stop signal removes.
+const char* g_partial[2] = {nullptr, nullptr};
+
+/// SIGINT or SIGTERM during the study: removes its temporary files (unlink is safe in a handler), says so, and ends
+/// by the signal, as the program would without the handler. The earlier study.csv and stability.csv stay as they were.
+extern "C" void onStopSignal(int signal_number)
+{
+  for (const char* partial : g_partial)
+  {
+    if (partial != nullptr)
+    {
+      ::unlink(partial);
+    }
+  }
+  static const char kInterrupt[] =
+      "rov_tether_study: stopped by SIGINT: study.csv and stability.csv were not written, and the output directory's "
+      "earlier ones are as they were\n";
+  static const char kTerminate[] =
+      "rov_tether_study: stopped by SIGTERM: study.csv and stability.csv were not written, and the output directory's "
+      "earlier ones are as they were\n";
+  const bool interrupt = signal_number == SIGINT;
+  const ssize_t written =
+      ::write(2, interrupt ? kInterrupt : kTerminate, interrupt ? sizeof(kInterrupt) - 1 : sizeof(kTerminate) - 1);
+  static_cast<void>(written);
+  ::raise(signal_number);  // delivered, at its default action (SA_RESETHAND), when the handler returns
+}
+
+/// From here on, SIGINT and SIGTERM stop the study as onStopSignal says. A signal the program was started ignoring
+/// (a job started in the background by a shell) stays ignored.
+void catchStopSignals()
+{
+  struct sigaction action = {};
+  action.sa_handler = onStopSignal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaddset(&action.sa_mask, SIGINT);
+  sigaddset(&action.sa_mask, SIGTERM);
+  for (const int signal_number : {SIGINT, SIGTERM})
+  {
+    struct sigaction was = {};
+    if (sigaction(signal_number, nullptr, &was) == 0 && was.sa_handler != SIG_IGN)
+    {
+      sigaction(signal_number, &action, nullptr);
+    }
+  }
 }
 
 }  // namespace
@@ -452,34 +468,24 @@ int main(int argc, char** argv)
   {
     return 2;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  // Both files are opened before anything runs: a stability.csv that cannot be written was found (and crashed
-  // the tool) only after the whole study.
-  // Checked without truncating either (opening study.csv first truncated an earlier run's, which a refusal for
-  // stability.csv then lost).
-  const std::string study_path = options.out_dir + "/study.csv";
-  const std::string stability_path = options.out_dir + "/stability.csv";
-  if (!writable(study_path) || (options.with_stability && !writable(stability_path)))
-  {
-    return 1;
-  }
-  std::FILE* study_file = openForWriting(study_path);
-  if (study_file == nullptr)
-  {
-    return 1;
-  }
-  std::FILE* stability_file = nullptr;
+  // Both files are opened before anything runs (a stability.csv that cannot be written was found only after the
+  // whole study), under temporary names: an earlier run's files stay as they were until this run has written both
+  // (a study stopped half-way truncated them).
+  std::vector<rov_tether::OutputFile> files{{options.out_dir + "/study.csv", {}, nullptr}};
   if (options.with_stability)
   {
-    stability_file = openForWriting(stability_path);
-    if (stability_file == nullptr)
-    {
-      std::fclose(study_file);
-      return 1;
-    }
+    files.push_back({options.out_dir + "/stability.csv", {}, nullptr});
   }
-  writeStudy(options, study_file);
+  const std::string cannot = rov_tether::openAll(files);
+  if (!cannot.empty())
+  {
+    std::fprintf(stderr, "rov_tether_study: %s\n", cannot.c_str());
+    return 1;
+  }
+  g_partial[0] = files[0].partial.c_str();
+  g_partial[1] = options.with_stability ? files[1].partial.c_str() : nullptr;
+  catchStopSignals();
+  writeStudy(options, files[0].file);
   if (options.only.empty() || options.only == "catenary_s8")
   {
     // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
@@ -492,10 +498,45 @@ int main(int argc, char** argv)
       printGoal(stiffness, best);
     }
   }
-  if (stability_file != nullptr)
+  if (options.with_stability)
   {
-    writeStabilityMap(stability_file, options.quick);
+    writeStabilityMap(files[1].file, options.quick);
   }
-  std::printf("wrote %s%s\n", study_path.c_str(), options.with_stability ? " and stability.csv" : "");
+  // The moves into place are not split by a signal: one that comes meanwhile waits, and is said after them.
+  sigset_t stops, was;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stops, &was);
+  std::vector<std::string> left;
+  const std::string error = rov_tether::closeAll(files, true, options.out_dir, &left);
+  sigset_t pending;
+  sigpending(&pending);
+  for (const int signal_number : {SIGINT, SIGTERM})
+  {
+    // The handler's work is done: a signal from here on ends the program as it would have without one.
+    const bool came = sigismember(&pending, signal_number) != 0;
+    struct sigaction now = {};
+    if (sigaction(signal_number, nullptr, &now) == 0 && now.sa_handler == onStopSignal)
+    {
+      std::signal(signal_number, came ? SIG_IGN : SIG_DFL);  // a pending one is taken off, and said
+    }
+    if (came)
+    {
+      std::fprintf(stderr, "rov_tether_study: %s came after the study had finished: its outputs are complete\n",
+                   signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    }
+  }
+  sigprocmask(SIG_SETMASK, &was, nullptr);
+  for (const std::string& warning : left)
+  {
+    std::fprintf(stderr, "rov_tether_study: warning: %s\n", warning.c_str());
+  }
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "rov_tether_study: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("wrote %s%s\n", files[0].path.c_str(), options.with_stability ? " and stability.csv" : "");
   return 0;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// The runner's output files (private to rov_tether_scenario): each written under a temporary name and moved into
-// place, all or none, only when the whole run succeeded (docs/runner.md).
+// Output files written under a temporary name (.NAME.partial beside it) and moved into place, all or none, only when
+// the whole run succeeded: rov_tether_run's CSV files (docs/runner.md) and rov_tether_study's (docs/accuracy.md).
 
 #include <cstdio>
 #include <filesystem>
