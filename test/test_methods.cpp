@@ -313,6 +313,17 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
   EXPECT_EQ(fine.validate().size(), 1u);
   fine.shape_tolerance = 1.01e-3 * 1.01e-3 / (8.0 * fine.min_bend_radius);  // 1.01 mm: taken
   EXPECT_TRUE(fine.validate().empty());
+  // Exactly at the limit: 8 R e = (1 mm)^2 on a cable of whole millimetres, 1,001 segments of 1 mm, taken and laid
+  // so (the division gave 0.9999999999999998 mm, which was refused).
+  TetherParams exact;
+  exact.cable_length = 1.001;
+  exact.initial_deployed_length = 1.0;
+  exact.segment_length_auto = true;
+  exact.min_bend_radius = 1.0;
+  exact.shape_tolerance = 1.25e-7;
+  EXPECT_EQ(exact.validate(), std::vector<std::string>{});
+  EXPECT_EQ(exact.resolved().segmentCount(), 1001u);
+  EXPECT_EQ(exact.resolved().segment_length, 1.0e-3);
 
   std::string text;
   TetherParams parsed;

@@ -153,9 +153,11 @@ std::vector<std::string> TetherParams::validateMaterial() const
   if (segment_length_auto)
   {
     // resolved() keeps segments at 1 mm at least: the chord rule asking for less is refused, not followed silently.
+    // Compared as segmentCount() counts, to 1e-9: a cable of whole millimetres asking for exactly 1 mm (1.001 m in
+    // 1,001 segments, which the division makes 0.9999999999999998 mm) is taken.
     const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
     const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
-    if (cable_length / count < 1.0e-3)
+    if (cable_length / count < 1.0e-3 * (1.0 - 1e-9))
     {
       errors.push_back("segment_length: auto: shape_tolerance = " + formatValue(shape_tolerance) +
                        " m on min_bend_radius = " + formatValue(min_bend_radius) + " m asks for segments of " +
