@@ -228,7 +228,8 @@ TEST(VehicleBlock, AStartPlusAnOffsetBeyondReachIsRefusedNotThrown)
 // than its cable. buildWorld says so among its warnings, with both densities and the buoyancy it would have in
 // the tether's (134.74 N, 2.31 N light: rho g V with the tether's rho), and says nothing with the tether's water
 // set alike. (Tether::attachVehicleBody's message, which the node logs as the runner does.) Seen failing with
-// the check left out: no warning.
+// the check left out: no warning. The tether's water changed live after the attachment is said likewise
+// (Tether::setParams' message, which the node logs and Python warns).
 TEST(VehicleBlock, AVehicleInOtherWaterThanItsTetherIsSaid)
 {
   const VehicleParams fresh;  // the BlueROV2 Heavy's defaults, the file's values
@@ -251,6 +252,20 @@ TEST(VehicleBlock, AVehicleInOtherWaterThanItsTetherIsSaid)
     if (tether_water == fresh.water_density)
     {
       EXPECT_TRUE(warnings.empty()) << warnings.front();
+      // The tether's water changed live, the vehicle attached: said as at the attachment (it was taken without a
+      // word), and nothing when changed back.
+      TetherParams salt = world.tether(0).params();
+      salt.water_density = 1025.0;
+      ASSERT_TRUE(world.tether(0).vehicleDynamic());
+      const std::string before = world.tether(0).checkParams(salt).message;  // what Python warns before the change
+      const Status changed = world.tether(0).setParams(salt);
+      ASSERT_TRUE(changed.ok) << changed.message;
+      EXPECT_EQ(changed.message.rfind("vehicle: its water_density 1000 kg/m^3 is not the tether's 1025 kg/m^3: ", 0),
+                0u)
+          << changed.message;
+      EXPECT_EQ(before, changed.message);
+      salt.water_density = fresh.water_density;
+      EXPECT_EQ(world.tether(0).setParams(salt).message, "");
       continue;
     }
     ASSERT_EQ(warnings.size(), 1u);

@@ -132,11 +132,18 @@ Status Tether::checkParams(const TetherParams& params) const
       return coupled;
     }
   }
+  Status result = Status::success();
   if (!sameStructure(params_, params.resolved()))
   {
-    return Status{true, "cable rebuilt for the new cable_length or segment_length at the deployed length"};
+    result.message = "cable rebuilt for the new cable_length or segment_length at the deployed length";
   }
-  return Status::success();
+  if (vehicle_ != nullptr && params.water_density != params_.water_density)
+  {
+    // As when the vehicle was attached: it floats in the cable's water, or is said not to.
+    const std::string water = waterMismatch(vehicle_->body().params(), params.water_density);
+    result.message += water.empty() ? "" : (result.message.empty() ? "vehicle: " : "; vehicle: ") + water;
+  }
+  return result;
 }
 
 Status Tether::setParams(const TetherParams& params)
@@ -205,7 +212,7 @@ Status Tether::setParams(const TetherParams& params)
   {
     refreshDerived(cable_.first, cable_.size() - 1);
   }
-  return Status::success();
+  return checked;  // success, with what checkParams says of the change (the vehicle's water)
 }
 
 void Tether::build(double deployed_length)
