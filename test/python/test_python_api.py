@@ -213,6 +213,9 @@ def test_a_dynamic_vehicle_takes_its_thrust_from_python():
         tether.set_vehicle_thrust([1.0, 2.0])
     with pytest.raises(ValueError, match="no dynamic vehicle"):
         hanging_world().tethers[0].set_vehicle_thrust([0.0] * 6)
+    # The tether's water changed after the attachment: said as the attachment says it (Tether::setParams).
+    with pytest.warns(UserWarning, match="its water_density 1000 kg/m.3 is not the tether's 1025 kg/m.3"):
+        tether.set_param("water_density", 1025.0)
 
 
 def runner_error(tmp_path, text):
