@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "camera_fixtures.hpp"
@@ -522,7 +523,9 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   ASSERT_EQ(writer.open(), "");
   RunSummary summary;
   ASSERT_EQ(runScenario(scenario, dir, &summary, {&writer}), "");
-  ASSERT_EQ(writer.close(), "");
+  std::vector<std::string> left;
+  ASSERT_EQ(writer.finish(true, &left), "");
+  EXPECT_TRUE(left.empty());
   const std::string state_with_camera = readText(dir + "/state.csv");
   const std::string shape_with_camera = readText(dir + "/shape.csv");
   ASSERT_EQ(runScenario(scenario, dir + "/plain", &summary), "");
@@ -585,6 +588,74 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   EXPECT_GT(seen, 10u);  // it turns and looks back along its tether from 28.6 s on
   EXPECT_LE(worst_coverage, 1e-6);
   EXPECT_LT(worst_time, scenario.params.time_step);
+  std::filesystem::remove_all(dir);
+}
+
+// A camera's directory is replaced whole, and only by a run that succeeded (the runner's finish(keep)): the frames
+// go to cameras/.forward.partial as the run goes, with the earlier cameras/forward/ as it was meanwhile; a run that
+// failed or was stopped (keep false) removes them and leaves the earlier dataset as it was; one that succeeded
+// leaves exactly its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset
+// moved aside by a run that stopped while it moved its own) is refused before the run, naming it. Before, the frames
+// were written in place: a stopped run left a mix of its frames and the earlier run's, under its own index.csv.
+TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
+{
+  Scenario scenario;
+  ASSERT_EQ(
+      loadScenario(std::string(ROV_TETHER_SOURCE_DIR) + "/scenarios/datasets/forward_camera_dive.yaml", &scenario), "");
+  scenario.duration = 1.0;
+  ASSERT_EQ(scenario.cameras.size(), 1u);
+  const std::filesystem::path dir = testing::TempDir() + "rov_tether_dataset_replaced";
+  const std::filesystem::path forward = dir / "cameras" / "forward", partial = dir / "cameras" / ".forward.partial";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(forward);
+  std::ofstream(forward / "index.csv") << "an earlier dataset\n";
+  std::ofstream(forward / "mask_000999.png") << "an earlier frame\n";
+  const auto files = [](const std::filesystem::path& where)
+  {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(where))
+    {
+      names.insert(entry.path().filename().string());
+    }
+    return names;
+  };
+  const std::set<std::string> earlier{"index.csv", "mask_000999.png"};
+  for (const bool keep : {false, true})
+  {
+    SCOPED_TRACE(keep ? "succeeded" : "failed");
+    DatasetWriter writer(scenario, dir.string());
+    ASSERT_EQ(writer.open(), "");
+    RunSummary summary;
+    ASSERT_EQ(runScenario(scenario, dir.string(), &summary, {&writer}), "");
+    EXPECT_EQ(files(forward), earlier);  // as it was while the run goes
+    EXPECT_TRUE(std::filesystem::exists(partial / "mask_000000.png"));
+    std::vector<std::string> left;
+    ASSERT_EQ(writer.finish(keep, &left), "");
+    EXPECT_TRUE(left.empty());
+    EXPECT_EQ(files(dir / "cameras"), std::set<std::string>{"forward"});  // no temporary left
+    if (!keep)
+    {
+      EXPECT_EQ(files(forward), earlier);
+      EXPECT_EQ(readText((forward / "index.csv").string()), "an earlier dataset\n");
+      continue;
+    }
+    const std::size_t frames = scenario.cameraFrames(scenario.cameras[0]);
+    const std::set<std::string> written = files(forward);
+    EXPECT_EQ(written.size(), 1 + 3 * frames);  // index.csv and three images a frame
+    EXPECT_EQ(written.count("mask_000999.png"), 0u);
+    char last[32];
+    std::snprintf(last, sizeof last, "mask_%06zu.png", frames - 1);
+    EXPECT_EQ(written.count(last), 1u);
+  }
+  std::filesystem::create_directories(dir / "cameras" / ".forward.earlier");
+  DatasetWriter refused(scenario, dir.string());
+  const std::string error = refused.open();
+  EXPECT_EQ(error.rfind("cannot write '" + forward.string() + "/': '" +
+                            (dir / "cameras" / ".forward.earlier").string() + "' is in the way",
+                        0),
+            0u)
+      << error;
+  EXPECT_FALSE(std::filesystem::exists(partial));
   std::filesystem::remove_all(dir);
 }
 

@@ -759,11 +759,11 @@ TEST(Runner, ARefusedVehicleSampleStopsTheRunAndWritesNothing)
 
 // A run writes into a directory that may hold an earlier run's outputs, and replaces only the files it writes
 // (state.csv, shape.csv of kGood here). What it leaves of the earlier run is named in a warning, so that no one
-// reads a mixed directory as one run's: a topology.csv and the state.csv of a tether it names (a/), a
-// camera directory of a camera it does not have, and a camera's frame files past the frames it renders (a
-// camera at 1 Hz over kGood's 3 s renders frames 0 to 3; frame 7's three files are an earlier run's). Its own
-// files, index.csv and frames 0 to 3 are not named. A target that is a directory fails before the run, and leaves
-// no partial file.
+// reads a mixed directory as one run's: a topology.csv and the state.csv of a tether it names (a/), and a
+// camera directory of a camera it does not have. Its own camera's directory (forward/, whose frame 7 is past the
+// frames 0 to 3 a camera at 1 Hz renders over kGood's 3 s) is replaced whole, and not named (its frames past this
+// run's were, when the frames were written in place); nor is a run's temporary (.forward.partial). A target that
+// is a directory fails before the run, and leaves no partial file.
 TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
 {
   const fs::path dir = temporaryDirectory("earlier");
@@ -777,18 +777,19 @@ TEST(Runner, AnEarlierRunsOutputsLeftInTheDirectoryAreNamed)
   fs::create_directories(dir / "a");
   fs::create_directories(dir / "cameras" / "forward");
   fs::create_directories(dir / "cameras" / "aft");
+  fs::create_directories(dir / "cameras" / ".forward.partial");  // a run's temporary, not an output
   for (const fs::path& file :
        {dir / "state.csv", dir / "a" / "state.csv", dir / "notes.txt", dir / "cameras" / "forward" / "index.csv",
         dir / "cameras" / "forward" / "mask_000003.png", dir / "cameras" / "forward" / "mask_000007.png",
         dir / "cameras" / "forward" / "depth_000007.png", dir / "cameras" / "forward" / "depth_preview_000007.png",
-        dir / "cameras" / "aft" / "mask_000000.png"})
+        dir / "cameras" / "aft" / "mask_000000.png", dir / "cameras" / ".forward.partial" / "mask_000000.png"})
   {
     std::ofstream(file) << "earlier\n";
   }
   std::ofstream(dir / "topology.csv") << kTopologyCsvHeader << "\n0.000000,a,b,linking_number,0\n";
+  // forward's directory is this run's camera's, replaced whole (its frames past this run's 4 with it).
   const std::vector<std::string> expected = {"a/state.csv", "topology.csv",
-                                             "cameras/aft/ (1 file: a camera this scenario does not have)",
-                                             "cameras/forward/ (3 frame files past this run's 4 frames)"};
+                                             "cameras/aft/ (1 file: a camera this scenario does not have)"};
   EXPECT_EQ(earlierOutputs(scenario, dir, {dir / "state.csv", dir / "shape.csv"}), expected);
   EXPECT_TRUE(earlierOutputs(scenario, dir / "none", {}).empty());
 

@@ -130,28 +130,71 @@ DatasetWriter::DatasetWriter(const Scenario& scenario, const std::string& out_di
   }
 }
 
-DatasetWriter::~DatasetWriter() { close(); }
+DatasetWriter::~DatasetWriter()
+{
+  closeIndexes();
+  discard();  // a run left by an exception: its frames are not moved into place
+}
+
+namespace
+{
+
+namespace fs = std::filesystem;
+
+/// A camera's directory, where it is written first, and where an earlier one is moved aside while it moves in.
+struct CameraDirs
+{
+  fs::path target, partial, aside;
+};
+
+CameraDirs cameraDirs(const std::string& out_dir, const std::string& name)
+{
+  const fs::path cameras = fs::path(out_dir) / "cameras";
+  return {cameras / name, cameras / ("." + name + ".partial"), cameras / ("." + name + ".earlier")};
+}
+
+}  // namespace
 
 std::string DatasetWriter::open()
 {
-  namespace fs = std::filesystem;
+  for (const Camera& camera : cameras_)
+  {
+    const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(dirs.aside, ec)))
+    {
+      // As the CSV files' .<name>.earlier: maybe the only copy of an earlier dataset.
+      return "cannot write '" + dirs.target.string() + "/': '" + dirs.aside.string() +
+             "' is in the way: an earlier dataset moved aside, by a run that stopped before it had moved its own into "
+             "place (then it may be the only copy of the earlier one: put it back) or by a run that could not remove "
+             "it once its own was in place (then it is the replaced one: delete it)";
+    }
+    const fs::file_status status = fs::symlink_status(dirs.target, ec);
+    if (fs::exists(status) && !fs::is_directory(status))
+    {
+      return "cannot write '" + dirs.target.string() + "/': a file that is not a directory is there";
+    }
+  }
   for (Camera& camera : cameras_)
   {
-    const fs::path dir = fs::path(out_dir_) / "cameras" / camera.spec->name;
+    const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);
     std::error_code ec;
-    fs::create_directories(dir, ec);
-    camera.dir = dir.string();
-    camera.index = ec ? nullptr : std::fopen((dir / "index.csv").c_str(), "w");
+    fs::remove_all(dirs.partial, ec);  // a run ended by SIGKILL left it
+    fs::create_directories(dirs.partial, ec);
+    camera.dir = dirs.partial.string();
+    camera.index = ec ? nullptr : std::fopen((dirs.partial / "index.csv").c_str(), "w");
     if (camera.index == nullptr)
     {
-      return "cannot write in '" + camera.dir + "'";
+      closeIndexes();
+      discard();
+      return "cannot write in '" + dirs.partial.string() + "'";
     }
     std::fprintf(camera.index, "frame,t,coverage\n");
   }
   return "";
 }
 
-std::string DatasetWriter::close()
+std::string DatasetWriter::closeIndexes()
 {
   std::string error;
   for (Camera& camera : cameras_)
@@ -167,6 +210,66 @@ std::string DatasetWriter::close()
     }
   }
   return error;
+}
+
+void DatasetWriter::discard()
+{
+  for (Camera& camera : cameras_)
+  {
+    if (!camera.dir.empty())
+    {
+      std::error_code ec;
+      fs::remove_all(camera.dir, ec);
+      camera.dir.clear();
+    }
+  }
+}
+
+std::string DatasetWriter::finish(bool keep, std::vector<std::string>* left)
+{
+  const std::string error = closeIndexes();
+  const std::string moved = keep && error.empty() ? moveIntoPlace(left) : "";
+  discard();  // what was not moved into place
+  return error.empty() ? moved : error;
+}
+
+std::string DatasetWriter::moveIntoPlace(std::vector<std::string>* left)
+{
+  // Each camera's directory in turn: the earlier one moved aside, this run's moved in, the earlier one removed.
+  // Should a move fail, that camera's earlier directory is put back; the cameras before it are in place.
+  std::string done;
+  for (Camera& camera : cameras_)
+  {
+    const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);
+    std::error_code status_ec, ec;
+    const bool earlier = fs::exists(fs::symlink_status(dirs.target, status_ec));
+    if (earlier)
+    {
+      fs::rename(dirs.target, dirs.aside, ec);
+    }
+    if (!ec)
+    {
+      fs::rename(dirs.partial, dirs.target, ec);
+      if (ec && earlier)
+      {
+        std::error_code back;
+        fs::rename(dirs.aside, dirs.target, back);
+      }
+    }
+    if (ec)
+    {
+      return "cannot move camera " + camera.spec->name + "'s dataset into place at '" + dirs.target.string() +
+             "': " + ec.message() + " (its earlier dataset is as it was" +
+             (done.empty() ? "" : "; replaced before it: " + done) + ")";
+    }
+    camera.dir.clear();  // moved
+    done += (done.empty() ? "" : ", ") + camera.spec->name;
+    if (earlier && (fs::remove_all(dirs.aside, ec), ec))
+    {
+      left->push_back(dirs.aside.lexically_relative(out_dir_).string() + "/ (" + ec.message() + ")");
+    }
+  }
+  return "";
 }
 
 double DatasetWriter::nextTime() const

@@ -1,7 +1,6 @@
 #include "rov_tether/scenario/earlier_outputs.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -18,29 +17,11 @@ namespace
 namespace fs = std::filesystem;
 
 constexpr const char* kCsvFiles[] = {"state.csv", "shape.csv", "vehicle.csv", "topology.csv"};
-constexpr const char* kFramePrefixes[] = {"depth_preview_", "mask_", "depth_"};
 
 bool isCsvOutput(const fs::path& file)
 {
   return std::find_if(std::begin(kCsvFiles), std::end(kCsvFiles),
                       [&](const char* name) { return file.filename() == name; }) != std::end(kCsvFiles);
-}
-
-/// The frame number of a frame file's name (mask_000012.png: 12), or -1 for any other name.
-long frameNumber(const std::string& name)
-{
-  for (const char* prefix : kFramePrefixes)
-  {
-    const std::string p(prefix);
-    if (name.size() == p.size() + 10 && name.compare(0, p.size(), p) == 0 &&
-        name.compare(name.size() - 4, 4, ".png") == 0 &&
-        std::all_of(name.begin() + static_cast<std::ptrdiff_t>(p.size()), name.end() - 4,
-                    [](char c) { return c >= '0' && c <= '9'; }))
-    {
-      return std::strtol(name.c_str() + p.size(), nullptr, 10);
-    }
-  }
-  return -1;
 }
 
 /// The tethers the runner's topology.csv at `file` names: every row's `tether`, and the `object` of a
@@ -187,7 +168,8 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
   {
     found.push_back(file.lexically_relative(out_dir).string());
   }
-  // The cameras' directories and frames.
+  // The directories of cameras this scenario does not have (each of its own cameras' directories is replaced whole
+  // when the run succeeds: DatasetWriter). Names starting with '.' are the runs' temporaries, not outputs.
   const fs::path cameras = out_dir / "cameras";
   std::vector<fs::path> dirs;
   std::error_code cameras_ec;
@@ -195,7 +177,10 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
        !cameras_ec && it != end; it.increment(cameras_ec))
   {
     std::error_code dir_ec;
-    if (fs::is_directory(it->path(), dir_ec))
+    const std::string name = it->path().filename().string();
+    const bool ours = std::any_of(scenario.cameras.begin(), scenario.cameras.end(),
+                                  [&](const ScenarioCamera& c) { return c.name == name; });
+    if (!ours && name.front() != '.' && fs::is_directory(it->path(), dir_ec))
     {
       dirs.push_back(it->path());
     }
@@ -203,28 +188,17 @@ std::vector<std::string> earlierOutputs(const Scenario& scenario, const fs::path
   std::sort(dirs.begin(), dirs.end());
   for (const fs::path& dir : dirs)
   {
-    const auto camera = std::find_if(scenario.cameras.begin(), scenario.cameras.end(),
-                                     [&](const ScenarioCamera& c) { return c.name == dir.filename().string(); });
-    const long frames = camera == scenario.cameras.end() ? 0 : static_cast<long>(scenario.cameraFrames(*camera));
-    std::size_t past = 0, files = 0;
+    std::size_t files = 0;
     std::error_code dir_ec;
     for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, dir_ec), end;
          !dir_ec && it != end; it.increment(dir_ec))
     {
-      const std::string name = it->path().filename().string();
       ++files;
-      past += frameNumber(name) >= frames ? 1 : 0;
     }
-    const std::string where = "cameras/" + dir.filename().string() + "/";
-    if (camera == scenario.cameras.end() && files > 0)
+    if (files > 0)
     {
-      found.push_back(where + " (" + std::to_string(files) + (files == 1 ? " file" : " files") +
-                      ": a camera this scenario does not have)");
-    }
-    else if (past > 0)
-    {
-      found.push_back(where + " (" + std::to_string(past) + " frame files past this run's " + std::to_string(frames) +
-                      " frames)");
+      found.push_back("cameras/" + dir.filename().string() + "/ (" + std::to_string(files) +
+                      (files == 1 ? " file" : " files") + ": a camera this scenario does not have)");
     }
   }
   return found;

@@ -375,7 +375,12 @@ int run(int argc, char** argv)
   stopOnSignals();
   error = dataset ? dataset->open() : "";
   error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal) : error;
-  error = error.empty() && dataset ? dataset->close() : error;
+  if (dataset)
+  {
+    // After the CSV files, which are moved into place only when the run succeeded: each camera's directory likewise.
+    const std::string finished = dataset->finish(error.empty(), &s.replaced_left);
+    error = error.empty() ? finished : error;
+  }
   const int stopped_by = g_stop_signal;
   const char* const signal_name = stopped_by == SIGINT ? "SIGINT" : "SIGTERM";
   if (!error.empty())
@@ -390,12 +395,11 @@ int run(int argc, char** argv)
     // Stopped from outside: said as what it is, not as an output error (the CSVs' temporaries are removed, the
     // earlier outputs left as they were, as for any run that fails); then ended by the signal, as the program
     // would have been without its handler, so that a shell or a script that runs it sees the signal.
-    std::fprintf(
-        stderr,
-        "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output (state, shape, vehicle, "
-        "topology) was written, and the output directory's earlier ones are as they were%s\n",
-        signal_name, error.c_str(), scenario.duration,
-        dataset ? "; each camera's index.csv and frames written so far stay in cameras/ (written in place)" : "");
+    std::fprintf(stderr,
+                 "rov_tether_run: stopped by %s, %s of the scenario's %.6g s: no CSV output (state, shape, vehicle, "
+                 "topology) was written, and the output directory's earlier ones are as they were%s\n",
+                 signal_name, error.c_str(), scenario.duration,
+                 dataset ? "; nor was any camera's dataset: cameras/ is as it was" : "");
     std::fflush(stderr);
     std::signal(stopped_by, SIG_DFL);
     std::raise(stopped_by);

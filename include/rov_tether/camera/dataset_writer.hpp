@@ -65,12 +65,10 @@ class DatasetWriter : public CameraDataset
   /// `scenario` must outlive the writer. Throws std::invalid_argument for a camera CameraModel refuses.
   DatasetWriter(const Scenario& scenario, const std::string& out_dir);
   ~DatasetWriter() override;
-  /// Creates the directories and the index files; "" or the error.
   std::string open() override;
   double nextTime() const override;
   std::string observe(const Tether& sim) override;
-  /// Closes the index files; "" or the error.
-  std::string close() override;
+  std::string finish(bool keep, std::vector<std::string>* left) override;
   const std::vector<CameraSummary>& summary() const override { return summary_; }
 
  private:
@@ -78,12 +76,18 @@ class DatasetWriter : public CameraDataset
   {
     const ScenarioCamera* spec;
     CameraModel model;
-    std::string dir;
+    std::string dir;  ///< Where its frames are written: the temporary directory (cameras/.<name>.partial).
     std::FILE* index = nullptr;
     std::size_t next_frame = 0;
     std::size_t frames = 0;  ///< Frames in the run: floor(duration x rate) + 1.
   };
   std::string writeFrame(Camera& camera, CameraSummary& summary, const Tether& sim, double yaw);
+  /// Closes the index files; "" or the error.
+  std::string closeIndexes();
+  /// Moves each camera's temporary directory into place (finish); "" or the error.
+  std::string moveIntoPlace(std::vector<std::string>* left);
+  /// Removes the temporary directories that are still there.
+  void discard();
 
   const Scenario& scenario_;
   std::string out_dir_;

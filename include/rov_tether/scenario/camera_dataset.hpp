@@ -14,7 +14,8 @@
 namespace rov_tether
 {
 
-/// Writes each of the scenario's cameras' frames as the run goes (it is the run's observer).
+/// Writes each of the scenario's cameras' frames as the run goes (it is the run's observer), into a temporary
+/// directory per camera that replaces the earlier one only when the run succeeded.
 class CameraDataset : public RunObserver
 {
  public:
@@ -27,10 +28,13 @@ class CameraDataset : public RunObserver
     double mean_coverage = 0.0;
     double max_coverage = 0.0;
   };
-  /// Creates the directories and the index files; "" or the error.
+  /// Creates each camera's directory under a temporary name (cameras/.<name>.partial) and its index file; "" or the
+  /// error (a cameras/.<name>.earlier in the way, a file where a camera's directory goes).
   virtual std::string open() = 0;
-  /// Closes the index files; "" or the error.
-  virtual std::string close() = 0;
+  /// Closes the index files, then, when the run succeeded (`keep`), moves each camera's directory into place
+  /// (cameras/<name>/, an earlier one replaced whole); otherwise removes them. "" or the error; an earlier directory
+  /// moved aside that could not be removed is added to `left` (for the run's warnings).
+  virtual std::string finish(bool keep, std::vector<std::string>* left) = 0;
   virtual const std::vector<CameraSummary>& summary() const = 0;
 };
 

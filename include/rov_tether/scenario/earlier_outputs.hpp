@@ -12,10 +12,9 @@ namespace rov_tether
 {
 
 /// The runner's outputs in `out_dir` that a run of `scenario` writing the files `written` (and its cameras'
-/// frames) leaves as they are, one description each: a CSV file the runner writes (state.csv, shape.csv,
-/// vehicle.csv, topology.csv, in out_dir or a tether's directory one level down) that this run does not, a camera's
-/// directory cameras/<name>/ for a camera this scenario does not have, and a camera's frame files (mask_, depth_,
-/// depth_preview_ NNNNNN.png) past the frames this run renders. A directory one level down counts as a tether's
+/// directories, each replaced whole) leaves as they are, one description each: a CSV file the runner writes
+/// (state.csv, shape.csv, vehicle.csv, topology.csv, in out_dir or a tether's directory one level down) that this run
+/// does not, and a camera's directory cameras/<name>/ for a camera this scenario does not have. A directory one level down counts as a tether's
 /// when this run writes into it, or when out_dir's earlier topology.csv names it as a tether (a row's `tether`, a
 /// linking_number row's `object`; `tether`, a single tether's name, not while out_dir holds a state.csv) and the
 /// directory holds no run of its own (no topology.csv, no directory); any other is another run's folder and is not
