@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -520,12 +521,8 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   const std::string dir = testing::TempDir() + "rov_tether_dataset";
   std::filesystem::remove_all(dir);
   DatasetWriter writer(scenario, dir);
-  ASSERT_EQ(writer.open(), "");
   RunSummary summary;
   ASSERT_EQ(runScenario(scenario, dir, &summary, {&writer}), "");
-  std::vector<std::string> left;
-  ASSERT_EQ(writer.finish(true, &left), "");
-  EXPECT_TRUE(left.empty());
   const std::string state_with_camera = readText(dir + "/state.csv");
   const std::string shape_with_camera = readText(dir + "/shape.csv");
   ASSERT_EQ(runScenario(scenario, dir + "/plain", &summary), "");
@@ -591,12 +588,49 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   std::filesystem::remove_all(dir);
 }
 
-// A camera's directory is replaced whole, and only by a run that succeeded (the runner's finish(keep)): the frames
-// go to cameras/.forward.partial as the run goes, with the earlier cameras/forward/ as it was meanwhile; a run that
-// failed or was stopped (keep false) removes them and leaves the earlier dataset as it was; one that succeeded
-// leaves exactly its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset
-// moved aside by a run that stopped while it moved its own) is refused before the run, naming it. Before, the frames
-// were written in place: a stopped run left a mix of its frames and the earlier run's, under its own index.csv.
+/// Looks once, at 0.5 s, at what the output directory holds then, and fails the run there when asked to.
+class MidRunLook : public RunObserver
+{
+ public:
+  MidRunLook(std::filesystem::path forward, bool fail) : forward_(std::move(forward)), fail_(fail) {}
+  double nextTime() const override { return looked_ ? std::numeric_limits<double>::infinity() : 0.5; }
+  std::string observe(const Tether& /*sim*/) override
+  {
+    looked_ = true;
+    for (const auto& entry : std::filesystem::directory_iterator(forward_))
+    {
+      seen.insert(entry.path().filename().string());
+    }
+    partial_frames = std::filesystem::exists(forward_.parent_path() / ".forward.partial" / "mask_000000.png");
+    return fail_ ? "stopped here" : "";
+  }
+  std::set<std::string> seen;   ///< cameras/forward/'s files in the middle of the run
+  bool partial_frames = false;  ///< whether the run's first frame was in cameras/.forward.partial/ then
+
+ private:
+  std::filesystem::path forward_;
+  bool fail_;
+  bool looked_ = false;
+};
+
+/// The names of the entries of `where`.
+std::set<std::string> entriesOf(const std::filesystem::path& where)
+{
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(where))
+  {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+// A camera's directory is replaced whole, and only by a run that succeeded (runScenario's observer hooks): the
+// frames go to cameras/.forward.partial/ as the run goes, with the earlier cameras/forward/ as it was meanwhile; a
+// run that fails half-way removes them and leaves the earlier dataset as it was; one that succeeds leaves exactly
+// its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset moved aside by
+// a run that stopped while it moved its own) or a symbolic link at cameras/forward is refused before the run,
+// naming it, and nothing is written. Before, the frames were written in place: a run that failed or was stopped
+// left its frames over the earlier run's, under its own index.csv.
 TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
 {
   Scenario scenario;
@@ -605,57 +639,61 @@ TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
   scenario.duration = 1.0;
   ASSERT_EQ(scenario.cameras.size(), 1u);
   const std::filesystem::path dir = testing::TempDir() + "rov_tether_dataset_replaced";
-  const std::filesystem::path forward = dir / "cameras" / "forward", partial = dir / "cameras" / ".forward.partial";
+  const std::filesystem::path forward = dir / "cameras" / "forward";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(forward);
   std::ofstream(forward / "index.csv") << "an earlier dataset\n";
   std::ofstream(forward / "mask_000999.png") << "an earlier frame\n";
-  const auto files = [](const std::filesystem::path& where)
-  {
-    std::set<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(where))
-    {
-      names.insert(entry.path().filename().string());
-    }
-    return names;
-  };
   const std::set<std::string> earlier{"index.csv", "mask_000999.png"};
-  for (const bool keep : {false, true})
+  for (const bool fail : {true, false})
   {
-    SCOPED_TRACE(keep ? "succeeded" : "failed");
+    SCOPED_TRACE(fail ? "failed" : "succeeded");
     DatasetWriter writer(scenario, dir.string());
-    ASSERT_EQ(writer.open(), "");
+    MidRunLook look(forward, fail);
     RunSummary summary;
-    ASSERT_EQ(runScenario(scenario, dir.string(), &summary, {&writer}), "");
-    EXPECT_EQ(files(forward), earlier);  // as it was while the run goes
-    EXPECT_TRUE(std::filesystem::exists(partial / "mask_000000.png"));
-    std::vector<std::string> left;
-    ASSERT_EQ(writer.finish(keep, &left), "");
-    EXPECT_TRUE(left.empty());
-    EXPECT_EQ(files(dir / "cameras"), std::set<std::string>{"forward"});  // no temporary left
-    if (!keep)
+    EXPECT_EQ(runScenario(scenario, dir.string(), &summary, {&writer, &look}), fail ? "stopped here" : "");
+    EXPECT_EQ(look.seen, earlier);  // as it was in the middle of the run
+    EXPECT_TRUE(look.partial_frames);
+    EXPECT_EQ(entriesOf(dir / "cameras"), std::set<std::string>{"forward"});  // no temporary left
+    if (fail)
     {
-      EXPECT_EQ(files(forward), earlier);
+      EXPECT_EQ(entriesOf(forward), earlier);
       EXPECT_EQ(readText((forward / "index.csv").string()), "an earlier dataset\n");
       continue;
     }
     const std::size_t frames = scenario.cameraFrames(scenario.cameras[0]);
-    const std::set<std::string> written = files(forward);
+    const std::set<std::string> written = entriesOf(forward);
     EXPECT_EQ(written.size(), 1 + 3 * frames);  // index.csv and three images a frame
     EXPECT_EQ(written.count("mask_000999.png"), 0u);
     char last[32];
     std::snprintf(last, sizeof last, "mask_%06zu.png", frames - 1);
     EXPECT_EQ(written.count(last), 1u);
   }
+  const std::string state = readText((dir / "state.csv").string());
   std::filesystem::create_directories(dir / "cameras" / ".forward.earlier");
-  DatasetWriter refused(scenario, dir.string());
-  const std::string error = refused.open();
-  EXPECT_EQ(error.rfind("cannot write '" + forward.string() + "/': '" +
-                            (dir / "cameras" / ".forward.earlier").string() + "' is in the way",
-                        0),
-            0u)
-      << error;
-  EXPECT_FALSE(std::filesystem::exists(partial));
+  {
+    DatasetWriter refused(scenario, dir.string());
+    RunSummary summary;
+    const std::string error = runScenario(scenario, dir.string(), &summary, {&refused});
+    EXPECT_EQ(error.rfind("cannot write '" + forward.string() + "/': '" +
+                              (dir / "cameras" / ".forward.earlier").string() + "' is in the way",
+                          0),
+              0u)
+        << error;
+  }
+  std::filesystem::remove(dir / "cameras" / ".forward.earlier");
+  std::filesystem::rename(forward, dir / "elsewhere");
+  std::filesystem::create_directory_symlink(dir / "elsewhere", forward);
+  {
+    DatasetWriter refused(scenario, dir.string());
+    RunSummary summary;
+    const std::string error = runScenario(scenario, dir.string(), &summary, {&refused});
+    EXPECT_EQ(error, "cannot write '" + forward.string() +
+                         "/': it is a symbolic link, which the run would replace with a directory (write to where it "
+                         "points)");
+  }
+  EXPECT_EQ(entriesOf(dir / "cameras"), std::set<std::string>{"forward"});
+  EXPECT_EQ(readText((dir / "state.csv").string()), state);  // nothing was written
   std::filesystem::remove_all(dir);
 }
 

@@ -229,7 +229,7 @@ TEST(VehicleBlock, AStartPlusAnOffsetBeyondReachIsRefusedNotThrown)
 // the tether's (134.74 N, 2.31 N light: rho g V with the tether's rho), and says nothing with the tether's water
 // set alike. (Tether::attachVehicleBody's message, which the node logs as the runner does.) Seen failing with
 // the check left out: no warning. The tether's water changed live after the attachment is said likewise
-// (Tether::setParams' message, which the node logs and Python warns).
+// (Tether::setParams' message, which Python's set_param warns; the node cannot change water_density live).
 TEST(VehicleBlock, AVehicleInOtherWaterThanItsTetherIsSaid)
 {
   const VehicleParams fresh;  // the BlueROV2 Heavy's defaults, the file's values

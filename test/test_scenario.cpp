@@ -1086,6 +1086,14 @@ TEST(Runner, AMoveIntoPlaceThatFailsHalfWayReplacesNothing)
   {
     EXPECT_NE(readLines(file).at(0), "earlier") << file;
   }
+
+  // A tether's directory that cannot be made (a file named b where it goes) is said before the run, and the files
+  // opened before it are removed (a/'s temporaries stayed behind).
+  fs::remove_all(dir / "b");
+  std::ofstream(dir / "b") << "a file\n";
+  const std::string cannot = runScenario(scenario, dir.string(), &summary);
+  EXPECT_EQ(cannot.rfind("cannot create output directory '" + (dir / "b").string() + "': ", 0), 0u) << cannot;
+  EXPECT_EQ(entriesUnder(dir), (std::set<std::string>{"a", "a/shape.csv", "a/state.csv", "b", "topology.csv"}));
   fs::remove_all(dir);
 }
 

@@ -132,7 +132,7 @@ DatasetWriter::DatasetWriter(const Scenario& scenario, const std::string& out_di
 
 DatasetWriter::~DatasetWriter()
 {
-  closeIndexes();
+  finishWriting();
   discard();  // a run left by an exception: its frames are not moved into place
 }
 
@@ -155,7 +155,7 @@ CameraDirs cameraDirs(const std::string& out_dir, const std::string& name)
 
 }  // namespace
 
-std::string DatasetWriter::open()
+std::string DatasetWriter::startWriting()
 {
   for (const Camera& camera : cameras_)
   {
@@ -170,31 +170,42 @@ std::string DatasetWriter::open()
              "it once its own was in place (then it is the replaced one: delete it)";
     }
     const fs::file_status status = fs::symlink_status(dirs.target, ec);
+    if (fs::is_symlink(status))
+    {
+      // Renamed aside, the link would go and a directory here take its place: the frames not where it points.
+      return "cannot write '" + dirs.target.string() +
+             "/': it is a symbolic link, which the run would replace with a directory (write to where it points)";
+    }
     if (fs::exists(status) && !fs::is_directory(status))
     {
       return "cannot write '" + dirs.target.string() + "/': a file that is not a directory is there";
     }
   }
+  std::error_code had_ec;
+  made_cameras_ = !fs::exists(fs::path(out_dir_) / "cameras", had_ec);
   for (Camera& camera : cameras_)
   {
     const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);
     std::error_code ec;
-    fs::remove_all(dirs.partial, ec);  // a run ended by SIGKILL left it
-    fs::create_directories(dirs.partial, ec);
-    camera.dir = dirs.partial.string();
+    fs::remove_all(dirs.partial, ec);  // a run ended by SIGKILL left it: its frames past this run's must not stay
+    if (!ec)
+    {
+      fs::create_directories(dirs.partial, ec);
+    }
+    camera.dir = ec ? "" : dirs.partial.string();
     camera.index = ec ? nullptr : std::fopen((dirs.partial / "index.csv").c_str(), "w");
     if (camera.index == nullptr)
     {
-      closeIndexes();
+      finishWriting();
       discard();
-      return "cannot write in '" + dirs.partial.string() + "'";
+      return "cannot write in '" + dirs.partial.string() + "'" + (ec ? ": " + ec.message() : "");
     }
     std::fprintf(camera.index, "frame,t,coverage\n");
   }
   return "";
 }
 
-std::string DatasetWriter::closeIndexes()
+std::string DatasetWriter::finishWriting()
 {
   std::string error;
   for (Camera& camera : cameras_)
@@ -204,7 +215,7 @@ std::string DatasetWriter::closeIndexes()
       const bool ok = std::ferror(camera.index) == 0;
       if (std::fclose(camera.index) != 0 || !ok)
       {
-        error = "error while writing '" + camera.dir + "/index.csv'";
+        error = "error while writing camera " + camera.spec->name + "'s index.csv (in '" + camera.dir + "')";
       }
       camera.index = nullptr;
     }
@@ -223,11 +234,16 @@ void DatasetWriter::discard()
       camera.dir.clear();
     }
   }
+  if (made_cameras_)
+  {
+    std::error_code ec;
+    fs::remove(fs::path(out_dir_) / "cameras", ec);  // only while empty: what the run made, and nothing moved in
+  }
 }
 
-std::string DatasetWriter::finish(bool keep, std::vector<std::string>* left)
+std::string DatasetWriter::commit(bool keep, std::vector<std::string>* left)
 {
-  const std::string error = closeIndexes();
+  const std::string error = finishWriting();  // closed already, unless the run did not get that far
   const std::string moved = keep && error.empty() ? moveIntoPlace(left) : "";
   discard();  // what was not moved into place
   return error.empty() ? moved : error;
@@ -240,6 +256,10 @@ std::string DatasetWriter::moveIntoPlace(std::vector<std::string>* left)
   std::string done;
   for (Camera& camera : cameras_)
   {
+    if (camera.dir.empty())
+    {
+      continue;  // never started
+    }
     const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);
     std::error_code status_ec, ec;
     const bool earlier = fs::exists(fs::symlink_status(dirs.target, status_ec));
@@ -250,17 +270,20 @@ std::string DatasetWriter::moveIntoPlace(std::vector<std::string>* left)
     if (!ec)
     {
       fs::rename(dirs.partial, dirs.target, ec);
-      if (ec && earlier)
-      {
-        std::error_code back;
-        fs::rename(dirs.aside, dirs.target, back);
-      }
+    }
+    std::error_code back;
+    if (ec && earlier && fs::exists(fs::symlink_status(dirs.aside, status_ec)))
+    {
+      fs::rename(dirs.aside, dirs.target, back);
     }
     if (ec)
     {
+      const std::string before = done.empty() ? "" : "; replaced before it: " + done;
       return "cannot move camera " + camera.spec->name + "'s dataset into place at '" + dirs.target.string() +
-             "': " + ec.message() + " (its earlier dataset is as it was" +
-             (done.empty() ? "" : "; replaced before it: " + done) + ")";
+             "': " + ec.message() +
+             (back ? " (its earlier dataset could not be put back, and is at '" + dirs.aside.string() +
+                         "': " + back.message() + before + ")"
+                   : " (its earlier dataset is as it was" + before + ")");
     }
     camera.dir.clear();  // moved
     done += (done.empty() ? "" : ", ") + camera.spec->name;

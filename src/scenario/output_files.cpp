@@ -129,23 +129,16 @@ std::string openAll(std::vector<OutputFile>& files)
   for (OutputFile& out : files)
   {
     fs::create_directories(out.path.parent_path(), ec);
-    if (ec)
+    if (!ec)
     {
-      return "cannot create output directory '" + out.path.parent_path().string() + "': " + ec.message();
+      out.partial = out.path.parent_path() / ("." + out.path.filename().string() + ".partial");
+      out.file = std::fopen(out.partial.c_str(), "w");
     }
-    out.partial = out.path.parent_path() / ("." + out.path.filename().string() + ".partial");
-    out.file = std::fopen(out.partial.c_str(), "w");
     if (out.file == nullptr)
     {
-      for (OutputFile& opened : files)
-      {
-        if (opened.file != nullptr)
-        {
-          std::fclose(opened.file);
-          fs::remove(opened.partial, ec);
-        }
-      }
-      return "cannot write in '" + out.path.parent_path().string() + "'";
+      discardAll(files);  // the files opened before this one: nothing left behind
+      return ec ? "cannot create output directory '" + out.path.parent_path().string() + "': " + ec.message()
+                : "cannot write in '" + out.path.parent_path().string() + "'";
     }
   }
   return "";

@@ -13,9 +13,9 @@
 #include <memory>
 #include <utility>
 
-#include "rov_tether/scenario/output_files.hpp"
 #include "rov_tether/core/run_out_watch.hpp"
 #include "rov_tether/scenario/earlier_outputs.hpp"
+#include "rov_tether/scenario/output_files.hpp"
 #include "rov_tether/scenario/scenario_stepper.hpp"
 #include "rov_tether/scenario/vehicle_driver.hpp"
 #include "rov_tether/scenario/world_spec.hpp"
@@ -360,6 +360,30 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return open_error;
   }
+  // The observers' own outputs (a camera dataset), started after the CSV files and moved into place with them.
+  std::size_t started = 0;
+  std::string start_error;
+  for (; started < observers.size() && start_error.empty(); ++started)
+  {
+    start_error = observers[started]->startWriting();
+  }
+  const auto commitObservers = [&](bool keep, std::vector<std::string>* left)
+  {
+    std::string error;
+    for (std::size_t i = 0; i < started; ++i)
+    {
+      const std::string committed = observers[i]->commit(keep, left);
+      error = error.empty() ? committed : error;
+    }
+    return error;
+  };
+  if (!start_error.empty())
+  {
+    std::vector<std::string> left;
+    commitObservers(false, &left);
+    discardAll(files);
+    return start_error;
+  }
   std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
   std::vector<RunSummary> each;
   std::size_t topology_rows = 0;
@@ -379,9 +403,21 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     stepper.setStepObserver(nullptr);
     discardAll(files);
+    for (std::size_t i = 0; i < started; ++i)
+    {
+      observers[i]->finishWriting();
+    }
+    std::vector<std::string> left;
+    commitObservers(false, &left);
     throw;
   }
-  const bool ok = stepper.observerError().empty() && stepper.runError().empty();
+  std::string finish_error;
+  for (RunObserver* observer : observers)
+  {
+    const std::string finished = observer->finishWriting();
+    finish_error = finish_error.empty() ? finished : finish_error;
+  }
+  const bool ok = stepper.observerError().empty() && stepper.runError().empty() && finish_error.empty();
   std::vector<std::string> replaced_left;
   sigset_t held, before;
   sigemptyset(&held);
@@ -392,6 +428,13 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
     pthread_sigmask(SIG_BLOCK, &held, &before);  // a signal now waits until the outputs are in place, or all gone
   }
   const std::string close_error = closeAll(files, ok, out_dir, &replaced_left);
+  // After the CSV files, the observers' outputs: moved into place only where the CSV files were.
+  const bool kept = ok && close_error.empty();
+  std::string commit_error = commitObservers(kept, &replaced_left);
+  if (!commit_error.empty() && kept)
+  {
+    commit_error += ". The CSV outputs are this run's";
+  }
   if (interrupt != nullptr)
   {
     pthread_sigmask(SIG_SETMASK, &before, nullptr);
@@ -408,9 +451,21 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return stepper.observerError();
   }
+  if (!finish_error.empty())
+  {
+    return finish_error;
+  }
   if (!close_error.empty())
   {
     return close_error;
+  }
+  if (!commit_error.empty())
+  {
+    if (summary != nullptr)
+    {
+      summary->replaced_left = std::move(replaced_left);  // the CSV files' copies moved aside, said with the error
+    }
+    return commit_error;
   }
   RunSummary result = summaryOf(world, std::move(each), topology_rows, stepper.cpuSeconds() - recording_seconds);
   result.earlier_outputs = std::move(earlier);

@@ -373,14 +373,7 @@ int run(int argc, char** argv)
   }
   rov_tether::RunSummary s;
   stopOnSignals();
-  error = dataset ? dataset->open() : "";
-  error = error.empty() ? rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal) : error;
-  if (dataset)
-  {
-    // After the CSV files, which are moved into place only when the run succeeded: each camera's directory likewise.
-    const std::string finished = dataset->finish(error.empty(), &s.replaced_left);
-    error = error.empty() ? finished : error;
-  }
+  error = rov_tether::runScenario(scenario, world, out_dir, &s, observers, &g_stop_signal);
   const int stopped_by = g_stop_signal;
   const char* const signal_name = stopped_by == SIGINT ? "SIGINT" : "SIGTERM";
   if (!error.empty())
@@ -408,6 +401,11 @@ int run(int argc, char** argv)
   if (!error.empty())
   {
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
+    for (const std::string& left : s.replaced_left)
+    {
+      std::fprintf(stderr, "rov_tether_run: warning: a replaced output moved aside could not be removed: %s\n",
+                   left.c_str());
+    }
     return 1;
   }
   s.world_warnings = std::move(world_warnings);  // said with the run's warnings, after the summary

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <set>
@@ -412,8 +413,10 @@ void writeStabilityMap(std::FILE* map, bool quick)
   }
 }
 
-/// The temporary files the study writes (set once they are open), which a stop signal removes.
+/// The temporary files the study writes (set once they are open), which a stop signal removes, and what it says
+/// then for SIGINT and SIGTERM (made before the handler is set: a handler may only write what is ready).
 const char* g_partial[2] = {nullptr, nullptr};
+char g_stopped[2][200] = {};
 
 /// SIGINT or SIGTERM during the study: removes its temporary files (unlink is safe in a handler), says so, and ends
 /// by the signal, as the program would without the handler. The earlier study.csv and stability.csv stay as they were.
@@ -426,23 +429,30 @@ extern "C" void onStopSignal(int signal_number)
       ::unlink(partial);
     }
   }
-  static const char kInterrupt[] =
-      "rov_tether_study: stopped by SIGINT: study.csv and stability.csv were not written, and the output directory's "
-      "earlier ones are as they were\n";
-  static const char kTerminate[] =
-      "rov_tether_study: stopped by SIGTERM: study.csv and stability.csv were not written, and the output directory's "
-      "earlier ones are as they were\n";
-  const bool interrupt = signal_number == SIGINT;
-  const ssize_t written =
-      ::write(2, interrupt ? kInterrupt : kTerminate, interrupt ? sizeof(kInterrupt) - 1 : sizeof(kTerminate) - 1);
+  const char* said = g_stopped[signal_number == SIGINT ? 0 : 1];
+  const ssize_t written = ::write(2, said, std::strlen(said));
   static_cast<void>(written);
   ::raise(signal_number);  // delivered, at its default action (SA_RESETHAND), when the handler returns
 }
 
-/// From here on, SIGINT and SIGTERM stop the study as onStopSignal says. A signal the program was started ignoring
-/// (a job started in the background by a shell) stays ignored.
-void catchStopSignals()
+/// What a study that stopped short says of its outputs.
+std::string notWritten(const std::vector<rov_tether::OutputFile>& files)
 {
+  return files.size() > 1 ? "study.csv and stability.csv were not written, and the output directory's earlier ones "
+                            "are as they were"
+                          : "study.csv was not written, and the output directory's earlier one is as it was";
+}
+
+/// From here on, SIGINT and SIGTERM stop the study as onStopSignal says, which removes `files`' temporaries. A
+/// signal the program was started ignoring (a job started in the background by a shell) stays ignored.
+void catchStopSignals(const std::vector<rov_tether::OutputFile>& files)
+{
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    g_partial[i] = i < files.size() ? files[i].partial.c_str() : nullptr;
+    std::snprintf(g_stopped[i], sizeof g_stopped[i], "rov_tether_study: stopped by %s: %s\n",
+                  i == 0 ? "SIGINT" : "SIGTERM", notWritten(files).c_str());
+  }
   struct sigaction action = {};
   action.sa_handler = onStopSignal;
   action.sa_flags = SA_RESETHAND;
@@ -476,37 +486,50 @@ int main(int argc, char** argv)
   {
     files.push_back({options.out_dir + "/stability.csv", {}, nullptr});
   }
-  const std::string cannot = rov_tether::openAll(files);
-  if (!cannot.empty())
-  {
-    std::fprintf(stderr, "rov_tether_study: %s\n", cannot.c_str());
-    return 1;
-  }
-  g_partial[0] = files[0].partial.c_str();
-  g_partial[1] = options.with_stability ? files[1].partial.c_str() : nullptr;
-  catchStopSignals();
-  writeStudy(options, files[0].file);
-  if (options.only.empty() || options.only == "catenary_s8")
-  {
-    // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
-    // the cheapest lumped_mass run, on the S = 8 catenary, for a range of axial stiffness (lumped_mass's
-    // critical step shrinks as 1 / sqrt(EA); pbd does not depend on EA).
-    const Case& c = findCase("catenary_s8");
-    for (double stiffness : options.quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
-    {
-      std::map<std::string, Result> best = cheapestAtStiffness(c, stiffness, options.quick);
-      printGoal(stiffness, best);
-    }
-  }
-  if (options.with_stability)
-  {
-    writeStabilityMap(files[1].file, options.quick);
-  }
-  // The moves into place are not split by a signal: one that comes meanwhile waits, and is said after them.
+  // A signal while the temporaries are made waits for the handler that removes them.
   sigset_t stops, was;
   sigemptyset(&stops);
   sigaddset(&stops, SIGINT);
   sigaddset(&stops, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stops, &was);
+  const std::string cannot = rov_tether::openAll(files);
+  if (!cannot.empty())
+  {
+    sigprocmask(SIG_SETMASK, &was, nullptr);
+    std::fprintf(stderr, "rov_tether_study: %s\n", cannot.c_str());
+    return 1;
+  }
+  catchStopSignals(files);
+  sigprocmask(SIG_SETMASK, &was, nullptr);
+  try
+  {
+    writeStudy(options, files[0].file);
+    if (options.only.empty() || options.only == "catenary_s8")
+    {
+      // The goal: at equal accuracy (sag within 1%, end tension within 2%) the cheapest pbd run against
+      // the cheapest lumped_mass run, on the S = 8 catenary, for a range of axial stiffness (lumped_mass's
+      // critical step shrinks as 1 / sqrt(EA); pbd does not depend on EA).
+      const Case& c = findCase("catenary_s8");
+      for (double stiffness : options.quick ? std::vector<double>{1e5} : std::vector<double>{1e5, 1e6, 1e7})
+      {
+        std::map<std::string, Result> best = cheapestAtStiffness(c, stiffness, options.quick);
+        printGoal(stiffness, best);
+      }
+    }
+    if (options.with_stability)
+    {
+      writeStabilityMap(files[1].file, options.quick);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    // A case the simulation refused (study::require): said, its temporaries removed, the earlier files kept.
+    sigprocmask(SIG_BLOCK, &stops, nullptr);
+    rov_tether::discardAll(files);
+    std::fprintf(stderr, "rov_tether_study: %s: %s\n", e.what(), notWritten(files).c_str());
+    return 1;
+  }
+  // The moves into place are not split by a signal: one that comes meanwhile waits, and is said after them.
   sigprocmask(SIG_BLOCK, &stops, &was);
   std::vector<std::string> left;
   const std::string error = rov_tether::closeAll(files, true, options.out_dir, &left);
@@ -521,7 +544,7 @@ int main(int argc, char** argv)
     {
       std::signal(signal_number, came ? SIG_IGN : SIG_DFL);  // a pending one is taken off, and said
     }
-    if (came)
+    if (came && error.empty())
     {
       std::fprintf(stderr, "rov_tether_study: %s came after the study had finished: its outputs are complete\n",
                    signal_number == SIGINT ? "SIGINT" : "SIGTERM");

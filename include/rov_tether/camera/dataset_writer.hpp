@@ -65,10 +65,11 @@ class DatasetWriter : public CameraDataset
   /// `scenario` must outlive the writer. Throws std::invalid_argument for a camera CameraModel refuses.
   DatasetWriter(const Scenario& scenario, const std::string& out_dir);
   ~DatasetWriter() override;
-  std::string open() override;
   double nextTime() const override;
   std::string observe(const Tether& sim) override;
-  std::string finish(bool keep, std::vector<std::string>* left) override;
+  std::string startWriting() override;
+  std::string finishWriting() override;
+  std::string commit(bool keep, std::vector<std::string>* left) override;
   const std::vector<CameraSummary>& summary() const override { return summary_; }
 
  private:
@@ -82,8 +83,6 @@ class DatasetWriter : public CameraDataset
     std::size_t frames = 0;  ///< Frames in the run: floor(duration x rate) + 1.
   };
   std::string writeFrame(Camera& camera, CameraSummary& summary, const Tether& sim, double yaw);
-  /// Closes the index files; "" or the error.
-  std::string closeIndexes();
   /// Moves each camera's temporary directory into place (finish); "" or the error.
   std::string moveIntoPlace(std::vector<std::string>* left);
   /// Removes the temporary directories that are still there.
@@ -91,6 +90,7 @@ class DatasetWriter : public CameraDataset
 
   const Scenario& scenario_;
   std::string out_dir_;
+  bool made_cameras_ = false;  ///< startWriting made out_dir/cameras (discard removes it while it is empty)
   std::vector<Camera> cameras_;
   std::vector<CameraSummary> summary_;
   VehicleHeading heading_;

@@ -28,13 +28,11 @@ class CameraDataset : public RunObserver
     double mean_coverage = 0.0;
     double max_coverage = 0.0;
   };
-  /// Creates each camera's directory under a temporary name (cameras/.<name>.partial) and its index file; "" or the
-  /// error (a cameras/.<name>.earlier in the way, a file where a camera's directory goes).
-  virtual std::string open() = 0;
-  /// Closes the index files, then, when the run succeeded (`keep`), moves each camera's directory into place
-  /// (cameras/<name>/, an earlier one replaced whole); otherwise removes them. "" or the error; an earlier directory
-  /// moved aside that could not be removed is added to `left` (for the run's warnings).
-  virtual std::string finish(bool keep, std::vector<std::string>* left) = 0;
+  // As a RunObserver that writes outputs of its own, which runScenario calls: startWriting creates each camera's
+  // directory under a temporary name (cameras/.<name>.partial/) and its index file, refusing a
+  // cameras/.<name>.earlier in the way and anything but a directory at cameras/<name>; finishWriting closes the
+  // index files; commit(keep) moves each camera's directory into place (cameras/<name>/, an earlier one replaced
+  // whole) when the CSV files were, and otherwise removes them.
   virtual const std::vector<CameraSummary>& summary() const = 0;
 };
 

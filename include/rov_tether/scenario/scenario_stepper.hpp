@@ -26,6 +26,21 @@ class RunObserver
   /// Looks at the simulation, advanced to the last step at or before nextTime(). Returns "" or an error,
   /// which ends the run.
   virtual std::string observe(const Tether& sim) = 0;
+
+  // An observer that writes outputs of its own (the camera dataset), as runScenario writes its CSV files: under
+  // temporary names, moved into place with them only when the whole run succeeded.
+
+  /// Once runScenario has opened its CSV files, before the first step: "" or the error, which ends the run before
+  /// it starts.
+  virtual std::string startWriting() { return ""; }
+  /// Once the run has stepped to its end (or stopped), before the CSV files move: "" or the error (a file that
+  /// could not be written), which fails the run: nothing moves into place.
+  virtual std::string finishWriting() { return ""; }
+  /// While the CSV files move into place (SIGINT and SIGTERM held, with runScenario's `interrupt`), whether they did
+  /// (`keep`): the observer's outputs move into place too, or are removed. "" or the error; an earlier output moved
+  /// aside that could not be removed goes to `left`. Called on every path that called startWriting, whatever it
+  /// returned.
+  virtual std::string commit(bool /*keep*/, std::vector<std::string>* /*left*/) { return ""; }
 };
 
 /**
