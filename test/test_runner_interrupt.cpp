@@ -104,6 +104,29 @@ pid_t waitFor(pid_t pid, int* status, int seconds, const fs::path& until = {})
   return ended;
 }
 
+/// Waits until `partial` is there (the program is writing its outputs), lets it run 300 ms more, sends it
+/// `signal_number` and waits up to 60 s for it to end (then kills it): "" with its status in `status`, or what went
+/// wrong.
+std::string stopWhileWriting(pid_t pid, const fs::path& partial, int signal_number, int* status, const std::string& err)
+{
+  if (waitFor(pid, status, 120, partial) != 0)
+  {
+    return "it ended before it was stopped: " + readAll(err);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the steps
+  if (::kill(pid, signal_number) != 0)
+  {
+    return "the signal could not be sent";
+  }
+  if (waitFor(pid, status, 60) == 0)
+  {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, status, 0);
+    return "it went on for 60 s after the signal";
+  }
+  return "";
+}
+
 // scenarios/spool_payout.yaml (the demo's dive) made 5000 s long (over a minute of CPU) is sent SIGINT, then
 // SIGTERM, once it is writing its outputs. Each time the runner stops well before the end (the time it says it
 // stopped at: it looks for the signal every 0.25 s of simulated time), says by what, removes its temporaries
@@ -134,17 +157,8 @@ TEST(Runner, ASignalStopsTheRunAndLeavesTheOutputDirectoryAsItWas)
     ASSERT_GE(pid, 0);
     // The temporaries are opened after the handlers are set: once one is there, the run is under way.
     int status = 0;
-    pid_t ended = waitFor(pid, &status, 120, dir / "out" / ".state.csv.partial");
-    ASSERT_EQ(ended, 0) << "the runner ended before it was stopped: " << readAll(err);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the steps
-    ASSERT_EQ(::kill(pid, signal_number), 0);
-    ended = waitFor(pid, &status, 60);
-    if (ended == 0)
-    {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      FAIL() << "the runner went on for 60 s after the signal";
-    }
+    const std::string stopped = stopWhileWriting(pid, dir / "out" / ".state.csv.partial", signal_number, &status, err);
+    ASSERT_EQ(stopped, "") << "the runner";
     const std::string said = readAll(err);
     ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1) << "; " << said;
     EXPECT_EQ(WTERMSIG(status), signal_number) << said;
@@ -182,17 +196,8 @@ TEST(StudyTool, ASignalStopsTheStudyAndLeavesTheOutputDirectoryAsItWas)
     const pid_t pid = startProgram(ROV_TETHER_STUDY, {"--out", out}, err);
     ASSERT_GE(pid, 0);
     int status = 0;
-    pid_t ended = waitFor(pid, &status, 120, dir / "out" / ".study.csv.partial");
-    ASSERT_EQ(ended, 0) << "the study ended before it was stopped: " << readAll(err);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the first case
-    ASSERT_EQ(::kill(pid, signal_number), 0);
-    ended = waitFor(pid, &status, 60);
-    if (ended == 0)
-    {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      FAIL() << "the study went on for 60 s after the signal";
-    }
+    const std::string stopped = stopWhileWriting(pid, dir / "out" / ".study.csv.partial", signal_number, &status, err);
+    ASSERT_EQ(stopped, "") << "the study";
     const std::string said = readAll(err);
     ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1) << "; " << said;
     EXPECT_EQ(WTERMSIG(status), signal_number) << said;
