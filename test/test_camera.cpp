@@ -588,11 +588,19 @@ TEST(Dataset, RunnerWritesMasksDepthAndAnIndexWithoutChangingTheRun)
   std::filesystem::remove_all(dir);
 }
 
-/// Looks once, at 0.5 s, at what the output directory holds then, and fails the run there when asked to.
+/// How a run with MidRunLook ends.
+enum class Ending
+{
+  kSucceeds,
+  kFails,          ///< the observer's error at 0.5 s
+  kCsvCannotMove,  ///< a directory made at 0.5 s where shape.csv goes
+};
+
+/// Looks once, at 0.5 s, at what the output directory holds then, and makes the run end as asked.
 class MidRunLook : public RunObserver
 {
  public:
-  MidRunLook(std::filesystem::path forward, bool fail) : forward_(std::move(forward)), fail_(fail) {}
+  MidRunLook(std::filesystem::path forward, Ending ending) : forward_(std::move(forward)), ending_(ending) {}
   double nextTime() const override { return looked_ ? std::numeric_limits<double>::infinity() : 0.5; }
   std::string observe(const Tether& /*sim*/) override
   {
@@ -602,14 +610,18 @@ class MidRunLook : public RunObserver
       seen.insert(entry.path().filename().string());
     }
     partial_frames = std::filesystem::exists(forward_.parent_path() / ".forward.partial" / "mask_000000.png");
-    return fail_ ? "stopped here" : "";
+    if (ending_ == Ending::kCsvCannotMove)
+    {
+      std::filesystem::create_directories(forward_.parent_path().parent_path() / "shape.csv" / "in_the_way");
+    }
+    return ending_ == Ending::kFails ? "stopped here" : "";
   }
   std::set<std::string> seen;   ///< cameras/forward/'s files in the middle of the run
   bool partial_frames = false;  ///< whether the run's first frame was in cameras/.forward.partial/ then
 
  private:
   std::filesystem::path forward_;
-  bool fail_;
+  Ending ending_;
   bool looked_ = false;
 };
 
@@ -624,10 +636,25 @@ std::set<std::string> entriesOf(const std::filesystem::path& where)
   return names;
 }
 
+/// The entries anywhere under `where` whose names end in ".partial" (the runs' temporaries), as one line.
+std::string temporariesUnder(const std::filesystem::path& where)
+{
+  std::string found;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(where))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.size() >= 8 && name.compare(name.size() - 8, 8, ".partial") == 0)
+    {
+      found += entry.path().string() + " ";
+    }
+  }
+  return found;
+}
+
 // A camera's directory is replaced whole, and only by a run that succeeded (runScenario's observer hooks): the
 // frames go to cameras/.forward.partial/ as the run goes, with the earlier cameras/forward/ as it was meanwhile; a
-// run that fails half-way removes them and leaves the earlier dataset as it was; one that succeeds leaves exactly
-// its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset moved aside by
+// run that fails half-way, or whose CSV files cannot move into place, removes them and leaves the earlier dataset
+// as it was; one that succeeds leaves exactly its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset moved aside by
 // a run that stopped while it moved its own) or a symbolic link at cameras/forward is refused before the run,
 // naming it, and nothing is written. Before, the frames were written in place: a run that failed or was stopped
 // left its frames over the earlier run's, under its own index.csv.
@@ -645,22 +672,30 @@ TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
   std::ofstream(forward / "index.csv") << "an earlier dataset\n";
   std::ofstream(forward / "mask_000999.png") << "an earlier frame\n";
   const std::set<std::string> earlier{"index.csv", "mask_000999.png"};
-  for (const bool fail : {true, false})
+  const std::string in_the_way = "cannot move '" + (dir / "shape.csv").string() +
+                                 "' into place: " + std::make_error_code(std::errc::is_a_directory).message() +
+                                 ". No CSV output was replaced: every CSV file is as it was before this run";
+  for (const Ending ending : {Ending::kFails, Ending::kCsvCannotMove, Ending::kSucceeds})
   {
-    SCOPED_TRACE(fail ? "failed" : "succeeded");
+    SCOPED_TRACE(static_cast<int>(ending));
     DatasetWriter writer(scenario, dir.string());
-    MidRunLook look(forward, fail);
+    MidRunLook look(forward, ending);
     RunSummary summary;
-    EXPECT_EQ(runScenario(scenario, dir.string(), &summary, {&writer, &look}), fail ? "stopped here" : "");
+    EXPECT_EQ(runScenario(scenario, dir.string(), &summary, {&writer, &look}),
+              ending == Ending::kFails ? "stopped here" : (ending == Ending::kCsvCannotMove ? in_the_way : ""));
     EXPECT_EQ(look.seen, earlier);  // as it was in the middle of the run
     EXPECT_TRUE(look.partial_frames);
-    EXPECT_EQ(entriesOf(dir / "cameras"), std::set<std::string>{"forward"});  // no temporary left
-    if (fail)
+    EXPECT_EQ(entriesOf(dir / "cameras"), std::set<std::string>{"forward"});
+    EXPECT_EQ(temporariesUnder(dir), "");
+    std::filesystem::remove_all(dir / "shape.csv");
+    if (ending != Ending::kSucceeds)
     {
+      // Where the CSV files did not move into place, neither did the dataset.
       EXPECT_EQ(entriesOf(forward), earlier);
       EXPECT_EQ(readText((forward / "index.csv").string()), "an earlier dataset\n");
       continue;
     }
+    EXPECT_TRUE(summary.replaced_left.empty());
     const std::size_t frames = scenario.cameraFrames(scenario.cameras[0]);
     const std::set<std::string> written = entriesOf(forward);
     EXPECT_EQ(written.size(), 1 + 3 * frames);  // index.csv and three images a frame
@@ -694,6 +729,7 @@ TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
   }
   EXPECT_EQ(entriesOf(dir / "cameras"), std::set<std::string>{"forward"});
   EXPECT_EQ(readText((dir / "state.csv").string()), state);  // nothing was written
+  EXPECT_EQ(temporariesUnder(dir), "");
   std::filesystem::remove_all(dir);
 }
 

@@ -181,8 +181,8 @@ std::string DatasetWriter::startWriting()
       return "cannot write '" + dirs.target.string() + "/': a file that is not a directory is there";
     }
   }
-  std::error_code had_ec;
-  made_cameras_ = !fs::exists(fs::path(out_dir_) / "cameras", had_ec);
+  std::error_code made_ec;
+  made_cameras_ = fs::create_directory(fs::path(out_dir_) / "cameras", made_ec);  // true only when this made it
   for (Camera& camera : cameras_)
   {
     const CameraDirs dirs = cameraDirs(out_dir_, camera.spec->name);

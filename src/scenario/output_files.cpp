@@ -168,6 +168,7 @@ std::string closeAll(std::vector<OutputFile>& files, bool keep, const std::strin
   {
     written = std::ferror(out.file) == 0 && written;
     written = std::fclose(out.file) == 0 && written;
+    out.file = nullptr;  // closed: a discardAll after this closes nothing twice
   }
   if (!written)
   {

@@ -360,84 +360,101 @@ std::string runScenario(const Scenario& scenario, World& world, const std::strin
   {
     return open_error;
   }
-  // The observers' own outputs (a camera dataset), started after the CSV files and moved into place with them.
+  // From here on every way out, an exception's too (a value the core refuses that no check of the scenario did, an
+  // observer's), leaves no temporary behind: the CSV files' and the observers' own (a camera dataset: started after
+  // the CSV files, moved into place with them), each observer started committed once.
   std::size_t started = 0;
-  std::string start_error;
-  for (; started < observers.size() && start_error.empty(); ++started)
-  {
-    start_error = observers[started]->startWriting();
-  }
+  bool committed = false;
+  sigset_t held, before;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
+  bool blocked = false;
   const auto commitObservers = [&](bool keep, std::vector<std::string>* left)
+  {
+    committed = true;
+    std::string error;
+    for (std::size_t i = 0; i < started; ++i)
+    {
+      const std::string done = observers[i]->commit(keep, left);
+      error = error.empty() ? done : error;
+    }
+    return error;
+  };
+  const auto finishObservers = [&]
   {
     std::string error;
     for (std::size_t i = 0; i < started; ++i)
     {
-      const std::string committed = observers[i]->commit(keep, left);
-      error = error.empty() ? committed : error;
+      const std::string finished = observers[i]->finishWriting();
+      error = error.empty() ? finished : error;
     }
     return error;
   };
-  if (!start_error.empty())
+  const auto abandon = [&]
   {
-    std::vector<std::string> left;
-    commitObservers(false, &left);
     discardAll(files);
-    return start_error;
-  }
-  std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
+    if (!committed)
+    {
+      std::vector<std::string> left;
+      finishObservers();
+      commitObservers(false, &left);
+    }
+    if (blocked)
+    {
+      pthread_sigmask(SIG_SETMASK, &before, nullptr);
+      blocked = false;
+    }
+  };
+  std::string start_error, finish_error, close_error, commit_error;
+  std::vector<std::string> replaced_left;
   std::vector<RunSummary> each;
   std::size_t topology_rows = 0;
   double recording_seconds = 0.0;
   try
   {
-    // An exception (a value the core refuses that no check of the scenario did, an observer's) leaves no temporary
-    // behind, and the earlier outputs as they were.
+    for (; started < observers.size() && start_error.empty(); ++started)
+    {
+      start_error = observers[started]->startWriting();
+    }
+    if (!start_error.empty())
+    {
+      abandon();
+      return start_error;
+    }
+    std::FILE* const topology_file = scenario.usesWorld() ? files.back().file : nullptr;
     each = startOutputs(tethers, world, files, topology_file);
     StepRecord every_step(world, each);
     stepper.setStepObserver(&every_step);
     topology_rows = writeOutputs(scenario, world, stepper, observers, files, topology_file, each);
     stepper.setStepObserver(nullptr);
     recording_seconds = every_step.seconds();
+    finish_error = finishObservers();
+    const bool ok = stepper.observerError().empty() && stepper.runError().empty() && finish_error.empty();
+    if (interrupt != nullptr)
+    {
+      pthread_sigmask(SIG_BLOCK, &held, &before);  // a signal now waits until the outputs are in place, or all gone
+      blocked = true;
+    }
+    close_error = closeAll(files, ok, out_dir, &replaced_left);
+    // After the CSV files, the observers' outputs: moved into place only where the CSV files were.
+    const bool kept = ok && close_error.empty();
+    commit_error = commitObservers(kept, &replaced_left);
+    if (!commit_error.empty() && kept)
+    {
+      commit_error += ". The CSV outputs are this run's";
+    }
+    if (blocked)
+    {
+      pthread_sigmask(SIG_SETMASK, &before, nullptr);
+      blocked = false;
+    }
   }
   catch (...)
   {
     stepper.setStepObserver(nullptr);
-    discardAll(files);
-    for (std::size_t i = 0; i < started; ++i)
-    {
-      observers[i]->finishWriting();
-    }
-    std::vector<std::string> left;
-    commitObservers(false, &left);
+    abandon();
     throw;
-  }
-  std::string finish_error;
-  for (RunObserver* observer : observers)
-  {
-    const std::string finished = observer->finishWriting();
-    finish_error = finish_error.empty() ? finished : finish_error;
-  }
-  const bool ok = stepper.observerError().empty() && stepper.runError().empty() && finish_error.empty();
-  std::vector<std::string> replaced_left;
-  sigset_t held, before;
-  sigemptyset(&held);
-  sigaddset(&held, SIGINT);
-  sigaddset(&held, SIGTERM);
-  if (interrupt != nullptr)
-  {
-    pthread_sigmask(SIG_BLOCK, &held, &before);  // a signal now waits until the outputs are in place, or all gone
-  }
-  const std::string close_error = closeAll(files, ok, out_dir, &replaced_left);
-  // After the CSV files, the observers' outputs: moved into place only where the CSV files were.
-  const bool kept = ok && close_error.empty();
-  std::string commit_error = commitObservers(kept, &replaced_left);
-  if (!commit_error.empty() && kept)
-  {
-    commit_error += ". The CSV outputs are this run's";
-  }
-  if (interrupt != nullptr)
-  {
-    pthread_sigmask(SIG_SETMASK, &before, nullptr);
   }
   if (!stepper.runError().empty())
   {

@@ -403,7 +403,9 @@ int run(int argc, char** argv)
     std::fprintf(stderr, "rov_tether_run: %s\n", error.c_str());
     for (const std::string& left : s.replaced_left)
     {
-      std::fprintf(stderr, "rov_tether_run: warning: a replaced output moved aside could not be removed: %s\n",
+      std::fprintf(stderr,
+                   "rov_tether_run: warning: a replaced output moved aside could not be removed: %s. Delete it: the "
+                   "next run into this directory refuses to start while it is there\n",
                    left.c_str());
     }
     return 1;

@@ -83,7 +83,7 @@ class DatasetWriter : public CameraDataset
     std::size_t frames = 0;  ///< Frames in the run: floor(duration x rate) + 1.
   };
   std::string writeFrame(Camera& camera, CameraSummary& summary, const Tether& sim, double yaw);
-  /// Moves each camera's temporary directory into place (finish); "" or the error.
+  /// Moves each camera's temporary directory into place (commit); "" or the error.
   std::string moveIntoPlace(std::vector<std::string>* left);
   /// Removes the temporary directories that are still there.
   void discard();

@@ -18,7 +18,7 @@ struct OutputFile
   std::FILE* file = nullptr;      ///< Open on `partial` between openAll and closeAll.
 };
 
-/// Opens every file (creating its directory); "" or the error, with nothing left behind.
+/// Opens every file (creating its directory); "" or the error, with no file left behind (a directory it made stays).
 std::string openAll(std::vector<OutputFile>& files);
 
 /// Closes every file; on success (`keep`) moves them into place, all or none (a copy of an earlier file the move put

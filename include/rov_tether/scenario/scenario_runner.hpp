@@ -68,7 +68,8 @@ struct RunSummary
   std::vector<std::string> earlier_outputs;
   /// The earlier files this run replaced whose copies moved aside (.<name>.earlier) could not be removed.
   std::vector<std::string> replaced_left;
-  /// The run stopped at runScenario's `interrupt` (its error says when): the one field set when a run fails.
+  /// The run stopped at runScenario's `interrupt` (its error says when). With replaced_left (when an observer's
+  /// outputs could not move into place after the CSV files had), the only fields set when a run fails.
   bool interrupted = false;
 };
 
@@ -76,10 +77,11 @@ struct RunSummary
 /// out_dir/<name>/state.csv and shape.csv for each, and for a world's scenario (Scenario::usesWorld)
 /// out_dir/topology.csv; all moved into place together at the end, all or none (should a move fail, every earlier
 /// file is put back and the error says so), so a failed run leaves no partial file and no mix of new and earlier
-/// files (these CSV files: a camera dataset an observer writes, rov_tether_run's, is written in place as the run
-/// goes). Each observer looks at the first tether at its own times up to the scenario's duration. Returns "" on
-/// success, otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an advance the
-/// simulation refused, in a scenario that was not validated: the run stops there and writes nothing).
+/// files. An observer that writes outputs of its own (rov_tether_run's camera dataset) writes them under temporary
+/// names too, and they move into place after the CSV files, only where those did (RunObserver::startWriting,
+/// finishWriting, commit). Each observer looks at the first tether at its own times up to the scenario's duration.
+/// Returns "" on success, otherwise the error (an obstacle that cannot be built: naming it; a vehicle sample or an
+/// advance the simulation refused, in a scenario that was not validated: the run stops there and writes nothing).
 [[nodiscard]] std::string runScenario(const Scenario& scenario, const std::string& out_dir, RunSummary* summary,
                                       const std::vector<RunObserver*>& observers = {});
 /// As above, in `world`, which buildWorld built from worldSpecOf(scenario) and nothing has stepped yet (so a

@@ -36,10 +36,10 @@ class RunObserver
   /// Once the run has stepped to its end (or stopped), before the CSV files move: "" or the error (a file that
   /// could not be written), which fails the run: nothing moves into place.
   virtual std::string finishWriting() { return ""; }
-  /// While the CSV files move into place (SIGINT and SIGTERM held, with runScenario's `interrupt`), whether they did
-  /// (`keep`): the observer's outputs move into place too, or are removed. "" or the error; an earlier output moved
-  /// aside that could not be removed goes to `left`. Called on every path that called startWriting, whatever it
-  /// returned.
+  /// Once the CSV files have moved into place or been removed (with runScenario's `interrupt`, SIGINT and SIGTERM
+  /// held through both), whether they moved (`keep`): the observer's outputs move into place too, or are removed. ""
+  /// or the error; an earlier output moved aside that could not be removed goes to `left`. Called once on every
+  /// path that called startWriting, whatever it returned, after finishWriting.
   virtual std::string commit(bool /*keep*/, std::vector<std::string>* /*left*/) { return ""; }
 };
 
