@@ -226,9 +226,22 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
   start_due_ = false;
   ROS_INFO("tether_node%s: dynamic vehicle started at [%.3f, %.3f, %.3f] in %s", label_.c_str(), pose.translation().x(),
            pose.translation().y(), pose.translation().z(), options_.world_frame.c_str());
-  if (!status.message.empty())
+  // Out of reach, said at each start (the pose differs); the vehicle's other water said at the first start only
+  // (the two densities are at-start parameters: the same at every start).
+  std::string said = status.message;
+  const std::string water = waterMismatch(vehicle_params_, tether_.params().water_density);
+  if (!water.empty() && water == water_said_)
   {
-    ROS_WARN("tether_node%s: dynamic vehicle: %s", label_.c_str(), status.message.c_str());  // out of reach, water
+    const std::string joined = "; " + water;
+    said = said == water ? ""
+           : said.size() > joined.size() && said.compare(said.size() - joined.size(), joined.size(), joined) == 0
+               ? said.substr(0, said.size() - joined.size())
+               : said;
+  }
+  water_said_ = water.empty() ? water_said_ : water;
+  if (!said.empty())
+  {
+    ROS_WARN("tether_node%s: dynamic vehicle: %s", label_.c_str(), said.c_str());
   }
   return true;
 }

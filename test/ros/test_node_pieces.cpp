@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../test_helpers.hpp"
+#include "log_collector.hpp"
 #include "rov_tether/core/world.hpp"
 #include "rov_tether/ros/frame_schedule.hpp"
 #include "rov_tether/ros/load_governor.hpp"
@@ -984,26 +985,6 @@ TEST(PoseInput, PosesInOdomWaitForATransformPublishedAt10Hz)
   EXPECT_LE(rig.scheduler.delay(), 0.1 + 0.02 + 0.01 + 0.005 + 1e-9);
   EXPECT_LT((end - vehicle(tether.time())).norm(), 1e-9) << "the end is where the vehicle was, in the world";
 }
-
-/// Collects what rosconsole prints at WARN, ERROR and INFO while it lives.
-struct LogCollector : ros::console::LogAppender
-{
-  LogCollector() { ros::console::register_appender(this); }
-  ~LogCollector() override { ros::console::deregister_appender(this); }
-  void log(ros::console::Level level, const char* str, const char*, const char*, int) override
-  {
-    (level == ros::console::levels::Warn    ? warnings
-     : level == ros::console::levels::Error ? errors
-                                            : notes)
-        .emplace_back(str);
-  }
-  std::size_t count(const std::vector<std::string>& lines, const std::string& part) const
-  {
-    return static_cast<std::size_t>(std::count_if(
-        lines.begin(), lines.end(), [&](const std::string& l) { return l.find(part) != std::string::npos; }));
-  }
-  std::vector<std::string> warnings, errors, notes;
-};
 
 // Item 1 of issue 26: mavros publishes the vehicle in `map`, and nobody publishes `world` (the node's own
 // world -> tether_spool gives it children, never a parent). Every pose was refused ("no transform world ->

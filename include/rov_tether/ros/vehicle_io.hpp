@@ -147,7 +147,8 @@ class VehicleIo
   VehicleParams vehicle_params_;
   Tether& tether_;
   std::string label_;
-  bool start_due_ = true;  ///< The vehicle waits to be started (at the start, after a reset).
+  bool start_due_ = true;   ///< The vehicle waits to be started (at the start, after a reset).
+  std::string water_said_;  ///< The vehicle's other water, as said at a start ("" before any).
   std::mutex command_mutex_;
   WrenchCommand command_;
   Wrench thrust_ = Wrench::Zero();  ///< The command applied on the last tick (before saturation) [N, N m].
