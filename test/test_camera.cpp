@@ -654,10 +654,10 @@ std::string temporariesUnder(const std::filesystem::path& where)
 // A camera's directory is replaced whole, and only by a run that succeeded (runScenario's observer hooks): the
 // frames go to cameras/.forward.partial/ as the run goes, with the earlier cameras/forward/ as it was meanwhile; a
 // run that fails half-way, or whose CSV files cannot move into place, removes them and leaves the earlier dataset
-// as it was; one that succeeds leaves exactly its own frames, none of the earlier run's past them. A cameras/.forward.earlier (an earlier dataset moved aside by
-// a run that stopped while it moved its own) or a symbolic link at cameras/forward is refused before the run,
-// naming it, and nothing is written. Before, the frames were written in place: a run that failed or was stopped
-// left its frames over the earlier run's, under its own index.csv.
+// as it was; one that succeeds leaves exactly its own frames, none of the earlier run's past them. A
+// cameras/.forward.earlier (an earlier dataset moved aside by a run that stopped while it moved its own) or a symbolic
+// link at cameras/forward is refused before the run, naming it, and nothing is written. Before, the frames were written
+// in place: a run that failed or was stopped left its frames over the earlier run's, under its own index.csv.
 TEST(Dataset, ACameraDirectoryIsReplacedWholeOnlyWhenTheRunSucceeded)
 {
   Scenario scenario;

@@ -230,13 +230,10 @@ bool VehicleIo::start(const Eigen::Isometry3d& pose)
   // (the two densities are at-start parameters: the same at every start).
   std::string said = status.message;
   const std::string water = waterMismatch(vehicle_params_, tether_.params().water_density);
-  if (!water.empty() && water == water_said_)
+  const std::size_t at = water.empty() || water != water_said_ ? std::string::npos : said.rfind(water);
+  if (at != std::string::npos)
   {
-    const std::string joined = "; " + water;
-    said = said == water ? ""
-           : said.size() > joined.size() && said.compare(said.size() - joined.size(), joined.size(), joined) == 0
-               ? said.substr(0, said.size() - joined.size())
-               : said;
+    said.erase(at >= 2 ? at - 2 : at);  // with the "; " that joins it to the reach's warning
   }
   water_said_ = water.empty() ? water_said_ : water;
   if (!said.empty())

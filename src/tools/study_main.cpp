@@ -501,6 +501,17 @@ int main(int argc, char** argv)
   }
   catchStopSignals(files);
   sigprocmask(SIG_SETMASK, &was, nullptr);
+  // A case the simulation refused (study::require), or anything else thrown: said, the temporaries removed, the
+  // earlier files kept. A stop signal meanwhile waits, then stops the program as it would have.
+  const auto abandon = [&](const std::string& what)
+  {
+    sigprocmask(SIG_BLOCK, &stops, nullptr);
+    rov_tether::discardAll(files);
+    std::fprintf(stderr, "rov_tether_study: %s: %s\n", what.c_str(), notWritten(files).c_str());
+    std::fflush(stderr);
+    sigprocmask(SIG_SETMASK, &was, nullptr);
+    return 1;
+  };
   try
   {
     writeStudy(options, files[0].file);
@@ -521,28 +532,13 @@ int main(int argc, char** argv)
       writeStabilityMap(files[1].file, options.quick);
     }
   }
+  catch (const std::exception& e)
+  {
+    return abandon(e.what());
+  }
   catch (...)
   {
-    // A case the simulation refused (study::require), or anything else: said, its temporaries removed, the earlier
-    // files kept. A stop signal meanwhile waits, then stops the program as it would have.
-    sigprocmask(SIG_BLOCK, &stops, nullptr);
-    rov_tether::discardAll(files);
-    std::string what = "an unknown exception";
-    try
-    {
-      throw;
-    }
-    catch (const std::exception& e)
-    {
-      what = e.what();
-    }
-    catch (...)
-    {
-    }
-    std::fprintf(stderr, "rov_tether_study: %s: %s\n", what.c_str(), notWritten(files).c_str());
-    std::fflush(stderr);
-    sigprocmask(SIG_SETMASK, &was, nullptr);
-    return 1;
+    return abandon("an unknown exception");
   }
   // The moves into place are not split by a signal: one that comes meanwhile waits, and is said after them.
   sigprocmask(SIG_BLOCK, &stops, &was);
