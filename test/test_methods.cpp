@@ -324,6 +324,24 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
   EXPECT_EQ(exact.validate(), std::vector<std::string>{});
   EXPECT_EQ(exact.resolved().segmentCount(), 1001u);
   EXPECT_EQ(exact.resolved().segment_length, 1.0e-3);
+  // Sections end on segment boundaries, so `auto` divides their common length: 1.2 mm segments asked for (8 R e =
+  // (1.2 mm)^2) on a 1.5 mm section make two of 0.75 mm each, below the 1 mm, which were taken without a word while
+  // the whole cable's 834 segments of 1.199 mm passed the check. Refused naming the sections; on a 3 mm section
+  // (three of 1 mm) taken.
+  TetherParams sectioned = exact;
+  sectioned.cable_length = 1.0;
+  sectioned.initial_deployed_length = 0.5;
+  sectioned.shape_tolerance = 1.2e-3 * 1.2e-3 / (8.0 * sectioned.min_bend_radius);
+  sectioned.sections = {{1.5e-3, {{"weight_in_water", 1.0}}}, {}};
+  const std::vector<std::string> split = sectioned.validate();
+  ASSERT_EQ(split.size(), 1u);
+  EXPECT_EQ(
+      split.front().rfind("segment_length: auto: the sections' common length 0.0015 m in segments of at most ", 0), 0u)
+      << split.front();
+  EXPECT_NE(split.front().find("asks for segments of 0.00075 m, below the 1 mm"), std::string::npos) << split.front();
+  sectioned.sections.front().length = 3.0e-3;
+  EXPECT_EQ(sectioned.validate(), std::vector<std::string>{});
+  EXPECT_EQ(sectioned.resolved().segment_length, 1.0e-3);
 
   std::string text;
   TetherParams parsed;

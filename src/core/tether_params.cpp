@@ -86,6 +86,19 @@ double commonDivisor(double a, double b)
   return a;
 }
 
+/// The longest length every section's is a whole number of (the last one's, what is left, not counted), or 0
+/// without one that is 1 mm or more: `segment_length: auto`'s segments divide it, so none straddles a boundary.
+double sectionsCommonLength(const std::vector<CableSection>& sections)
+{
+  double common = 0.0;
+  for (std::size_t s = 0; s + 1 < sections.size(); ++s)
+  {
+    const double length = sections[s].length;
+    common = !(length > 0.0) ? common : common > 0.0 ? commonDivisor(common, length) : length;
+  }
+  return common >= 1.0e-3 ? common : 0.0;
+}
+
 }  // namespace
 
 std::vector<std::string> TetherParams::validate() const
@@ -164,6 +177,20 @@ std::vector<std::string> TetherParams::validateMaterial() const
                        formatValue(cable_length / count) +
                        " m, below the 1 mm `auto` goes down to: raise shape_tolerance or min_bend_radius, or set "
                        "segment_length");
+      return errors;
+    }
+    // The sections' boundaries can ask for shorter ones still: two of 0.75 mm in a 1.5 mm section when 1.2 mm is
+    // the longest the chord rule allows (said so here, not as a segment_length out of its range).
+    const double common = sectionsCommonLength(sections);
+    const double split = common / std::ceil(common / longest - 1e-9);
+    if (common > 0.0 && split < 1.0e-3 * (1.0 - 1e-9))
+    {
+      errors.push_back(
+          "segment_length: auto: the sections' common length " + formatValue(common) + " m in segments of at most " +
+          formatValue(longest) + " m (shape_tolerance = " + formatValue(shape_tolerance) +
+          " m on min_bend_radius = " + formatValue(min_bend_radius) + " m) asks for segments of " + formatValue(split) +
+          " m, below the 1 mm `auto` goes down to: make the sections' lengths whole multiples of a "
+          "longer segment, raise shape_tolerance or min_bend_radius, or set segment_length");
       return errors;
     }
   }
@@ -310,13 +337,8 @@ TetherParams TetherParams::resolved() const
     r.segment_length = std::max(cable_length / count, 1.0e-3);
     // Sections end on segment boundaries: the longest segment within `longest` that every section's length (the
     // last one's is what is left) is a whole number of.
-    double common = 0.0;
-    for (std::size_t s = 0; s + 1 < sections.size(); ++s)
-    {
-      const double length = sections[s].length;
-      common = !(length > 0.0) ? common : common > 0.0 ? commonDivisor(common, length) : length;
-    }
-    if (common >= 1.0e-3)
+    const double common = sectionsCommonLength(sections);
+    if (common > 0.0)
     {
       r.segment_length = common / std::ceil(common / longest - 1e-9);
     }
