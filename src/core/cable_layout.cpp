@@ -10,6 +10,9 @@ namespace rov_tether
 namespace
 {
 
+/// A quarter turn [rad].
+constexpr double kQuarterTurn = 1.57079632679489661923;
+
 /// A polygon inscribed in a circular arc from `from` to `to` (`distance` apart), bulging towards the unit
 /// vector `side` (normal to the chord), whose chords are the segments' rest lengths, so the cable starts
 /// with no stretch and no kink. A chord l subtends 2 asin(l / 2R) of the circle; the radius R is found by
@@ -85,6 +88,7 @@ class InscribedArc
 
 CableLayout::CableLayout(const TetherParams& params)
     : elastic_(params.elasticBending() && (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)),
+      stiffness_(elastic_ ? params.largestBendingStiffness() : 0.0),
       weight_(params.weight_in_water),
       seabed_z_(params.seabed_z),
       surface_z_(params.water_surface_z)
@@ -151,14 +155,32 @@ void CableLayout::layFree(Cable& cable, const Position& spool, double length) co
     layOnLegs(cable, chord, chord.middle);
     return;
   }
-  // Up or down to the surface or the seabed it stops at, then along it in +x.
+  // Up or down to the surface or the seabed it stops at, then along it in +x: straight to `bend` along the cable,
+  // a quarter circle of radius r (0 for a cable that does not resist bending: a corner), then level.
+  const double r = cornerRadius(cable, drop_in_air, vertical, length);
+  const double bend = vertical - r, quarter = kQuarterTurn * r;
   double arc = 0.0;
   for (std::size_t i = cable.first; i < cable.size(); ++i)
   {
-    const double rise = std::min(arc, vertical), run = arc - rise;
+    const double angle = r > 0.0 ? std::clamp(arc - bend, 0.0, quarter) / r : 0.0;
+    const double rise = std::min(arc, bend) + r * std::sin(angle);
+    const double run = r * (1.0 - std::cos(angle)) + std::max(arc - bend - quarter, 0.0);
     cable.place(i, Position(spool.x() + run, spool.y(), spool.z() + up * rise));
     arc += i + 1 < cable.size() ? cable.rest[i] : 0.0;
   }
+}
+
+double CableLayout::cornerRadius(const Cable& cable, double drop_in_air, double vertical, double length) const
+{
+  if (!(stiffness_ > 0.0))
+  {
+    return 0.0;
+  }
+  const double weight = std::abs(netWeightBeyond(cable, drop_in_air)) / std::max(length - drop_in_air, 1e-9);
+  // The corner's quarter circle takes pi r / 2 of cable where the square corner took 2 r: it fits while
+  // (pi / 2 - 1) r is at most what lies beyond the vertical drop.
+  const double fits = std::min(vertical, (length - vertical) / (kQuarterTurn - 1.0));
+  return weight > 0.0 ? std::min(std::cbrt(stiffness_ / weight), fits) : fits;
 }
 
 double CableLayout::netWeightBeyond(const Cable& cable, double from) const
