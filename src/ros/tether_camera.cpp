@@ -84,25 +84,52 @@ void TetherCamera::onConnection()
 void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
 {
   camera::CameraIntrinsics intrinsics;
-  std::string error = intrinsicsFromCameraInfo(*info, &intrinsics);
-  if (error.empty() && (!model_ || model_->intrinsics() != intrinsics))
-  {
-    // Anything building throws (std::bad_alloc too) refuses this CameraInfo: it never ends the node. The old
-    // model goes first, so the two never take memory together.
-    model_.reset();
-    error = buildCameraModel(intrinsics, &model_);
-  }
+  const std::string error = intrinsicsFromCameraInfo(*info, &intrinsics);
   if (!error.empty())
   {
-    model_.reset();
-    // Its own key: the frames dropped for want of a model warn under "info", with their count.
-    if (warningDue("info_refused"))
-    {
-      ROS_WARN("tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(),
-               info_sub_.getTopic().c_str(), error.c_str());
-    }
+    worker_.cancel();  // a build of earlier intrinsics is not this CameraInfo's either
+    refuseInfo(error);
+    return;
   }
-  info_error_ = error;
+  takeBuiltModel();
+  if (model_ ? model_->intrinsics() == intrinsics : worker_.requested() == intrinsics)
+  {
+    return;  // the same intrinsics again: built, or being built
+  }
+  // Built off this thread (seconds for a distorted camera, which held the physics here); anything building throws
+  // (std::bad_alloc too) refuses this CameraInfo when the build is taken, and never ends the node. The old model
+  // goes first, so the two never take memory together.
+  model_.reset();
+  worker_.request(intrinsics);
+  info_error_.clear();
+}
+
+void TetherCamera::takeBuiltModel()
+{
+  std::optional<CameraModelWorker::Built> built = worker_.take();
+  if (!built)
+  {
+    return;
+  }
+  if (!built->error.empty())
+  {
+    refuseInfo(built->error);
+    return;
+  }
+  model_ = std::move(built->model);
+  info_error_.clear();
+}
+
+void TetherCamera::refuseInfo(const std::string& why)
+{
+  model_.reset();
+  info_error_ = why;
+  // Its own key: the frames dropped for want of a model warn under "info", with their count.
+  if (warningDue("info_refused"))
+  {
+    ROS_WARN("tether_node: camera %s: CameraInfo on %s refused: %s", config_.name.c_str(), info_sub_.getTopic().c_str(),
+             why.c_str());
+  }
 }
 
 void TetherCamera::onImage(const sensor_msgs::ImageConstPtr& image)
@@ -165,6 +192,7 @@ void TetherCamera::process(camera::CameraScene& scene)
   {
     return;
   }
+  takeBuiltModel();
   if (config_.image_topic.empty())
   {
     // Frames on a grid of physics time: k / rate.
@@ -202,6 +230,13 @@ void TetherCamera::process(camera::CameraScene& scene)
 
 bool TetherCamera::renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image)
 {
+  if (!model_ && worker_.pending())
+  {
+    const camera::CameraIntrinsics& next = *worker_.requested();
+    drop("building", "the camera of the last CameraInfo (" + std::to_string(next.width) + "x" +
+                         std::to_string(next.height) + ") is being built: a distorted camera takes seconds");
+    return false;
+  }
   if (!model_)
   {
     drop("info", info_error_.empty() ? "no CameraInfo yet on " + nh_.resolveName(config_.info_topic)

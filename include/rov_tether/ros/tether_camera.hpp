@@ -18,6 +18,7 @@
 #include "rov_tether/camera/camera_scene.hpp"
 #include "rov_tether/camera/tether_renderer.hpp"
 #include "rov_tether/ros/camera_config.hpp"
+#include "rov_tether/ros/camera_model_worker.hpp"
 #include "rov_tether/ros/frame_schedule.hpp"
 #include "rov_tether/ros/render_budget.hpp"
 
@@ -35,7 +36,9 @@ namespace rov_tether::ros_layer
  * camera and per reason (one camera's warnings never hide another's). An image stamped further ahead of
  * ROS time than `max_future` is dropped as it arrives; an image waits only for its own stamp, so a bad
  * stamp never holds up the good images behind it. A frame predicted to take longer to draw than
- * `render_budget` (RenderBudget) is skipped and said, so the node never stalls on one camera.
+ * `render_budget` (RenderBudget) is skipped and said, so the node never stalls on one camera. A CameraInfo with new
+ * intrinsics is built on a thread of its own (CameraModelWorker: seconds for a distorted camera), its frames
+ * meanwhile not drawn and said; the physics goes on. Fixed intrinsics are built in the constructor, at start.
  */
 class TetherCamera
 {
@@ -63,6 +66,10 @@ class TetherCamera
  private:
   void onConnection();
   void onInfo(const sensor_msgs::CameraInfoConstPtr& info);
+  /// Takes the model of the last CameraInfo's intrinsics when its build (on worker_'s thread) has finished.
+  void takeBuiltModel();
+  /// A CameraInfo, or the build of its intrinsics, refused: no model, warned (throttled) with why.
+  void refuseInfo(const std::string& why);
   void onImage(const sensor_msgs::ImageConstPtr& image);
   /// Renders at `stamp` and publishes; `image` (may be null) gets the overlay. False when it cannot.
   bool renderAt(const ros::Time& stamp, camera::CameraScene& scene, const sensor_msgs::ImageConstPtr& image);
@@ -91,6 +98,9 @@ class TetherCamera
   bool subscribed_ = false;
   std::unique_ptr<camera::CameraModel> model_;
   std::string info_error_;  ///< Why the last CameraInfo was refused ("" when it was taken).
+  /// Builds the models of a CameraInfo's new intrinsics off the callback thread (declared after model_: it is
+  /// destroyed first, waiting for a build in progress).
+  CameraModelWorker worker_;
   camera::TetherRenderer renderer_;
   std::vector<camera::Tube> tubes_;
   std::deque<sensor_msgs::ImageConstPtr> queue_;

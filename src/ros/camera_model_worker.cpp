@@ -1,0 +1,99 @@
+#include "rov_tether/ros/camera_model_worker.hpp"
+
+#include <utility>
+
+namespace rov_tether::ros_layer
+{
+
+CameraModelWorker::CameraModelWorker(CameraModelBuilder build) : build_(std::move(build)) {}
+
+CameraModelWorker::~CameraModelWorker()
+{
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable())
+  {
+    thread_.join();
+  }
+}
+
+void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
+{
+  std::optional<Built> superseded;  // freed outside the lock
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++generation_;
+    waiting_ = intrinsics;
+    superseded = std::move(done_);
+    done_.reset();
+  }
+  requested_ = intrinsics;
+  if (!thread_.joinable())
+  {
+    thread_ = std::thread(&CameraModelWorker::run, this);
+  }
+  wake_.notify_one();
+}
+
+void CameraModelWorker::cancel()
+{
+  std::optional<Built> dropped;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++generation_;
+    waiting_.reset();
+    dropped = std::move(done_);
+    done_.reset();
+  }
+  requested_.reset();
+}
+
+std::optional<CameraModelWorker::Built> CameraModelWorker::take()
+{
+  std::optional<Built> built;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    built = std::move(done_);
+    done_.reset();
+  }
+  if (built)
+  {
+    requested_.reset();
+  }
+  return built;
+}
+
+void CameraModelWorker::run()
+{
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;)
+  {
+    wake_.wait(lock, [this] { return stop_ || waiting_.has_value(); });
+    if (stop_)
+    {
+      return;
+    }
+    Built built;
+    built.intrinsics = *waiting_;
+    waiting_.reset();
+    const std::uint64_t generation = generation_;
+    lock.unlock();
+    built.error = buildCameraModel(built.intrinsics, &built.model, build_);  // never throws
+    lock.lock();
+    if (generation == generation_)
+    {
+      done_ = std::move(built);
+    }
+    else
+    {
+      lock.unlock();  // a superseded or cancelled request's model, freed outside the lock
+      built.model.reset();
+      lock.lock();
+    }
+  }
+}
+
+}  // namespace rov_tether::ros_layer
