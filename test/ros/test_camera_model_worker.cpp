@@ -78,7 +78,7 @@ struct Gate
 };
 
 /// Opens the gate when it goes out of scope: declared after the worker, so the worker's destructor, which waits
-/// for a build in progress, never waits at a closed gate.
+/// for a build in progress, never waits at a closed gate (the 10 s until its builder gives up).
 struct OpenAtExit
 {
   Gate& gate;
@@ -109,15 +109,28 @@ std::optional<CameraModelWorker::Built> takeWithin10s(CameraModelWorker& worker)
   return std::nullopt;
 }
 
+/// The width of the model take() hands back within 10 s: -1 when nothing comes, 0 for a build with no model.
+int builtWidthWithin10s(CameraModelWorker& worker)
+{
+  const std::optional<CameraModelWorker::Built> built = takeWithin10s(worker);
+  return !built ? -1 : built->model ? built->model->width() : 0;
+}
+
+/// A worker whose builder waits at `gate`, opened before the worker is destroyed.
+class CameraModelWorkerTest : public testing::Test
+{
+ protected:
+  Gate gate;
+  CameraModelWorker worker{gate.builder()};
+  OpenAtExit open{gate};  ///< Destroyed before the worker.
+};
+
 }  // namespace
 
 // request() hands the intrinsics over and returns while the build is held at the gate; the model comes back
 // through take() once built, with the intrinsics asked for, and only once.
-TEST(CameraModelWorker, ACameraIsBuiltOffTheThreadThatAsks)
+TEST_F(CameraModelWorkerTest, ACameraIsBuiltOffTheThreadThatAsks)
 {
-  Gate gate;
-  CameraModelWorker worker(gate.builder());
-  const OpenAtExit open{gate};
   worker.request(intrinsics(64, 48));
   EXPECT_FALSE(worker.take().has_value()) << "handed back before the gate opened: built on the calling thread";
   EXPECT_TRUE(worker.pending());
@@ -137,11 +150,8 @@ TEST(CameraModelWorker, ACameraIsBuiltOffTheThreadThatAsks)
 // CameraInfos with new intrinsics in quick succession: the one being built when the others came is built out and
 // dropped, the one superseded before its build started is never built, and only the last comes back. The next
 // build starting shows the worker is done with the one before: nothing is handed back by then.
-TEST(CameraModelWorker, OnlyTheLastRequestComesBack)
+TEST_F(CameraModelWorkerTest, OnlyTheLastRequestComesBack)
 {
-  Gate gate;
-  CameraModelWorker worker(gate.builder());
-  const OpenAtExit open{gate};
   worker.request(intrinsics(64, 48));
   ASSERT_TRUE(gate.startedAtLeast(1));
   worker.request(intrinsics(32, 24));
@@ -150,21 +160,15 @@ TEST(CameraModelWorker, OnlyTheLastRequestComesBack)
   ASSERT_TRUE(gate.startedAtLeast(2));
   EXPECT_FALSE(worker.take().has_value()) << "the superseded 64x48 camera was handed back";
   gate.letThrough(16);
-  std::optional<CameraModelWorker::Built> built = takeWithin10s(worker);
-  ASSERT_TRUE(built.has_value());
-  ASSERT_NE(built->model, nullptr);
-  EXPECT_EQ(built->model->width(), 16);
+  EXPECT_EQ(builtWidthWithin10s(worker), 16);
   const std::lock_guard<std::mutex> lock(gate.mutex);
   EXPECT_EQ(gate.started, (std::vector<int>{64, 16}));
 }
 
 // A refused CameraInfo cancels the build of the one before it: that model never comes back (none within 0.2 s of
 // its build's end, where it would come within microseconds), and a later request's does.
-TEST(CameraModelWorker, ACancelledRequestNeverComesBack)
+TEST_F(CameraModelWorkerTest, ACancelledRequestNeverComesBack)
 {
-  Gate gate;
-  CameraModelWorker worker(gate.builder());
-  const OpenAtExit open{gate};
   worker.request(intrinsics(64, 48));
   ASSERT_TRUE(gate.startedAtLeast(1));
   worker.cancel();
@@ -182,10 +186,7 @@ TEST(CameraModelWorker, ACancelledRequestNeverComesBack)
   EXPECT_FALSE(handed_back) << "the cancelled 64x48 camera was handed back";
   worker.request(intrinsics(32, 24));
   gate.openIt();
-  std::optional<CameraModelWorker::Built> built = takeWithin10s(worker);
-  ASSERT_TRUE(built.has_value());
-  ASSERT_NE(built->model, nullptr);
-  EXPECT_EQ(built->model->width(), 32);
+  EXPECT_EQ(builtWidthWithin10s(worker), 32);
 }
 
 // A build that fails (out of memory) comes back as the reason, buildCameraModel's, with no model: the camera is

@@ -93,18 +93,25 @@ class CameraNode : public testing::Test
       info.D = {0.0, 0.0, 0.0, 0.0, 0.0};
       info.K = {200, 0, 159.5, 0, 200, 119.5, 0, 0, 1};
       info_pub_.publish(info);
-      sensor_msgs::Image image;
-      image.header = info.header;
-      image.header.stamp = now + ros::Duration(image_offset);
-      image.width = kWidth;
-      image.height = kHeight;
-      image.encoding = "bgr8";
-      image.step = 3 * kWidth;
-      image.data.assign(image.step * kHeight, 40);
-      image_pub_.publish(image);
-      return image.header.stamp;
+      std_msgs::Header header = info.header;
+      header.stamp = now + ros::Duration(image_offset);
+      publishImage(header);
+      return header.stamp;
     }
     return now;
+  }
+
+  /// Publishes a grey kWidth x kHeight bgr8 image with `header`.
+  void publishImage(const std_msgs::Header& header)
+  {
+    sensor_msgs::Image image;
+    image.header = header;
+    image.width = kWidth;
+    image.height = kHeight;
+    image.encoding = "bgr8";
+    image.step = 3 * kWidth;
+    image.data.assign(image.step * kHeight, 40);
+    image_pub_.publish(image);
   }
 
   /// Subscribes to front's masks, keeping their stamps in `stamps`.
@@ -115,8 +122,35 @@ class CameraNode : public testing::Test
                                              { stamps->insert(msg->header.stamp.toSec()); });
   }
 
+  /// Keeps camera front's warnings from /rosout in warnings_, with when they came.
+  ros::Subscriber keepFrontWarnings()
+  {
+    return nh_.subscribe<rosgraph_msgs::Log>(
+        "/rosout", 100,
+        [this](const rosgraph_msgs::Log::ConstPtr& msg)
+        {
+          if (msg->level == rosgraph_msgs::Log::WARN && msg->msg.find("camera front:") != std::string::npos)
+          {
+            warnings_.emplace_back(msg->msg, ros::WallTime::now());
+          }
+        });
+  }
+  /// When camera front first warned with `text` in it, or null.
+  const ros::WallTime* said(const std::string& text) const
+  {
+    for (const auto& [message, when] : warnings_)
+    {
+      if (message.find(text) != std::string::npos)
+      {
+        return &when;
+      }
+    }
+    return nullptr;
+  }
+
   ros::NodeHandle nh_;
   ros::Publisher pose_pub_, info_pub_, image_pub_;
+  std::vector<std::pair<std::string, ros::WallTime>> warnings_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   int stamps_seen_ = 0;
 };
@@ -360,29 +394,9 @@ TEST_F(CameraNode, BadImageStampsAreWarnedAboutAndNeverBlockTheGoodOnes)
 TEST_F(CameraNode, ARefusedCameraInfoAndTheFramesItCostsAreEachSaid)
 {
   std::set<double> mask_stamps;
-  std::vector<std::pair<std::string, ros::WallTime>> warnings;
   ros::Subscriber mask_sub = keepMaskStamps(&mask_stamps);
-  ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
-      "/rosout", 100,
-      [&](const rosgraph_msgs::Log::ConstPtr& msg)
-      {
-        if (msg->level == rosgraph_msgs::Log::WARN && msg->msg.find("camera front:") != std::string::npos)
-        {
-          warnings.emplace_back(msg->msg, ros::WallTime::now());
-        }
-      });
+  ros::Subscriber log_sub = keepFrontWarnings();
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 1 && info_pub_.getNumSubscribers() == 1; }, 10.0));
-  const auto said = [&](const std::string& text) -> const ros::WallTime*
-  {
-    for (const auto& [message, when] : warnings)
-    {
-      if (message.find(text) != std::string::npos)
-      {
-        return &when;
-      }
-    }
-    return nullptr;
-  };
   const std::string refused = "camera_info refused: width x height = 16384 x 16384 = 268435456 px: at most 4096 x 4096";
   const std::string dropped = "so far): the last CameraInfo was refused: width x height = 16384 x 16384";
   ros::WallTime next = ros::WallTime::now();
@@ -403,7 +417,7 @@ TEST_F(CameraNode, ARefusedCameraInfoAndTheFramesItCostsAreEachSaid)
   };
   waitFor([&] { return said(refused) != nullptr && said(dropped) != nullptr; }, 12.0, [&] { at15Hz(16384); });
   std::string logged;
-  for (const auto& w : warnings)
+  for (const auto& w : warnings_)
   {
     logged += w.first + "\n";
   }
@@ -427,33 +441,13 @@ TEST_F(CameraNode, ARefusedCameraInfoAndTheFramesItCostsAreEachSaid)
 TEST_F(CameraNode, ANewDistortedCameraIsBuiltWhileThePhysicsGoesOn)
 {
   std::vector<ros::WallTime> states;
-  std::vector<std::pair<std::string, ros::WallTime>> warnings;
   std::set<double> mask_stamps;
   ros::Subscriber mask_sub = keepMaskStamps(&mask_stamps);
-  ros::Subscriber log_sub = nh_.subscribe<rosgraph_msgs::Log>(
-      "/rosout", 100,
-      [&](const rosgraph_msgs::Log::ConstPtr& msg)
-      {
-        if (msg->level == rosgraph_msgs::Log::WARN && msg->msg.find("camera front:") != std::string::npos)
-        {
-          warnings.emplace_back(msg->msg, ros::WallTime::now());
-        }
-      });
+  ros::Subscriber log_sub = keepFrontWarnings();
   ros::Subscriber state_sub = nh_.subscribe<rov_tether::TetherState>("/tether_node/state", 100,
                                                                      [&](const rov_tether::TetherState::ConstPtr&)
                                                                      { states.push_back(ros::WallTime::now()); });
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 1 && info_pub_.getNumSubscribers() == 1; }, 10.0));
-  const auto said = [&](const std::string& text) -> const ros::WallTime*
-  {
-    for (const auto& [message, when] : warnings)
-    {
-      if (message.find(text) != std::string::npos)
-      {
-        return &when;
-      }
-    }
-    return nullptr;
-  };
   ros::WallTime next = ros::WallTime::now();
   const ros::WallTime first_info = next;
   const auto at15Hz = [&]
@@ -472,21 +466,14 @@ TEST_F(CameraNode, ANewDistortedCameraIsBuiltWhileThePhysicsGoesOn)
     info.D = {-0.25, 0.08, 0.0, 0.0, 0.0};
     info.K = {1200, 0, 959.5, 0, 1200, 539.5, 0, 0, 1};
     info_pub_.publish(info);
-    sensor_msgs::Image image;
-    image.header = info.header;
-    image.width = kWidth;
-    image.height = kHeight;
-    image.encoding = "bgr8";
-    image.step = 3 * kWidth;
-    image.data.assign(image.step * kHeight, 40);
-    image_pub_.publish(image);
+    publishImage(info.header);
     next += ros::WallDuration(1.0 / 15.0);
   };
   const std::string building = "(1920x1080) is being built";
   const std::string taken = "image 320x240 but intrinsics for 1920x1080";
   waitFor([&] { return said(taken) != nullptr; }, 90.0, at15Hz);
   std::string logged;
-  for (const auto& w : warnings)
+  for (const auto& w : warnings_)
   {
     logged += w.first + "\n";
   }
