@@ -325,9 +325,9 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
   EXPECT_EQ(exact.resolved().segmentCount(), 1001u);
   EXPECT_EQ(exact.resolved().segment_length, 1.0e-3);
   // Sections end on segment boundaries, so `auto` divides their common length: 1.2 mm segments asked for (8 R e =
-  // (1.2 mm)^2) on a 1.5 mm section make two of 0.75 mm each, below the 1 mm, which were taken without a word while
-  // the whole cable's 834 segments of 1.199 mm passed the check. Refused naming the sections; on a 3 mm section
-  // (three of 1 mm) taken.
+  // (1.2 mm)^2) on a 1.5 mm section make two of 0.75 mm each, below the 1 mm, while the whole cable's 834 segments
+  // of 1.199 mm passed the check; they were refused as `segment_length = 0.00075` out of its range, a value nobody
+  // set. Refused naming the sections; on a 3 mm section (three of 1 mm) taken.
   TetherParams sectioned = exact;
   sectioned.cable_length = 1.0;
   sectioned.initial_deployed_length = 0.5;
@@ -342,6 +342,25 @@ TEST(Auto, ResolutionFromTheShapeToleranceAndEffortFromTheStretchTolerance)
   sectioned.sections.front().length = 3.0e-3;
   EXPECT_EQ(sectioned.validate(), std::vector<std::string>{});
   EXPECT_EQ(sectioned.resolved().segment_length, 1.0e-3);
+  // Exactly 1 mm through a section (1.001 m in 1,001 segments, 1 mm the longest asked for): the division gives
+  // 0.9999999999999998 mm, which was taken by this check and then refused as `segment_length = 0.001` out of
+  // [0.001, 100]; taken as 1 mm.
+  TetherParams thousandth = exact;
+  thousandth.cable_length = 2.0;
+  thousandth.sections = {{1.001, {{"weight_in_water", 1.0}}}, {}};
+  EXPECT_EQ(thousandth.validate(), std::vector<std::string>{});
+  EXPECT_EQ(thousandth.resolved().segment_length, 1.0e-3);
+  // Section lengths with no common length of 1 mm or more (1 m and 1.0005 m: 0.5 mm) were refused as segments of
+  // auto's choosing that straddle a boundary; refused naming the sections' lengths.
+  thousandth.cable_length = 3.0;
+  thousandth.sections = {{1.0, {{"weight_in_water", 1.0}}}, {1.0005, {{"weight_in_water", 2.0}}}, {}};
+  const std::vector<std::string> no_common = thousandth.validate();
+  ASSERT_EQ(no_common.size(), 1u);
+  EXPECT_EQ(no_common.front().rfind("segment_length: auto: the sections' lengths have no common length of 1 mm or "
+                                    "more for segments to divide (the longest is 0.0005 m)",
+                                    0),
+            0u)
+      << no_common.front();
 
   std::string text;
   TetherParams parsed;

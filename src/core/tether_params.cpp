@@ -86,8 +86,8 @@ double commonDivisor(double a, double b)
   return a;
 }
 
-/// The longest length every section's is a whole number of (the last one's, what is left, not counted), or 0
-/// without one that is 1 mm or more: `segment_length: auto`'s segments divide it, so none straddles a boundary.
+/// The longest length every section's is a whole number of (the last one's, what is left, not counted; tiny when
+/// they have none), 0 without sections: `segment_length: auto`'s segments divide it, so none straddles a boundary.
 double sectionsCommonLength(const std::vector<CableSection>& sections)
 {
   double common = 0.0;
@@ -96,7 +96,7 @@ double sectionsCommonLength(const std::vector<CableSection>& sections)
     const double length = sections[s].length;
     common = !(length > 0.0) ? common : common > 0.0 ? commonDivisor(common, length) : length;
   }
-  return common >= 1.0e-3 ? common : 0.0;
+  return common;
 }
 
 }  // namespace
@@ -179,10 +179,19 @@ std::vector<std::string> TetherParams::validateMaterial() const
                        "segment_length");
       return errors;
     }
-    // The sections' boundaries can ask for shorter ones still: two of 0.75 mm in a 1.5 mm section when 1.2 mm is
-    // the longest the chord rule allows (said so here, not as a segment_length out of its range).
+    // The sections' boundaries can ask for shorter ones still (said so here, not as a segment_length out of its
+    // range or straddling a boundary, values nobody set): lengths with no common length of 1 mm (1 m and 1.0005 m),
+    // or two of 0.75 mm in a 1.5 mm section when 1.2 mm is the longest the chord rule allows.
     const double common = sectionsCommonLength(sections);
-    const double split = common / std::ceil(common / longest - 1e-9);
+    if (common > 0.0 && common < 1.0e-3 * (1.0 - 1e-9))
+    {
+      errors.push_back(
+          "segment_length: auto: the sections' lengths have no common length of 1 mm or more for "
+          "segments to divide (the longest is " +
+          formatValue(common) + " m): make them whole multiples of a longer segment, or set segment_length");
+      return errors;
+    }
+    const double split = common > 0.0 ? common / std::ceil(common / longest - 1e-9) : 0.0;
     if (common > 0.0 && split < 1.0e-3 * (1.0 - 1e-9))
     {
       errors.push_back(
@@ -337,10 +346,11 @@ TetherParams TetherParams::resolved() const
     r.segment_length = std::max(cable_length / count, 1.0e-3);
     // Sections end on segment boundaries: the longest segment within `longest` that every section's length (the
     // last one's is what is left) is a whole number of.
+    // At 1 mm at least, as above: a division that asks for exactly 1 mm can give 0.9999999999999998 mm.
     const double common = sectionsCommonLength(sections);
-    if (common > 0.0)
+    if (common >= 1.0e-3 * (1.0 - 1e-9))
     {
-      r.segment_length = common / std::ceil(common / longest - 1e-9);
+      r.segment_length = std::max(common / std::ceil(common / longest - 1e-9), 1.0e-3);
     }
     r.segment_length_auto = false;
   }
