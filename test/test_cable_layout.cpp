@@ -228,21 +228,43 @@ TEST(CableLayout, AFreeEndHangsStraightDownOrFloatsStraightUp)
   }
 }
 
-/// Where a free end off `outlet` is laid at arc length s: `vertical` m straight up (`up` 1) or down (-1), then
-/// level along +x, through a quarter circle of radius r (0: a corner) tangent to both.
-Position onVerticalThenLevel(const Position& outlet, double up, double vertical, double s, double r = 0.0)
+/// The path a free end off `outlet` is laid along: `vertical` m straight up (`up` 1) or down (-1), then level along
+/// +x, turning onto the level along a circle of radius r (0: a corner) tangent to it: from the vertical when the
+/// drop is r or more, else from the outlet itself, where the circle through it meets the level tangentially.
+struct FreeEndPath
 {
-  const double straight = vertical - r, quarter = 0.5 * M_PI * r;
-  if (s <= straight)
+  Position outlet;
+  double up, vertical, r;
+  double start() const { return r > vertical ? std::asin(1.0 - vertical / r) : 0.0; }  // the circle's angle there
+  double straight() const { return std::max(vertical - r, 0.0); }
+  double turned() const { return r * (0.5 * M_PI - start()); }
+  /// The point at arc length s.
+  Position at(double s) const
   {
-    return outlet + Position(0.0, 0.0, up * s);
+    if (s <= straight())
+    {
+      return outlet + Position(0.0, 0.0, up * s);
+    }
+    if (s <= straight() + turned())
+    {
+      const double angle = start() + (s - straight()) / r;
+      return outlet + Position(r * (std::cos(start()) - std::cos(angle)), 0.0,
+                               up * (straight() + r * (std::sin(angle) - std::sin(start()))));
+    }
+    return outlet + Position(r * std::cos(start()) + (s - straight() - turned()), 0.0, up * vertical);
   }
-  if (s <= straight + quarter)
+};
+
+/// The largest angle between two consecutive deployed segments [rad].
+double sharpestTurn(const LaidCable& laid)
+{
+  double sharpest = 0.0;
+  for (std::size_t j = laid.cable.first; j + 2 < laid.cable.size(); ++j)
   {
-    const double angle = (s - straight) / r;  // about the centre r along +x from where the straight part ends
-    return outlet + Position(r - r * std::cos(angle), 0.0, up * (straight + r * std::sin(angle)));
+    const Position a = laid.at(j + 1) - laid.at(j), b = laid.at(j + 2) - laid.at(j + 1);
+    sharpest = std::max(sharpest, std::atan2(a.cross(b).norm(), a.dot(b)));
   }
-  return outlet + Position(r + (s - straight - quarter), 0.0, up * vertical);
+  return sharpest;
 }
 
 // A free end is laid where it settles, the deployed length along its rest lengths: a buoyant one up to the
@@ -251,8 +273,10 @@ Position onVerticalThenLevel(const Position& outlet, double up, double vertical,
 // rounding, none above the surface nor below the seabed by more than that, no segment stretched. Seen failing
 // before the free end heeded them (laid straight up or down all 30 m: 20 m above the surface, 26 and 14 m below the
 // seabed, the deck's buoyant cable 32 m above the surface). A cable that does not resist bending turns a corner; one
-// that does (the default EI 0.2 N m^2, and 50 N m^2) turns through a quarter circle of radius (EI / |w|)^(1/3), the
-// length over which its weight w bends it, where a corner sprang open at the start (FreeEnd's test).
+// that does (the default EI 0.2 N m^2, and 50 N m^2) turns along a circle of radius (EI / |w|)^(1/3), the length
+// over which its weight w bends it, where a corner sprang open at the start (FreeEnd's test): no two segments meet
+// at more than the circle's l / r, from a drop shorter than r too (2 m from the deck at EI 50: r 3.7 m), and a cable
+// too short for the path (a 29.5 m drop) ends on its arc.
 TEST(CableLayout, AFreeEndStopsAtTheSurfaceOrTheSeabedAndLiesAlongIt)
 {
   struct Case
@@ -267,6 +291,7 @@ TEST(CableLayout, AFreeEndStopsAtTheSurfaceOrTheSeabedAndLiesAlongIt)
       {"heavy, down 4 m to the seabed", 1.0, -10.0, 0.0, -14.0, -1.0, 4.0},
       {"buoyant from a deck, down 2 m to the surface", -1.0, 2.0, 0.0, -14.0, -1.0, 2.0},
       {"heavy from a deck, down 16 m to the seabed", 1.0, 2.0, 0.0, -14.0, -1.0, 16.0},
+      {"heavy, down 29.5 m to the seabed", 1.0, -10.0, 0.0, -39.5, -1.0, 29.5},
   };
   for (const Case& c : cases)
     for (const double ei : {0.0, 0.2, 50.0})
@@ -282,16 +307,15 @@ TEST(CableLayout, AFreeEndStopsAtTheSurfaceOrTheSeabedAndLiesAlongIt)
       CableLayout(params).layOut(laid.cable, outlet, nullptr, laid.length);
       expectAtRestFromTheSpool(laid, outlet);
       expectNoSegmentStretched(laid);
-      // |w| is 1 N/m in the water in every case; within the vertical drop (2 m from the deck to the surface).
-      const double r = std::min(std::cbrt(ei / 1.0), c.vertical);
-      // Past a deck's drop to the water the cable is in it, or on the surface once round a corner there.
+      const FreeEndPath path{outlet, c.up, c.vertical, std::cbrt(ei / 1.0)};  // |w| is 1 N/m in every case
+      // Past a deck's drop to the water the cable is in it, or on the surface once round onto it.
       const double drop = std::max(c.spool_z - c.surface_z, 0.0);
-      const double in_water = drop > 0.0 && c.vertical <= drop ? c.vertical - r + 0.5 * M_PI * r : drop;
+      const double in_water = drop > 0.0 && c.vertical <= drop ? path.straight() + path.turned() : drop;
       double arc = 0.0, off_path = 0.0, highest_past_drop = -kInf, lowest = kInf;
       for (std::size_t i = laid.cable.first; i < laid.cable.size(); ++i)
       {
         const Position p = laid.at(i);
-        off_path = std::max(off_path, (p - onVerticalThenLevel(outlet, c.up, c.vertical, arc, r)).norm());
+        off_path = std::max(off_path, (p - path.at(arc)).norm());
         if (arc > in_water + kTight)
         {
           highest_past_drop = std::max(highest_past_drop, p.z());
@@ -300,6 +324,10 @@ TEST(CableLayout, AFreeEndStopsAtTheSurfaceOrTheSeabedAndLiesAlongIt)
         arc += i + 1 < laid.cable.size() ? laid.cable.rest[i] : 0.0;
       }
       EXPECT_LT(off_path, kTight) << c.what;
+      if (ei > 0.0)
+      {
+        EXPECT_LE(sharpestTurn(laid), 0.1 / path.r + 1e-9) << c.what << ": a corner";
+      }
       EXPECT_LE(highest_past_drop, c.surface_z + kTight) << c.what;
       EXPECT_FALSE(lowest < c.seabed_z - kTight) << c.what << ": lowest " << lowest;  // false for no seabed (NaN)
     }

@@ -155,32 +155,33 @@ void CableLayout::layFree(Cable& cable, const Position& spool, double length) co
     layOnLegs(cable, chord, chord.middle);
     return;
   }
-  // Up or down to the surface or the seabed it stops at, then along it in +x: straight to `bend` along the cable,
-  // a quarter circle of radius r (0 for a cable that does not resist bending: a corner), then level.
-  const double r = cornerRadius(cable, drop_in_air, vertical, length);
-  const double bend = vertical - r, quarter = kQuarterTurn * r;
+  // Up or down to the surface or the seabed it stops at, then along it in +x. A cable that resists bending turns
+  // onto the level along a circle of radius r tangent to it (r 0: a corner): from the vertical where the drop is
+  // r or more, else from the spool itself at the angle that circle has there, so there is no corner either way.
+  // A cable too short for the whole path ends on the arc.
+  const double r = cornerRadius(cable, drop_in_air, length);
+  const double start = r > vertical ? std::asin(1.0 - vertical / r) : 0.0;  // the circle's angle at the arc's start
+  const double straight = std::max(vertical - r, 0.0), turned = r * (kQuarterTurn - start);
   double arc = 0.0;
   for (std::size_t i = cable.first; i < cable.size(); ++i)
   {
-    const double angle = r > 0.0 ? std::clamp(arc - bend, 0.0, quarter) / r : 0.0;
-    const double rise = std::min(arc, bend) + r * std::sin(angle);
-    const double run = r * (1.0 - std::cos(angle)) + std::max(arc - bend - quarter, 0.0);
+    const double angle = r > 0.0 ? start + std::clamp(arc - straight, 0.0, turned) / r : 0.0;
+    const double rise = std::min(arc, straight) + r * (std::sin(angle) - std::sin(start));
+    const double run = r * (std::cos(start) - std::cos(angle)) + std::max(arc - straight - turned, 0.0);
     cable.place(i, Position(spool.x() + run, spool.y(), spool.z() + up * rise));
     arc += i + 1 < cable.size() ? cable.rest[i] : 0.0;
   }
 }
 
-double CableLayout::cornerRadius(const Cable& cable, double drop_in_air, double vertical, double length) const
+double CableLayout::cornerRadius(const Cable& cable, double drop_in_air, double length) const
 {
   if (!(stiffness_ > 0.0))
   {
     return 0.0;
   }
+  // A weightless cable has no length its weight bends it over: the whole cable's (as a heavy one's is at most).
   const double weight = std::abs(netWeightBeyond(cable, drop_in_air)) / std::max(length - drop_in_air, 1e-9);
-  // The corner's quarter circle takes pi r / 2 of cable where the square corner took 2 r: it fits while
-  // (pi / 2 - 1) r is at most what lies beyond the vertical drop.
-  const double fits = std::min(vertical, (length - vertical) / (kQuarterTurn - 1.0));
-  return weight > 0.0 ? std::min(std::cbrt(stiffness_ / weight), fits) : fits;
+  return weight > 0.0 ? std::min(std::cbrt(stiffness_ / weight), length) : length;
 }
 
 double CableLayout::netWeightBeyond(const Cable& cable, double from) const

@@ -26,9 +26,11 @@ namespace rov_tether
  *   hangs straight down to the surface. In the water, the cable beyond that point rises straight up when its net
  *   weight in water is negative (its sections' `weight_in_water` over their lengths less its attachments'
  *   `net_buoyancy`), else it hangs straight down; it stops at the surface or the seabed (`seabed_z`) and the rest
- *   of it lies along that level in +x, through a quarter circle of radius (EI / |w|)^(1/3) for a cable that resists
- *   bending (a right-angled corner at EI 50 N m^2 sprang open at the start with 3.9 times the spool's settled
- *   tension). Without a surface or a seabed in its way, straight up or down, all of it.
+ *   of it lies along that level in +x. A cable that resists bending turns onto the level along a circle of radius
+ *   (EI / |w|)^(1/3) tangent to it, from the vertical (or from the spool, tilted, when the drop is shorter than the
+ *   radius), and a cable too short for that path ends on the arc (a right-angled corner at EI 50 N m^2 sprang open
+ *   at the start with 3.9 times the spool's settled tension). Without a surface or a seabed in its way, straight up
+ *   or down, all of it.
  *   (A cable whose net weight changes sign along it, a heavy length with a buoyant tail, is laid by the whole's
  *   and folds as it settles.)
  * Particles still on the spool sit at the outlet; the vehicle particle sits on the vehicle. Allocates
@@ -60,14 +62,13 @@ class CableLayout
   };
 
   static Chord chordOf(const Position& spool, const Position& vehicle, double length);
-  /// Lays a free end (no vehicle): vertical from the spool to where it stops, then level along +x, the corner
-  /// rounded (cornerRadius()) for a cable that resists bending.
+  /// Lays a free end (no vehicle): vertical from the spool to where it stops, then level along +x, turning onto
+  /// the level along a circle of radius cornerRadius() for a cable that resists bending.
   void layFree(Cable& cable, const Position& spool, double length) const;
-  /// The radius of a free end's corner where it meets the seabed or the surface, `vertical` below or above the
-  /// spool with `length` deployed: 0 for a cable that does not resist bending, else (EI / |w|)^(1/3), the length
-  /// over which a heavy rod's weight bends it (w its mean net weight in water beyond the spool's drop in air),
-  /// within the vertical drop and what is left of the cable after it [m].
-  double cornerRadius(const Cable& cable, double drop_in_air, double vertical, double length) const;
+  /// The radius a free end turns onto the seabed or the surface with, `length` deployed: 0 for a cable that does not
+  /// resist bending, else (EI / |w|)^(1/3), the length over which a heavy rod's weight bends it (w its mean net
+  /// weight in water beyond the spool's drop in air), at most `length` (a weightless cable's) [m].
+  double cornerRadius(const Cable& cable, double drop_in_air, double length) const;
   /// Net weight in water, down positive, of the deployed cable beyond arc length `from` off the spool: its
   /// segments' (cable.loading's, else weight_in_water) and its attachments' [N].
   double netWeightBeyond(const Cable& cable, double from) const;
