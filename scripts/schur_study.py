@@ -86,7 +86,7 @@ def conjugate_gradients(matrix, rhs, precondition, tolerance, limit=200):
 
 def main():
     rng = np.random.default_rng(1)
-    print("radius [m]  tension [N]  identity error  CG iterations to 1e-6 (straight-cable preconditioner / none)")
+    print("radius [m]  tension [N]  identity error  CG iterations to 1e-6 (straight-cable preconditioner / diagonal)")
     for radius, tension in ((np.inf, 2.0), (5.0, 1.0), (1.0, 0.5), (0.5, 0.1), (0.3, 0.1)):
         points = arc(101, 0.1, radius, 6.3e-5, rng)
         s_mat, straight, error = schur(points, 0.1, 0.01, 0.005, 1e5, 0.2, tension)

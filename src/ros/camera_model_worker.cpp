@@ -1,5 +1,6 @@
 #include "rov_tether/ros/camera_model_worker.hpp"
 
+#include <system_error>
 #include <utility>
 
 namespace rov_tether::ros_layer
@@ -33,7 +34,18 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
   requested_ = intrinsics;
   if (!thread_.joinable())
   {
-    thread_ = std::thread(&CameraModelWorker::run, this);
+    try
+    {
+      thread_ = std::thread(&CameraModelWorker::run, this);
+    }
+    catch (const std::system_error& e)
+    {
+      // No thread (the process is out of them): the request comes back refused, as a failed build does.
+      const std::lock_guard<std::mutex> lock(mutex_);
+      waiting_.reset();
+      done_ = Built{intrinsics, nullptr, std::string("no thread to build the camera on: ") + e.what()};
+      return;
+    }
   }
   wake_.notify_one();
 }

@@ -92,9 +92,9 @@ void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
     return;
   }
   takeBuiltModel();
-  if (model_ ? model_->intrinsics() == intrinsics : worker_.requested() == intrinsics)
+  if (model_ ? model_->intrinsics() == intrinsics : worker_.requested() == intrinsics || unbuildable_ == intrinsics)
   {
-    return;  // the same intrinsics again: built, or being built
+    return;  // the same intrinsics again: built, being built, or refused by their build (seconds each time)
   }
   // Built off this thread (seconds for a distorted camera, which held the physics here); anything building throws
   // (std::bad_alloc too) refuses this CameraInfo when the build is taken, and never ends the node. The old model
@@ -102,6 +102,7 @@ void TetherCamera::onInfo(const sensor_msgs::CameraInfoConstPtr& info)
   model_.reset();
   worker_.request(intrinsics);
   info_error_.clear();
+  last_warning_.erase("building");  // each new build is said once
 }
 
 void TetherCamera::takeBuiltModel()
@@ -113,6 +114,7 @@ void TetherCamera::takeBuiltModel()
   }
   if (!built->error.empty())
   {
+    unbuildable_ = built->intrinsics;
     refuseInfo(built->error);
     return;
   }

@@ -101,6 +101,8 @@ class TetherCamera
   /// Builds the models of a CameraInfo's new intrinsics off the callback thread (declared after model_: it is
   /// destroyed first, waiting for a build in progress).
   CameraModelWorker worker_;
+  /// The last intrinsics whose build failed: the same CameraInfo again is refused without building it again.
+  std::optional<camera::CameraIntrinsics> unbuildable_;
   camera::TetherRenderer renderer_;
   std::vector<camera::Tube> tubes_;
   std::deque<sensor_msgs::ImageConstPtr> queue_;
