@@ -14,7 +14,7 @@ cable's S as the preconditioner, on arcs of decreasing radius with the demo's ca
 particles, a 5 ms step, EA 1e5 N, EI 0.2 N m^2) and the paper's noise on the positions. Dense numpy, for the
 count only; its own check is the identity T = D A^-1 D^T to rounding.
 
-Usage: python3 scripts/schur_study.py
+Usage: /usr/bin/python3 scripts/schur_study.py (numpy: python3-numpy)
 """
 import numpy as np
 
