@@ -678,9 +678,13 @@ TEST(Sections, AutoSegmentLengthFitsTheSections)
   EXPECT_NEAR(8.0 / r.segment_length, std::round(8.0 / r.segment_length), 1e-9);
   EXPECT_NEAR(6.0 / r.segment_length, std::round(6.0 / r.segment_length), 1e-9);
   EXPECT_TRUE(p.validate().empty());
+  // Lengths with no common measure: refused naming the sections' lengths (it was as segments of auto's choosing
+  // that were not a whole number of them), with no length that Euclid's rounding left.
   p.sections = {{1.0, {{"weight_in_water", 1.0}}}, {std::sqrt(2.0), {{"weight_in_water", -1.0}}}, {}};
   ASSERT_FALSE(p.validate().empty());
-  EXPECT_NE(p.validate()[0].find("not a whole number of segments"), std::string::npos) << p.validate()[0];
+  EXPECT_EQ(p.validate()[0],
+            "segment_length: auto: the sections' lengths have no common length of 1 mm or more for "
+            "segments to divide: make them whole multiples of a longer segment, or set segment_length");
 }
 
 /// An attachment between two particles is split between them by its distance to each: the total force and

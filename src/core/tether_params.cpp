@@ -185,10 +185,12 @@ std::vector<std::string> TetherParams::validateMaterial() const
     const double common = sectionsCommonLength(sections);
     if (common > 0.0 && common < 1.0e-3 * (1.0 - 1e-9))
     {
+      // Lengths with no common measure (1 m and sqrt(2) m) leave Euclid's rounding, not a length: not said.
+      const std::string longest_common = common >= 1e-6 ? " (the longest is " + formatValue(common) + " m)" : "";
       errors.push_back(
           "segment_length: auto: the sections' lengths have no common length of 1 mm or more for "
-          "segments to divide (the longest is " +
-          formatValue(common) + " m): make them whole multiples of a longer segment, or set segment_length");
+          "segments to divide" +
+          longest_common + ": make them whole multiples of a longer segment, or set segment_length");
       return errors;
     }
     const double split = common > 0.0 ? common / std::ceil(common / longest - 1e-9) : 0.0;
