@@ -27,7 +27,16 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     ++generation_;
-    waiting_ = intrinsics;
+    if (building_ == intrinsics)
+    {
+      // What is being built already (cancelled, or superseded, since): that build is this request's.
+      building_generation_ = generation_;
+      waiting_.reset();
+    }
+    else
+    {
+      waiting_ = intrinsics;
+    }
     superseded = std::move(done_);
     done_.reset();
   }
@@ -91,11 +100,13 @@ void CameraModelWorker::run()
     Built built;
     built.intrinsics = *waiting_;
     waiting_.reset();
-    const std::uint64_t generation = generation_;
+    building_ = built.intrinsics;
+    building_generation_ = generation_;
     lock.unlock();
     built.error = buildCameraModel(built.intrinsics, &built.model, build_);  // never throws
     lock.lock();
-    if (generation == generation_)
+    building_.reset();
+    if (building_generation_ == generation_)
     {
       done_ = std::move(built);
     }

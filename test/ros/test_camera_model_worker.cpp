@@ -189,6 +189,22 @@ TEST_F(CameraModelWorkerTest, ACancelledRequestNeverComesBack)
   EXPECT_EQ(builtWidthWithin10s(worker), 32);
 }
 
+// A refused CameraInfo between two good ones cancels the build of the first; the second asks for what is being
+// built, and takes that build on: one build, not a second after it (seconds more for a distorted camera).
+TEST_F(CameraModelWorkerTest, ARequestForWhatIsBeingBuiltTakesThatBuildOn)
+{
+  worker.request(intrinsics(64, 48));
+  ASSERT_TRUE(gate.startedAtLeast(1));
+  worker.cancel();
+  worker.request(intrinsics(64, 48));
+  EXPECT_TRUE(worker.pending());
+  gate.letThrough(64);
+  EXPECT_EQ(builtWidthWithin10s(worker), 64);
+  EXPECT_FALSE(worker.pending());
+  const std::lock_guard<std::mutex> lock(gate.mutex);
+  EXPECT_EQ(gate.started, (std::vector<int>{64}));
+}
+
 // A build that fails (out of memory) comes back as the reason, buildCameraModel's, with no model: the camera is
 // refused and the node goes on.
 TEST(CameraModelWorker, AFailedBuildComesBackAsItsReason)

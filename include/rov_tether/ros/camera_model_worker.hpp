@@ -20,7 +20,8 @@ namespace rov_tether::ros_layer
  * as long whenever a CameraInfo brought new intrinsics (and made the physics skip ahead after it). request() hands
  * the intrinsics over and returns at once; take() hands back the model of the last intrinsics requested once it is
  * built, or why it could not be (buildCameraModel's error), and never a superseded or cancelled request's. One
- * build runs at a time; what is requested meanwhile is built after it (only the latest). The thread starts at the
+ * build runs at a time; what is requested meanwhile is built after it (only the latest), unless it is what is being
+ * built (a good CameraInfo after a refused one cancelled its build): that build is then its. The thread starts at the
  * first request, and the destructor waits for a build in progress. request, cancel, take, pending and requested
  * are for one thread (the callback thread); only the build runs on the worker's.
  */
@@ -61,6 +62,8 @@ class CameraModelWorker
   std::condition_variable wake_;
   std::uint64_t generation_ = 0;                     ///< Counts requests and cancellations; a build keeps its own.
   std::optional<camera::CameraIntrinsics> waiting_;  ///< Requested, not yet started.
+  std::optional<camera::CameraIntrinsics> building_;  ///< Being built, on the worker's thread.
+  std::uint64_t building_generation_ = 0;  ///< The request that build is for (taken on by a request for the same).
   std::optional<Built> done_;                        ///< Built for generation_, not yet taken.
   bool stop_ = false;
   std::thread thread_;
