@@ -60,11 +60,11 @@ class CameraModelWorker
   std::optional<camera::CameraIntrinsics> requested_;  ///< The callback thread's view: what take() will hand back.
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::uint64_t generation_ = 0;                     ///< Counts requests and cancellations; a build keeps its own.
-  std::optional<camera::CameraIntrinsics> waiting_;  ///< Requested, not yet started.
+  std::uint64_t generation_ = 0;                      ///< Counts requests and cancellations; a build keeps its own.
+  std::optional<camera::CameraIntrinsics> waiting_;   ///< Requested, not yet started.
   std::optional<camera::CameraIntrinsics> building_;  ///< Being built, on the worker's thread.
   std::uint64_t building_generation_ = 0;  ///< The request that build is for (taken on by a request for the same).
-  std::optional<Built> done_;                        ///< Built for generation_, not yet taken.
+  std::optional<Built> done_;              ///< Built for generation_, not yet taken.
   bool stop_ = false;
   std::thread thread_;
 };
