@@ -87,8 +87,9 @@ class InscribedArc
 }  // namespace
 
 CableLayout::CableLayout(const TetherParams& params)
-    : elastic_(params.elasticBending() && (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)),
-      stiffness_(elastic_ ? params.largestBendingStiffness() : 0.0),
+    : stiffness_(params.elasticBending() && (params.solver == SolverType::kDirect || params.solver == SolverType::kXpbd)
+                     ? params.largestBendingStiffness()
+                     : 0.0),
       weight_(params.weight_in_water),
       seabed_z_(params.seabed_z),
       surface_z_(params.water_surface_z)
@@ -175,7 +176,7 @@ void CableLayout::layFree(Cable& cable, const Position& spool, double length) co
 
 double CableLayout::cornerRadius(const Cable& cable, double drop_in_air, double length) const
 {
-  if (!(stiffness_ > 0.0))
+  if (!elastic())
   {
     return 0.0;
   }
@@ -214,7 +215,7 @@ Position CableLayout::slackSide(const Position& direction)
 
 void CableLayout::lay(Cable& cable, const Chord& chord, const Position& side) const
 {
-  if (elastic_ && chord.offset > 0.0 && cable.size() > cable.first + 1)
+  if (elastic() && chord.offset > 0.0 && cable.size() > cable.first + 1)
   {
     layOnArc(cable, chord, side);
   }

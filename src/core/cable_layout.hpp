@@ -83,8 +83,10 @@ class CableLayout
   /// The slack bowed sideways, level across the chord, and what is still below seabed_z put on it.
   void bowAboveSeabed(Cable& cable, const Chord& chord) const;
 
-  bool elastic_;      ///< Slack is laid on an arc: the cable resists bending.
-  double stiffness_;  ///< The cable's largest EI, 0 when it does not resist bending [N m^2].
+  /// The cable resists bending (slack is laid on an arc, a free end turns onto the level on one).
+  bool elastic() const { return stiffness_ > 0.0; }
+
+  double stiffness_;  ///< The cable's largest EI, 0 when it does not resist bending (or the solver bends none) [N m^2].
   double weight_;     ///< weight_in_water of a uniform cable (no cable.loading) [N/m].
   double seabed_z_;   ///< The flat seabed's height, NaN for none [m].
   double surface_z_;  ///< The water surface's height, NaN for none [m].

@@ -99,6 +99,23 @@ double sectionsCommonLength(const std::vector<CableSection>& sections)
   return common;
 }
 
+/// The shortest segment `segment_length: auto` goes down to [m].
+constexpr double kMinAutoSegment = 1.0e-3;
+
+/// Below kMinAutoSegment, compared to 1e-9 as segmentCount() counts: a division that asks for exactly 1 mm
+/// (1.001 m in 1,001 segments) gives 0.9999999999999998 mm, which is taken.
+bool belowMinAutoSegment(double segment) { return segment < kMinAutoSegment * (1.0 - 1e-9); }
+
+/// The longest segment that `length` is a whole number of and that is at most `longest` [m].
+double wholeSegmentsWithin(double length, double longest)
+{
+  return length / std::max(1.0, std::ceil(length / longest - 1e-9));
+}
+
+/// The longest segment `segment_length: auto`'s chord rule allows: the chord error of a segment dL on a curve of
+/// radius R is dL^2 / (8 R) (docs/references.md "How fine a cable needs to be") [m].
+double chordRuleLongest(const TetherParams& p) { return std::sqrt(8.0 * p.min_bend_radius * p.shape_tolerance); }
+
 }  // namespace
 
 std::vector<std::string> TetherParams::validate() const
@@ -166,15 +183,13 @@ std::vector<std::string> TetherParams::validateMaterial() const
   if (segment_length_auto)
   {
     // resolved() keeps segments at 1 mm at least: the chord rule asking for less is refused, not followed silently.
-    // Compared as segmentCount() counts, to 1e-9: a cable of whole millimetres asking for exactly 1 mm (1.001 m in
-    // 1,001 segments, which the division makes 0.9999999999999998 mm) is taken.
-    const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
-    const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
-    if (cable_length / count < 1.0e-3 * (1.0 - 1e-9))
+    const double longest = chordRuleLongest(*this);
+    const double plain = wholeSegmentsWithin(cable_length, longest);
+    if (belowMinAutoSegment(plain))
     {
       errors.push_back("segment_length: auto: shape_tolerance = " + formatValue(shape_tolerance) +
                        " m on min_bend_radius = " + formatValue(min_bend_radius) + " m asks for segments of " +
-                       formatValue(cable_length / count) +
+                       formatValue(plain) +
                        " m, below the 1 mm `auto` goes down to: raise shape_tolerance or min_bend_radius, or set "
                        "segment_length");
       return errors;
@@ -183,7 +198,7 @@ std::vector<std::string> TetherParams::validateMaterial() const
     // range or straddling a boundary, values nobody set): lengths with no common length of 1 mm (1 m and 1.0005 m),
     // or two of 0.75 mm in a 1.5 mm section when 1.2 mm is the longest the chord rule allows.
     const double common = sectionsCommonLength(sections);
-    if (common > 0.0 && common < 1.0e-3 * (1.0 - 1e-9))
+    if (common > 0.0 && belowMinAutoSegment(common))
     {
       // Lengths with no common measure (1 m and sqrt(2) m) leave Euclid's rounding, not a length: not said.
       const std::string longest_common = common >= 1e-6 ? " (the longest is " + formatValue(common) + " m)" : "";
@@ -193,8 +208,8 @@ std::vector<std::string> TetherParams::validateMaterial() const
           longest_common + ": make them whole multiples of a longer segment, or set segment_length");
       return errors;
     }
-    const double split = common > 0.0 ? common / std::ceil(common / longest - 1e-9) : 0.0;
-    if (common > 0.0 && split < 1.0e-3 * (1.0 - 1e-9))
+    const double split = common > 0.0 ? wholeSegmentsWithin(common, longest) : 0.0;
+    if (common > 0.0 && belowMinAutoSegment(split))
     {
       errors.push_back(
           "segment_length: auto: the sections' common length " + formatValue(common) + " m in segments of at most " +
@@ -341,19 +356,13 @@ TetherParams TetherParams::resolved() const
   TetherParams r = *this;
   if (segment_length_auto)
   {
-    // Chord error of a segment dL on a curve of radius R: dL^2 / (8 R) (docs/references.md "How fine a cable needs to
-    // be"); whole segments.
-    const double longest = std::sqrt(8.0 * min_bend_radius * shape_tolerance);
-    const double count = std::max(1.0, std::ceil(cable_length / longest - 1e-9));
-    r.segment_length = std::max(cable_length / count, 1.0e-3);
-    // Sections end on segment boundaries: the longest segment within `longest` that every section's length (the
-    // last one's is what is left) is a whole number of.
-    // At 1 mm at least, as above: a division that asks for exactly 1 mm can give 0.9999999999999998 mm.
+    // Whole segments within the chord rule's longest, 1 mm at least (validate() refuses a rule asking for less; a
+    // division asking for exactly 1 mm can give 0.9999999999999998 mm). Sections end on segment boundaries: the
+    // longest such segment that every section's length (the last one's is what is left) is a whole number of.
+    const double longest = chordRuleLongest(*this);
     const double common = sectionsCommonLength(sections);
-    if (common >= 1.0e-3 * (1.0 - 1e-9))
-    {
-      r.segment_length = std::max(common / std::ceil(common / longest - 1e-9), 1.0e-3);
-    }
+    const double whole = belowMinAutoSegment(common) ? cable_length : common;
+    r.segment_length = std::max(wholeSegmentsWithin(whole, longest), kMinAutoSegment);
     r.segment_length_auto = false;
   }
   if (iterations_auto)

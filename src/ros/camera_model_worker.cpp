@@ -37,8 +37,7 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
     {
       waiting_ = intrinsics;
     }
-    superseded = std::move(done_);
-    done_.reset();
+    superseded = std::exchange(done_, std::nullopt);
   }
   requested_ = intrinsics;
   if (!thread_.joinable())
@@ -66,8 +65,7 @@ void CameraModelWorker::cancel()
     const std::lock_guard<std::mutex> lock(mutex_);
     ++generation_;
     waiting_.reset();
-    dropped = std::move(done_);
-    done_.reset();
+    dropped = std::exchange(done_, std::nullopt);
   }
   requested_.reset();
 }
@@ -77,8 +75,7 @@ std::optional<CameraModelWorker::Built> CameraModelWorker::take()
   std::optional<Built> built;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    built = std::move(done_);
-    done_.reset();
+    built = std::exchange(done_, std::nullopt);
   }
   if (built)
   {
