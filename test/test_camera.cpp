@@ -380,6 +380,48 @@ TEST(Camera, BadIntrinsicsAreRefusedNamingTheField)
   }
 }
 
+// A distorted camera's build (seconds at 1920x1080) asks whether it is abandoned before each stretch of
+// kRowsPerStretch rows and once before its row tables, and stops at the first yes: the node's shutdown and the next
+// CameraInfo need not wait for it. Asked and never told, it builds each ray as one cv::undistortPoints call over the
+// whole image does (the stretches take each pixel on its own, as that call does: bit for bit).
+TEST(Camera, ABuildAskedToStopPartWayStopsThere)
+{
+  const CameraIntrinsics c = vga(kBarrel);
+  const int stretches = (c.height + CameraModel::kRowsPerStretch - 1) / CameraModel::kRowsPerStretch;  // 30
+  int asked = 0;
+  EXPECT_THROW(CameraModel(c, [&] { return ++asked == 3; }), CameraBuildAbandoned);
+  EXPECT_EQ(asked, 3) << "the build went on after it was told to stop";
+
+  asked = 0;
+  const CameraModel model(c, [&] { return ++asked < 0; });
+  EXPECT_EQ(asked, stretches + 1);
+  std::vector<cv::Point2d> pixels, rays;
+  for (int v = 0; v < c.height; ++v)
+  {
+    for (int u = 0; u < c.width; ++u)
+    {
+      pixels.emplace_back(u, v);
+    }
+  }
+  const cv::Mat k_mat(3, 3, CV_64F, const_cast<double*>(c.K.data()));
+  std::array<double, 5> d = c.plumbBob();
+  cv::undistortPoints(pixels, rays, k_mat, cv::Mat(1, 5, CV_64F, d.data()), cv::noArray(), cv::noArray(),
+                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
+  int different = 0;
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+  {
+    const int u = static_cast<int>(pixels[i].x), v = static_cast<int>(pixels[i].y);
+    different +=
+        model.ray(u, v).x() != static_cast<float>(rays[i].x) || model.ray(u, v).y() != static_cast<float>(rays[i].y);
+  }
+  EXPECT_EQ(different, 0);
+
+  // An undistorted camera's rays take no inversion: it is asked once, before the row tables.
+  asked = 0;
+  EXPECT_THROW(CameraModel(vga(), [&] { return ++asked == 1; }), CameraBuildAbandoned);
+  EXPECT_EQ(asked, 1);
+}
+
 TEST(Camera, ShapeHistoryInterpolatesToAStamp)
 {
   TetherParams params;

@@ -34,7 +34,8 @@ int firstWhere(int lo, int hi, Predicate holds)
 
 }  // namespace
 
-CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics), d_(intrinsics.plumbBob())
+CameraModel::CameraModel(const CameraIntrinsics& intrinsics, const BuildAbandoned& abandoned)
+    : intrinsics_(intrinsics), d_(intrinsics.plumbBob())
 {
   const auto errors = intrinsics_.validate();
   if (!errors.empty())
@@ -42,7 +43,11 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
     throw std::invalid_argument(joinMessages(errors));
   }
   max_focal_ = std::max(intrinsics_.fx(), intrinsics_.fy()) + std::abs(intrinsics_.skew());
-  computeRays();
+  computeRays(abandoned);
+  if (abandoned && abandoned())
+  {
+    throw CameraBuildAbandoned();
+  }
   computeRowTables();
 }
 
@@ -56,7 +61,7 @@ Eigen::Vector2d CameraModel::toPixel(double x, double y) const
   return {K[0] * xd + K[1] * yd + K[2], K[4] * yd + K[5]};
 }
 
-void CameraModel::computeRays()
+void CameraModel::computeRays(const BuildAbandoned& abandoned)
 {
   const int w = width();
   const int h = height();
@@ -87,11 +92,22 @@ void CameraModel::computeRays()
         pixels[static_cast<std::size_t>(v) * w + u] = cv::Point2d(u, v);
       }
     }
-    std::vector<cv::Point2d> normalised;
+    std::vector<cv::Point2d> normalised(n);
     const cv::Mat k_mat(3, 3, CV_64F, const_cast<double*>(K.data()));
     const cv::Mat d_mat(1, 5, CV_64F, d_.data());
-    cv::undistortPoints(pixels, normalised, k_mat, d_mat, cv::noArray(), cv::noArray(),
-                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
+    // A stretch of rows at a time, each pixel on its own as in one call, so that `abandoned` is heard within one.
+    for (int first = 0; first < h; first += kRowsPerStretch)
+    {
+      if (abandoned && abandoned())
+      {
+        throw CameraBuildAbandoned();
+      }
+      const int rows = std::min(kRowsPerStretch, h - first);
+      const cv::Mat in(rows * w, 1, CV_64FC2, &pixels[static_cast<std::size_t>(first) * w]);
+      cv::Mat out(rows * w, 1, CV_64FC2, &normalised[static_cast<std::size_t>(first) * w]);
+      cv::undistortPoints(in, out, k_mat, d_mat, cv::noArray(), cv::noArray(),
+                          cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
+    }
     double worst = 0.0;
     for (std::size_t i = 0; i < n; ++i)
     {

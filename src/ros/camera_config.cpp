@@ -65,15 +65,20 @@ std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera
 }
 
 std::string buildCameraModel(const camera::CameraIntrinsics& intrinsics, std::unique_ptr<camera::CameraModel>* model,
-                             const CameraModelBuilder& build)
+                             const CameraModelBuilder& build, const camera::BuildAbandoned& abandoned)
 {
   const std::string size = std::to_string(intrinsics.width) + "x" + std::to_string(intrinsics.height);
+  const camera::BuildAbandoned asked = abandoned ? abandoned : [] { return false; };
   try
   {
-    *model = build ? build(intrinsics) : std::make_unique<camera::CameraModel>(intrinsics);
+    *model = build ? build(intrinsics, asked) : std::make_unique<camera::CameraModel>(intrinsics, asked);
     return "";
   }
   catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  catch (const camera::CameraBuildAbandoned& e)
   {
     return e.what();
   }

@@ -13,6 +13,7 @@ CameraModelWorker::~CameraModelWorker()
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
+    abandon_ = true;  // a build in progress stops within a stretch of rows, not seconds later
   }
   wake_.notify_one();
   if (thread_.joinable())
@@ -27,7 +28,7 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     ++generation_;
-    if (building_ == intrinsics)
+    if (building_ == intrinsics && !abandon_)
     {
       // What is being built already (cancelled, or superseded, since): that build is this request's.
       building_generation_ = generation_;
@@ -36,6 +37,8 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
     else
     {
       waiting_ = intrinsics;
+      // A build of other intrinsics can no longer come back: it stops, and this one starts sooner.
+      abandon_ = abandon_ || building_.has_value();
     }
     superseded = std::exchange(done_, std::nullopt);
   }
@@ -99,8 +102,10 @@ void CameraModelWorker::run()
     waiting_.reset();
     building_ = built.intrinsics;
     building_generation_ = generation_;
+    abandon_ = false;
     lock.unlock();
-    built.error = buildCameraModel(built.intrinsics, &built.model, build_);  // never throws
+    built.error = buildCameraModel(built.intrinsics, &built.model, build_,
+                                   [this] { return abandon_.load(std::memory_order_relaxed); });  // never throws
     lock.lock();
     building_.reset();
     if (building_generation_ == generation_)

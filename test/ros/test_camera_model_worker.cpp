@@ -22,33 +22,57 @@ namespace rov_tether::ros_layer
 namespace
 {
 
-/// Where the builder waits (each build until its width is let through, or all are), and what it was asked to build
-/// (the widths, in order) and has built.
+/// Where the builder waits (each build until its width is let through, or all are, or until the worker abandons it
+/// while the gate hears that), and what it was asked to build (the widths, in order), has built and has abandoned.
 struct Gate
 {
   std::mutex mutex;
   std::condition_variable changed;
   bool open = false;
-  std::vector<int> through, started, finished;
+  bool hears = true;  ///< Whether a held build asks the worker if it is abandoned (CameraModel asks every 16 rows).
+  std::vector<int> through, started, finished, abandoned;
 
   CameraModelBuilder builder()
   {
-    return [this](const camera::CameraIntrinsics& intrinsics)
+    return [this](const camera::CameraIntrinsics& intrinsics, const camera::BuildAbandoned& asked)
     {
       std::unique_lock<std::mutex> lock(mutex);
       const int width = intrinsics.width;
       started.push_back(width);
       changed.notify_all();
       const auto let = [&] { return open || std::find(through.begin(), through.end(), width) != through.end(); };
-      if (!changed.wait_for(lock, std::chrono::seconds(10), let))
+      // The worker says nothing when it abandons a build: the builder asks, as CameraModel does, every 1 ms here.
+      const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (!let())
       {
-        throw std::runtime_error("the gate never opened");
+        if (hears && asked())
+        {
+          abandoned.push_back(width);
+          changed.notify_all();
+          throw camera::CameraBuildAbandoned();
+        }
+        if (std::chrono::steady_clock::now() > end)
+        {
+          throw std::runtime_error("the gate never opened");
+        }
+        changed.wait_for(lock, std::chrono::milliseconds(1));
       }
       auto model = std::make_unique<camera::CameraModel>(intrinsics);
       finished.push_back(width);
       changed.notify_all();
       return model;
     };
+  }
+  void hear(bool yes)
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    hears = yes;
+  }
+  /// Waits until `count` builds have been abandoned (10 s at most).
+  bool abandonedAtLeast(std::size_t count)
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    return changed.wait_for(lock, std::chrono::seconds(10), [&] { return abandoned.size() >= count; });
   }
   void openIt()
   {
@@ -147,22 +171,60 @@ TEST_F(CameraModelWorkerTest, ACameraIsBuiltOffTheThreadThatAsks)
   EXPECT_FALSE(worker.take().has_value());
 }
 
-// CameraInfos with new intrinsics in quick succession: the one being built when the others came is built out and
-// dropped, the one superseded before its build started is never built, and only the last comes back. The next
-// build starting shows the worker is done with the one before: nothing is handed back by then.
-TEST_F(CameraModelWorkerTest, OnlyTheLastRequestComesBack)
+// CameraInfos with new intrinsics in quick succession: the one being built when the others came is abandoned (its
+// build can no longer come back, and the next should not wait seconds for it), the one superseded before its build
+// started is never built, and only the last comes back. The next build starting shows the worker is done with the
+// one before: nothing is handed back by then. (Built out, the 64x48 camera held the gate until its 10 s ran out.)
+TEST_F(CameraModelWorkerTest, OnlyTheLastRequestComesBackAndASupersededBuildIsAbandoned)
 {
   worker.request(intrinsics(64, 48));
   ASSERT_TRUE(gate.startedAtLeast(1));
   worker.request(intrinsics(32, 24));
   worker.request(intrinsics(16, 12));
-  gate.letThrough(64);
+  ASSERT_TRUE(gate.abandonedAtLeast(1)) << "the superseded 64x48 camera's build went on";
   ASSERT_TRUE(gate.startedAtLeast(2));
   EXPECT_FALSE(worker.take().has_value()) << "the superseded 64x48 camera was handed back";
   gate.letThrough(16);
   EXPECT_EQ(builtWidthWithin10s(worker), 16);
   const std::lock_guard<std::mutex> lock(gate.mutex);
   EXPECT_EQ(gate.started, (std::vector<int>{64, 16}));
+  EXPECT_EQ(gate.abandoned, (std::vector<int>{64}));
+}
+
+// A build abandoned for other intrinsics is not taken on by a request for its own before it has stopped: that
+// request is built afresh, and its model comes back (taken on, the abandoned build's reason came back instead).
+TEST_F(CameraModelWorkerTest, AnAbandonedBuildIsNotTakenOn)
+{
+  gate.hear(false);  // the 64x48 build is held, not yet stopped, while the requests come
+  worker.request(intrinsics(64, 48));
+  ASSERT_TRUE(gate.startedAtLeast(1));
+  worker.request(intrinsics(32, 24));
+  worker.request(intrinsics(64, 48));
+  gate.hear(true);
+  ASSERT_TRUE(gate.abandonedAtLeast(1));
+  gate.letThrough(64);
+  const std::optional<CameraModelWorker::Built> built = takeWithin10s(worker);
+  ASSERT_TRUE(built.has_value());
+  EXPECT_EQ(built->error, "");
+  ASSERT_NE(built->model, nullptr);
+  EXPECT_EQ(built->model->width(), 64);
+  const std::lock_guard<std::mutex> lock(gate.mutex);
+  EXPECT_EQ(gate.started, (std::vector<int>{64, 64}));
+}
+
+// Destroying the worker (the node shutting down) abandons a build in progress: the destructor returns without the
+// build being let through. (It waited for the build: seconds for a distorted camera, here the gate's 10 s.)
+TEST(CameraModelWorker, ItsDestructionAbandonsABuildInProgress)
+{
+  Gate gate;
+  {
+    CameraModelWorker worker(gate.builder());
+    worker.request(intrinsics(64, 48));
+    ASSERT_TRUE(gate.startedAtLeast(1));
+  }
+  const std::lock_guard<std::mutex> lock(gate.mutex);
+  EXPECT_EQ(gate.abandoned, (std::vector<int>{64})) << "the destructor waited for the build";
+  EXPECT_TRUE(gate.finished.empty());
 }
 
 // A refused CameraInfo cancels the build of the one before it: that model never comes back (none within 0.2 s of
@@ -209,8 +271,9 @@ TEST_F(CameraModelWorkerTest, ARequestForWhatIsBeingBuiltTakesThatBuildOn)
 // refused and the node goes on.
 TEST(CameraModelWorker, AFailedBuildComesBackAsItsReason)
 {
-  CameraModelWorker worker([](const camera::CameraIntrinsics&) -> std::unique_ptr<camera::CameraModel>
-                           { throw std::bad_alloc(); });
+  CameraModelWorker worker(
+      [](const camera::CameraIntrinsics&, const camera::BuildAbandoned&) -> std::unique_ptr<camera::CameraModel>
+      { throw std::bad_alloc(); });
   worker.request(intrinsics(64, 48));
   std::optional<CameraModelWorker::Built> built = takeWithin10s(worker);
   ASSERT_TRUE(built.has_value());

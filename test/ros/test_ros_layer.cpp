@@ -1209,12 +1209,14 @@ TEST(CameraConfig, ACameraThatCannotBeBuiltIsRefusedNotThrown)
   std::unique_ptr<camera::CameraModel> model;
   std::string error;
   EXPECT_NO_THROW(error = buildCameraModel(intrinsics, &model,
-                                           [](const camera::CameraIntrinsics&) -> std::unique_ptr<camera::CameraModel>
+                                           [](const camera::CameraIntrinsics&,
+                                              const camera::BuildAbandoned&) -> std::unique_ptr<camera::CameraModel>
                                            { throw std::bad_alloc(); }));
   EXPECT_EQ(error, "building the 64x48 camera ran out of memory");
   EXPECT_EQ(model, nullptr);
   EXPECT_NO_THROW(error = buildCameraModel(intrinsics, &model,
-                                           [](const camera::CameraIntrinsics&) -> std::unique_ptr<camera::CameraModel>
+                                           [](const camera::CameraIntrinsics&,
+                                              const camera::BuildAbandoned&) -> std::unique_ptr<camera::CameraModel>
                                            { throw std::runtime_error("cv::undistortPoints failed"); }));
   EXPECT_EQ(error, "building the 64x48 camera failed: cv::undistortPoints failed");
   EXPECT_EQ(model, nullptr);
@@ -1226,6 +1228,12 @@ TEST(CameraConfig, ACameraThatCannotBeBuiltIsRefusedNotThrown)
   EXPECT_EQ(buildCameraModel(intrinsics, &model), "");
   ASSERT_NE(model, nullptr);
   EXPECT_EQ(model->width(), 64);
+  // Abandoned part-way (the worker's shutdown), CameraModel's constructor stops and the build says so, keeping
+  // what *model held.
+  camera::CameraModel* kept = model.get();
+  intrinsics.width = 32;
+  EXPECT_EQ(buildCameraModel(intrinsics, &model, {}, [] { return true; }), camera::CameraBuildAbandoned().what());
+  EXPECT_EQ(model.get(), kept);
 }
 
 // Review of the camera node, item 4: sensor_msgs/CameraInfo says a roi of the full image (offsets 0, the

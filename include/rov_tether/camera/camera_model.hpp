@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -15,6 +17,16 @@ struct RayBounds
   double x_min, x_max, y_min, y_max;
 };
 
+/// Whether a build in progress is no longer wanted (asked between stretches of rows).
+using BuildAbandoned = std::function<bool()>;
+
+/// Thrown by CameraModel's constructor when its `abandoned` said so part-way.
+class CameraBuildAbandoned : public std::runtime_error
+{
+ public:
+  CameraBuildAbandoned() : std::runtime_error("the camera's build was abandoned") {}
+};
+
 /**
  * A calibrated pinhole camera with plumb_bob distortion: projection of points (OpenCV's projectPoints
  * model) and, once per calibration, the ray through every pixel centre (the distortion inverted), with
@@ -27,10 +39,15 @@ class CameraModel
  public:
   /// Columns per block of a row whose band of y is kept (rowYBetween).
   static constexpr int kBandColumns = 32;
+  /// Rows of a distorted image whose rays are found between two questions to `abandoned` (a 1920-pixel row
+  /// takes about 1 ms).
+  static constexpr int kRowsPerStretch = 16;
 
   /// Throws std::invalid_argument naming the field when the intrinsics are invalid, or when D cannot be
-  /// inverted over the image (the radial distortion folds over within it).
-  explicit CameraModel(const CameraIntrinsics& intrinsics);
+  /// inverted over the image (the radial distortion folds over within it). `abandoned`, when given, is asked
+  /// before each kRowsPerStretch rows whose distortion is inverted (seconds for a large distorted camera) and
+  /// once before the row tables; when it says so, the constructor throws CameraBuildAbandoned.
+  explicit CameraModel(const CameraIntrinsics& intrinsics, const BuildAbandoned& abandoned = {});
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
   int width() const { return intrinsics_.width; }
@@ -68,7 +85,7 @@ class CameraModel
   std::pair<int, int> columnsBetween(int v, double x_lo, double x_hi, std::pair<int, int> near = {-1, -2}) const;
 
  private:
-  void computeRays();
+  void computeRays(const BuildAbandoned& abandoned);
   void computeRowTables();
 
   CameraIntrinsics intrinsics_;

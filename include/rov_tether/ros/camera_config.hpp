@@ -32,15 +32,17 @@ std::string loadCameraConfigs(const XmlRpc::XmlRpcValue& list, const std::vector
 /// binning or a region of interest other than the full image, invalid K, more than 4096 x 4096 pixels).
 std::string intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info, camera::CameraIntrinsics* intrinsics);
 
-/// What builds a camera model: CameraModel's constructor unless a test gives one that fails as memory would.
-using CameraModelBuilder = std::function<std::unique_ptr<camera::CameraModel>(const camera::CameraIntrinsics&)>;
+/// What builds a camera model: CameraModel's constructor unless a test gives one that fails as memory would. It
+/// is handed the build's `abandoned` (never empty), which it may ask, throwing CameraBuildAbandoned when it says so.
+using CameraModelBuilder =
+    std::function<std::unique_ptr<camera::CameraModel>(const camera::CameraIntrinsics&, const camera::BuildAbandoned&)>;
 
 /// Builds the model of `intrinsics` into *model (with `build`, CameraModel's constructor when empty). Returns
 /// "" or why it cannot be built, *model left as it was then: invalid intrinsics, a distortion that folds
-/// over, or any other std::exception (std::bad_alloc: out of memory). Never throws: a camera that cannot be
-/// built is refused, and the node goes on.
+/// over, a build `abandoned` part-way (CameraBuildAbandoned's words), or any other std::exception (std::bad_alloc: out
+/// of memory). Never throws: a camera that cannot be built is refused, and the node goes on.
 std::string buildCameraModel(const camera::CameraIntrinsics& intrinsics, std::unique_ptr<camera::CameraModel>* model,
-                             const CameraModelBuilder& build = {});
+                             const CameraModelBuilder& build = {}, const camera::BuildAbandoned& abandoned = {});
 
 /// Copies `image` (CV_8UC1 as mono8, CV_32FC1 as 32FC1) into `msg`, reusing its storage.
 void toImageMessage(const cv::Mat& image, const std_msgs::Header& header, sensor_msgs::Image* msg);
