@@ -28,7 +28,7 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     ++generation_;
-    if (building_ == intrinsics && !abandon_)
+    if (building_ == intrinsics)
     {
       // What is being built already (cancelled, or superseded, since): that build is this request's.
       building_generation_ = generation_;
@@ -36,9 +36,10 @@ void CameraModelWorker::request(const camera::CameraIntrinsics& intrinsics)
     }
     else
     {
+      // Built after the build in progress, which goes on: were it abandoned, CameraInfos alternating between
+      // two cameras faster than a build would never bring a model, where this way each request for what is
+      // being built takes that build on.
       waiting_ = intrinsics;
-      // A build of other intrinsics can no longer come back: it stops, and this one starts sooner.
-      abandon_ = abandon_ || building_.has_value();
     }
     superseded = std::exchange(done_, std::nullopt);
   }
@@ -102,7 +103,6 @@ void CameraModelWorker::run()
     waiting_.reset();
     building_ = built.intrinsics;
     building_generation_ = generation_;
-    abandon_ = false;
     lock.unlock();
     built.error = buildCameraModel(built.intrinsics, &built.model, build_,
                                    [this] { return abandon_.load(std::memory_order_relaxed); });  // never throws

@@ -22,11 +22,11 @@ namespace rov_tether::ros_layer
  * the intrinsics over and returns at once; take() hands back the model of the last intrinsics requested once it is
  * built, or why it could not be (buildCameraModel's error), and never a superseded or cancelled request's. One
  * build runs at a time; what is requested meanwhile is built after it (only the latest), unless it is what is being
- * built (a good CameraInfo after a refused one cancelled its build): that build is then its. A build that can no
- * longer come back, because other intrinsics were requested or the worker is being destroyed, is abandoned: the
- * builder hears it within a stretch of rows (CameraModel::kRowsPerStretch), so neither the next camera nor the
- * node's shutdown waits seconds for it. The thread starts at the first request. request, cancel, take, pending and
- * requested are for one thread (the callback thread); only the build runs on the worker's.
+ * built (a good CameraInfo after a refused one cancelled its build): that build is then its. The destructor (the
+ * node shutting down) abandons a build in progress: the builder hears it within a stretch of rows
+ * (CameraModel::kRowsPerStretch), so the shutdown does not wait seconds for it. The thread starts at the first
+ * request. request, cancel, take, pending and requested are for one thread (the callback thread); only the build
+ * runs on the worker's.
  */
 class CameraModelWorker
 {
@@ -68,7 +68,7 @@ class CameraModelWorker
   std::optional<camera::CameraIntrinsics> building_;  ///< Being built, on the worker's thread.
   std::uint64_t building_generation_ = 0;  ///< The request that build is for (taken on by a request for the same).
   std::optional<Built> done_;              ///< Built for generation_, not yet taken.
-  std::atomic<bool> abandon_{false};       ///< The build in progress can no longer come back (set under mutex_).
+  std::atomic<bool> abandon_{false};       ///< The worker is being destroyed: a build in progress stops.
   bool stop_ = false;
   std::thread thread_;
 };
