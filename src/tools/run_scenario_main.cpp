@@ -37,9 +37,9 @@ void usage(std::FILE* out)
       "                          each tether that does not set its own max_tension_warning.\n"
       "  Warnings (stderr, as the node logs them): simulation failures, a vehicle out of its cable's reach,\n"
       "  over-tension, an outrun winch, a reel-in held at the winch's stall pull.\n"
-      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 output error. Stopped by SIGINT (Ctrl-C)\n"
-      "  or SIGTERM it writes no CSV output and ends by that signal (the shell's 130 or 143); a second\n"
-      "  Ctrl-C ends it at once.\n");
+      "  Exit codes: 0 success, 2 bad scenario or arguments, 1 a simulation that refused to go on or an\n"
+      "  output error. Stopped by SIGINT (Ctrl-C) or SIGTERM it writes no CSV output and ends by that\n"
+      "  signal (the shell's 130 or 143); a second Ctrl-C ends it at once.\n");
 }
 
 /// The signal that asked the run to stop (SIGINT, SIGTERM; the first of them), 0 while none: set by onStopSignal,
