@@ -22,6 +22,9 @@ constexpr int kMaxHalvings = 12;
 constexpr double kArmijo = 1e-4;
 /// Rounds of the model's active set in one Newton step.
 constexpr int kMaxModelRounds = 30;
+/// The first and the largest shift of a Hessian that is not definite, in particle masses (solveModel).
+constexpr double kFirstShift = 0.125;
+constexpr double kMaxShift = 64.0;
 
 /// The largest magnitude of `count` numbers (0 for none).
 ROV_TETHER_TARGET_CLONES double largestComponent(const double* __restrict v, std::size_t count)
@@ -95,6 +98,7 @@ PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double to
   Result result;
   result.residual = std::numeric_limits<double>::infinity();
   model_unsettled_ = false;
+  whole_compression_ = true;
   while (result.residual > tolerance && result.iterations < max_iterations)
   {
     if (!std::isfinite(step(cable, &result.rounds)))
@@ -279,9 +283,14 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
     model[k] = !ws_.unilateral || ws_.c[k] > ws_.kink[k] || ws_.taut[ws_.first + k] ? 1.0 : 0.0;
     middle_[k] = onMiddle(k, model[k], ws_.c[k]);
   }
+  double shift = 0.0;
   for (int round = 0;; ++round)
   {
-    assemble(cable);
+    assemble(cable, whole_compression_);
+    if (shift > 0.0)
+    {
+      shiftHessian(shift);
+    }
     std::transform(grad_.begin(), grad_.begin() + static_cast<std::ptrdiff_t>(rows), step_.begin(),
                    [](double g) { return -g; });
     const double* second = ws_.bending ? hessian_second_.data() : nullptr;
@@ -304,6 +313,19 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
                                           work_.data(), layout());
     }
     ++*rounds;
+    if (!ok && whole_compression_)
+    {
+      // Not definite with every compressed segment's geometric stiffness whole: a rod buckling, or the
+      // iterate's multipliers compressing it harder than the solution will. This round again with the
+      // exact Hessian plus shift x each particle's mass (Levenberg-Marquardt), the shift doubling from
+      // kFirstShift until it is definite; beyond kMaxShift, with each compressed segment's stiffness taking at
+      // most kCompressedShare of its ends' masses, which is always definite.
+      shift = shift > 0.0 ? 2.0 * shift : kFirstShift;
+      whole_compression_ = shift <= kMaxShift;
+      shift = whole_compression_ ? shift : 0.0;
+      --round;
+      continue;
+    }
     if (!ok)
     {
       return false;
@@ -329,6 +351,17 @@ bool PrimalNewton::solveModel(const Cable& cable, int* rounds)
       model_unsettled_ = changes > 0;
       return true;
     }
+  }
+}
+
+void PrimalNewton::shiftHessian(double shift)
+{
+  const std::size_t stride = lambda_.size();
+  double* diag = hessian_diag_.data();
+  for (std::size_t l = 0; l <= ws_.m; ++l)
+  {
+    const double add = shift * mass_[l];  // 0 for a pinned particle, whose row is the identity
+    diag[l] += add, diag[4 * stride + l] += add, diag[8 * stride + l] += add;
   }
 }
 

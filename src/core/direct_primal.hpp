@@ -65,8 +65,12 @@ class PrimalNewton
   void curvature(const Cable& cable);
   /// The Hessian's blocks and the gradient at the current positions, for the model's segments: the mass, the
   /// segments' axial and geometric stiffness, the joints' bending. Each segment's terms first, into segment_,
-  /// then the rows from them, in loops that vectorise (direct_primal_assembly.cpp).
-  void assemble(const Cable& cable);
+  /// then the rows from them, in loops that vectorise (direct_primal_assembly.cpp). `whole_compression`: every
+  /// compressed segment's geometric stiffness whole (the exact Hessian, which a buckling rod makes indefinite),
+  /// else each at most kCompressedShare of its ends' masses (always definite).
+  void assemble(const Cable& cable, bool whole_compression = false);
+  /// Adds shift x each particle's mass to the diagonal of assemble()'s Hessian (not to the gradient).
+  void shiftHessian(double shift);
   /// Solves for the model's Newton step into step_, the model's active set (the workspace's on()) with it,
   /// counting the linear solves into `rounds`; false if a system is not definite.
   bool solveModel(const Cable& cable, int* rounds);
@@ -134,6 +138,9 @@ class PrimalNewton
   bool energy_known_ = false;
   /// The last Newton iteration's model had not settled in kMaxModelRounds: the next starts from it.
   bool model_unsettled_ = false;
+  /// This solve's Hessians keep every compressed segment's geometric stiffness (the exact Hessian; assemble's
+  /// whole_compression), shifted while not definite: false once even the largest shift was not (solveModel).
+  bool whole_compression_ = true;
 };
 
 /// What energyTerms reads besides the particles: each segment's stretch and law (DirectWorkspace's), and each

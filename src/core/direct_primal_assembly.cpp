@@ -2,6 +2,7 @@
 // 3x3 blocks of particles (mass, segments' axial and geometric stiffness, the bending joints), and what stays
 // the same through a step's Newton iterations. The Newton iteration itself is in direct_primal.cpp.
 #include <algorithm>
+#include <limits>
 
 #include "direct_primal.hpp"
 #include "simd.hpp"
@@ -72,6 +73,8 @@ ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size
 struct SegmentInputs
 {
   const double *c, *alpha, *stiffness, *dashpot, *middle, *kink, *model, *lambda, *len, *w, *w_along, *nx, *ny, *nz;
+  /// The most a compressed segment's geometric stiffness may take off either end's mass (infinity: all of it).
+  double compressed_share;
 };
 /// segmentTerms' results, segment k at entry k + 1 (entries 0 and m + 1 stay 0: no segment before the first
 /// particle nor after the last): in the model (1 or 0), its force, its block's scale and geometric stiffness, n.
@@ -95,6 +98,7 @@ ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const Segmen
   const double* __restrict model = in.model, * __restrict lambda = in.lambda, * __restrict len = in.len;
   const double* __restrict w = in.w, * __restrict w_along = along ? in.w_along : in.w;
   const double* __restrict nx = in.nx, * __restrict ny = in.ny, * __restrict nz = in.nz;
+  const double share = in.compressed_share;
   double* __restrict on = out.on + 1, * __restrict lam = out.lam + 1, * __restrict scale = out.scale + 1;
   double* __restrict geometric = out.geometric + 1;
   double* __restrict ox = out.nx + 1, * __restrict oy = out.ny + 1, * __restrict oz = out.nz + 1;
@@ -108,15 +112,17 @@ ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const Segmen
     const double taut_force = c[k] / alpha[k];
     // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
     // lambda / |d| (I - n n^T) of the Newton estimate of lambda (not C / alpha, which a stiff segment's
-    // rounding makes useless). In compression it is negative: kept while it is at most kCompressedShare of
-    // the mass of either end (then each particle's two segments take at most half its mass off the
-    // Hessian's smallest eigenvalue, which stays positive), dropped beyond (a rod buckling). Dropped always,
-    // a cable lying slack on a seabed converged linearly: 4 iterations a step instead of 2.
+    // rounding makes useless). In compression it is negative: kept whole (the exact Hessian; where that is
+    // not definite, a rod buckling, solveModel shifts it by a multiple of the masses), or, once even the
+    // largest shift was not definite, kept while it is at most kCompressedShare of the mass of either end
+    // (then each particle's two segments take at most half its mass off the Hessian's smallest eigenvalue,
+    // which stays positive) and dropped beyond. Dropped always, a cable lying slack on a seabed converged
+    // linearly: 4 iterations a step instead of 2; dropped beyond the eighth, a rod pushed into buckling did.
     const double quotient = lambda[k] / (len[k] > 0.0 ? len[k] : 1.0);
     const double g = len[k] > 0.0 ? quotient : 0.0;
     // A particle's largest inverse mass (along the cable, where added mass does not act).
     const double mobility = std::max(std::max(wa, va), std::max(wb, vb));
-    const double kept = g < 0.0 && !(-g * mobility <= kCompressedShare) ? 0.0 : g;
+    const double kept = g < 0.0 && !(-g * mobility <= share) ? 0.0 : g;
     on[k] = in_middle || model[k] > 0.0 ? 1.0 : 0.0;
     lam[k] = in_middle ? middle_force : taut_force;
     scale[k] = (in_middle ? slope : stiffness[k]) - kept;
@@ -327,7 +333,7 @@ void PrimalNewton::curvature(const Cable& cable)
   }
 }
 
-void PrimalNewton::assemble(const Cable& cable)
+void PrimalNewton::assemble(const Cable& cable, bool whole_compression)
 {
   // The Hessian by 3x3 blocks of particles: diagonal (l, l), first below (l + 1, l), second below (l + 2, l,
   // with bending: a multiple of the identity, prepareBending's). First each segment's terms, then the rows.
@@ -351,7 +357,8 @@ void PrimalNewton::assemble(const Cable& cable)
                          along ? cable.inv_mass_along.data() + f : w,
                          ws_.nx.data(),
                          ws_.ny.data(),
-                         ws_.nz.data()};
+                         ws_.nz.data(),
+                         whole_compression ? std::numeric_limits<double>::infinity() : kCompressedShare};
   segmentTerms(in, terms, m, along);
   for (double* v : {terms.on, terms.lam, terms.scale, terms.geometric, terms.nx, terms.ny, terms.nz})
   {
