@@ -295,6 +295,35 @@ TEST(Direct, TeleportAndFourteenMetresPerSecondStayBounded)
   EXPECT_LT(final_residual, p.solver_tolerance);  // converged again
 }
 
+/// Steps `sim` along its path through `steps` steps of `dt`, calling `each()` after every one.
+template <typename Each>
+::testing::AssertionResult stepThrough(PathDriver& driver, Tether& sim, int steps, double dt, Each each)
+{
+  for (int k = 1; k <= steps; ++k)
+  {
+    const Status status = driver.advanceTo(sim, k * dt);
+    if (!status.ok)
+    {
+      return ::testing::AssertionFailure() << "t = " << k * dt << " s: " << status.message;
+    }
+    each();
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// Every sub-step `sim` took met `params`' solver_tolerance within its iterations: none short, none rescued,
+/// none re-laid.
+void expectEveryStepConverged(const Tether& sim, const TetherParams& params)
+{
+  const SolverEffort effort = sim.solverEffort();
+  EXPECT_EQ(effort.unconverged, 0u) << "the last short: residual " << effort.unconverged_residual << " after "
+                                    << effort.unconverged_iterations << " iterations";
+  EXPECT_LE(effort.max_residual, params.solver_tolerance);
+  EXPECT_LE(effort.max_iterations, params.iterations);
+  EXPECT_EQ(effort.rescued, 0u);
+  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+}
+
 // A fine cable with bending at a sharp turn (docs/limitations.md): scenarios/spool_payout.yaml at 0.02 m
 // segments, whose Newton at the dive's turn (t = 26.1-26.4 s) is still a whole segment length off after the
 // default 10 iterations. That is the divergence limit (kDivergenceLimit), where the tether re-lays the cable at
@@ -316,11 +345,8 @@ TEST(Direct, FineCableWithBendingComesBackFromADivergedTurn)
     Tether sim = driver.makeSimulation();
     ASSERT_TRUE(sim.params().bending);
     double largest_strain = 0.0;
-    for (int k = 1; k <= 6000; ++k)  // 30 s of 5 ms steps
-    {
-      ASSERT_TRUE(succeeded(driver.advanceTo(sim, k * scenario.params.time_step)));
-      largest_strain = std::max(largest_strain, sim.summary().max_strain);
-    }
+    ASSERT_TRUE(stepThrough(driver, sim, 6000, scenario.params.time_step,  // 30 s of 5 ms steps
+                            [&] { largest_strain = std::max(largest_strain, sim.summary().max_strain); }));
     const SolverEffort effort = sim.solverEffort();
     std::printf(
         "[ measured ] %.2f m segments: %llu sub-steps rescued, at most %d iterations, residual at most %.3g, "
@@ -351,11 +377,8 @@ TEST(Direct, ARodPushedAtTheDivesCornersConvergesWithinItsIterations)
   ASSERT_TRUE(sim.params().bending);
   const auto steps = static_cast<int>(std::lround(scenario.duration / scenario.params.time_step));
   double most_compressed = 0.0;  // the vehicle's segment's least tension: it is pushed
-  for (int k = 1; k <= steps; ++k)
-  {
-    ASSERT_TRUE(succeeded(driver.advanceTo(sim, k * scenario.params.time_step)));
-    most_compressed = std::min(most_compressed, sim.summary().tension_vehicle);
-  }
+  ASSERT_TRUE(stepThrough(driver, sim, steps, scenario.params.time_step,
+                          [&] { most_compressed = std::min(most_compressed, sim.summary().tension_vehicle); }));
   const SolverEffort effort = sim.solverEffort();
   std::printf(
       "[ measured ] the dive: %llu sub-steps, at most %d iterations, residual at most %.3g; %llu short, "
@@ -364,12 +387,7 @@ TEST(Direct, ARodPushedAtTheDivesCornersConvergesWithinItsIterations)
       static_cast<unsigned long long>(effort.unconverged), static_cast<unsigned long long>(effort.rescued),
       most_compressed);
   EXPECT_LT(most_compressed, -0.5) << "the vehicle no longer pushes its cable: this test tests nothing";
-  EXPECT_EQ(effort.unconverged, 0u) << "the last short: residual " << effort.unconverged_residual << " after "
-                                    << effort.unconverged_iterations << " iterations";
-  EXPECT_LE(effort.max_residual, scenario.params.solver_tolerance);
-  EXPECT_LE(effort.max_iterations, scenario.params.iterations);
-  EXPECT_EQ(effort.rescued, 0u);
-  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+  expectEveryStepConverged(sim, scenario.params);
 }
 
 // The same in the plainest buckling: a straight 2 m rod (the default EI, 0.1 m segments, the winch locked) whose
@@ -392,16 +410,16 @@ TEST(Direct, ARodPushedEndOnConvergesAsItBuckles)
   Tether sim = driver.makeSimulation();
   ASSERT_TRUE(sim.params().bending);
   double most_compressed = 0.0, widest = 0.0;  // the pushed end's segment; how far the rod bows out of line
-  for (int k = 1; k <= 400; ++k)               // 2 s of 5 ms steps
-  {
-    ASSERT_TRUE(succeeded(driver.advanceTo(sim, k * scenario.params.time_step)));
-    most_compressed = std::min(most_compressed, sim.summary().tension_vehicle);
-    for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
-    {
-      const Position p = sim.particle(i);
-      widest = std::max(widest, std::hypot(p.y(), p.z() + 1.0));
-    }
-  }
+  ASSERT_TRUE(stepThrough(driver, sim, 400, scenario.params.time_step,  // 2 s of 5 ms steps
+                          [&]
+                          {
+                            most_compressed = std::min(most_compressed, sim.summary().tension_vehicle);
+                            for (std::size_t i = 0; i < sim.deployedParticleCount(); ++i)
+                            {
+                              const Position p = sim.particle(i);
+                              widest = std::max(widest, std::hypot(p.y(), p.z() + 1.0));
+                            }
+                          }));
   const SolverEffort effort = sim.solverEffort();
   std::printf(
       "[ measured ] pushed end-on: at most %d iterations, residual at most %.3g, %llu short; the end's "
@@ -410,11 +428,7 @@ TEST(Direct, ARodPushedEndOnConvergesAsItBuckles)
       widest);
   EXPECT_LT(most_compressed, 0.0) << "the rod never carried compression: this test tests nothing";
   EXPECT_GT(widest, 0.25) << "the rod did not buckle: this test tests nothing";
-  EXPECT_EQ(effort.unconverged, 0u) << "the last short: residual " << effort.unconverged_residual << " after "
-                                    << effort.unconverged_iterations << " iterations";
-  EXPECT_LE(effort.max_residual, scenario.params.solver_tolerance);
-  EXPECT_EQ(effort.rescued, 0u);
-  EXPECT_EQ(sim.recoveryCount(), 0u) << sim.lastFailure();
+  expectEveryStepConverged(sim, scenario.params);
 }
 
 // A rescue that converges onto an impossible cable is still a blow-up. scenarios/lazy_wave.yaml as the golden
