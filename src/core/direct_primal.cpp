@@ -1,5 +1,6 @@
 // The direct solver's primal path (direct_primal.hpp): Newton on the positions with the step energy's full
-// Hessian (geometric stiffness and EI bending included), a banded SPD solve and a backtracking line search.
+// Hessian (geometric stiffness and EI bending included; shifted while not positive definite), a banded
+// positive definite solve and a backtracking line search.
 // See direct_solver.hpp.
 #include "direct_primal.hpp"
 

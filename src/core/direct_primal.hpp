@@ -1,6 +1,6 @@
 #pragma once
 // The direct solver's primal path: Newton on the positions and the multipliers together, with the step
-// energy's full Hessian (geometric stiffness and EI bending included), a block-banded SPD solve, an
+// energy's full Hessian (geometric stiffness and EI bending included), a block-banded positive definite solve, an
 // active-set model of the one-sided segments and an Armijo line search. See direct_solver.hpp.
 #include <cstddef>
 #include <vector>
@@ -28,7 +28,8 @@ class PrimalNewton
   /// in `lambda` (a cable's clamped at 0).
   Result solve(Cable& cable, double* lambda, double tolerance, int max_iterations);
   /// The step's Hessian at the current positions (the workspace's geometry) for the multipliers `lambda`
-  /// and the workspace's model (on()), as a Newton iteration assembles it, solved for `count` right-hand
+  /// and the workspace's model (on()), as a Newton iteration assembles it but with a compressed segment's
+  /// geometric stiffness bounded (assemble's default: always definite; not shifted), solved for `count` right-hand
   /// sides stored one after the other in `columns` (3 (m + 1) values each, overwritten with the solutions):
   /// one factorisation, then solves with it. False if the Hessian is not positive definite. For the end's
   /// linearisation (direct_end_stiffness.hpp); allocation-free once reserved.
