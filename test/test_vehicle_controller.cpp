@@ -439,6 +439,46 @@ TEST(VehicleController, AntiWindupBoundsTheOvershootAfterALongSaturation)
   EXPECT_GT(overshoot[1], 5.0 * bound) << "with anti-windup " << overshoot[0] << " m, bound " << bound << " m";
 }
 
+// Thrusters out of the water push nothing (VehicleBody scales the thrust by the hull's wet share), so a vehicle
+// half out of the water gets half of what it asks. Asking 15 N of surge there, within the 20 N limit but beyond
+// the 10 N the water gives, is as saturated as asking 30 N under water: the integral must not wind while the
+// error pushes further out. The body is held still (only the controller's bookkeeping is tested): 0.5 s of
+// updates leave the integral at 0 half out of the water, and fully in advance it by ki e dt each update (the same
+// ask, within the limit: integration goes on there, as it must). Fails with the wet share left out of the
+// anti-windup: the integral grew half out as fully in.
+TEST(VehicleController, AntiWindupCountsTheThrustLostAboveTheSurface)
+{
+  VehicleParams vehicle = linearPlant();
+  vehicle.thrust_limit[0] = 20.0;
+  ControllerGains gains;
+  ASSERT_TRUE(ControllerGains::design(vehicle, ControllerDesign{}, &gains).ok);
+  const double error = 15.0 / gains.proportional[0];  // kp e = 15 N
+  const int updates = static_cast<int>(std::lround(0.5 / kStep));
+  for (const bool half_out : {false, true})
+  {
+    SCOPED_TRACE(half_out ? "half out of the water" : "under water");
+    VehicleController controller;
+    ASSERT_TRUE(controller.configure(vehicle, gains).ok);
+    VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
+    if (half_out)
+    {
+      body.setWaterSurface(vehicle.center_of_buoyancy.z());  // the hull's middle (level, at the origin)
+    }
+    ASSERT_DOUBLE_EQ(body.submergedShare(), half_out ? 0.5 : 1.0);
+    VehicleSetpoint setpoint;
+    setpoint.position = Eigen::Vector3d(error, 0.0, 0.0);
+    for (int i = 0; i < updates; ++i)
+    {
+      ControllerOutput out;
+      ASSERT_TRUE(controller.update(kStep, setpoint, body, &out).ok);
+      ASSERT_EQ(out.saturated_axes & 1u, 0u) << "within the 20 N limit: " << out.thrust[0] << " N";
+      ASSERT_GT(out.thrust[0], 15.0 - 1e-9);
+    }
+    const double integrated = gains.integral[0] * error * kStep * updates;
+    EXPECT_NEAR(controller.integral()[0], half_out ? 0.0 : integrated, 1e-9 * integrated);
+  }
+}
+
 // A heading of +170 degrees to reach -170: the short way is +20 degrees through 180, not -340 through 0.
 // The first yaw moment is positive (counter-clockwise), the heading never comes within 150 degrees of 0 on
 // the way (the long way would cross 0), and it settles at -170 (0.5 degree after 20 s: the yaw loop's slowest

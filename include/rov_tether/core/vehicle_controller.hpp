@@ -141,7 +141,9 @@ struct VehicleSetpoint
  *
  * Anti-windup: conditional integration (clamping). The integral is advanced, I += ki e dt, only when the
  * output is within its limit or the error would pull it back inside; while the output is held at its limit
- * and the error pushes further out, I stays as it is. Chosen over back-calculation because it needs no
+ * and the error pushes further out, I stays as it is. The limit is the share of it the water gives: a hull
+ * partly above the water surface gets that share of its thrust (VehicleBody::submergedShare), so asking more is
+ * held too. Chosen over back-calculation because it needs no
  * tracking time constant per vehicle and leaves I unchanged during a long saturation (a far setpoint, a
  * vehicle held by its tether), where back-calculation drives I to whatever keeps the unsaturated output at the
  * limit: a large opposite value when the proportional term alone exceeds it, which then has to unwind. The
