@@ -439,13 +439,14 @@ TEST(VehicleController, AntiWindupBoundsTheOvershootAfterALongSaturation)
   EXPECT_GT(overshoot[1], 5.0 * bound) << "with anti-windup " << overshoot[0] << " m, bound " << bound << " m";
 }
 
-// Thrusters out of the water push nothing (VehicleBody scales the thrust by the hull's wet share), so a vehicle
-// half out of the water gets half of what it asks. Asking 15 N of surge there, within the 20 N limit but beyond
-// the 10 N the water gives, is as saturated as asking 30 N under water: the integral must not wind while the
-// error pushes further out. The body is held still (only the controller's bookkeeping is tested): 0.5 s of
-// updates leave the integral at 0 half out of the water, and fully in advance it by ki e dt each update (the same
-// ask, within the limit: integration goes on there, as it must). Fails with the wet share left out of the
-// anti-windup: the integral grew half out as fully in.
+// Thrusters out of the water push nothing: VehicleBody applies the hull's wet share of the thrust asked, held
+// within the limit. Wholly out of the water no ask moves the vehicle, so integrating the error only winds the
+// integral up (to overshoot when it is back in): there it must stay as it is. Partly in, asking more still pushes
+// harder up to the limit, and the integral is what makes up the lost share: there it must go on as fully in. The
+// body is held still (only the controller's bookkeeping is tested) and asked 15 N of surge, within the 20 N limit:
+// 0.5 s of updates advance the integral by ki e dt each, fully in and half out, and leave it at 0 wholly out.
+// Fails with the hull's share left out (it wound wholly out) and with the limit scaled by it (half out froze,
+// which left a vehicle that needs more than share^2 x the limit off its point for good).
 TEST(VehicleController, AntiWindupCountsTheThrustLostAboveTheSurface)
 {
   VehicleParams vehicle = linearPlant();
@@ -454,17 +455,25 @@ TEST(VehicleController, AntiWindupCountsTheThrustLostAboveTheSurface)
   ASSERT_TRUE(ControllerGains::design(vehicle, ControllerDesign{}, &gains).ok);
   const double error = 15.0 / gains.proportional[0];  // kp e = 15 N
   const int updates = static_cast<int>(std::lround(0.5 / kStep));
-  for (const bool half_out : {false, true})
+  const double integrated = gains.integral[0] * error * kStep * updates;
+  const double hull = vehicle.size.z();
+  // The surface's height above the hull's middle (level, at the origin), the share in the water, the integral.
+  struct Case
   {
-    SCOPED_TRACE(half_out ? "half out of the water" : "under water");
+    const char* name;
+    double surface;
+    double share;
+    double integral;
+  };
+  for (const Case& c : {Case{"under water", 10.0, 1.0, integrated}, Case{"half out", 0.0, 0.5, integrated},
+                        Case{"wholly out", -hull, 0.0, 0.0}})
+  {
+    SCOPED_TRACE(c.name);
     VehicleController controller;
     ASSERT_TRUE(controller.configure(vehicle, gains).ok);
     VehicleBody body = bodyAt(vehicle, Eigen::Vector3d::Zero());
-    if (half_out)
-    {
-      body.setWaterSurface(vehicle.center_of_buoyancy.z());  // the hull's middle (level, at the origin)
-    }
-    ASSERT_DOUBLE_EQ(body.submergedShare(), half_out ? 0.5 : 1.0);
+    body.setWaterSurface(vehicle.center_of_buoyancy.z() + c.surface);
+    ASSERT_DOUBLE_EQ(body.submergedShare(), c.share);
     VehicleSetpoint setpoint;
     setpoint.position = Eigen::Vector3d(error, 0.0, 0.0);
     for (int i = 0; i < updates; ++i)
@@ -474,8 +483,7 @@ TEST(VehicleController, AntiWindupCountsTheThrustLostAboveTheSurface)
       ASSERT_EQ(out.saturated_axes & 1u, 0u) << "within the 20 N limit: " << out.thrust[0] << " N";
       ASSERT_GT(out.thrust[0], 15.0 - 1e-9);
     }
-    const double integrated = gains.integral[0] * error * kStep * updates;
-    EXPECT_NEAR(controller.integral()[0], half_out ? 0.0 : integrated, 1e-9 * integrated);
+    EXPECT_NEAR(controller.integral()[0], c.integral, 1e-9 * integrated);
   }
 }
 

@@ -274,9 +274,10 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
   integral << to_body * integral_.head<3>(), integral_[3];
   ControllerOutput result;
   result.level_step_too_long = dt > level_step_limit_;
-  // Thrusters out of the water push nothing: the body gives the hull's wet share of the thrust asked
-  // (VehicleBody::step), so what the water can give is that share of each limit.
-  const double wet = body.submergedShare();
+  // Thrusters out of the water push nothing: the body gives the hull's wet share of the thrust asked, held
+  // within the limit (VehicleBody::step). Partly in, asking more still pushes harder, up to the limit, and the
+  // integral is what asks it; wholly out, no ask moves the body, and integrating would only wind up.
+  const bool dry = !(body.submergedShare() > 0.0);
   for (int i = 0; i < 4; ++i)
   {
     const double cap = gains_.integral_limit[i];
@@ -296,10 +297,9 @@ Status VehicleController::update(double dt, const VehicleSetpoint& setpoint, con
     }
     result.thrust[kWrenchRow[i]] = held;
 
-    // Conditional integration: not while held at the limit, or asking more than the water gives of it, with the
-    // error pushing further out.
-    const bool beyond = held != wanted || std::abs(wanted) > wet * limit;
-    const bool winding = beyond && error[i] * wanted > 0.0;
+    // Conditional integration: not while held at the limit (or out of the water) with the error pushing
+    // further out.
+    const bool winding = (held != wanted || dry) && error[i] * wanted > 0.0;
     const double before = integral[i];
     const double after = !gains_.anti_windup || !winding ? before + gains_.integral[i] * error[i] * dt : before;
     // The integral limit: integrating never takes an axis beyond it (one already beyond by a turn stays as it is).

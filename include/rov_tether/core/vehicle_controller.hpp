@@ -141,13 +141,13 @@ struct VehicleSetpoint
  *
  * Anti-windup: conditional integration (clamping). The integral is advanced, I += ki e dt, only when the
  * output is within its limit or the error would pull it back inside; while the output is held at its limit
- * and the error pushes further out, I stays as it is. The limit is the share of it the water gives: a hull
- * partly above the water surface gets that share of its thrust (VehicleBody::submergedShare), so asking more is
- * held too. Chosen over back-calculation because it needs no
- * tracking time constant per vehicle and leaves I unchanged during a long saturation (a far setpoint, a
- * vehicle held by its tether), where back-calculation drives I to whatever keeps the unsaturated output at the
- * limit: a large opposite value when the proportional term alone exceeds it, which then has to unwind. The
- * integral term is also held within +-integral_limit. The integrator is forward Euler: the output uses I
+ * and the error pushes further out, I stays as it is. A hull wholly above the water surface gets none of its
+ * thrust (VehicleBody::submergedShare), so there I stays as it is whatever the output; partly above, it gets its
+ * wet share of the output held within the limit, so asking more still pushes harder and I goes on. Chosen over
+ * back-calculation because it needs no tracking time constant per vehicle and leaves I unchanged during a long
+ * saturation (a far setpoint, a vehicle held by its tether), where back-calculation drives I to whatever keeps the
+ * unsaturated output at the limit: a large opposite value when the proportional term alone exceeds it, which then has
+ * to unwind. The integral term is also held within +-integral_limit. The integrator is forward Euler: the output uses I
  * from before this update.
  * No allocation in update() (fixed-size Eigen only).
  */
