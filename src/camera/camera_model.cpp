@@ -32,6 +32,15 @@ int firstWhere(int lo, int hi, Predicate holds)
   return lo;
 }
 
+/// Throws CameraBuildAbandoned when `abandoned` is given and says so.
+void stopIfAbandoned(const BuildAbandoned& abandoned)
+{
+  if (abandoned && abandoned())
+  {
+    throw CameraBuildAbandoned();
+  }
+}
+
 }  // namespace
 
 CameraModel::CameraModel(const CameraIntrinsics& intrinsics, const BuildAbandoned& abandoned)
@@ -44,10 +53,7 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics, const BuildAbandone
   }
   max_focal_ = std::max(intrinsics_.fx(), intrinsics_.fy()) + std::abs(intrinsics_.skew());
   computeRays(abandoned);
-  if (abandoned && abandoned())
-  {
-    throw CameraBuildAbandoned();
-  }
+  stopIfAbandoned(abandoned);
   computeRowTables();
 }
 
@@ -98,10 +104,7 @@ void CameraModel::computeRays(const BuildAbandoned& abandoned)
     // A stretch of rows at a time, each pixel on its own as in one call, so that `abandoned` is heard within one.
     for (int first = 0; first < h; first += kRowsPerStretch)
     {
-      if (abandoned && abandoned())
-      {
-        throw CameraBuildAbandoned();
-      }
+      stopIfAbandoned(abandoned);
       const int rows = std::min(kRowsPerStretch, h - first);
       const cv::Mat in(rows * w, 1, CV_64FC2, &pixels[static_cast<std::size_t>(first) * w]);
       cv::Mat out(rows * w, 1, CV_64FC2, &normalised[static_cast<std::size_t>(first) * w]);

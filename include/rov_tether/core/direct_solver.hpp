@@ -32,14 +32,15 @@ namespace rov_tether
  *   (max only for a cable) with the full Hessian, geometric stiffness lambda / |d| (I - n n^T) included (in
  *   compression, a rod's whole, plus a multiple of the masses while that is not positive definite; once even
  *   64 masses are not enough, for the rest of that solve only while it takes at most an eighth of either
- *   end's mass, which is positive definite). The
- *   dual path leaves it out: a tensioned chain's transverse step is then explicit, and unstable beyond that
- *   ratio (Tournier et al. 2015, "Stable constrained dynamics"). The multipliers are unknowns of their own
- *   (the saddle-point system of that paper, with them eliminated from each solve): the geometric stiffness
- *   uses their Newton estimate, not C(x) / alpha, which a nearly inextensible segment (alpha -> 0) makes
- *   useless. Block-banded systems (factored only when positive definite), an active-set model for the one-sided
- * segments and an Armijo line search on Phi (convex for a cable). The dual path is taken first; the primal takes over
- * when the last step's tension ratio exceeds 1/4, or when a dual iteration fails to lower the residual.
+ *   end's mass, which is positive definite). The dual path leaves it out: a tensioned chain's transverse step
+ *   is then explicit, and unstable beyond that ratio (Tournier et al. 2015, "Stable constrained dynamics").
+ *   The multipliers are unknowns of their own (the saddle-point system of that paper, with them eliminated
+ *   from each solve): the geometric stiffness uses their Newton estimate, not C(x) / alpha, which a nearly
+ *   inextensible segment (alpha -> 0) makes useless. Block-banded systems (factored only when positive
+ *   definite), an active-set model for the one-sided segments and an Armijo line search on Phi (convex for a
+ *   cable).
+ * The dual path is taken first; the primal takes over when the last step's tension ratio exceeds 1/4, or
+ * when a dual iteration fails to lower the residual.
  *
  * Iterations stop when every residual is below `tolerance` x the segment length: |C - alpha lambda| of every
  * pulling segment and lambda (w_a + w_b) of every slack one (dual), and the force balance of every particle
