@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -603,6 +604,30 @@ TEST(VehicleCoupling, AttachSkipResetAndLiveChangesKeepTheirPromises)
   EXPECT_FALSE(tether.vehicleDynamic());
   EXPECT_FALSE(tether.vehicleAttached());
   EXPECT_TRUE(tether.addVehicleSample(0.0, Position(3.0, 0.0, 0.0)).ok) << "samples drive the end again";
+}
+
+// The hull's wet share (VehicleBody::submergedShare) is what the controller's anti-windup reads before the step
+// it asks thrust for, so the body must know the cable's water surface from its attachment and from a live
+// change, not only from the next step (which sets it again). The BlueROV2's hull (size.z high, centred on its
+// centre of buoyancy) with the surface at that centre: half in, share 0.5 by the definition; with the surface a
+// hull's height below: wholly out, 0; with no surface: 1. Seen failing with the surface set only in the step
+// (the share read 1 until then).
+TEST(VehicleCoupling, TheBodyKnowsTheWaterSurfaceFromItsAttachment)
+{
+  const VehicleBody body = bodyAt(blueRov(), kLength, 0.2);
+  const double middle = body.position().z() + body.params().center_of_buoyancy.z();
+  TetherParams params = lockedTether(1e5);
+  params.water_surface_z = middle;
+  Tether tether(params, Position::Zero(), Position(kLength, 0.0, 0.0));
+  ASSERT_EQ(body.submergedShare(), 1.0) << "the body given has no surface of its own";
+  ASSERT_TRUE(tether.attachVehicleBody(body, Eigen::Vector3d::Zero()).ok);
+  EXPECT_DOUBLE_EQ(tether.vehicleBody()->submergedShare(), 0.5) << "half in, before any step";
+  params.water_surface_z = middle - body.params().size.z();
+  ASSERT_TRUE(tether.setParams(params).ok);
+  EXPECT_DOUBLE_EQ(tether.vehicleBody()->submergedShare(), 0.0) << "wholly out after the live change";
+  params.water_surface_z = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(tether.setParams(params).ok);
+  EXPECT_DOUBLE_EQ(tether.vehicleBody()->submergedShare(), 1.0) << "no surface: all of it in the water";
 }
 
 // Snag: in a World with a pillar (a vertical cylinder, radius 0.3 m, friction 0.3) between the spool and the

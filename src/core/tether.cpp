@@ -100,6 +100,10 @@ void Tether::applyParams(const TetherParams& requested)
   {
     contacts_.push_back(world_contact_);
   }
+  if (vehicle_ != nullptr)
+  {
+    vehicle_->setWaterSurface(params_.water_surface_z);  // a live change, seen before the next step
+  }
 }
 
 void Tether::setWorldContact(Contact* contact)
@@ -693,6 +697,9 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
     return Status::error(out.str());
   }
   auto coupling = std::make_unique<VehicleCoupling>(body, attachment_offset);
+  // The cable's water surface from the start, not from the first step: a controller updated before that step
+  // reads the hull's wet share (VehicleController's anti-windup).
+  coupling->setWaterSurface(params_.water_surface_z);
   const Position attachment = coupling->attachment();
   if (!withinLimits(attachment))
   {
