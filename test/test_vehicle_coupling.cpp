@@ -527,6 +527,13 @@ TEST(VehicleCoupling, OnlyDirectTakesADynamicVehicleAndBadInputIsRefused)
   EXPECT_NE(beyond.message.find("beyond the 10 m of cable the locked winch has out"), std::string::npos)
       << beyond.message;
   EXPECT_NE(beyond.message.find("(strain 2)"), std::string::npos) << beyond.message;
+  // A body 2e6 m out (finite, so its own state takes it) puts the attachment beyond the +-1e6 m every position
+  // of the tether is held within (Tether::withinLimits): refused, and the end stays kinematic.
+  Tether outside(lockedTether(1e5), Position::Zero(), Position(kLength, 0.0, 0.0));
+  const Status too_far = outside.attachVehicleBody(bodyAt(blueRov(), 2e6, 0.0), Eigen::Vector3d::Zero());
+  EXPECT_FALSE(too_far.ok);
+  EXPECT_NE(too_far.message.find("beyond +-1e6 m"), std::string::npos) << too_far.message;
+  EXPECT_FALSE(outside.vehicleDynamic());
 }
 
 // What the header promises around the steps: attaching to a tether with a free end lays the cable out to the
