@@ -60,15 +60,25 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   auto& meet = *reinterpret_cast<Meeting*>(rows + n);
   const std::size_t k = meeting(n);
   const std::size_t bottom = n - 2 - k;  // rows in the bottom chain: k or k + 1
+  // From row 2 on, a row of each chain at once (chainPair, a lane each), against the two pairs before it, kept
+  // here (ring[i % 3] is pair i) and also stored as rows for the substitutions and the meeting.
+  PairRow ring[3];
   for (std::size_t i = 0; i < bottom; ++i)
   {
     const std::size_t p = n - 1 - i;
     if (i >= 2 && i < k)
     {
-      if (!chainPair<kSecond>(diag, first, second, layout, i, p, rows))
+      if (i == 2)
+      {
+        gatherPair(rows[0], rows[n - 1], ring[0]);
+        gatherPair(rows[1], rows[n - 2], ring[1]);
+      }
+      PairRow& pair = ring[i % 3];
+      if (!chainPair<kSecond>(diag, first, second, layout, i, p, ring[(i + 2) % 3], ring[(i + 1) % 3], pair))
       {
         return false;
       }
+      scatterPair(pair, rows[i], rows[p]);
       continue;
     }
     const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, layout, i, i >= 1 ? &rows[i - 1] : nullptr,

@@ -14,19 +14,28 @@ namespace rov_tether::banded::block
 /// One block row's factors: the diagonal block's own unit-lower L (l10, l20, l21) and D (d0, d1, d2), and
 /// the factors of the whole matrix that tie it to the two rows eliminated before it in its chain (row-major
 /// 3x3): L(l, l-1) and L(l, l-2) in a chain down the rows, L(p, p+1) and L(p, p+2) in one up them.
-struct BlockRow
+template <typename T>
+struct RowFactors
 {
-  double l10, l20, l21, d0, d1, d2;
-  double inv[3];  ///< 1 / d0, 1 / d1, 1 / d2: each pivot's reciprocal, taken once
-  double below1[9];
-  double below2[9];
+  T l10, l20, l21, d0, d1, d2;
+  T inv[3];  ///< 1 / d0, 1 / d1, 1 / d2: each pivot's reciprocal, taken once
+  T below1[9];
+  T below2[9];
 };
+using BlockRow = RowFactors<double>;
+/// Two block rows' values side by side, one a lane (GCC's vector extension: SSE2 in the baseline clone): the
+/// twisted factorisation's two chains, a row of each, eliminated by one stream of instructions (chainPair). Each
+/// lane is the same operations in the same order as a row's own (no FMA contraction: simd.hpp), so the same
+/// roundings.
+using Lanes = double __attribute__((vector_size(16)));
+using PairRow = RowFactors<Lanes>;
 static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
 
 /// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
 /// Without branches (a pivot that is not positive leaves the later values meaningless, and the result false),
 /// so that two chains' blocks factored one after the other overlap (chainPair).
-ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
+template <typename T>
+ROV_TETHER_INLINE void factorValues(const T* s, RowFactors<T>& row)
 {
   row.d0 = s[0];
   row.l10 = s[3] / row.d0;
@@ -35,11 +44,23 @@ ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
   row.l21 = (s[7] - row.l20 * s[3]) / row.d1;
   row.d2 = s[8] - row.l20 * s[6] - row.l21 * row.l21 * row.d1;
   row.inv[0] = 1.0 / row.d0, row.inv[1] = 1.0 / row.d1, row.inv[2] = 1.0 / row.d2;
+}
+ROV_TETHER_INLINE bool factorBlock(const double* s, BlockRow& row)
+{
+  factorValues(s, row);
   return row.d0 > 0.0 && row.d1 > 0.0 && row.d2 > 0.0;
+}
+/// factorBlock of two rows, one a lane: false unless every pivot of both is positive.
+ROV_TETHER_INLINE bool factorBlock(const Lanes* s, PairRow& row)
+{
+  factorValues(s, row);
+  const auto positive = (row.d0 > 0.0) & (row.d1 > 0.0) & (row.d2 > 0.0);
+  return (positive[0] & positive[1]) != 0;
 }
 
 /// y = a L^-T for the unit-lower L of `row` (each row of a, forward substitution): y L^T = a.
-ROV_TETHER_INLINE void solveTransposed(const double* a, const BlockRow& row, double* y)
+template <typename T>
+ROV_TETHER_INLINE void solveTransposed(const T* a, const RowFactors<T>& row, T* y)
 {
   for (std::size_t r = 0; r < 3; ++r)
   {
@@ -50,9 +71,10 @@ ROV_TETHER_INLINE void solveTransposed(const double* a, const BlockRow& row, dou
 }
 
 /// s -= y D^-1 y^T (lower triangle) and stores L(l, k) = y D^-1 into `below`.
-ROV_TETHER_INLINE void schurUpdate(const double* y, const BlockRow& pivot, double* s, double* below)
+template <typename T>
+ROV_TETHER_INLINE void schurUpdate(const T* y, const RowFactors<T>& pivot, T* s, T* below)
 {
-  const double* inv = pivot.inv;
+  const T* inv = pivot.inv;
   for (std::size_t r = 0; r < 3; ++r)
   {
     for (std::size_t c = 0; c < 3; ++c)
@@ -71,21 +93,23 @@ ROV_TETHER_INLINE void schurUpdate(const double* y, const BlockRow& pivot, doubl
 
 /// Y2 = c L^-T for the unit-lower L of `row` (solveTransposed of c I, its zeros left out: the same
 /// roundings), upper triangular: y[0], y[1], y[2], y[4], y[5], y[8] are set, the rest is 0.
-ROV_TETHER_INLINE void scaledTransposedInverse(double c, const BlockRow& row, double* y)
+template <typename T>
+ROV_TETHER_INLINE void scaledTransposedInverse(T c, const RowFactors<T>& row, T* y)
 {
-  const double y01 = -(row.l10 * c);
+  const T y01 = -(row.l10 * c);
   y[0] = c, y[1] = y01, y[2] = -(row.l20 * c) - row.l21 * y01;
-  y[3] = 0.0, y[4] = c, y[5] = -(row.l21 * c);
-  y[6] = 0.0, y[7] = 0.0, y[8] = c;
+  y[3] = T{}, y[4] = c, y[5] = -(row.l21 * c);
+  y[6] = T{}, y[7] = T{}, y[8] = c;
 }
 
 /// schurUpdate for the upper-triangular y of scaledTransposedInverse (its zero products left out).
-ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, double* s, double* below)
+template <typename T>
+ROV_TETHER_INLINE void schurUpdateUpper(const T* y, const RowFactors<T>& pivot, T* s, T* below)
 {
-  const double* inv = pivot.inv;
+  const T* inv = pivot.inv;
   below[0] = y[0] * inv[0], below[1] = y[1] * inv[1], below[2] = y[2] * inv[2];
-  below[3] = 0.0, below[4] = y[4] * inv[1], below[5] = y[5] * inv[2];
-  below[6] = 0.0, below[7] = 0.0, below[8] = y[8] * inv[2];
+  below[3] = T{}, below[4] = y[4] * inv[1], below[5] = y[5] * inv[2];
+  below[6] = T{}, below[7] = T{}, below[8] = y[8] * inv[2];
   s[0] -= below[0] * y[0] + below[1] * y[1] + below[2] * y[2];
   s[3] -= below[4] * y[1] + below[5] * y[2];
   s[4] -= below[4] * y[4] + below[5] * y[5];
@@ -96,13 +120,14 @@ ROV_TETHER_INLINE void schurUpdateUpper(const double* y, const BlockRow& pivot, 
 
 /// out -= y m^T for y upper triangular (scaledTransposedInverse's) and m full: a row's coupling to the row
 /// after the one it is eliminated against (and, twisted, what a chain's row leaves between the meeting rows).
-ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const double* m, double* out)
+template <typename T>
+ROV_TETHER_INLINE void subtractUpperTimesTransposed(const T* y, const T* m, T* out)
 {
   for (std::size_t r = 0; r < 3; ++r)
   {
     for (std::size_t col = 0; col < 3; ++col)
     {
-      double sum = y[4 * r] * m[3 * col + r];
+      T sum = y[4 * r] * m[3 * col + r];
       for (std::size_t q = r + 1; q < 3; ++q)
       {
         sum += y[3 * r + q] * m[3 * col + q];
@@ -116,17 +141,19 @@ ROV_TETHER_INLINE void subtractUpperTimesTransposed(const double* y, const doubl
 /// the one before), in two parts: eliminateSecond against prev2 (A(row, prev2) = c I), then eliminateFirst
 /// against prev1 (a1 = A(row, prev1)), which leave s = S_row for factorBlock:
 /// s -= Y2 D^-1 Y2^T + Y1 D^-1 Y1^T, with L(row, prev2) into out.below2 and L(row, prev1) into out.below1.
-ROV_TETHER_INLINE void eliminateSecond(double* s, double* a1, double c, const BlockRow& prev1, const BlockRow& prev2,
-                                       BlockRow& out)
+template <typename T>
+ROV_TETHER_INLINE void eliminateSecond(T* s, T* a1, T c, const RowFactors<T>& prev1, const RowFactors<T>& prev2,
+                                       RowFactors<T>& out)
 {
-  double y2[9];
+  T y2[9];
   scaledTransposedInverse(c, prev2, y2);
   schurUpdateUpper(y2, prev2, s, out.below2);
   subtractUpperTimesTransposed(y2, prev1.below1, a1);  // a1 -= Y2 L(prev1, prev2)^T
 }
-ROV_TETHER_INLINE void eliminateFirst(double* s, const double* a1, const BlockRow& prev1, BlockRow& out)
+template <typename T>
+ROV_TETHER_INLINE void eliminateFirst(T* s, const T* a1, const RowFactors<T>& prev1, RowFactors<T>& out)
 {
-  double y1[9];
+  T y1[9];
   solveTransposed(a1, prev1, y1);
   schurUpdate(y1, prev1, s, out.below1);
 }
@@ -174,27 +201,59 @@ ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __r
   return factorBlock(s, out);
 }
 
-/// chainRow for row t of the chain down the rows and row p of the chain up them, each step of the one
-/// followed by the same step of the other, so that the processor overlaps the two chains' dependent
-/// divisions. Both rows have both predecessors (t >= 2, p + 2 < n).
+/// A row's factors as an array (RowFactors holds nothing but its 27 values).
+template <typename T>
+ROV_TETHER_INLINE T* values(RowFactors<T>& row)
+{
+  static_assert(sizeof(RowFactors<T>) == 27 * sizeof(T), "RowFactors is its 27 values");
+  return reinterpret_cast<T*>(&row);
+}
+
+/// Two rows' factors side by side (top in lane 0, bottom in lane 1), and back.
+ROV_TETHER_INLINE void gatherPair(BlockRow& top, BlockRow& bottom, PairRow& pair)
+{
+  const double* t = values(top);
+  const double* b = values(bottom);
+  Lanes* out = values(pair);
+  for (std::size_t i = 0; i < 27; ++i)
+  {
+    out[i] = Lanes{t[i], b[i]};
+  }
+}
+ROV_TETHER_INLINE void scatterPair(PairRow& pair, BlockRow& top, BlockRow& bottom)
+{
+  const Lanes* in = values(pair);
+  double* t = values(top);
+  double* b = values(bottom);
+  for (std::size_t i = 0; i < 27; ++i)
+  {
+    t[i] = in[i][0];
+    b[i] = in[i][1];
+  }
+}
+
+/// chainRow for row t of the chain down the rows (lane 0) and row p of the chain up them (lane 1) at once,
+/// against their chains' last two rows (prev1, prev2), each lane's operations those of chainRow on its row.
+/// Both rows have both predecessors (t >= 2, p + 2 < n).
 template <bool kSecond>
 ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __restrict first,
                                  const double* __restrict second, const BlockLayout& layout, std::size_t t,
-                                 std::size_t p, BlockRow* rows)
+                                 std::size_t p, const PairRow& prev1, const PairRow& prev2, PairRow& out)
 {
-  double s[2][9], a1[2][9], c[2];
-  loadRow<kSecond, false>(diag, first, second, layout, t, true, true, s[0], a1[0], &c[0]);
-  loadRow<kSecond, true>(diag, first, second, layout, p, true, true, s[1], a1[1], &c[1]);
+  // loadRow's inputs, down the rows for t and up them for p (A(p, p + 1): the stored A(p + 1, p) transposed).
+  Lanes s[9], a1[9];
+  for (std::size_t i = 0; i < 9; ++i)
+  {
+    s[i] = Lanes{diag[t * layout.row + i * layout.entry], diag[p * layout.row + i * layout.entry]};
+    a1[i] = Lanes{first[(t - 1) * layout.row + i * layout.entry],
+                  first[p * layout.row + (3 * (i % 3) + i / 3) * layout.entry]};
+  }
   if (kSecond)
   {
-    eliminateSecond(s[0], a1[0], c[0], rows[t - 1], rows[t - 2], rows[t]);
-    eliminateSecond(s[1], a1[1], c[1], rows[p + 1], rows[p + 2], rows[p]);
+    eliminateSecond(s, a1, Lanes{second[t - 2], second[p]}, prev1, prev2, out);
   }
-  eliminateFirst(s[0], a1[0], rows[t - 1], rows[t]);
-  eliminateFirst(s[1], a1[1], rows[p + 1], rows[p]);
-  const bool top = factorBlock(s[0], rows[t]);
-  const bool bottom = factorBlock(s[1], rows[p]);
-  return top && bottom;
+  eliminateFirst(s, a1, prev1, out);
+  return factorBlock(s, out);
 }
 
 /// The twisted factorisation (factorTwisted) from this many block rows on; below it, factorBlocks.
@@ -225,14 +284,16 @@ static_assert(sizeof(BlockRow) <= kPulledScratch * sizeof(double) &&
               "the pulled solve's scratch follows the factors within the 36 n doubles of work");
 
 /// out -= m v and out -= m^T v for row-major 3x3 m.
-ROV_TETHER_INLINE void multiplySubtract(const double* m, const double* v, double* out)
+template <typename T>
+ROV_TETHER_INLINE void multiplySubtract(const T* m, const T* v, T* out)
 {
   for (std::size_t r = 0; r < 3; ++r)
   {
     out[r] -= m[3 * r] * v[0] + m[3 * r + 1] * v[1] + m[3 * r + 2] * v[2];
   }
 }
-ROV_TETHER_INLINE void multiplyTransposedSubtract(const double* m, const double* v, double* out)
+template <typename T>
+ROV_TETHER_INLINE void multiplyTransposedSubtract(const T* m, const T* v, T* out)
 {
   for (std::size_t c = 0; c < 3; ++c)
   {
@@ -242,13 +303,15 @@ ROV_TETHER_INLINE void multiplyTransposedSubtract(const double* m, const double*
 
 /// u -= m v and x -= m^T v for m upper triangular (a second-band factor: its zeros left out, the same
 /// roundings as forwardBlocks' and backwardBlocks').
-ROV_TETHER_INLINE void upperSubtract(const double* m, const double* v, double* u)
+template <typename T>
+ROV_TETHER_INLINE void upperSubtract(const T* m, const T* v, T* u)
 {
   u[0] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
   u[1] -= m[4] * v[1] + m[5] * v[2];
   u[2] -= m[8] * v[2];
 }
-ROV_TETHER_INLINE void upperTransposedSubtract(const double* m, const double* v, double* x)
+template <typename T>
+ROV_TETHER_INLINE void upperTransposedSubtract(const T* m, const T* v, T* x)
 {
   x[0] -= m[0] * v[0];
   x[1] -= m[1] * v[0] + m[4] * v[1];
@@ -256,10 +319,15 @@ ROV_TETHER_INLINE void upperTransposedSubtract(const double* m, const double* v,
 }
 
 /// x = D_l^-1 x (the backward pass's first move on a row).
-ROV_TETHER_INLINE void divide(const BlockRow& row, double* x) { x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2; }
+template <typename T>
+ROV_TETHER_INLINE void divide(const RowFactors<T>& row, T* x)
+{
+  x[0] /= row.d0, x[1] /= row.d1, x[2] /= row.d2;
+}
 
 /// x = L_l^-T x for row l's own unit-lower L_l.
-ROV_TETHER_INLINE void ownTransposed(const BlockRow& row, double* x)
+template <typename T>
+ROV_TETHER_INLINE void ownTransposed(const RowFactors<T>& row, T* x)
 {
   x[1] -= row.l21 * x[2];
   x[0] -= row.l10 * x[1] + row.l20 * x[2];
@@ -273,7 +341,8 @@ ROV_TETHER_INLINE double* at(double* b, std::size_t n, std::size_t r)
 }
 
 /// u_l = L_l^-1 v for the unit-lower L_l of `row`.
-ROV_TETHER_INLINE void ownForward(const BlockRow& row, double* u)
+template <typename T>
+ROV_TETHER_INLINE void ownForward(const RowFactors<T>& row, T* u)
 {
   u[1] -= row.l10 * u[0];
   u[2] -= row.l20 * u[0] + row.l21 * u[1];
@@ -288,8 +357,8 @@ ROV_TETHER_INLINE void ownBackward(const BlockRow& row, double* x)
 
 /// A row's forward step in its chain: u -= L(row, prev1) u1 + L(row, prev2) u2 (u1, u2 nullptr where there is
 /// no such row; L(row, prev2) is upper triangular), then u = L_row^-1 u.
-template <bool kSecond>
-ROV_TETHER_INLINE void forwardRow(const BlockRow& row, const double* u1, const double* u2, double* u)
+template <bool kSecond, typename T>
+ROV_TETHER_INLINE void forwardRow(const RowFactors<T>& row, const T* u1, const T* u2, T* u)
 {
   if (u1 != nullptr)
   {
@@ -304,9 +373,8 @@ ROV_TETHER_INLINE void forwardRow(const BlockRow& row, const double* u1, const d
 
 /// A row's backward step: x = L_row^-T (D_row^-1 x - m1^T x1 - m2^T x2), m1 and m2 the factors that tie the
 /// rows eliminated after it (their unknowns x1 and x2, nullptr where there is none) to it; m2 upper triangular.
-template <bool kSecond>
-ROV_TETHER_INLINE void backwardRow(const BlockRow& row, const double* m1, const double* x1, const double* m2,
-                                   const double* x2, double* x)
+template <bool kSecond, typename T>
+ROV_TETHER_INLINE void backwardRow(const RowFactors<T>& row, const T* m1, const T* x1, const T* m2, const T* x2, T* x)
 {
   divide(row, x);
   if (x1 != nullptr)
@@ -318,6 +386,74 @@ ROV_TETHER_INLINE void backwardRow(const BlockRow& row, const double* m1, const 
     upperTransposedSubtract(m2, x2, x);
   }
   ownTransposed(row, x);
+}
+
+/// `count` values of two rows side by side (top in lane 0, bottom in lane 1), and back.
+ROV_TETHER_INLINE void gather(const double* top, const double* bottom, std::size_t count, Lanes* out)
+{
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    out[j] = Lanes{top[j], bottom[j]};
+  }
+}
+ROV_TETHER_INLINE void scatter(const Lanes* in, std::size_t count, double* top, double* bottom)
+{
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    top[j] = in[j][0];
+    bottom[j] = in[j][1];
+  }
+}
+
+/// A row's own factors, l10, l20, l21, d0, d1 and d2, of two rows side by side (the rest of `pair` is not set).
+ROV_TETHER_INLINE void gatherOwn(const BlockRow& top, const BlockRow& bottom, PairRow& pair)
+{
+  pair.l10 = Lanes{top.l10, bottom.l10}, pair.l20 = Lanes{top.l20, bottom.l20};
+  pair.l21 = Lanes{top.l21, bottom.l21}, pair.d0 = Lanes{top.d0, bottom.d0};
+  pair.d1 = Lanes{top.d1, bottom.d1}, pair.d2 = Lanes{top.d2, bottom.d2};
+}
+
+/// forwardRow for a row of each chain at once (the twisted passes' rows t and p, each with both predecessors;
+/// t1, t2 and p1, p2 their values), a lane each: each lane's operations are forwardRow's on its row.
+template <bool kSecond>
+ROV_TETHER_INLINE void forwardPair(const BlockRow& top, const BlockRow& bottom, const double* t1, const double* t2,
+                                   const double* p1, const double* p2, double* t, double* p)
+{
+  PairRow pair;
+  gatherOwn(top, bottom, pair);
+  gather(top.below1, bottom.below1, 9, pair.below1);
+  Lanes u1[3], u2[3], u[3];
+  gather(t1, p1, 3, u1);
+  if (kSecond)
+  {
+    gather(top.below2, bottom.below2, 9, pair.below2);
+    gather(t2, p2, 3, u2);
+  }
+  gather(t, p, 3, u);
+  forwardRow<kSecond>(pair, u1, u2, u);
+  scatter(u, 3, t, p);
+}
+
+/// backwardRow for a row of each chain at once (rows t and p; the factors tm1, tm2 and pm1, pm2 that tie the rows
+/// eliminated after them to them, and those rows' unknowns t1, t2 and p1, p2), a lane each.
+template <bool kSecond>
+ROV_TETHER_INLINE void backwardPair(const BlockRow& top, const BlockRow& bottom, const double* tm1, const double* t1,
+                                    const double* tm2, const double* t2, const double* pm1, const double* p1,
+                                    const double* pm2, const double* p2, double* t, double* p)
+{
+  PairRow pair;
+  gatherOwn(top, bottom, pair);
+  Lanes m1[9], m2[9], x1[3], x2[3], x[3];
+  gather(tm1, pm1, 9, m1);
+  gather(t1, p1, 3, x1);
+  if (kSecond)
+  {
+    gather(tm2, pm2, 9, m2);
+    gather(t2, p2, 3, x2);
+  }
+  gather(t, p, 3, x);
+  backwardRow<kSecond>(pair, m1, x1, m2, x2, x);
+  scatter(x, 3, t, p);
 }
 
 /// L u = b (block forward), with the factors in work.
@@ -381,17 +517,25 @@ ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, std::size_t n, const
   auto w = [q](std::size_t p) { return q + 3 * p; };
   for (std::size_t i = 0; i < bottom; ++i)
   {
-    if (i < k)
-    {
-      forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
-      if (q != nullptr && i >= 1)
-      {
-        // The pull's pass (substituteTwistedPulled) beside b's, in the same top chain: its steps overlap.
-        forwardRow<kSecond>(rows[i], w(i - 1), i >= 2 ? w(i - 2) : nullptr, w(i));
-      }
-    }
     const std::size_t p = n - 1 - i;
-    forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
+    if (i >= 2 && i < k)
+    {
+      // A row of each chain at once, a lane each (forwardPair).
+      forwardPair<kSecond>(rows[i], rows[p], v(i - 1), v(i - 2), v(p + 1), v(p + 2), v(i), v(p));
+    }
+    else
+    {
+      if (i < k)
+      {
+        forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
+      }
+      forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
+    }
+    if (q != nullptr && i >= 1 && i < k)
+    {
+      // The pull's pass (substituteTwistedPulled) beside b's, in the same top chain: its steps overlap.
+      forwardRow<kSecond>(rows[i], w(i - 1), i >= 2 ? w(i - 2) : nullptr, w(i));
+    }
   }
   forwardMeeting<kSecond, true>(k, rows, meet, v);
 }
@@ -413,14 +557,17 @@ ROV_TETHER_INLINE void backwardTwisted(double* __restrict b, std::size_t n, cons
   for (std::size_t i = bottom; i-- > 0;)
   {
     // Top row l = i and bottom row p = n - 1 - i, the meeting's neighbours first.
+    const std::size_t p = n - 1 - i;
+    const double* bottom_m2 = p == k + 2 ? meet.k_k2 : rows[p - 2].below2;
     if (i < k)
     {
-      backwardRow<kSecond>(rows[i], rows[i + 1].below1, v(i + 1), i + 1 == k ? meet.k1_km1 : rows[i + 2].below2,
-                           v(i + 2), v(i));
+      // A row of each chain at once, a lane each (backwardPair).
+      backwardPair<kSecond>(rows[i], rows[p], rows[i + 1].below1, v(i + 1),
+                            i + 1 == k ? meet.k1_km1 : rows[i + 2].below2, v(i + 2), rows[p - 1].below1, v(p - 1),
+                            bottom_m2, v(p - 2), v(i), v(p));
+      continue;
     }
-    const std::size_t p = n - 1 - i;
-    backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), p == k + 2 ? meet.k_k2 : rows[p - 2].below2, v(p - 2),
-                         v(p));
+    backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), bottom_m2, v(p - 2), v(p));
   }
 }
 
