@@ -35,12 +35,14 @@ struct BlockLayout
  * SPD systems of 3x3 blocks with block bandwidth 1 (block tridiagonal: a cable's positions) or 2 (block
  * pentadiagonal: with bending), by a block L D L^T: one 3x3 inverse a block row instead of three scalar
  * pivots in a chain. From 8 block rows on it is twisted: one chain of block rows eliminated down from the
- * first, one up from the last, a row of each in turn, meeting in the middle (each chain is a sequence of
- * dependent divisions, and the processor overlaps the two). Blocks are row-major 3x3: diag's block l is A(l, l) for l <
+ * first, one up from the last, a row of each at once (a lane each of two-lane vectors: each chain is a sequence
+ * of dependent divisions), meeting in the middle. Blocks are row-major 3x3: diag's block l is A(l, l) for l <
  * n, first's block l is A(l + 1, l) for l < n - 1 (where their entries are: `layout`). The second blocks are multiples
  * of the identity (the direct solver's bending joints, whose curvature is linear in the positions and the same on each
  * axis): second[l] is the one number c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values
- * and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite.
+ * and is overwritten with the solution; `work` needs 36 n doubles. False when not positive definite. Of diag's
+ * blocks only the lower triangle (entries 0, 3, 4, 6, 7, 8) is read, here and in the other block solves below: the
+ * matrix is symmetric, and the direct solver's assembly writes no other.
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work, const BlockLayout& layout = {});

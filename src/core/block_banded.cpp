@@ -46,7 +46,7 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
 
 /// factorBlocks in the twisted order: rows 0 .. k-1 eliminated down from the top and rows n-1 .. k+2 up from
 /// the bottom, a row of each chain in every pass of one loop (two independent chains of dependent divisions,
-/// which the processor overlaps: each alone is latency-bound), then the meeting rows k and k + 1. Neither
+/// taken a lane each of one stream of vector instructions from row 2 on), then the meeting rows k and k + 1. Neither
 /// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k, and row k-1
 /// also reaches row k + 1 through the second band; the bottom's rows k+2 and k+3 reach row k + 1, and row
 /// k+2 also reaches row k through the second band. The same L D L^T, of the matrix with its rows in that
@@ -60,9 +60,11 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   auto& meet = *reinterpret_cast<Meeting*>(rows + n);
   const std::size_t k = meeting(n);
   const std::size_t bottom = n - 2 - k;  // rows in the bottom chain: k or k + 1
-  // From row 2 on, a row of each chain at once (chainPair, a lane each), against the two pairs before it, kept
-  // here (ring[i % 3] is pair i) and also stored as rows for the substitutions and the meeting.
-  PairRow ring[3];
+  // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
+  // each), against the two pairs before it, kept here (ring[i % 3] is pair i) and also stored as rows for the
+  // substitutions and the meeting. Zeroed: a pair's factors it does not set (below2 without a second band) are
+  // stored as 0, as the work's were.
+  PairRow ring[3] = {};
   for (std::size_t i = 0; i < bottom; ++i)
   {
     const std::size_t p = n - 1 - i;

@@ -31,9 +31,9 @@ using Lanes = double __attribute__((vector_size(16)));
 using PairRow = RowFactors<Lanes>;
 static_assert(sizeof(BlockRow) <= 36 * sizeof(double), "solveBlockBanded's work holds 36 doubles a block row");
 
-/// L D L^T of the symmetric 3x3 block s (its lower triangle is read); false unless every pivot is positive.
-/// Without branches (a pivot that is not positive leaves the later values meaningless, and the result false),
-/// so that two chains' blocks factored one after the other overlap (chainPair).
+/// L D L^T of the symmetric 3x3 block s (its lower triangle is read), of one row or of two a lane each; factorBlock
+/// then says whether every pivot is positive. Without branches (a pivot that is not positive leaves the later values
+/// meaningless, and the result false).
 template <typename T>
 ROV_TETHER_INLINE void factorValues(const T* s, RowFactors<T>& row)
 {

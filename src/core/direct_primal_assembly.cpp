@@ -229,12 +229,12 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
     }
     const bool pinned = w[l] == 0.0;
     // One array an entry (banded::BlockLayout{1, stride}): a block a row would be 9 stores apart, which
-    // keeps the loop from vectorising.
+    // keeps the loop from vectorising. Only the lower triangle: the block solves read no other (entries 1, 2
+    // and 5 stay as they were, and their sums are left uncomputed).
     double* out = diag + l;
-    out[0] = pinned ? 1.0 : r.b0, out[stride] = pinned ? 0.0 : r.b1, out[2 * stride] = pinned ? 0.0 : r.b2;
+    out[0] = pinned ? 1.0 : r.b0;
     out[3 * stride] = pinned ? 0.0 : r.b3, out[4 * stride] = pinned ? 1.0 : r.b4;
-    out[5 * stride] = pinned ? 0.0 : r.b5, out[6 * stride] = pinned ? 0.0 : r.b6;
-    out[7 * stride] = pinned ? 0.0 : r.b7, out[8 * stride] = pinned ? 1.0 : r.b8;
+    out[6 * stride] = pinned ? 0.0 : r.b6, out[7 * stride] = pinned ? 0.0 : r.b7, out[8 * stride] = pinned ? 1.0 : r.b8;
     grad[l] = pinned ? 0.0 : r.g0, grad[stride + l] = pinned ? 0.0 : r.g1, grad[2 * stride + l] = pinned ? 0.0 : r.g2;
   }
 }
