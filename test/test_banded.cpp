@@ -327,6 +327,38 @@ std::vector<double> entryArrays(const std::vector<double>& blocks, std::size_t s
   return arrays;
 }
 
+/// The pull expectTheSameSolutions' pulled solves take (a unit vector), and the coupled checks after it.
+constexpr double kPull[3] = {0.6, -0.48, 0.64};
+
+/// The block solves (plain or twisted, LAPACK's and the pulled one, with SpringLaw(3, 0.2)) of `system` as it is
+/// and of the same system given as `diag` and `first` in `layout` (system's b and second band): the same numbers,
+/// bit for bit. Block row 0 must be uncoupled, for the pull.
+void expectTheSameSolutions(const BlockSystem& system, const std::vector<double>& diag,
+                            const std::vector<double>& first, const banded::BlockLayout& layout,
+                            const std::string& where)
+{
+  const std::size_t n = system.n;
+  const double* second = system.two ? system.second.data() : nullptr;
+  std::vector<double> work(36 * n), band(9 * 3 * n);
+  std::vector<double> x = system.b, y = system.b;
+  ASSERT_TRUE(banded::solveBlockBanded(system.diag.data(), system.first.data(), second, x.data(), n, work.data()));
+  ASSERT_TRUE(banded::solveBlockBanded(diag.data(), first.data(), second, y.data(), n, work.data(), layout));
+  EXPECT_EQ(x, y) << where;
+  x = system.b, y = system.b;
+  ASSERT_TRUE(
+      banded::solveBlockBandedLapack(system.diag.data(), system.first.data(), second, x.data(), n, band.data()));
+  ASSERT_TRUE(banded::solveBlockBandedLapack(diag.data(), first.data(), second, y.data(), n, band.data(), layout));
+  EXPECT_EQ(x, y) << "LAPACK, " << where;
+  x = system.b, y = system.b;
+  double fx = 0.0, fy = 0.0;
+  ASSERT_TRUE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), second, x.data(), n, work.data(),
+                                             kPull, SpringLaw(3.0, 0.2), &fx));
+  ASSERT_TRUE(banded::solveBlockBandedPulled(diag.data(), first.data(), second, y.data(), n, work.data(), kPull,
+                                             SpringLaw(3.0, 0.2), &fy, layout));
+  EXPECT_EQ(x, y) << "pulled, " << where;
+  EXPECT_EQ(fx, fy) << "pulled, " << where;
+}
+
 // The direct solver's assembly stores the blocks one array an entry (BlockLayout{1, stride}): every solve reads
 // the same matrix there as from blocks one after the other, so it gives the same answer to the bit (the same
 // operations on the same numbers); the pulled solve's check that block row 0 is uncoupled reads it there too.
@@ -345,31 +377,15 @@ TEST(Banded, OneArrayAnEntryIsTheSameSystem)
       const std::vector<double> diag = entryArrays(system.diag, stride), first = entryArrays(system.first, stride);
       const double* second = two ? system.second.data() : nullptr;
       const std::string where = std::string("bandwidth ") + (two ? "2" : "1") + " n " + std::to_string(n);
-      std::vector<double> work(36 * n), band(9 * 3 * n);
-      std::vector<double> x = system.b, y = system.b;
-      ASSERT_TRUE(banded::solveBlockBanded(system.diag.data(), system.first.data(), second, x.data(), n, work.data()));
-      ASSERT_TRUE(banded::solveBlockBanded(diag.data(), first.data(), second, y.data(), n, work.data(), layout));
-      EXPECT_EQ(x, y) << where;
-      x = system.b, y = system.b;
-      ASSERT_TRUE(
-          banded::solveBlockBandedLapack(system.diag.data(), system.first.data(), second, x.data(), n, band.data()));
-      ASSERT_TRUE(banded::solveBlockBandedLapack(diag.data(), first.data(), second, y.data(), n, band.data(), layout));
-      EXPECT_EQ(x, y) << "LAPACK, " << where;
-      x = system.b, y = system.b;
-      const double pull[3] = {0.6, -0.48, 0.64};
-      double fx = 0.0, fy = 0.0;
-      ASSERT_TRUE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), second, x.data(), n,
-                                                 work.data(), pull, SpringLaw(3.0, 0.2), &fx));
-      ASSERT_TRUE(banded::solveBlockBandedPulled(diag.data(), first.data(), second, y.data(), n, work.data(), pull,
-                                                 SpringLaw(3.0, 0.2), &fy, layout));
-      EXPECT_EQ(x, y) << "pulled, " << where;
-      EXPECT_EQ(fx, fy) << "pulled, " << where;
+      expectTheSameSolutions(system, diag, first, layout, where);
+      std::vector<double> work(36 * n), y = system.b;
+      double fy = 0.0;
       for (std::size_t entry : {1u, 5u})
       {
         std::vector<double> coupled = first;
         coupled[entry * stride] = 0.3;  // entry `entry` of A(1, 0)
-        EXPECT_FALSE(banded::solveBlockBandedPulled(diag.data(), coupled.data(), second, y.data(), n, work.data(), pull,
-                                                    SpringLaw(3.0, 0.2), &fy, layout))
+        EXPECT_FALSE(banded::solveBlockBandedPulled(diag.data(), coupled.data(), second, y.data(), n, work.data(),
+                                                    kPull, SpringLaw(3.0, 0.2), &fy, layout))
             << "block row 0 coupled through entry " << entry << ", " << where;
       }
     }
@@ -400,27 +416,8 @@ TEST(Banded, TheDiagonalBlocksUpperTriangleIsNotRead)
           upper[9 * l + entry] = std::numeric_limits<double>::quiet_NaN();
         }
       }
-      const double* second = two ? system.second.data() : nullptr;
-      const std::string where = std::string("bandwidth ") + (two ? "2" : "1") + " n " + std::to_string(n);
-      std::vector<double> work(36 * n), band(9 * 3 * n);
-      std::vector<double> x = system.b, y = system.b;
-      ASSERT_TRUE(banded::solveBlockBanded(system.diag.data(), system.first.data(), second, x.data(), n, work.data()));
-      ASSERT_TRUE(banded::solveBlockBanded(upper.data(), system.first.data(), second, y.data(), n, work.data()));
-      EXPECT_EQ(x, y) << where;
-      x = system.b, y = system.b;
-      ASSERT_TRUE(
-          banded::solveBlockBandedLapack(system.diag.data(), system.first.data(), second, x.data(), n, band.data()));
-      ASSERT_TRUE(banded::solveBlockBandedLapack(upper.data(), system.first.data(), second, y.data(), n, band.data()));
-      EXPECT_EQ(x, y) << "LAPACK, " << where;
-      x = system.b, y = system.b;
-      const double pull[3] = {0.6, -0.48, 0.64};
-      double fx = 0.0, fy = 0.0;
-      ASSERT_TRUE(banded::solveBlockBandedPulled(system.diag.data(), system.first.data(), second, x.data(), n,
-                                                 work.data(), pull, SpringLaw(3.0, 0.2), &fx));
-      ASSERT_TRUE(banded::solveBlockBandedPulled(upper.data(), system.first.data(), second, y.data(), n, work.data(),
-                                                 pull, SpringLaw(3.0, 0.2), &fy));
-      EXPECT_EQ(x, y) << "pulled, " << where;
-      EXPECT_EQ(fx, fy) << "pulled, " << where;
+      expectTheSameSolutions(system, upper, system.first, banded::BlockLayout{},
+                             std::string("bandwidth ") + (two ? "2" : "1") + " n " + std::to_string(n));
     }
   }
 }
