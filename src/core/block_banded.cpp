@@ -62,8 +62,9 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   const std::size_t bottom = n - 2 - k;  // rows in the bottom chain: k or k + 1
   // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
   // each), against the two pairs before it, kept here (ring[i % 3] is pair i) and also stored as rows for the
-  // substitutions and the meeting. Zeroed: a pair's factors it does not set (below2 without a second band) are
-  // stored as 0, as the work's were.
+  // substitutions and the meeting. Zeroed, so that nothing indeterminate is copied: a pair's factors it does not
+  // set (below2 without a second band) are carried from the first two pairs' rows, as the work held them, and
+  // are never read.
   PairRow ring[3] = {};
   for (std::size_t i = 0; i < bottom; ++i)
   {

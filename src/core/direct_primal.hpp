@@ -109,7 +109,8 @@ class PrimalNewton
 
   DirectWorkspace& ws_;
   DirectSolver::LinearSolve linear_;
-  /// The Hessian's 3x3 blocks (diagonal and first below), 9 a particle (layout()), and the second below (c I: c,
+  /// The Hessian's 3x3 blocks (diagonal and first below), 9 a particle (layout(); of the diagonal blocks only the
+  /// lower triangle is assembled, the rest stays 0: the block solves read no other), and the second below (c I: c,
   /// one a particle); the Newton step and the gradient, 3 a particle; the block solve's workspace, and LAPACK's
   /// band.
   std::vector<double> hessian_diag_, hessian_first_, hessian_second_, step_, grad_, grad_step_, work_, band_;

@@ -230,7 +230,7 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
     const bool pinned = w[l] == 0.0;
     // One array an entry (banded::BlockLayout{1, stride}): a block a row would be 9 stores apart, which
     // keeps the loop from vectorising. Only the lower triangle: the block solves read no other (entries 1, 2
-    // and 5 stay as they were, and their sums are left uncomputed).
+    // and 5 stay 0, as reserve left them, and the segments' terms of them are not computed).
     double* out = diag + l;
     out[0] = pinned ? 1.0 : r.b0;
     out[3 * stride] = pinned ? 0.0 : r.b3, out[4 * stride] = pinned ? 1.0 : r.b4;
