@@ -73,15 +73,15 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
     {
       if (i == 2)
       {
-        gatherPair(rows[0], rows[n - 1], ring[0]);
-        gatherPair(rows[1], rows[n - 2], ring[1]);
+        gather(values(rows[0]), values(rows[n - 1]), 27, values(ring[0]));
+        gather(values(rows[1]), values(rows[n - 2]), 27, values(ring[1]));
       }
       PairRow& pair = ring[i % 3];
       if (!chainPair<kSecond>(diag, first, second, layout, i, p, ring[(i + 2) % 3], ring[(i + 1) % 3], pair))
       {
         return false;
       }
-      scatterPair(pair, rows[i], rows[p]);
+      scatter(values(pair), 27, values(rows[i]), values(rows[p]));
       continue;
     }
     const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, layout, i, i >= 1 ? &rows[i - 1] : nullptr,

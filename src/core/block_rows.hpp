@@ -201,34 +201,33 @@ ROV_TETHER_INLINE bool chainRow(const double* __restrict diag, const double* __r
   return factorBlock(s, out);
 }
 
-/// A row's factors as an array (RowFactors holds nothing but its 27 values).
+/// A row's factors as an array (RowFactors holds nothing but its 27 values; the first 6 are its own, l10 .. d2).
 template <typename T>
 ROV_TETHER_INLINE T* values(RowFactors<T>& row)
 {
   static_assert(sizeof(RowFactors<T>) == 27 * sizeof(T), "RowFactors is its 27 values");
   return reinterpret_cast<T*>(&row);
 }
-
-/// Two rows' factors side by side (top in lane 0, bottom in lane 1), and back.
-ROV_TETHER_INLINE void gatherPair(BlockRow& top, BlockRow& bottom, PairRow& pair)
+template <typename T>
+ROV_TETHER_INLINE const T* values(const RowFactors<T>& row)
 {
-  const double* t = values(top);
-  const double* b = values(bottom);
-  Lanes* out = values(pair);
-  for (std::size_t i = 0; i < 27; ++i)
+  return values(const_cast<RowFactors<T>&>(row));
+}
+
+/// `count` values of two rows side by side (top in lane 0, bottom in lane 1), and back.
+ROV_TETHER_INLINE void gather(const double* top, const double* bottom, std::size_t count, Lanes* out)
+{
+  for (std::size_t j = 0; j < count; ++j)
   {
-    out[i] = Lanes{t[i], b[i]};
+    out[j] = Lanes{top[j], bottom[j]};
   }
 }
-ROV_TETHER_INLINE void scatterPair(PairRow& pair, BlockRow& top, BlockRow& bottom)
+ROV_TETHER_INLINE void scatter(const Lanes* in, std::size_t count, double* top, double* bottom)
 {
-  const Lanes* in = values(pair);
-  double* t = values(top);
-  double* b = values(bottom);
-  for (std::size_t i = 0; i < 27; ++i)
+  for (std::size_t j = 0; j < count; ++j)
   {
-    t[i] = in[i][0];
-    b[i] = in[i][1];
+    top[j] = in[j][0];
+    bottom[j] = in[j][1];
   }
 }
 
@@ -388,31 +387,6 @@ ROV_TETHER_INLINE void backwardRow(const RowFactors<T>& row, const T* m1, const 
   ownTransposed(row, x);
 }
 
-/// `count` values of two rows side by side (top in lane 0, bottom in lane 1), and back.
-ROV_TETHER_INLINE void gather(const double* top, const double* bottom, std::size_t count, Lanes* out)
-{
-  for (std::size_t j = 0; j < count; ++j)
-  {
-    out[j] = Lanes{top[j], bottom[j]};
-  }
-}
-ROV_TETHER_INLINE void scatter(const Lanes* in, std::size_t count, double* top, double* bottom)
-{
-  for (std::size_t j = 0; j < count; ++j)
-  {
-    top[j] = in[j][0];
-    bottom[j] = in[j][1];
-  }
-}
-
-/// A row's own factors, l10, l20, l21, d0, d1 and d2, of two rows side by side (the rest of `pair` is not set).
-ROV_TETHER_INLINE void gatherOwn(const BlockRow& top, const BlockRow& bottom, PairRow& pair)
-{
-  pair.l10 = Lanes{top.l10, bottom.l10}, pair.l20 = Lanes{top.l20, bottom.l20};
-  pair.l21 = Lanes{top.l21, bottom.l21}, pair.d0 = Lanes{top.d0, bottom.d0};
-  pair.d1 = Lanes{top.d1, bottom.d1}, pair.d2 = Lanes{top.d2, bottom.d2};
-}
-
 /// forwardRow for a row of each chain at once (the twisted passes' rows t and p, each with both predecessors;
 /// t1, t2 and p1, p2 their values), a lane each: each lane's operations are forwardRow's on its row.
 template <bool kSecond>
@@ -420,7 +394,7 @@ ROV_TETHER_INLINE void forwardPair(const BlockRow& top, const BlockRow& bottom, 
                                    const double* p1, const double* p2, double* t, double* p)
 {
   PairRow pair;
-  gatherOwn(top, bottom, pair);
+  gather(values(top), values(bottom), 6, values(pair));  // the own factors; the rest of `pair` is not set
   gather(top.below1, bottom.below1, 9, pair.below1);
   Lanes u1[3], u2[3], u[3];
   gather(t1, p1, 3, u1);
@@ -442,7 +416,7 @@ ROV_TETHER_INLINE void backwardPair(const BlockRow& top, const BlockRow& bottom,
                                     const double* pm2, const double* p2, double* t, double* p)
 {
   PairRow pair;
-  gatherOwn(top, bottom, pair);
+  gather(values(top), values(bottom), 6, values(pair));  // the own factors; the rest of `pair` is not set
   Lanes m1[9], m2[9], x1[3], x2[3], x[3];
   gather(tm1, pm1, 9, m1);
   gather(t1, p1, 3, x1);

@@ -620,7 +620,6 @@ bool Tether::predictVehicle(double h, double t)
   const Position attachment = track_.position();
   // The vehicle sits in the same water as the cable: the current at its attachment point.
   vehicle_->setCurrent(current_.at(attachment, t));
-  vehicle_->setWaterSurface(params_.water_surface_z);  // above it the body floats less and is damped less
   const Status predicted = vehicle_->predict(h, &vehicle_predicted_);
   if (!predicted)
   {
@@ -697,8 +696,8 @@ Status Tether::attachVehicleBody(const VehicleBody& body, const Eigen::Vector3d&
     return Status::error(out.str());
   }
   auto coupling = std::make_unique<VehicleCoupling>(body, attachment_offset);
-  // The cable's water surface from the start, not from the first step: a controller updated before that step
-  // reads the hull's wet share (VehicleController's anti-windup).
+  // The cable's water surface (above it the body floats less and is damped less), from the start and then as
+  // applyParams changes it: a controller updated before a step reads the hull's wet share (its anti-windup).
   coupling->setWaterSurface(params_.water_surface_z);
   const Position attachment = coupling->attachment();
   if (!withinLimits(attachment))
