@@ -39,6 +39,27 @@ ROV_TETHER_TARGET_CLONES double largestComponent(const double* __restrict v, std
   return largest;
 }
 
+/// The sum of a[i] b[i] (b nullptr: of a[i]) over `count` entries, in four running sums (entry i into sum i mod 4)
+/// added pairwise at the end: a fixed order, whatever the vector width, and a quarter of the chain of dependent
+/// additions a single running sum makes.
+double sumOf(const double* __restrict a, const double* __restrict b, std::size_t count)
+{
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  std::size_t i = 0;
+  for (; i + 4 <= count; i += 4)
+  {
+    for (std::size_t j = 0; j < 4; ++j)
+    {
+      sum[j] += b != nullptr ? a[i + j] * b[i + j] : a[i + j];
+    }
+  }
+  for (std::size_t j = 0; i + j < count; ++j)
+  {
+    sum[j] += b != nullptr ? a[i + j] * b[i + j] : a[i + j];
+  }
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+}
+
 }  // namespace
 
 void PrimalNewton::reserve(std::size_t n)
@@ -236,26 +257,13 @@ double PrimalNewton::energy(const Cable& cable) const
                       ws_.zero.data(),     ws_.dashpot.data(), {curve_x_.data(), curve_y_.data(), curve_z_.data()},
                       ws_.inv_gamma.data()};
   energyTerms(particles(cable), law, m, cable.anisotropic, ws_.unilateral, ws_.bending, terms, stride);
-  // Summed in order (a fixed order, whatever the vector width).
-  double kinetic = 0.0;
-  for (std::size_t l = 0; l <= m; ++l)
-  {
-    kinetic += terms[l];
-    if (cable.anisotropic)
-    {
-      kinetic += terms[stride + l];
-    }
-  }
-  double elastic = 0.0;
+  // Summed in a fixed order, whatever the vector width (sumOf).
+  const double kinetic =
+      sumOf(terms, nullptr, m + 1) + (cable.anisotropic ? sumOf(terms + stride, nullptr, m + 1) : 0.0);
   const double drum = ws_.drum != nullptr ? ws_.drum->energy(ws_.c[0]) : 0.0;  // the spool segment and the drum
-  for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < m; ++k)
-  {
-    elastic += terms[2 * stride + k];
-  }
-  for (std::size_t j = 0; ws_.bending && j + 1 < m; ++j)
-  {
-    elastic += terms[3 * stride + j];
-  }
+  const std::size_t from = ws_.drum != nullptr ? 1 : 0;
+  const double elastic = sumOf(terms + 2 * stride + from, nullptr, m > from ? m - from : 0) +
+                         (ws_.bending && m >= 1 ? sumOf(terms + 3 * stride, nullptr, m - 1) : 0.0);
   return 0.5 * (kinetic + elastic) + drum;
 }
 
@@ -504,11 +512,7 @@ double PrimalNewton::slope() const
   // from the energy's (a segment not stretched yet, whose energy is flat at 0; the drum's piece).
   const std::size_t rows = 3 * (ws_.m + 1);
   const double* model = ws_.on();
-  double slope = 0.0;
-  for (std::size_t i = 0; i < rows; ++i)
-  {
-    slope += grad_[i] * step_[i];
-  }
+  double slope = sumOf(grad_.data(), step_.data(), rows);
   for (std::size_t k = 0; k < ws_.m; ++k)
   {
     double model_force = 0.0;
