@@ -76,10 +76,8 @@ void PrimalNewton::reserve(std::size_t n)
   {
     v->assign(n + 4, 0.0);  // offset by 2, zeros on either side
   }
-  for (auto* v : {&bend_diag_, &bend_weight_, &bend_inv_})
-  {
-    v->assign(3 * n, 0.0);
-  }
+  bend_diag_.assign(n, 0.0);
+  bend_pull_.assign(3 * n, 0.0);
   bend_first_.assign(2 * n, 0.0);
   segment_.assign(7 * (n + 1), 0.0);
   for (auto* v : {&hessian_diag_, &hessian_first_})
@@ -636,7 +634,7 @@ struct ParticleForces
   PrimalNewton::Particles p;
   const double* w_along;
   const double* pull[3];
-  const double *bend_weight[3], *bend_inv[3], *curve[3];
+  const double *bend_pull[3], *curve[3];
 };
 
 /// The largest move a free particle's force balance M (x - x~) + J^T lambda + the bending terms would make: the
@@ -654,9 +652,8 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
   const double* __restrict tx = along ? in.p.tx : in.p.x, * __restrict ty = along ? in.p.ty : in.p.y;
   const double* __restrict tz = along ? in.p.tz : in.p.z;
   const double* __restrict px = in.pull[0], * __restrict py = in.pull[1], * __restrict pz = in.pull[2];
-  const double* __restrict g0 = in.bend_weight[0], * __restrict g1 = in.bend_weight[1];
-  const double* __restrict g2 = in.bend_weight[2], * __restrict i0 = in.bend_inv[0];
-  const double* __restrict i1 = in.bend_inv[1], * __restrict i2 = in.bend_inv[2];
+  const double* __restrict p0 = in.bend_pull[0], * __restrict p1 = in.bend_pull[1];
+  const double* __restrict p2 = in.bend_pull[2];
   const double* __restrict cx = in.curve[0], * __restrict cy = in.curve[1], * __restrict cz = in.curve[2];
   double worst = 0.0;
 #pragma omp simd reduction(max : worst)
@@ -675,9 +672,9 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     f0 -= px[l + 1], f1 -= py[l + 1], f2 -= pz[l + 1];
     if constexpr (kBending)
     {
-      f0 += g0[l] * cx[l] * i0[l], f1 += g0[l] * cy[l] * i0[l], f2 += g0[l] * cz[l] * i0[l];
-      f0 += g1[l] * cx[l + 1] * i1[l], f1 += g1[l] * cy[l + 1] * i1[l], f2 += g1[l] * cz[l + 1] * i1[l];
-      f0 += g2[l] * cx[l + 2] * i2[l], f1 += g2[l] * cy[l + 2] * i2[l], f2 += g2[l] * cz[l + 2] * i2[l];
+      f0 += p0[l] * cx[l], f1 += p0[l] * cy[l], f2 += p0[l] * cz[l];
+      f0 += p1[l] * cx[l + 1], f1 += p1[l] * cy[l + 1], f2 += p1[l] * cz[l + 1];
+      f0 += p2[l] * cx[l + 2], f1 += p2[l] * cy[l + 2], f2 += p2[l] * cz[l + 2];
     }
     const double inverse = std::max(w[l], w_along[l]);
     const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
@@ -717,8 +714,7 @@ double PrimalNewton::residual(const Cable& cable)
   const ParticleForces forces{particles(cable),
                               cable.anisotropic ? cable.inv_mass_along.data() + f : w,
                               {pull[0], pull[1], pull[2]},
-                              {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
-                              {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
+                              {term(bend_pull_, 0), term(bend_pull_, 1), term(bend_pull_, 2)},
                               {curve_x_.data(), curve_y_.data(), curve_z_.data()}};
   const bool along = cable.anisotropic;
   const double worst_move =

@@ -58,8 +58,8 @@ class PrimalNewton
   bool inMiddle(std::size_t k) const { return ws_.dashpot[k] > 0.0 && middle_[k] > 0.0; }
   /// What stays the same through a step's Newton iterations (prepareBending), and the curvature.
   void prepare(const Cable& cable);
-  /// The bending joints' constant terms of each block row into bend_diag_, bend_weight_, bend_inv_,
-  /// bend_first_ and the second blocks below (hessian_second_).
+  /// The bending joints' constant terms of each block row into bend_diag_, bend_pull_, bend_first_ and the
+  /// second blocks below (hessian_second_).
   void prepareBending(const Cable& cable);
   /// The bending joints' curvatures at the current positions into curve_x_, curve_y_, curve_z_ (with
   /// bending): after every change of the positions, before energy(), residual() or assemble() read them.
@@ -120,10 +120,11 @@ class PrimalNewton
   /// Each bending joint's curvature at the current positions, by axis (curvature()): joint j at j + 2, the
   /// two entries on either side 0.
   std::vector<double> curve_x_, curve_y_, curve_z_;
-  /// A block row's bending terms (prepareBending), in the order they are added: for its joints l - 2, l - 1, l
-  /// (i = 0, 1, 2) the diagonal's g_r^2 / gamma, the weight g_r and 1 / gamma, and two for the first block
-  /// below, term i of row l at i n + l (n the particles reserved: each term's own array, for the vectorised rows).
-  std::vector<double> bend_diag_, bend_weight_, bend_inv_, bend_first_;
+  /// A block row's bending terms (prepareBending), constant through a step: the diagonal's sum over its joints
+  /// l - 2, l - 1, l of g_r^2 / gamma (at l), each joint's g_r / gamma (i = 0, 1, 2: the curvature's pull on the
+  /// particle, in the order the gradient adds them), and two for the first block below; term i of row l at
+  /// i n + l (n the particles reserved: each term's own array, for the vectorised rows).
+  std::vector<double> bend_diag_, bend_pull_, bend_first_;
   /// Each segment's terms of an assembly (on, force, scale, geometric stiffness, n_x, n_y, n_z: seven arrays of
   /// n + 1, segment k at k + 1 of each, 0 before the first and after the last).
   std::vector<double> segment_;
@@ -167,7 +168,7 @@ void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::si
 struct BendingRows
 {
   const double *w, *inv_rest, *inv_gamma;
-  double *weight[3], *inv[3], *diag[3], *first[2], *second;
+  double *pull[3], *diag, *first[2], *second;
 };
 
 /// PrimalNewton::prepareBending's rows `from` to `to` - 1, each of which has all three of its joints (l - 2,

@@ -39,9 +39,8 @@ ROV_TETHER_TARGET_CLONES void jointCurvatures(const double* __restrict x, const 
 ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size_t from, std::size_t to)
 {
   const double* __restrict w = io.w, * __restrict ir = io.inv_rest, * __restrict ig = io.inv_gamma;
-  double* __restrict g0 = io.weight[0], * __restrict g1 = io.weight[1], * __restrict g2 = io.weight[2];
-  double* __restrict i0 = io.inv[0], * __restrict i1 = io.inv[1], * __restrict i2 = io.inv[2];
-  double* __restrict d0 = io.diag[0], * __restrict d1 = io.diag[1], * __restrict d2 = io.diag[2];
+  double* __restrict p0 = io.pull[0], * __restrict p1 = io.pull[1], * __restrict p2 = io.pull[2];
+  double* __restrict diag = io.diag;
   double* __restrict f0 = io.first[0], * __restrict f1 = io.first[1], * __restrict second = io.second;
 #pragma omp simd
   for (std::size_t l = from; l < to; ++l)
@@ -55,9 +54,8 @@ ROV_TETHER_TARGET_CLONES void bendingRowsCloned(const BendingRows& io, std::size
     const double inv2 = ig[l - 2], inv1 = ig[l - 1], inv0 = ig[l];
     const double gr2 = free_l ? w2 : 0.0, gr1 = free_l ? w1 : 0.0, gr0 = free_l ? w0 : 0.0;
     const double v2 = free_l ? inv2 : 0.0, v1 = free_l ? inv1 : 0.0, v0 = free_l ? inv0 : 0.0;
-    g0[l] = gr2, i0[l] = v2, d0[l] = gr2 * gr2 * v2;
-    g1[l] = gr1, i1[l] = v1, d1[l] = gr1 * gr1 * v1;
-    g2[l] = gr0, i2[l] = v0, d2[l] = gr0 * gr0 * v0;
+    p0[l] = gr2 * v2, p1[l] = gr1 * v1, p2[l] = gr0 * v0;
+    diag[l] = gr2 * gr2 * v2 + gr1 * gr1 * v1 + gr0 * gr0 * v0;
     // The block (l + 1, l): joint l - 1 (particle l its weight 1, l + 1 its weight 2), joint l (0 and 1).
     const bool pair = free_l && w[l + 1] != 0.0;
     const double first1 = own * w1 * inv1;              // joint l - 1's weights 2 and 1
@@ -139,7 +137,7 @@ struct RowInputs
 {
   PrimalNewton::Particles p;
   SegmentTerms segment;
-  const double *bend_diag[3], *bend_weight[3], *bend_inv[3], *bend_first[2], *cx, *cy, *cz;
+  const double *bend_diag, *bend_pull[3], *bend_first[2], *cx, *cy, *cz;
 };
 
 /// A diagonal block and its row of the gradient, as named numbers (arrays in the rows' loop kept it from
@@ -187,10 +185,8 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
   const double* __restrict on = in.segment.on, * __restrict lam = in.segment.lam;
   const double* __restrict scale = in.segment.scale, * __restrict geometric = in.segment.geometric;
   const double* __restrict nx = in.segment.nx, * __restrict ny = in.segment.ny, * __restrict nz = in.segment.nz;
-  const double* __restrict v0 = in.bend_diag[0], * __restrict v1 = in.bend_diag[1], * __restrict v2 = in.bend_diag[2];
-  const double* __restrict g0 = in.bend_weight[0], * __restrict g1 = in.bend_weight[1];
-  const double* __restrict g2 = in.bend_weight[2];
-  const double* __restrict i0 = in.bend_inv[0], * __restrict i1 = in.bend_inv[1], * __restrict i2 = in.bend_inv[2];
+  const double* __restrict bend = in.bend_diag, * __restrict p0 = in.bend_pull[0];
+  const double* __restrict p1 = in.bend_pull[1], * __restrict p2 = in.bend_pull[2];
   const double* __restrict cx = in.cx, * __restrict cy = in.cy, * __restrict cz = in.cz;
 #pragma omp simd
   for (std::size_t l = 0; l < rows; ++l)
@@ -219,13 +215,12 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
     addSegment<kBending>(on[l + 1], scale[l + 1], geometric[l + 1], nx[l + 1], ny[l + 1], nz[l + 1], -lam[l + 1], r);
     if (kBending)
     {
-      // The joints l - 2, l - 1, l, in that order (the curvatures' entry l + i is joint l - 2 + i).
-      r.b0 += v0[l], r.b4 += v0[l], r.b8 += v0[l];
-      r.g0 += g0[l] * cx[l] * i0[l], r.g1 += g0[l] * cy[l] * i0[l], r.g2 += g0[l] * cz[l] * i0[l];
-      r.b0 += v1[l], r.b4 += v1[l], r.b8 += v1[l];
-      r.g0 += g1[l] * cx[l + 1] * i1[l], r.g1 += g1[l] * cy[l + 1] * i1[l], r.g2 += g1[l] * cz[l + 1] * i1[l];
-      r.b0 += v2[l], r.b4 += v2[l], r.b8 += v2[l];
-      r.g0 += g2[l] * cx[l + 2] * i2[l], r.g1 += g2[l] * cy[l + 2] * i2[l], r.g2 += g2[l] * cz[l + 2] * i2[l];
+      // The joints l - 2, l - 1, l: their diagonal terms' sum, then their pulls in that order (the curvatures'
+      // entry l + i is joint l - 2 + i).
+      r.b0 += bend[l], r.b4 += bend[l], r.b8 += bend[l];
+      r.g0 += p0[l] * cx[l], r.g1 += p0[l] * cy[l], r.g2 += p0[l] * cz[l];
+      r.g0 += p1[l] * cx[l + 1], r.g1 += p1[l] * cy[l + 1], r.g2 += p1[l] * cz[l + 1];
+      r.g0 += p2[l] * cx[l + 2], r.g1 += p2[l] * cy[l + 2], r.g2 += p2[l] * cz[l + 2];
     }
     const bool pinned = w[l] == 0.0;
     // One array an entry (banded::BlockLayout{1, stride}): a block a row would be 9 stores apart, which
@@ -374,9 +369,8 @@ void PrimalNewton::assemble(const Cable& cable, bool whole_compression)
   }
   RowInputs rows{particles(cable),
                  terms,
-                 {term(bend_diag_, 0), term(bend_diag_, 1), term(bend_diag_, 2)},
-                 {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
-                 {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
+                 bend_diag_.data(),
+                 {term(bend_pull_, 0), term(bend_pull_, 1), term(bend_pull_, 2)},
                  {term(bend_first_, 0), term(bend_first_, 1)},
                  curve_x_.data(),
                  curve_y_.data(),
@@ -421,16 +415,17 @@ void PrimalNewton::prepareBending(const Cable& cable)
   auto row = [&](std::size_t l)
   {
     const bool free_l = w[l] != 0.0;
+    double diag[3];
     for (std::size_t i = 0; i < 3; ++i)
     {
       const std::size_t r = 2 - i;
       const bool on = free_l && joint(l, r);
       const double gr = on ? weight(l - r, r) : 0.0;
       const double inv = on ? ws_.inv_gamma[l - r] : 0.0;
-      term(bend_weight_, i)[l] = gr;  // each of a row's terms has its own array
-      term(bend_inv_, i)[l] = inv;
-      term(bend_diag_, i)[l] = gr * gr * inv;
+      term(bend_pull_, i)[l] = gr * inv;  // each of a row's terms has its own array
+      diag[i] = gr * gr * inv;
     }
+    bend_diag_[l] = diag[0] + diag[1] + diag[2];
     const bool pair = l + 1 <= m && free_l && w[l + 1] != 0.0;  // the block (l + 1, l) couples two free ones
     for (std::size_t i = 0; i < 2; ++i)
     {
@@ -448,9 +443,8 @@ void PrimalNewton::prepareBending(const Cable& cable)
   const BendingRows rows{w,
                          ws_.inv_rest.data(),
                          ws_.inv_gamma.data(),
-                         {term(bend_weight_, 0), term(bend_weight_, 1), term(bend_weight_, 2)},
-                         {term(bend_inv_, 0), term(bend_inv_, 1), term(bend_inv_, 2)},
-                         {term(bend_diag_, 0), term(bend_diag_, 1), term(bend_diag_, 2)},
+                         {term(bend_pull_, 0), term(bend_pull_, 1), term(bend_pull_, 2)},
+                         bend_diag_.data(),
                          {term(bend_first_, 0), term(bend_first_, 1)},
                          hessian_second_.data()};
   bendingRows(rows, from, to);
