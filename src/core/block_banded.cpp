@@ -5,6 +5,7 @@
 #include "banded.hpp"
 #include "block_rows.hpp"
 #include "simd.hpp"
+#include "twisted_rows.hpp"
 
 namespace rov_tether::banded
 {
@@ -50,62 +51,71 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
 /// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k, and row k-1
 /// also reaches row k + 1 through the second band; the bottom's rows k+2 and k+3 reach row k + 1, and row
 /// k+2 also reaches row k through the second band. The same L D L^T, of the matrix with its rows in that
-/// order. n >= kTwistedFrom.
+/// order; the factors where TwistedRows says. n >= kTwistedFrom.
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const double* __restrict first,
                                             const double* __restrict second, const BlockLayout& layout, std::size_t n,
                                             double* __restrict work)
 {
-  auto* rows = reinterpret_cast<BlockRow*>(work);
-  auto& meet = *reinterpret_cast<Meeting*>(rows + n);
-  const std::size_t k = meeting(n);
-  const std::size_t bottom = n - 2 - k;  // rows in the bottom chain: k or k + 1
-  // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
-  // each), against the two pairs before it, kept here (ring[i % 3] is pair i) and also stored as rows for the
-  // substitutions and the meeting. Zeroed, so that nothing indeterminate is copied: a pair's factors it does not
-  // set (below2 without a second band) are carried from the first two pairs' rows, as the work held them, and
-  // are never read.
-  PairRow ring[3] = {};
-  for (std::size_t i = 0; i < bottom; ++i)
+  const TwistedRows rows(work, n);
+  const std::size_t k = rows.k();
+  // Rows 0 and 1 of each chain, one at a time.
+  for (std::size_t i = 0; i < 2; ++i)
   {
     const std::size_t p = n - 1 - i;
-    if (i >= 2 && i < k)
-    {
-      if (i == 2)
-      {
-        gather(values(rows[0]), values(rows[n - 1]), 27, values(ring[0]));
-        gather(values(rows[1]), values(rows[n - 2]), 27, values(ring[1]));
-      }
-      PairRow& pair = ring[i % 3];
-      if (!chainPair<kSecond>(diag, first, second, layout, i, p, ring[(i + 2) % 3], ring[(i + 1) % 3], pair))
-      {
-        return false;
-      }
-      scatter(values(pair), 27, values(rows[i]), values(rows[p]));
-      continue;
-    }
-    const bool top = i >= k || chainRow<kSecond, false>(diag, first, second, layout, i, i >= 1 ? &rows[i - 1] : nullptr,
-                                                        kSecond && i >= 2 ? &rows[i - 2] : nullptr, rows[i]);
-    if (!top || !chainRow<kSecond, true>(diag, first, second, layout, p, i >= 1 ? &rows[p + 1] : nullptr,
-                                         kSecond && i >= 2 ? &rows[p + 2] : nullptr, rows[p]))
+    if (!chainRow<kSecond, false>(diag, first, second, layout, i, i >= 1 ? &rows.single(0) : nullptr, nullptr,
+                                  rows.single(i)) ||
+        !chainRow<kSecond, true>(diag, first, second, layout, p, i >= 1 ? &rows.single(n - 1) : nullptr, nullptr,
+                                 rows.single(p)))
     {
       return false;
     }
   }
+  // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
+  // each), into pair i, against the two pairs before it (rows 0 and 1 of each chain side by side for the first two).
+  // Zeroed, so that nothing indeterminate is copied: a pair's factors it does not set (below2 without a second
+  // band) are never read.
+  PairRow start[2] = {};
+  gather(values(rows.single(0)), values(rows.single(n - 1)), 27, values(start[0]));
+  gather(values(rows.single(1)), values(rows.single(n - 2)), 27, values(start[1]));
+  for (std::size_t i = 2; i < k; ++i)
+  {
+    const PairRow& prev1 = i >= 3 ? rows.pair(i - 1) : start[1];
+    const PairRow& prev2 = i >= 4 ? rows.pair(i - 2) : start[i - 2];
+    if (!chainPair<kSecond>(diag, first, second, layout, i, n - 1 - i, prev1, prev2, rows.pair(i)))
+    {
+      return false;
+    }
+  }
+  // The rows next to the meeting, as BlockRows (from their pairs' lanes, or rows in no pair): k - 1 and k - 2, and
+  // k + 2 and k + 3. With n odd, row k + 2 is the bottom chain's last, in no pair.
+  const BlockRow top1 = rows.row(k - 1), top2 = rows.row(k - 2), bottom2 = rows.row(k + 3);
+  if (n % 2 == 1)
+  {
+    const BlockRow low2 = rows.row(k + 4);
+    if (!chainRow<kSecond, true>(diag, first, second, layout, k + 2, &bottom2, &low2, rows.single(k + 2)))
+    {
+      return false;
+    }
+  }
+  const BlockRow bottom1 = rows.row(k + 2);
+  BlockRow& rk = rows.single(k);
+  BlockRow& rk1 = rows.single(k + 1);
+  Meeting& meet = rows.meet();
   // Row k against the top chain, row k + 1 against the bottom chain, as each chain's next row would be.
   double sk[9], sk1[9], a1[9], x[9], c = 0.0;
   loadRow<kSecond, false>(diag, first, second, layout, k, true, true, sk, a1, &c);
   if (kSecond)
   {
-    eliminateSecond(sk, a1, c, rows[k - 1], rows[k - 2], rows[k]);
+    eliminateSecond(sk, a1, c, top1, top2, rk);
   }
-  eliminateFirst(sk, a1, rows[k - 1], rows[k]);
+  eliminateFirst(sk, a1, top1, rk);
   loadRow<kSecond, true>(diag, first, second, layout, k + 1, true, true, sk1, a1, &c);
   if (kSecond)
   {
-    eliminateSecond(sk1, a1, c, rows[k + 2], rows[k + 3], rows[k + 1]);
+    eliminateSecond(sk1, a1, c, bottom1, bottom2, rk1);
   }
-  eliminateFirst(sk1, a1, rows[k + 2], rows[k + 1]);
+  eliminateFirst(sk1, a1, bottom1, rk1);
   // A(k + 1, k) and what each chain's rows that reach both meeting rows take off it: the bottom's row k + 2
   // reaches row k through the second band, the top's row k - 1 reaches row k + 1 through it.
   for (std::size_t i = 0; i < 9; ++i)
@@ -115,12 +125,12 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   if (kSecond)
   {
     double y[9];
-    scaledTransposedInverse(second[k], rows[k + 2], y);  // A(k, k+2) L_k+2^-T
-    schurUpdateUpper(y, rows[k + 2], sk, meet.k_k2);
+    scaledTransposedInverse(second[k], bottom1, y);  // A(k, k+2) L_k+2^-T
+    schurUpdateUpper(y, bottom1, sk, meet.k_k2);
     // x -= L(k+1, k+2) D (y D^-1)^T = L(k+1, k+2) y^T = (y L(k+1, k+2)^T)^T: subtractUpperTimesTransposed's,
     // transposed.
     double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    subtractUpperTimesTransposed(y, rows[k + 1].below1, t);
+    subtractUpperTimesTransposed(y, rk1.below1, t);
     for (std::size_t r = 0; r < 3; ++r)
     {
       for (std::size_t col = 0; col < 3; ++col)
@@ -129,18 +139,18 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
       }
     }
     double z[9];
-    scaledTransposedInverse(second[k - 1], rows[k - 1], z);  // A(k+1, k-1) L_k-1^-T
-    schurUpdateUpper(z, rows[k - 1], sk1, meet.k1_km1);
-    subtractUpperTimesTransposed(z, rows[k].below1, x);
+    scaledTransposedInverse(second[k - 1], top1, z);  // A(k+1, k-1) L_k-1^-T
+    schurUpdateUpper(z, top1, sk1, meet.k1_km1);
+    subtractUpperTimesTransposed(z, rk.below1, x);
   }
-  if (!factorBlock(sk, rows[k]))
+  if (!factorBlock(sk, rk))
   {
     return false;
   }
   double y1[9];
-  solveTransposed(x, rows[k], y1);
-  schurUpdate(y1, rows[k], sk1, meet.k1_k);
-  return factorBlock(sk1, rows[k + 1]);
+  solveTransposed(x, rk, y1);
+  schurUpdate(y1, rk, sk1, meet.k1_k);
+  return factorBlock(sk1, rk1);
 }
 
 /// L u = b (block forward), then D and L^T (block backward), with the factors in work.
@@ -157,10 +167,9 @@ ROV_TETHER_TARGET_CLONES void substituteBlocks(double* __restrict b, std::size_t
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_t n, const double* __restrict work)
 {
-  const auto* rows = reinterpret_cast<const BlockRow*>(work);
-  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
-  forwardTwisted<kSecond>(b, n, rows, meet);
-  backwardTwisted<kSecond>(b, n, rows, meet);
+  const TwistedRows rows(work, n);
+  forwardTwisted<kSecond>(b, rows);
+  backwardTwisted<kSecond>(b, rows);
 }
 
 /// solveBlockBandedPulled's solve after factorTwisted, for a pull f P on block row 1 (in the top chain, as
@@ -173,23 +182,26 @@ ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std:
                                                       const double* __restrict work, double* __restrict q,
                                                       const double* pull, const EndLaw& law, double* force)
 {
-  const auto* rows = reinterpret_cast<const BlockRow*>(work);
-  const auto& meet = *reinterpret_cast<const Meeting*>(rows + n);
-  const std::size_t k = meeting(n);
+  const TwistedRows rows(work, n);
+  const std::size_t k = rows.k();
   // q = L^-1 P e_1: down the top chain from row 1 beside b's pass, then the meeting rows (the bottom chain's
   // rows are 0).
   auto v = [q](std::size_t p) { return q + 3 * p; };
   std::fill(q, q + 3 * (k + 2), 0.0);
   q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
-  forwardTwisted<kSecond>(b, n, rows, meet, q);
-  forwardMeeting<kSecond, false>(k, rows, meet, v);
+  forwardTwisted<kSecond>(b, rows, q);
+  forwardMeeting<kSecond, false>(k, rows.single(k), rows.single(k + 1), rows.meet(), v);
   double along = 0.0, compliance = 0.0;
   for (std::size_t p = 1; p <= k + 1; ++p)
   {
-    const BlockRow& row = rows[p];
+    // Row p's pivots: lane 0 of its pair (2 <= p < k), or its own BlockRow.
+    const bool paired = p >= 2 && p < k;
+    const double d0 = paired ? rows.pair(p).d0[0] : rows.single(p).d0;
+    const double d1 = paired ? rows.pair(p).d1[0] : rows.single(p).d1;
+    const double d2 = paired ? rows.pair(p).d2[0] : rows.single(p).d2;
     const double* u = b + 3 * p;
     const double* w = v(p);
-    const double scaled[3] = {w[0] / row.d0, w[1] / row.d1, w[2] / row.d2};
+    const double scaled[3] = {w[0] / d0, w[1] / d1, w[2] / d2};
     along += scaled[0] * u[0] + scaled[1] * u[1] + scaled[2] * u[2];
     compliance += scaled[0] * w[0] + scaled[1] * w[1] + scaled[2] * w[2];
   }
@@ -199,7 +211,7 @@ ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std:
   {
     b[i] -= f * q[i];
   }
-  backwardTwisted<kSecond>(b, n, rows, meet);
+  backwardTwisted<kSecond>(b, rows);
 }
 
 /// solveBlockBandedPulled's solve, after factorBlocks<kSecond, true>.

@@ -1,7 +1,7 @@
 #pragma once
 // A block row of the direct solver's block L D L^T (banded::solveBlockBanded, block_banded.cpp): its factors,
-// the steps that eliminate and factor one block row, the twisted factorisation's meeting, and the steps of the
-// forward and backward substitutions on one row. Inline, for block_banded.cpp's loops (each compiled there for
+// the steps that eliminate and factor one block row (or a pair of them, a lane each), and the steps of the forward
+// and backward substitutions on one row; the twisted factorisation's layout and passes are in twisted_rows.hpp. Inline, for block_banded.cpp's loops (each compiled there for
 // every instruction set); private to the core.
 #include <cstddef>
 
@@ -255,33 +255,6 @@ ROV_TETHER_INLINE bool chainPair(const double* __restrict diag, const double* __
   return factorBlock(s, out);
 }
 
-/// The twisted factorisation (factorTwisted) from this many block rows on; below it, factorBlocks.
-constexpr std::size_t kTwistedFrom = 8;
-// factorTwisted reads rows k-2 and k+3 around its meeting (k = (n - 2) / 2): n >= 6 for bandwidth 2.
-static_assert(kTwistedFrom >= 6, "the twisted factorisation needs two rows in each chain");
-
-/// Where factorTwisted's two chains meet: block rows k and k + 1.
-inline std::size_t meeting(std::size_t n) { return (n - 2) / 2; }
-
-/// factorTwisted's factors of the meeting rows besides their own BlockRows: L(k, k+2), L(k+1, k-1) (both
-/// upper triangular, as every second-band factor) and L(k+1, k). They follow the n BlockRows in work.
-struct Meeting
-{
-  double k_k2[9], k1_km1[9], k1_k[9];
-};
-// Each further row adds 36 doubles of work and a BlockRow's fewer.
-static_assert(kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * 36 * sizeof(double),
-              "factorTwisted's factors fit the 36 n doubles of work");
-/// The twisted pulled solve keeps the pull's forward pass (3 (k + 2) <= 3 n doubles) in work from kPulledScratch n
-/// doubles on, after factorTwisted's factors (n BlockRows and a Meeting).
-constexpr std::size_t kPulledScratch = 32;
-// From kTwistedFrom rows on (and so on for every larger n, a BlockRow being at most kPulledScratch doubles), the
-// factors end before the scratch, and the scratch's 3 n doubles end within the work.
-static_assert(sizeof(BlockRow) <= kPulledScratch * sizeof(double) &&
-                  kTwistedFrom * sizeof(BlockRow) + sizeof(Meeting) <= kTwistedFrom * kPulledScratch * sizeof(double) &&
-                  kPulledScratch + 3 <= 36,
-              "the pulled solve's scratch follows the factors within the 36 n doubles of work");
-
 /// out -= m v and out -= m^T v for row-major 3x3 m.
 template <typename T>
 ROV_TETHER_INLINE void multiplySubtract(const T* m, const T* v, T* out)
@@ -387,49 +360,6 @@ ROV_TETHER_INLINE void backwardRow(const RowFactors<T>& row, const T* m1, const 
   ownTransposed(row, x);
 }
 
-/// forwardRow for a row of each chain at once (the twisted passes' rows t and p, each with both predecessors;
-/// t1, t2 and p1, p2 their values), a lane each: each lane's operations are forwardRow's on its row.
-template <bool kSecond>
-ROV_TETHER_INLINE void forwardPair(const BlockRow& top, const BlockRow& bottom, const double* t1, const double* t2,
-                                   const double* p1, const double* p2, double* t, double* p)
-{
-  PairRow pair;
-  gather(values(top), values(bottom), 6, values(pair));  // the own factors; the rest of `pair` is not set
-  gather(top.below1, bottom.below1, 9, pair.below1);
-  Lanes u1[3], u2[3], u[3];
-  gather(t1, p1, 3, u1);
-  if (kSecond)
-  {
-    gather(top.below2, bottom.below2, 9, pair.below2);
-    gather(t2, p2, 3, u2);
-  }
-  gather(t, p, 3, u);
-  forwardRow<kSecond>(pair, u1, u2, u);
-  scatter(u, 3, t, p);
-}
-
-/// backwardRow for a row of each chain at once (rows t and p; the factors tm1, tm2 and pm1, pm2 that tie the rows
-/// eliminated after them to them, and those rows' unknowns t1, t2 and p1, p2), a lane each.
-template <bool kSecond>
-ROV_TETHER_INLINE void backwardPair(const BlockRow& top, const BlockRow& bottom, const double* tm1, const double* t1,
-                                    const double* tm2, const double* t2, const double* pm1, const double* p1,
-                                    const double* pm2, const double* p2, double* t, double* p)
-{
-  PairRow pair;
-  gather(values(top), values(bottom), 6, values(pair));  // the own factors; the rest of `pair` is not set
-  Lanes m1[9], m2[9], x1[3], x2[3], x[3];
-  gather(tm1, pm1, 9, m1);
-  gather(t1, p1, 3, x1);
-  if (kSecond)
-  {
-    gather(tm2, pm2, 9, m2);
-    gather(t2, p2, 3, x2);
-  }
-  gather(t, p, 3, x);
-  backwardRow<kSecond>(pair, m1, x1, m2, x2, x);
-  scatter(x, 3, t, p);
-}
-
 /// L u = b (block forward), with the factors in work.
 template <bool kSecond, bool kReverse>
 ROV_TETHER_INLINE void forwardBlocks(double* __restrict b, std::size_t n, const BlockRow* __restrict rows)
@@ -451,97 +381,6 @@ ROV_TETHER_INLINE void backwardBlocks(double* __restrict b, std::size_t n, const
     backwardRow<kSecond>(rows[l], one ? rows[l + 1].below1 : nullptr, one ? at<kReverse>(b, n, l + 1) : nullptr,
                          two ? rows[l + 2].below2 : nullptr, two ? at<kReverse>(b, n, l + 2) : nullptr,
                          at<kReverse>(b, n, l));
-  }
-}
-
-/// The forward pass's meeting rows k and k + 1 (v(p): block row p's values), after both chains. kBottom false:
-/// the bottom chain's rows are 0 (the pull's pass of substituteTwistedPulled), and their terms are left out.
-template <bool kSecond, bool kBottom, typename Rows>
-ROV_TETHER_INLINE void forwardMeeting(std::size_t k, const BlockRow* __restrict rows, const Meeting& meet, Rows v)
-{
-  multiplySubtract(rows[k].below1, v(k - 1), v(k));
-  if (kBottom)
-  {
-    multiplySubtract(rows[k + 1].below1, v(k + 2), v(k + 1));
-  }
-  if (kSecond)
-  {
-    upperSubtract(rows[k].below2, v(k - 2), v(k));
-    if (kBottom)
-    {
-      upperSubtract(meet.k_k2, v(k + 2), v(k));
-      upperSubtract(rows[k + 1].below2, v(k + 3), v(k + 1));
-    }
-    upperSubtract(meet.k1_km1, v(k - 1), v(k + 1));
-  }
-  ownForward(rows[k], v(k));
-  multiplySubtract(meet.k1_k, v(k), v(k + 1));
-  ownForward(rows[k + 1], v(k + 1));
-}
-
-/// The forward pass after factorTwisted (u = L^-1 b in place): down the top chain and up the bottom chain
-/// together, then the meeting rows.
-template <bool kSecond>
-ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
-                                      const Meeting& meet, double* __restrict q = nullptr)
-{
-  const std::size_t k = meeting(n);
-  const std::size_t bottom = n - 2 - k;
-  auto v = [b](std::size_t p) { return b + 3 * p; };
-  auto w = [q](std::size_t p) { return q + 3 * p; };
-  for (std::size_t i = 0; i < bottom; ++i)
-  {
-    const std::size_t p = n - 1 - i;
-    if (i >= 2 && i < k)
-    {
-      // A row of each chain at once, a lane each (forwardPair).
-      forwardPair<kSecond>(rows[i], rows[p], v(i - 1), v(i - 2), v(p + 1), v(p + 2), v(i), v(p));
-    }
-    else
-    {
-      if (i < k)
-      {
-        forwardRow<kSecond>(rows[i], i >= 1 ? v(i - 1) : nullptr, i >= 2 ? v(i - 2) : nullptr, v(i));
-      }
-      forwardRow<kSecond>(rows[p], i >= 1 ? v(p + 1) : nullptr, i >= 2 ? v(p + 2) : nullptr, v(p));
-    }
-    if (q != nullptr && i >= 1 && i < k)
-    {
-      // The pull's pass (substituteTwistedPulled) beside b's, in the same top chain: its steps overlap.
-      forwardRow<kSecond>(rows[i], w(i - 1), i >= 2 ? w(i - 2) : nullptr, w(i));
-    }
-  }
-  forwardMeeting<kSecond, true>(k, rows, meet, v);
-}
-
-/// The backward pass after forwardTwisted (x = L^-T D^-1 u in place): the meeting rows, then out along both
-/// chains together.
-template <bool kSecond>
-ROV_TETHER_INLINE void backwardTwisted(double* __restrict b, std::size_t n, const BlockRow* __restrict rows,
-                                       const Meeting& meet)
-{
-  const std::size_t k = meeting(n);
-  const std::size_t bottom = n - 2 - k;
-  auto v = [b](std::size_t p) { return b + 3 * p; };
-  divide(rows[k + 1], v(k + 1));
-  ownTransposed(rows[k + 1], v(k + 1));
-  divide(rows[k], v(k));
-  multiplyTransposedSubtract(meet.k1_k, v(k + 1), v(k));
-  ownTransposed(rows[k], v(k));
-  for (std::size_t i = bottom; i-- > 0;)
-  {
-    // Top row l = i and bottom row p = n - 1 - i, the meeting's neighbours first.
-    const std::size_t p = n - 1 - i;
-    const double* bottom_m2 = p == k + 2 ? meet.k_k2 : rows[p - 2].below2;
-    if (i < k)
-    {
-      // A row of each chain at once, a lane each (backwardPair).
-      backwardPair<kSecond>(rows[i], rows[p], rows[i + 1].below1, v(i + 1),
-                            i + 1 == k ? meet.k1_km1 : rows[i + 2].below2, v(i + 2), rows[p - 1].below1, v(p - 1),
-                            bottom_m2, v(p - 2), v(i), v(p));
-      continue;
-    }
-    backwardRow<kSecond>(rows[p], rows[p - 1].below1, v(p - 1), bottom_m2, v(p - 2), v(p));
   }
 }
 
