@@ -185,9 +185,6 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
   const double* __restrict on = in.segment.on, * __restrict lam = in.segment.lam;
   const double* __restrict scale = in.segment.scale, * __restrict geometric = in.segment.geometric;
   const double* __restrict nx = in.segment.nx, * __restrict ny = in.segment.ny, * __restrict nz = in.segment.nz;
-  const double* __restrict bend = in.bend_diag, * __restrict p0 = in.bend_pull[0];
-  const double* __restrict p1 = in.bend_pull[1], * __restrict p2 = in.bend_pull[2];
-  const double* __restrict cx = in.cx, * __restrict cy = in.cy, * __restrict cz = in.cz;
 #pragma omp simd
   for (std::size_t l = 0; l < rows; ++l)
   {
@@ -213,24 +210,46 @@ ROV_TETHER_TARGET_CLONES void assembleRows(const RowInputs& in, double* __restri
     // Segment l - 1 (entry l; dC/dx_l = +n) and segment l (entry l + 1; -n): the gradient gets J^T lambda.
     addSegment<kBending>(on[l], scale[l], geometric[l], nx[l], ny[l], nz[l], lam[l], r);
     addSegment<kBending>(on[l + 1], scale[l + 1], geometric[l + 1], nx[l + 1], ny[l + 1], nz[l + 1], -lam[l + 1], r);
-    if (kBending)
-    {
-      // The joints l - 2, l - 1, l: their diagonal terms' sum, then their pulls in that order (the curvatures'
-      // entry l + i is joint l - 2 + i).
-      r.b0 += bend[l], r.b4 += bend[l], r.b8 += bend[l];
-      r.g0 += p0[l] * cx[l], r.g1 += p0[l] * cy[l], r.g2 += p0[l] * cz[l];
-      r.g0 += p1[l] * cx[l + 1], r.g1 += p1[l] * cy[l + 1], r.g2 += p1[l] * cz[l + 1];
-      r.g0 += p2[l] * cx[l + 2], r.g1 += p2[l] * cy[l + 2], r.g2 += p2[l] * cz[l + 2];
-    }
     const bool pinned = w[l] == 0.0;
     // One array an entry (banded::BlockLayout{1, stride}): a block a row would be 9 stores apart, which
     // keeps the loop from vectorising. Only the lower triangle: the block solves read no other (entries 1, 2
-    // and 5 stay 0, as reserve left them, and the segments' terms of them are not computed).
+    // and 5 stay 0, as reserve left them, and the segments' terms of them are not computed). With bending, the
+    // entries the joints add to (0, 4, 8 and the gradient) are left as they are for bendingRowsAdded.
     double* out = diag + l;
-    out[0] = pinned ? 1.0 : r.b0;
-    out[3 * stride] = pinned ? 0.0 : r.b3, out[4 * stride] = pinned ? 1.0 : r.b4;
-    out[6 * stride] = pinned ? 0.0 : r.b6, out[7 * stride] = pinned ? 0.0 : r.b7, out[8 * stride] = pinned ? 1.0 : r.b8;
-    grad[l] = pinned ? 0.0 : r.g0, grad[stride + l] = pinned ? 0.0 : r.g1, grad[2 * stride + l] = pinned ? 0.0 : r.g2;
+    out[3 * stride] = pinned ? 0.0 : r.b3;
+    out[6 * stride] = pinned ? 0.0 : r.b6, out[7 * stride] = pinned ? 0.0 : r.b7;
+    out[0] = pinned && !kBending ? 1.0 : r.b0;
+    out[4 * stride] = pinned && !kBending ? 1.0 : r.b4, out[8 * stride] = pinned && !kBending ? 1.0 : r.b8;
+    grad[l] = pinned && !kBending ? 0.0 : r.g0;
+    grad[stride + l] = pinned && !kBending ? 0.0 : r.g1;
+    grad[2 * stride + l] = pinned && !kBending ? 0.0 : r.g2;
+  }
+}
+
+/// The bending joints' terms of rows [0, rows), after assembleRows<kAlong, true>: each row's joints l - 2, l - 1,
+/// l, their diagonal terms' sum, then their pulls in that order (the curvatures' entry l + i is joint l - 2 + i),
+/// added to what assembleRows left there, and a pinned particle's row made the identity's. A loop of its own:
+/// the rows' one loop had more arrays than the processor has registers for their addresses.
+ROV_TETHER_TARGET_CLONES void bendingRowsAdded(const RowInputs& in, double* __restrict diag, double* __restrict grad,
+                                               std::size_t rows, std::size_t stride)
+{
+  const double* __restrict w = in.p.w;
+  const double* __restrict bend = in.bend_diag, * __restrict p0 = in.bend_pull[0];
+  const double* __restrict p1 = in.bend_pull[1], * __restrict p2 = in.bend_pull[2];
+  const double* __restrict cx = in.cx, * __restrict cy = in.cy, * __restrict cz = in.cz;
+  double* __restrict d0 = diag, * __restrict d4 = diag + 4 * stride, * __restrict d8 = diag + 8 * stride;
+  double* __restrict g0 = grad, * __restrict g1 = grad + stride, * __restrict g2 = grad + 2 * stride;
+#pragma omp simd
+  for (std::size_t l = 0; l < rows; ++l)
+  {
+    double b0 = d0[l], b4 = d4[l], b8 = d8[l], r0 = g0[l], r1 = g1[l], r2 = g2[l];
+    b0 += bend[l], b4 += bend[l], b8 += bend[l];
+    r0 += p0[l] * cx[l], r1 += p0[l] * cy[l], r2 += p0[l] * cz[l];
+    r0 += p1[l] * cx[l + 1], r1 += p1[l] * cy[l + 1], r2 += p1[l] * cz[l + 1];
+    r0 += p2[l] * cx[l + 2], r1 += p2[l] * cy[l + 2], r2 += p2[l] * cz[l + 2];
+    const bool pinned = w[l] == 0.0;
+    d0[l] = pinned ? 1.0 : b0, d4[l] = pinned ? 1.0 : b4, d8[l] = pinned ? 1.0 : b8;
+    g0[l] = pinned ? 0.0 : r0, g1[l] = pinned ? 0.0 : r1, g2[l] = pinned ? 0.0 : r2;
   }
 }
 
@@ -380,6 +399,7 @@ void PrimalNewton::assemble(const Cable& cable, bool whole_compression)
   {
     along ? assembleRows<true, true>(rows, hessian_diag_.data(), gradient, m + 1, stride)
           : assembleRows<false, true>(rows, hessian_diag_.data(), gradient, m + 1, stride);
+    bendingRowsAdded(rows, hessian_diag_.data(), gradient, m + 1, stride);
     assembleBelow<true>(rows, hessian_first_.data(), m, stride);
   }
   else
