@@ -40,10 +40,10 @@ struct BlockLayout
  * n, first's block l is A(l + 1, l) for l < n - 1 (where their entries are: `layout`). The second blocks are multiples
  * of the identity (the direct solver's bending joints, whose curvature is linear in the positions and the same on each
  * axis): second[l] is the one number c of A(l + 2, l) = c I for l < n - 2 (nullptr for bandwidth 1). b holds 3 n values
- * and is overwritten with the solution; `work` needs 36 n doubles, 16-byte aligned (as a std::vector<double>'s data: the
- * twisted factorisation keeps two-lane vectors there). False when not positive definite. Of diag's
- * blocks only the lower triangle (entries 0, 3, 4, 6, 7, 8) is read, here and in the other block solves below: the
- * matrix is symmetric, and the direct solver's assembly writes no other.
+ * and is overwritten with the solution; `work` needs 36 n doubles, 16-byte aligned (as a std::vector<double>'s data:
+ * the twisted factorisation keeps two-lane vectors there). False when not positive definite (b then holds nothing
+ * meaningful). Of diag's blocks only the lower triangle (entries 0, 3, 4, 6, 7, 8) is read, here and in the other block
+ * solves below: the matrix is symmetric, and the direct solver's assembly writes no other.
  */
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work, const BlockLayout& layout = {});

@@ -51,14 +51,16 @@ ROV_TETHER_TARGET_CLONES bool factorBlocks(const double* __restrict diag, const 
 /// chain touches the other's rows, only the meeting's: the top's rows k-2 and k-1 reach row k, and row k-1
 /// also reaches row k + 1 through the second band; the bottom's rows k+2 and k+3 reach row k + 1, and row
 /// k+2 also reaches row k through the second band. The same L D L^T, of the matrix with its rows in that
-/// order; the factors where TwistedRows says. n >= kTwistedFrom.
+/// order; the factors where TwistedRows says. n >= kTwistedFrom. With b, the forward pass of b (and of q, with
+/// it) goes along with it (TwistedForward): b (and q) then hold L^-1 b (and L^-1 q) when it returns true.
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const double* __restrict first,
                                             const double* __restrict second, const BlockLayout& layout, std::size_t n,
-                                            double* __restrict work)
+                                            double* __restrict work, double* b = nullptr, double* q = nullptr)
 {
   const TwistedRows rows(work, n);
   const std::size_t k = rows.k();
+  TwistedForward<kSecond> forward(b, rows, q);
   // Rows 0 and 1 of each chain, one at a time.
   for (std::size_t i = 0; i < 2; ++i)
   {
@@ -70,6 +72,10 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
     {
       return false;
     }
+  }
+  if (b != nullptr)
+  {
+    forward.start();
   }
   // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
   // each), into pair i, against the two pairs before it (rows 0 and 1 of each chain side by side for the first two).
@@ -85,6 +91,10 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
     if (!chainPair<kSecond>(diag, first, second, layout, i, n - 1 - i, prev1, prev2, rows.pair(i)))
     {
       return false;
+    }
+    if (b != nullptr)
+    {
+      forward.pair(i);
     }
   }
   // The rows next to the meeting, as BlockRows (from their pairs' lanes, or rows in no pair): k - 1 and k - 2, and
@@ -150,7 +160,15 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   double y1[9];
   solveTransposed(x, rk, y1);
   schurUpdate(y1, rk, sk1, meet.k1_k);
-  return factorBlock(sk1, rk1);
+  if (!factorBlock(sk1, rk1))
+  {
+    return false;
+  }
+  if (b != nullptr)
+  {
+    forward.finish();
+  }
+  return true;
 }
 
 /// L u = b (block forward), then D and L^T (block backward), with the factors in work.
@@ -172,25 +190,28 @@ ROV_TETHER_TARGET_CLONES void substituteTwisted(double* __restrict b, std::size_
   backwardTwisted<kSecond>(b, rows);
 }
 
+/// The backward pass alone, after factorTwisted with b (its forward pass along with it).
+template <bool kSecond>
+ROV_TETHER_TARGET_CLONES void substituteTwistedBackward(double* __restrict b, std::size_t n,
+                                                        const double* __restrict work)
+{
+  backwardTwisted<kSecond>(b, TwistedRows(work, n));
+}
+
 /// solveBlockBandedPulled's solve after factorTwisted, for a pull f P on block row 1 (in the top chain, as
 /// n >= kTwistedFrom makes it): with u = L^-1 b and q = L^-1 P e_1 (forward passes; q is 0 outside block rows
 /// 1 .. k + 1, the top chain's and the meeting's), P . x_1 without the pull is q . D^-1 u and P . A^-1_11 P is
 /// q . D^-1 q (A^-1 = L^-T D^-1 L^-1); the law sets f from them, and one backward pass of u - f q finishes.
-/// `q` holds 3 (k + 2) doubles.
+/// `q` holds 3 (k + 2) doubles: P e_1, 0 elsewhere (pulledStart), which factorTwisted's forward pass, along with
+/// b's, has made L^-1 P e_1.
 template <bool kSecond>
 ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std::size_t n,
                                                       const double* __restrict work, double* __restrict q,
-                                                      const double* pull, const EndLaw& law, double* force)
+                                                      const EndLaw& law, double* force)
 {
   const TwistedRows rows(work, n);
   const std::size_t k = rows.k();
-  // q = L^-1 P e_1: down the top chain from row 1 beside b's pass, then the meeting rows (the bottom chain's
-  // rows are 0).
   auto v = [q](std::size_t p) { return q + 3 * p; };
-  std::fill(q, q + 3 * (k + 2), 0.0);
-  q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
-  forwardTwisted<kSecond>(b, rows, q);
-  forwardMeeting<kSecond, false>(k, rows.single(k), rows.single(k + 1), rows.meet(), v);
   double along = 0.0, compliance = 0.0;
   for (std::size_t p = 1; p <= k + 1; ++p)
   {
@@ -212,6 +233,14 @@ ROV_TETHER_TARGET_CLONES void substituteTwistedPulled(double* __restrict b, std:
     b[i] -= f * q[i];
   }
   backwardTwisted<kSecond>(b, rows);
+}
+
+/// The pull's right-hand side for the twisted pulled solve: P on block row 1 (the top chain's), 0 on the rest of
+/// the top chain and the meeting rows (3 (k + 2) values of q).
+void pulledStart(double* q, std::size_t n, const double* pull)
+{
+  std::fill(q, q + 3 * (meeting(n) + 2), 0.0);
+  q[3] = pull[0], q[4] = pull[1], q[5] = pull[2];
 }
 
 /// solveBlockBandedPulled's solve, after factorBlocks<kSecond, true>.
@@ -245,23 +274,23 @@ ROV_TETHER_TARGET_CLONES void substitutePulled(double* __restrict b, std::size_t
 bool solveBlockBanded(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                       double* work, const BlockLayout& layout)
 {
-  const bool twisted = n >= kTwistedFrom;
-  if (second != nullptr)
+  if (n >= kTwistedFrom)
   {
-    if (!(twisted ? factorTwisted<true>(diag, first, second, layout, n, work)
-                  : factorBlocks<true>(diag, first, second, layout, n, work)))
+    // The forward pass along with the factorisation, then the backward pass.
+    if (!(second != nullptr ? factorTwisted<true>(diag, first, second, layout, n, work, b)
+                            : factorTwisted<false>(diag, first, nullptr, layout, n, work, b)))
     {
       return false;
     }
-    solveBlockBandedAgain(true, b, n, work);
+    second != nullptr ? substituteTwistedBackward<true>(b, n, work) : substituteTwistedBackward<false>(b, n, work);
     return true;
   }
-  if (!(twisted ? factorTwisted<false>(diag, first, nullptr, layout, n, work)
-                : factorBlocks<false>(diag, first, nullptr, layout, n, work)))
+  if (!(second != nullptr ? factorBlocks<true>(diag, first, second, layout, n, work)
+                          : factorBlocks<false>(diag, first, nullptr, layout, n, work)))
   {
     return false;
   }
-  solveBlockBandedAgain(false, b, n, work);
+  solveBlockBandedAgain(second != nullptr, b, n, work);
   return true;
 }
 
@@ -285,20 +314,21 @@ bool solveBlockBandedPulled(const double* diag, const double* first, const doubl
     // Twisted, as solveBlockBanded: block row 1 is in the top chain. The pull's forward pass is kept in the
     // work after the factors.
     double* q = work + kPulledScratch * n;
+    pulledStart(q, n, pull);
     if (second != nullptr)
     {
-      if (!factorTwisted<true>(diag, first, second, layout, n, work))
+      if (!factorTwisted<true>(diag, first, second, layout, n, work, b, q))
       {
         return false;
       }
-      substituteTwistedPulled<true>(b, n, work, q, pull, law, force);
+      substituteTwistedPulled<true>(b, n, work, q, law, force);
       return true;
     }
-    if (!factorTwisted<false>(diag, first, nullptr, layout, n, work))
+    if (!factorTwisted<false>(diag, first, nullptr, layout, n, work, b, q))
     {
       return false;
     }
-    substituteTwistedPulled<false>(b, n, work, q, pull, law, force);
+    substituteTwistedPulled<false>(b, n, work, q, law, force);
     return true;
   }
   if (second != nullptr)

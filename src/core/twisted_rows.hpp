@@ -124,68 +124,104 @@ ROV_TETHER_INLINE void forwardMeeting(std::size_t k, const BlockRow& rk, const B
   ownForward(rk1, v(k + 1));
 }
 
-/// The forward pass after factorTwisted (u = L^-1 b in place): down the top chain and up the bottom chain
-/// together, a pair's rows a lane each (their values gathered from b and scattered back, the last two pairs' kept
-/// for the next), then the meeting rows. With q, the pull's pass (substituteTwistedPulled: q = L^-1 P e_1, 0 but in
-/// the top chain and the meeting) beside b's, its rows in the pairs' lane 0 (lane 1 kept 0).
+/// The forward pass after factorTwisted (u = L^-1 b in place), in the order factorTwisted makes the rows, so that
+/// it can also go along with the factorisation (each step as soon as its rows are factored; the divisions of the
+/// factorisation's chains leave the processor the time): start() rows 0 and 1 of both chains, pair(i) pair i's two
+/// rows a lane each (their values gathered from b and scattered back, the last two pairs' kept for the next),
+/// finish() the bottom chain's last row when n is odd, then the meeting rows. With q, the pull's pass
+/// (substituteTwistedPulled: q = L^-1 P e_1, 0 but in the top chain and the meeting) beside b's, its rows in the
+/// pairs' lane 0 (lane 1 kept 0).
 template <bool kSecond>
-ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, const TwistedRows& rows, double* __restrict q = nullptr)
+class TwistedForward
 {
-  const std::size_t k = rows.k(), bottom = rows.bottom(), n = k + 2 + bottom;
-  auto v = [b](std::size_t p) { return b + 3 * p; };
-  auto w = [q](std::size_t p) { return q + 3 * p; };
-  // Rows 0 and 1 of each chain, one at a time.
-  for (std::size_t i = 0; i < 2; ++i)
+ public:
+  TwistedForward(double* b, const TwistedRows& rows, double* q)
+      : b_(b), q_(q), rows_(rows), k_(rows.k()), n_(rows.k() + 2 + rows.bottom())
   {
-    const double* none = nullptr;
-    forwardRow<kSecond>(rows.single(i), i >= 1 ? v(i - 1) : none, none, v(i));
-    forwardRow<kSecond>(rows.single(n - 1 - i), i >= 1 ? v(n - i) : none, none, v(n - 1 - i));
   }
-  if (q != nullptr)
+  void start()
   {
-    forwardRow<kSecond>(rows.single(1), w(0), static_cast<const double*>(nullptr), w(1));
-  }
-  // The pairs: u1 and u2 hold the last two pairs' values (rows i - 1, n - i and i - 2, n + 1 - i), as q1 and q2
-  // the pull's.
-  Lanes u1[3], u2[3], q1[3] = {}, q2[3] = {};
-  gather(v(1), v(n - 2), 3, u1);
-  gather(v(0), v(n - 1), 3, u2);
-  if (q != nullptr)
-  {
-    for (std::size_t j = 0; j < 3; ++j)
+    const std::size_t n = n_;
+    for (std::size_t i = 0; i < 2; ++i)
     {
-      q1[j] = Lanes{w(1)[j], 0.0}, q2[j] = Lanes{w(0)[j], 0.0};
+      const double* none = nullptr;
+      forwardRow<kSecond>(rows_.single(i), i >= 1 ? v(i - 1) : none, none, v(i));
+      forwardRow<kSecond>(rows_.single(n - 1 - i), i >= 1 ? v(n - i) : none, none, v(n - 1 - i));
     }
-  }
-  for (std::size_t i = 2; i < k; ++i)
-  {
-    const std::size_t p = n - 1 - i;
-    const PairRow& pair = rows.pair(i);
-    Lanes u[3];
-    gather(v(i), v(p), 3, u);
-    forwardRow<kSecond>(pair, u1, u2, u);
-    scatter(u, 3, v(i), v(p));
-    for (std::size_t j = 0; j < 3; ++j)
+    // u1 and u2 hold the last two pairs' values (rows i - 1, n - i and i - 2, n + 1 - i), as q1 and q2 the pull's.
+    gather(v(1), v(n - 2), 3, u1_);
+    gather(v(0), v(n - 1), 3, u2_);
+    if (q_ != nullptr)
     {
-      u2[j] = u1[j], u1[j] = u[j];
-    }
-    if (q != nullptr)
-    {
-      // The pull's row i beside b's: the same factors, lane 1 a row of zeros.
-      Lanes r[3] = {Lanes{w(i)[0], 0.0}, Lanes{w(i)[1], 0.0}, Lanes{w(i)[2], 0.0}};
-      forwardRow<kSecond>(pair, q1, q2, r);
+      forwardRow<kSecond>(rows_.single(1), w(0), static_cast<const double*>(nullptr), w(1));
       for (std::size_t j = 0; j < 3; ++j)
       {
-        w(i)[j] = r[j][0];
-        q2[j] = q1[j], q1[j] = r[j];
+        q1_[j] = Lanes{w(1)[j], 0.0}, q2_[j] = Lanes{w(0)[j], 0.0};
       }
     }
   }
-  if (bottom > k)
+  void pair(std::size_t i)
   {
-    forwardRow<kSecond>(rows.single(k + 2), v(k + 3), v(k + 4), v(k + 2));  // n odd: the bottom chain's last row
+    const std::size_t p = n_ - 1 - i;
+    const PairRow& pair = rows_.pair(i);
+    Lanes u[3];
+    gather(v(i), v(p), 3, u);
+    forwardRow<kSecond>(pair, u1_, u2_, u);
+    scatter(u, 3, v(i), v(p));
+    for (std::size_t j = 0; j < 3; ++j)
+    {
+      u2_[j] = u1_[j], u1_[j] = u[j];
+    }
+    if (q_ != nullptr)
+    {
+      // The pull's row i beside b's: the same factors, lane 1 a row of zeros.
+      Lanes r[3] = {Lanes{w(i)[0], 0.0}, Lanes{w(i)[1], 0.0}, Lanes{w(i)[2], 0.0}};
+      forwardRow<kSecond>(pair, q1_, q2_, r);
+      for (std::size_t j = 0; j < 3; ++j)
+      {
+        w(i)[j] = r[j][0];
+        q2_[j] = q1_[j], q1_[j] = r[j];
+      }
+    }
   }
-  forwardMeeting<kSecond, true>(k, rows.single(k), rows.single(k + 1), rows.meet(), v);
+  void finish()
+  {
+    const std::size_t k = k_;
+    if (n_ % 2 == 1)
+    {
+      forwardRow<kSecond>(rows_.single(k + 2), v(k + 3), v(k + 4), v(k + 2));  // the bottom chain's last row
+    }
+    forwardMeeting<kSecond, true>(k, rows_.single(k), rows_.single(k + 1), rows_.meet(),
+                                  [this](std::size_t p) { return v(p); });
+    if (q_ != nullptr)
+    {
+      forwardMeeting<kSecond, false>(k, rows_.single(k), rows_.single(k + 1), rows_.meet(),
+                                     [this](std::size_t p) { return w(p); });
+    }
+  }
+
+ private:
+  double* v(std::size_t p) const { return b_ + 3 * p; }
+  double* w(std::size_t p) const { return q_ + 3 * p; }
+
+  double* b_;
+  double* q_;
+  const TwistedRows& rows_;
+  std::size_t k_, n_;
+  Lanes u1_[3], u2_[3], q1_[3] = {}, q2_[3] = {};
+};
+
+/// The whole forward pass after factorTwisted (TwistedForward's steps one after the other).
+template <bool kSecond>
+ROV_TETHER_INLINE void forwardTwisted(double* __restrict b, const TwistedRows& rows)
+{
+  TwistedForward<kSecond> forward(b, rows, nullptr);
+  forward.start();
+  for (std::size_t i = 2; i < rows.k(); ++i)
+  {
+    forward.pair(i);
+  }
+  forward.finish();
 }
 
 /// The backward pass after forwardTwisted (x = L^-T D^-1 u in place): the meeting rows, then out along both
