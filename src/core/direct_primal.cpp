@@ -463,7 +463,9 @@ struct MultiplierLaw
 /// Each multiplier's Newton step into `out`, segments `from` to `count` - 1 (PrimalNewton::multiplierStep):
 /// to the linearised force of its stretch C + n . (dx_k+1 - dx_k), by its law's piece in the model (the spring
 /// over alpha, or the dashpot's middle piece), 0 out of it. Branch-free, so that it vectorises; the same
-/// operations as linearStretch and middleForce.
+/// operations as linearStretch and middleForce. kUnilateral false (a rod's segments, all in the model): the
+/// spring's alone.
+template <bool kUnilateral>
 ROV_TETHER_TARGET_CLONES void multiplierSteps(const MultiplierLaw& in, std::size_t from, std::size_t count,
                                               double* __restrict out)
 {
@@ -477,12 +479,17 @@ ROV_TETHER_TARGET_CLONES void multiplierSteps(const MultiplierLaw& in, std::size
     const double* a = step + 3 * k;
     const double* b = a + 3;
     const double stretch = c[k] + nx[k] * (b[0] - a[0]) + ny[k] * (b[1] - a[1]) + nz[k] * (b[2] - a[2]);
-    const double a_k = alpha[k], bend = kink[k], slope = dashpot[k];
+    const double a_k = alpha[k];
     const double spring = stretch / a_k;
-    const double piece = bend / a_k + slope * (stretch - bend);
-    const bool on_middle = slope > 0.0 && middle[k] > 0.0;
-    const double off_model = on_middle ? piece : 0.0;
-    const double target = model[k] > 0.0 ? spring : off_model;
+    double target = spring;
+    if constexpr (kUnilateral)
+    {
+      const double bend = kink[k], slope = dashpot[k];
+      const double piece = bend / a_k + slope * (stretch - bend);
+      const bool on_middle = slope > 0.0 && middle[k] > 0.0;
+      const double off_model = on_middle ? piece : 0.0;
+      target = model[k] > 0.0 ? spring : off_model;
+    }
     out[k] = target - lambda[k];
   }
 }
@@ -497,7 +504,9 @@ void PrimalNewton::multiplierStep(const Cable& cable)
   const MultiplierLaw law{step_.data(),  ws_.c.data(),     ws_.nx.data(),   ws_.ny.data(),
                           ws_.nz.data(), ws_.alpha.data(), ws_.kink.data(), ws_.dashpot.data(),
                           ws_.on(),      middle_.data(),   lambda_.data()};
-  multiplierSteps(law, ws_.drum != nullptr ? 1 : 0, ws_.m, lambda_step_.data());
+  const std::size_t from = ws_.drum != nullptr ? 1 : 0;
+  ws_.unilateral ? multiplierSteps<true>(law, from, ws_.m, lambda_step_.data())
+                 : multiplierSteps<false>(law, from, ws_.m, lambda_step_.data());
   if (ws_.drum != nullptr && !(cable.inv_mass[ws_.first + 1] > 0.0))
   {
     lambda_step_[0] = ws_.drum->force(ws_.c[0]) - lambda_[0];  // a segment nothing can move: the law alone
@@ -596,9 +605,11 @@ struct SegmentLaw
 /// Each of `count` segments' pull lambda n into `pull` (segment k at k + 1), and the largest residual of the
 /// segments from `from` on, relative to their rest length: C - alpha lambda of one in the model (a rod's are all
 /// in it); of a cable's out of it, max(C, 0) (or, with the dashpot's middle piece, how far past the kink) plus
-/// the move lambda against its law would make. Branch-free, so that it vectorises.
+/// the move lambda against its law would make. Branch-free, so that it vectorises. kUnilateral false (a rod's
+/// segments, all in the model): only the first, and the cable's law is not computed.
+template <bool kUnilateral>
 ROV_TETHER_TARGET_CLONES double segmentResiduals(const SegmentLaw& in, double* const* pull, std::size_t count,
-                                                 bool unilateral, std::size_t from)
+                                                 std::size_t from)
 {
   const double* __restrict c = in.c, * __restrict alpha = in.alpha, * __restrict kink = in.kink;
   const double* __restrict zero = in.zero, * __restrict dashpot = in.dashpot, * __restrict inv_rest = in.inv_rest;
@@ -609,17 +620,22 @@ ROV_TETHER_TARGET_CLONES double segmentResiduals(const SegmentLaw& in, double* c
 #pragma omp simd reduction(max : worst)
   for (std::size_t k = 0; k < count; ++k)
   {
-    const double lam = lambda[k], stretch = c[k], a = alpha[k], bend = kink[k], slope = dashpot[k];
+    const double lam = lambda[k], stretch = c[k], a = alpha[k];
     px[k] = lam * nx[k], py[k] = lam * ny[k], pz[k] = lam * nz[k];
-    const double mobility = w[k] + w[k + 1];
-    // The law's force at C (DirectWorkspace::law, a cable's): above the kink max(C, 0) / alpha, then the
-    // middle piece down to where it is 0, then 0.
-    const double middle = bend / a + slope * (stretch - bend);
-    const double force = stretch >= bend ? std::max(stretch, 0.0) / a : (stretch > zero[k] ? middle : 0.0);
     const double in_model = std::abs(stretch - a * lam);
-    const double damped = std::max(stretch - bend, 0.0) + std::abs(lam - force) * mobility;
-    const double slack = std::max(stretch, 0.0) + std::abs(lam) * mobility;
-    const double r = !unilateral || model[k] > 0.0 ? in_model : (slope > 0.0 ? damped : slack);
+    double r = in_model;
+    if constexpr (kUnilateral)
+    {
+      const double bend = kink[k], slope = dashpot[k];
+      const double mobility = w[k] + w[k + 1];
+      // The law's force at C (DirectWorkspace::law, a cable's): above the kink max(C, 0) / alpha, then the
+      // middle piece down to where it is 0, then 0.
+      const double middle = bend / a + slope * (stretch - bend);
+      const double force = stretch >= bend ? std::max(stretch, 0.0) / a : (stretch > zero[k] ? middle : 0.0);
+      const double damped = std::max(stretch - bend, 0.0) + std::abs(lam - force) * mobility;
+      const double slack = std::max(stretch, 0.0) + std::abs(lam) * mobility;
+      r = model[k] > 0.0 ? in_model : (slope > 0.0 ? damped : slack);
+    }
     const double relative = k >= from ? r * inv_rest[k] : 0.0;
     worst = std::max(worst, relative);
   }
@@ -698,7 +714,8 @@ double PrimalNewton::residual(const Cable& cable)
                        ws_.zero.data(), ws_.dashpot.data(), ws_.inv_rest.data(),
                        ws_.on(),        lambda_.data(),     w,
                        ws_.nx.data(),   ws_.ny.data(),      ws_.nz.data()};
-  double worst = segmentResiduals(law, pull, m, ws_.unilateral, drum ? 1 : 0);
+  double worst = ws_.unilateral ? segmentResiduals<true>(law, pull, m, drum ? 1 : 0)
+                                : segmentResiduals<false>(law, pull, m, drum ? 1 : 0);
   if (drum)
   {
     worst = std::max(worst, ws_.drumResidual(lambda_[0], w[0] + w[1]));  // the spool segment (left out above)

@@ -85,7 +85,9 @@ struct SegmentTerms
 /// stiffness, and its force in the gradient, and whether it is in the model: the segments of the model are
 /// all of a rod's; of a cable's, those the step stretches (solveModel), or on their law's middle piece (a
 /// slack segment's dashpot: its force and slope). `along`: the cable's added mass makes it anisotropic
-/// (w_along). The drum's spool segment is set by the caller.
+/// (w_along). The drum's spool segment is set by the caller. kUnilateral false: a rod's, every segment in the
+/// model and none on a middle piece (the selects below, with their loads, left out).
+template <bool kUnilateral>
 ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const SegmentTerms& out, std::size_t count,
                                            bool along)
 {
@@ -105,7 +107,7 @@ ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const Segmen
   {
     // Every load unconditional (a load behind && could trap, which keeps the loop from vectorising).
     const double slope = dashpot[k], piece = middle[k], wa = w[k], wb = w[k + 1], va = w_along[k], vb = w_along[k + 1];
-    const bool in_middle = (slope > 0.0) & (piece > 0.0);
+    const bool in_middle = kUnilateral && (slope > 0.0) & (piece > 0.0);
     const double middle_force = kink[k] / alpha[k] + slope * (c[k] - kink[k]);
     const double taut_force = c[k] / alpha[k];
     // Hessian of the segment's energy: axial (1 / alpha) n n^T plus the geometric stiffness
@@ -121,7 +123,7 @@ ROV_TETHER_TARGET_CLONES void segmentTerms(const SegmentInputs& in, const Segmen
     // A particle's largest inverse mass (along the cable, where added mass does not act).
     const double mobility = std::max(std::max(wa, va), std::max(wb, vb));
     const double kept = g < 0.0 && !(-g * mobility <= share) ? 0.0 : g;
-    on[k] = in_middle || model[k] > 0.0 ? 1.0 : 0.0;
+    on[k] = !kUnilateral || in_middle || model[k] > 0.0 ? 1.0 : 0.0;
     lam[k] = in_middle ? middle_force : taut_force;
     scale[k] = (in_middle ? slope : stiffness[k]) - kept;
     geometric[k] = kept;
@@ -373,7 +375,7 @@ void PrimalNewton::assemble(const Cable& cable, bool whole_compression)
                          ws_.ny.data(),
                          ws_.nz.data(),
                          whole_compression ? std::numeric_limits<double>::infinity() : kCompressedShare};
-  segmentTerms(in, terms, m, along);
+  ws_.unilateral ? segmentTerms<true>(in, terms, m, along) : segmentTerms<false>(in, terms, m, along);
   for (double* v : {terms.on, terms.lam, terms.scale, terms.geometric, terms.nx, terms.ny, terms.nz})
   {
     v[0] = v[m + 1] = 0.0;  // no segment before the first particle nor after the last
