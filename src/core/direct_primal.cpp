@@ -182,19 +182,32 @@ ROV_TETHER_TARGET_CLONES void energyTermsCloned(const PrimalNewton::Particles& p
   const double* __restrict w = p.w, * __restrict mass = p.mass, * __restrict less = p.less;
   const double* __restrict x = p.x, * __restrict y = p.y, * __restrict z = p.z;
   const double* __restrict xt = p.xt, * __restrict yt = p.yt, * __restrict zt = p.zt;
-  const double* __restrict tx = along ? p.tx : p.x, * __restrict ty = along ? p.ty : p.y;
-  const double* __restrict tz = along ? p.tz : p.z;
+  const double* __restrict tx = p.tx, * __restrict ty = p.ty, * __restrict tz = p.tz;
   double* __restrict across = terms, * __restrict lengthwise = terms + stride;
   double* __restrict elastic = terms + 2 * stride, * __restrict bent = terms + 3 * stride;
-#pragma omp simd
-  for (std::size_t l = 0; l <= m; ++l)
+  if (along)
   {
-    const double dx = x[l] - xt[l], dy = y[l] - yt[l], dz = z[l] - zt[l];
-    const bool free = w[l] > 0.0;
-    const double a = dx * tx[l] + dy * ty[l] + dz * tz[l];
-    const double kinetic = (dx * dx + dy * dy + dz * dz) * mass[l], extra = less[l] * a * a;
-    across[l] = free ? kinetic : 0.0;
-    lengthwise[l] = free ? extra : 0.0;  // read only along a cable with added mass
+#pragma omp simd
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      const double dx = x[l] - xt[l], dy = y[l] - yt[l], dz = z[l] - zt[l];
+      const bool free = w[l] > 0.0;
+      const double a = dx * tx[l] + dy * ty[l] + dz * tz[l];
+      const double kinetic = (dx * dx + dy * dy + dz * dz) * mass[l], extra = less[l] * a * a;
+      across[l] = free ? kinetic : 0.0;
+      lengthwise[l] = free ? extra : 0.0;
+    }
+  }
+  else
+  {
+    // The same kinetic terms; the lengthwise ones are read only along a cable with added mass, and not written.
+#pragma omp simd
+    for (std::size_t l = 0; l <= m; ++l)
+    {
+      const double dx = x[l] - xt[l], dy = y[l] - yt[l], dz = z[l] - zt[l];
+      const double kinetic = (dx * dx + dy * dy + dz * dz) * mass[l];
+      across[l] = w[l] > 0.0 ? kinetic : 0.0;
+    }
   }
   const double* __restrict c = law.c, * __restrict alpha = law.alpha, * __restrict kink = law.kink;
   const double* __restrict zero = law.zero, * __restrict dashpot = law.dashpot;
@@ -651,13 +664,17 @@ struct ParticleForces
   const double* w_along;
   const double* pull[3];
   const double *bend_pull[3], *curve[3];
+  /// With bending, where the first loop leaves each particle's force before the joints' terms (rows long each).
+  double* partial[3];
 };
 
 /// The largest move a free particle's force balance M (x - x~) + J^T lambda + the bending terms would make: the
 /// force times the particle's largest inverse mass. Its terms in the order the step's equations add them: the
 /// mass, segment l - 1's pull, segment l's, then the joints l - 2, l - 1, l.
 /// Along (added mass) and bending are template arguments: a loop-invariant test in the loop let GCC split it
-/// into versions, of which the bending one stayed scalar.
+/// into versions, of which the bending one stayed scalar. With bending, the joints' terms and the largest move
+/// are a second loop over the first's forces (in.partial): the one loop read more arrays than the processor has
+/// registers for their addresses, as the assembly's did (bendingRowsAdded).
 template <bool kAlong, bool kBending>
 ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_t rows)
 {
@@ -668,9 +685,7 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
   const double* __restrict tx = along ? in.p.tx : in.p.x, * __restrict ty = along ? in.p.ty : in.p.y;
   const double* __restrict tz = along ? in.p.tz : in.p.z;
   const double* __restrict px = in.pull[0], * __restrict py = in.pull[1], * __restrict pz = in.pull[2];
-  const double* __restrict p0 = in.bend_pull[0], * __restrict p1 = in.bend_pull[1];
-  const double* __restrict p2 = in.bend_pull[2];
-  const double* __restrict cx = in.curve[0], * __restrict cy = in.curve[1], * __restrict cz = in.curve[2];
+  double* __restrict s0 = in.partial[0], * __restrict s1 = in.partial[1], * __restrict s2 = in.partial[2];
   double worst = 0.0;
 #pragma omp simd reduction(max : worst)
   for (std::size_t l = 0; l < rows; ++l)
@@ -688,13 +703,31 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     f0 -= px[l + 1], f1 -= py[l + 1], f2 -= pz[l + 1];
     if constexpr (kBending)
     {
+      s0[l] = f0, s1[l] = f1, s2[l] = f2;
+    }
+    else
+    {
+      const double inverse = std::max(w[l], w_along[l]);
+      const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
+      worst = std::max(worst, move);
+    }
+  }
+  if constexpr (kBending)
+  {
+    const double* __restrict p0 = in.bend_pull[0], * __restrict p1 = in.bend_pull[1];
+    const double* __restrict p2 = in.bend_pull[2];
+    const double* __restrict cx = in.curve[0], * __restrict cy = in.curve[1], * __restrict cz = in.curve[2];
+#pragma omp simd reduction(max : worst)
+    for (std::size_t l = 0; l < rows; ++l)
+    {
+      double f0 = s0[l], f1 = s1[l], f2 = s2[l];
       f0 += p0[l] * cx[l], f1 += p0[l] * cy[l], f2 += p0[l] * cz[l];
       f0 += p1[l] * cx[l + 1], f1 += p1[l] * cy[l + 1], f2 += p1[l] * cz[l + 1];
       f0 += p2[l] * cx[l + 2], f1 += p2[l] * cy[l + 2], f2 += p2[l] * cz[l + 2];
+      const double inverse = std::max(w[l], w_along[l]);
+      const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
+      worst = std::max(worst, move);
     }
-    const double inverse = std::max(w[l], w_along[l]);
-    const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
-    worst = std::max(worst, move);
   }
   return worst;
 }
@@ -732,7 +765,8 @@ double PrimalNewton::residual(const Cable& cable)
                               cable.anisotropic ? cable.inv_mass_along.data() + f : w,
                               {pull[0], pull[1], pull[2]},
                               {term(bend_pull_, 0), term(bend_pull_, 1), term(bend_pull_, 2)},
-                              {curve_x_.data(), curve_y_.data(), curve_z_.data()}};
+                              {curve_x_.data(), curve_y_.data(), curve_z_.data()},
+                              {segmentArray(3), segmentArray(4), segmentArray(5)}};
   const bool along = cable.anisotropic;
   const double worst_move =
       along ? (ws_.bending ? largestMove<true, true>(forces, m + 1) : largestMove<true, false>(forces, m + 1))

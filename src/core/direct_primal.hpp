@@ -155,8 +155,8 @@ struct EnergyLaw
 
 /// The step energy's terms, each as PrimalNewton's energy adds them, into `terms` (four arrays of `stride`):
 /// each of the m + 1 particles' kinetic (M (x - x~)).(x - x~) across, then along the cable (0 for a pinned one;
-/// the second read only with added mass, `along`), each of the m segments' twice its potential (the integral
-/// of its law from where the law is 0; the caller adds a drum's apart), each joint's |kappa|^2 / gamma.
+/// the second only with added mass, `along`, and not written without), each of the m segments' twice its potential (the
+/// integral of its law from where the law is 0; the caller adds a drum's apart), each joint's |kappa|^2 / gamma.
 /// Branch-free, so that it vectorises; each term the same operations in the same order whatever the vector
 /// width, so that the caller's sum in order is the same to the bit on every machine.
 void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::size_t m, bool along, bool unilateral,
