@@ -5,10 +5,11 @@
 # Runs BM_StepDirect/N and BM_StepDirectBending/N (SEGMENTS, "100 1000" by default) and prints the instructions
 # of one step (the benchmark loop's calls of Tether::step(), inclusive, over their count), the ratio bending /
 # chain, and the share of the bending step's instructions in its largest parts (the Newton iteration's
-# assembly, block factorisation, substitution, residual and energy). WALL=1 adds one timed run (REPETITIONS, 9,
-# repetitions interleaved at random, pinned to one core) and its CPU-time ratios, of the medians and of the
-# minima: a loaded machine moves them, and time does not follow instructions one for one (the block
-# factorisation is two chains of dependent divisions, one block row after the other in each).
+# assembly, block factorisation with the forward pass that goes along with it, substitution, residual and
+# energy). WALL=1 adds one timed run (REPETITIONS, 9, repetitions interleaved at random, pinned to one core)
+# and its CPU-time ratios, of the medians and of the minima: a loaded machine moves them, and time does not
+# follow instructions one for one (the block factorisation is two chains of dependent divisions, one block row
+# after the other in each).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/callgrind_bench.sh"
 segments="${SEGMENTS:-100 1000}"
@@ -24,9 +25,11 @@ from callgrind_tree import functions, per_step
 
 # Each part is every function whose name holds the pattern: the block solve's loops are compiled as clones
 # (AVX-512, AVX2, baseline), and callgrind names each clone on its own.
-# From 8 block rows on the factorisation and substitution are the twisted ones (factorTwisted, substituteTwisted).
+# From 8 block rows on the factorisation and substitution are the twisted ones (factorTwisted, substituteTwisted);
+# the first solve's forward pass goes along with factorTwisted (counted in it) and its backward pass is
+# substituteTwistedBackward.
 PARTS = (("assembly", ("PrimalNewton::assemble(",)), ("factorisation", ("factorBlocks<true", "factorTwisted<true")),
-         ("substitution", ("substituteBlocks<true", "substituteTwisted<true")),
+         ("substitution", ("substituteBlocks<true", "substituteTwisted<true", "substituteTwistedBackward<true")),
          ("residual", ("PrimalNewton::residual(",)), ("energy", ("PrimalNewton::energy(",)))
 for n in sys.argv[3:]:
     chain, bending = functions("%s/chain%s.txt" % (work, n)), functions("%s/bending%s.txt" % (work, n))
