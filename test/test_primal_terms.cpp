@@ -188,6 +188,15 @@ TEST(StepEnergy, KineticAndBendingTermsAreTheirQuadraticForms)
   EXPECT_EQ(terms[stride + 1], 0.0) << "pinned";
   EXPECT_DOUBLE_EQ(terms[stride + 2], -0.25 * 1.0);
   EXPECT_DOUBLE_EQ(terms[3 * stride], (0.09 + 0.16 + 1.44) * 4.0);
+  // Without added mass (`along` false: a loop of its own) the same kinetic terms across, none pinned, and the
+  // lengthwise ones not written.
+  std::vector<double> isotropic(4 * stride, -1.0);
+  rov_tether::energyTerms(p, law, 2, false, true, true, isotropic.data(), stride);
+  EXPECT_DOUBLE_EQ(isotropic[0], 2.0 * 1.25);
+  EXPECT_EQ(isotropic[1], 0.0) << "pinned";
+  EXPECT_DOUBLE_EQ(isotropic[2], 0.5 * 5.25);
+  EXPECT_EQ(isotropic[stride + 0], -1.0) << "not written without added mass";
+  EXPECT_DOUBLE_EQ(isotropic[3 * stride], (0.09 + 0.16 + 1.44) * 4.0);
 }
 
 // The bending joints' Hessian terms of the rows bendingRows writes (those with all three joints), against the

@@ -60,9 +60,9 @@ class EndLaw
 /// sets (into `force`): one factorisation and one substitution. Below 8 block rows it eliminates from the last
 /// block row to the first, so that block row 1's last pivot holds A^-1_11; from 8 on it is twisted, as
 /// solveBlockBanded, and the pull comes from the forward passes of b and of P on block row 1. False when it is
-/// not positive definite, and when n < 2 or block row 0 couples to the others (it must be a pinned particle's:
-/// the single chain needs it). The direct solver's spool
-/// segment on a drum (PrimalNewton::pulledSolve).
+/// not positive definite (b then holds nothing meaningful), and when n < 2 or block row 0 couples to the others (it
+/// must be a pinned particle's: the single chain needs it). The direct solver's spool segment on a drum
+/// (PrimalNewton::pulledSolve).
 bool solveBlockBandedPulled(const double* diag, const double* first, const double* second, double* b, std::size_t n,
                             double* work, const double* pull, const EndLaw& law, double* force,
                             const BlockLayout& layout = {});

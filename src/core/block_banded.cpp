@@ -79,9 +79,9 @@ ROV_TETHER_TARGET_CLONES bool factorTwisted(const double* __restrict diag, const
   }
   // Rows 2 .. k-1 of the top chain and n-3 .. n-k of the bottom one, a row of each at once (chainPair, a lane
   // each), into pair i, against the two pairs before it (rows 0 and 1 of each chain side by side for the first two).
-  // Zeroed, so that nothing indeterminate is copied: a pair's factors it does not set (below2 without a second
-  // band) are never read.
-  PairRow start[2] = {};
+  // A pair's factors chainPair does not set (below2 without a second band) are never read, here or in the
+  // substitutions: what the work held there is carried along.
+  PairRow start[2];
   gather(values(rows.single(0)), values(rows.single(n - 1)), 27, values(start[0]));
   gather(values(rows.single(1)), values(rows.single(n - 2)), 27, values(start[1]));
   for (std::size_t i = 2; i < k; ++i)
