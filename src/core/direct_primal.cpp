@@ -119,14 +119,21 @@ PrimalNewton::Result PrimalNewton::solve(Cable& cable, double* lambda, double to
   result.residual = std::numeric_limits<double>::infinity();
   model_unsettled_ = false;
   whole_compression_ = true;
+  bool above = false;  // the last iteration's residual is known only to be above the tolerance
   while (result.residual > tolerance && result.iterations < max_iterations)
   {
     if (!std::isfinite(step(cable, &result.rounds)))
     {
-      break;  // the system was not definite: leave the step as it is (reported through the residual)
+      // The system was not definite: leave the step as it is (reported through the residual; a rod's failed
+      // step changed nothing the residual reads).
+      result.residual = above ? residual(cable) : result.residual;
+      break;
     }
     ++result.iterations;
-    result.residual = residual(cable);
+    // Another iteration follows whenever the residual is above the tolerance, which a rod's segment's own
+    // residual above it already says (the residual is the largest of all); the last iteration's is computed whole.
+    above = !ws_.unilateral && result.iterations < max_iterations && segmentAbove(tolerance);
+    result.residual = above ? std::numeric_limits<double>::infinity() : residual(cable);
   }
   for (std::size_t k = 0; k < m; ++k)
   {
@@ -733,6 +740,19 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
 }
 
 }  // namespace
+
+bool PrimalNewton::segmentAbove(double tolerance) const
+{
+  // Every 8th segment's |C - alpha lambda| over its rest length, as segmentResiduals<false> computes it.
+  for (std::size_t k = ws_.drum != nullptr ? 1 : 0; k < ws_.m; k += 8)
+  {
+    if (std::abs(ws_.c[k] - ws_.alpha[k] * lambda_[k]) * ws_.inv_rest[k] > tolerance)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 double PrimalNewton::residual(const Cable& cable)
 {

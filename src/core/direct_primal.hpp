@@ -99,6 +99,9 @@ class PrimalNewton
   /// of each free particle times its inverse mass, and C - alpha lambda of each segment (max(C, 0) of one
   /// out of the model; lambda against the law for the drum's).
   double residual(const Cable& cable);
+  /// Whether a rod's residual is above `tolerance` by one of its segments' own (every 8th looked at): true says the
+  /// residual() is too; false says nothing.
+  bool segmentAbove(double tolerance) const;
 
   /// Where assemble() puts the Hessian's blocks: one array an entry, n long (n the particles reserved).
   banded::BlockLayout layout() const { return {1, lambda_.size()}; }
