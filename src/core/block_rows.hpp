@@ -1,8 +1,8 @@
 #pragma once
 // A block row of the direct solver's block L D L^T (banded::solveBlockBanded, block_banded.cpp): its factors,
 // the steps that eliminate and factor one block row (or a pair of them, a lane each), and the steps of the forward
-// and backward substitutions on one row; the twisted factorisation's layout and passes are in twisted_rows.hpp. Inline, for block_banded.cpp's loops (each compiled there for
-// every instruction set); private to the core.
+// and backward substitutions on one row; the twisted factorisation's layout and passes are in twisted_rows.hpp. Inline,
+// for block_banded.cpp's loops (each compiled there for every instruction set); private to the core.
 #include <cstddef>
 
 #include "banded.hpp"

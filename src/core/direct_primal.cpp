@@ -53,7 +53,7 @@ double sumOf(const double* __restrict a, const double* __restrict b, std::size_t
       sum[j] += b != nullptr ? a[i + j] * b[i + j] : a[i + j];
     }
   }
-  for (std::size_t j = 0; i + j < count; ++j)
+  for (std::size_t j = 0; i + j < count; ++j)  // the last count % 4 entries
   {
     sum[j] += b != nullptr ? a[i + j] * b[i + j] : a[i + j];
   }
@@ -675,6 +675,12 @@ struct ParticleForces
   double* partial[3];
 };
 
+/// The move a force (f0, f1, f2) makes a particle of largest inverse mass `inverse` (0 pinned: none).
+ROV_TETHER_INLINE double moveOf(double inverse, double f0, double f1, double f2)
+{
+  return inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
+}
+
 /// The largest move a free particle's force balance M (x - x~) + J^T lambda + the bending terms would make: the
 /// force times the particle's largest inverse mass. Its terms in the order the step's equations add them: the
 /// mass, segment l - 1's pull, segment l's, then the joints l - 2, l - 1, l.
@@ -714,9 +720,7 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     }
     else
     {
-      const double inverse = std::max(w[l], w_along[l]);
-      const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
-      worst = std::max(worst, move);
+      worst = std::max(worst, moveOf(std::max(w[l], w_along[l]), f0, f1, f2));
     }
   }
   if constexpr (kBending)
@@ -728,12 +732,8 @@ ROV_TETHER_TARGET_CLONES double largestMove(const ParticleForces& in, std::size_
     for (std::size_t l = 0; l < rows; ++l)
     {
       double f0 = s0[l], f1 = s1[l], f2 = s2[l];
-      f0 += p0[l] * cx[l], f1 += p0[l] * cy[l], f2 += p0[l] * cz[l];
-      f0 += p1[l] * cx[l + 1], f1 += p1[l] * cy[l + 1], f2 += p1[l] * cz[l + 1];
-      f0 += p2[l] * cx[l + 2], f1 += p2[l] * cy[l + 2], f2 += p2[l] * cz[l + 2];
-      const double inverse = std::max(w[l], w_along[l]);
-      const double move = inverse > 0.0 ? inverse * std::sqrt(f0 * f0 + f1 * f1 + f2 * f2) : 0.0;
-      worst = std::max(worst, move);
+      addJointPulls(p0, p1, p2, cx, cy, cz, l, f0, f1, f2);
+      worst = std::max(worst, moveOf(std::max(w[l], w_along[l]), f0, f1, f2));
     }
   }
   return worst;

@@ -8,6 +8,7 @@
 #include "banded.hpp"
 #include "direct_workspace.hpp"
 #include "rov_tether/core/direct_solver.hpp"
+#include "simd.hpp"
 
 namespace rov_tether
 {
@@ -166,8 +167,8 @@ void energyTerms(const PrimalNewton::Particles& p, const EnergyLaw& law, std::si
                  bool bending, double* terms, std::size_t stride);
 
 /// What bendingRows reads and writes: the particles' inverse masses, the segments' inverse rest lengths and the
-/// joints' stiffness; each row's three joint terms (weight, 1 / gamma, diagonal: term i of row l at i n + l),
-/// its two first-below terms and its second-below coefficient.
+/// joints' stiffness; each row's three joints' pulls g / gamma (term i of row l at i n + l) and the sum of their
+/// diagonal terms, its two first-below terms and its second-below coefficient.
 struct BendingRows
 {
   const double *w, *inv_rest, *inv_gamma;
@@ -178,5 +179,18 @@ struct BendingRows
 /// l - 1, l), the particle after it and the one after that: 2 <= from, to <= m - 1. The same operations as the
 /// general rows, their conditions reduced to the particles being free; branch-free, so that it vectorises.
 void bendingRows(const BendingRows& rows, std::size_t from, std::size_t to);
+
+/// Particle l's three bending joints' pulls (joints l - 2, l - 1, l, in that order: PrimalNewton's bend_pull_)
+/// times their curvatures (offset by 2: joint l - 2 + i at entry l + i) added to the force (f0, f1, f2), as the
+/// assembly's gradient and the residual's force balance both add them.
+ROV_TETHER_INLINE void addJointPulls(const double* __restrict p0, const double* __restrict p1,
+                                     const double* __restrict p2, const double* __restrict cx,
+                                     const double* __restrict cy, const double* __restrict cz, std::size_t l,
+                                     double& f0, double& f1, double& f2)
+{
+  f0 += p0[l] * cx[l], f1 += p0[l] * cy[l], f2 += p0[l] * cz[l];
+  f0 += p1[l] * cx[l + 1], f1 += p1[l] * cy[l + 1], f2 += p1[l] * cz[l + 1];
+  f0 += p2[l] * cx[l + 2], f1 += p2[l] * cy[l + 2], f2 += p2[l] * cz[l + 2];
+}
 
 }  // namespace rov_tether

@@ -246,9 +246,7 @@ ROV_TETHER_TARGET_CLONES void bendingRowsAdded(const RowInputs& in, double* __re
   {
     double b0 = d0[l], b4 = d4[l], b8 = d8[l], r0 = g0[l], r1 = g1[l], r2 = g2[l];
     b0 += bend[l], b4 += bend[l], b8 += bend[l];
-    r0 += p0[l] * cx[l], r1 += p0[l] * cy[l], r2 += p0[l] * cz[l];
-    r0 += p1[l] * cx[l + 1], r1 += p1[l] * cy[l + 1], r2 += p1[l] * cz[l + 1];
-    r0 += p2[l] * cx[l + 2], r1 += p2[l] * cy[l + 2], r2 += p2[l] * cz[l + 2];
+    addJointPulls(p0, p1, p2, cx, cy, cz, l, r0, r1, r2);
     const bool pinned = w[l] == 0.0;
     d0[l] = pinned ? 1.0 : b0, d4[l] = pinned ? 1.0 : b4, d8[l] = pinned ? 1.0 : b8;
     g0[l] = pinned ? 0.0 : r0, g1[l] = pinned ? 0.0 : r1, g2[l] = pinned ? 0.0 : r2;
